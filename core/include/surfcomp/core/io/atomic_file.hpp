@@ -1,0 +1,16 @@
+// Writing an output file so that a failure never leaves a partial file behind.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <ostream>
+
+namespace surfcomp::io {
+
+/// Calls `write` with a binary stream to a temporary file beside `path`, then renames it onto
+/// `path`. If `write` throws or the stream fails, the temporary file is removed, `path` is
+/// untouched, and the exception propagates (stream failures as FileError naming `path`).
+void write_file_atomically(const std::filesystem::path& path,
+                           const std::function<void(std::ostream&)>& write);
+
+}  // namespace surfcomp::io

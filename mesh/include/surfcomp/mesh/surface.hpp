@@ -1,0 +1,123 @@
+// mesh::Surface — a triangle surface on an OpenMesh half-edge mesh (double precision) with
+// per-vertex normals and named scalar vertex properties (esp, lp, cc1, cc2, shape_index, or
+// whatever a file brought: MaSIF's charge, hphob, hbond, iface).
+#pragma once
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace surfcomp::mesh {
+
+struct SurfaceTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::Status);
+  FaceAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::Status);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge);
+};
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<SurfaceTraits>;
+
+/// Names of the properties the project computes (seed and METHOD section 0).
+namespace property {
+inline constexpr const char* esp = "esp";                  ///< kcal/(mol*e)
+inline constexpr const char* lp = "lp";                    ///< lipophilic potential, logP units
+inline constexpr const char* cc1 = "cc1";                  ///< 1/A, larger |k|; convex < 0
+inline constexpr const char* cc2 = "cc2";                  ///< 1/A; convex < 0
+inline constexpr const char* shape_index = "shape_index";  ///< [-1, 1]; cap +1, cup -1
+inline constexpr const char* curvedness = "curvedness";    ///< 1/A
+}  // namespace property
+
+/// How a value is stored in a file; values live in memory as double, which holds every one of
+/// these exactly, so writing with the stored type reproduces the file's bits.
+enum class ValueType : std::uint8_t { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
+
+/// Size in bytes of one value of `type`.
+std::size_t value_size(ValueType type);
+
+/// A triangle surface with named per-vertex scalar properties.
+/// Invariants: every face is a triangle; property vectors have one value per vertex.
+class Surface {
+ public:
+  Surface();
+
+  /// Builds a surface from vertex positions (#V by 3, A) and triangles (#F by 3, 0-based,
+  /// counter-clockwise seen from outside). Throws InputError for an index out of range or a
+  /// non-finite coordinate and TopologyError when a face cannot be added to a manifold
+  /// half-edge mesh (complex edge or vertex); `source` names the origin in messages.
+  static Surface from_arrays(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                             const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                             const std::string& source = "<arrays>");
+
+  TriMesh& mesh() { return mesh_; }
+  const TriMesh& mesh() const { return mesh_; }
+
+  std::size_t n_vertices() const { return mesh_.n_vertices(); }
+  std::size_t n_faces() const { return mesh_.n_faces(); }
+
+  /// Vertex positions, #V by 3, A.
+  Eigen::MatrixX3d positions() const;
+  /// Triangles, #F by 3, 0-based vertex indices.
+  Eigen::MatrixX3i faces() const;
+  /// Vertex normals, #V by 3 (unit, outward when has_normals()).
+  Eigen::MatrixX3d normals() const;
+  void set_normals(const Eigen::Ref<const Eigen::MatrixX3d>& normals);
+  /// True when normals were read from a file or computed; false after from_arrays().
+  bool has_normals() const { return has_normals_; }
+  /// Area-weighted face normals averaged at the vertices, normalised.
+  void compute_normals();
+
+  /// Named scalar properties, in the order they were added (files are written in this order).
+  const std::vector<std::string>& property_names() const { return property_names_; }
+  bool has_property(const std::string& name) const;
+  /// A copy of property `name`, one value per vertex. Throws InputError if absent.
+  Eigen::VectorXd property(const std::string& name) const;
+  double property(const std::string& name, std::size_t vertex) const;
+  /// Adds or replaces property `name`. Throws InputError if values.size() != n_vertices().
+  void set_property(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values,
+                    ValueType stored_as = ValueType::float64);
+  void remove_property(const std::string& name);
+  /// The type a file stored the property as (float64 for computed ones).
+  ValueType property_type(const std::string& name) const;
+
+  /// Storage types of positions and normals in the file this came from (float64 otherwise).
+  ValueType position_type() const { return position_type_; }
+  ValueType normal_type() const { return normal_type_; }
+  void set_position_type(ValueType type) { position_type_ = type; }
+  void set_normal_type(ValueType type) { normal_type_ = type; }
+
+  /// Where the surface came from (a file name, or "<arrays>"), for messages.
+  const std::string& source() const { return source_; }
+  void set_source(std::string source) { source_ = std::move(source); }
+
+ private:
+  OpenMesh::VPropHandleT<double> handle(const std::string& name) const;
+
+  TriMesh mesh_;
+  std::vector<std::string> property_names_;
+  std::vector<ValueType> property_types_;
+  ValueType position_type_ = ValueType::float64;
+  ValueType normal_type_ = ValueType::float64;
+  bool has_normals_ = false;
+  std::string source_ = "<arrays>";
+};
+
+/// Global measures of a closed or open surface.
+struct SurfaceMeasures {
+  double area = 0.0;        ///< A^2
+  double volume = 0.0;      ///< A^3, signed (divergence theorem); positive for outward faces
+  int euler_characteristic = 0;  ///< V - E + F
+  std::size_t boundary_edges = 0;
+};
+SurfaceMeasures measure_surface(const Surface& surface);
+
+/// Throws TopologyError (naming surface.source()) unless the surface is non-empty, closed
+/// (no boundary edge), 2-manifold and has no zero-area triangle (area <= min_area).
+void require_closed_manifold(const Surface& surface, double min_area = 1e-12);
+
+}  // namespace surfcomp::mesh

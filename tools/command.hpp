@@ -1,0 +1,22 @@
+// The subcommand interface of the surfcomp program: each subcommand is one thin file in tools/
+// that parses options into the library's Options struct, calls it, writes and reports.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace surfcomp::tools {
+
+/// Runs one subcommand with its arguments (without the program and subcommand names).
+/// Returns the exit status; library errors propagate as surfcomp::Error.
+using CommandFunction = int (*)(const std::vector<std::string>& args);
+
+struct Command {
+  const char* name;
+  const char* summary;
+  CommandFunction run;
+};
+
+int surf_build(const std::vector<std::string>& args);
+
+}  // namespace surfcomp::tools
