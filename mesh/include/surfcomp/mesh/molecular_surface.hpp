@@ -1,0 +1,32 @@
+// The surface stage of the pipeline: molecule -> SES with per-vertex ESP, LP and curvature,
+// or a surface read elsewhere -> the same properties (METHOD section 1).
+#pragma once
+
+#include "surfcomp/core/molecule.hpp"
+#include "surfcomp/mesh/curvature.hpp"
+#include "surfcomp/mesh/potentials.hpp"
+#include "surfcomp/mesh/ses.hpp"
+#include "surfcomp/mesh/surface.hpp"
+
+namespace surfcomp::mesh {
+
+struct MolecularSurfaceOptions {
+  SesOptions ses;               ///< probe 1.4 A, about 2.5 vertices per A^2
+  EspOptions esp;               ///< eps = 1, Coulomb
+  LpOptions lp;                 ///< Fauchere kernel exp(-d)
+  CurvatureOptions curvature;   ///< jet fitting defaults
+};
+
+/// Builds the solvent-excluded surface of `molecule` (atom positions and radii) and assigns the
+/// vertex properties esp (kcal/(mol*e)), lp, cc1, cc2 (1/A), shape_index and curvedness.
+/// Preconditions: validate_molecule(molecule) passes (checked; throws InputError otherwise).
+/// The result is closed, 2-manifold and outward-oriented (checked; TopologyError otherwise).
+Surface build_molecular_surface(const Molecule& molecule, const MolecularSurfaceOptions& options = {});
+
+/// Adds curvature properties (cc1, cc2, shape_index, curvedness) to a surface made elsewhere
+/// and, when `molecule` is given, esp and lp at its vertices. Normals are computed if absent.
+/// Properties the surface already has under other names are kept.
+void assign_surface_properties(Surface& surface, const Molecule* molecule,
+                               const MolecularSurfaceOptions& options = {});
+
+}  // namespace surfcomp::mesh

@@ -1,0 +1,43 @@
+#include "surfcomp/mesh/molecular_surface.hpp"
+
+#include "surfcomp/core/error.hpp"
+
+namespace surfcomp::mesh {
+
+Surface build_molecular_surface(const Molecule& molecule, const MolecularSurfaceOptions& options) {
+  validate_molecule(molecule);
+  const auto n = static_cast<Eigen::Index>(molecule.atoms.size());
+  Eigen::MatrixX3d centers(n, 3);
+  Eigen::VectorXd radii(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Atom& atom = molecule.atoms[static_cast<std::size_t>(i)];
+    centers.row(i) = atom.position.transpose();
+    radii(i) = atom.radius;
+  }
+  Surface surface = build_ses(centers, radii, options.ses);
+  surface.set_source(molecule.source);
+  require_closed_manifold(surface);
+  assign_surface_properties(surface, &molecule, options);
+  return surface;
+}
+
+void assign_surface_properties(Surface& surface, const Molecule* molecule,
+                               const MolecularSurfaceOptions& options) {
+  if (surface.n_faces() == 0) {
+    throw TopologyError(surface.source() + ": the surface has no triangles");
+  }
+  if (!surface.has_normals()) surface.compute_normals();
+  if (molecule != nullptr) {
+    validate_molecule(*molecule);
+    const Eigen::MatrixX3d points = surface.positions();
+    surface.set_property(property::esp, electrostatic_potential(points, *molecule, options.esp));
+    surface.set_property(property::lp, lipophilic_potential(points, *molecule, options.lp));
+  }
+  const PrincipalCurvatures curvatures = principal_curvatures(surface, options.curvature);
+  surface.set_property(property::cc1, curvatures.cc1);
+  surface.set_property(property::cc2, curvatures.cc2);
+  surface.set_property(property::shape_index, curvatures.shape_index);
+  surface.set_property(property::curvedness, curvatures.curvedness);
+}
+
+}  // namespace surfcomp::mesh

@@ -1,0 +1,197 @@
+// The surface stage end to end on real molecules: the SAS against FreeSASA, topology and
+// Gauss-Bonnet on ligand SES, curvature of a one-atom SES, invariance under rigid motion.
+#include "surfcomp/core/elements.hpp"
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/mesh/curvature.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/mesh/ses.hpp"
+
+#include "test_data.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+
+namespace surfcomp {
+namespace {
+
+/// Writes `molecule` as PDB ATOM records with the radius in the occupancy column.
+void write_pdb_with_radii(const Molecule& molecule, const std::filesystem::path& path) {
+  std::ofstream out(path);
+  int serial = 1;
+  for (const Atom& atom : molecule.atoms) {
+    char line[100];
+    std::snprintf(line, sizeof line, "ATOM  %5d %-4s MOL A   1    %8.3f%8.3f%8.3f%6.2f  0.00          %2s\n",
+                  serial++ % 100000, atom.element.c_str(), atom.position.x(), atom.position.y(),
+                  atom.position.z(), atom.radius, atom.element.c_str());
+    out << line;
+  }
+  out << "END\n";
+}
+
+/// FreeSASA's Lee-Richards SASA (probe 1.4 A, 100 slices) of `molecule` with its own radii;
+/// nullopt when the freesasa program is not installed.
+std::optional<double> freesasa_area(const Molecule& molecule, const std::string& tag) {
+  if (std::system("command -v freesasa >/dev/null 2>&1") != 0) return std::nullopt;
+  const auto pdb = std::filesystem::temp_directory_path() / ("surfcomp_sasa_" + tag + ".pdb");
+  write_pdb_with_radii(molecule, pdb);
+  const std::string command = "freesasa --lee-richards --resolution=100 --probe-radius=1.4 "
+                              "--radius-from-occupancy --hetatm --hydrogen " + pdb.string();
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return std::nullopt;
+  std::ostringstream text;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) text << buffer;
+  pclose(pipe);
+  std::smatch match;
+  const std::string output = text.str();
+  if (!std::regex_search(output, match, std::regex(R"(Total\s*:\s*([0-9.]+))"))) {
+    ADD_FAILURE() << "cannot read freesasa output:\n" << output;
+    return std::nullopt;
+  }
+  return std::stod(match[1]);
+}
+
+void atoms_as_arrays(const Molecule& molecule, Eigen::MatrixX3d& centers, Eigen::VectorXd& radii) {
+  const auto n = static_cast<Eigen::Index>(molecule.atoms.size());
+  centers.resize(n, 3);
+  radii.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    centers.row(i) = molecule.atoms[static_cast<std::size_t>(i)].position.transpose();
+    radii(i) = molecule.atoms[static_cast<std::size_t>(i)].radius;
+  }
+}
+
+void expect_sas_matches_freesasa(const std::filesystem::path& file, const std::string& tag) {
+  const Molecule molecule = io::read_molecule(file);
+  const auto reference = freesasa_area(molecule, tag);
+  if (!reference) GTEST_SKIP() << "freesasa is not installed (scripts/install-deps.sh installs it)";
+  Eigen::MatrixX3d centers;
+  Eigen::VectorXd radii;
+  atoms_as_arrays(molecule, centers, radii);
+  const mesh::Surface sas = mesh::build_sas(centers, radii);
+  const double area = mesh::measure_surface(sas).area;
+  std::printf("[ SAS      ] %s: %zu atoms, ours %.2f A^2, FreeSASA Lee-Richards %.2f A^2 (%+.2f%%)\n",
+              tag.c_str(), molecule.atoms.size(), area, *reference,
+              100.0 * (area - *reference) / *reference);
+  EXPECT_NEAR(area, *reference, 0.01 * *reference);
+}
+
+TEST(SurfaceBuild, SasOf1thlLigandMatchesFreeSasa) {
+  SURFCOMP_SHARED_OR_SKIP(file, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  expect_sas_matches_freesasa(file, "1THL_ligand");
+}
+
+TEST(SurfaceBuild, SasOf4we2MatchesFreeSasa) {
+  SURFCOMP_FETCHED_OR_SKIP(file, "edtsurf/4we2.pdb");
+  expect_sas_matches_freesasa(file, "4we2");
+}
+
+TEST(SurfaceBuild, LigandSurfacesAreClosedSpheresTopologically) {
+  for (const char* id : {"1THL", "4TMN", "1TLP", "1TMN", "3TMN"}) {
+    SURFCOMP_SHARED_OR_SKIP(file, std::string("thermolysin/ligands-common-frame/") + id +
+                                      "_ligand.sdf");
+    const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
+    const mesh::SurfaceMeasures m = mesh::measure_surface(surface);
+    EXPECT_EQ(m.euler_characteristic, 2) << id;
+    EXPECT_EQ(m.boundary_edges, 0u) << id;
+    EXPECT_GT(m.volume, 0.0) << id;
+    EXPECT_NEAR(mesh::angle_defects(surface).sum(), 4.0 * M_PI, 1e-8) << id;
+    for (const char* name : {mesh::property::esp, mesh::property::lp, mesh::property::cc1,
+                             mesh::property::cc2, mesh::property::shape_index}) {
+      EXPECT_TRUE(surface.property(name).allFinite()) << id << " " << name;
+    }
+  }
+}
+
+TEST(SurfaceBuild, OneAtomSurfaceHasSphereCurvatureAndCapShapeIndex) {
+  Molecule molecule;
+  molecule.source = "one-atom";
+  Atom atom;
+  atom.element = "C";
+  atom.radius = 1.7;
+  atom.charge = 1.0;
+  atom.lipophilicity = 1.0;
+  molecule.atoms.push_back(atom);
+  const mesh::Surface surface = mesh::build_molecular_surface(molecule);
+  const Eigen::VectorXd cc1 = surface.property(mesh::property::cc1);
+  const Eigen::VectorXd cc2 = surface.property(mesh::property::cc2);
+  const Eigen::VectorXd si = surface.property(mesh::property::shape_index);
+  const Eigen::VectorXd esp = surface.property(mesh::property::esp);
+  const Eigen::MatrixX3d positions = surface.positions();
+  const double k = -1.0 / atom.radius;
+  std::size_t good_curvature = 0, good_index = 0;
+  for (Eigen::Index v = 0; v < cc1.size(); ++v) {
+    if (std::abs(cc1(v) - k) <= 0.05 * std::abs(k) && std::abs(cc2(v) - k) <= 0.05 * std::abs(k)) {
+      ++good_curvature;
+    }
+    if (std::abs(si(v) - 1.0) <= 0.02) ++good_index;
+    // The vertices lie on the sphere to within the level set's accuracy, so ESP = 332.06/|x|.
+    const double r = positions.row(v).norm();
+    EXPECT_NEAR(esp(v), 332.06 / r, 1e-9 * 332.06 / r);
+  }
+  const double n = static_cast<double>(cc1.size());
+  std::printf("[ sphere   ] %zu vertices: %.1f%% with cc1, cc2 within 5%% of -1/r, %.1f%% with S = 1 +- 0.02\n",
+              surface.n_vertices(), 100.0 * good_curvature / n, 100.0 * good_index / n);
+  EXPECT_GE(good_curvature / n, 0.95);
+  EXPECT_GE(good_index / n, 0.95);
+}
+
+/// A rigid motion of the molecule moves the surface with it: area and volume stay, and each
+/// property at a vertex of the moved surface equals the property at the nearest vertex of the
+/// original surface (after undoing the motion) up to the variation over one edge.
+TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
+  SURFCOMP_SHARED_OR_SKIP(file, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  const Molecule molecule = io::read_molecule(file);
+  std::mt19937 rng(20261122u);
+  std::printf("[ motion   ] seed 20261122\n");
+  std::normal_distribution<double> gauss;
+  const Eigen::Quaterniond q(gauss(rng), gauss(rng), gauss(rng), gauss(rng));
+  const Eigen::Matrix3d rotation = q.normalized().toRotationMatrix();
+  const Eigen::Vector3d translation(gauss(rng) * 10, gauss(rng) * 10, gauss(rng) * 10);
+  Molecule moved = molecule;
+  transform_molecule(moved, rotation, translation);
+
+  const mesh::Surface a = mesh::build_molecular_surface(molecule);
+  const mesh::Surface b = mesh::build_molecular_surface(moved);
+  const auto ma = mesh::measure_surface(a);
+  const auto mb = mesh::measure_surface(b);
+  std::printf("[ motion   ] area %.2f -> %.2f A^2, volume %.2f -> %.2f A^3\n", ma.area, mb.area,
+              ma.volume, mb.volume);
+  EXPECT_NEAR(mb.area, ma.area, 0.005 * ma.area);
+  EXPECT_NEAR(mb.volume, ma.volume, 0.005 * ma.volume);
+
+  const Eigen::MatrixX3d pa = a.positions();
+  const Eigen::MatrixX3d pb = b.positions();
+  for (const char* name : {mesh::property::esp, mesh::property::lp, mesh::property::shape_index}) {
+    const Eigen::VectorXd va = a.property(name);
+    const Eigen::VectorXd vb = b.property(name);
+    const double range = va.maxCoeff() - va.minCoeff();
+    std::vector<double> errors;
+    double max_distance = 0.0;
+    for (Eigen::Index i = 0; i < pb.rows(); ++i) {
+      const Eigen::Vector3d back = rotation.transpose() * (pb.row(i).transpose() - translation);
+      Eigen::Index nearest = 0;
+      (pa.rowwise() - back.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
+      max_distance = std::max(max_distance, (pa.row(nearest).transpose() - back).norm());
+      errors.push_back(std::abs(vb(i) - va(nearest)) / range);
+    }
+    std::sort(errors.begin(), errors.end());
+    const double median = errors[errors.size() / 2];
+    const double p95 = errors[errors.size() * 95 / 100];
+    std::printf("[ motion   ] %s: nearest vertex within %.3f A; |difference| / range: median %.4f, 95th %.4f\n",
+                name, max_distance, median, p95);
+    EXPECT_LT(max_distance, 0.5);
+    EXPECT_LT(median, 0.02) << name;
+    EXPECT_LT(p95, 0.08) << name;
+  }
+}
+
+}  // namespace
+}  // namespace surfcomp
