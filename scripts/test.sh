@@ -13,5 +13,5 @@ cmake --build --preset ci -j "$jobs"
 ctest --preset ci -j "$jobs"
 
 cmake --preset asan >/dev/null
-cmake --build --preset asan -j "$jobs" --target reader_robustness_test
+cmake --build --preset asan -j "$jobs" --target mesh_reader_robustness_test molecule_reader_robustness_test
 ctest --preset asan -j "$jobs" -R 'ReaderRobustness'
