@@ -1,0 +1,57 @@
+// Molecular potentials sampled at points (surface vertices): the Coulomb electrostatic
+// potential (ESP) and the lipophilic potential (LP) of METHOD section 0.
+#pragma once
+
+#include "surfcomp/core/molecule.hpp"
+
+#include <Eigen/Core>
+
+namespace surfcomp::mesh {
+
+/// Coulomb's constant in kcal*A/(mol*e^2): 332.06 * q1 * q2 / d is an energy in kcal/mol.
+inline constexpr double coulomb_constant = 332.06;
+
+/// How the ESP screens charges.
+struct EspOptions {
+  /// Relative permittivity eps (default 1, vacuum); must be > 0.
+  double dielectric = 1.0;
+  /// Default false. When true, eps = dielectric * d with d in A, i.e. the classic "4d" with
+  /// dielectric = 4.
+  bool distance_dependent = false;
+  /// Default 0.5 A; distances below are clamped to it, guarding a point on an atom centre.
+  /// Must be > 0.
+  double min_distance = 0.5;
+};
+
+/// Coulomb ESP 332.06 * sum_i q_i / (eps * d_i) in kcal/(mol*e) at each point.
+/// `points` is #P by 3 in A; q_i = Atom::charge (e); d_i = max(|p - x_i|, min_distance).
+/// Returns #P values. Each point is computed independently (in parallel), so the result does not
+/// depend on the thread count. Throws InputError for an empty molecule or a non-finite point,
+/// atom position or charge, OptionError for dielectric or min_distance <= 0 or non-finite.
+Eigen::VectorXd electrostatic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& points,
+                                        const Molecule& molecule, const EspOptions& options = {});
+
+/// The distance kernel g(d) of the lipophilic potential.
+enum class LipophilicKernel {
+  fauchere,  ///< g(d) = exp(-d), Fauchere et al. 1988
+  dubost,    ///< g(d) = 1 / (1 + d), Dubost 1975
+};
+
+/// How the LP weighs atoms.
+struct LpOptions {
+  /// Default fauchere (exp(-d)).
+  LipophilicKernel kernel = LipophilicKernel::fauchere;
+  /// Default 0 (none). When > 0, atoms farther than `cutoff` A from a point contribute nothing
+  /// to it. Must be >= 0.
+  double cutoff = 0.0;
+};
+
+/// Lipophilic potential LP = sum_i f_i * g(d_i) (logP units) at each point, f_i =
+/// Atom::lipophilicity, d_i = |p - x_i| in A. `points` is #P by 3 in A; returns #P values,
+/// each computed independently (in parallel). Throws InputError for an empty molecule or a
+/// non-finite point, atom position or lipophilicity, OptionError for a negative or non-finite
+/// cutoff.
+Eigen::VectorXd lipophilic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& points,
+                                     const Molecule& molecule, const LpOptions& options = {});
+
+}  // namespace surfcomp::mesh

@@ -1,0 +1,136 @@
+#include "surfcomp/mesh/potentials.hpp"
+
+#include "surfcomp/core/error.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace surfcomp::mesh {
+namespace {
+
+std::string name_of(const Molecule& molecule) {
+  return molecule.source.empty() ? std::string("<molecule>") : molecule.source;
+}
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+void require_finite_points(const Eigen::Ref<const Eigen::MatrixX3d>& points, const char* caller) {
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    if (!points.row(i).allFinite()) {
+      throw InputError(std::string(caller) + ": point " + std::to_string(i) +
+                       " has a non-finite coordinate");
+    }
+  }
+}
+
+/// Atom positions (#A by 3) and one weight per atom (charge or lipophilicity), after checking
+/// that there is at least one atom and everything used is finite.
+struct Sources {
+  Eigen::MatrixX3d positions;
+  Eigen::VectorXd weights;
+};
+
+Sources collect_sources(const Molecule& molecule, double Atom::*weight, const char* weight_name,
+                        const char* caller) {
+  if (molecule.atoms.empty()) {
+    throw InputError(std::string(caller) + ": " + name_of(molecule) + " has no atoms");
+  }
+  Sources s;
+  const auto n = static_cast<Eigen::Index>(molecule.atoms.size());
+  s.positions.resize(n, 3);
+  s.weights.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Atom& atom = molecule.atoms[static_cast<std::size_t>(i)];
+    if (!atom.position.allFinite()) {
+      throw InputError(std::string(caller) + ": " + name_of(molecule) + ": atom " +
+                       std::to_string(i + 1) + " (" + atom.name + ") has a non-finite position");
+    }
+    if (!std::isfinite(atom.*weight)) {
+      throw InputError(std::string(caller) + ": " + name_of(molecule) + ": atom " +
+                       std::to_string(i + 1) + " (" + atom.name + ") has a non-finite " +
+                       weight_name + " " + format_number(atom.*weight));
+    }
+    s.positions.row(i) = atom.position.transpose();
+    s.weights(i) = atom.*weight;
+  }
+  return s;
+}
+
+/// values(p) = sum over atoms in index order of weight_i * kernel(d_i); points in parallel.
+template <class Kernel>
+Eigen::VectorXd sum_over_atoms(const Eigen::Ref<const Eigen::MatrixX3d>& points,
+                               const Sources& sources, Kernel kernel) {
+  Eigen::VectorXd values(points.rows());
+  const Eigen::Index n_atoms = sources.positions.rows();
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, points.rows(), 256),
+                    [&](const tbb::blocked_range<Eigen::Index>& range) {
+                      for (Eigen::Index p = range.begin(); p != range.end(); ++p) {
+                        const Eigen::RowVector3d x = points.row(p);
+                        double sum = 0.0;
+                        for (Eigen::Index a = 0; a < n_atoms; ++a) {
+                          const double d = (x - sources.positions.row(a)).norm();
+                          sum += sources.weights(a) * kernel(d);
+                        }
+                        values(p) = sum;
+                      }
+                    });
+  return values;
+}
+
+}  // namespace
+
+Eigen::VectorXd electrostatic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& points,
+                                        const Molecule& molecule, const EspOptions& options) {
+  constexpr const char* caller = "electrostatic_potential";
+  if (!(options.dielectric > 0.0) || !std::isfinite(options.dielectric)) {
+    throw OptionError(std::string(caller) + ": dielectric is " +
+                      format_number(options.dielectric) + "; expected a finite value > 0");
+  }
+  if (!(options.min_distance > 0.0) || !std::isfinite(options.min_distance)) {
+    throw OptionError(std::string(caller) + ": min_distance is " +
+                      format_number(options.min_distance) + " A; expected a finite value > 0");
+  }
+  require_finite_points(points, caller);
+  const Sources sources = collect_sources(molecule, &Atom::charge, "charge", caller);
+  const double scale = coulomb_constant / options.dielectric;
+  const double min_distance = options.min_distance;
+  if (options.distance_dependent) {
+    return sum_over_atoms(points, sources, [=](double d) {
+      const double r = std::max(d, min_distance);
+      return scale / (r * r);
+    });
+  }
+  return sum_over_atoms(points, sources,
+                        [=](double d) { return scale / std::max(d, min_distance); });
+}
+
+Eigen::VectorXd lipophilic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& points,
+                                     const Molecule& molecule, const LpOptions& options) {
+  constexpr const char* caller = "lipophilic_potential";
+  if (!(options.cutoff >= 0.0) || !std::isfinite(options.cutoff)) {
+    throw OptionError(std::string(caller) + ": cutoff is " + format_number(options.cutoff) +
+                      " A; expected a finite value >= 0 (0 = no cutoff)");
+  }
+  require_finite_points(points, caller);
+  const Sources sources =
+      collect_sources(molecule, &Atom::lipophilicity, "lipophilicity", caller);
+  const double cutoff = options.cutoff > 0.0 ? options.cutoff : HUGE_VAL;
+  if (options.kernel == LipophilicKernel::dubost) {
+    return sum_over_atoms(points, sources,
+                          [=](double d) { return d > cutoff ? 0.0 : 1.0 / (1.0 + d); });
+  }
+  return sum_over_atoms(points, sources,
+                        [=](double d) { return d > cutoff ? 0.0 : std::exp(-d); });
+}
+
+}  // namespace surfcomp::mesh

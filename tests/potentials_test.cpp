@@ -1,0 +1,193 @@
+#include "analytic_meshes.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/mesh/potentials.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <limits>
+
+namespace surfcomp::mesh {
+namespace {
+
+Atom atom_at(const Eigen::Vector3d& position, double charge, double lipophilicity = 0.0) {
+  Atom a;
+  a.element = "C";
+  a.radius = 1.7;
+  a.position = position;
+  a.charge = charge;
+  a.lipophilicity = lipophilicity;
+  return a;
+}
+
+Molecule molecule_of(std::initializer_list<Atom> atoms) {
+  Molecule m;
+  m.source = "potentials_test";
+  m.atoms = atoms;
+  return m;
+}
+
+TEST(ElectrostaticPotential, UnitChargeAtTheCentreOfASphere) {
+  for (const double r : {1.0, 2.5, 7.0}) {
+    const Eigen::Vector3d centre(0.3, -1.2, 2.0);
+    const Eigen::MatrixX3d points = test::icosphere(r, 4, centre).positions();
+    const Molecule m = molecule_of({atom_at(centre, 1.0)});
+    const Eigen::VectorXd esp = electrostatic_potential(points, m);
+    ASSERT_EQ(esp.size(), points.rows());
+    for (Eigen::Index i = 0; i < esp.size(); ++i) {
+      EXPECT_NEAR(esp(i), 332.06 / r, 1e-9 * 332.06 / r) << "r " << r << " vertex " << i;
+    }
+    EspOptions ddd;
+    ddd.dielectric = 4.0;
+    ddd.distance_dependent = true;
+    const Eigen::VectorXd esp4d = electrostatic_potential(points, m, ddd);
+    for (Eigen::Index i = 0; i < esp4d.size(); ++i) {
+      EXPECT_NEAR(esp4d(i), 332.06 / (4 * r * r), 1e-9 * 332.06 / (4 * r * r));
+    }
+    EspOptions constant4;
+    constant4.dielectric = 4.0;
+    EXPECT_NEAR(electrostatic_potential(points, m, constant4)(0), 332.06 / (4 * r), 1e-9);
+  }
+}
+
+TEST(ElectrostaticPotential, TwoChargesSuperpose) {
+  const Eigen::Vector3d a(0, 0, 0), b(3, 1, -1);
+  const Eigen::MatrixX3d points = test::icosphere(4.0, 3, Eigen::Vector3d(1, 0, 0)).positions();
+  const Eigen::VectorXd both =
+      electrostatic_potential(points, molecule_of({atom_at(a, 0.4), atom_at(b, -0.7)}));
+  const Eigen::VectorXd only_a = electrostatic_potential(points, molecule_of({atom_at(a, 0.4)}));
+  const Eigen::VectorXd only_b = electrostatic_potential(points, molecule_of({atom_at(b, -0.7)}));
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const double expected = 332.06 * (0.4 / (points.row(i) - a.transpose()).norm() -
+                                      0.7 / (points.row(i) - b.transpose()).norm());
+    EXPECT_NEAR(both(i), expected, 1e-9 * std::abs(expected) + 1e-12);
+    EXPECT_NEAR(both(i), only_a(i) + only_b(i), 1e-9 * std::abs(expected) + 1e-12);
+  }
+}
+
+TEST(ElectrostaticPotential, DistancesBelowTheMinimumAreClamped) {
+  const Molecule m = molecule_of({atom_at(Eigen::Vector3d::Zero(), 1.0)});
+  Eigen::MatrixX3d points(3, 3);
+  points << 0, 0, 0,  0.2, 0, 0,  0, 0, 2.0;
+  const Eigen::VectorXd esp = electrostatic_potential(points, m);
+  EXPECT_DOUBLE_EQ(esp(0), 332.06 / 0.5);
+  EXPECT_DOUBLE_EQ(esp(1), 332.06 / 0.5);
+  EXPECT_DOUBLE_EQ(esp(2), 332.06 / 2.0);
+}
+
+TEST(LipophilicPotential, KernelsAtKnownDistances) {
+  const Molecule m = molecule_of({atom_at(Eigen::Vector3d(1, 2, 3), 0.0, 1.0)});
+  Eigen::MatrixX3d points(4, 3);
+  points << 1, 2, 3.5,  1, 0, 3,  4, 2, 3,  1, 2, 9;  // d = 0.5, 2, 3, 6
+  const double d[] = {0.5, 2.0, 3.0, 6.0};
+  const Eigen::VectorXd fauchere = lipophilic_potential(points, m);
+  LpOptions dubost_options;
+  dubost_options.kernel = LipophilicKernel::dubost;
+  const Eigen::VectorXd dubost = lipophilic_potential(points, m, dubost_options);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(fauchere(i), std::exp(-d[i]), 1e-15) << "d " << d[i];
+    EXPECT_NEAR(dubost(i), 1.0 / (1.0 + d[i]), 1e-15) << "d " << d[i];
+  }
+  LpOptions cut;
+  cut.cutoff = 2.5;
+  const Eigen::VectorXd within = lipophilic_potential(points, m, cut);
+  EXPECT_NEAR(within(0), std::exp(-0.5), 1e-15);
+  EXPECT_NEAR(within(1), std::exp(-2.0), 1e-15);
+  EXPECT_EQ(within(2), 0.0);
+  EXPECT_EQ(within(3), 0.0);
+}
+
+TEST(LipophilicPotential, IncrementsWeighTheKernel) {
+  const Molecule m = molecule_of({atom_at(Eigen::Vector3d(0, 0, 0), 0.0, 0.6),
+                                  atom_at(Eigen::Vector3d(2, 0, 0), 0.0, -0.3)});
+  Eigen::MatrixX3d points(1, 3);
+  points << 0, 1, 0;
+  EXPECT_NEAR(lipophilic_potential(points, m)(0),
+              0.6 * std::exp(-1.0) - 0.3 * std::exp(-std::sqrt(5.0)), 1e-15);
+}
+
+TEST(Potentials, RigidMotionLeavesValuesUnchanged) {
+  Molecule m = molecule_of({atom_at(Eigen::Vector3d(0, 0, 0), 0.5, 0.4),
+                            atom_at(Eigen::Vector3d(1.5, 0.2, 0), -0.3, -0.8),
+                            atom_at(Eigen::Vector3d(0.3, 1.4, 0.5), -0.2, 0.1)});
+  const Eigen::MatrixX3d points = test::icosphere(3.5, 5, Eigen::Vector3d(0.5, 0.5, 0.2)).positions();
+  const Eigen::VectorXd esp = electrostatic_potential(points, m);
+  const Eigen::VectorXd lp = lipophilic_potential(points, m);
+
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Vector3d translation(12.0, -7.5, 3.25);
+  transform_molecule(m, rotation, translation);
+  const Eigen::MatrixX3d moved =
+      (points * rotation.transpose()).rowwise() + translation.transpose();
+  const Eigen::VectorXd esp_moved = electrostatic_potential(moved, m);
+  const Eigen::VectorXd lp_moved = lipophilic_potential(moved, m);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    EXPECT_NEAR(esp_moved(i), esp(i), 1e-9 * std::max(1.0, std::abs(esp(i))));
+    EXPECT_NEAR(lp_moved(i), lp(i), 1e-9);
+  }
+}
+
+TEST(Potentials, RejectInvalidInput) {
+  const Molecule good = molecule_of({atom_at(Eigen::Vector3d::Zero(), 1.0, 1.0)});
+  Eigen::MatrixX3d points(2, 3);
+  points << 1, 0, 0,  0, 2, 0;
+  EXPECT_THROW(electrostatic_potential(points, molecule_of({})), InputError);
+  EXPECT_THROW(lipophilic_potential(points, molecule_of({})), InputError);
+
+  Eigen::MatrixX3d bad_points = points;
+  bad_points(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(electrostatic_potential(bad_points, good), InputError);
+  EXPECT_THROW(lipophilic_potential(bad_points, good), InputError);
+
+  Molecule bad_charge = good;
+  bad_charge.atoms[0].charge = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(electrostatic_potential(points, bad_charge), InputError);
+  EXPECT_NO_THROW(lipophilic_potential(points, bad_charge));  // LP does not use charges
+
+  Molecule bad_position = good;
+  bad_position.atoms[0].position.y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(electrostatic_potential(points, bad_position), InputError);
+  EXPECT_THROW(lipophilic_potential(points, bad_position), InputError);
+
+  EspOptions zero_dielectric;
+  zero_dielectric.dielectric = 0.0;
+  EXPECT_THROW(electrostatic_potential(points, good, zero_dielectric), OptionError);
+  LpOptions negative_cutoff;
+  negative_cutoff.cutoff = -1.0;
+  EXPECT_THROW(lipophilic_potential(points, good, negative_cutoff), OptionError);
+
+  EXPECT_EQ(electrostatic_potential(Eigen::MatrixX3d(0, 3), good).size(), 0);
+}
+
+TEST(Potentials, Timing) {
+  // A protein-sized case: 30,252 surface points and 2,000 atoms on a grid inside them.
+  const Eigen::MatrixX3d points = test::icosphere(30.0, 55).positions();
+  Molecule m;
+  m.source = "grid";
+  for (int i = 0; i < 2000; ++i) {
+    m.atoms.push_back(atom_at(Eigen::Vector3d(i % 20 - 9.5, (i / 20) % 10 - 4.5, i / 200 - 4.5),
+                              i % 2 ? 0.1 : -0.1, 0.01 * (i % 7)));
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::VectorXd esp = electrostatic_potential(points, m);
+  const auto middle = std::chrono::steady_clock::now();
+  const Eigen::VectorXd lp = lipophilic_potential(points, m);
+  const auto end = std::chrono::steady_clock::now();
+  std::cout << "ESP " << points.rows() << " points x " << m.atoms.size() << " atoms: "
+            << std::chrono::duration<double>(middle - start).count() << " s; LP "
+            << std::chrono::duration<double>(end - middle).count() << " s\n";
+  // Spot check one point against a serial sum.
+  double expected = 0.0;
+  for (const Atom& a : m.atoms) expected += 332.06 * a.charge / (points.row(7) - a.position.transpose()).norm();
+  EXPECT_NEAR(esp(7), expected, 1e-9 * std::abs(expected) + 1e-12);
+  EXPECT_EQ(lp.size(), points.rows());
+}
+
+}  // namespace
+}  // namespace surfcomp::mesh
