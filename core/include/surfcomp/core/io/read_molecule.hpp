@@ -1,0 +1,68 @@
+// Reading a molecule file (SDF/MOL, MOL2, PDB, PQR) into the surfcomp molecule model, with
+// radii, partial charges and lipophilicity increments assigned.
+#pragma once
+
+#include "surfcomp/core/molecule.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace surfcomp::io {
+
+/// Where the partial charges come from.
+enum class ChargeModel {
+  file,       ///< the file's charges if it has some (MOL2 with a charge type, PQR), else Gasteiger
+  gasteiger,  ///< Gasteiger-Marsili charges computed by RDKit (12 iterations)
+  mmff,       ///< MMFF94 charges computed by RDKit
+};
+
+/// How read_molecule interprets a file.
+struct MoleculeReadOptions {
+  /// Charge model; default ChargeModel::file. PQR files accept only ChargeModel::file.
+  ChargeModel charges = ChargeModel::file;
+  /// PDB/PQR: read only the HETATM residue with this name (the first copy by chain, then
+  /// residue number); default "" = the whole structure. Ignored for SDF/MOL/MOL2.
+  std::string ligand;
+  /// Whole-structure PDB/PQR: drop water residues (HOH, WAT, DOD); default true.
+  bool remove_water = true;
+  /// Assign lipophilicity increments f_i; default true. Ligands (SDF/MOL/MOL2 and `ligand`
+  /// selections) get Wildman-Crippen atom contributions from RDKit, whole structures the
+  /// residue-atom table of protein_atom_lipophilicity().
+  bool assign_lipophilicity = true;
+};
+
+/// True when `path` has a molecule extension read_molecule understands:
+/// .sdf .mol .mol2 .pdb .ent .pqr (case-insensitive).
+bool is_molecule_file(const std::filesystem::path& path);
+
+/// Reads the molecule in `path`, chosen by extension (see is_molecule_file):
+/// - SDF/MOL: the first record; MOL2: the first molecule; PDB: every model-1 atom (RDKit's
+///   reader with proximity bonding); PQR: read_pqr(). Hydrogens present in the file are kept.
+/// - Radii: Bondi (surfcomp::bondi_radius) except PQR, whose radii are taken as given.
+/// - Charges (e): see ChargeModel. Computed charges of implicit hydrogens (atoms the file does
+///   not list) are added to their heavy atom, so the charges sum to the formal charge.
+///   Isolated single-atom ions without Gasteiger parameters (Zn, Ca, Na, Cl, ...) get their
+///   formal charge from the file, else their usual ionic charge (Na/K +1, Mg/Ca/Zn/Mn/Fe/Co/
+///   Ni/Cu/Cd +2, F/Cl/Br/I -1).
+/// - Lipophilicity: Wildman-Crippen contributions (S. A. Wildman, G. M. Crippen, J. Chem. Inf.
+///   Comput. Sci. 39, 868 (1999)); implicit hydrogens' contributions are added to their heavy
+///   atom, so the sum equals RDKit's MolLogP. PDB files carry no bond orders: a PDB ligand is
+///   bonded by RDKit's proximity rule with single bonds only (aromatic rings and carbonyls are
+///   therefore seen as saturated), so its f_i are rougher than those from SDF/MOL2. Whole
+///   structures: protein_atom_lipophilicity(), 0 for hydrogens, water, ions and other
+///   non-standard residues; a whole PDB/PQR file without any standard amino-acid residue (a
+///   ligand written as PDB) is typed like a ligand selection.
+/// - PDB: bonds RDKit's proximity rule makes to metal atoms are removed (PDB files do not
+///   encode coordination), so metals are free ions. MOL2: an aromatic N with three neighbours
+///   in a five-membered ring, which RDKit's reader charges +1, is made neutral (pyrrole NH)
+///   when RDKit cannot kekulise the molecule otherwise. MOL2 bond records are checked before
+///   RDKit sees them (RDKit 2022.09 crashes on an atom id outside the molecule).
+/// Molecule::source is `path`, Molecule::title the file's title (molecule name, PDB HEADER
+/// or the file stem).
+/// Throws FileError (missing/unreadable file), FormatError (unknown extension, RDKit parse or
+/// sanitisation failure, with RDKit's reason), InputError (no atoms, unknown element, non-
+/// finite coordinates, ligand absent — listing the HETATM residue names present —, NaN
+/// Gasteiger charge, failed MMFF typing), OptionError (a computed charge model on PQR).
+Molecule read_molecule(const std::filesystem::path& path, const MoleculeReadOptions& options = {});
+
+}  // namespace surfcomp::io

@@ -1,0 +1,54 @@
+// Internal pieces shared by the molecule readers (read_molecule.cpp, rdkit_reader.cpp, pqr.cpp).
+// Not installed; RDKit types stay inside rdkit_reader.cpp.
+#pragma once
+
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/molecule.hpp"
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace surfcomp::io::detail {
+
+/// The formats read through RDKit.
+enum class RdkitFormat { mdl, mol2, pdb };
+
+/// The whole content of `path`. Throws FileError if it is missing, not a regular file or
+/// unreadable.
+std::string read_text_file(const std::filesystem::path& path);
+
+/// True for the water residue names HOH, WAT, DOD (blanks ignored, case-insensitive).
+bool is_water_residue(std::string_view residue_name);
+
+/// Indices into `atoms` of the first copy (lowest chain, then residue number) of the HETATM
+/// residue named `ligand` (case-insensitive). Throws InputError naming `source` and listing up
+/// to ten HETATM residue names present when there is none.
+std::vector<std::size_t> select_ligand(const std::vector<Atom>& atoms, const std::string& ligand,
+                                       const std::string& source);
+
+/// True when some atom belongs to a residue protein_atom_lipophilicity() knows.
+bool has_standard_residue(const std::vector<Atom>& atoms);
+
+/// Sets every atom's lipophilicity from protein_atom_lipophilicity(), 0 where it has no value
+/// (hydrogens, ions, ligands, non-standard residues).
+void assign_protein_lipophilicity(Molecule& molecule);
+
+/// Assigns Bondi radii; throws InputError naming molecule.source and the atom for an element
+/// with none.
+void assign_bondi_radii(Molecule& molecule);
+
+/// Reads `text` (the content of molecule file `path`) with RDKit; see read_molecule().
+Molecule read_with_rdkit(const std::filesystem::path& path, const std::string& text,
+                         RdkitFormat format, const MoleculeReadOptions& options);
+
+/// Wildman-Crippen contributions, one per atom and in order, of the molecule in `pdb_block`
+/// (HETATM records with element columns), bonded by RDKit's proximity rule; implicit
+/// hydrogens' contributions are added to their heavy atom. Throws FormatError naming `source`
+/// when RDKit cannot read or sanitise the block.
+std::vector<double> crippen_contributions_of_pdb_block(const std::string& pdb_block,
+                                                       const std::string& source);
+
+}  // namespace surfcomp::io::detail

@@ -1,0 +1,497 @@
+// SDF/MOL, MOL2 and PDB reading through RDKit; charges and Wildman-Crippen increments.
+#include "molecule_reader_detail.hpp"
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/molecule.hpp"
+
+#include <GraphMol/Descriptors/Crippen.h>
+#include <GraphMol/FileParsers/FileParsers.h>
+#include <GraphMol/ForceFieldHelpers/MMFF/AtomTyper.h>
+#include <GraphMol/GraphMol.h>
+#include <GraphMol/MolOps.h>
+#include <GraphMol/MonomerInfo.h>
+#include <GraphMol/PartialCharges/GasteigerCharges.h>
+#include <RDGeneral/RDLog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace surfcomp::io::detail {
+namespace {
+
+std::string one_line(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\n' || c == '\r') {
+      if (!out.empty() && out.back() != ' ') out.push_back(' ');
+    } else {
+      out.push_back(c);
+    }
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+std::string trimmed(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return {};
+  return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+std::string describe(const Molecule& molecule, std::size_t index) {
+  const Atom& atom = molecule.atoms[index];
+  std::string text = "atom " + std::to_string(index + 1) + " (" + atom.element;
+  if (!atom.name.empty()) text += " " + atom.name;
+  if (!atom.residue_name.empty()) {
+    text += " " + atom.residue_name + " " + std::to_string(atom.residue_number) + atom.chain;
+  }
+  return text + ")";
+}
+
+// Runs an RDKit call, turning any exception it throws into a FormatError naming `source`.
+template <typename Call>
+auto rdkit_call(const std::string& source, const std::string& what, Call&& call) {
+  try {
+    return call();
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw FormatError(source, "RDKit could not " + what + ": " + one_line(e.what()));
+  } catch (...) {
+    throw FormatError(source, "RDKit could not " + what + " (unknown exception)");
+  }
+}
+
+std::unique_ptr<RDKit::RWMol> parse(const std::string& text, RdkitFormat format,
+                                    const std::string& source) {
+  return rdkit_call(source, "parse the file", [&]() {
+    switch (format) {
+      case RdkitFormat::mdl:
+        return std::unique_ptr<RDKit::RWMol>(RDKit::MolBlockToMol(text, false, false));
+      case RdkitFormat::mol2:
+        return std::unique_ptr<RDKit::RWMol>(RDKit::Mol2BlockToMol(text, false, false));
+      case RdkitFormat::pdb:
+        break;
+    }
+    return std::unique_ptr<RDKit::RWMol>(RDKit::PDBBlockToMol(text, false, false, 0, true));
+  });
+}
+
+// The charge type line of the first @<TRIPOS>MOLECULE section ("" when absent).
+std::string mol2_charge_type(const std::string& text) {
+  std::istringstream stream(text);
+  std::string line;
+  while (std::getline(stream, line)) {
+    if (trimmed(line) != "@<TRIPOS>MOLECULE") continue;
+    for (int i = 0; i < 4 && std::getline(stream, line); ++i) {
+      if (i == 3) return trimmed(line);
+    }
+  }
+  return {};
+}
+
+std::optional<long> parse_integer(const std::string& token) {
+  if (token.empty()) return std::nullopt;
+  const char* begin = token.c_str();
+  char* end = nullptr;
+  const long value = std::strtol(begin, &end, 10);
+  if (end != begin + token.size()) return std::nullopt;
+  return value;
+}
+
+std::vector<std::string> fields_of(const std::string& line) {
+  std::istringstream stream(line);
+  std::vector<std::string> fields;
+  for (std::string field; stream >> field;) fields.push_back(field);
+  return fields;
+}
+
+// RDKit's Mol2 reader indexes atoms by the bond records' atom ids without checking them and
+// crashes on an id outside the molecule (found by the robustness test). Checks the first
+// molecule's counts line, that its ATOM section holds that many records and that each of
+// its bond records names two atom ids in [1, atom count].
+void check_mol2_structure(const std::string& text, const std::string& source) {
+  const std::vector<std::string> lines = [&]() {
+    std::vector<std::string> out;
+    std::istringstream stream(text);
+    for (std::string line; std::getline(stream, line);) out.push_back(line);
+    return out;
+  }();
+  auto section = [&](const std::string& name, std::size_t from) {
+    for (std::size_t i = from; i < lines.size(); ++i) {
+      if (trimmed(lines[i]) == name) return i;
+    }
+    return lines.size();
+  };
+  const std::size_t molecule = section("@<TRIPOS>MOLECULE", 0);
+  if (molecule + 2 >= lines.size()) {
+    throw FormatError(source, "no @<TRIPOS>MOLECULE section with a counts line");
+  }
+  const std::vector<std::string> counts = fields_of(lines[molecule + 2]);
+  const std::optional<long> atom_count = counts.empty() ? std::nullopt : parse_integer(counts[0]);
+  const std::optional<long> bond_count =
+      counts.size() < 2 ? std::optional<long>(0) : parse_integer(counts[1]);
+  if (!atom_count || !bond_count || *atom_count <= 0 || *bond_count < 0) {
+    throw FormatError(source, molecule + 3, "expected the atom and bond counts");
+  }
+  auto records_after = [&](std::size_t header, long count, std::size_t min_fields,
+                           const char* what) {
+    std::vector<std::size_t> records;
+    for (std::size_t i = header + 1; i < lines.size() && static_cast<long>(records.size()) < count;
+         ++i) {
+      const std::string line = trimmed(lines[i]);
+      if (line.empty()) continue;
+      if (line[0] == '@' || fields_of(line).size() < min_fields) {
+        throw FormatError(source, i + 1,
+                          "expected " + std::to_string(count) + " " + what + " records");
+      }
+      records.push_back(i);
+    }
+    if (static_cast<long>(records.size()) < count) {
+      throw FormatError(source, "expected " + std::to_string(count) + " " + what +
+                                    " records, found " + std::to_string(records.size()));
+    }
+    return records;
+  };
+  const std::size_t atoms = section("@<TRIPOS>ATOM", molecule);
+  records_after(atoms, *atom_count, 6, "ATOM");
+  if (*bond_count == 0) return;
+  const std::size_t bonds = section("@<TRIPOS>BOND", atoms);
+  for (std::size_t i : records_after(bonds, *bond_count, 4, "BOND")) {
+    const std::vector<std::string> fields = fields_of(lines[i]);
+    for (std::size_t k : {std::size_t{1}, std::size_t{2}}) {
+      const std::optional<long> id = parse_integer(fields[k]);
+      if (!id || *id < 1 || *id > *atom_count) {
+        throw FormatError(source, i + 1, "bond atom id '" + fields[k] + "' is not in [1, " +
+                                             std::to_string(*atom_count) + "]");
+      }
+    }
+  }
+}
+
+// RDKit's Mol2 reader gives an N.ar with three neighbours a +1 charge (pyridinium-like); in a
+// five-membered ring that is a pyrrole-type NH and must be neutral, or kekulisation fails
+// (tryptophan's indole in thermolysin ligands). Returns whether any atom was changed.
+bool neutralize_pyrrole_nitrogens(RDKit::RWMol& mol) {
+  RDKit::MolOps::fastFindRings(mol);
+  bool changed = false;
+  for (RDKit::Atom* atom : mol.atoms()) {
+    if (atom->getAtomicNum() == 7 && atom->getIsAromatic() && atom->getFormalCharge() == 1 &&
+        atom->getDegree() == 3 && mol.getRingInfo()->isAtomInRingOfSize(atom->getIdx(), 5)) {
+      atom->setFormalCharge(0);
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+void sanitize(std::unique_ptr<RDKit::RWMol>& mol, RdkitFormat format, const std::string& source) {
+  const RDKit::RWMol original(*mol);
+  try {
+    RDKit::MolOps::sanitizeMol(*mol);
+    return;
+  } catch (const std::exception& e) {
+    const std::string reason = one_line(e.what());
+    if (format == RdkitFormat::mol2) {
+      auto repaired = std::make_unique<RDKit::RWMol>(original);
+      try {
+        if (neutralize_pyrrole_nitrogens(*repaired)) {
+          RDKit::MolOps::sanitizeMol(*repaired);
+          mol = std::move(repaired);
+          return;
+        }
+      } catch (const std::exception&) {
+        // fall through to the original reason
+      }
+    }
+    throw FormatError(source, "RDKit could not sanitise the molecule: " + reason);
+  }
+}
+
+Molecule convert_atoms(const RDKit::ROMol& mol, const std::string& source) {
+  Molecule molecule;
+  molecule.source = source;
+  if (mol.getNumConformers() == 0) throw FormatError(source, "the molecule has no coordinates");
+  const RDKit::Conformer& conformer = mol.getConformer();
+  molecule.atoms.reserve(mol.getNumAtoms());
+  for (const RDKit::Atom* rd_atom : mol.atoms()) {
+    Atom atom;
+    const RDGeom::Point3D& p = conformer.getAtomPos(rd_atom->getIdx());
+    atom.position = Eigen::Vector3d(p.x, p.y, p.z);
+    atom.element = rd_atom->getAtomicNum() > 0 ? rd_atom->getSymbol() : "";
+    if (const auto* info = dynamic_cast<const RDKit::AtomPDBResidueInfo*>(
+            rd_atom->getMonomerInfo())) {
+      atom.name = trimmed(info->getName());
+      atom.residue_name = trimmed(info->getResidueName());
+      atom.residue_number = info->getResidueNumber();
+      atom.chain = trimmed(info->getChainId());
+      atom.hetero = info->getIsHeteroAtom();
+    } else if (const auto* monomer = rd_atom->getMonomerInfo()) {
+      atom.name = trimmed(monomer->getName());
+    }
+    molecule.atoms.push_back(atom);
+    if (atom.element.empty()) {
+      throw InputError(source + ": " + describe(molecule, molecule.atoms.size() - 1) +
+                       " has an unknown element");
+    }
+  }
+  return molecule;
+}
+
+// Keeps only the atoms whose indices are in `keep` (sorted), in both representations.
+void keep_atoms(RDKit::RWMol& mol, Molecule& molecule, const std::vector<std::size_t>& keep) {
+  std::vector<bool> kept(molecule.atoms.size(), false);
+  for (std::size_t i : keep) kept[i] = true;
+  mol.beginBatchEdit();
+  std::vector<Atom> atoms;
+  atoms.reserve(keep.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    if (kept[i]) {
+      atoms.push_back(molecule.atoms[i]);
+    } else {
+      mol.removeAtom(static_cast<unsigned int>(i));
+    }
+  }
+  mol.commitBatchEdit();
+  molecule.atoms = std::move(atoms);
+}
+
+bool is_metal(int atomic_number) {
+  static const std::vector<int> nonmetals{1,  2,  5,  6,  7,  8,  9,  10, 14, 15, 16, 17,
+                                          18, 33, 34, 35, 36, 52, 53, 54, 85, 86};
+  return atomic_number > 0 &&
+         std::find(nonmetals.begin(), nonmetals.end(), atomic_number) == nonmetals.end();
+}
+
+// PDB files do not encode metal coordination, and RDKit's proximity rule bonds an ion to the
+// atoms around it (Ca and Zn to Asp/Glu/His in thermolysin). Those bonds are dropped: metals
+// are treated as free ions.
+void disconnect_metals(RDKit::RWMol& mol) {
+  std::vector<std::pair<unsigned int, unsigned int>> metal_bonds;
+  for (const RDKit::Bond* bond : mol.bonds()) {
+    if (is_metal(bond->getBeginAtom()->getAtomicNum()) ||
+        is_metal(bond->getEndAtom()->getAtomicNum())) {
+      metal_bonds.emplace_back(bond->getBeginAtomIdx(), bond->getEndAtomIdx());
+    }
+  }
+  for (const auto& [begin, end] : metal_bonds) mol.removeBond(begin, end);
+}
+
+std::optional<int> usual_ionic_charge(const std::string& element) {
+  if (element == "Li" || element == "Na" || element == "K") return 1;
+  if (element == "Mg" || element == "Ca" || element == "Zn" || element == "Mn" ||
+      element == "Fe" || element == "Co" || element == "Ni" || element == "Cu" ||
+      element == "Cd") {
+    return 2;
+  }
+  if (element == "F" || element == "Cl" || element == "Br" || element == "I") return -1;
+  return std::nullopt;
+}
+
+// Gasteiger charges per connected fragment (Gasteiger equalisation never crosses fragments),
+// implicit hydrogens' charges added to their heavy atom; isolated ions see usual_ionic_charge.
+std::vector<double> gasteiger_charges(const RDKit::ROMol& mol, const Molecule& molecule) {
+  std::vector<std::vector<int>> mapping;
+  const auto fragments = rdkit_call(molecule.source, "split the molecule", [&]() {
+    return RDKit::MolOps::getMolFrags(mol, false, nullptr, &mapping, false);
+  });
+  std::vector<double> charges(mol.getNumAtoms(), 0.0);
+  for (std::size_t f = 0; f < fragments.size(); ++f) {
+    RDKit::ROMol& fragment = *fragments[f];
+    try {
+      RDKit::computeGasteigerCharges(fragment, 12, true);
+    } catch (const std::exception& e) {
+      const std::size_t first = static_cast<std::size_t>(mapping[f].front());
+      const auto ionic = usual_ionic_charge(molecule.atoms[first].element);
+      const int formal = mol.getAtomWithIdx(static_cast<unsigned int>(first))->getFormalCharge();
+      if (fragment.getNumAtoms() == 1 && (formal != 0 || ionic)) {
+        charges[first] = formal != 0 ? formal : *ionic;
+        continue;
+      }
+      throw InputError(molecule.source + ": Gasteiger charges unavailable for the fragment of " +
+                       describe(molecule, first) + " (RDKit: " + one_line(e.what()) +
+                       "); use ChargeModel::mmff or a PQR file");
+    }
+    for (const RDKit::Atom* atom : fragment.atoms()) {
+      const std::size_t index = static_cast<std::size_t>(mapping[f][atom->getIdx()]);
+      double charge = atom->getProp<double>(RDKit::common_properties::_GasteigerCharge);
+      if (atom->hasProp(RDKit::common_properties::_GasteigerHCharge)) {
+        charge += atom->getProp<double>(RDKit::common_properties::_GasteigerHCharge);
+      }
+      if (!std::isfinite(charge)) {
+        throw InputError(molecule.source + ": the Gasteiger charge of " +
+                         describe(molecule, index) + " is not a number");
+      }
+      charges[index] = charge;
+    }
+  }
+  return charges;
+}
+
+// A copy of `mol` with all hydrogens explicit; atoms [0, mol.getNumAtoms()) keep their index.
+std::unique_ptr<RDKit::RWMol> with_explicit_hydrogens(const RDKit::ROMol& mol) {
+  auto copy = std::make_unique<RDKit::RWMol>(mol);
+  RDKit::MolOps::addHs(*copy);
+  return copy;
+}
+
+// Folds per-atom values of added hydrogens (indices >= n) onto their heavy neighbour.
+std::vector<double> fold_added_hydrogens(const RDKit::ROMol& with_h, std::size_t n,
+                                         const std::vector<double>& values) {
+  std::vector<double> folded(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(n));
+  for (std::size_t i = n; i < with_h.getNumAtoms(); ++i) {
+    const RDKit::Atom* hydrogen = with_h.getAtomWithIdx(static_cast<unsigned int>(i));
+    for (const RDKit::Bond* bond : with_h.atomBonds(hydrogen)) {
+      folded[bond->getOtherAtomIdx(hydrogen->getIdx())] += values[i];
+    }
+  }
+  return folded;
+}
+
+std::vector<double> mmff_charges(const RDKit::ROMol& mol, const std::string& source) {
+  const auto with_h = with_explicit_hydrogens(mol);
+  RDKit::MMFF::MMFFMolProperties properties(*with_h);
+  if (!properties.isValid()) {
+    throw InputError(source + ": MMFF94 atom typing failed (RDKit found an atom without an "
+                              "MMFF94 type); use ChargeModel::gasteiger");
+  }
+  std::vector<double> charges(with_h->getNumAtoms());
+  for (unsigned int i = 0; i < with_h->getNumAtoms(); ++i) {
+    charges[i] = properties.getMMFFPartialCharge(i);
+  }
+  return fold_added_hydrogens(*with_h, mol.getNumAtoms(), charges);
+}
+
+std::vector<double> crippen_contributions(const RDKit::ROMol& mol, const std::string& source) {
+  return rdkit_call(source, "compute Wildman-Crippen contributions", [&]() {
+    const auto with_h = with_explicit_hydrogens(mol);
+    std::vector<double> logp(with_h->getNumAtoms()), mr(with_h->getNumAtoms());
+    RDKit::Descriptors::getCrippenAtomContribs(*with_h, logp, mr, true);
+    return fold_added_hydrogens(*with_h, mol.getNumAtoms(), logp);
+  });
+}
+
+std::vector<double> tripos_charges(const RDKit::ROMol& mol, const std::string& source) {
+  std::vector<double> charges;
+  for (const RDKit::Atom* atom : mol.atoms()) {
+    double charge = 0.0;
+    bool present = false;
+    try {
+      present = atom->getPropIfPresent("_TriposPartialCharge", charge);
+    } catch (const std::exception&) {  // RDKit keeps an unparsable charge field as text
+      throw FormatError(source, "the partial charge of atom " + std::to_string(atom->getIdx() + 1) +
+                                    " is not a number");
+    }
+    if (!present) {
+      throw FormatError(source, "atom " + std::to_string(atom->getIdx() + 1) +
+                                    " has no partial charge although the header declares some");
+    }
+    charges.push_back(charge);
+  }
+  return charges;
+}
+
+Molecule read_unguarded(const std::filesystem::path& path, const std::string& text,
+                        RdkitFormat format, const MoleculeReadOptions& options) {
+  const std::string source = path.string();
+  if (trimmed(text).empty()) throw InputError(source + ": the file is empty (no atoms)");
+  if (format == RdkitFormat::mol2) check_mol2_structure(text, source);
+  auto mol = parse(text, format, source);
+  if (!mol) throw FormatError(source, "RDKit could not parse the file");
+  if (mol->getNumAtoms() == 0) throw InputError(source + ": the file has no atoms");
+  Molecule molecule = convert_atoms(*mol, source);
+
+  bool whole_structure = false;
+  if (format == RdkitFormat::pdb) {
+    std::vector<std::size_t> keep;
+    if (!options.ligand.empty()) {
+      keep = select_ligand(molecule.atoms, options.ligand, source);
+    } else {
+      whole_structure = true;
+      for (std::size_t i = 0; i < molecule.atoms.size(); ++i) {
+        if (!(options.remove_water && is_water_residue(molecule.atoms[i].residue_name))) {
+          keep.push_back(i);
+        }
+      }
+      if (keep.empty()) throw InputError(source + ": the structure has no atoms besides water");
+    }
+    if (keep.size() != molecule.atoms.size()) {
+      rdkit_call(source, "select atoms", [&]() { keep_atoms(*mol, molecule, keep); });
+    }
+  }
+  if (format == RdkitFormat::pdb) {
+    rdkit_call(source, "disconnect metal ions", [&]() { disconnect_metals(*mol); });
+  }
+  sanitize(mol, format, source);
+
+  std::string name;
+  if (mol->getPropIfPresent(RDKit::common_properties::_Name, name) && !trimmed(name).empty()) {
+    molecule.title = trimmed(name);
+  } else {
+    molecule.title = path.stem().string();
+  }
+
+  const std::string charge_type = format == RdkitFormat::mol2 ? mol2_charge_type(text) : "";
+  const bool file_charges = options.charges == ChargeModel::file && !charge_type.empty() &&
+                            charge_type != "NO_CHARGES";
+  std::vector<double> charges;
+  if (file_charges) {
+    charges = tripos_charges(*mol, source);
+    molecule.charge_source = ChargeSource::file;
+  } else if (options.charges == ChargeModel::mmff) {
+    charges = rdkit_call(source, "compute MMFF94 charges",
+                         [&]() { return mmff_charges(*mol, source); });
+    molecule.charge_source = ChargeSource::mmff;
+  } else {
+    charges = gasteiger_charges(*mol, molecule);
+    molecule.charge_source = ChargeSource::gasteiger;
+  }
+  for (std::size_t i = 0; i < molecule.atoms.size(); ++i) molecule.atoms[i].charge = charges[i];
+
+  if (options.assign_lipophilicity) {
+    if (whole_structure && has_standard_residue(molecule.atoms)) {
+      assign_protein_lipophilicity(molecule);
+    } else {
+      const std::vector<double> contributions = crippen_contributions(*mol, source);
+      for (std::size_t i = 0; i < molecule.atoms.size(); ++i) {
+        molecule.atoms[i].lipophilicity = contributions[i];
+      }
+      molecule.lipophilicity_assigned = true;
+    }
+  }
+  assign_bondi_radii(molecule);
+  validate_molecule(molecule);
+  return molecule;
+}
+
+}  // namespace
+
+Molecule read_with_rdkit(const std::filesystem::path& path, const std::string& text,
+                         RdkitFormat format, const MoleculeReadOptions& options) {
+  const RDLog::LogStateSetter quiet;  // RDKit's warnings would go to stderr
+  // Every RDKit call that can fail on bad input is wrapped where it is made; this catches what
+  // RDKit throws from less expected places (property casts, invariant checks) on damaged files.
+  return rdkit_call(path.string(), "read the file",
+                    [&]() { return read_unguarded(path, text, format, options); });
+}
+
+std::vector<double> crippen_contributions_of_pdb_block(const std::string& pdb_block,
+                                                       const std::string& source) {
+  const RDLog::LogStateSetter quiet;
+  auto mol = parse(pdb_block, RdkitFormat::pdb, source);
+  if (!mol || mol->getNumAtoms() == 0) {
+    throw FormatError(source, "RDKit could not read the ligand");
+  }
+  rdkit_call(source, "disconnect metal ions", [&]() { disconnect_metals(*mol); });
+  sanitize(mol, RdkitFormat::pdb, source);
+  return crippen_contributions(*mol, source);
+}
+
+}  // namespace surfcomp::io::detail

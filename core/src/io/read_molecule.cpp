@@ -1,0 +1,148 @@
+#include "surfcomp/core/io/read_molecule.hpp"
+
+#include "molecule_reader_detail.hpp"
+#include "surfcomp/core/elements.hpp"
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/pqr.hpp"
+#include "surfcomp/core/protein_lipophilicity.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+#include <tuple>
+
+namespace surfcomp::io {
+namespace {
+
+std::string lowercase_extension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+std::string uppercase_trimmed(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    if (!std::isspace(static_cast<unsigned char>(c))) {
+      out.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+namespace detail {
+
+std::string read_text_file(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) throw FileError(path.string(), "no such file");
+  if (!std::filesystem::is_regular_file(path, error)) {
+    throw FileError(path.string(), "not a regular file");
+  }
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw FileError(path.string(), "cannot open for reading");
+  std::string text((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+  if (stream.bad()) throw FileError(path.string(), "read error");
+  return text;
+}
+
+bool is_water_residue(std::string_view residue_name) {
+  const std::string name = uppercase_trimmed(residue_name);
+  return name == "HOH" || name == "WAT" || name == "DOD";
+}
+
+std::vector<std::size_t> select_ligand(const std::vector<Atom>& atoms, const std::string& ligand,
+                                       const std::string& source) {
+  const std::string wanted = uppercase_trimmed(ligand);
+  bool found = false;
+  std::tuple<std::string, int> first_copy;
+  for (const Atom& atom : atoms) {
+    if (!atom.hetero || uppercase_trimmed(atom.residue_name) != wanted) continue;
+    const std::tuple<std::string, int> copy{atom.chain, atom.residue_number};
+    if (!found || copy < first_copy) first_copy = copy;
+    found = true;
+  }
+  if (!found) {
+    std::vector<std::string> present;
+    for (const Atom& atom : atoms) {
+      if (atom.hetero &&
+          std::find(present.begin(), present.end(), atom.residue_name) == present.end()) {
+        present.push_back(atom.residue_name);
+      }
+    }
+    std::string list;
+    for (std::size_t i = 0; i < present.size() && i < 10; ++i) {
+      list += (i > 0 ? ", " : "") + present[i];
+    }
+    if (present.size() > 10) list += ", ...";
+    throw InputError(source + ": no HETATM residue named '" + ligand + "'; HETATM residues " +
+                     (present.empty() ? std::string("present: none") : "present: " + list));
+  }
+  std::vector<std::size_t> selected;
+  for (std::size_t i = 0; i < atoms.size(); ++i) {
+    const Atom& atom = atoms[i];
+    if (atom.hetero && uppercase_trimmed(atom.residue_name) == wanted &&
+        std::tie(atom.chain, atom.residue_number) == first_copy) {
+      selected.push_back(i);
+    }
+  }
+  return selected;
+}
+
+bool has_standard_residue(const std::vector<Atom>& atoms) {
+  return std::any_of(atoms.begin(), atoms.end(), [](const Atom& atom) {
+    return protein_atom_lipophilicity(atom.residue_name, "CA").has_value();
+  });
+}
+
+void assign_protein_lipophilicity(Molecule& molecule) {
+  for (Atom& atom : molecule.atoms) {
+    atom.lipophilicity = protein_atom_lipophilicity(atom.residue_name, atom.name).value_or(0.0);
+  }
+  molecule.lipophilicity_assigned = true;
+}
+
+void assign_bondi_radii(Molecule& molecule) {
+  for (std::size_t i = 0; i < molecule.atoms.size(); ++i) {
+    Atom& atom = molecule.atoms[i];
+    const auto radius = bondi_radius(atom.element);
+    if (!radius) {
+      throw InputError(molecule.source + ": atom " + std::to_string(i + 1) +
+                       (atom.name.empty() ? "" : " (" + atom.name + ")") + " has element '" +
+                       atom.element + "', which has no van der Waals radius");
+    }
+    atom.radius = *radius;
+  }
+}
+
+}  // namespace detail
+
+bool is_molecule_file(const std::filesystem::path& path) {
+  const std::string extension = lowercase_extension(path);
+  return extension == ".sdf" || extension == ".mol" || extension == ".mol2" ||
+         extension == ".pdb" || extension == ".ent" || extension == ".pqr";
+}
+
+Molecule read_molecule(const std::filesystem::path& path, const MoleculeReadOptions& options) {
+  const std::string extension = lowercase_extension(path);
+  if (extension == ".pqr") return read_pqr(path, options);
+  detail::RdkitFormat format;
+  if (extension == ".sdf" || extension == ".mol") {
+    format = detail::RdkitFormat::mdl;
+  } else if (extension == ".mol2") {
+    format = detail::RdkitFormat::mol2;
+  } else if (extension == ".pdb" || extension == ".ent") {
+    format = detail::RdkitFormat::pdb;
+  } else {
+    throw FormatError(path.string(), "unknown molecule file extension '" + extension +
+                                         "' (expected .sdf .mol .mol2 .pdb .ent .pqr)");
+  }
+  const std::string text = detail::read_text_file(path);
+  return detail::read_with_rdkit(path, text, format, options);
+}
+
+}  // namespace surfcomp::io
