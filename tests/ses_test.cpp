@@ -1,0 +1,435 @@
+#include "surfcomp/core/elements.hpp"
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/mesh/remesh.hpp"
+#include "surfcomp/mesh/ses.hpp"
+#include "surfcomp/mesh/surface.hpp"
+#include "test_data.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <random>
+#include <string>
+
+namespace surfcomp::mesh {
+namespace {
+
+struct Atoms {
+  Eigen::MatrixX3d centers;
+  Eigen::VectorXd radii;
+};
+
+Atoms make_atoms(const std::vector<Eigen::Vector3d>& centers, const std::vector<double>& radii) {
+  Atoms atoms;
+  atoms.centers.resize(static_cast<Eigen::Index>(centers.size()), 3);
+  atoms.radii.resize(static_cast<Eigen::Index>(radii.size()));
+  for (std::size_t i = 0; i < centers.size(); ++i) {
+    atoms.centers.row(static_cast<Eigen::Index>(i)) = centers[i].transpose();
+    atoms.radii(static_cast<Eigen::Index>(i)) = radii[i];
+  }
+  return atoms;
+}
+
+/// Heavy atoms of a PDB file (ATOM/HETATM, no water, alternate location ' ' or 'A'), with
+/// Bondi radii from the element in columns 77-78.
+Atoms read_pdb_heavy_atoms(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<Eigen::Vector3d> centers;
+  std::vector<double> radii;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.size() < 78 || (line.rfind("ATOM", 0) != 0 && line.rfind("HETATM", 0) != 0)) continue;
+    if (line.substr(17, 3) == "HOH" || (line[16] != ' ' && line[16] != 'A')) continue;
+    const std::string element = normalize_element(line.substr(76, 2));
+    if (element == "H") continue;
+    centers.emplace_back(std::stod(line.substr(30, 8)), std::stod(line.substr(38, 8)),
+                         std::stod(line.substr(46, 8)));
+    radii.push_back(bondi_radius(element).value());
+  }
+  return make_atoms(centers, radii);
+}
+
+/// para-cresol, heavy atoms only, placed by hand in the xy plane (ring C-C 1.39 A, C-O 1.36 A,
+/// C-CH3 1.51 A): a compact 8-atom fragment.
+Atoms cresol() {
+  std::vector<Eigen::Vector3d> centers;
+  std::vector<double> radii;
+  for (int k = 0; k < 6; ++k) {
+    const double angle = M_PI / 3.0 * k;
+    centers.emplace_back(1.39 * std::cos(angle), 1.39 * std::sin(angle), 0.0);
+    radii.push_back(1.70);
+  }
+  centers.emplace_back(1.39 + 1.36, 0.0, 0.0);
+  radii.push_back(1.52);
+  centers.emplace_back(-1.39 - 1.51, 0.0, 0.0);
+  radii.push_back(1.70);
+  return make_atoms(centers, radii);
+}
+
+double vertex_density(const Surface& surface) {
+  return static_cast<double>(surface.n_vertices()) / measure_surface(surface).area;
+}
+
+/// The fraction of triangles whose normal points against their vertices' normals (folds).
+double folded_fraction(const Surface& surface) {
+  const Eigen::MatrixX3d p = surface.positions();
+  const Eigen::MatrixX3i f = surface.faces();
+  const Eigen::MatrixX3d n = surface.normals();
+  int folded = 0;
+  for (Eigen::Index t = 0; t < f.rows(); ++t) {
+    const Eigen::Vector3d a = p.row(f(t, 0)), b = p.row(f(t, 1)), c = p.row(f(t, 2));
+    const Eigen::Vector3d average = n.row(f(t, 0)) + n.row(f(t, 1)) + n.row(f(t, 2));
+    if ((b - a).cross(c - a).dot(average) <= 0.0) ++folded;
+  }
+  return static_cast<double>(folded) / static_cast<double>(f.rows());
+}
+
+TEST(EdgeLength, EquilateralMeshDensity) {
+  // V / area = 2 / (sqrt(3) L^2) for an equilateral mesh with F = 2V.
+  const double length = edge_length_for_density(2.5);
+  EXPECT_NEAR(2.0 / (std::sqrt(3.0) * length * length), 2.5, 1e-12);
+  EXPECT_NEAR(length, 0.6796, 1e-4);
+  EXPECT_THROW(edge_length_for_density(0.0), OptionError);
+}
+
+TEST(Ses, OneAtomIsItsVanDerWaalsSphere) {
+  const double r = 1.7;
+  const double area = 4.0 * M_PI * r * r;
+  const double volume = 4.0 / 3.0 * M_PI * r * r * r;
+  const Atoms atom = make_atoms({Eigen::Vector3d(0.3, -0.2, 0.1)}, {r});
+  const SesOptions options;
+  const Surface ses = build_ses(atom.centers, atom.radii, options);
+  ASSERT_NO_THROW(require_closed_manifold(ses));
+  const SurfaceMeasures m = measure_surface(ses);
+  std::cout << "one atom: " << ses.n_vertices() << " vertices, area " << m.area << " (exact "
+            << area << "), volume " << m.volume << " (exact " << volume << "), density "
+            << vertex_density(ses) << " per A^2\n";
+  EXPECT_NEAR(m.area, area, 0.01 * area);
+  EXPECT_NEAR(m.volume, volume, 0.01 * volume);
+  EXPECT_EQ(m.euler_characteristic, 2);
+  EXPECT_NEAR(vertex_density(ses), options.vertex_density, 0.3 * options.vertex_density);
+  // Normals are radial; vertices sit just outside the sphere by the chord compensation
+  // H L^2 / 8 = 0.68^2 / (8 * 1.7) = 0.034 A for an equilateral mesh.
+  const Eigen::MatrixX3d p = ses.positions();
+  const Eigen::MatrixX3d n = ses.normals();
+  for (Eigen::Index v = 0; v < p.rows(); ++v) {
+    const Eigen::Vector3d radial = p.row(v) - atom.centers.row(0);
+    ASSERT_GT(radial.normalized().dot(n.row(v)), 1.0 - 1e-12);
+    ASSERT_GT(radial.norm() - r, 0.0);
+    ASSERT_LT(radial.norm() - r, 0.07);
+  }
+}
+
+TEST(Ses, WithoutChordCompensationVerticesLieOnTheSurface) {
+  const double r = 1.7;
+  const Atoms atom = make_atoms({Eigen::Vector3d(0.3, -0.2, 0.1)}, {r});
+  SesOptions options;
+  options.compensate_chords = false;
+  const Surface ses = build_ses(atom.centers, atom.radii, options);
+  const Eigen::MatrixX3d p = ses.positions();
+  for (Eigen::Index v = 0; v < p.rows(); ++v) {
+    ASSERT_NEAR((p.row(v) - atom.centers.row(0)).norm(), r, 1e-12);
+  }
+  // The inscribed polyhedron loses area: about 3 % at 2.5 vertices per A^2 (see SesOptions).
+  const double ratio = measure_surface(ses).area / (4.0 * M_PI * r * r);
+  std::cout << "one atom, vertices on the sphere: area ratio " << ratio << "\n";
+  EXPECT_GT(ratio, 0.95);
+  EXPECT_LT(ratio, 0.985);
+}
+
+TEST(Ses, ZeroProbeGivesTheVanDerWaalsSurface) {
+  // Two atoms 2.5 A apart: the union of two balls, area 2 pi r1^2 (1 + x1 / r1) +
+  // 2 pi r2^2 (1 + x2 / r2) with x1, x2 the distances from the centres to the intersection plane.
+  const double r1 = 1.7, r2 = 1.5, d = 2.5;
+  const double x1 = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
+  const double x2 = d - x1;
+  const double area = 2.0 * M_PI * r1 * r1 * (1.0 + x1 / r1) + 2.0 * M_PI * r2 * r2 * (1.0 + x2 / r2);
+  SesOptions options;
+  options.probe_radius = 0.0;
+  const Atoms atoms = make_atoms({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(d, 0, 0)}, {r1, r2});
+  const SurfaceMeasures m = measure_surface(build_ses(atoms.centers, atoms.radii, options));
+  std::cout << "van der Waals surface of two atoms: area " << m.area << " (exact " << area << ")\n";
+  EXPECT_NEAR(m.area, area, 0.02 * area);
+  EXPECT_EQ(m.euler_characteristic, 2);
+}
+
+TEST(Sas, OneAtomIsTheProbeGrownSphere) {
+  const double r = 1.7;
+  const SesOptions options;
+  const double big = r + options.probe_radius;
+  const Atoms atom = make_atoms({Eigen::Vector3d(0, 0, 0)}, {r});
+  const Surface sas = build_sas(atom.centers, atom.radii, options);
+  const SurfaceMeasures m = measure_surface(sas);
+  std::cout << "SAS one atom: area " << m.area << " (exact " << 4 * M_PI * big * big << ")\n";
+  EXPECT_NEAR(m.area, 4.0 * M_PI * big * big, 0.01 * 4.0 * M_PI * big * big);
+  EXPECT_EQ(m.euler_characteristic, 2);
+  EXPECT_GT(m.volume, 0.0);
+}
+
+TEST(Sas, TwoAtomsAreTwoSphereCaps) {
+  // The union of spheres R1 = 3.1 and R2 = 2.9 with centres 2.5 A apart: caps beyond the
+  // intersection plane at x1 = (d^2 + R1^2 - R2^2) / (2 d) from centre 1.
+  const double big1 = 1.7 + 1.4, big2 = 1.5 + 1.4, d = 2.5;
+  const double x1 = (d * d + big1 * big1 - big2 * big2) / (2.0 * d);
+  const double area =
+      2.0 * M_PI * big1 * big1 * (1.0 + x1 / big1) + 2.0 * M_PI * big2 * big2 * (1.0 + (d - x1) / big2);
+  const Atoms atoms = make_atoms({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, d, 0)}, {1.7, 1.5});
+  const SurfaceMeasures m = measure_surface(build_sas(atoms.centers, atoms.radii));
+  std::cout << "SAS two atoms: area " << m.area << " (exact " << area << ")\n";
+  EXPECT_NEAR(m.area, area, 0.01 * area);
+  EXPECT_EQ(m.euler_characteristic, 2);
+}
+
+/// Analytic SES area of two atoms (radii r1, r2, centres d apart) bridged by the probe (p).
+/// Put c1 at x = 0 and c2 at x = d on the axis. A probe touching both atoms has its centre P at
+/// distance R1 = r1 + p from c1 and R2 = r2 + p from c2; in a plane through the axis
+///   x0 = (d^2 + R1^2 - R2^2) / (2 d),  h = sqrt(R1^2 - x0^2)  (P's distance from the axis).
+/// It touches atom 1 at polar angle theta1 from the axis (cos theta1 = x0 / R1) and atom 2 at
+/// cos theta2 = (d - x0) / R2 measured from the reversed axis. The SES is
+///  - the cap of atom 1 beyond its contact circle: 2 pi r1^2 (1 + cos theta1),
+///  - the cap of atom 2 beyond its contact circle: 2 pi r2^2 (1 + cos theta2),
+///  - the re-entrant patch swept by the probe's arc between the two contact points, the arc
+///    that faces the axis: points P + p (cos phi, sin phi) for phi from phi1 = atan2(-h, -x0)
+///    (towards c1) to phi2 = atan2(-h, d - x0) (towards c2). A point at distance
+///    y = h + p sin phi from the axis sweeps a circle of length 2 pi y, so (Pappus)
+///      A_torus = int 2 pi y p dphi = 2 pi p [h (phi2 - phi1) - p (cos phi2 - cos phi1)]
+///    with cos phi1 = -x0 / R1 and cos phi2 = (d - x0) / R2.
+/// Valid when the torus does not self-intersect (h > p: the probe cannot pass between the
+/// atoms through the axis, so y > 0 on the arc) and each contact circle lies outside the other
+/// atom; the caller asserts both.
+struct TwoAtomSes {
+  double area = 0.0;
+  double h = 0.0;              ///< probe centre's distance from the axis, A
+  double contact1_margin = 0;  ///< distance of atom 1's contact points from atom 2's surface, A
+  double contact2_margin = 0;
+};
+
+TwoAtomSes two_atom_ses(double r1, double r2, double d, double p) {
+  const double big1 = r1 + p;
+  const double big2 = r2 + p;
+  const double x0 = (d * d + big1 * big1 - big2 * big2) / (2.0 * d);
+  TwoAtomSes out;
+  out.h = std::sqrt(big1 * big1 - x0 * x0);
+  const double phi1 = std::atan2(-out.h, -x0);
+  const double phi2 = std::atan2(-out.h, d - x0);
+  const double cap1 = 2.0 * M_PI * r1 * r1 * (1.0 + x0 / big1);
+  const double cap2 = 2.0 * M_PI * r2 * r2 * (1.0 + (d - x0) / big2);
+  const double torus =
+      2.0 * M_PI * p * (out.h * (phi2 - phi1) - p * ((d - x0) / big2 + x0 / big1));
+  out.area = cap1 + cap2 + torus;
+  const Eigen::Vector2d t1 = r1 / big1 * Eigen::Vector2d(x0, out.h);
+  const Eigen::Vector2d t2 = Eigen::Vector2d(d, 0) + r2 / big2 * Eigen::Vector2d(x0 - d, out.h);
+  out.contact1_margin = (t1 - Eigen::Vector2d(d, 0)).norm() - r2;
+  out.contact2_margin = t2.norm() - r1;
+  return out;
+}
+
+void expect_two_atom_area(double r1, double r2, double d, double tolerance) {
+  const SesOptions options;
+  const TwoAtomSes exact = two_atom_ses(r1, r2, d, options.probe_radius);
+  ASSERT_GT(exact.h, options.probe_radius) << "the torus self-intersects; formula invalid";
+  ASSERT_GT(exact.contact1_margin, 0.0);
+  ASSERT_GT(exact.contact2_margin, 0.0);
+  // An oblique axis, so the grid is not aligned with the molecule.
+  const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 0.4, -0.7).normalized();
+  const Eigen::Vector3d c1(0.1, 0.2, 0.3);
+  const Atoms atoms = make_atoms({c1, c1 + d * axis}, {r1, r2});
+  const Surface ses = build_ses(atoms.centers, atoms.radii, options);
+  const SurfaceMeasures m = measure_surface(ses);
+  std::cout << "two atoms r " << r1 << ", " << r2 << " at " << d << " A: area " << m.area
+            << " (analytic " << exact.area << ", h " << exact.h << "), " << ses.n_vertices()
+            << " vertices\n";
+  EXPECT_NEAR(m.area, exact.area, tolerance * exact.area);
+  EXPECT_EQ(m.euler_characteristic, 2);
+  EXPECT_NO_THROW(require_closed_manifold(ses));
+}
+
+TEST(Ses, TwoOverlappingAtomsMatchCapsPlusTorus) { expect_two_atom_area(1.7, 1.5, 2.5, 0.02); }
+
+TEST(Ses, TwoSeparateAtomsBridgedByTheProbe) {
+  // 0.5 A apart: the probe (diameter 2.8 A) cannot pass between them.
+  expect_two_atom_area(1.5, 1.5, 3.5, 0.02);
+}
+
+TEST(Ses, RigidMotionKeepsAreaAndVolume) {
+  const Atoms atoms = cresol();
+  const unsigned seed = 20240611;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const Eigen::Quaterniond q =
+      Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized();
+  const Eigen::Vector3d t(10.0 * normal(rng), 10.0 * normal(rng), 10.0 * normal(rng));
+  Atoms moved = atoms;
+  for (Eigen::Index i = 0; i < moved.centers.rows(); ++i) {
+    moved.centers.row(i) = (q * atoms.centers.row(i).transpose() + t).transpose();
+  }
+  const SurfaceMeasures a = measure_surface(build_ses(atoms.centers, atoms.radii));
+  const SurfaceMeasures b = measure_surface(build_ses(moved.centers, moved.radii));
+  std::cout << "cresol (seed " << seed << "): area " << a.area << " -> " << b.area
+            << ", volume " << a.volume << " -> " << b.volume << "\n";
+  EXPECT_NEAR(b.area, a.area, 0.005 * a.area);
+  EXPECT_NEAR(b.volume, a.volume, 0.005 * a.volume);
+}
+
+TEST(Ses, MultiAtomFragmentIsASphereTopologically) {
+  const Atoms atoms = cresol();
+  const Surface ses = build_ses(atoms.centers, atoms.radii);
+  ASSERT_NO_THROW(require_closed_manifold(ses));
+  const SurfaceMeasures m = measure_surface(ses);
+  EXPECT_EQ(m.euler_characteristic, 2);
+  EXPECT_GT(m.volume, 0.0);
+  // The SES encloses the van der Waals volume: at least the largest atom's sphere.
+  EXPECT_GT(m.volume, 4.0 / 3.0 * M_PI * std::pow(1.7, 3));
+  EXPECT_EQ(folded_fraction(ses), 0.0);
+  // The grid mesh itself (no remeshing) is closed and encloses the same volume.
+  SesOptions raw;
+  raw.remesh = false;
+  const Surface grid_mesh = build_ses(atoms.centers, atoms.radii, raw);
+  ASSERT_NO_THROW(require_closed_manifold(grid_mesh));
+  const SurfaceMeasures g = measure_surface(grid_mesh);
+  EXPECT_EQ(g.euler_characteristic, 2);
+  EXPECT_NEAR(g.volume, m.volume, 0.01 * m.volume);
+  EXPECT_NEAR(g.area, m.area, 0.01 * m.area);
+}
+
+TEST(Ses, CavitiesAreDroppedOrKept) {
+  // 240 carbon atoms on a sphere of radius 5 A (Fibonacci points, about 1.1 A apart) enclose a
+  // void of radius 5 - 1.7 = 3.3 A where the probe fits but which it cannot reach.
+  std::vector<Eigen::Vector3d> centers;
+  const int n = 240;
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / n;
+    const double phi = M_PI * (3.0 - std::sqrt(5.0)) * i;
+    const double s = std::sqrt(1.0 - z * z);
+    centers.emplace_back(5.0 * s * std::cos(phi), 5.0 * s * std::sin(phi), 5.0 * z);
+  }
+  const Atoms shell = make_atoms(centers, std::vector<double>(n, 1.7));
+  const SurfaceMeasures outer = measure_surface(build_ses(shell.centers, shell.radii));
+  SesOptions keep;
+  keep.keep_cavities = true;
+  const Surface both = build_ses(shell.centers, shell.radii, keep);
+  const SurfaceMeasures m = measure_surface(both);
+  const double cavity = outer.volume - m.volume;
+  // Probe centres fit where every atom is >= 1.7 + 1.4 = 3.1 A away: out to radius
+  // 5 - 3.1 = 1.9 below an atom and a little further (< 0.1 A) in the gaps between atoms, so
+  // the cavity (the union of those probe balls) lies between the balls of radius 3.3 and 3.4.
+  const double void_ball = 4.0 / 3.0 * M_PI * std::pow(3.3, 3);
+  const double void_bound = 4.0 / 3.0 * M_PI * std::pow(3.4, 3);
+  std::cout << "shell: outer chi " << outer.euler_characteristic << " volume " << outer.volume
+            << "; with cavity chi " << m.euler_characteristic << ", cavity volume " << cavity
+            << " (between " << void_ball << " and " << void_bound << ")\n";
+  EXPECT_EQ(outer.euler_characteristic, 2);
+  EXPECT_EQ(m.euler_characteristic, 4);  // two spheres
+  EXPECT_GT(cavity, 0.99 * void_ball);
+  EXPECT_LT(cavity, void_bound);
+  EXPECT_NO_THROW(require_closed_manifold(both));
+}
+
+TEST(Ses, DeterministicAcrossRunsAndThreadCounts) {
+  const Atoms atoms = cresol();
+  const Surface first = build_ses(atoms.centers, atoms.radii);
+  const Surface second = build_ses(atoms.centers, atoms.radii);
+  Surface serial;
+  {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    serial = build_ses(atoms.centers, atoms.radii);
+  }
+  EXPECT_TRUE(first.positions() == second.positions());
+  EXPECT_TRUE(first.faces() == second.faces());
+  EXPECT_TRUE(first.positions() == serial.positions());
+  EXPECT_TRUE(first.faces() == serial.faces());
+}
+
+TEST(Ses, InvalidInputsThrow) {
+  const Atoms one = make_atoms({Eigen::Vector3d(0, 0, 0)}, {1.7});
+  const Eigen::MatrixX3d none(0, 3);
+  EXPECT_THROW(build_ses(none, Eigen::VectorXd(0)), InputError);
+  EXPECT_THROW(build_ses(one.centers, Eigen::VectorXd::Constant(2, 1.7)), InputError);
+  Atoms bad = one;
+  bad.radii(0) = 0.0;
+  EXPECT_THROW(build_ses(bad.centers, bad.radii), InputError);
+  bad = one;
+  bad.centers(0, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(build_sas(bad.centers, bad.radii), InputError);
+  bad = one;
+  bad.radii(0) = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(build_ses(bad.centers, bad.radii), InputError);
+  SesOptions options;
+  options.probe_radius = -1.0;
+  EXPECT_THROW(build_ses(one.centers, one.radii, options), OptionError);
+  options = SesOptions{};
+  options.voxel_size = 3.0;  // the sphere 1.7 + 1.4 spans ~1 voxel
+  EXPECT_THROW(build_ses(one.centers, one.radii, options), OptionError);
+  options = SesOptions{};
+  options.vertex_density = 0.0;
+  EXPECT_THROW(build_ses(one.centers, one.radii, options), OptionError);
+}
+
+TEST(Ses, ThermolysinLigand) {
+  SURFCOMP_SHARED_OR_SKIP(path, "thermolysin/ligands-common-frame/1THL_ligand.pdb");
+  const Atoms atoms = read_pdb_heavy_atoms(path);
+  ASSERT_EQ(atoms.radii.size(), 35);
+  const auto start = std::chrono::steady_clock::now();
+  const Surface ses = build_ses(atoms.centers, atoms.radii);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const SurfaceMeasures m = measure_surface(ses);
+  std::cout << "1THL ligand (" << atoms.radii.size() << " atoms): " << ses.n_vertices()
+            << " vertices, area " << m.area << " A^2, volume " << m.volume << " A^3, chi "
+            << m.euler_characteristic << ", " << seconds << " s\n";
+  EXPECT_NO_THROW(require_closed_manifold(ses));
+  EXPECT_GT(m.volume, 0.0);
+  EXPECT_NEAR(vertex_density(ses), 2.5, 0.3 * 2.5);
+  EXPECT_EQ(folded_fraction(ses), 0.0);
+}
+
+TEST(Ses, AllThermolysinStructuresGiveClosedSurfaces) {
+  for (const std::string name : {"ligands-common-frame/1THL_ligand.pdb",
+                                 "ligands-common-frame/1TLP_ligand.pdb",
+                                 "ligands-common-frame/1TMN_ligand.pdb",
+                                 "ligands-common-frame/3TMN_ligand.pdb",
+                                 "ligands-common-frame/4TMN_ligand.pdb", "1THL.pdb"}) {
+    SURFCOMP_SHARED_OR_SKIP(path, "thermolysin/" + name);
+    const Atoms atoms = read_pdb_heavy_atoms(path);
+    const auto start = std::chrono::steady_clock::now();
+    const Surface ses = build_ses(atoms.centers, atoms.radii);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const SurfaceMeasures m = measure_surface(ses);
+    std::cout << name << " (" << atoms.radii.size() << " atoms): " << ses.n_vertices()
+              << " vertices, area " << m.area << ", chi " << m.euler_characteristic << ", "
+              << seconds << " s\n";
+    EXPECT_NO_THROW(require_closed_manifold(ses)) << name;
+    EXPECT_GT(m.volume, 0.0) << name;
+    EXPECT_NEAR(vertex_density(ses), 2.5, 0.3 * 2.5) << name;
+    EXPECT_LT(folded_fraction(ses), 1e-3) << name;
+  }
+}
+
+TEST(Ses, Protein4we2) {
+  SURFCOMP_FETCHED_OR_SKIP(path, "edtsurf/4we2.pdb");
+  const Atoms atoms = read_pdb_heavy_atoms(path);
+  const auto start = std::chrono::steady_clock::now();
+  const Surface ses = build_ses(atoms.centers, atoms.radii);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const SurfaceMeasures m = measure_surface(ses);
+  std::cout << "4we2 (" << atoms.radii.size() << " atoms): " << ses.n_vertices()
+            << " vertices, area " << m.area << " A^2, volume " << m.volume << " A^3, chi "
+            << m.euler_characteristic << ", " << seconds << " s\n";
+  EXPECT_NO_THROW(require_closed_manifold(ses));
+  EXPECT_GT(m.volume, 0.0);
+  EXPECT_NEAR(vertex_density(ses), 2.5, 0.3 * 2.5);
+  std::cout << "4we2 folded triangles: " << folded_fraction(ses) << "\n";
+  EXPECT_LT(folded_fraction(ses), 1e-3);
+}
+
+}  // namespace
+}  // namespace surfcomp::mesh
