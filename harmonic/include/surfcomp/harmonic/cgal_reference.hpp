@@ -1,0 +1,36 @@
+// The harmonic disk map computed by CGAL's Surface_mesh_parameterization package, the
+// reference that harmonic_disk_map is tested and benchmarked against (METHOD section 4).
+// CGAL's headers stay in cgal_reference.cpp.
+#pragma once
+
+#include "surfcomp/harmonic/disk_map.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace surfcomp::harmonic {
+
+/// The map of harmonic_disk_map (same arguments, same result up to rounding), computed by
+/// CGAL 5.5's fixed-border parameterizers on a CGAL::Surface_mesh of the patch:
+/// Circular_border_arc_length_parameterizer_3 for the border, and for the interior
+/// Barycentric_mapping_parameterizer_3 (uniform), Discrete_conformal_map_parameterizer_3
+/// (cotangent), Mean_value_coordinates_parameterizer_3 (mean_value), or a
+/// Fixed_border_parameterizer_3 whose compute_w_ij is 1 / |p_i - p_j| (inverse_length).
+/// The linear systems are solved with Eigen::SparseLU (CGAL's default BiCGSTAB stops at a
+/// residual it does not report), one factorisation per coordinate as CGAL does.
+///
+/// CGAL walks the border halfedge loop, which runs opposite to the faces (clockwise seen from
+/// outside): starting at the border halfedge outer_boundary[0] -> outer_boundary[#B - 1], it
+/// puts the vertex at CGAL arc length s at (0.5 + 0.5 cos(-2 pi s / L), 0.5 + 0.5 sin(-2 pi s
+/// / L)). Our vertex k at counter-clockwise arc length L_k has s = L - L_k (s = 0 for k = 0),
+/// so its CGAL angle -2 pi (L - L_k) / L equals our theta_k = 2 pi L_k / L modulo 2 pi: no
+/// reflection and no rotation, and uv_ours = 2 (uv_cgal - (0.5, 0.5)) for every vertex.
+///
+/// Throws what check_disk_map_input throws, NumericError when CGAL reports a failure
+/// (its message is included).
+DiskMap cgal_disk_map(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                      const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                      const std::vector<int>& outer_boundary, const DiskMapOptions& options = {});
+
+}  // namespace surfcomp::harmonic
