@@ -803,7 +803,8 @@ TEST(MoleculeIo, WholeThermolysinWithoutWaterAndItsInhibitor) {
     }
   }
   EXPECT_EQ(ions, 5);
-  EXPECT_EQ(whole.charge_source, ChargeSource::gasteiger);
+  // A protein from a PDB file gets residue charges (protein_charges.hpp), not Gasteiger.
+  EXPECT_EQ(whole.charge_source, ChargeSource::residue_table);
   // The table gives the first residue's atoms their values (1THL starts with ILE 1).
   ASSERT_EQ(whole.atoms[0].residue_name, "ILE");
   EXPECT_NEAR(whole.atoms[1].lipophilicity, -0.2051 + 0.1230, 1e-12);  // CA

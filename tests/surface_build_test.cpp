@@ -11,7 +11,9 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -143,9 +145,69 @@ TEST(SurfaceBuild, OneAtomSurfaceHasSphereCurvatureAndCapShapeIndex) {
   EXPECT_GE(good_index / n, 0.95);
 }
 
+/// Closest point to `p` on triangle (a, b, c) as barycentric weights (Ericson, Real-Time
+/// Collision Detection, 5.1.5).
+Eigen::Vector3d closest_barycentric(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                    const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return {1 - v - w, v, w};
+}
+
+/// A property of `surface` interpolated at the point of the triangles around `near_vertex`
+/// closest to `p`; also returns that point's distance to `p`.
+std::pair<double, double> interpolate_near(const mesh::Surface& surface, const Eigen::VectorXd& values,
+                                           int near_vertex, const Eigen::Vector3d& p) {
+  const mesh::TriMesh& m = surface.mesh();
+  double best_distance = std::numeric_limits<double>::infinity(), best_value = 0.0;
+  for (auto f : m.vf_range(mesh::TriMesh::VertexHandle(near_vertex))) {
+    std::array<int, 3> v{};
+    std::array<Eigen::Vector3d, 3> x;
+    int k = 0;
+    for (auto vh : m.fv_range(f)) {
+      v[k] = vh.idx();
+      const auto& q = m.point(vh);
+      x[k++] = Eigen::Vector3d(q[0], q[1], q[2]);
+    }
+    const Eigen::Vector3d w = closest_barycentric(p, x[0], x[1], x[2]);
+    const double distance = (w[0] * x[0] + w[1] * x[1] + w[2] * x[2] - p).norm();
+    if (distance < best_distance) {
+      best_distance = distance;
+      best_value = w[0] * values(v[0]) + w[1] * values(v[1]) + w[2] * values(v[2]);
+    }
+  }
+  return {best_value, best_distance};
+}
+
 /// A rigid motion of the molecule moves the surface with it: area and volume stay, and each
-/// property at a vertex of the moved surface equals the property at the nearest vertex of the
-/// original surface (after undoing the motion) up to the variation over one edge.
+/// property at a vertex of the moved surface equals the property of the original surface
+/// interpolated at the same place (after undoing the motion), up to the discretisation.
+/// ESP and LP are smooth, so they agree closely; the shape index jumps where a convex atom cap
+/// meets a re-entrant patch of the SES, so a few vertices near those seams differ more.
 TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
   SURFCOMP_SHARED_OR_SKIP(file, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
   const Molecule molecule = io::read_molecule(file);
@@ -167,11 +229,17 @@ TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
   EXPECT_NEAR(mb.area, ma.area, 0.005 * ma.area);
   EXPECT_NEAR(mb.volume, ma.volume, 0.005 * ma.volume);
 
+  struct Tolerance {
+    const char* name;
+    double median, p95;  // of |difference| / (max - min) over the original surface
+  };
   const Eigen::MatrixX3d pa = a.positions();
   const Eigen::MatrixX3d pb = b.positions();
-  for (const char* name : {mesh::property::esp, mesh::property::lp, mesh::property::shape_index}) {
-    const Eigen::VectorXd va = a.property(name);
-    const Eigen::VectorXd vb = b.property(name);
+  for (const Tolerance& tol : {Tolerance{mesh::property::esp, 0.01, 0.03},
+                               Tolerance{mesh::property::lp, 0.01, 0.03},
+                               Tolerance{mesh::property::shape_index, 0.05, 0.25}}) {
+    const Eigen::VectorXd va = a.property(tol.name);
+    const Eigen::VectorXd vb = b.property(tol.name);
     const double range = va.maxCoeff() - va.minCoeff();
     std::vector<double> errors;
     double max_distance = 0.0;
@@ -179,17 +247,20 @@ TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
       const Eigen::Vector3d back = rotation.transpose() * (pb.row(i).transpose() - translation);
       Eigen::Index nearest = 0;
       (pa.rowwise() - back.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
-      max_distance = std::max(max_distance, (pa.row(nearest).transpose() - back).norm());
-      errors.push_back(std::abs(vb(i) - va(nearest)) / range);
+      const auto [value, distance] = interpolate_near(a, va, static_cast<int>(nearest), back);
+      max_distance = std::max(max_distance, distance);
+      errors.push_back(std::abs(vb(i) - value) / range);
     }
     std::sort(errors.begin(), errors.end());
     const double median = errors[errors.size() / 2];
     const double p95 = errors[errors.size() * 95 / 100];
-    std::printf("[ motion   ] %s: nearest vertex within %.3f A; |difference| / range: median %.4f, 95th %.4f\n",
-                name, max_distance, median, p95);
-    EXPECT_LT(max_distance, 0.5);
-    EXPECT_LT(median, 0.02) << name;
-    EXPECT_LT(p95, 0.08) << name;
+    std::printf("[ motion   ] %s: moved vertices within %.3f A of the original surface; "
+                "|difference| / range: median %.4f, 95th percentile %.4f\n",
+                tol.name, max_distance, median, p95);
+    // Two triangulations of one surface: they differ by the chords' sag (edges ~0.68 A).
+    EXPECT_LT(max_distance, 0.2) << tol.name;
+    EXPECT_LT(median, tol.median) << tol.name;
+    EXPECT_LT(p95, tol.p95) << tol.name;
   }
 }
 

@@ -1,6 +1,7 @@
 // SDF/MOL, MOL2 and PDB reading through RDKit; charges and Wildman-Crippen increments.
 #include "molecule_reader_detail.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/protein_charges.hpp"
 #include "surfcomp/core/molecule.hpp"
 
 #include <GraphMol/Descriptors/Crippen.h>
@@ -284,17 +285,6 @@ void disconnect_metals(RDKit::RWMol& mol) {
   for (const auto& [begin, end] : metal_bonds) mol.removeBond(begin, end);
 }
 
-std::optional<int> usual_ionic_charge(const std::string& element) {
-  if (element == "Li" || element == "Na" || element == "K") return 1;
-  if (element == "Mg" || element == "Ca" || element == "Zn" || element == "Mn" ||
-      element == "Fe" || element == "Co" || element == "Ni" || element == "Cu" ||
-      element == "Cd") {
-    return 2;
-  }
-  if (element == "F" || element == "Cl" || element == "Br" || element == "I") return -1;
-  return std::nullopt;
-}
-
 // Gasteiger charges per connected fragment (Gasteiger equalisation never crosses fragments),
 // implicit hydrogens' charges added to their heavy atom; isolated ions see usual_ionic_charge.
 std::vector<double> gasteiger_charges(const RDKit::ROMol& mol, const Molecule& molecule) {
@@ -429,7 +419,15 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& te
   if (format == RdkitFormat::pdb) {
     rdkit_call(source, "disconnect metal ions", [&]() { disconnect_metals(*mol); });
   }
-  sanitize(mol, format, source);
+  // A protein from a PDB file has no bond orders, and RDKit's proximity bonds over explicit
+  // hydrogens break valences: its charges and lipophilicities come from residue tables, so it
+  // is not sanitised.
+  const bool protein = whole_structure && has_standard_residue(molecule.atoms);
+  if (protein && options.charges != ChargeModel::file) {
+    throw OptionError(source + ": Gasteiger and MMFF charges need bond orders, which a protein "
+                      "PDB file lacks; use the residue charges (charges 'file') or a PQR file");
+  }
+  if (!protein) sanitize(mol, format, source);
 
   std::string name;
   if (mol->getPropIfPresent(RDKit::common_properties::_Name, name) && !trimmed(name).empty()) {
@@ -442,7 +440,10 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& te
   const bool file_charges = options.charges == ChargeModel::file && !charge_type.empty() &&
                             charge_type != "NO_CHARGES";
   std::vector<double> charges;
-  if (file_charges) {
+  if (protein) {
+    assign_protein_formal_charges(molecule);
+    for (const Atom& atom : molecule.atoms) charges.push_back(atom.charge);
+  } else if (file_charges) {
     charges = tripos_charges(*mol, source);
     molecule.charge_source = ChargeSource::file;
   } else if (options.charges == ChargeModel::mmff) {
@@ -456,7 +457,7 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& te
   for (std::size_t i = 0; i < molecule.atoms.size(); ++i) molecule.atoms[i].charge = charges[i];
 
   if (options.assign_lipophilicity) {
-    if (whole_structure && has_standard_residue(molecule.atoms)) {
+    if (protein) {
       assign_protein_lipophilicity(molecule);
     } else {
       const std::vector<double> contributions = crippen_contributions(*mol, source);

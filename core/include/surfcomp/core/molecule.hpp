@@ -25,7 +25,7 @@ struct Atom {
 };
 
 /// Where a molecule's charges came from, for the summary and for later stages.
-enum class ChargeSource { none, file, gasteiger, mmff };
+enum class ChargeSource { none, file, gasteiger, mmff, residue_table };
 
 /// A molecule: its atoms (hydrogens included when the file has them) and provenance.
 struct Molecule {

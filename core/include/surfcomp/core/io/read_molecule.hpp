@@ -11,7 +11,10 @@ namespace surfcomp::io {
 
 /// Where the partial charges come from.
 enum class ChargeModel {
-  file,       ///< the file's charges if it has some (MOL2 with a charge type, PQR), else Gasteiger
+  /// the file's charges if it has some (MOL2 with a charge type, PQR); else, for a protein read
+  /// whole from a PDB file, the residue formal charges of assign_protein_formal_charges()
+  /// (protein_charges.hpp; RDKit cannot type residues without bond orders), else Gasteiger
+  file,
   gasteiger,  ///< Gasteiger-Marsili charges computed by RDKit (12 iterations)
   mmff,       ///< MMFF94 charges computed by RDKit
 };
@@ -39,7 +42,7 @@ bool is_molecule_file(const std::filesystem::path& path);
 /// - SDF/MOL: the first record; MOL2: the first molecule; PDB: every model-1 atom (RDKit's
 ///   reader with proximity bonding); PQR: read_pqr(). Hydrogens present in the file are kept.
 /// - Radii: Bondi (surfcomp::bondi_radius) except PQR, whose radii are taken as given.
-/// - Charges (e): see ChargeModel. Computed charges of implicit hydrogens (atoms the file does
+/// - Charges (e): see ChargeModel. Gasteiger or MMFF on a protein PDB is an OptionError. Computed charges of implicit hydrogens (atoms the file does
 ///   not list) are added to their heavy atom, so the charges sum to the formal charge.
 ///   Isolated single-atom ions without Gasteiger parameters (Zn, Ca, Na, Cl, ...) get their
 ///   formal charge from the file, else their usual ionic charge (Na/K +1, Mg/Ca/Zn/Mn/Fe/Co/
