@@ -5,6 +5,7 @@ find_package(OpenMesh REQUIRED CONFIG)
 set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
 find_package(CGAL 5.5 REQUIRED)
 find_package(TBB REQUIRED CONFIG)
+find_package(nlohmann_json 3 REQUIRED CONFIG)
 find_package(Boost 1.74 REQUIRED COMPONENTS graph iostreams program_options)
 
 # OpenVDB's find module lives outside CMake's default search path.

@@ -152,7 +152,7 @@ TEST(DetectCriticalPoints, SphereWithFittedCurvatureIsDeterministicAndSeparated)
             << count_type(cps, CriticalPointType::valley) << " valleys\n";
   EXPECT_EQ(count_type(cps, CriticalPointType::valley), 0);
   EXPECT_GE(cps.size(), 1U);
-  expect_separated(sphere, cps, 2.5);
+  expect_separated(sphere, cps, CriticalPointOptions{}.radius);
   expect_identical(cps, detect_critical_points(sphere));
 }
 
@@ -173,7 +173,7 @@ TEST(DetectCriticalPoints, TorusHasNoValleysAndPeaksOnlyOnItsConvexOuterHalf) {
     EXPECT_GE(rho, major - 1e-9) << "peak " << cp.vertex << " is on the saddle-shaped inner half";
     EXPECT_NEAR(cp.cc1, -1.0 / minor, 0.05 / minor);  // measured -0.689 (+3.3 %)
   }
-  expect_separated(torus, cps, 2.5);
+  expect_separated(torus, cps, CriticalPointOptions{}.radius);
   // The inner equator (phi = pi, vertex j = 12 of each tube circle) is saddle-shaped.
   const Eigen::VectorXd cc1 = torus.property(property::cc1);
   const Eigen::VectorXd cc2 = torus.property(property::cc2);

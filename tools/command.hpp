@@ -18,5 +18,7 @@ struct Command {
 };
 
 int surf_build(const std::vector<std::string>& args);
+int cp_detect(const std::vector<std::string>& args);
+int hsi_build(const std::vector<std::string>& args);
 
 }  // namespace surfcomp::tools

@@ -20,6 +20,10 @@ using surfcomp::tools::Command;
 constexpr std::array kCommands{
     Command{"surf-build", "molecule or mesh -> SES with ESP, LP and curvature (PLY)",
             &surfcomp::tools::surf_build},
+    Command{"cp-detect", "surface -> shape critical points (JSON; PDB/PLY for viewing)",
+            &surfcomp::tools::cp_detect},
+    Command{"hsi-build", "surface -> critical points, patches, harmonic maps and images (.hsi)",
+            &surfcomp::tools::hsi_build},
 };
 
 void print_usage(std::ostream& out) {

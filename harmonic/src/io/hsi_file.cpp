@@ -1,0 +1,343 @@
+#include "surfcomp/harmonic/io/hsi_file.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/binary_stream.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+namespace surfcomp::harmonic::io {
+namespace {
+
+using surfcomp::io::BinaryReader;
+using surfcomp::io::BinaryWriter;
+
+constexpr std::array<char, 8> kMagic{'S', 'U', 'R', 'F', 'H', 'S', 'I', '\n'};
+constexpr std::uint32_t kByteOrderMark = 0x01020304u;
+constexpr std::size_t kHeaderSize = 8 + 4 + 4 + 8 + 8;
+
+// ---- encoding -------------------------------------------------------------------------------
+
+void put_options(BinaryWriter& w, const DescriptorOptions& o) {
+  w.f64(o.critical_points.radius);
+  w.f64(o.critical_points.property_disc_radius);
+  w.u8(static_cast<std::uint8_t>(o.critical_points.distance));
+  w.f64(o.patch.radius);
+  w.f64(o.patch.margin);
+  w.u8(static_cast<std::uint8_t>(o.patch.distance));
+  w.u8(static_cast<std::uint8_t>(o.disk_map.weights));
+  w.i32(o.image.radial_samples);
+  w.i32(o.image.angular_samples);
+  w.string(o.image_property);
+}
+
+void put_surface(BinaryWriter& w, const mesh::Surface& s) {
+  w.string(s.source());
+  w.double_matrix(s.positions());
+  w.u8(s.has_normals() ? 1 : 0);
+  if (s.has_normals()) w.double_matrix(s.normals());
+  w.int_matrix(s.faces());
+  w.u8(static_cast<std::uint8_t>(s.position_type()));
+  w.u8(static_cast<std::uint8_t>(s.normal_type()));
+  w.u64(s.property_names().size());
+  for (const std::string& name : s.property_names()) {
+    w.string(name);
+    w.u8(static_cast<std::uint8_t>(s.property_type(name)));
+    w.doubles(s.property(name));
+  }
+}
+
+void put_vector3(BinaryWriter& w, const Eigen::Vector3d& v) {
+  for (int k = 0; k < 3; ++k) w.f64(v(k));
+}
+
+void put_point(BinaryWriter& w, const mesh::CriticalPoint& p) {
+  w.u8(static_cast<std::uint8_t>(p.type));
+  w.i32(p.vertex);
+  put_vector3(w, p.position);
+  put_vector3(w, p.normal);
+  for (double value : {p.cc1, p.cc2, p.shape_index, p.curvedness, p.esp, p.lp}) w.f64(value);
+}
+
+void put_patch(BinaryWriter& w, const mesh::Patch& p) {
+  w.i32(p.center);
+  w.ints(p.surface_vertex);
+  w.double_matrix(p.positions);
+  w.int_matrix(p.faces);
+  w.doubles(p.distance);
+  w.ints(p.outer_boundary);
+  w.u64(p.holes.size());
+  for (const auto& hole : p.holes) w.ints(hole);
+  w.i32(p.genus);
+}
+
+void put_image(BinaryWriter& w, const ShapeImage& image) {
+  w.i32(image.radial_samples);
+  w.i32(image.angular_samples);
+  w.doubles(image.values);
+  w.u64(image.valid.size());
+  for (std::uint8_t v : image.valid) w.u8(v);
+  w.ints(std::vector<int>(image.face.data(), image.face.data() + image.face.size()));
+  w.double_matrix(image.barycentric);
+}
+
+// ---- decoding -------------------------------------------------------------------------------
+
+template <typename Enum>
+Enum get_enum(BinaryReader& r, std::uint8_t last, const char* what) {
+  const std::uint8_t value = r.u8();
+  if (value > last) r.fail(std::string("unknown ") + what + " " + std::to_string(value));
+  return static_cast<Enum>(value);
+}
+
+DescriptorOptions get_options(BinaryReader& r) {
+  DescriptorOptions o;
+  o.critical_points.radius = r.f64();
+  o.critical_points.property_disc_radius = r.f64();
+  o.critical_points.distance = get_enum<mesh::GeodesicMethod>(r, 1, "distance method");
+  o.patch.radius = r.f64();
+  o.patch.margin = r.f64();
+  o.patch.distance = get_enum<mesh::GeodesicMethod>(r, 1, "distance method");
+  o.disk_map.weights = get_enum<SpringWeights>(r, 3, "spring weight kind");
+  o.image.radial_samples = r.i32();
+  o.image.angular_samples = r.i32();
+  if (o.image.radial_samples < 1 || o.image.angular_samples < 1) r.fail("image grid below 1");
+  o.image_property = r.string();
+  return o;
+}
+
+mesh::Surface get_surface(BinaryReader& r) {
+  const std::string source = r.string();
+  const Eigen::MatrixXd positions = r.double_matrix();
+  if (positions.cols() != 3) r.fail("vertex positions are not 3 columns");
+  const bool has_normals = r.u8() != 0;
+  Eigen::MatrixXd normals;
+  if (has_normals) {
+    normals = r.double_matrix();
+    if (normals.cols() != 3 || normals.rows() != positions.rows()) r.fail("bad normals");
+  }
+  const Eigen::MatrixXi faces = r.int_matrix();
+  if (faces.cols() != 3 && faces.rows() != 0) r.fail("faces are not triangles");
+  mesh::Surface s;
+  try {
+    s = mesh::Surface::from_arrays(positions, faces.rows() ? Eigen::MatrixX3i(faces) : Eigen::MatrixX3i(0, 3),
+                                   r.source());
+  } catch (const Error& e) {
+    r.fail(std::string("the stored surface is invalid: ") + e.what());
+  }
+  s.set_source(source);
+  if (has_normals) s.set_normals(normals);
+  s.set_position_type(get_enum<mesh::ValueType>(r, 7, "value type"));
+  s.set_normal_type(get_enum<mesh::ValueType>(r, 7, "value type"));
+  const std::uint64_t n_properties = r.u64();
+  if (n_properties > r.remaining()) r.fail("implausible property count");
+  for (std::uint64_t k = 0; k < n_properties; ++k) {
+    const std::string name = r.string();
+    const auto type = get_enum<mesh::ValueType>(r, 7, "value type");
+    const Eigen::VectorXd values = r.doubles();
+    if (static_cast<std::size_t>(values.size()) != s.n_vertices()) {
+      r.fail("property '" + name + "' has the wrong number of values");
+    }
+    s.set_property(name, values, type);
+  }
+  return s;
+}
+
+Eigen::Vector3d get_vector3(BinaryReader& r) {
+  Eigen::Vector3d v;
+  for (int k = 0; k < 3; ++k) v(k) = r.f64();
+  return v;
+}
+
+mesh::CriticalPoint get_point(BinaryReader& r, std::size_t n_vertices) {
+  mesh::CriticalPoint p;
+  p.type = get_enum<mesh::CriticalPointType>(r, 1, "critical point type");
+  p.vertex = r.i32();
+  if (p.vertex < 0 || static_cast<std::size_t>(p.vertex) >= n_vertices) {
+    r.fail("critical point vertex " + std::to_string(p.vertex) + " outside the surface");
+  }
+  p.position = get_vector3(r);
+  p.normal = get_vector3(r);
+  for (double* value : {&p.cc1, &p.cc2, &p.shape_index, &p.curvedness, &p.esp, &p.lp}) {
+    *value = r.f64();
+  }
+  return p;
+}
+
+void check_indices(BinaryReader& r, const std::vector<int>& indices, std::size_t bound,
+                   const char* what) {
+  for (int i : indices) {
+    if (i < 0 || static_cast<std::size_t>(i) >= bound) {
+      r.fail(std::string(what) + " index " + std::to_string(i) + " outside 0.." +
+             std::to_string(bound));
+    }
+  }
+}
+
+mesh::Patch get_patch(BinaryReader& r, std::size_t surface_vertices) {
+  mesh::Patch p;
+  p.center = r.i32();
+  p.surface_vertex = r.ints();
+  const std::size_t n = p.surface_vertex.size();
+  check_indices(r, p.surface_vertex, surface_vertices, "patch back-reference");
+  if (p.center < 0 || static_cast<std::size_t>(p.center) >= std::max<std::size_t>(n, 1)) {
+    r.fail("patch centre outside the patch");
+  }
+  const Eigen::MatrixXd positions = r.double_matrix();
+  if (static_cast<std::size_t>(positions.rows()) != n || positions.cols() != 3) {
+    r.fail("patch positions do not match its vertices");
+  }
+  p.positions = positions;
+  const Eigen::MatrixXi faces = r.int_matrix();
+  if (faces.cols() != 3) r.fail("patch faces are not triangles");
+  if (faces.size() > 0 && (faces.minCoeff() < 0 || static_cast<std::size_t>(faces.maxCoeff()) >= n)) {
+    r.fail("patch face index outside the patch");
+  }
+  p.faces = faces;
+  p.distance = r.doubles();
+  if (static_cast<std::size_t>(p.distance.size()) != n) r.fail("patch distances do not match");
+  p.outer_boundary = r.ints();
+  check_indices(r, p.outer_boundary, n, "patch border");
+  const std::uint64_t n_holes = r.u64();
+  if (n_holes > r.remaining() / 8) r.fail("implausible hole count");
+  p.holes.resize(n_holes);
+  for (auto& hole : p.holes) {
+    hole = r.ints();
+    check_indices(r, hole, n, "patch hole");
+  }
+  p.genus = r.i32();
+  return p;
+}
+
+ShapeImage get_image(BinaryReader& r, std::size_t n_faces, const ImageOptions& grid) {
+  ShapeImage image;
+  image.radial_samples = r.i32();
+  image.angular_samples = r.i32();
+  if (image.radial_samples != grid.radial_samples || image.angular_samples != grid.angular_samples) {
+    r.fail("an image grid differs from the file's parameters");
+  }
+  const std::size_t n = static_cast<std::size_t>(grid.radial_samples) *
+                        static_cast<std::size_t>(grid.angular_samples);
+  image.values = r.doubles();
+  const std::uint64_t n_valid = r.u64();
+  if (static_cast<std::size_t>(image.values.size()) != n || n_valid != n || n_valid > r.remaining()) {
+    r.fail("image sizes do not match its grid");
+  }
+  image.valid.resize(n);
+  for (auto& v : image.valid) v = r.u8();
+  const std::vector<int> faces = r.ints();
+  if (faces.size() != n) r.fail("image face list does not match its grid");
+  for (int f : faces) {
+    if (f < -1 || (f >= 0 && static_cast<std::size_t>(f) >= n_faces)) r.fail("image face outside the patch");
+  }
+  image.face = Eigen::Map<const Eigen::VectorXi>(faces.data(), static_cast<Eigen::Index>(n));
+  const Eigen::MatrixXd barycentric = r.double_matrix();
+  if (static_cast<std::size_t>(barycentric.rows()) != n || barycentric.cols() != 3) {
+    r.fail("image barycentric coordinates do not match its grid");
+  }
+  image.barycentric = barycentric;
+  return image;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& d) {
+  BinaryWriter payload;
+  put_options(payload, d.options);
+  put_surface(payload, d.surface);
+  payload.u64(d.critical_points.size());
+  for (const auto& cp : d.critical_points) {
+    put_point(payload, cp.point);
+    payload.u8(static_cast<std::uint8_t>(cp.status));
+    if (cp.status != PatchStatus::ok) continue;
+    put_patch(payload, cp.patch);
+    payload.double_matrix(cp.map.uv);
+    put_image(payload, cp.image);
+  }
+  BinaryWriter file;
+  for (char c : kMagic) file.u8(static_cast<std::uint8_t>(c));
+  file.u32(hsi_format_version);
+  file.u32(kByteOrderMark);
+  file.u64(payload.bytes().size());
+  file.u64(surfcomp::io::fnv1a64(payload.bytes().data(), payload.bytes().size()));
+  std::vector<std::uint8_t> bytes = file.bytes();
+  bytes.insert(bytes.end(), payload.bytes().begin(), payload.bytes().end());
+  return bytes;
+}
+
+SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std::string& source) {
+  if (bytes.size() < kHeaderSize || std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0) {
+    throw FormatError(source, "not a .hsi file (no SURFHSI header)");
+  }
+  BinaryReader header(bytes.data() + kMagic.size(), kHeaderSize - kMagic.size(), source);
+  const std::uint32_t version = header.u32();
+  const std::uint32_t mark = header.u32();
+  if (mark != kByteOrderMark) {
+    throw FormatError(source, "byte order mark " + std::to_string(mark) +
+                                  " is not that of a .hsi file written by surfcomp");
+  }
+  if (version != hsi_format_version) {
+    throw FormatError(source, "format version " + std::to_string(version) + ", this surfcomp reads version " +
+                                  std::to_string(hsi_format_version) + "; rebuild it with surfcomp hsi-build");
+  }
+  const std::uint64_t size = header.u64();
+  const std::uint64_t checksum = header.u64();
+  if (size != bytes.size() - kHeaderSize) {
+    throw FormatError(source, "the payload has " + std::to_string(bytes.size() - kHeaderSize) +
+                                  " bytes, the header says " + std::to_string(size) + " (truncated?)");
+  }
+  const std::uint8_t* payload = bytes.data() + kHeaderSize;
+  if (surfcomp::io::fnv1a64(payload, size) != checksum) {
+    throw FormatError(source, "checksum mismatch: the file is corrupt");
+  }
+  BinaryReader r(payload, size, source);
+  SurfaceDescriptors d;
+  d.options = get_options(r);
+  d.surface = get_surface(r);
+  const std::uint64_t n_points = r.u64();
+  if (n_points > r.remaining()) r.fail("implausible critical point count");
+  d.critical_points.resize(n_points);
+  for (auto& cp : d.critical_points) {
+    cp.point = get_point(r, d.surface.n_vertices());
+    cp.status = get_enum<PatchStatus>(r, 3, "patch status");
+    if (cp.status != PatchStatus::ok) continue;
+    cp.patch = get_patch(r, d.surface.n_vertices());
+    const Eigen::MatrixXd uv = r.double_matrix();
+    if (static_cast<std::size_t>(uv.rows()) != cp.patch.surface_vertex.size() || uv.cols() != 2) {
+      r.fail("harmonic map does not match its patch");
+    }
+    cp.map.uv = uv;
+    cp.image = get_image(r, static_cast<std::size_t>(cp.patch.faces.rows()), d.options.image);
+  }
+  if (r.remaining() != 0) r.fail("unexpected bytes after the last critical point");
+  return d;
+}
+
+void write_hsi(const SurfaceDescriptors& descriptors, const std::filesystem::path& path) {
+  const std::vector<std::uint8_t> bytes = encode_hsi(descriptors);
+  surfcomp::io::write_file_atomically(path, [&](std::ostream& out) {
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  });
+}
+
+SurfaceDescriptors read_hsi(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw FileError(path.string(), "cannot open for reading");
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw FileError(path.string(), "read error");
+  return decode_hsi(bytes, path.string());
+}
+
+bool is_hsi_file(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".hsi";
+}
+
+}  // namespace surfcomp::harmonic::io

@@ -1,0 +1,218 @@
+// The coarse level end to end on real surfaces: critical point counts against the thesis,
+// images invariant under rigid motion and independent of the sampling density (Zhang & Hebert),
+// thread-count independence, and the .hsi file.
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/harmonic/io/hsi_file.hpp"
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
+
+#include "test_data.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace surfcomp {
+namespace {
+
+const char* kLigands = "thermolysin/ligands-common-frame/";
+
+mesh::Surface ligand_surface(const std::filesystem::path& file, double density = 2.5) {
+  mesh::MolecularSurfaceOptions options;
+  options.ses.vertex_density = density;
+  return mesh::build_molecular_surface(io::read_molecule(file), options);
+}
+
+std::vector<std::uint8_t> encoded(const harmonic::SurfaceDescriptors& d) {
+  return harmonic::io::encode_hsi(d);
+}
+
+// The thesis found 27 (1THL) and 29 (4TMN) critical points on its MOLCAD surfaces; the defaults
+// (r_cp 2.5 A on surfaces whose curvature is fitted over 2 A) give 26 and 30. The range
+// asserted, 22..36, is the thesis' figure +-25 %; a 2-ring curvature fit, noisier, gives 40 and
+// 41 and falls outside it.
+TEST(Descriptors, ThermolysinCriticalPointCountsAreOfTheThesisOrder) {
+  for (const char* id : {"1THL", "4TMN"}) {
+    SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + id + "_ligand.sdf");
+    const auto d = harmonic::describe_surface(ligand_surface(file));
+    const auto counts = harmonic::count_descriptors(d);
+    std::printf("[ cps      ] %s: %zu vertices, %zu peaks + %zu valleys = %zu (thesis: %s), %zu images\n",
+                id, d.surface.n_vertices(), counts.peaks, counts.valleys, counts.peaks + counts.valleys,
+                std::string(id) == "1THL" ? "27" : "29", counts.imaged);
+    EXPECT_GE(counts.peaks + counts.valleys, 22u) << id;
+    EXPECT_LE(counts.peaks + counts.valleys, 36u) << id;
+    EXPECT_GT(counts.peaks, counts.valleys) << id << ": the seed finds more peaks than valleys";
+    EXPECT_GE(counts.imaged, (counts.peaks + counts.valleys) * 9 / 10) << id;
+  }
+}
+
+// A rigid motion of the surface moves nothing but coordinates: the same critical points, and
+// every image equal to the original up to an in-plane rotation.
+TEST(Descriptors, RotatingTheSurfaceLeavesEveryImageUnchanged) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
+  const mesh::Surface surface = ligand_surface(file);
+  std::mt19937 rng(7u);
+  std::normal_distribution<double> gauss;
+  const Eigen::Matrix3d rotation =
+      Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
+  const Eigen::Vector3d shift(12.0, -3.0, 40.0);
+  const Eigen::MatrixX3d moved_positions =
+      ((surface.positions() * rotation.transpose()).rowwise() + shift.transpose());
+  mesh::Surface moved = mesh::Surface::from_arrays(moved_positions, surface.faces(), "moved");
+  moved.set_normals(surface.normals() * rotation.transpose());
+  mesh::assign_surface_properties(moved, nullptr);
+  for (const std::string name : {mesh::property::esp, mesh::property::lp}) {
+    moved.set_property(name, surface.property(name));
+  }
+  const auto a = harmonic::describe_surface(surface);
+  const auto b = harmonic::describe_surface(moved);
+  ASSERT_EQ(a.critical_points.size(), b.critical_points.size());
+  double worst = 1.0;
+  for (std::size_t i = 0; i < a.critical_points.size(); ++i) {
+    const auto& ca = a.critical_points[i];
+    const auto& cb = b.critical_points[i];
+    EXPECT_EQ(ca.point.vertex, cb.point.vertex);
+    EXPECT_NEAR((rotation * ca.point.position + shift - cb.point.position).norm(), 0.0, 1e-9);
+    if (ca.status != harmonic::PatchStatus::ok) continue;
+    const auto match = harmonic::compare_images(ca.image, cb.image);
+    worst = std::min(worst, match.correlation);
+    EXPECT_GE(match.correlation, 0.98) << "critical point " << i;
+  }
+  std::printf("[ rotation ] %zu critical points, worst best-rotation R %.6f\n",
+              a.critical_points.size(), worst);
+}
+
+// Zhang & Hebert: harmonic shape images do not depend on how the surface is sampled. The same
+// molecule's SES at 2 and 4 vertices/A^2: for each critical point of the coarse surface, the
+// image of the patch around the same place on the fine surface (its nearest vertex) correlates
+// at R >= 0.9 for at least 80 % of the points; images of places more than 5 A apart correlate
+// far lower. Also reported: critical points detected independently on both (same type, within
+// 0.75 A), whose centres jitter by up to a few tenths of an A.
+TEST(Descriptors, ImagesDoNotDependOnTheSamplingDensity) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
+  const auto coarse = harmonic::describe_surface(ligand_surface(file, 2.0));
+  const mesh::Surface fine_surface = ligand_surface(file, 4.0);
+  const auto fine = harmonic::describe_surface(fine_surface);
+  const Eigen::MatrixX3d fine_positions = fine_surface.positions();
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+
+  std::vector<double> same_place;
+  double farthest = 0.0;
+  for (const auto& a : coarse.critical_points) {
+    if (a.status != harmonic::PatchStatus::ok) continue;
+    Eigen::Index nearest = 0;
+    farthest = std::max(farthest, std::sqrt((fine_positions.rowwise() - a.point.position.transpose())
+                                                .rowwise().squaredNorm().minCoeff(&nearest)));
+    mesh::CriticalPoint there = a.point;
+    there.vertex = static_cast<int>(nearest);
+    const auto b = harmonic::describe_point(fine_surface, there, fine.options);
+    ASSERT_EQ(b.status, harmonic::PatchStatus::ok);
+    same_place.push_back(harmonic::compare_images(a.image, b.image).correlation);
+  }
+  std::vector<double> detected, unrelated;
+  for (const auto& a : coarse.critical_points) {
+    for (const auto& b : fine.critical_points) {
+      if (a.status != harmonic::PatchStatus::ok || b.status != harmonic::PatchStatus::ok) continue;
+      const double distance = (a.point.position - b.point.position).norm();
+      const double r = harmonic::compare_images(a.image, b.image).correlation;
+      if (distance < 0.75 && a.point.type == b.point.type) detected.push_back(r);
+      if (distance > 5.0) unrelated.push_back(r);
+    }
+  }
+  ASSERT_GE(same_place.size(), 10u);
+  std::vector<double> sorted = same_place;
+  std::sort(sorted.begin(), sorted.end());
+  std::printf("[ density  ] same place (nearest vertex within %.2f A), %zu points: min R %.3f, "
+              "20th percentile %.3f, median %.3f\n", farthest, sorted.size(), sorted.front(),
+              sorted[sorted.size() / 5], median(sorted));
+  std::printf("[ density  ] detected independently, %zu pairs: median R %.3f; unrelated (> 5 A "
+              "apart), %zu pairs: median R %.3f, 90th percentile %.3f\n", detected.size(),
+              median(detected), unrelated.size(), median(unrelated),
+              [&] { auto u = unrelated; std::sort(u.begin(), u.end()); return u[u.size() * 9 / 10]; }());
+  EXPECT_GE(sorted[sorted.size() / 5], 0.9) << "fewer than 80 % of the points reach R 0.9";
+  EXPECT_LE(median(unrelated), median(same_place) - 0.4);
+}
+
+TEST(Descriptors, ResultDoesNotDependOnTheThreadCount) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "4TMN_ligand.sdf");
+  const mesh::Surface surface = ligand_surface(file);
+  const auto parallel = encoded(harmonic::describe_surface(surface));
+  std::vector<std::uint8_t> serial;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    serial = encoded(harmonic::describe_surface(surface));
+  }
+  EXPECT_TRUE(parallel == serial);
+}
+
+TEST(HsiFile, RoundTripsExactly) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
+  const auto d = harmonic::describe_surface(ligand_surface(file));
+  const auto bytes = encoded(d);
+  const auto back = harmonic::io::decode_hsi(bytes, "memory.hsi");
+  EXPECT_TRUE(encoded(back) == bytes);
+  ASSERT_EQ(back.critical_points.size(), d.critical_points.size());
+  EXPECT_EQ(back.surface.n_vertices(), d.surface.n_vertices());
+  EXPECT_EQ(back.surface.property_names(), d.surface.property_names());
+  EXPECT_TRUE(back.surface.property(mesh::property::esp) == d.surface.property(mesh::property::esp));
+  for (std::size_t i = 0; i < d.critical_points.size(); ++i) {
+    const auto& x = d.critical_points[i];
+    const auto& y = back.critical_points[i];
+    EXPECT_EQ(x.status, y.status);
+    EXPECT_TRUE(x.point.position == y.point.position);
+    EXPECT_TRUE(x.map.uv == y.map.uv);
+    EXPECT_TRUE(x.image.values == y.image.values);
+    EXPECT_EQ(x.image.valid, y.image.valid);
+    EXPECT_EQ(x.patch.outer_boundary, y.patch.outer_boundary);
+  }
+  const auto path = std::filesystem::temp_directory_path() / "surfcomp_roundtrip.hsi";
+  harmonic::io::write_hsi(d, path);
+  EXPECT_TRUE(encoded(harmonic::io::read_hsi(path)) == bytes);
+}
+
+TEST(HsiFile, CorruptTruncatedAndOtherVersionFilesAreRejected) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "3TMN_ligand.sdf");
+  const auto bytes = encoded(harmonic::describe_surface(ligand_surface(file)));
+  std::mt19937 rng(20261122u);
+  std::printf("[ corrupt  ] seed 20261122, %zu bytes\n", bytes.size());
+  std::uniform_int_distribution<std::size_t> position(0, bytes.size() - 1);
+  int rejected = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    auto copy = bytes;
+    if (trial % 2 == 0) {
+      copy.resize(position(rng));
+    } else {
+      copy[position(rng)] ^= static_cast<std::uint8_t>(1u + rng() % 255u);
+    }
+    try {
+      harmonic::io::decode_hsi(copy, "corrupt.hsi");
+    } catch (const FormatError& e) {
+      ++rejected;
+      EXPECT_NE(std::string(e.what()).find("corrupt.hsi"), std::string::npos);
+    }
+  }
+  EXPECT_EQ(rejected, 200) << "every truncation and every flipped byte must be detected";
+
+  auto other_version = bytes;
+  other_version[8] = 2;  // the version field follows the 8-byte magic
+  try {
+    harmonic::io::decode_hsi(other_version, "v2.hsi");
+    FAIL() << "a version-2 file was accepted";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("version 2"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(harmonic::io::decode_hsi({'P', 'L', 'Y'}, "x.hsi"), FormatError);
+  EXPECT_THROW(harmonic::io::read_hsi("/nonexistent/x.hsi"), FileError);
+}
+
+}  // namespace
+}  // namespace surfcomp
