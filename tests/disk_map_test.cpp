@@ -34,15 +34,6 @@ using test::torus_patch_with_hole;
 constexpr SpringWeights all_weights[] = {SpringWeights::inverse_length, SpringWeights::uniform,
                                          SpringWeights::cotangent, SpringWeights::mean_value};
 
-const char* name_of(SpringWeights weights) {
-  switch (weights) {
-    case SpringWeights::inverse_length: return "inverse_length";
-    case SpringWeights::uniform: return "uniform";
-    case SpringWeights::cotangent: return "cotangent";
-    case SpringWeights::mean_value: return "mean_value";
-  }
-  return "?";
-}
 
 /// Cumulative border length (A) from outer_boundary[0] to outer_boundary[k], k = 0..#B (the
 /// last is the perimeter).
@@ -116,11 +107,11 @@ TEST(DiskMapTest, CotangentAndMeanValueWeightsReproduceAPlanarDisk) {
   ASSERT_EQ(disk.outer_boundary.size(), 48u);
   const Eigen::MatrixX2d expected = disk.positions.leftCols(2) / 2.0;
   for (const SpringWeights weights : {SpringWeights::cotangent, SpringWeights::mean_value}) {
-    SCOPED_TRACE(name_of(weights));
+    SCOPED_TRACE(to_string(weights));
     const DiskMap map =
         harmonic_disk_map(disk.positions, disk.faces, disk.outer_boundary, {weights});
     const double error = max_distance(map.uv, expected);
-    std::cout << name_of(weights) << ": max |uv - p / R| = " << error << "\n";
+    std::cout << to_string(weights) << ": max |uv - p / R| = " << error << "\n";
     EXPECT_LE(error, 1e-6);
   }
   // Uniform and 1/length springs have no linear precision: the same test fails for them.
@@ -128,15 +119,15 @@ TEST(DiskMapTest, CotangentAndMeanValueWeightsReproduceAPlanarDisk) {
     const DiskMap map =
         harmonic_disk_map(disk.positions, disk.faces, disk.outer_boundary, {weights});
     const double error = max_distance(map.uv, expected);
-    std::cout << name_of(weights) << ": max |uv - p / R| = " << error << "\n";
-    EXPECT_GT(error, 1e-3) << name_of(weights);
+    std::cout << to_string(weights) << ": max |uv - p / R| = " << error << "\n";
+    EXPECT_GT(error, 1e-3) << to_string(weights);
   }
 }
 
 TEST(DiskMapTest, AgreesWithCgalForEveryWeightKind) {
   for (const TestPatch& patch : analytic_patches()) {
     for (const SpringWeights weights : all_weights) {
-      SCOPED_TRACE(patch.name + ", " + name_of(weights));
+      SCOPED_TRACE(patch.name + ", " + to_string(weights));
       const DiskMap ours =
           harmonic_disk_map(patch.positions, patch.faces, patch.outer_boundary, {weights});
       const DiskMap cgal =
@@ -145,7 +136,7 @@ TEST(DiskMapTest, AgreesWithCgalForEveryWeightKind) {
       ASSERT_EQ(cgal.uv.rows(), patch.positions.rows());
       const double distance = max_distance(ours.uv, cgal.uv);
       const int flipped = count_flipped_triangles(ours.uv, patch.faces);
-      std::cout << patch.name << ", " << name_of(weights) << ": max |ours - CGAL| = " << distance
+      std::cout << patch.name << ", " << to_string(weights) << ": max |ours - CGAL| = " << distance
                 << ", flipped triangles " << flipped << " (CGAL "
                 << count_flipped_triangles(cgal.uv, patch.faces) << ")\n";
       EXPECT_LE(distance, 1e-6);
@@ -194,7 +185,7 @@ TEST(DiskMapTest, SimilarityTransformOfThePatchLeavesTheMapUnchanged) {
     Eigen::MatrixX3d moved = scale * patch.positions * rotation.transpose();
     moved.rowwise() += Eigen::RowVector3d(10.0, -4.0, 3.0);
     for (const SpringWeights weights : all_weights) {
-      SCOPED_TRACE(std::string(name_of(weights)) + ", scale " + std::to_string(scale));
+      SCOPED_TRACE(std::string(to_string(weights)) + ", scale " + std::to_string(scale));
       const DiskMap original =
           harmonic_disk_map(patch.positions, patch.faces, patch.outer_boundary, {weights});
       const DiskMap transformed =

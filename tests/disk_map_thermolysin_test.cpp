@@ -20,15 +20,6 @@
 namespace surfcomp::harmonic {
 namespace {
 
-const char* name_of(SpringWeights weights) {
-  switch (weights) {
-    case SpringWeights::inverse_length: return "inverse_length";
-    case SpringWeights::uniform: return "uniform";
-    case SpringWeights::cotangent: return "cotangent";
-    case SpringWeights::mean_value: return "mean_value";
-  }
-  return "?";
-}
 
 TEST(DiskMapThermolysinTest, CriticalPointPatchesOf1thlAgreeWithCgalAndDoNotFold) {
   SURFCOMP_SHARED_OR_SKIP(file, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
@@ -43,7 +34,7 @@ TEST(DiskMapThermolysinTest, CriticalPointPatchesOf1thlAgreeWithCgalAndDoNotFold
     ++mapped;
     for (const SpringWeights weights : {SpringWeights::inverse_length, SpringWeights::uniform,
                                         SpringWeights::cotangent, SpringWeights::mean_value}) {
-      SCOPED_TRACE("critical point " + std::to_string(c) + ", " + name_of(weights));
+      SCOPED_TRACE("critical point " + std::to_string(c) + ", " + to_string(weights));
       const DiskMap ours =
           harmonic_disk_map(patch.positions, patch.faces, patch.outer_boundary, {weights});
       const DiskMap cgal =
@@ -52,7 +43,7 @@ TEST(DiskMapThermolysinTest, CriticalPointPatchesOf1thlAgreeWithCgalAndDoNotFold
       const int flipped = count_flipped_triangles(ours.uv, patch.faces);
       std::cout << "1THL critical point " << c << " (vertex " << critical_points[c].vertex << ", "
                 << patch.positions.rows() << " vertices, " << patch.holes.size() << " holes), "
-                << name_of(weights) << ": max |ours - CGAL| = " << distance
+                << to_string(weights) << ": max |ours - CGAL| = " << distance
                 << ", flipped triangles " << flipped << "\n";
       EXPECT_LE(distance, 1e-6);
       if (weights != SpringWeights::cotangent) {

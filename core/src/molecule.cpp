@@ -6,8 +6,6 @@
 #include <string>
 
 namespace surfcomp {
-namespace {
-
 std::string describe_atom(const Molecule& molecule, std::size_t index) {
   const Atom& atom = molecule.atoms[index];
   std::string text = "atom " + std::to_string(index + 1) + " (" + atom.element;
@@ -17,8 +15,6 @@ std::string describe_atom(const Molecule& molecule, std::size_t index) {
   }
   return text + ")";
 }
-
-}  // namespace
 
 void validate_molecule(const Molecule& molecule) {
   const std::string& file = molecule.source.empty() ? std::string("<molecule>") : molecule.source;

@@ -227,7 +227,10 @@ double spring_constant(SpringWeights weights, const Eigen::Vector3d& pi, const E
   return 0.0;
 }
 
-const char* weights_name(SpringWeights weights) {
+
+}  // namespace
+
+const char* to_string(SpringWeights weights) {
   switch (weights) {
     case SpringWeights::inverse_length: return "inverse_length";
     case SpringWeights::uniform: return "uniform";
@@ -236,8 +239,6 @@ const char* weights_name(SpringWeights weights) {
   }
   return "?";
 }
-
-}  // namespace
 
 void check_disk_map_input(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
                           const Eigen::Ref<const Eigen::MatrixX3i>& faces,
@@ -299,7 +300,7 @@ DiskMap harmonic_disk_map(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
       const double k_ij = spring_constant(options.weights, pi, point(positions, j),
                                           point(positions, left), point(positions, right));
       if (!std::isfinite(k_ij)) {
-        throw NumericError(std::string(caller) + ": the " + weights_name(options.weights) +
+        throw NumericError(std::string(caller) + ": the " + to_string(options.weights) +
                            " spring constant of edge " + std::to_string(i) + "-" +
                            std::to_string(j) + " is " + format_number(k_ij) +
                            ", expected a finite number (coincident vertices or a degenerate "
@@ -335,12 +336,12 @@ DiskMap harmonic_disk_map(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
   if (solver.info() != Eigen::Success) {
     throw NumericError(std::string(caller) + ": the sparse LU factorisation of the " +
                        std::to_string(n_free) + " by " + std::to_string(n_free) + " " +
-                       weights_name(options.weights) + " system failed (" +
+                       to_string(options.weights) + " system failed (" +
                        solver.lastErrorMessage() + "), expected a non-singular system");
   }
   const Eigen::MatrixX2d solution = solver.solve(rhs);
   if (solver.info() != Eigen::Success || !solution.allFinite()) {
-    throw NumericError(std::string(caller) + ": solving the " + weights_name(options.weights) +
+    throw NumericError(std::string(caller) + ": solving the " + to_string(options.weights) +
                        " system gave non-finite coordinates, expected a non-singular system");
   }
   for (std::size_t v = 0; v < nv; ++v) {

@@ -46,16 +46,6 @@ std::string trimmed(const std::string& text) {
   return text.substr(first, text.find_last_not_of(" \t\r\n") - first + 1);
 }
 
-std::string describe(const Molecule& molecule, std::size_t index) {
-  const Atom& atom = molecule.atoms[index];
-  std::string text = "atom " + std::to_string(index + 1) + " (" + atom.element;
-  if (!atom.name.empty()) text += " " + atom.name;
-  if (!atom.residue_name.empty()) {
-    text += " " + atom.residue_name + " " + std::to_string(atom.residue_number) + atom.chain;
-  }
-  return text + ")";
-}
-
 // Runs an RDKit call, turning any exception it throws into a FormatError naming `source`.
 template <typename Call>
 auto rdkit_call(const std::string& source, const std::string& what, Call&& call) {
@@ -239,7 +229,7 @@ Molecule convert_atoms(const RDKit::ROMol& mol, const std::string& source) {
     }
     molecule.atoms.push_back(atom);
     if (atom.element.empty()) {
-      throw InputError(source + ": " + describe(molecule, molecule.atoms.size() - 1) +
+      throw InputError(source + ": " + describe_atom(molecule, molecule.atoms.size() - 1) +
                        " has an unknown element");
     }
   }
@@ -306,7 +296,7 @@ std::vector<double> gasteiger_charges(const RDKit::ROMol& mol, const Molecule& m
         continue;
       }
       throw InputError(molecule.source + ": Gasteiger charges unavailable for the fragment of " +
-                       describe(molecule, first) + " (RDKit: " + one_line(e.what()) +
+                       describe_atom(molecule, first) + " (RDKit: " + one_line(e.what()) +
                        "); use ChargeModel::mmff or a PQR file");
     }
     for (const RDKit::Atom* atom : fragment.atoms()) {
@@ -317,7 +307,7 @@ std::vector<double> gasteiger_charges(const RDKit::ROMol& mol, const Molecule& m
       }
       if (!std::isfinite(charge)) {
         throw InputError(molecule.source + ": the Gasteiger charge of " +
-                         describe(molecule, index) + " is not a number");
+                         describe_atom(molecule, index) + " is not a number");
       }
       charges[index] = charge;
     }

@@ -40,6 +40,9 @@ struct Molecule {
 /// is finite and every radius positive. Throws InputError naming molecule.source and the atom.
 void validate_molecule(const Molecule& molecule);
 
+/// "atom N (element name residue numberchain)" for messages; N is 1-based.
+std::string describe_atom(const Molecule& molecule, std::size_t index);
+
 /// Applies the rigid motion x -> rotation * x + translation to every atom position.
 void transform_molecule(Molecule& molecule, const Eigen::Matrix3d& rotation,
                         const Eigen::Vector3d& translation);

@@ -31,6 +31,9 @@ enum class SpringWeights {
   mean_value,
 };
 
+/// "inverse_length", "uniform", "cotangent" or "mean_value".
+const char* to_string(SpringWeights weights);
+
 struct DiskMapOptions {
   /// Default inverse_length (seed eq. 3-2: k_ij = 1 / |p_i - p_j|).
   SpringWeights weights = SpringWeights::inverse_length;
