@@ -18,6 +18,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace surfcomp::mesh {
@@ -51,6 +52,16 @@ constexpr double sphere_cell = 1.5;
 constexpr int root_box = 32;
 /// Boxes up to this size are sampled voxel by voxel.
 constexpr int leaf_box = 2;
+/// Passes that split (or snap onto the crease) the SAS edges whose ends lie on no common sphere.
+constexpr int crease_rounds = 3;
+/// A crease point this close to an edge's end (in edge lengths L) moves that end instead.
+constexpr double snap_fraction = 0.2;
+/// SAS edges shorter than this (in L) after the crease splits are collapsed.
+constexpr double collapse_fraction = 0.5;
+/// Passes over the edges collapsing the short ones (stops early when one changes nothing).
+constexpr int collapse_passes = 3;
+/// Triangles of the crease splits and collapses keep at least this area (in L^2).
+constexpr double crease_min_area = 1e-4;
 
 /// Points binned into a dense grid of cubic cells (compressed rows) for radius queries.
 /// Visits points in a fixed order: by cell, then by index.
@@ -124,6 +135,28 @@ class CellIndex {
   std::vector<int> offsets_;
   std::vector<int> indices_;
 };
+
+/// The spheres a point of the SAS lies on: one on a sphere patch, two on a crease (the circle
+/// where they meet), three at a vertex; ascending, unused slots -1 at the end.
+using Spheres = std::array<int, 3>;
+
+Spheres sorted_spheres(int a, int b = -1, int c = -1) {
+  Spheres s{a, b, c};
+  std::sort(s.begin(), s.end(), [](int x, int y) { return y < 0 || (x >= 0 && x < y); });
+  return s;
+}
+
+int sphere_count(const Spheres& s) {
+  return static_cast<int>(std::count_if(s.begin(), s.end(), [](int x) { return x >= 0; }));
+}
+
+/// True when points labelled a and b lie on a common sphere (no crease between them).
+bool share_sphere(const Spheres& a, const Spheres& b) {
+  for (const int x : a) {
+    if (x >= 0 && std::find(b.begin(), b.end(), x) != b.end()) return true;
+  }
+  return false;
+}
 
 /// What the nearest point of the SAS boundary lies on.
 enum class Feature : std::uint8_t { none, sphere, circle, vertex };
@@ -306,6 +339,68 @@ class SasGeometry {
     }
   }
 
+  /// Moves x, which lies within `reach` of the SAS, onto its nearest point of the SAS: the
+  /// nearest sphere from outside U; from inside, the nearest sphere patch, crease or vertex.
+  /// Returns the spheres the point lies on (all -1, x unchanged, if none is within reach).
+  Spheres nearest_sas_point(Vec3& x, double reach) const {
+    thread_local Candidates candidates;
+    gather(x, reach, reach, candidates);
+    int which = -1;
+    if (union_value(x, reach, candidates, &which) >= 0.0) {
+      if (which < 0) return Spheres{-1, -1, -1};
+      const Vec3 d = x - center(which);
+      if (d.norm() == 0.0) return Spheres{-1, -1, -1};
+      x = center(which) + radius(which) / d.norm() * d;
+      return sorted_spheres(which);
+    }
+    const NearestPoint q = nearest_boundary_point(x, reach, candidates);
+    switch (q.feature) {
+      case Feature::none: return Spheres{-1, -1, -1};
+      case Feature::sphere: x = q.point; return sorted_spheres(q.index);
+      case Feature::circle: {
+        const Circle& c = circles_[static_cast<std::size_t>(q.index)];
+        x = q.point;
+        return sorted_spheres(c.i, c.j);
+      }
+      case Feature::vertex:
+        x = q.point;
+        return vertex_spheres_[static_cast<std::size_t>(q.index)];
+    }
+    return Spheres{-1, -1, -1};
+  }
+
+  /// The point of the exposed crease between spheres i and j (an arc of their circle) nearest
+  /// to `near`, if the circle exists and is exposed there.
+  bool crease_point(int i, int j, const Vec3& near, Vec3& out) const {
+    for (const int c : circles_of_[static_cast<std::size_t>(i)]) {
+      const Circle& circle = circles_[static_cast<std::size_t>(c)];
+      if (circle.i != j && circle.j != j) continue;
+      const Vec3 v = near - circle.center;
+      const Vec3 radial = v - v.dot(circle.normal) * circle.normal;
+      if (radial.norm() == 0.0) return false;
+      double angle = std::atan2(radial.dot(circle.w), radial.dot(circle.u));
+      if (angle < 0.0) angle += 2.0 * M_PI;
+      if (!circle.exposed_at(angle)) return false;
+      out = circle.center + circle.radius / radial.norm() * radial;
+      return true;
+    }
+    return false;
+  }
+
+  /// The SAS vertex of spheres s nearest to `near`, if one exists within `limit` of it.
+  bool vertex_point(const Spheres& s, const Vec3& near, double limit, Vec3& out) const {
+    bool found = false;
+    vertex_index_.for_each_near(near, limit, [&](int v) {
+      const Vec3& p = vertices_[static_cast<std::size_t>(v)];
+      if (vertex_spheres_[static_cast<std::size_t>(v)] == s && (p - near).norm() < limit &&
+          (!found || (p - near).norm() < (out - near).norm())) {
+        out = p;
+        found = true;
+      }
+    });
+    return found;
+  }
+
   /// Moves x, which lies within `reach` of the SAS, onto it; returns the outward unit normal
   /// and the mean curvature there (unchanged if no surface is within reach).
   void project_to_sas(Vec3& x, double reach, Vec3& normal, double& mean_curvature) const {
@@ -399,7 +494,7 @@ class SasGeometry {
         circle.j = j;
         // Sphere k buries the points where |p - c_k| < R_k: with a = (o - c_k).u,
         // b = (o - c_k).w, that is a cos t + b sin t < (R_k^2 - |o - c_k|^2 - rho^2) / (2 rho).
-        std::vector<std::pair<double, double>> buried_arcs;
+        std::vector<std::tuple<double, double, int>> buried_arcs;  ///< start, end, sphere
         bool all_buried = false;
         for (const int k : neighbours_[a]) {
           if (k == j) continue;
@@ -419,29 +514,33 @@ class SasGeometry {
           const double start = middle - half_width;
           const double end = middle + half_width;
           if (start < 0.0) {
-            buried_arcs.emplace_back(start + two_pi, two_pi);
-            buried_arcs.emplace_back(0.0, end);
+            buried_arcs.emplace_back(start + two_pi, two_pi, k);
+            buried_arcs.emplace_back(0.0, end, k);
           } else if (end > two_pi) {
-            buried_arcs.emplace_back(start, two_pi);
-            buried_arcs.emplace_back(0.0, end - two_pi);
+            buried_arcs.emplace_back(start, two_pi, k);
+            buried_arcs.emplace_back(0.0, end - two_pi, k);
           } else {
-            buried_arcs.emplace_back(start, end);
+            buried_arcs.emplace_back(start, end, k);
           }
         }
         if (all_buried) continue;
         std::sort(buried_arcs.begin(), buried_arcs.end());
-        double covered = 0.0;  // [0, covered] is buried
-        for (const auto& [start, end] : buried_arcs) {
+        double covered = 0.0;  // [0, covered] is buried, by sphere `cover` at its end
+        int cover = -1;
+        for (const auto& [start, end, k] : buried_arcs) {
           if (start > covered) {
             circle.exposed.emplace_back(covered, start);
-            add_arc_end(circle, covered);
-            add_arc_end(circle, start);
+            add_arc_end(circle, covered, cover);
+            add_arc_end(circle, start, k);
           }
-          covered = std::max(covered, end);
+          if (end > covered) {
+            covered = end;
+            cover = k;
+          }
         }
         if (covered < two_pi) {
           circle.exposed.emplace_back(covered, two_pi);
-          add_arc_end(circle, covered);
+          add_arc_end(circle, covered, cover);
         }
         if (circle.exposed.empty()) continue;
         has_exposed_circle[a] = has_exposed_circle[static_cast<std::size_t>(j)] = true;
@@ -459,10 +558,11 @@ class SasGeometry {
 
   /// Records the SAS vertex at `angle` on `circle` (an end of a buried arc; 0 and 2 pi are
   /// where the angle wraps, not vertices).
-  void add_arc_end(const Circle& circle, double angle) {
+  void add_arc_end(const Circle& circle, double angle, int k) {
     if (angle <= 0.0 || angle >= 2.0 * M_PI) return;
     vertices_.push_back(circle.center +
                         circle.radius * (std::cos(angle) * circle.u + std::sin(angle) * circle.w));
+    vertex_spheres_.push_back(sorted_spheres(circle.i, circle.j, k));
   }
 
   /// Mean curvature of the SES at x (positive where convex) given its nearest SAS feature q.
@@ -496,6 +596,7 @@ class SasGeometry {
   std::vector<std::vector<int>> circles_of_;
   std::vector<bool> exposed_sphere_;
   std::vector<Vec3> vertices_;
+  std::vector<Spheres> vertex_spheres_;  ///< the three spheres meeting at each vertex
   CellIndex vertex_index_;
 };
 
@@ -738,6 +839,9 @@ TriangleSoup outward_components(const TriangleSoup& soup) {
   return out;
 }
 
+void compensate_chord_gaps(Surface& surface, const Eigen::MatrixX3d& normals,
+                           const Eigen::VectorXd& curvature);
+
 /// Projects every vertex onto the exact surface and sets the exact outward normals. With
 /// `compensate`, then moves each vertex along its normal by the mean gap between its flat
 /// triangles and the curved surface, H * (a^2 + b^2 + c^2) / 24 averaged over its triangles
@@ -773,7 +877,17 @@ void place_vertices(Surface& surface, const Project& project, bool compensate) {
     }
   }
   surface.set_normals(normals);
-  if (!compensate) return;
+  if (compensate) compensate_chord_gaps(surface, normals, curvature);
+}
+
+/// Moves each vertex along its unit normal by the mean gap between its flat triangles and the
+/// curved surface of mean curvature curvature(v), H * (a^2 + b^2 + c^2) / 24 averaged over
+/// its triangles (see place_vertices).
+void compensate_chord_gaps(Surface& surface, const Eigen::MatrixX3d& normals,
+                           const Eigen::VectorXd& curvature) {
+  TriMesh& mesh = surface.mesh();
+  const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
+  Eigen::MatrixX3d positions = surface.positions();
   Eigen::VectorXd squared_edges = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd face_count = Eigen::VectorXd::Zero(n);
   for (auto f : mesh.faces()) {
@@ -791,6 +905,190 @@ void place_vertices(Surface& surface, const Project& project, bool compensate) {
     positions.row(v) += gap * normals.row(v);
     mesh.set_point(vh, TriMesh::Point(positions(v, 0), positions(v, 1), positions(v, 2)));
   }
+}
+
+Vec3 to_vec(const TriMesh::Point& p) { return Vec3(p[0], p[1], p[2]); }
+TriMesh::Point to_point(const Vec3& x) { return TriMesh::Point(x.x(), x.y(), x.z()); }
+
+/// True when moving vertex v to p keeps every triangle around it (except those that also hold
+/// `ignore`, which a collapse removes) turning the same way, with an area above `min_area`.
+bool move_keeps_orientation(const TriMesh& mesh, TriMesh::VertexHandle v, const Vec3& p,
+                            TriMesh::VertexHandle ignore, double min_area) {
+  for (auto h : mesh.voh_range(v)) {
+    if (mesh.is_boundary(h)) return false;
+    const auto b = mesh.to_vertex_handle(h);
+    const auto c = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
+    if (b == ignore || c == ignore) continue;
+    const Vec3 pb = to_vec(mesh.point(b));
+    const Vec3 pc = to_vec(mesh.point(c));
+    const Vec3 before = (pb - to_vec(mesh.point(v))).cross(pc - to_vec(mesh.point(v)));
+    const Vec3 after = (pb - p).cross(pc - p);
+    if (0.5 * after.norm() <= min_area || after.dot(before) <= 0.0) return false;
+  }
+  return true;
+}
+
+/// Projects every vertex onto its nearest point of the SAS and makes the mesh follow the
+/// creases, the concave circle arcs where two spheres meet, which chord triangles would
+/// otherwise cut across (losing area): every edge whose ends lie on no common sphere is split
+/// at the exact crease point nearest its midpoint, or its nearer end is moved there when that
+/// is close (crease_rounds passes); short edges left by the splits are then collapsed onto
+/// the crease vertices. Sets the exact normals (the mean of the spheres' at a crease) and, with
+/// `compensate`, moves the vertices on one sphere by the chord gap (crease vertices stay on
+/// their crease). Sequential after the parallel projection: deterministic.
+void place_sas_vertices(Surface& surface, const SasGeometry& sas, double reach,
+                        double edge_length, bool compensate) {
+  TriMesh& mesh = surface.mesh();
+  const Spheres none{-1, -1, -1};
+  OpenMesh::VPropHandleT<Spheres> label;
+  mesh.add_property(label);
+  {
+    const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
+    Eigen::MatrixX3d positions = surface.positions();
+    std::vector<Spheres> on(static_cast<std::size_t>(n));
+    tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index v) {
+      Vec3 x = positions.row(v).transpose();
+      on[static_cast<std::size_t>(v)] = sas.nearest_sas_point(x, reach);
+      positions.row(v) = x.transpose();
+    });
+    for (auto v : mesh.vertices()) {
+      mesh.set_point(v, to_point(positions.row(v.idx()).transpose()));
+      mesh.property(label, v) = on[static_cast<std::size_t>(v.idx())];
+    }
+  }
+  const double min_area = crease_min_area * edge_length * edge_length;
+  for (int round = 0; round < crease_rounds; ++round) {
+    std::vector<TriMesh::EdgeHandle> crossing;
+    for (auto e : mesh.edges()) {
+      const Spheres& a = mesh.property(label, mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)));
+      const Spheres& b = mesh.property(label, mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)));
+      if (a != none && b != none && !share_sphere(a, b)) crossing.push_back(e);
+    }
+    if (crossing.empty()) break;
+    for (const auto e : crossing) {
+      const auto va = mesh.from_vertex_handle(mesh.halfedge_handle(e, 0));
+      const auto vb = mesh.to_vertex_handle(mesh.halfedge_handle(e, 0));
+      const Spheres a = mesh.property(label, va);
+      const Spheres b = mesh.property(label, vb);
+      if (share_sphere(a, b)) continue;  // an earlier move fixed it
+      const Vec3 pa = to_vec(mesh.point(va));
+      const Vec3 pb = to_vec(mesh.point(vb));
+      const Vec3 middle = 0.5 * (pa + pb);
+      const double length = (pb - pa).norm();
+      // The nearest crease point or vertex of a sphere of a with a sphere of b.
+      Vec3 point = middle;
+      Spheres spheres = none;
+      double best = length;
+      const auto consider = [&](const Vec3& p, const Spheres& s) {
+        const double d = (p - middle).norm();
+        if (d < best) {
+          best = d;
+          point = p;
+          spheres = s;
+        }
+      };
+      std::vector<int> all;
+      for (const int x : a) {
+        if (x < 0) continue;
+        all.push_back(x);
+        for (const int y : b) {
+          Vec3 p;
+          if (y >= 0 && sas.crease_point(x, y, middle, p)) consider(p, sorted_spheres(x, y));
+        }
+      }
+      for (const int y : b) {
+        if (y >= 0) all.push_back(y);
+      }
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        for (std::size_t j = i + 1; j < all.size(); ++j) {
+          for (std::size_t k = j + 1; k < all.size(); ++k) {
+            const Spheres s = sorted_spheres(all[i], all[j], all[k]);
+            Vec3 p;
+            if (sas.vertex_point(s, middle, best, p)) consider(p, s);
+          }
+        }
+      }
+      if (spheres == none) {
+        // No crease of these spheres nearby: a third sphere lies between; split at the
+        // surface point nearest the midpoint, a later round finds the creases on each side.
+        spheres = sas.nearest_sas_point(point, reach);
+        if (spheres == none) continue;
+      }
+      const double da = (point - pa).norm();
+      const double db = (point - pb).norm();
+      const auto nearer = da <= db ? va : vb;
+      if (std::min(da, db) < snap_fraction * edge_length &&
+          move_keeps_orientation(mesh, nearer, point, TriMesh::VertexHandle(), min_area)) {
+        mesh.set_point(nearer, to_point(point));
+        mesh.property(label, nearer) = spheres;
+        continue;
+      }
+      if (std::min(da, db) < snap_fraction * edge_length) continue;
+      const auto v = mesh.split(e, to_point(point));
+      mesh.property(label, v) = spheres;
+    }
+  }
+  // Collapse the short edges the splits left, keeping the vertex on more spheres; a collapse
+  // can shorten edges already visited, so pass again while any changes.
+  const double shortest = collapse_fraction * edge_length;
+  for (int pass = 0; pass < collapse_passes; ++pass) {
+    bool changed = false;
+    for (auto e : mesh.edges()) {
+      if (mesh.status(e).deleted()) continue;
+      const double length = mesh.calc_edge_length(e);
+      if (length >= shortest) continue;
+      auto h = mesh.halfedge_handle(e, 0);
+      const Spheres& a = mesh.property(label, mesh.from_vertex_handle(h));
+      const Spheres& b = mesh.property(label, mesh.to_vertex_handle(h));
+      if (a == none || b == none) continue;
+      if (sphere_count(a) > sphere_count(b)) {
+        h = mesh.opposite_halfedge_handle(h);
+      } else if (sphere_count(a) == sphere_count(b) && a != b) {
+        continue;
+      }
+      const auto removed = mesh.from_vertex_handle(h);
+      const auto kept = mesh.to_vertex_handle(h);
+      if (!mesh.is_collapse_ok(h)) continue;
+      bool compatible = true;
+      for (auto w : mesh.vv_range(removed)) {
+        if (!share_sphere(mesh.property(label, w), mesh.property(label, kept))) compatible = false;
+      }
+      // Coincident ends (two vertices projected onto one SAS vertex) collapse unconditionally.
+      if (length > 0.0 && (!compatible || !move_keeps_orientation(mesh, removed,
+                                                                  to_vec(mesh.point(kept)), kept,
+                                                                  min_area))) {
+        continue;
+      }
+      mesh.collapse(h);
+      changed = true;
+    }
+    if (!changed) break;
+  }
+  mesh.garbage_collection();
+
+  const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
+  Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(n, 3);
+  Eigen::VectorXd curvature = Eigen::VectorXd::Zero(n);
+  for (auto v : mesh.vertices()) {
+    const Spheres& s = mesh.property(label, v);
+    const Vec3 p = to_vec(mesh.point(v));
+    Vec3 sum = Vec3::Zero();
+    for (const int i : s) {
+      if (i >= 0) sum += (p - sas.center(i)).normalized();
+    }
+    if (sum.squaredNorm() > 0.0) normals.row(v.idx()) = sum.normalized().transpose();
+    if (sphere_count(s) == 1) curvature(v.idx()) = 1.0 / sas.radius(s[0]);
+  }
+  mesh.remove_property(label);
+  if ((normals.rowwise().squaredNorm().array() == 0.0).any()) {
+    surface.compute_normals();
+    const Eigen::MatrixX3d mesh_normals = surface.normals();
+    for (Eigen::Index v = 0; v < n; ++v) {
+      if (normals.row(v).squaredNorm() == 0.0) normals.row(v) = mesh_normals.row(v);
+    }
+  }
+  surface.set_normals(normals);
+  if (compensate) compensate_chord_gaps(surface, normals, curvature);
 }
 
 void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
@@ -862,9 +1160,7 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
         surface, [&](Vec3& x, Vec3& n, double& h) { sas.project_to_ses(x, projection_reach, n, h); },
         options.compensate_chords);
   } else {
-    place_vertices(
-        surface, [&](Vec3& x, Vec3& n, double& h) { sas.project_to_sas(x, projection_reach, n, h); },
-        options.compensate_chords);
+    place_sas_vertices(surface, sas, projection_reach, edge_length, options.compensate_chords);
   }
   require_closed_manifold(surface);
   return surface;

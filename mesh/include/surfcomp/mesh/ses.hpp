@@ -53,8 +53,13 @@ Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
 
 /// The solvent-accessible surface (Lee & Richards 1971): the boundary of the union of spheres of
 /// radius r_i + probe_radius (the surface the probe centre traces), built like build_ses from
-/// the field min_i (|x - c_i| - R_i), vertices projected onto their nearest sphere. Same
-/// arguments, guarantees and exceptions; source() is "<sas>".
+/// the field min_i (|x - c_i| - R_i). Vertices are projected onto their nearest point of the
+/// SAS (a sphere patch, a crease where two spheres meet or a vertex where three meet), and the
+/// mesh is made to follow the concave creases: edges whose ends lie on no common sphere are
+/// split at (or their nearer end moved to) the exact crease point, and the short edges left
+/// are collapsed onto the crease vertices, so that no triangle chords across a crease. Crease
+/// vertices get the mean of the spheres' normals and no chord compensation. Same arguments,
+/// guarantees and exceptions; source() is "<sas>".
 Surface build_sas(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                   const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options = {});
 
