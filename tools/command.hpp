@@ -20,5 +20,6 @@ struct Command {
 int surf_build(const std::vector<std::string>& args);
 int cp_detect(const std::vector<std::string>& args);
 int hsi_build(const std::vector<std::string>& args);
+int match(const std::vector<std::string>& args);
 
 }  // namespace surfcomp::tools

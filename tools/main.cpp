@@ -24,6 +24,8 @@ constexpr std::array kCommands{
             &surfcomp::tools::cp_detect},
     Command{"hsi-build", "surface -> critical points, patches, harmonic maps and images (.hsi)",
             &surfcomp::tools::hsi_build},
+    Command{"match", "REF PROBE -> ranked rigid alignments of PROBE onto REF (JSON)",
+            &surfcomp::tools::match},
 };
 
 void print_usage(std::ostream& out) {

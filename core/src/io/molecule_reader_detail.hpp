@@ -22,6 +22,9 @@ std::string read_text_file(const std::filesystem::path& path);
 
 /// True for the water residue names HOH, WAT, DOD (blanks ignored, case-insensitive).
 bool is_water_residue(std::string_view residue_name);
+/// True when a whole-structure read drops this residue: water (if options.remove_water) or a
+/// name in options.exclude_residues (blanks ignored, case-insensitive).
+bool is_dropped_residue(std::string_view residue_name, const MoleculeReadOptions& options);
 
 /// Indices into `atoms` of the first copy (lowest chain, then residue number) of the HETATM
 /// residue named `ligand` (case-insensitive). Throws InputError naming `source` and listing up

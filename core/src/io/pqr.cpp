@@ -155,13 +155,13 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
   if (molecule.atoms.empty()) throw InputError(source + ": no ATOM/HETATM records (no atoms)");
   if (molecule.title.empty()) molecule.title = path.stem().string();
 
-  if (options.ligand.empty() && options.remove_water) {
+  if (options.ligand.empty()) {
     std::vector<Atom> atoms;
     for (const Atom& atom : molecule.atoms) {
-      if (!detail::is_water_residue(atom.residue_name)) atoms.push_back(atom);
+      if (!detail::is_dropped_residue(atom.residue_name, options)) atoms.push_back(atom);
     }
     molecule.atoms = std::move(atoms);
-    if (molecule.atoms.empty()) throw InputError(source + ": no atoms besides water");
+    if (molecule.atoms.empty()) throw InputError(source + ": no atoms left besides water and excluded residues");
   }
   if (!options.ligand.empty()) {
     const auto selected = detail::select_ligand(molecule.atoms, options.ligand, source);

@@ -1,6 +1,7 @@
 // SDF/MOL, MOL2 and PDB reading through RDKit; charges and Wildman-Crippen increments.
 #include "molecule_reader_detail.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/protein_charges.hpp"
 #include "surfcomp/core/molecule.hpp"
 
@@ -396,7 +397,7 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& te
     } else {
       whole_structure = true;
       for (std::size_t i = 0; i < molecule.atoms.size(); ++i) {
-        if (!(options.remove_water && is_water_residue(molecule.atoms[i].residue_name))) {
+        if (!is_dropped_residue(molecule.atoms[i].residue_name, options)) {
           keep.push_back(i);
         }
       }
@@ -486,3 +487,36 @@ std::vector<double> crippen_contributions_of_pdb_block(const std::string& pdb_bl
 }
 
 }  // namespace surfcomp::io::detail
+
+namespace surfcomp::io {
+
+std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Matrix3d& rotation,
+                            const Eigen::Vector3d& translation) {
+  const std::string source = input.string();
+  std::string extension = input.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  detail::RdkitFormat format;
+  if (extension == ".sdf" || extension == ".mol") {
+    format = detail::RdkitFormat::mdl;
+  } else if (extension == ".mol2") {
+    format = detail::RdkitFormat::mol2;
+  } else {
+    throw InputError(source + ": a moved SDF copy needs an SDF, MOL or MOL2 input (write .pdb instead)");
+  }
+  const RDLog::LogStateSetter quiet;
+  const std::string text = detail::read_text_file(input);
+  if (format == detail::RdkitFormat::mol2) detail::check_mol2_structure(text, source);
+  auto mol = detail::parse(text, format, source);
+  if (!mol || mol->getNumConformers() == 0) throw FormatError(source, "RDKit could not read the molecule");
+  RDKit::Conformer& conformer = mol->getConformer();
+  for (unsigned i = 0; i < mol->getNumAtoms(); ++i) {
+    const RDGeom::Point3D& p = conformer.getAtomPos(i);
+    const Eigen::Vector3d moved = rotation * Eigen::Vector3d(p.x, p.y, p.z) + translation;
+    conformer.setAtomPos(i, RDGeom::Point3D(moved.x(), moved.y(), moved.z()));
+  }
+  return detail::rdkit_call(source, "write the molecule", [&]() {
+    return RDKit::MolToMolBlock(*mol, true, -1, false) + "$$$$\n";
+  });
+}
+
+}  // namespace surfcomp::io

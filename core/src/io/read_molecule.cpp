@@ -93,6 +93,20 @@ std::vector<std::size_t> select_ligand(const std::vector<Atom>& atoms, const std
   return selected;
 }
 
+bool is_dropped_residue(std::string_view residue_name, const MoleculeReadOptions& options) {
+  if (options.remove_water && is_water_residue(residue_name)) return true;
+  const auto key = [](std::string_view text) {
+    std::string out;
+    for (char c : text) {
+      if (c != ' ') out.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+    }
+    return out;
+  };
+  const std::string name = key(residue_name);
+  return std::any_of(options.exclude_residues.begin(), options.exclude_residues.end(),
+                     [&](const std::string& excluded) { return key(excluded) == name; });
+}
+
 bool has_standard_residue(const std::vector<Atom>& atoms) {
   return std::any_of(atoms.begin(), atoms.end(), [](const Atom& atom) {
     return protein_atom_lipophilicity(atom.residue_name, "CA").has_value();

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace surfcomp::io {
 
@@ -28,6 +29,9 @@ struct MoleculeReadOptions {
   std::string ligand;
   /// Whole-structure PDB/PQR: drop water residues (HOH, WAT, DOD); default true.
   bool remove_water = true;
+  /// Whole-structure PDB/PQR: also drop the residues with these names (case-insensitive), e.g.
+  /// a bound ligand when the binding site's surface is wanted; default none.
+  std::vector<std::string> exclude_residues;
   /// Assign lipophilicity increments f_i; default true. Ligands (SDF/MOL/MOL2 and `ligand`
   /// selections) get Wildman-Crippen atom contributions from RDKit, whole structures the
   /// residue-atom table of protein_atom_lipophilicity().

@@ -1,0 +1,67 @@
+// The fine level and the answer (METHOD sections 5-7): two described surfaces in, their ranked
+// rigid alignments out. Composes the association graph, maximal cliques, rigid fits with
+// single-linkage merging, and the consensus ranking.
+#pragma once
+
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/matching/association_graph.hpp"
+#include "surfcomp/matching/clustering.hpp"
+#include "surfcomp/matching/correspondences.hpp"
+#include "surfcomp/matching/ranking.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace surfcomp::matching {
+
+struct MatchOptions {
+  GraphParameters graph;                  ///< filter thresholds F, R, t, d_min, j_tol
+  int min_clique_size = 2;                ///< smaller cliques are not fitted
+  CorrespondenceOptions correspondences;  ///< image grid subsampling, R_chem property (esp)
+  ClusteringOptions clustering;           ///< RMSD cut 4 A, merge cut 4 A
+  RankingOptions ranking;                 ///< rank-by-rank, weights 1
+};
+
+/// One alignment of PROBE onto REF: a cluster of the merge tree.
+struct Alignment {
+  int rank = 0;                          ///< 1-based, best first
+  Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  ///< moves PROBE coordinates into REF's frame
+  double rmsd = 0.0;                     ///< A, over the corresponding surface points
+  std::size_t n_points = 0;              ///< corresponding surface points
+  double r_chem = 0.0;                   ///< Pearson correlation of the property at those points
+  double consensus = 0.0;                ///< the ranking scheme's value
+  std::vector<std::pair<int, int>> cp_pairs;  ///< (REF critical point, PROBE critical point)
+  int parent = 0;                        ///< rank of the cluster this one merged into; 0 for a root
+  std::vector<int> children;             ///< ranks of the two clusters merged into this one
+};
+
+struct MatchResult {
+  std::vector<Alignment> alignments;          ///< every cluster of the tree, best first
+  std::vector<TraceStage> trace;              ///< nodes and edges after each graph stage
+  std::size_t cliques = 0;                    ///< maximal cliques of at least min_clique_size
+  std::vector<std::pair<std::string, double>> timing_ms;  ///< per stage, in order
+};
+
+/// Aligns `probe` onto `reference`. `reference_allowed` / `probe_allowed` (one flag per
+/// critical point, or null for all) restrict the graph to a binding site (METHOD section 7).
+/// Throws InputError when the two descriptions were built with different image grids (their
+/// images cannot be compared) or a mask has the wrong size.
+MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
+                           const harmonic::SurfaceDescriptors& probe, const MatchOptions& options = {},
+                           const std::vector<bool>* reference_allowed = nullptr,
+                           const std::vector<bool>* probe_allowed = nullptr);
+
+/// A sphere of a binding site, A.
+struct SiteSphere {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
+/// One flag per critical point of `descriptors`: inside at least one of `spheres`.
+std::vector<bool> critical_points_in_site(const harmonic::SurfaceDescriptors& descriptors,
+                                          const std::vector<SiteSphere>& spheres);
+
+}  // namespace surfcomp::matching

@@ -1,0 +1,304 @@
+// surfcomp match: ranked rigid alignments of PROBE onto REF (METHOD sections 5-7), as a table on
+// stdout and a JSON file other tools read; optionally PROBE moved by the top alignment.
+#include "command.hpp"
+#include "options.hpp"
+#include "surface_input.hpp"
+
+#include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/write_molecule.hpp"
+#include "surfcomp/harmonic/io/hsi_file.hpp"
+#include "surfcomp/matching/match.hpp"
+#include "surfcomp/mesh/io/ply.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace surfcomp::tools {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: surfcomp match REF PROBE [-o result.json] [--aligned-out FILE.sdf|.pdb|.ply] [options]\n\n"
+    "Finds where PROBE's surface looks and feels like REF's and returns ranked rigid alignments\n"
+    "that move PROBE into REF's frame: critical-point pairs filtered by ESP/LP (fuzzy), harmonic\n"
+    "shape images, distances and overlap; maximal cliques; least-squares fits on the images'\n"
+    "corresponding points; single-linkage merging; consensus ranking (METHOD sections 5-7).\n\n"
+    "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .pqr), a mesh (.ply .vert .off .obj) or a .hsi\n"
+    "            file from hsi-build (two .hsi files must have been built with the same parameters)\n"
+    "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand build\n"
+    "the protein's surface without that residue and keep the critical points within --site-radius\n"
+    "of its atoms; --site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds spheres.";
+
+struct Side {
+  std::filesystem::path path;
+  harmonic::SurfaceDescriptors descriptors;
+  std::optional<Molecule> molecule;   // the molecule read, for --aligned-out and messages
+  std::vector<matching::SiteSphere> site;
+};
+
+matching::SiteSphere parse_sphere(const std::string& text) {
+  std::stringstream in(text);
+  matching::SiteSphere s;
+  char c1 = 0, c2 = 0, c3 = 0;
+  if (!(in >> s.center.x() >> c1 >> s.center.y() >> c2 >> s.center.z() >> c3 >> s.radius) ||
+      c1 != ',' || c2 != ',' || c3 != ',' || !(in >> std::ws).eof() || !s.center.allFinite() ||
+      !(s.radius > 0 && std::isfinite(s.radius))) {
+    throw OptionError("--site-sphere '" + text + "': expected x,y,z,r with r > 0 (A)");
+  }
+  return s;
+}
+
+Side load_side(const std::filesystem::path& path, SurfaceInput input, const std::string& site_ligand,
+               double site_radius, const harmonic::DescriptorOptions& options) {
+  Side side;
+  side.path = path;
+  if (harmonic::io::is_hsi_file(path)) {
+    if (!site_ligand.empty()) {
+      throw OptionError(path.string() + ": --site-ligand needs the structure, not a .hsi file; use --site-sphere");
+    }
+    side.descriptors = harmonic::io::read_hsi(path);
+    return side;
+  }
+  if (!site_ligand.empty()) {
+    io::MoleculeReadOptions ligand_read = input.read;
+    ligand_read.ligand = site_ligand;
+    const Molecule ligand = io::read_molecule(path, ligand_read);
+    for (const Atom& atom : ligand.atoms) side.site.push_back({atom.position, site_radius});
+    input.read.exclude_residues.push_back(site_ligand);
+  }
+  LoadedSurface loaded = load_surface(path, input);
+  side.molecule = std::move(loaded.molecule);
+  side.descriptors = harmonic::describe_surface(std::move(loaded.surface), options);
+  return side;
+}
+
+bool same_options(const harmonic::DescriptorOptions& x, const harmonic::DescriptorOptions& y) {
+  return x.critical_points.radius == y.critical_points.radius &&
+         x.critical_points.property_disc_radius == y.critical_points.property_disc_radius &&
+         x.critical_points.distance == y.critical_points.distance && x.patch.radius == y.patch.radius &&
+         x.patch.margin == y.patch.margin && x.patch.distance == y.patch.distance &&
+         x.disk_map.weights == y.disk_map.weights && x.image.radial_samples == y.image.radial_samples &&
+         x.image.angular_samples == y.image.angular_samples && x.image_property == y.image_property;
+}
+
+nlohmann::json to_json(const matching::MatchResult& result, const matching::MatchOptions& options,
+                       const Side& ref, const Side& probe) {
+  nlohmann::json alignments = nlohmann::json::array();
+  for (const auto& a : result.alignments) {
+    nlohmann::json transform = nlohmann::json::array();
+    for (int r = 0; r < 4; ++r) {
+      transform.push_back({a.transform(r, 0), a.transform(r, 1), a.transform(r, 2), a.transform(r, 3)});
+    }
+    nlohmann::json pairs = nlohmann::json::array();
+    for (const auto& [x, y] : a.cp_pairs) pairs.push_back({x, y});
+    alignments.push_back({{"rank", a.rank}, {"transform", transform}, {"rmsd", a.rmsd},
+                          {"n_points", a.n_points}, {"r_chem", a.r_chem}, {"consensus", a.consensus},
+                          {"cp_pairs", pairs},
+                          {"parent", a.parent > 0 ? nlohmann::json(a.parent) : nlohmann::json(nullptr)},
+                          {"children", a.children}});
+  }
+  nlohmann::json trace = nlohmann::json::array();
+  for (const auto& stage : result.trace) {
+    trace.push_back({{"stage", stage.stage}, {"nodes", stage.nodes}, {"edges", stage.edges}});
+  }
+  nlohmann::json timing = nlohmann::json::object();
+  for (const auto& [stage, ms] : result.timing_ms) timing[stage] = ms;
+  const auto& g = options.graph;
+  return {{"reference", ref.path.string()},
+          {"probe", probe.path.string()},
+          {"alignments", alignments},
+          {"trace", trace},
+          {"timing_ms", timing},
+          {"parameters",
+           {{"fuzzy_threshold", g.fuzzy_threshold}, {"image_threshold", g.image_threshold},
+            {"distance_tolerance", g.distance_tolerance}, {"min_distance", g.min_distance},
+            {"overlap_tolerance_degrees", g.overlap_tolerance_degrees},
+            {"rmsd_cut", options.clustering.rmsd_cut}, {"merge_cut", options.clustering.merge_cut},
+            {"min_clique_size", options.min_clique_size},
+            {"critical_point_radius", ref.descriptors.options.critical_points.radius},
+            {"patch_radius", ref.descriptors.options.patch.radius},
+            {"image_rings", ref.descriptors.options.image.radial_samples},
+            {"image_sectors", ref.descriptors.options.image.angular_samples}}}};
+}
+
+void write_aligned(const Side& probe, const Eigen::Matrix4d& transform, const std::string& output) {
+  const Eigen::Matrix3d rotation = transform.topLeftCorner<3, 3>();
+  const Eigen::Vector3d translation = transform.topRightCorner<3, 1>();
+  const std::string extension = std::filesystem::path(output).extension().string();
+  if (extension == ".ply") {
+    mesh::Surface moved = probe.descriptors.surface;
+    const Eigen::MatrixX3d positions = (moved.positions() * rotation.transpose()).rowwise() + translation.transpose();
+    mesh::Surface rebuilt = mesh::Surface::from_arrays(positions, moved.faces(), moved.source());
+    if (moved.has_normals()) rebuilt.set_normals(moved.normals() * rotation.transpose());
+    for (const auto& name : moved.property_names()) {
+      rebuilt.set_property(name, moved.property(name), moved.property_type(name));
+    }
+    mesh::io::write_ply(rebuilt, output);
+  } else if (extension == ".sdf") {
+    const std::string block = io::moved_mol_block(probe.path, rotation, translation);
+    surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << block; });
+  } else {
+    Molecule moved = *probe.molecule;
+    transform_molecule(moved, rotation, translation);
+    surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { io::write_pdb(moved, out); });
+  }
+}
+
+}  // namespace
+
+int match(const std::vector<std::string>& args) {
+  namespace po = boost::program_options;
+  std::string output, aligned_out, ranking;
+  std::string site_ligand, ref_site_ligand, probe_site_ligand;
+  std::vector<std::string> site_spheres, ref_site_spheres, probe_site_spheres;
+  double site_radius = 4.0;
+  int top = 10;
+  SurfaceInput input;
+  matching::MatchOptions options;
+  harmonic::DescriptorOptions descriptor_options;
+  po::options_description described("options");
+  auto& g = options.graph;
+  described.add_options()
+      ("help,h", "print this help")
+      ("output,o", po::value(&output), "write the result as JSON (alignments, trace, timing_ms, parameters)")
+      ("aligned-out", po::value(&aligned_out),
+       "write PROBE moved by the top alignment: .sdf (SDF/MOL/MOL2 PROBE), .pdb (molecule PROBE) or .ply")
+      ("top", po::value(&top)->default_value(top), "alignments shown in the table")
+      ("trace", po::bool_switch(), "print the association graph's nodes and edges after each stage")
+      ("site-ligand", po::value(&site_ligand), "binding site of both proteins: this ligand residue name")
+      ("ref-site-ligand", po::value(&ref_site_ligand), "binding site of REF only")
+      ("probe-site-ligand", po::value(&probe_site_ligand), "binding site of PROBE only")
+      ("site-radius", po::value(&site_radius)->default_value(site_radius),
+       "radius of the spheres around the site ligand's atoms, A")
+      ("site-sphere", po::value(&site_spheres)->composing(), "site sphere x,y,z,r on both sides (A)")
+      ("ref-site-sphere", po::value(&ref_site_spheres)->composing(), "site sphere on REF only")
+      ("probe-site-sphere", po::value(&probe_site_spheres)->composing(), "site sphere on PROBE only")
+      ("fuzzy", po::value(&g.fuzzy_threshold)->default_value(g.fuzzy_threshold),
+       "fuzzy ESP/LP similarity threshold F")
+      ("hsi-r", po::value(&g.image_threshold)->default_value(g.image_threshold),
+       "harmonic shape image correlation threshold R")
+      ("distance-tolerance", po::value(&g.distance_tolerance)->default_value(g.distance_tolerance),
+       "distance filter tolerance t, A")
+      ("min-distance", po::value(&g.min_distance)->default_value(g.min_distance),
+       "distance filter minimum d_min, A")
+      ("overlap-tolerance", po::value(&g.overlap_tolerance_degrees)->default_value(g.overlap_tolerance_degrees),
+       "overlap filter tolerance j_tol, degrees")
+      ("rmsd-cut", po::value(&options.clustering.rmsd_cut)->default_value(options.clustering.rmsd_cut),
+       "drop cliques whose fit RMSD exceeds this, A")
+      ("ranking", po::value(&ranking)->default_value("rank"),
+       "consensus: rank (rank-by-rank) | number (rank-by-number) | vote (rank-by-vote)")
+      ("patch-radius", po::value(&descriptor_options.patch.radius)->default_value(descriptor_options.patch.radius),
+       "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)");
+  add_surface_options(described, input);
+  po::variables_map vm;
+  if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
+  const auto inputs = vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  if (inputs.size() != 2) throw OptionError("expected REF and PROBE (see --help)");
+  finish_surface_options(input);
+  require_in_range("top", top, 1, 1e9);
+  require_in_range("site-radius", site_radius, 0.1, 100.0);
+  require_in_range("fuzzy", g.fuzzy_threshold, 0.0, 1.0);
+  require_in_range("hsi-r", g.image_threshold, -1.0, 1.0);
+  require_in_range("distance-tolerance", g.distance_tolerance, 0.0, 100.0);
+  require_in_range("min-distance", g.min_distance, 0.0, 100.0);
+  require_in_range("overlap-tolerance", g.overlap_tolerance_degrees, 0.0, 180.0);
+  require_in_range("rmsd-cut", options.clustering.rmsd_cut, 0.0, 100.0);
+  require_in_range("patch-radius", descriptor_options.patch.radius, 0.1, 100.0);
+  require_one_of("ranking", ranking, {"rank", "number", "vote"});
+  options.ranking.scheme = ranking == "number" ? matching::ConsensusScheme::rank_by_number
+                           : ranking == "vote" ? matching::ConsensusScheme::rank_by_vote
+                                               : matching::ConsensusScheme::rank_by_rank;
+  const std::string aligned_extension = std::filesystem::path(aligned_out).extension().string();
+  if (!aligned_out.empty() && aligned_extension != ".sdf" && aligned_extension != ".pdb" &&
+      aligned_extension != ".ply") {
+    throw OptionError("--aligned-out " + aligned_out + ": use .sdf, .pdb or .ply");
+  }
+  if (!site_ligand.empty()) {
+    if (ref_site_ligand.empty()) ref_site_ligand = site_ligand;
+    if (probe_site_ligand.empty()) probe_site_ligand = site_ligand;
+  }
+
+  Stopwatch clock;
+  // A .hsi side fixes the descriptor parameters the other side is built with.
+  const std::filesystem::path ref_path = inputs[0], probe_path = inputs[1];
+  if (harmonic::io::is_hsi_file(ref_path) && !harmonic::io::is_hsi_file(probe_path)) {
+    descriptor_options = harmonic::io::read_hsi(ref_path).options;
+  } else if (harmonic::io::is_hsi_file(probe_path) && !harmonic::io::is_hsi_file(ref_path)) {
+    descriptor_options = harmonic::io::read_hsi(probe_path).options;
+  }
+  Side ref = load_side(ref_path, input, ref_site_ligand, site_radius, descriptor_options);
+  Side probe = load_side(probe_path, input, probe_site_ligand, site_radius, descriptor_options);
+  if (!same_options(ref.descriptors.options, probe.descriptors.options)) {
+    throw InputError(ref_path.string() + " and " + probe_path.string() +
+                     ": the .hsi files were built with different parameters (critical point radius, "
+                     "patch radius, weights or image grid); rebuild one with the other's");
+  }
+  if (!aligned_out.empty() && aligned_extension != ".ply" && !probe.molecule) {
+    throw OptionError("--aligned-out " + aligned_out + ": PROBE is not a molecule; use .ply");
+  }
+  for (const auto& text : site_spheres) {
+    ref.site.push_back(parse_sphere(text));
+    probe.site.push_back(parse_sphere(text));
+  }
+  for (const auto& text : ref_site_spheres) ref.site.push_back(parse_sphere(text));
+  for (const auto& text : probe_site_spheres) probe.site.push_back(parse_sphere(text));
+  std::vector<bool> ref_allowed, probe_allowed;
+  for (Side* side : {&ref, &probe}) {
+    if (side->site.empty()) continue;
+    auto& allowed = side == &ref ? ref_allowed : probe_allowed;
+    allowed = matching::critical_points_in_site(side->descriptors, side->site);
+    if (std::find(allowed.begin(), allowed.end(), true) == allowed.end()) {
+      throw InputError(side->path.string() + ": the binding site holds no critical point (" +
+                       std::to_string(side->site.size()) + " spheres, " +
+                       std::to_string(side->descriptors.critical_points.size()) + " critical points)");
+    }
+  }
+  const double prepare_ms = clock.elapsed_ms();
+  const matching::MatchResult result = matching::match_surfaces(
+      ref.descriptors, probe.descriptors, options, ref_allowed.empty() ? nullptr : &ref_allowed,
+      probe_allowed.empty() ? nullptr : &probe_allowed);
+  const double total_ms = clock.elapsed_ms();
+
+  if (vm["trace"].as<bool>()) {
+    std::printf("%-16s %8s %10s %10s\n", "stage", "nodes", "edges", "ms");
+    for (const auto& stage : result.trace) {
+      std::printf("%-16s %8zu %10zu %10.2f\n", stage.stage.c_str(), stage.nodes, stage.edges, stage.milliseconds);
+    }
+    std::printf("%zu maximal cliques\n\n", result.cliques);
+  }
+  std::printf("%s vs %s: %zu alignments, surfaces and images %.0f ms, match %.0f ms\n",
+              ref_path.string().c_str(), probe_path.string().c_str(), result.alignments.size(),
+              prepare_ms, total_ms - prepare_ms);
+  if (!result.alignments.empty()) {
+    std::printf("%5s %8s %8s %8s %9s %6s %7s  %s\n", "rank", "rmsd", "points", "r_chem", "consensus",
+                "pairs", "parent", "rotation (deg) / translation (A)");
+  }
+  for (const auto& a : result.alignments) {
+    if (a.rank > top) break;
+    const Eigen::Matrix3d r = a.transform.topLeftCorner<3, 3>();
+    const double angle = std::acos(std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
+    std::printf("%5d %8.3f %8zu %8.3f %9.3f %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank, a.rmsd,
+                a.n_points, a.r_chem, a.consensus, a.cp_pairs.size(),
+                a.parent > 0 ? std::to_string(a.parent).c_str() : "-", angle, a.transform(0, 3),
+                a.transform(1, 3), a.transform(2, 3));
+  }
+  // Outputs last, each atomic; a failure of the second removes the first.
+  if (!aligned_out.empty()) {
+    if (result.alignments.empty()) throw InputError("no alignment found: nothing to write to " + aligned_out);
+    write_aligned(probe, result.alignments.front().transform, aligned_out);
+  }
+  if (!output.empty()) {
+    try {
+      const nlohmann::json document = to_json(result, options, ref, probe);
+      surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
+    } catch (...) {
+      if (!aligned_out.empty()) std::filesystem::remove(aligned_out);
+      throw;
+    }
+  }
+  return 0;
+}
+
+}  // namespace surfcomp::tools
