@@ -1,0 +1,128 @@
+// The surfcomp program as a user runs it: the match output contract (result.json), the aligned
+// PROBE, and bad input giving a one-line error, a non-zero exit and no output file.
+#include "test_data.hpp"
+
+#include <Eigen/Dense>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace surfcomp {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kProgram = fs::path(SURFCOMP_BINARY_DIR) / "tools" / "surfcomp";
+
+struct ProgramRun {
+  int status = -1;
+  std::string err;
+};
+
+ProgramRun run(const std::string& arguments) {
+  const fs::path err = fs::temp_directory_path() / "surfcomp_cli_stderr.txt";
+  const std::string command = kProgram.string() + " " + arguments + " >/dev/null 2>" + err.string();
+  const int raw = std::system(command.c_str());
+  ProgramRun r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  r.err = text.str();
+  return r;
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "surfcomp_cli_test";
+  fs::create_directories(dir);
+  fs::remove(dir / name);
+  return dir / name;
+}
+
+TEST(Cli, MatchWritesTheResultContract) {
+  SURFCOMP_SHARED_OR_SKIP(ref, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/4TMN_ligand.sdf");
+  const fs::path json = scratch("result.json");
+  const fs::path aligned = scratch("aligned.sdf");
+  const ProgramRun r = run("match " + ref.string() + " " + probe.string() + " -o " + json.string() +
+                    " --aligned-out " + aligned.string() + " --trace");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(json);
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  for (const char* key : {"alignments", "trace", "timing_ms", "parameters"}) {
+    EXPECT_TRUE(doc.contains(key)) << key;
+  }
+  const auto& alignments = doc["alignments"];
+  ASSERT_GE(alignments.size(), 1u);
+  int expected_rank = 1;
+  for (const auto& a : alignments) {
+    EXPECT_EQ(a["rank"].get<int>(), expected_rank++);
+    ASSERT_EQ(a["transform"].size(), 4u);
+    // A rigid transform, row-major: orthonormal rotation, last row 0 0 0 1.
+    Eigen::Matrix3d rotation;
+    for (int i = 0; i < 4; ++i) {
+      ASSERT_EQ(a["transform"][i].size(), 4u);
+      for (int j = 0; j < 3 && i < 3; ++j) rotation(i, j) = a["transform"][i][j].get<double>();
+    }
+    EXPECT_NEAR((rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(rotation.determinant(), 1.0, 1e-9);
+    EXPECT_EQ(a["transform"][3], nlohmann::json({0.0, 0.0, 0.0, 1.0}));
+    EXPECT_LE(a["rmsd"].get<double>(), 4.0);
+    EXPECT_GT(a["n_points"].get<int>(), 0);
+    EXPECT_TRUE(a["r_chem"].is_number());
+    EXPECT_TRUE(a["consensus"].is_number());
+    EXPECT_GE(a["cp_pairs"].size(), 2u);
+    for (const auto& pair : a["cp_pairs"]) EXPECT_EQ(pair.size(), 2u);
+    EXPECT_TRUE(a["parent"].is_null() || a["parent"].get<int>() >= 1);
+    for (const auto& child : a["children"]) {
+      // The tree links agree both ways.
+      EXPECT_EQ(alignments[child.get<int>() - 1]["parent"], a["rank"]);
+    }
+  }
+  const auto& trace = doc["trace"];
+  ASSERT_EQ(trace.size(), 5u);
+  EXPECT_EQ(trace[0]["stage"], "critical points");
+  for (std::size_t i = 1; i < trace.size(); ++i) {
+    EXPECT_LE(trace[i]["nodes"].get<int>(), trace[i - 1]["nodes"].get<int>());
+  }
+  EXPECT_TRUE(fs::exists(aligned));
+  EXPECT_GT(fs::file_size(aligned), 1000u);
+}
+
+TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
+  SURFCOMP_SHARED_OR_SKIP(ligand, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(protein, "thermolysin/1THL.pdb");
+  const fs::path json = scratch("bad.json");
+  const fs::path hsi_a = scratch("a.hsi");
+  const fs::path hsi_b = scratch("b.hsi");
+  ASSERT_EQ(run("hsi-build " + ligand.string() + " -o " + hsi_a.string()).status, 0);
+  ASSERT_EQ(run("hsi-build " + ligand.string() + " -o " + hsi_b.string() + " --patch-radius 6").status, 0);
+  struct Case {
+    std::string arguments, expected;
+  };
+  const Case cases[] = {
+      {"match /nonexistent/a.sdf " + ligand.string(), "a.sdf"},
+      {"match " + protein.string() + " " + protein.string() + " --site-ligand XYZ", "XYZ"},
+      {"match " + protein.string() + " " + protein.string() + " --site-sphere 0,0,0,1", "no critical point"},
+      {"match " + hsi_a.string() + " " + hsi_b.string(), "different parameters"},
+      {"match " + ligand.string() + " " + ligand.string() + " --site-sphere 1,2", "x,y,z,r"},
+      {"match " + ligand.string(), "REF and PROBE"},
+      {"surf-build " + ligand.string() + " --probe nan", "probe"},
+  };
+  for (const Case& c : cases) {
+    const ProgramRun r = run(c.arguments + " -o " + json.string());
+    EXPECT_NE(r.status, 0) << c.arguments;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.arguments << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "not one line: " << r.err;
+    EXPECT_FALSE(fs::exists(json)) << c.arguments;
+  }
+}
+
+}  // namespace
+}  // namespace surfcomp

@@ -1,0 +1,123 @@
+// The match end to end on real surfaces: a surface against itself and against a moved copy
+// gives back the identity and the motion; the 1THL and 4TMN crystal ligands, whose true overlay
+// is known, align from random probe poses.
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/matching/match.hpp"
+#include "surfcomp/matching/rigid_fit.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
+
+#include "test_data.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+namespace surfcomp {
+namespace {
+
+const char* kLigands = "thermolysin/ligands-common-frame/";
+
+Eigen::Matrix4d random_motion(std::mt19937& rng) {
+  std::normal_distribution<double> gauss;
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m.topLeftCorner<3, 3>() =
+      Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
+  m.topRightCorner<3, 1>() = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)) * 10.0;
+  return m;
+}
+
+mesh::Surface moved_surface(const mesh::Surface& surface, const Eigen::Matrix4d& motion) {
+  const Eigen::Matrix3d r = motion.topLeftCorner<3, 3>();
+  const Eigen::Vector3d t = motion.topRightCorner<3, 1>();
+  mesh::Surface moved = mesh::Surface::from_arrays(
+      (surface.positions() * r.transpose()).rowwise() + t.transpose(), surface.faces(), "moved");
+  moved.set_normals(surface.normals() * r.transpose());
+  for (const auto& name : surface.property_names()) moved.set_property(name, surface.property(name));
+  return moved;
+}
+
+/// Rotation error (degrees) and translation error (A) of `found` against `truth`, the latter
+/// measured at `centre` (a point of the molecule), where it matters, rather than at the origin.
+std::pair<double, double> transform_error(const Eigen::Matrix4d& found, const Eigen::Matrix4d& truth,
+                                          const Eigen::Vector3d& centre) {
+  const Eigen::Matrix3d dr = found.topLeftCorner<3, 3>() * truth.topLeftCorner<3, 3>().transpose();
+  const Eigen::Vector4d c(centre.x(), centre.y(), centre.z(), 1.0);
+  return {matching::rotation_angle_degrees(dr), (found * c - truth * c).head<3>().norm()};
+}
+
+Eigen::Vector3d centroid(const mesh::Surface& surface) { return surface.positions().colwise().mean(); }
+
+TEST(Match, SurfaceAgainstItselfGivesTheIdentity) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
+  const auto d = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(file)));
+  const auto result = matching::match_surfaces(d, d);
+  ASSERT_FALSE(result.alignments.empty());
+  const auto [angle, shift] =
+      transform_error(result.alignments[0].transform, Eigen::Matrix4d::Identity(), centroid(d.surface));
+  std::printf("[ self     ] top-1: %zu pairs, RMSD %.4f A, rotation error %.4f deg, translation %.4f A\n",
+              result.alignments[0].cp_pairs.size(), result.alignments[0].rmsd, angle, shift);
+  EXPECT_LT(angle, 2.0);
+  EXPECT_LT(shift, 0.5);
+}
+
+TEST(Match, MovedCopyOfASurfaceRecoversTheMotion) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "4TMN_ligand.sdf");
+  const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
+  const auto reference = harmonic::describe_surface(surface);
+  std::mt19937 rng(424242u);
+  std::printf("[ moved    ] seed 424242\n");
+  for (int trial = 0; trial < 3; ++trial) {
+    const Eigen::Matrix4d motion = random_motion(rng);  // moves the reference onto the probe
+    const auto probe = harmonic::describe_surface(moved_surface(surface, motion));
+    const auto result = matching::match_surfaces(reference, probe);
+    ASSERT_FALSE(result.alignments.empty());
+    // The alignment moves PROBE into REF's frame: the inverse of the motion.
+    const auto [angle, shift] = transform_error(result.alignments[0].transform, motion.inverse(),
+                                                centroid(probe.surface));
+    std::printf("[ moved    ] trial %d: rotation error %.4f deg, translation error %.4f A\n", trial, angle, shift);
+    EXPECT_LT(angle, 2.0);
+    EXPECT_LT(shift, 0.5);
+  }
+}
+
+/// Heavy-atom RMSD of `probe` moved by `transform` to its own (true) coordinates `truth`.
+double heavy_atom_rmsd(const Molecule& probe, const Eigen::Matrix4d& transform, const Molecule& truth) {
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t i = 0; i < probe.atoms.size(); ++i) {
+    if (probe.atoms[i].element == "H") continue;
+    const Eigen::Vector3d moved = transform.topLeftCorner<3, 3>() * probe.atoms[i].position +
+                                  transform.topRightCorner<3, 1>();
+    sum += (moved - truth.atoms[i].position).squaredNorm();
+    ++n;
+  }
+  return std::sqrt(sum / n);
+}
+
+TEST(Match, ThermolysinLigandsAlignFromRandomPoses) {
+  SURFCOMP_SHARED_OR_SKIP(ref_file, std::string(kLigands) + "1THL_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(probe_file, std::string(kLigands) + "4TMN_ligand.sdf");
+  const auto reference = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(ref_file)));
+  const Molecule truth = io::read_molecule(probe_file);
+  std::mt19937 rng(20261122u);
+  std::printf("[ 1THL-4TMN] seed 20261122\n");
+  for (int pose = 0; pose < 3; ++pose) {
+    const Eigen::Matrix4d motion = random_motion(rng);
+    Molecule probe = truth;
+    transform_molecule(probe, motion.topLeftCorner<3, 3>(), motion.topRightCorner<3, 1>());
+    const auto described = harmonic::describe_surface(mesh::build_molecular_surface(probe));
+    const auto result = matching::match_surfaces(reference, described);
+    ASSERT_FALSE(result.alignments.empty());
+    const double rmsd = heavy_atom_rmsd(probe, result.alignments[0].transform, truth);
+    std::printf("[ 1THL-4TMN] pose %d: top-1 heavy-atom RMSD to the crystal overlay %.2f A (%zu alignments)\n",
+                pose, rmsd, result.alignments.size());
+    EXPECT_LT(rmsd, 2.0) << "pose " << pose;
+  }
+}
+
+}  // namespace
+}  // namespace surfcomp
