@@ -119,8 +119,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& run : runs) {
       if (run.error_occurred || run.iterations == 0) continue;
-      times_ms[run.benchmark_name()] = run.GetAdjustedRealTime();
-      vertices[run.benchmark_name()] = run.counters.count("vertices") ? run.counters.at("vertices").value : 0;
+      times_ms[run.run_name.function_name] = run.GetAdjustedRealTime();
+      vertices[run.run_name.function_name] = run.counters.count("vertices") ? run.counters.at("vertices").value : 0;
     }
     ConsoleReporter::ReportRuns(runs);
   }
