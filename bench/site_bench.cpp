@@ -1,0 +1,332 @@
+// Binding-site comparison on the Kahraman dev set (issue 4, "Binding sites"): 36 sites of ATP,
+// HEM and FMN (../shared/datasets/kahraman-dev). Each site is built once: the surface of its
+// structure without water and without the site's own ligand copy, described (patch, harmonic map,
+// shape image) only at the critical points within kSiteRadius of that ligand's atoms. Every
+// unordered pair of sites is then matched (REF = the earlier entry) and scored from its top-1
+// alignment; the ROC AUC of each score separates same-ligand pairs from different-ligand pairs.
+// Targets: AUC >= 0.8, a site pair <= 10 s.
+//
+// The match runs with each parameter set of variants(); the sites are built once.
+//
+//   ./build/r/bench/site_bench [entries.txt [PREFIX]]
+// entries.txt defaults to ../shared/datasets/kahraman-dev/entries.txt; PREFIX, when given, makes
+// PREFIX.<variant>.csv with one row per pair (sites, same type, top-1 pairs, points, r_chem,
+// imaged CPs, ms).
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/matching/match.hpp"
+#include "surfcomp/mesh/critical_points.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace surfcomp;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kSiteRadius = 4.0;   // A, spheres around the ligand's atoms (the CLI's default)
+constexpr double kPatchRadius = 8.0;  // A, as in tests/site_match_test.cpp (thermolysin sites)
+constexpr double kContactRadius = 5.0;  // A, a chain with an atom this close to the ligand is kept
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+/// One line of entries.txt: `PDB ligand residue-number chain [altloc]`.
+struct Entry {
+  std::string pdb, ligand, chain;
+  int residue_number = 0;
+};
+
+std::vector<Entry> read_entries(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw FileError(path.string(), "cannot open the entries list");
+  std::vector<Entry> entries;
+  std::size_t line_number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream fields(line);
+    Entry e;
+    if (!(fields >> e.pdb >> e.ligand >> e.residue_number >> e.chain)) {
+      throw FormatError(path.string(), line_number, "'" + line + "': expected PDB ligand residue-number chain");
+    }
+    entries.push_back(e);
+  }
+  return entries;
+}
+
+/// A built site: its critical points (inside the spheres) with patches, maps and images.
+struct Site {
+  Entry entry;
+  std::string chains;  ///< the chains kept
+  std::size_t atoms = 0, ligand_atoms = 0;
+  harmonic::SurfaceDescriptors descriptors;
+  std::size_t imaged = 0;  ///< site critical points with an image
+  double build_ms = 0;     ///< read, surface, critical points and site descriptors
+};
+
+/// Builds the site of `entry` from `pdb`: the structure without water, reduced to the chains
+/// with an atom within kContactRadius of the entry's ligand copy (residue name, number and
+/// chain), minus that copy, whose atoms give the site's spheres. Ions, cofactors and other
+/// ligand copies in those chains stay. Whole structures are not used: the surface's ESP and LP
+/// cost #vertices x #atoms, several minutes for the 32,000-atom 1A49 and 1PP9 entries, and
+/// chains that do not touch the ligand are far from its site. Throws InputError when that copy
+/// is absent.
+Site build_site(const Entry& entry, const fs::path& pdb, const harmonic::DescriptorOptions& options) {
+  const auto start = Clock::now();
+  Site site;
+  site.entry = entry;
+  Molecule protein = io::read_molecule(pdb);
+  const auto is_ligand = [&](const Atom& atom) {
+    return atom.residue_name == entry.ligand && atom.residue_number == entry.residue_number &&
+           atom.chain == entry.chain;
+  };
+  std::vector<matching::SiteSphere> spheres;
+  for (const Atom& atom : protein.atoms) {
+    if (is_ligand(atom)) spheres.push_back({atom.position, kSiteRadius});
+  }
+  if (spheres.empty()) {
+    throw InputError(pdb.string() + ": no atom of ligand " + entry.ligand + " " +
+                     std::to_string(entry.residue_number) + " chain " + entry.chain);
+  }
+  std::set<std::string> chains = {entry.chain};
+  for (const Atom& atom : protein.atoms) {
+    if (chains.count(atom.chain)) continue;
+    for (const auto& s : spheres) {
+      if ((atom.position - s.center).norm() <= kContactRadius) {
+        chains.insert(atom.chain);
+        break;
+      }
+    }
+  }
+  std::vector<Atom> kept;
+  for (const Atom& atom : protein.atoms) {
+    if (!is_ligand(atom) && chains.count(atom.chain)) kept.push_back(atom);
+  }
+  for (const auto& chain : chains) site.chains += chain;
+  protein.atoms = std::move(kept);
+  site.atoms = protein.atoms.size();
+  site.ligand_atoms = spheres.size();
+  mesh::Surface surface = mesh::build_molecular_surface(protein);
+  site.descriptors.options = options;
+  for (const auto& point : mesh::detect_critical_points(surface, options.critical_points)) {
+    const bool inside = std::any_of(spheres.begin(), spheres.end(), [&](const matching::SiteSphere& s) {
+      return (point.position - s.center).norm() <= s.radius;
+    });
+    if (!inside) continue;
+    site.descriptors.critical_points.push_back(harmonic::describe_point(surface, point, options));
+    if (site.descriptors.critical_points.back().status == harmonic::PatchStatus::ok) ++site.imaged;
+  }
+  site.descriptors.surface = std::move(surface);
+  site.build_ms = ms_since(start);
+  return site;
+}
+
+/// The top-1 alignment of one site pair, and the pair's figures.
+struct PairResult {
+  std::size_t a = 0, b = 0;
+  bool same = false;        ///< the same ligand type
+  std::size_t pairs = 0;    ///< critical-point pairs of the top-1 alignment (0: no alignment)
+  std::size_t points = 0;   ///< its corresponding surface points
+  double r_chem = 0;        ///< its ESP correlation at those points
+  double match_ms = 0;
+};
+
+/// A similarity score of a pair, larger = more similar.
+struct Score {
+  const char* name;
+  const char* definition;
+  std::function<double(const PairResult&, const Site&, const Site&)> value;
+};
+
+/// A set of match parameters tried on every pair. Looser still (F 0.1, R 0.2, t 3 A, j_tol 60
+/// degrees) did not finish the 435 pairs in 7 minutes: the association graphs grow too dense.
+struct Variant {
+  const char* name;
+  matching::MatchOptions options;
+};
+
+std::vector<Variant> variants() {
+  std::vector<Variant> out;
+  const auto make = [&](const char* name, double fuzzy, double image, double distance, double overlap) {
+    Variant v{name, {}};
+    v.options.graph.fuzzy_threshold = fuzzy;
+    v.options.graph.image_threshold = image;
+    v.options.graph.distance_tolerance = distance;
+    v.options.graph.overlap_tolerance_degrees = overlap;
+    out.push_back(v);
+  };
+  const matching::GraphParameters defaults;
+  make("default", defaults.fuzzy_threshold, defaults.image_threshold, defaults.distance_tolerance,
+       defaults.overlap_tolerance_degrees);
+  make("image0.3", defaults.fuzzy_threshold, 0.3, defaults.distance_tolerance, defaults.overlap_tolerance_degrees);
+  make("loose", defaults.fuzzy_threshold, 0.3, 2.5, 45.0);
+  return out;
+}
+
+/// ROC AUC of `scores` for positives against negatives: the probability that a random
+/// positive scores above a random negative, ties counting one half (Mann-Whitney U / (P N)).
+double roc_auc(const std::vector<double>& scores, const std::vector<bool>& positive) {
+  double wins = 0;
+  double p = 0, n = 0;
+  for (std::size_t i = 0; i < scores.size(); ++i) {
+    if (!positive[i]) continue;
+    ++p;
+    for (std::size_t j = 0; j < scores.size(); ++j) {
+      if (positive[j]) continue;
+      wins += scores[i] > scores[j] ? 1.0 : scores[i] == scores[j] ? 0.5 : 0.0;
+    }
+  }
+  for (bool x : positive) n += x ? 0 : 1;
+  return wins / (p * n);
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const fs::path entries_path =
+      argc > 1 ? fs::path(argv[1])
+               : fs::path(SURFCOMP_SOURCE_DIR).parent_path() / "shared/datasets/kahraman-dev/entries.txt";
+  if (!fs::exists(entries_path)) {
+    std::printf("skipped: %s is absent\n", entries_path.c_str());
+    return 0;
+  }
+  try {
+    const std::vector<Entry> entries = read_entries(entries_path);
+    harmonic::DescriptorOptions options;
+    options.patch.radius = kPatchRadius;
+    std::printf("site radius %.1f A, patch radius %.1f A, chains within %.1f A of the ligand\n\n",
+                kSiteRadius, kPatchRadius, kContactRadius);
+    std::printf("%-5s %-4s %6s %-2s %-6s %7s %6s %9s %6s %7s %9s\n", "pdb", "lig", "resnum", "ch", "kept", "atoms",
+                "ligat", "vertices", "cps", "imaged", "build_ms");
+    std::vector<Site> sites;
+    std::vector<std::string> skipped;
+    for (const Entry& e : entries) {
+      // A site whose surface a stage rejects is reported and left out of the pairs.
+      try {
+        sites.push_back(build_site(e, entries_path.parent_path() / "pdb" / (e.pdb + ".pdb"), options));
+      } catch (const Error& error) {
+        std::printf("%-5s %-4s skipped: %s\n", e.pdb.c_str(), e.ligand.c_str(), error.what());
+        skipped.push_back(e.pdb);
+        continue;
+      }
+      const Site& s = sites.back();
+      std::printf("%-5s %-4s %6d %-2s %-6s %7zu %6zu %9zu %6zu %7zu %9.0f\n", e.pdb.c_str(), e.ligand.c_str(),
+                  e.residue_number, e.chain.c_str(), s.chains.c_str(), s.atoms, s.ligand_atoms,
+                  s.descriptors.surface.n_vertices(),
+                  s.descriptors.critical_points.size(), s.imaged, s.build_ms);
+      std::fflush(stdout);
+    }
+
+    for (const Variant& variant : variants()) {
+      const matching::MatchOptions& match_options = variant.options;
+      const auto& g = match_options.graph;
+      std::printf("\n== %s: fuzzy F %.2f, image R %.2f, distance t %.1f A, overlap j_tol %.0f deg\n", variant.name,
+                  g.fuzzy_threshold, g.image_threshold, g.distance_tolerance, g.overlap_tolerance_degrees);
+      std::vector<PairResult> results;
+      for (std::size_t a = 0; a < sites.size(); ++a) {
+        for (std::size_t b = a + 1; b < sites.size(); ++b) {
+          PairResult r;
+          r.a = a;
+          r.b = b;
+          r.same = sites[a].entry.ligand == sites[b].entry.ligand;
+          const auto start = Clock::now();
+          const auto match = matching::match_surfaces(sites[a].descriptors, sites[b].descriptors, match_options);
+          r.match_ms = ms_since(start);
+          if (!match.alignments.empty()) {
+            const auto& top = match.alignments.front();
+            r.pairs = top.cp_pairs.size();
+            r.points = top.n_points;
+            r.r_chem = top.r_chem;
+          }
+          results.push_back(r);
+        }
+      }
+
+      // Correspondences per matched critical-point pair at full image coverage: the image grid's
+      // point count over the correspondence subsampling is the same for every pair, so n_points
+      // over the smaller site's imaged critical points measures the fraction of that site imaged
+      // onto the other.
+      const std::vector<Score> scores = {
+          {"pairs", "critical-point pairs of the top-1 alignment",
+           [](const PairResult& r, const Site&, const Site&) { return static_cast<double>(r.pairs); }},
+          {"coverage", "top-1 n_points / min(imaged site critical points of the two sites)",
+           [](const PairResult& r, const Site& x, const Site& y) {
+             const double smaller = static_cast<double>(std::min(x.imaged, y.imaged));
+             return smaller > 0 ? static_cast<double>(r.points) / smaller : 0.0;
+           }},
+          {"pairs_jaccard", "top-1 pairs / (imaged_a + imaged_b - pairs)",
+           [](const PairResult& r, const Site& x, const Site& y) {
+             const double union_size = static_cast<double>(x.imaged + y.imaged) - static_cast<double>(r.pairs);
+             return union_size > 0 ? static_cast<double>(r.pairs) / union_size : 0.0;
+           }},
+          {"coverage_chem", "coverage * (1 + r_chem) / 2",
+           [](const PairResult& r, const Site& x, const Site& y) {
+             const double smaller = static_cast<double>(std::min(x.imaged, y.imaged));
+             return smaller > 0 ? static_cast<double>(r.points) / smaller * (1.0 + r.r_chem) / 2.0 : 0.0;
+           }},
+      };
+      if (argc > 2) {
+        std::ofstream csv(std::string(argv[2]) + "." + variant.name + ".csv");
+        if (!csv) throw FileError(argv[2], "cannot write the pairs table");
+        csv << "a,b,same,pairs,points,r_chem,imaged_a,imaged_b,match_ms\n";
+        for (const auto& r : results) {
+          csv << sites[r.a].entry.pdb << ',' << sites[r.b].entry.pdb << ',' << r.same << ',' << r.pairs << ','
+              << r.points << ',' << r.r_chem << ',' << sites[r.a].imaged << ',' << sites[r.b].imaged << ','
+              << r.match_ms << '\n';
+        }
+      }
+      std::vector<bool> positive;
+      std::vector<double> match_ms, pair_ms, build_ms;
+      for (const auto& s : sites) build_ms.push_back(s.build_ms);
+      for (const auto& r : results) {
+        positive.push_back(r.same);
+        match_ms.push_back(r.match_ms);
+        pair_ms.push_back(sites[r.a].build_ms + sites[r.b].build_ms + r.match_ms);
+      }
+      const auto positives = static_cast<std::size_t>(std::count(positive.begin(), positive.end(), true));
+      const auto aligned =
+          std::count_if(results.begin(), results.end(), [](const PairResult& r) { return r.pairs > 0; });
+      std::printf("%zu sites built, %zu skipped", sites.size(), skipped.size());
+      for (const auto& name : skipped) std::printf(" %s", name.c_str());
+      std::printf("\n%zu sites, %zu pairs (%zu same ligand type, %zu different), %td with an alignment\n",
+                  sites.size(), results.size(), positives, results.size() - positives, aligned);
+      for (const Score& score : scores) {
+        std::vector<double> values;
+        for (const auto& r : results) values.push_back(score.value(r, sites[r.a], sites[r.b]));
+        std::printf("AUC %-14s %.3f   (%s)\n", score.name, roc_auc(values, positive), score.definition);
+      }
+      std::printf("site build (read, surface, site descriptors): median %.0f ms, max %.0f ms\n", median(build_ms),
+                  *std::max_element(build_ms.begin(), build_ms.end()));
+      std::printf("match per pair (descriptors built): median %.1f ms, max %.1f ms\n", median(match_ms),
+                  *std::max_element(match_ms.begin(), match_ms.end()));
+      std::printf("site pair from PDB files (both builds + match): median %.0f ms, max %.0f ms\n", median(pair_ms),
+                  *std::max_element(pair_ms.begin(), pair_ms.end()));
+      std::fflush(stdout);
+    }
+  } catch (const Error& e) {
+    std::fprintf(stderr, "site_bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
