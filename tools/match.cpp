@@ -12,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -38,6 +40,14 @@ struct Side {
   std::vector<matching::SiteSphere> site;
 };
 
+std::string normalize_residue(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    if (c != ' ') out.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+  }
+  return out;
+}
+
 matching::SiteSphere parse_sphere(const std::string& text) {
   std::stringstream in(text);
   matching::SiteSphere s;
@@ -62,15 +72,35 @@ Side load_side(const std::filesystem::path& path, SurfaceInput input, const std:
     return side;
   }
   if (!site_ligand.empty()) {
-    io::MoleculeReadOptions ligand_read = input.read;
-    ligand_read.ligand = site_ligand;
-    const Molecule ligand = io::read_molecule(path, ligand_read);
-    for (const Atom& atom : ligand.atoms) side.site.push_back({atom.position, site_radius});
+    // The site's atoms come from the whole structure (its residue charges need no typing of the
+    // ligand, which Gasteiger cannot do for every ligand, e.g. phosphonates): the first copy of
+    // the residue by file order.
+    io::MoleculeReadOptions whole = input.read;
+    whole.ligand.clear();
+    const Molecule structure = io::read_molecule(path, whole);
+    const auto same_name = [&](const Atom& atom) { return normalize_residue(atom.residue_name) == normalize_residue(site_ligand); };
+    const auto first = std::find_if(structure.atoms.begin(), structure.atoms.end(), same_name);
+    if (first == structure.atoms.end()) {
+      throw InputError(path.string() + ": no residue named '" + site_ligand + "' for the binding site");
+    }
+    for (const Atom& atom : structure.atoms) {
+      if (same_name(atom) && atom.chain == first->chain && atom.residue_number == first->residue_number) {
+        side.site.push_back({atom.position, site_radius});
+      }
+    }
     input.read.exclude_residues.push_back(site_ligand);
   }
   LoadedSurface loaded = load_surface(path, input);
   side.molecule = std::move(loaded.molecule);
-  side.descriptors = harmonic::describe_surface(std::move(loaded.surface), options);
+  // With a site known now, only its critical points need patches and images.
+  const auto in_site = [&side](const mesh::CriticalPoint& p) {
+    return std::any_of(side.site.begin(), side.site.end(), [&p](const matching::SiteSphere& s) {
+      return (p.position - s.center).norm() <= s.radius;
+    });
+  };
+  side.descriptors = side.site.empty()
+                         ? harmonic::describe_surface(std::move(loaded.surface), options)
+                         : harmonic::describe_surface(std::move(loaded.surface), options, in_site);
   return side;
 }
 

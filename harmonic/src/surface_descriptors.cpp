@@ -49,7 +49,8 @@ CriticalPointDescriptor describe_point(const mesh::Surface& surface, const mesh:
   return out;
 }
 
-SurfaceDescriptors describe_surface(mesh::Surface surface, const DescriptorOptions& options) {
+SurfaceDescriptors describe_surface(mesh::Surface surface, const DescriptorOptions& options,
+                                    const std::function<bool(const mesh::CriticalPoint&)>& describe_if) {
   SurfaceDescriptors result;
   result.options = options;
   const std::vector<mesh::CriticalPoint> points =
@@ -58,6 +59,10 @@ SurfaceDescriptors describe_surface(mesh::Surface surface, const DescriptorOptio
   result.critical_points.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) result.critical_points[i].point = points[i];
   tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
+    if (describe_if && !describe_if(points[i])) {
+      result.critical_points[i].status = PatchStatus::skipped;
+      return;
+    }
     describe_point(surface, image_values, options, result.critical_points[i]);
   });
   result.surface = std::move(surface);

@@ -304,7 +304,7 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
   d.critical_points.resize(n_points);
   for (auto& cp : d.critical_points) {
     cp.point = get_point(r, d.surface.n_vertices());
-    cp.status = get_enum<PatchStatus>(r, 3, "patch status");
+    cp.status = get_enum<PatchStatus>(r, 4, "patch status");
     if (cp.status != PatchStatus::ok) continue;
     cp.patch = get_patch(r, d.surface.n_vertices());
     const Eigen::MatrixXd uv = r.double_matrix();

@@ -10,6 +10,7 @@
 #include "surfcomp/mesh/surface.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,7 @@ enum class PatchStatus : std::uint8_t {
   empty = 1,       ///< the patch lost every triangle in its refinement (seed 3.4 steps 5-6)
   not_a_disk = 2,  ///< the patch has a handle (genus > 0); a harmonic map needs a disk
   map_failed = 3,  ///< the harmonic map could not be solved (degenerate patch geometry)
+  skipped = 4,     ///< not asked for (outside a binding site, see describe_surface)
 };
 
 /// One critical point with its patch, map and image (the latter three empty unless status ok).
@@ -63,7 +65,10 @@ struct SurfaceDescriptors {
 /// its own slot: the result does not depend on the thread count.
 /// Requires the properties cc1, cc2 and options.image_property (InputError naming the surface
 /// otherwise); option errors as the stages' own (OptionError).
-SurfaceDescriptors describe_surface(mesh::Surface surface, const DescriptorOptions& options = {});
+/// `describe_if`, when given, selects the critical points that get a patch, map and image (a
+/// binding site's, say); the others keep status skipped.
+SurfaceDescriptors describe_surface(mesh::Surface surface, const DescriptorOptions& options = {},
+                                    const std::function<bool(const mesh::CriticalPoint&)>& describe_if = {});
 
 /// The patch, map and image around `point.vertex` of `surface`, as describe_surface builds them
 /// for each critical point (point is copied into the result; only its vertex is used).
