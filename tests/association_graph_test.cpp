@@ -256,9 +256,7 @@ harmonic::SurfaceDescriptors moved_copy_with_rotated_maps(const harmonic::Surfac
       Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
   const Eigen::Vector3d shift(-7.0, 25.0, 3.0);
   harmonic::SurfaceDescriptors moved = d;
-  const Eigen::MatrixX3d positions = (d.surface.positions() * rotation.transpose()).rowwise() + shift.transpose();
-  moved.surface = mesh::Surface::from_arrays(positions, d.surface.faces(), "moved");
-  for (const std::string& name : d.surface.property_names()) moved.surface.set_property(name, d.surface.property(name));
+  mesh::transform_surface(moved.surface, rotation, shift);
   const Eigen::VectorXd shape = d.surface.property(d.options.image_property);
   thetas.clear();
   for (std::size_t i = 0; i < moved.critical_points.size(); ++i) {

@@ -54,13 +54,9 @@ TEST(Correspondences, AMovedCopyOfTheSameMeshCorrespondsExactly) {
   SURFCOMP_SHARED_OR_SKIP(file, k1thl);
   const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
   const Motion m = random_motion(7u);
-  mesh::Surface moved = mesh::Surface::from_arrays(
-      (surface.positions() * m.rotation.transpose()).rowwise() + m.translation.transpose(), surface.faces(), "moved");
-  moved.set_normals(surface.normals() * m.rotation.transpose());
-  mesh::assign_surface_properties(moved, nullptr);
-  for (const std::string name : {mesh::property::esp, mesh::property::lp}) {
-    moved.set_property(name, surface.property(name));
-  }
+  mesh::Surface moved = surface;
+  mesh::transform_surface(moved, m.rotation, m.translation);
+  mesh::assign_surface_properties(moved, nullptr);  // curvature refitted on the moved mesh
   const auto a = harmonic::describe_surface(surface);
   const auto b = harmonic::describe_surface(moved);
   ASSERT_EQ(a.critical_points.size(), b.critical_points.size());

@@ -62,14 +62,9 @@ TEST(Descriptors, RotatingTheSurfaceLeavesEveryImageUnchanged) {
   const Eigen::Matrix3d rotation =
       Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
   const Eigen::Vector3d shift(12.0, -3.0, 40.0);
-  const Eigen::MatrixX3d moved_positions =
-      ((surface.positions() * rotation.transpose()).rowwise() + shift.transpose());
-  mesh::Surface moved = mesh::Surface::from_arrays(moved_positions, surface.faces(), "moved");
-  moved.set_normals(surface.normals() * rotation.transpose());
-  mesh::assign_surface_properties(moved, nullptr);
-  for (const std::string name : {mesh::property::esp, mesh::property::lp}) {
-    moved.set_property(name, surface.property(name));
-  }
+  mesh::Surface moved = surface;
+  mesh::transform_surface(moved, rotation, shift);
+  mesh::assign_surface_properties(moved, nullptr);  // curvature refitted on the moved mesh
   const auto a = harmonic::describe_surface(surface);
   const auto b = harmonic::describe_surface(moved);
   ASSERT_EQ(a.critical_points.size(), b.critical_points.size());

@@ -31,12 +31,8 @@ Eigen::Matrix4d random_motion(std::mt19937& rng) {
 }
 
 mesh::Surface moved_surface(const mesh::Surface& surface, const Eigen::Matrix4d& motion) {
-  const Eigen::Matrix3d r = motion.topLeftCorner<3, 3>();
-  const Eigen::Vector3d t = motion.topRightCorner<3, 1>();
-  mesh::Surface moved = mesh::Surface::from_arrays(
-      (surface.positions() * r.transpose()).rowwise() + t.transpose(), surface.faces(), "moved");
-  moved.set_normals(surface.normals() * r.transpose());
-  for (const auto& name : surface.property_names()) moved.set_property(name, surface.property(name));
+  mesh::Surface moved = surface;
+  mesh::transform_surface(moved, motion.topLeftCorner<3, 3>(), motion.topRightCorner<3, 1>());
   return moved;
 }
 

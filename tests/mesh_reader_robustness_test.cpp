@@ -43,24 +43,7 @@ struct QuietOpenMesh {
 };
 const QuietOpenMesh quiet_openmesh;
 
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("surfcomp_robustness_" + std::string(info->name()) +
-                                         "_" + std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 void write_bytes(const fs::path& path, const std::string& bytes) {
   // A new file rather than a truncated old one: ext4 flushes truncated-and-rewritten files to

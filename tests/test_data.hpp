@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <system_error>
+
+#include <unistd.h>
 
 namespace surfcomp::test {
 
@@ -29,6 +32,30 @@ inline std::optional<std::filesystem::path> fetched_dataset(const std::string& r
   if (!std::filesystem::exists(path)) return std::nullopt;
   return path;
 }
+
+/// A fresh directory under the system temp dir, named after the running test, removed when the
+/// test ends.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() /
+            ("surfcomp_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" +
+             std::to_string(::getpid()));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 }  // namespace surfcomp::test
 

@@ -40,14 +40,6 @@ struct Side {
   std::vector<matching::SiteSphere> site;
 };
 
-std::string normalize_residue(const std::string& name) {
-  std::string out;
-  for (char c : name) {
-    if (c != ' ') out.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
-  }
-  return out;
-}
-
 matching::SiteSphere parse_sphere(const std::string& text) {
   std::stringstream in(text);
   matching::SiteSphere s;
@@ -78,7 +70,7 @@ Side load_side(const std::filesystem::path& path, SurfaceInput input, const std:
     io::MoleculeReadOptions whole = input.read;
     whole.ligand.clear();
     const Molecule structure = io::read_molecule(path, whole);
-    const auto same_name = [&](const Atom& atom) { return normalize_residue(atom.residue_name) == normalize_residue(site_ligand); };
+    const auto same_name = [&](const Atom& atom) { return residue_key(atom.residue_name) == residue_key(site_ligand); };
     const auto first = std::find_if(structure.atoms.begin(), structure.atoms.end(), same_name);
     if (first == structure.atoms.end()) {
       throw InputError(path.string() + ": no residue named '" + site_ligand + "' for the binding site");
@@ -159,13 +151,8 @@ void write_aligned(const Side& probe, const Eigen::Matrix4d& transform, const st
   const std::string extension = std::filesystem::path(output).extension().string();
   if (extension == ".ply") {
     mesh::Surface moved = probe.descriptors.surface;
-    const Eigen::MatrixX3d positions = (moved.positions() * rotation.transpose()).rowwise() + translation.transpose();
-    mesh::Surface rebuilt = mesh::Surface::from_arrays(positions, moved.faces(), moved.source());
-    if (moved.has_normals()) rebuilt.set_normals(moved.normals() * rotation.transpose());
-    for (const auto& name : moved.property_names()) {
-      rebuilt.set_property(name, moved.property(name), moved.property_type(name));
-    }
-    mesh::io::write_ply(rebuilt, output);
+    mesh::transform_surface(moved, rotation, translation);
+    mesh::io::write_ply(moved, output);
   } else if (extension == ".sdf") {
     const std::string block = io::moved_mol_block(probe.path, rotation, translation);
     surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << block; });

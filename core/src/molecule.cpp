@@ -2,10 +2,19 @@
 
 #include "surfcomp/core/error.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <string>
 
 namespace surfcomp {
+std::string residue_key(std::string_view name) {
+  std::string key;
+  for (char c : name) {
+    if (c != ' ') key.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+  }
+  return key;
+}
+
 std::string describe_atom(const Molecule& molecule, std::size_t index) {
   const Atom& atom = molecule.atoms[index];
   std::string text = "atom " + std::to_string(index + 1) + " (" + atom.element;

@@ -8,21 +8,10 @@
 #include <tuple>
 
 namespace surfcomp {
-namespace {
-
-std::string compact(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    if (c != ' ') out.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
-  }
-  return out;
-}
-
-}  // namespace
 
 std::optional<double> protein_atom_formal_charge(std::string_view residue, std::string_view atom_name) {
-  const std::string res = compact(residue);
-  const std::string name = compact(atom_name);
+  const std::string res = residue_key(residue);
+  const std::string name = residue_key(atom_name);
   // A standard residue is one the lipophilicity table knows (its CA is always listed).
   if (!protein_atom_lipophilicity(res, "CA")) return std::nullopt;
   if (name == "OXT") return -0.5;
@@ -50,7 +39,7 @@ void assign_protein_formal_charges(Molecule& molecule) {
   std::set<std::string> chains_started;
   std::set<ResidueKey> with_oxt;
   for (const Atom& atom : molecule.atoms) {
-    if (compact(atom.name) == "OXT") {
+    if (residue_key(atom.name) == "OXT") {
       with_oxt.emplace(atom.chain, atom.residue_number, atom.residue_name);
     }
   }
@@ -63,7 +52,7 @@ void assign_protein_formal_charges(Molecule& molecule) {
   }
   for (Atom& atom : molecule.atoms) {
     const ResidueKey key(atom.chain, atom.residue_number, atom.residue_name);
-    const std::string name = compact(atom.name);
+    const std::string name = residue_key(atom.name);
     if (const auto q = protein_atom_formal_charge(atom.residue_name, atom.name)) {
       atom.charge = *q;
       if (name == "N" && n_terminal.count(key)) atom.charge += 1.0;

@@ -178,6 +178,24 @@ ValueType Surface::property_type(const std::string& name) const {
   return property_types_[static_cast<std::size_t>(it - property_names_.begin())];
 }
 
+void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
+                       const Eigen::Vector3d& translation) {
+  TriMesh& mesh = surface.mesh();
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    const Eigen::Vector3d moved = rotation * Eigen::Vector3d(p[0], p[1], p[2]) + translation;
+    mesh.set_point(v, TriMesh::Point(moved.x(), moved.y(), moved.z()));
+    const auto& n = mesh.normal(v);
+    const Eigen::Vector3d turned = rotation * Eigen::Vector3d(n[0], n[1], n[2]);
+    mesh.set_normal(v, TriMesh::Normal(turned.x(), turned.y(), turned.z()));
+  }
+  for (auto f : mesh.faces()) {
+    const auto& n = mesh.normal(f);
+    const Eigen::Vector3d turned = rotation * Eigen::Vector3d(n[0], n[1], n[2]);
+    mesh.set_normal(f, TriMesh::Normal(turned.x(), turned.y(), turned.z()));
+  }
+}
+
 SurfaceMeasures measure_surface(const Surface& surface) {
   const TriMesh& mesh = surface.mesh();
   SurfaceMeasures m;

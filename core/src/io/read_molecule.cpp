@@ -95,16 +95,9 @@ std::vector<std::size_t> select_ligand(const std::vector<Atom>& atoms, const std
 
 bool is_dropped_residue(std::string_view residue_name, const MoleculeReadOptions& options) {
   if (options.remove_water && is_water_residue(residue_name)) return true;
-  const auto key = [](std::string_view text) {
-    std::string out;
-    for (char c : text) {
-      if (c != ' ') out.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
-    }
-    return out;
-  };
-  const std::string name = key(residue_name);
+  const std::string name = residue_key(residue_name);
   return std::any_of(options.exclude_residues.begin(), options.exclude_residues.end(),
-                     [&](const std::string& excluded) { return key(excluded) == name; });
+                     [&](const std::string& excluded) { return residue_key(excluded) == name; });
 }
 
 bool has_standard_residue(const std::vector<Atom>& atoms) {

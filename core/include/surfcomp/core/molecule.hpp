@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace surfcomp {
@@ -39,6 +40,9 @@ struct Molecule {
 /// Checks that `molecule` has at least one atom and that every coordinate, radius and charge
 /// is finite and every radius positive. Throws InputError naming molecule.source and the atom.
 void validate_molecule(const Molecule& molecule);
+
+/// A residue or atom name as a comparison key: blanks removed, upper case (" oxt" -> "OXT").
+std::string residue_key(std::string_view name);
 
 /// "atom N (element name residue numberchain)" for messages; N is 1-based.
 std::string describe_atom(const Molecule& molecule, std::size_t index);

@@ -107,6 +107,11 @@ class Surface {
   std::string source_ = "<arrays>";
 };
 
+/// Applies the rigid motion x -> rotation * x + translation to every vertex and turns the
+/// normals with it; properties stay (they are invariant under a rigid motion).
+void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
+                       const Eigen::Vector3d& translation);
+
 /// Global measures of a closed or open surface.
 struct SurfaceMeasures {
   double area = 0.0;        ///< A^2
