@@ -188,6 +188,9 @@ struct Outcome {
   double best_any = kInf;     ///< ours: best heavy-atom RMSD among all alignments, A (diagnosis)
   int best_any_rank = 0;      ///< ours: rank of that one
   std::size_t alignments = 0;
+  double top_score = 0.0;     ///< ours: overlay score of the top-1 alignment
+  double truth_score = 0.0;   ///< ours: overlay score of the true pose refined (diagnosis: when it
+                              ///< beats top_score, the right answer was never a candidate)
   double ms = 0.0;            ///< from molecules in memory, ms
   double match_ms = 0.0;      ///< ours: match_surfaces alone (prebuilt descriptors), ms
   std::string error;
@@ -232,6 +235,17 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
       }
     }
     if (result.alignments.empty()) out.error = "no alignment";
+    if (!result.alignments.empty()) {
+      const matching::MatchOptions defaults;
+      const matching::SurfaceOverlay overlay(
+          matching::sample_surface(reference.descriptors->surface, defaults.overlay.spacing),
+          matching::sample_surface(described.surface, defaults.overlay.spacing), defaults.overlay);
+      matching::RigidTransform truth_transform;  // the inverse of the pose
+      truth_transform.rotation = pose.rotation.transpose();
+      truth_transform.translation = -(pose.rotation.transpose() * pose.translation);
+      out.truth_score = overlay.score(overlay.refine(truth_transform)).score;
+      out.top_score = result.alignments[0].overlay.score;
+    }
   } catch (const std::exception& e) {
     out.error = e.what();
   }
@@ -358,12 +372,19 @@ void print_failures(const std::string& set, const std::vector<Trial>& trials) {
     if (t.ours.rmsd < kSuccessRmsd) continue;
     ++n;
     std::printf("  %s <- %s pose %d: top-1 %.2f A, best of top 5 %.2f A (rank %d), best of all %zu alignments "
-                "%.2f A (rank %d); O3A-MMFF %.2f A, O3A-Crippen %.2f A%s%s\n",
+                "%.2f A (rank %d); overlay score top-1 %.3f, true pose refined %.3f; O3A-MMFF %.2f A, O3A-Crippen %.2f A%s%s\n",
                 t.reference.c_str(), t.probe.c_str(), t.pose, t.ours.rmsd, t.ours.best_top5, t.ours.best_rank,
-                t.ours.alignments, t.ours.best_any, t.ours.best_any_rank, t.mmff.rmsd, t.crippen.rmsd, t.ours.error.empty() ? "" : "; error: ",
+                t.ours.alignments, t.ours.best_any, t.ours.best_any_rank, t.ours.top_score, t.ours.truth_score,
+                t.mmff.rmsd, t.crippen.rmsd, t.ours.error.empty() ? "" : "; error: ",
                 t.ours.error.c_str());
   }
   if (n == 0) std::printf("  none\n");
+  std::size_t missed = 0;
+  for (const Trial& t : trials) missed += t.ours.rmsd >= kSuccessRmsd && t.ours.truth_score > t.ours.top_score;
+  if (n > 0) {
+    std::printf("  of these %zu, %zu score the refined true pose above our top-1 (no candidate led there); in %zu the "
+                "overlay score prefers a wrong pose\n", n, missed, n - missed);
+  }
   for (const Trial& t : trials) {
     if (!t.mmff.error.empty()) std::printf("  O3A-MMFF not run on %s <- %s: %s\n", t.reference.c_str(), t.probe.c_str(), t.mmff.error.c_str());
     if (!t.crippen.error.empty()) std::printf("  O3A-Crippen not run on %s <- %s: %s\n", t.reference.c_str(), t.probe.c_str(), t.crippen.error.c_str());

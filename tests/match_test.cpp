@@ -115,5 +115,47 @@ TEST(Match, ThermolysinLigandsAlignFromRandomPoses) {
   }
 }
 
+TEST(Match, RefinedAlignmentsLeadByOverlayScoreAndRefineTopZeroKeepsTheConsensus) {
+  SURFCOMP_SHARED_OR_SKIP(ref_file, std::string(kLigands) + "1THL_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(probe_file, std::string(kLigands) + "4TMN_ligand.sdf");
+  const auto reference = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(ref_file)));
+  const auto probe = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(probe_file)));
+  matching::MatchOptions seed_options;
+  seed_options.refine_top = 0;
+  const auto seed = matching::match_surfaces(reference, probe, seed_options);
+  matching::MatchOptions options;
+  options.refine_top = 8;
+  const auto refined = matching::match_surfaces(reference, probe, options);
+  ASSERT_GT(seed.alignments.size(), 8u);
+  ASSERT_EQ(seed.alignments.size(), refined.alignments.size());
+  // Without refinement: consensus order (rank-by-rank: lower is better), untouched fits.
+  for (std::size_t k = 1; k < seed.alignments.size(); ++k) {
+    EXPECT_LE(seed.alignments[k - 1].consensus, seed.alignments[k].consensus);
+    EXPECT_FALSE(seed.alignments[k].refined);
+  }
+  // With it: the first 8 of the consensus order come first, each scored; the distinct ones
+  // lead and are sorted by score; the rest follow in consensus order.
+  std::size_t scored = 0;
+  for (std::size_t k = 0; k < 8; ++k) {
+    EXPECT_GT(refined.alignments[k].overlay.score, 0.0);
+    scored += refined.alignments[k].overlay.score > 0.0;
+  }
+  EXPECT_EQ(scored, 8u);
+  EXPECT_GE(refined.alignments[0].overlay.score, refined.alignments[1].overlay.score);
+  for (std::size_t k = 9; k < refined.alignments.size(); ++k) {
+    EXPECT_FALSE(refined.alignments[k].refined);
+    EXPECT_EQ(refined.alignments[k].overlay.score, 0.0);
+    EXPECT_LE(refined.alignments[k - 1].consensus, refined.alignments[k].consensus);
+  }
+  // The crystal overlay is the identity here: refinement must not take the top pose away from it.
+  const auto [angle, shift] = transform_error(refined.alignments[0].transform, Eigen::Matrix4d::Identity(),
+                                              centroid(probe.surface));
+  std::printf("[ refined  ] top-1 overlay %.3f (shape %.3f, chem %.3f): %.2f deg, %.2f A from the crystal overlay\n",
+              refined.alignments[0].overlay.score, refined.alignments[0].overlay.shape, refined.alignments[0].overlay.chem,
+              angle, shift);
+  EXPECT_LT(angle, 15.0);
+  EXPECT_LT(shift, 1.5);
+}
+
 }  // namespace
 }  // namespace surfcomp

@@ -26,7 +26,9 @@ constexpr const char* kUsage =
     "Finds where PROBE's surface looks and feels like REF's and returns ranked rigid alignments\n"
     "that move PROBE into REF's frame: critical-point pairs filtered by ESP/LP (fuzzy), harmonic\n"
     "shape images, distances and overlap; maximal cliques; least-squares fits on the images'\n"
-    "corresponding points; single-linkage merging; consensus ranking (METHOD sections 5-7).\n\n"
+    "corresponding points; single-linkage merging; consensus ranking (METHOD sections 5-7); then\n"
+    "the first --refine-top alignments are refined on the whole surfaces (Gaussian overlay of shape,\n"
+    "ESP and LP) and ranked by that overlay score (table column 'overlay', * = refined).\n\n"
     "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .pqr), a mesh (.ply .vert .off .obj) or a .hsi\n"
     "            file from hsi-build (two .hsi files must have been built with the same parameters)\n"
     "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand build\n"
@@ -117,6 +119,8 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
     for (const auto& [x, y] : a.cp_pairs) pairs.push_back({x, y});
     alignments.push_back({{"rank", a.rank}, {"transform", transform}, {"rmsd", a.rmsd},
                           {"n_points", a.n_points}, {"r_chem", a.r_chem}, {"consensus", a.consensus},
+                          {"refined", a.refined},
+                          {"overlay", {{"score", a.overlay.score}, {"shape", a.overlay.shape}, {"chem", a.overlay.chem}}},
                           {"cp_pairs", pairs},
                           {"parent", a.parent > 0 ? nlohmann::json(a.parent) : nlohmann::json(nullptr)},
                           {"children", a.children}});
@@ -138,7 +142,9 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
             {"distance_tolerance", g.distance_tolerance}, {"min_distance", g.min_distance},
             {"overlap_tolerance_degrees", g.overlap_tolerance_degrees},
             {"rmsd_cut", options.clustering.rmsd_cut}, {"merge_cut", options.clustering.merge_cut},
-            {"min_clique_size", options.min_clique_size},
+            {"min_clique_size", options.min_clique_size}, {"refine_top", options.refine_top},
+            {"overlay_sigma", options.overlay.sigma}, {"overlay_spacing", options.overlay.spacing},
+            {"overlay_chem_weight", options.overlay.chem_weight},
             {"critical_point_radius", ref.descriptors.options.critical_points.radius},
             {"patch_radius", ref.descriptors.options.patch.radius},
             {"image_rings", ref.descriptors.options.image.radial_samples},
@@ -206,6 +212,13 @@ int match(const std::vector<std::string>& args) {
        "drop cliques whose fit RMSD exceeds this, A")
       ("ranking", po::value(&ranking)->default_value("rank"),
        "consensus: rank (rank-by-rank) | number (rank-by-number) | vote (rank-by-vote)")
+      ("refine-top", po::value(&options.refine_top)->default_value(options.refine_top),
+       "refine this many alignments on the whole surfaces and rank them by their overlay score "
+       "(0: the seed's consensus ranking alone)")
+      ("overlay-sigma", po::value(&options.overlay.sigma)->default_value(options.overlay.sigma),
+       "Gaussian width of the whole-surface overlay, A")
+      ("overlay-chem-weight", po::value(&options.overlay.chem_weight)->default_value(options.overlay.chem_weight),
+       "weight of the ESP/LP Tanimoto against the shape Tanimoto in the overlay score")
       ("patch-radius", po::value(&descriptor_options.patch.radius)->default_value(descriptor_options.patch.radius),
        "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)");
   add_surface_options(described, input);
@@ -223,6 +236,9 @@ int match(const std::vector<std::string>& args) {
   require_in_range("overlap-tolerance", g.overlap_tolerance_degrees, 0.0, 180.0);
   require_in_range("rmsd-cut", options.clustering.rmsd_cut, 0.0, 100.0);
   require_in_range("patch-radius", descriptor_options.patch.radius, 0.1, 100.0);
+  require_in_range("refine-top", options.refine_top, 0, 1e6);
+  require_in_range("overlay-sigma", options.overlay.sigma, 0.1, 10.0);
+  require_in_range("overlay-chem-weight", options.overlay.chem_weight, 0.0, 100.0);
   require_one_of("ranking", ranking, {"rank", "number", "vote"});
   options.ranking.scheme = ranking == "number" ? matching::ConsensusScheme::rank_by_number
                            : ranking == "vote" ? matching::ConsensusScheme::rank_by_vote
@@ -289,15 +305,15 @@ int match(const std::vector<std::string>& args) {
               ref_path.string().c_str(), probe_path.string().c_str(), result.alignments.size(),
               prepare_ms, total_ms - prepare_ms);
   if (!result.alignments.empty()) {
-    std::printf("%5s %8s %8s %8s %9s %6s %7s  %s\n", "rank", "rmsd", "points", "r_chem", "consensus",
-                "pairs", "parent", "rotation (deg) / translation (A)");
+    std::printf("%5s %8s %8s %8s %9s %8s %6s %7s  %s\n", "rank", "rmsd", "points", "r_chem", "consensus",
+                "overlay", "pairs", "parent", "rotation (deg) / translation (A)");
   }
   for (const auto& a : result.alignments) {
     if (a.rank > top) break;
     const Eigen::Matrix3d r = a.transform.topLeftCorner<3, 3>();
     const double angle = std::acos(std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
-    std::printf("%5d %8.3f %8zu %8.3f %9.3f %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank, a.rmsd,
-                a.n_points, a.r_chem, a.consensus, a.cp_pairs.size(),
+    std::printf("%5d %8.3f %8zu %8.3f %9.3f %7.3f%s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank, a.rmsd,
+                a.n_points, a.r_chem, a.consensus, a.overlay.score, a.refined ? "*" : " ", a.cp_pairs.size(),
                 a.parent > 0 ? std::to_string(a.parent).c_str() : "-", angle, a.transform(0, 3),
                 a.transform(1, 3), a.transform(2, 3));
   }

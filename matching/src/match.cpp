@@ -3,14 +3,102 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/cliques.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 
 namespace surfcomp::matching {
 namespace {
 
 double since_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// An alignment in its final place.
+struct Placed {
+  int cluster = -1;
+  double consensus = 0.0;
+  RigidTransform transform;
+  bool refined = false;
+  OverlayScore overlay;
+};
+
+/// Vertices within `radius` of an allowed critical point; null (all vertices) without a site.
+std::optional<std::vector<bool>> site_vertices(const harmonic::SurfaceDescriptors& descriptors,
+                                               const std::vector<bool>* allowed, double radius) {
+  if (allowed == nullptr) return std::nullopt;
+  const Eigen::MatrixX3d positions = descriptors.surface.positions();
+  std::vector<bool> inside(static_cast<std::size_t>(positions.rows()), false);
+  for (std::size_t c = 0; c < descriptors.critical_points.size(); ++c) {
+    if (!(*allowed)[c]) continue;
+    const Eigen::Vector3d centre = descriptors.critical_points[c].point.position;
+    for (Eigen::Index v = 0; v < positions.rows(); ++v) {
+      if ((Eigen::Vector3d(positions.row(v)) - centre).squaredNorm() <= radius * radius) inside[static_cast<std::size_t>(v)] = true;
+    }
+  }
+  return inside;
+}
+
+/// The consensus order with its first options.refine_top alignments refined on the whole
+/// surfaces (those whose start does not repeat an earlier one's) and moved ahead, best overlay
+/// score first, repeats of a better pose after the distinct ones (MatchOptions::refine_top).
+/// Those first refine_top alignments get their overlay score.
+std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking, const std::vector<Cluster>& clusters,
+                                     const harmonic::SurfaceDescriptors& reference,
+                                     const harmonic::SurfaceDescriptors& probe, const MatchOptions& options,
+                                     const std::vector<bool>* reference_allowed,
+                                     const std::vector<bool>* probe_allowed) {
+  constexpr double kRepeatDistance = 0.5;  // A, largest move of a sampled probe point
+  if (options.refine_top < 0) throw OptionError("refine_top must be >= 0, got " + std::to_string(options.refine_top));
+  if (!(options.site_overlay_radius >= 0.0)) throw OptionError("site_overlay_radius must be >= 0");
+  std::vector<Placed> placed;
+  for (const RankedAlignment& r : ranking) {
+    Placed p;
+    p.cluster = r.cluster;
+    p.consensus = r.consensus;
+    p.transform = clusters[static_cast<std::size_t>(r.cluster)].fit.transform;
+    placed.push_back(p);
+  }
+  if (placed.empty()) return placed;
+  const double radius = options.site_overlay_radius > 0.0 ? options.site_overlay_radius
+                                                           : std::max(reference.options.patch.radius, probe.options.patch.radius);
+  const auto reference_mask = site_vertices(reference, reference_allowed, radius);
+  const auto probe_mask = site_vertices(probe, probe_allowed, radius);
+  const SurfaceOverlay overlay(
+      sample_surface(reference.surface, options.overlay.spacing, reference_mask ? &*reference_mask : nullptr),
+      sample_surface(probe.surface, options.overlay.spacing, probe_mask ? &*probe_mask : nullptr), options.overlay);
+  const std::size_t n_refined = std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
+  const Eigen::Matrix3Xd& points = overlay.probe_points();
+  const auto largest_move = [&](const RigidTransform& x, const RigidTransform& y) {
+    return (x.apply(points) - y.apply(points)).colwise().norm().maxCoeff();
+  };
+  // A start within kRepeatDistance of an earlier refined start (merge-tree neighbours often
+  // share their transform) would refine to the same pose: it is scored where it is.
+  std::vector<RigidTransform> starts;
+  for (std::size_t k = 0; k < n_refined; ++k) {
+    if (std::none_of(starts.begin(), starts.end(), [&](const RigidTransform& s) {
+          return largest_move(s, placed[k].transform) <= kRepeatDistance;
+        })) {
+      starts.push_back(placed[k].transform);
+      placed[k].transform = overlay.refine(placed[k].transform);
+      placed[k].refined = true;
+    }
+    placed[k].overlay = overlay.score(placed[k].transform);
+  }
+  // Refined ones by score (stable: consensus order breaks ties), then the repeats.
+  std::stable_sort(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined),
+                   [](const Placed& x, const Placed& y) { return x.overlay.score > y.overlay.score; });
+  std::vector<Placed> distinct, repeats;
+  for (std::size_t k = 0; k < n_refined; ++k) {
+    const bool repeat = std::any_of(distinct.begin(), distinct.end(), [&](const Placed& d) {
+      return largest_move(d.transform, placed[k].transform) <= kRepeatDistance;
+    });
+    (repeat ? repeats : distinct).push_back(placed[k]);
+  }
+  distinct.insert(distinct.end(), repeats.begin(), repeats.end());
+  distinct.insert(distinct.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined), placed.end());
+  return distinct;
 }
 
 }  // namespace
@@ -57,23 +145,30 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
 
   clock = std::chrono::steady_clock::now();
   const std::vector<RankedAlignment> ranking = rank_alignments(clusters, options.ranking);
+  result.timing_ms.emplace_back("ranking", since_ms(clock));
+
+  clock = std::chrono::steady_clock::now();
+  const std::vector<Placed> placed = refine_and_order(ranking, clusters, reference, probe, options,
+                                                      reference_allowed, probe_allowed);
   std::vector<int> rank_of(clusters.size(), 0);
-  for (const RankedAlignment& r : ranking) rank_of[static_cast<std::size_t>(r.cluster)] = r.rank;
-  for (const RankedAlignment& r : ranking) {
-    const Cluster& c = clusters[static_cast<std::size_t>(r.cluster)];
+  for (std::size_t k = 0; k < placed.size(); ++k) rank_of[static_cast<std::size_t>(placed[k].cluster)] = static_cast<int>(k) + 1;
+  for (const Placed& p : placed) {
+    const Cluster& c = clusters[static_cast<std::size_t>(p.cluster)];
     Alignment a;
-    a.rank = r.rank;
-    a.transform = c.fit.transform.matrix();
+    a.rank = rank_of[static_cast<std::size_t>(p.cluster)];
+    a.transform = p.transform.matrix();
     a.rmsd = c.fit.rmsd;
     a.n_points = c.fit.n_points;
     a.r_chem = c.r_chem;
-    a.consensus = r.consensus;
-    for (const MatchedPair& p : c.pairs) a.cp_pairs.emplace_back(p.a, p.b);
+    a.consensus = p.consensus;
+    a.refined = p.refined;
+    a.overlay = p.overlay;
+    for (const MatchedPair& pair : c.pairs) a.cp_pairs.emplace_back(pair.a, pair.b);
     a.parent = c.parent >= 0 ? rank_of[static_cast<std::size_t>(c.parent)] : 0;
     for (int child : c.children) a.children.push_back(rank_of[static_cast<std::size_t>(child)]);
     result.alignments.push_back(std::move(a));
   }
-  result.timing_ms.emplace_back("ranking", since_ms(clock));
+  result.timing_ms.emplace_back("overlay refinement", since_ms(clock));
   return result;
 }
 

@@ -21,6 +21,19 @@ void require_same_size(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
   }
 }
 
+/// The proper rotation R maximising trace(R cross) (Kabsch, with the reflection corrected) and
+/// the translation taking from_centroid onto to_centroid after it.
+RigidTransform kabsch(const Eigen::Matrix3d& cross, const Eigen::Vector3d& from_centroid,
+                      const Eigen::Vector3d& to_centroid) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d correction = Eigen::Matrix3d::Identity();
+  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0) correction(2, 2) = -1.0;
+  RigidTransform transform;
+  transform.rotation = svd.matrixV() * correction * svd.matrixU().transpose();
+  transform.translation = to_centroid - transform.rotation * from_centroid;
+  return transform;
+}
+
 }  // namespace
 
 Eigen::Matrix4d RigidTransform::matrix() const {
@@ -48,13 +61,33 @@ RigidFit fit_rigid(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
   const Eigen::Vector3d to_centroid = to.rowwise().mean();
   const Eigen::Matrix3d cross =
       (from.colwise() - from_centroid) * (to.colwise() - to_centroid).transpose();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d correction = Eigen::Matrix3d::Identity();
-  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0) correction(2, 2) = -1.0;
   RigidFit fit;
-  fit.transform.rotation = svd.matrixV() * correction * svd.matrixU().transpose();
-  fit.transform.translation = to_centroid - fit.transform.rotation * from_centroid;
+  fit.transform = kabsch(cross, from_centroid, to_centroid);
   fit.rmsd = rmsd_under(fit.transform, from, to);
+  fit.n_points = static_cast<std::size_t>(from.cols());
+  return fit;
+}
+
+RigidFit fit_rigid_weighted(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
+                            const Eigen::Ref<const Eigen::Matrix3Xd>& to,
+                            const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  if (from.cols() != to.cols() || from.cols() != weights.size()) {
+    throw InputError("fit_rigid_weighted: " + std::to_string(from.cols()) + " points, " +
+                     std::to_string(to.cols()) + " targets and " + std::to_string(weights.size()) +
+                     " weights; expected one target and one weight per point");
+  }
+  if (!from.allFinite() || !to.allFinite() || !weights.allFinite() || (weights.array() < 0.0).any()) {
+    throw InputError("fit_rigid_weighted: a coordinate or weight is not finite or a weight is negative");
+  }
+  const double total = weights.sum();
+  if (!(total > 0.0)) throw InputError("fit_rigid_weighted: the weights sum to zero; expected a positive sum");
+  const Eigen::Vector3d from_centroid = from * weights / total;
+  const Eigen::Vector3d to_centroid = to * weights / total;
+  const Eigen::Matrix3d cross = (from.colwise() - from_centroid) * weights.asDiagonal() *
+                                (to.colwise() - to_centroid).transpose();
+  RigidFit fit;
+  fit.transform = kabsch(cross, from_centroid, to_centroid);
+  fit.rmsd = std::sqrt((fit.transform.apply(from) - to).colwise().squaredNorm().dot(weights) / total);
   fit.n_points = static_cast<std::size_t>(from.cols());
   return fit;
 }

@@ -7,6 +7,7 @@
 #include "surfcomp/matching/association_graph.hpp"
 #include "surfcomp/matching/clustering.hpp"
 #include "surfcomp/matching/correspondences.hpp"
+#include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/matching/ranking.hpp"
 
 #include <Eigen/Core>
@@ -23,9 +24,22 @@ struct MatchOptions {
   CorrespondenceOptions correspondences;  ///< image grid subsampling, R_chem property (esp)
   ClusteringOptions clustering;           ///< RMSD cut 4 A, merge cut 4 A
   RankingOptions ranking;                 ///< rank-by-rank, weights 1
+  /// Default 10. The alignments first in the consensus ranking that are refined on the whole
+  /// surfaces (SurfaceOverlay::refine) and then ranked by their overlay score, ahead of the
+  /// others; an alignment whose refined pose repeats a better one's (every sampled probe
+  /// point within 0.5 A) goes after the distinct ones. 0 ranks by the consensus alone (the
+  /// seed). Must be >= 0.
+  int refine_top = 10;
+  OverlayOptions overlay;                 ///< sigma 1 A, spacing 1.5 A, chemistry weight 6
+  /// Default 0 (the patch radius of the descriptions). With a binding site (the allowed
+  /// masks), the overlay samples only the vertices within this distance of an allowed
+  /// critical point. Must be >= 0.
+  double site_overlay_radius = 0.0;
 };
 
-/// One alignment of PROBE onto REF: a cluster of the merge tree.
+/// One alignment of PROBE onto REF: a cluster of the merge tree. rmsd, n_points and r_chem
+/// describe the fit of the cluster's CP correspondences; transform is that fit, refined when
+/// `refined`.
 struct Alignment {
   int rank = 0;                          ///< 1-based, best first
   Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  ///< moves PROBE coordinates into REF's frame
@@ -36,6 +50,9 @@ struct Alignment {
   std::vector<std::pair<int, int>> cp_pairs;  ///< (REF critical point, PROBE critical point)
   int parent = 0;                        ///< rank of the cluster this one merged into; 0 for a root
   std::vector<int> children;             ///< ranks of the two clusters merged into this one
+  bool refined = false;                  ///< transform refined on the whole surfaces (refine_top)
+  OverlayScore overlay;                  ///< whole-surface Tanimoto scores of the transform, for the
+                                         ///< first refine_top of the consensus ranking; 0 for the others
 };
 
 struct MatchResult {

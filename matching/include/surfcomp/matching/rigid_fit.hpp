@@ -39,6 +39,13 @@ struct RigidFit {
 RigidFit fit_rigid(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
                    const Eigen::Ref<const Eigen::Matrix3Xd>& to);
 
+/// Weighted least-squares rigid fit: the proper T minimising sum_i weights_i |T from_i - to_i|^2
+/// (Kabsch with weights); rmsd is the weighted RMS distance. Throws InputError when sizes differ,
+/// the weights sum to zero or less, or a value is not finite.
+RigidFit fit_rigid_weighted(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
+                            const Eigen::Ref<const Eigen::Matrix3Xd>& to,
+                            const Eigen::Ref<const Eigen::VectorXd>& weights);
+
 /// sqrt(sum_i |transform(from_i) - to_i|^2 / N) (A) for any transform. Throws InputError when
 /// the arrays differ in size or are empty.
 double rmsd_under(const RigidTransform& transform, const Eigen::Ref<const Eigen::Matrix3Xd>& from,

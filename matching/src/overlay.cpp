@@ -1,0 +1,281 @@
+#include "surfcomp/matching/overlay.hpp"
+
+#include "surfcomp/core/error.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+
+namespace surfcomp::matching {
+namespace {
+
+constexpr double kCutoffSigmas = 3.0;
+
+void require_positive(double value, const char* name) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw OptionError(std::string("overlay: ") + name + " must be a finite number > 0, got " + std::to_string(value));
+  }
+}
+
+/// Vertex areas: a third of each incident triangle's area.
+Eigen::VectorXd vertex_areas(const Eigen::MatrixX3d& positions, const Eigen::MatrixX3i& faces) {
+  Eigen::VectorXd area = Eigen::VectorXd::Zero(positions.rows());
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    const Eigen::Vector3d p0 = positions.row(faces(f, 0));
+    const Eigen::Vector3d p1 = positions.row(faces(f, 1));
+    const Eigen::Vector3d p2 = positions.row(faces(f, 2));
+    const double third = (p1 - p0).cross(p2 - p0).norm() / 6.0;
+    for (int k = 0; k < 3; ++k) area(faces(f, k)) += third;
+  }
+  return area;
+}
+
+/// sqrt(sum w x^2 / sum w) over both samples' values; 1 when it is zero (no such property).
+double root_mean_square(const Eigen::VectorXd& a, const Eigen::VectorXd& wa, const Eigen::VectorXd& b,
+                        const Eigen::VectorXd& wb) {
+  const double r = std::sqrt(((a.array().square() * wa.array()).sum() + (b.array().square() * wb.array()).sum()) /
+                             (wa.sum() + wb.sum()));
+  return r > 0.0 ? r : 1.0;
+}
+
+}  // namespace
+
+SurfaceSample sample_surface(const mesh::Surface& surface, double spacing, const std::vector<bool>* vertex_mask) {
+  require_positive(spacing, "spacing");
+  const std::size_t n = surface.n_vertices();
+  if (vertex_mask != nullptr && vertex_mask->size() != n) {
+    throw InputError(surface.source() + ": overlay vertex mask has " + std::to_string(vertex_mask->size()) +
+                     " flags for " + std::to_string(n) + " vertices");
+  }
+  const Eigen::MatrixX3d positions = surface.positions();
+  Eigen::MatrixX3d normals;
+  if (surface.has_normals()) {
+    normals = surface.normals();
+  } else {
+    mesh::Surface copy = surface;
+    copy.compute_normals();
+    normals = copy.normals();
+  }
+  const Eigen::VectorXd area = vertex_areas(positions, surface.faces());
+  const auto property_or_zero = [&](const char* name) {
+    return surface.has_property(name) ? surface.property(name) : Eigen::VectorXd(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n)));
+  };
+  const Eigen::VectorXd esp = property_or_zero(mesh::property::esp);
+  const Eigen::VectorXd lp = property_or_zero(mesh::property::lp);
+
+  struct Cell {
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    double esp = 0.0, lp = 0.0, weight = 0.0;
+  };
+  std::map<std::array<long, 3>, Cell> cells;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (vertex_mask != nullptr && !(*vertex_mask)[v]) continue;
+    const Eigen::Index i = static_cast<Eigen::Index>(v);
+    const double w = area(i);
+    if (!(w > 0.0)) continue;
+    const Eigen::Vector3d p = positions.row(i);
+    const std::array<long, 3> key{static_cast<long>(std::floor(p.x() / spacing)),
+                                  static_cast<long>(std::floor(p.y() / spacing)),
+                                  static_cast<long>(std::floor(p.z() / spacing))};
+    Cell& cell = cells[key];
+    cell.position += w * p;
+    cell.normal += w * Eigen::Vector3d(normals.row(i));
+    cell.esp += w * esp(i);
+    cell.lp += w * lp(i);
+    cell.weight += w;
+  }
+  SurfaceSample sample;
+  const Eigen::Index m = static_cast<Eigen::Index>(cells.size());
+  sample.points.resize(3, m);
+  sample.normals.resize(3, m);
+  sample.weights.resize(m);
+  sample.esp.resize(m);
+  sample.lp.resize(m);
+  Eigen::Index k = 0;
+  for (const auto& [key, cell] : cells) {
+    sample.points.col(k) = cell.position / cell.weight;
+    const double length = cell.normal.norm();
+    sample.normals.col(k) = length > 0.0 ? Eigen::Vector3d(cell.normal / length) : Eigen::Vector3d::Zero();
+    sample.esp(k) = cell.esp / cell.weight;
+    sample.lp(k) = cell.lp / cell.weight;
+    sample.weights(k) = cell.weight;
+    ++k;
+  }
+  return sample;
+}
+
+SurfaceOverlay::Grid SurfaceOverlay::make_grid(const SurfaceSample& sample, double cell) {
+  Grid grid;
+  grid.cell = cell;
+  grid.origin = sample.points.rowwise().minCoeff();
+  const Eigen::Vector3d extent = sample.points.rowwise().maxCoeff() - grid.origin;
+  for (int d = 0; d < 3; ++d) grid.size(d) = static_cast<int>(std::floor(extent(d) / cell)) + 1;
+  const auto cell_of = [&](Eigen::Index i) {
+    const Eigen::Vector3i c = ((sample.points.col(i) - grid.origin) / cell).array().floor().cast<int>();
+    return (c.z() * grid.size.y() + c.y()) * grid.size.x() + c.x();
+  };
+  const std::size_t cells = static_cast<std::size_t>(grid.size.prod());
+  grid.start.assign(cells + 1, 0);
+  for (Eigen::Index i = 0; i < sample.points.cols(); ++i) ++grid.start[static_cast<std::size_t>(cell_of(i)) + 1];
+  for (std::size_t c = 0; c < cells; ++c) grid.start[c + 1] += grid.start[c];
+  grid.points.resize(sample.size());
+  std::vector<int> fill(grid.start.begin(), grid.start.end() - 1);
+  for (Eigen::Index i = 0; i < sample.points.cols(); ++i) {
+    grid.points[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of(i))]++)] = static_cast<int>(i);
+  }
+  return grid;
+}
+
+namespace {
+
+/// Calls visit(i) for each point i of `grid` in the 3 x 3 x 3 cells around `p`: with cells no
+/// smaller than the cutoff, they hold every point within the cutoff of p.
+template <typename Grid, typename Visit>
+void visit_near(const Grid& grid, const Eigen::Vector3d& p, const Visit& visit) {
+  const Eigen::Vector3d local = (p - grid.origin) / grid.cell;
+  // Far outside the grid (also guards the int conversion below).
+  if ((local.array() < -1.0).any() || (local.array() > grid.size.template cast<double>().array() + 1.0).any()) return;
+  const Eigen::Vector3i c = local.array().floor().cast<int>();
+  for (int z = std::max(c.z() - 1, 0); z <= std::min(c.z() + 1, grid.size.z() - 1); ++z) {
+    for (int y = std::max(c.y() - 1, 0); y <= std::min(c.y() + 1, grid.size.y() - 1); ++y) {
+      for (int x = std::max(c.x() - 1, 0); x <= std::min(c.x() + 1, grid.size.x() - 1); ++x) {
+        const std::size_t cell = static_cast<std::size_t>((z * grid.size.y() + y) * grid.size.x() + x);
+        for (int k = grid.start[cell]; k < grid.start[cell + 1]; ++k) visit(grid.points[static_cast<std::size_t>(k)]);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+double SurfaceOverlay::chemistry(const SurfaceSample& a, int i, const SurfaceSample& b, int j) const {
+  return std::max(0.0, a.esp(i) * b.esp(j)) / (esp_rms_ * esp_rms_) + std::max(0.0, a.lp(i) * b.lp(j)) / (lp_rms_ * lp_rms_);
+}
+
+SurfaceOverlay::Sums SurfaceOverlay::overlap(const SurfaceSample& a, const Grid& grid, const SurfaceSample& b,
+                                             const RigidTransform& transform, Eigen::Matrix3Xd* targets,
+                                             Eigen::VectorXd* target_weights) const {
+  const double cutoff2 = std::pow(kCutoffSigmas * options_.sigma, 2);
+  const double inv2s2 = 1.0 / (2.0 * options_.sigma * options_.sigma);
+  Sums sums;
+  for (Eigen::Index j = 0; j < b.points.cols(); ++j) {
+    const Eigen::Vector3d q = transform.rotation * b.points.col(j) + transform.translation;
+    const Eigen::Vector3d m = transform.rotation * b.normals.col(j);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    double total = 0.0;
+    visit_near(grid, q, [&](int i) {
+      const double d2 = (a.points.col(i) - q).squaredNorm();
+      if (d2 > cutoff2) return;
+      const double facing = a.normals.col(i).dot(m);
+      if (facing <= 0.0) return;
+      const double k = a.weights(i) * std::exp(-d2 * inv2s2) * facing;
+      const double c = chemistry(a, i, b, static_cast<int>(j));
+      sums.shape += b.weights(j) * k;
+      sums.chem += b.weights(j) * k * c;
+      const double pull = k * (1.0 + options_.chem_weight * c);
+      mean += pull * a.points.col(i);
+      total += pull;
+    });
+    if (targets != nullptr) {
+      targets->col(j) = total > 0.0 ? Eigen::Vector3d(mean / total) : q;
+      (*target_weights)(j) = b.weights(j) * total;
+    }
+  }
+  return sums;
+}
+
+OverlayScore SurfaceOverlay::tanimoto(const Sums& sums) const {
+  OverlayScore s;
+  s.shape = sums.shape / (self_.shape - sums.shape);
+  s.chem = sums.chem / (self_.chem - sums.chem);
+  s.score = (s.shape + options_.chem_weight * s.chem) / (1.0 + options_.chem_weight);
+  return s;
+}
+
+SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, const OverlayOptions& options)
+    : reference_(std::move(reference)), probe_(std::move(probe)), options_(options) {
+  require_positive(options_.sigma, "sigma");
+  require_positive(options_.spacing, "spacing");
+  if (!(options_.chem_weight >= 0.0) || !std::isfinite(options_.chem_weight)) {
+    throw OptionError("overlay: chem_weight must be a finite number >= 0, got " + std::to_string(options_.chem_weight));
+  }
+  if (options_.iterations < 0) throw OptionError("overlay: iterations must be >= 0, got " + std::to_string(options_.iterations));
+  if (!(options_.tolerance >= 0.0)) throw OptionError("overlay: tolerance must be >= 0");
+  if (reference_.size() == 0 || probe_.size() == 0) {
+    throw InputError(std::string("overlay: the ") + (reference_.size() == 0 ? "reference" : "probe") +
+                     " sample has no points (an empty surface or site region)");
+  }
+  esp_rms_ = root_mean_square(reference_.esp, reference_.weights, probe_.esp, probe_.weights);
+  lp_rms_ = root_mean_square(reference_.lp, reference_.weights, probe_.lp, probe_.weights);
+  const double cell = kCutoffSigmas * options_.sigma;
+  reference_grid_ = make_grid(reference_, cell);
+  const Grid probe_grid = make_grid(probe_, cell);
+  const RigidTransform identity;
+  const Sums reference_self = overlap(reference_, reference_grid_, reference_, identity);
+  const Sums probe_self = overlap(probe_, probe_grid, probe_, identity);
+  self_.shape = reference_self.shape + probe_self.shape;
+  self_.chem = reference_self.chem + probe_self.chem;
+}
+
+OverlayScore SurfaceOverlay::score(const RigidTransform& transform) const {
+  return tanimoto(overlap(reference_, reference_grid_, probe_, transform));
+}
+
+namespace {
+
+/// `current` followed by `alpha` times the motion that takes `current` to `step` (rotation angle
+/// and translation scaled about `centre`, a point in the moved frame); alpha 1 gives `step`.
+RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& step, const Eigen::Vector3d& centre,
+                           double alpha) {
+  const Eigen::Matrix3d relative = step.rotation * current.rotation.transpose();
+  const Eigen::Vector3d shift = relative * centre + (step.translation - relative * current.translation) - centre;
+  const Eigen::AngleAxisd angle_axis(relative);
+  const Eigen::Matrix3d scaled = Eigen::AngleAxisd(alpha * angle_axis.angle(), angle_axis.axis()).toRotationMatrix();
+  RigidTransform out;
+  out.rotation = scaled * current.rotation;
+  out.translation = scaled * (current.translation - centre) + centre + alpha * shift;
+  return out;
+}
+
+}  // namespace
+
+RigidTransform SurfaceOverlay::refine(const RigidTransform& start) const {
+  constexpr double kMaxAlpha = 8.0;
+  const Eigen::Index n = probe_.points.cols();
+  const Eigen::Vector3d probe_centroid = probe_.points * probe_.weights / probe_.weights.sum();
+  Eigen::Matrix3Xd targets(3, n), next_targets(3, n);
+  Eigen::VectorXd weights(n), next_weights(n);
+  RigidTransform current = start;
+  double current_score = tanimoto(overlap(reference_, reference_grid_, probe_, current, &targets, &weights)).score;
+  // Expectation-maximisation steps, over-relaxed: while they keep raising the score, the step
+  // is stretched (alpha doubles up to kMaxAlpha); one that does not is retried plain.
+  double alpha = 1.0;
+  for (int iteration = 0; iteration < options_.iterations; ++iteration) {
+    if (!(weights.sum() > 0.0)) break;
+    const RigidTransform em = fit_rigid_weighted(probe_.points, targets, weights).transform;
+    RigidTransform next = extrapolate(current, em, current.apply(probe_centroid), alpha);
+    double next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights)).score;
+    if (!(next_score > current_score) && alpha > 1.0) {
+      alpha = 1.0;
+      next = em;
+      next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights)).score;
+    } else {
+      alpha = std::min(2.0 * alpha, kMaxAlpha);
+    }
+    if (!(next_score > current_score)) break;
+    const double moved = (next.apply(probe_.points) - current.apply(probe_.points)).colwise().norm().maxCoeff();
+    current = next;
+    current_score = next_score;
+    targets.swap(next_targets);
+    weights.swap(next_weights);
+    if (moved <= options_.tolerance) break;
+  }
+  return current;
+}
+
+}  // namespace surfcomp::matching

@@ -1,0 +1,164 @@
+// The whole-surface overlay: sampling keeps the area, the Tanimoto scores are 1 exactly for a
+// surface on itself (also moved) and symmetric in the two surfaces, refinement climbs back to
+// a known motion, and the weighted rigid fit ignores what has no weight.
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/matching/overlay.hpp"
+#include "surfcomp/mesh/surface.hpp"
+
+#include "analytic_meshes.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace surfcomp {
+namespace {
+
+using matching::RigidTransform;
+
+/// An ellipsoid with distinct axes and an ESP that varies along x and an LP along y, so that
+/// neither its shape's symmetries nor its chemistry's leave another pose as good as the true one.
+mesh::Surface labelled_ellipsoid() {
+  mesh::Surface surface = test::ellipsoid(4.0, 2.5, 1.5, 24);
+  const Eigen::MatrixX3d p = surface.positions();
+  surface.set_property(mesh::property::esp, Eigen::VectorXd(p.col(0) * 3.0 + p.col(2)));
+  surface.set_property(mesh::property::lp, Eigen::VectorXd(p.col(1) * 0.2));
+  surface.compute_normals();
+  return surface;
+}
+
+RigidTransform motion(double degrees, const Eigen::Vector3d& axis, const Eigen::Vector3d& shift) {
+  RigidTransform t;
+  t.rotation = Eigen::AngleAxisd(degrees * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+  t.translation = shift;
+  return t;
+}
+
+mesh::Surface moved(const mesh::Surface& surface, const RigidTransform& t) {
+  mesh::Surface copy = surface;
+  mesh::transform_surface(copy, t.rotation, t.translation);
+  return copy;
+}
+
+RigidTransform inverse(const RigidTransform& t) {
+  RigidTransform i;
+  i.rotation = t.rotation.transpose();
+  i.translation = -(i.rotation * t.translation);
+  return i;
+}
+
+double surface_area(const mesh::Surface& surface) { return mesh::measure_surface(surface).area; }
+
+TEST(Overlay, SampleWeightsAddUpToTheArea) {
+  const mesh::Surface surface = labelled_ellipsoid();
+  const matching::SurfaceSample sample = matching::sample_surface(surface, 1.0);
+  EXPECT_NEAR(sample.weights.sum(), surface_area(surface), 1e-9 * surface_area(surface));
+  EXPECT_LT(sample.size(), surface.n_vertices());
+  for (std::size_t i = 0; i < sample.size(); ++i) EXPECT_NEAR(sample.normals.col(static_cast<Eigen::Index>(i)).norm(), 1.0, 1e-12);
+  // A mask keeping the half x > 0 keeps about half the area, and only points there.
+  const Eigen::MatrixX3d p = surface.positions();
+  std::vector<bool> half(surface.n_vertices());
+  for (std::size_t v = 0; v < half.size(); ++v) half[v] = p(static_cast<Eigen::Index>(v), 0) > 0.0;
+  const matching::SurfaceSample part = matching::sample_surface(surface, 1.0, &half);
+  EXPECT_NEAR(part.weights.sum() / sample.weights.sum(), 0.5, 0.05);
+  EXPECT_GT(part.points.row(0).minCoeff(), 0.0);
+}
+
+TEST(Overlay, ASurfaceOnItselfScoresOneAndLessWhenMoved) {
+  const mesh::Surface surface = labelled_ellipsoid();
+  const matching::SurfaceSample sample = matching::sample_surface(surface, 1.0);
+  const matching::SurfaceOverlay overlay(sample, sample);
+  const matching::OverlayScore at_identity = overlay.score(RigidTransform{});
+  EXPECT_NEAR(at_identity.shape, 1.0, 1e-12);
+  EXPECT_NEAR(at_identity.chem, 1.0, 1e-12);
+  EXPECT_NEAR(at_identity.score, 1.0, 1e-12);
+  double last = 1.0;
+  for (double shift : {0.5, 1.0, 2.0, 4.0}) {
+    const double s = overlay.score(motion(0.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d(shift, 0.0, 0.0))).score;
+    EXPECT_LT(s, last) << "shift " << shift;
+    EXPECT_GE(s, 0.0);
+    last = s;
+  }
+  // Turned by 180 degrees about z the shape nearly coincides but the ESP (along x) is reversed.
+  const matching::OverlayScore turned = overlay.score(motion(180.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
+  EXPECT_GT(turned.shape, 0.9);
+  EXPECT_LT(turned.chem, 0.5 * turned.shape);
+}
+
+TEST(Overlay, ScoresAreSymmetricInTheTwoSurfaces) {
+  const mesh::Surface a = labelled_ellipsoid();
+  const mesh::Surface b = test::icosphere(2.5, 12);
+  const matching::SurfaceSample sa = matching::sample_surface(a, 1.0);
+  const matching::SurfaceSample sb = matching::sample_surface(b, 1.0);
+  const RigidTransform t = motion(37.0, Eigen::Vector3d(1.0, 2.0, 3.0), Eigen::Vector3d(0.7, -0.4, 0.2));
+  const matching::OverlayScore ab = matching::SurfaceOverlay(sa, sb).score(t);
+  const matching::OverlayScore ba = matching::SurfaceOverlay(sb, sa).score(inverse(t));
+  EXPECT_GT(ab.shape, 0.05);
+  EXPECT_LT(ab.shape, 1.0);
+  EXPECT_NEAR(ab.shape, ba.shape, 1e-12);
+  EXPECT_NEAR(ab.chem, ba.chem, 1e-12);
+}
+
+TEST(Overlay, RefinementRecoversAKnownMotion) {
+  const mesh::Surface reference = labelled_ellipsoid();
+  // The probe is the reference moved by `truth`; the answer is its inverse.
+  const RigidTransform truth = motion(70.0, Eigen::Vector3d(1.0, -1.0, 2.0), Eigen::Vector3d(5.0, -3.0, 8.0));
+  const mesh::Surface probe = moved(reference, truth);
+  const matching::SurfaceOverlay overlay(matching::sample_surface(reference, 1.0), matching::sample_surface(probe, 1.0));
+  const RigidTransform answer = inverse(truth);
+  const Eigen::Vector3d centre = probe.positions().colwise().mean();
+  for (const RigidTransform& error : {motion(12.0, Eigen::Vector3d(0.0, 1.0, 1.0), Eigen::Vector3d(0.8, 0.3, -0.5)),
+                                      motion(-8.0, Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(-1.0, 0.5, 0.5))}) {
+    RigidTransform start;  // the answer, then off by `error`
+    start.rotation = error.rotation * answer.rotation;
+    start.translation = error.rotation * answer.translation + error.translation;
+    const RigidTransform refined = overlay.refine(start);
+    const double angle = matching::rotation_angle_degrees(refined.rotation * answer.rotation.transpose());
+    const double shift = ((refined.rotation * centre + refined.translation) - (answer.rotation * centre + answer.translation)).norm();
+    const double start_angle = matching::rotation_angle_degrees(start.rotation * answer.rotation.transpose());
+    std::printf("[ refine   ] start %.1f deg off -> %.3f deg, %.3f A; score %.3f -> %.3f\n", start_angle, angle, shift,
+                overlay.score(start).score, overlay.score(refined).score);
+    EXPECT_LT(angle, 1.0);
+    EXPECT_LT(shift, 0.2);
+    EXPECT_GT(overlay.score(refined).score, overlay.score(start).score);
+  }
+}
+
+TEST(Overlay, WeightedFitIgnoresPointsWithoutWeight) {
+  const RigidTransform truth = motion(50.0, Eigen::Vector3d(0.3, 1.0, -0.2), Eigen::Vector3d(1.0, 2.0, 3.0));
+  Eigen::Matrix3Xd from(3, 6);
+  from << 0, 1, 0, 0, 2, -1,  //
+      0, 0, 1, 0, 1, 3,       //
+      0, 0, 0, 1, -1, 2;
+  Eigen::Matrix3Xd to = truth.apply(from);
+  to.col(5) += Eigen::Vector3d(10.0, -7.0, 4.0);  // an outlier with weight 0
+  Eigen::VectorXd weights(6);
+  weights << 1.0, 2.0, 0.5, 1.0, 3.0, 0.0;
+  const matching::RigidFit fit = matching::fit_rigid_weighted(from, to, weights);
+  EXPECT_LT((fit.transform.rotation - truth.rotation).norm(), 1e-12);
+  EXPECT_LT((fit.transform.translation - truth.translation).norm(), 1e-12);
+  EXPECT_LT(fit.rmsd, 1e-12);
+  // Equal weights: the unweighted fit.
+  const matching::RigidFit plain = matching::fit_rigid(from, to);
+  const matching::RigidFit equal = matching::fit_rigid_weighted(from, to, Eigen::VectorXd::Constant(6, 2.0));
+  EXPECT_LT((plain.transform.matrix() - equal.transform.matrix()).norm(), 1e-12);
+  EXPECT_NEAR(plain.rmsd, equal.rmsd, 1e-12);
+  EXPECT_THROW(matching::fit_rigid_weighted(from, to, Eigen::VectorXd::Zero(6)), InputError);
+}
+
+TEST(Overlay, RejectsBadOptionsAndEmptySamples) {
+  const mesh::Surface surface = labelled_ellipsoid();
+  const matching::SurfaceSample sample = matching::sample_surface(surface, 1.0);
+  matching::OverlayOptions options;
+  options.sigma = 0.0;
+  EXPECT_THROW(matching::SurfaceOverlay(sample, sample, options), OptionError);
+  EXPECT_THROW(matching::sample_surface(surface, -1.0), OptionError);
+  const std::vector<bool> none(surface.n_vertices(), false);
+  EXPECT_THROW(matching::SurfaceOverlay(sample, matching::sample_surface(surface, 1.0, &none)), InputError);
+  const std::vector<bool> wrong_size(3, true);
+  EXPECT_THROW(matching::sample_surface(surface, 1.0, &wrong_size), InputError);
+}
+
+}  // namespace
+}  // namespace surfcomp
