@@ -10,7 +10,7 @@
 //
 //   ./build/r/bench/site_bench [entries.txt [PREFIX]]
 // entries.txt defaults to ../shared/datasets/kahraman-dev/entries.txt; PREFIX, when given, makes
-// PREFIX.<variant>.csv with one row per pair (sites, same type, top-1 pairs, points, r_chem,
+// PREFIX.<variant>.csv with one row per pair (sites, same type, top-1 pairs, points, r_chem, overlay scores,
 // imaged CPs, ms).
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
@@ -143,6 +143,7 @@ struct PairResult {
   std::size_t pairs = 0;    ///< critical-point pairs of the top-1 alignment (0: no alignment)
   std::size_t points = 0;   ///< its corresponding surface points
   double r_chem = 0;        ///< its ESP correlation at those points
+  matching::OverlayScore overlay;  ///< its whole-site overlay scores (0 when not refined)
   double match_ms = 0;
 };
 
@@ -258,6 +259,7 @@ int main(int argc, char** argv) {
             r.pairs = top.cp_pairs.size();
             r.points = top.n_points;
             r.r_chem = top.r_chem;
+            r.overlay = top.overlay;
           }
           results.push_back(r);
         }
@@ -280,6 +282,12 @@ int main(int argc, char** argv) {
              const double union_size = static_cast<double>(x.imaged + y.imaged) - static_cast<double>(r.pairs);
              return union_size > 0 ? static_cast<double>(r.pairs) / union_size : 0.0;
            }},
+          {"overlay", "top-1 overlay score of the site regions (shape + 6 chem) / 7",
+           [](const PairResult& r, const Site&, const Site&) { return r.overlay.score; }},
+          {"overlay_shape", "top-1 shape Tanimoto of the site regions",
+           [](const PairResult& r, const Site&, const Site&) { return r.overlay.shape; }},
+          {"overlay_chem", "top-1 ESP/LP colour Tanimoto of the site regions",
+           [](const PairResult& r, const Site&, const Site&) { return r.overlay.chem; }},
           {"coverage_chem", "coverage * (1 + r_chem) / 2",
            [](const PairResult& r, const Site& x, const Site& y) {
              const double smaller = static_cast<double>(std::min(x.imaged, y.imaged));
@@ -289,10 +297,11 @@ int main(int argc, char** argv) {
       if (argc > 2) {
         std::ofstream csv(std::string(argv[2]) + "." + variant.name + ".csv");
         if (!csv) throw FileError(argv[2], "cannot write the pairs table");
-        csv << "a,b,same,pairs,points,r_chem,imaged_a,imaged_b,match_ms\n";
+        csv << "a,b,same,pairs,points,r_chem,overlay,overlay_shape,overlay_chem,imaged_a,imaged_b,match_ms\n";
         for (const auto& r : results) {
           csv << sites[r.a].entry.pdb << ',' << sites[r.b].entry.pdb << ',' << r.same << ',' << r.pairs << ','
-              << r.points << ',' << r.r_chem << ',' << sites[r.a].imaged << ',' << sites[r.b].imaged << ','
+              << r.points << ',' << r.r_chem << ',' << r.overlay.score << ',' << r.overlay.shape << ','
+              << r.overlay.chem << ',' << sites[r.a].imaged << ',' << sites[r.b].imaged << ','
               << r.match_ms << '\n';
         }
       }
