@@ -1,7 +1,8 @@
 // Test-only analytic surfaces with known geometry: an icosphere (geodesic subdivision of the
-// icosahedron projected to a sphere), an ellipsoid (a scaled icosphere), a torus and a planar
-// disk. Each returns a mesh::Surface built with Surface::from_arrays (no normals set), faces
-// counter-clockwise seen from outside (the disk: seen from +z).
+// icosahedron projected to a sphere), an ellipsoid (a scaled icosphere), a torus, a planar
+// disk, and the regular tetrahedron and octahedron. Each returns a mesh::Surface built with
+// Surface::from_arrays (no normals set), faces counter-clockwise seen from outside (the disk:
+// seen from +z).
 #pragma once
 
 #include "surfcomp/mesh/surface.hpp"
@@ -224,6 +225,41 @@ inline mesh::Surface disk(double radius, int rings) {
         triangles[f][2];
   }
   return mesh::Surface::from_arrays(m.positions, m.faces, "disk");
+}
+
+/// The regular tetrahedron (4 vertices) inscribed in the sphere of radius `radius` (A) about
+/// `centre`: the smallest closed triangle mesh.
+inline mesh::Surface tetrahedron(double radius, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
+  Eigen::MatrixX3d p(4, 3);
+  p << 1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1;
+  p *= radius / std::sqrt(3.0);
+  p.rowwise() += centre.transpose();
+  Eigen::MatrixX3i f(4, 3);
+  f << 0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2;
+  return mesh::Surface::from_arrays(p, f, "tetrahedron");
+}
+
+/// The regular octahedron (6 vertices) inscribed in the sphere of radius `radius` (A) about
+/// `centre`.
+inline mesh::Surface octahedron(double radius, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
+  Eigen::MatrixX3d p(6, 3);
+  p << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
+  p *= radius;
+  p.rowwise() += centre.transpose();
+  Eigen::MatrixX3i f(8, 3);
+  f << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
+  return mesh::Surface::from_arrays(p, f, "octahedron");
+}
+
+/// Both surfaces in one mesh (two or more connected components): `first`'s vertices, then
+/// `second`'s.
+inline mesh::Surface merged(const mesh::Surface& first, const mesh::Surface& second) {
+  const Eigen::Index n = static_cast<Eigen::Index>(first.n_vertices());
+  Eigen::MatrixX3d p(n + static_cast<Eigen::Index>(second.n_vertices()), 3);
+  p << first.positions(), second.positions();
+  Eigen::MatrixX3i f(static_cast<Eigen::Index>(first.n_faces() + second.n_faces()), 3);
+  f << first.faces(), (second.faces().array() + static_cast<int>(n)).matrix();
+  return mesh::Surface::from_arrays(p, f, first.source() + " + " + second.source());
 }
 
 /// The same surface with every face's orientation reversed (an inside-out surface).

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <iostream>
 #include <random>
+#include <string>
 
 namespace surfcomp::mesh {
 namespace {
@@ -223,6 +224,48 @@ TEST(PrincipalCurvatures, UsesTheSurfaceNormalsWhenItHasThem) {
   EXPECT_GE(fraction_near(k.shape_index, -1.0, 0.02), 0.95);  // seen from inside: a cup
 }
 
+TEST(PrincipalCurvatures, ComponentSmallerThanMinPointsGetsItsCircumsphere) {
+  // 4 and 6 vertices, fewer than min_points (12): each neighbourhood is the whole closed
+  // component, and the fitted sphere is its circumsphere, at every scale and wherever it lies.
+  const Eigen::Vector3d centre(3.0, -1.0, 2.0);
+  for (auto method : {CurvatureMethod::quadric, CurvatureMethod::jet}) {
+    CurvatureOptions options;
+    options.method = method;
+    for (const double r : {1e-3, 0.02, 1.7, 1e3}) {
+      for (const Surface& shape : {test::tetrahedron(r, centre), test::octahedron(r, centre)}) {
+        const PrincipalCurvatures k = principal_curvatures(shape, options);
+        const std::string what = shape.source() + " r " + std::to_string(r);
+        EXPECT_LT((k.cc1.array() * r + 1.0).abs().maxCoeff(), 1e-9) << what;
+        EXPECT_LT((k.cc2.array() * r + 1.0).abs().maxCoeff(), 1e-9) << what;
+        EXPECT_LT((k.shape_index.array() - 1.0).abs().maxCoeff(), 1e-9) << what;
+        EXPECT_LT((k.curvedness.array() * r - 1.0).abs().maxCoeff(), 1e-9) << what;
+        // Inside out, the same sphere is a cup.
+        const PrincipalCurvatures cup =
+            principal_curvatures(test::with_flipped_faces(shape), options);
+        EXPECT_LT((cup.cc1.array() * r - 1.0).abs().maxCoeff(), 1e-9) << what;
+        EXPECT_LT((cup.shape_index.array() + 1.0).abs().maxCoeff(), 1e-9) << what;
+      }
+    }
+  }
+}
+
+TEST(PrincipalCurvatures, TinyComponentLeavesTheRestOfTheSurfaceAlone) {
+  // A sphere with a 4-vertex fragment 0.02 A across beside it, as the SES grid can leave where
+  // it loses a sub-voxel neck: each vertex is fitted within its own component.
+  const double r = 2.0, fragment = 0.02;
+  const Surface sphere = test::icosphere(r, 6);
+  const Surface both =
+      test::merged(sphere, test::tetrahedron(fragment, Eigen::Vector3d(4.0, 0.0, 0.0)));
+  const PrincipalCurvatures alone = principal_curvatures(sphere);
+  const PrincipalCurvatures k = principal_curvatures(both);
+  const Eigen::Index n = alone.cc1.size();
+  EXPECT_TRUE((k.cc1.head(n).array() == alone.cc1.array()).all());
+  EXPECT_TRUE((k.cc2.head(n).array() == alone.cc2.array()).all());
+  EXPECT_TRUE((k.shape_index.head(n).array() == alone.shape_index.array()).all());
+  EXPECT_LT((k.cc1.tail(4).array() * fragment + 1.0).abs().maxCoeff(), 1e-9);
+  EXPECT_LT((k.cc2.tail(4).array() * fragment + 1.0).abs().maxCoeff(), 1e-9);
+}
+
 TEST(PrincipalCurvatures, RejectsBadInput) {
   Eigen::MatrixX3d points(3, 3);
   points << 0, 0, 0, 1, 0, 0, 0, 1, 0;
@@ -232,6 +275,7 @@ TEST(PrincipalCurvatures, RejectsBadInput) {
 
   Eigen::MatrixX3i one_face(1, 3);
   one_face << 0, 1, 2;
+  // Three vertices: fewer than even the sphere's 4 coefficients.
   EXPECT_THROW(principal_curvatures(Surface::from_arrays(points, one_face)), TopologyError);
 
   const Surface sphere = test::icosphere(1.0, 2);

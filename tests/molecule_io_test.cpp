@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -577,6 +578,33 @@ M  END
 $$$$
 )";
 
+// Alternate locations: SER 1 with CB and OG in A and B, residue 2 as ALA (A) or GLY (B)
+// (microheterogeneity), and a sulfate present only as B.
+constexpr const char* kAltlocPdb = R"(ATOM      1  N   SER A   1       0.000   0.000   0.000  1.00 10.00           N
+ATOM      2  CA  SER A   1       1.458   0.000   0.000  1.00 10.00           C
+ATOM      3  C   SER A   1       2.009   1.420   0.000  1.00 10.00           C
+ATOM      4  O   SER A   1       1.251   2.390   0.000  1.00 10.00           O
+ATOM      5  CB ASER A   1       1.988  -0.773  -1.199  0.60 10.00           C
+ATOM      6  CB BSER A   1       1.988  -0.773   1.199  0.40 10.00           C
+ATOM      7  OG ASER A   1       3.400  -0.800  -1.250  0.60 10.00           O
+ATOM      8  OG BSER A   1       3.400  -0.800   1.250  0.40 10.00           O
+ATOM      9  N  AALA A   2       3.332   1.547   0.000  0.50 10.00           N
+ATOM     10  CA AALA A   2       3.956   2.862   0.000  0.50 10.00           C
+ATOM     11  C  AALA A   2       5.470   2.732   0.000  0.50 10.00           C
+ATOM     12  O  AALA A   2       6.020   1.631   0.000  0.50 10.00           O
+ATOM     13  CB AALA A   2       3.500   3.650   1.220  0.50 10.00           C
+ATOM     14  N  BGLY A   2       3.332   1.547   0.300  0.50 10.00           N
+ATOM     15  CA BGLY A   2       3.956   2.862   0.300  0.50 10.00           C
+ATOM     16  C  BGLY A   2       5.470   2.732   0.300  0.50 10.00           C
+ATOM     17  O  BGLY A   2       6.020   1.631   0.300  0.50 10.00           O
+HETATM   18  S  BSO4 A 101      12.000  12.000  12.000  0.30 10.00           S
+HETATM   19  O1 BSO4 A 101      12.850  12.850  12.850  0.30 10.00           O
+HETATM   20  O2 BSO4 A 101      11.150  11.150  12.850  0.30 10.00           O
+HETATM   21  O3 BSO4 A 101      11.150  12.850  11.150  0.30 10.00           O
+HETATM   22  O4 BSO4 A 101      12.850  11.150  11.150  0.30 10.00           O
+END
+)";
+
 // A scratch directory for files a test writes, removed with the fixture.
 class TempDir {
  public:
@@ -827,6 +855,54 @@ TEST(MoleculeIo, WholeThermolysinWithoutWaterAndItsInhibitor) {
     // Same residue, same proximity bonding: same Crippen increments.
     EXPECT_NEAR(ligand.atoms[i].lipophilicity, original_ligand.atoms[i].lipophilicity, 1e-12);
   }
+}
+
+TEST(MoleculeIo, PdbKeepsTheFirstAlternateLocationOfEveryAtom) {
+  TempDir dir;
+  const fs::path file = dir.write("altloc.pdb", kAltlocPdb);
+  struct Expected {
+    const char* residue;
+    int number;
+    const char* name;
+    Eigen::Vector3d position;
+  };
+  const std::vector<Expected> expected = {
+      {"SER", 1, "N", {0.000, 0.000, 0.000}},     {"SER", 1, "CA", {1.458, 0.000, 0.000}},
+      {"SER", 1, "C", {2.009, 1.420, 0.000}},     {"SER", 1, "O", {1.251, 2.390, 0.000}},
+      {"SER", 1, "CB", {1.988, -0.773, -1.199}},  {"SER", 1, "OG", {3.400, -0.800, -1.250}},
+      {"ALA", 2, "N", {3.332, 1.547, 0.000}},     {"ALA", 2, "CA", {3.956, 2.862, 0.000}},
+      {"ALA", 2, "C", {5.470, 2.732, 0.000}},     {"ALA", 2, "O", {6.020, 1.631, 0.000}},
+      {"ALA", 2, "CB", {3.500, 3.650, 1.220}},    {"SO4", 101, "S", {12.000, 12.000, 12.000}},
+      {"SO4", 101, "O1", {12.850, 12.850, 12.850}}, {"SO4", 101, "O2", {11.150, 11.150, 12.850}},
+      {"SO4", 101, "O3", {11.150, 12.850, 11.150}}, {"SO4", 101, "O4", {12.850, 11.150, 11.150}}};
+  const Molecule whole = read_molecule(file);
+  ASSERT_EQ(whole.atoms.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const Atom& a = whole.atoms[i];
+    EXPECT_EQ(a.residue_name, expected[i].residue) << i;
+    EXPECT_EQ(a.residue_number, expected[i].number) << i;
+    EXPECT_EQ(a.name, expected[i].name) << i;
+    EXPECT_LT((a.position - expected[i].position).norm(), 1e-9) << i;
+  }
+  // The residue present only as B is a ligand like any other.
+  const Molecule sulfate = read_molecule(file, ligand_options("SO4"));
+  ASSERT_EQ(sulfate.atoms.size(), 5u);
+  EXPECT_EQ(sulfate.atoms[0].element, "S");
+  EXPECT_NEAR(total_charge(sulfate), 0.0, 1e-9);
+}
+
+TEST(MoleculeIo, KahramanSite1rdqAtpPresentOnlyAsAlternateLocationBIsRead) {
+  SURFCOMP_SHARED_OR_SKIP(path, "kahraman-dev/pdb/1RDQ.pdb");
+  // 2942 records, no water: 31 of ATP 600 E, all with alternate location B, and 41 atoms
+  // elsewhere with both A and B.
+  const auto records = atom_records(path, false);
+  ASSERT_EQ(records.size(), 2942u);
+  const Molecule whole = read_molecule(path);
+  EXPECT_EQ(whole.atoms.size(), 2942u - 41u);
+  const auto atp = std::count_if(whole.atoms.begin(), whole.atoms.end(), [](const Atom& a) {
+    return a.residue_name == "ATP" && a.residue_number == 600 && a.chain == "E";
+  });
+  EXPECT_EQ(atp, 31);
 }
 
 TEST(ProteinLipophilicity, TableValuesAreUnitedWildmanCrippenAtoms) {

@@ -3,6 +3,7 @@
 #include "surfcomp/mesh/remesh.hpp"
 #include "surfcomp/mesh/ses.hpp"
 #include "surfcomp/mesh/surface.hpp"
+#include "surface_components.hpp"
 #include "test_data.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -17,6 +19,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace surfcomp::mesh {
 namespace {
@@ -392,6 +395,45 @@ TEST(Ses, CavitiesAreDroppedOrKept) {
   EXPECT_NO_THROW(require_closed_manifold(both));
 }
 
+TEST(Ses, NeckThinnerThanAVoxelLeavesNoFragment) {
+  // Two carbon atoms whose expanded spheres (1.7 + 1.4 A) meet in a circle of radius
+  // h = 1.4 + 0.1 A: the probe just fails to pass between them, and the SES joins them by a
+  // neck of radius h - 1.4 = 0.1 A at their midpoint. The grid (0.68 A) cannot hold the neck:
+  // with the midpoint on a grid node and the axis oblique to the grid, only that node falls
+  // inside it, and the mesh gets a one-voxel component with no atom in it (as in the Kahraman
+  // sites 1DV2, 1E8X, 1NAZ, 1PP9, 1QLA), which remeshing shrinks to a tetrahedron.
+  const double r = 1.7, neck = 0.1;
+  const SesOptions defaults;
+  const double h = defaults.probe_radius + neck;
+  const double half = std::sqrt(std::pow(r + defaults.probe_radius, 2) - h * h);
+  const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 1.0, 1.0).normalized();
+  const Atoms atoms = make_atoms({-half * axis, half * axis}, {r, r});
+  const double ball = 4.0 / 3.0 * M_PI * std::pow(r, 3);
+
+  SesOptions keep_all;
+  keep_all.min_component_volume_fraction = 0.0;
+  const auto all = test::surface_components(build_ses(atoms.centers, atoms.radii, keep_all));
+  ASSERT_EQ(all.size(), 3u) << "the grid no longer leaves a fragment of the neck here";
+  const auto fragment = std::min_element(all.begin(), all.end(), [](const auto& a, const auto& b) {
+    return std::abs(a.volume) < std::abs(b.volume);
+  });
+  std::cout << "neck fragment: " << fragment->vertices << " vertices, volume " << fragment->volume
+            << " A^3\n";
+  EXPECT_LT(std::abs(fragment->volume), 1e-3);
+  EXPECT_LT(fragment->vertices, 9);
+
+  // By default the fragment is dropped: two components, each enclosing its atom's ball.
+  const Surface ses = build_ses(atoms.centers, atoms.radii);
+  const auto kept = test::surface_components(ses);
+  ASSERT_EQ(kept.size(), 2u);
+  for (const auto& c : kept) {
+    EXPECT_GT(c.volume, 0.99 * ball);
+    EXPECT_LT(c.volume, 1.05 * ball);
+  }
+  EXPECT_EQ(measure_surface(ses).euler_characteristic, 4);
+  EXPECT_NO_THROW(require_closed_manifold(ses));
+}
+
 TEST(Ses, DeterministicAcrossRunsAndThreadCounts) {
   const Atoms atoms = cresol();
   const Surface first = build_ses(atoms.centers, atoms.radii);
@@ -439,6 +481,11 @@ TEST(Ses, InvalidInputsThrow) {
   options = SesOptions{};
   options.vertex_density = 0.0;
   EXPECT_THROW(build_ses(one.centers, one.radii, options), OptionError);
+  for (const double fraction : {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+    options = SesOptions{};
+    options.min_component_volume_fraction = fraction;
+    EXPECT_THROW(build_ses(one.centers, one.radii, options), OptionError) << fraction;
+  }
 }
 
 TEST(Ses, ThermolysinLigand) {

@@ -6,11 +6,13 @@
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/ses.hpp"
 
+#include "surface_components.hpp"
 #include "test_data.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -116,6 +118,53 @@ TEST(SurfaceBuild, LigandSurfacesAreClosedSpheresTopologically) {
                              mesh::property::cc2, mesh::property::shape_index}) {
       EXPECT_TRUE(surface.property(name).allFinite()) << id << " " << name;
     }
+  }
+}
+
+// Kahraman site 1NAZ (HEM 200 A): the surface of the pocket, the atoms within 5 A of the heme
+// (heme and water excluded). Where LEU 89 CD1 and ALA 71 CB nearly touch, 3 A from the heme,
+// the SES joins them by a neck of ~0.1 A radius that the grid cannot hold; it used to leave a
+// 4-vertex fragment there, on which the curvature fit stopped the build.
+TEST(SurfaceBuild, KahramanSite1nazPocketHasNoFragment) {
+  SURFCOMP_SHARED_OR_SKIP(file, "kahraman-dev/pdb/1NAZ.pdb");
+  const Molecule structure = io::read_molecule(file);
+  const auto is_heme = [](const Atom& atom) {
+    return atom.residue_name == "HEM" && atom.residue_number == 200 && atom.chain == "A";
+  };
+  Molecule pocket = structure;
+  pocket.atoms.clear();
+  for (const Atom& atom : structure.atoms) {
+    if (is_heme(atom)) continue;
+    const auto within_5a = [&](const Atom& h) {
+      return is_heme(h) && (h.position - atom.position).norm() <= 5.0;
+    };
+    const bool near = std::any_of(structure.atoms.begin(), structure.atoms.end(), within_5a);
+    if (near) pocket.atoms.push_back(atom);
+  }
+  ASSERT_GT(pocket.atoms.size(), 100u);
+  double smallest_atom = std::numeric_limits<double>::infinity();
+  for (const Atom& atom : pocket.atoms) smallest_atom = std::min(smallest_atom, atom.radius);
+  const double ball = 4.0 / 3.0 * M_PI * std::pow(smallest_atom, 3);
+
+  // With every component kept, the fragment is there: the case still arises.
+  Eigen::MatrixX3d centers;
+  Eigen::VectorXd radii;
+  atoms_as_arrays(pocket, centers, radii);
+  mesh::SesOptions keep_all;
+  keep_all.min_component_volume_fraction = 0.0;
+  const auto all = test::surface_components(mesh::build_ses(centers, radii, keep_all));
+  const auto is_fragment = [&](const test::SurfaceComponent& c) { return c.volume < 0.5 * ball; };
+  ASSERT_TRUE(std::any_of(all.begin(), all.end(), is_fragment))
+      << "the grid no longer leaves a fragment in this pocket";
+
+  const mesh::Surface surface = mesh::build_molecular_surface(pocket);
+  const auto components = test::surface_components(surface);
+  std::printf("[ 1NAZ     ] %zu pocket atoms: %zu vertices in %zu components\n",
+              pocket.atoms.size(), surface.n_vertices(), components.size());
+  for (const auto& c : components) EXPECT_FALSE(is_fragment(c)) << c.vertices << " vertices";
+  for (const char* name : {mesh::property::esp, mesh::property::lp, mesh::property::cc1,
+                           mesh::property::cc2, mesh::property::shape_index}) {
+    EXPECT_TRUE(surface.property(name).allFinite()) << name;
   }
 }
 

@@ -32,6 +32,9 @@ std::string format_number(double value) {
   return out.str();
 }
 
+/// Coefficients of the sphere fitted to a component of fewer than min_points vertices.
+constexpr std::size_t sphere_coefficients = 4;
+
 /// Number of coefficients the chosen fit determines (the minimum number of points).
 std::size_t fitted_coefficients(const CurvatureOptions& o) {
   if (o.method == CurvatureMethod::quadric) return 9;
@@ -186,6 +189,39 @@ std::pair<double, double> jet_curvatures(const Eigen::MatrixX3d& positions,
   return {monge.principal_curvatures(0), monge.principal_curvatures(1)};
 }
 
+/// Principal curvatures (both equal, seed sign as above) at the first of `members` from the
+/// sphere fitted to all of them: the algebraic least-squares fit |p|^2 = 2 c.p + k (4
+/// coefficients; radius sqrt(k + |c|^2)), negative when `normal` points away from the centre.
+/// Coplanar points (rank < 4) are a plane, curvature 0. Needs at least 4 points.
+std::pair<double, double> sphere_curvatures(const Eigen::MatrixX3d& positions,
+                                            const std::vector<int>& members,
+                                            const Eigen::RowVector3d& normal) {
+  const auto count = static_cast<Eigen::Index>(members.size());
+  Eigen::MatrixX3d points(count, 3);
+  for (Eigen::Index k = 0; k < count; ++k) {
+    points.row(k) = positions.row(members[static_cast<std::size_t>(k)]);
+  }
+  // Centred and in units of the points' spread, so that the system is well scaled and the
+  // result scales exactly as 1/length.
+  const Eigen::RowVector3d centroid = points.colwise().mean();
+  points.rowwise() -= centroid;
+  const double scale = std::sqrt(points.squaredNorm() / static_cast<double>(count));
+  if (!(scale > 0.0)) return {std::nan(""), std::nan("")};
+  points /= scale;
+  Eigen::MatrixXd design(count, 4);
+  design.leftCols(3) = 2.0 * points;
+  design.col(3).setOnes();
+  const Eigen::VectorXd target = points.rowwise().squaredNorm();
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(design);
+  if (qr.rank() < 4) return {0.0, 0.0};
+  const Eigen::Vector4d solution = qr.solve(target);
+  const Eigen::Vector3d centre = solution.head<3>();
+  const double radius = std::sqrt(solution(3) + centre.squaredNorm()) * scale;
+  const Eigen::Vector3d outward = points.row(0).transpose() - centre;
+  const double k = outward.dot(normal.transpose()) > 0.0 ? -1.0 / radius : 1.0 / radius;
+  return {k, k};
+}
+
 /// A height function's value, gradient and Hessian at the origin of the tangent plane.
 struct HeightJet {
   double value = 0.0;
@@ -307,7 +343,7 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
   const Eigen::MatrixX3d normals =
       surface.has_normals() ? surface.normals() : area_weighted_normals(surface);
   const Adjacency adjacency = vertex_adjacency(mesh);
-  const std::size_t coefficients = fitted_coefficients(options);
+  const auto min_points = static_cast<std::size_t>(options.min_points);
 
   PrincipalCurvatures out;
   out.cc1.resize(n);
@@ -331,16 +367,20 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
         continue;
       }
       collect_neighbourhood(static_cast<int>(v), adjacency, positions, options, scratch);
-      if (scratch.members.size() < coefficients) {
+      // Fewer than min_points: the neighbourhood is the vertex's whole component, whose far
+      // side a height fit would take for noise.
+      const bool tiny_component = scratch.members.size() < min_points;
+      if (tiny_component && scratch.members.size() < sphere_coefficients) {
         status[vi] = FitStatus::too_few_points;
         continue;
       }
       const auto [k1, k2] =
-          options.method == CurvatureMethod::jet
+          tiny_component ? sphere_curvatures(positions, scratch.members, normal)
+          : options.method == CurvatureMethod::jet
               ? jet_curvatures(positions, scratch.members, normal,
                                static_cast<std::size_t>(options.jet_degree))
               : quadric_curvatures(positions, scratch.members, normal, options.quadric_passes,
-                                                options.quadric_ridge);
+                                   options.quadric_ridge);
       if (!std::isfinite(k1) || !std::isfinite(k2)) {
         status[vi] = FitStatus::not_finite;
         continue;
@@ -368,10 +408,11 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
         throw NumericError(where + " has no defined normal (no triangle of non-zero area)");
       case FitStatus::too_few_points:
         throw TopologyError(where + " is connected to fewer than " +
-                            std::to_string(coefficients - 1) + " other vertices; the fit needs " +
-                            std::to_string(coefficients) + " points");
+                            std::to_string(sphere_coefficients - 1) +
+                            " other vertices; the smallest fit (a sphere) needs " +
+                            std::to_string(sphere_coefficients) + " points");
       case FitStatus::not_finite:
-        throw NumericError(where + ": the jet fit is degenerate (non-finite curvature)");
+        throw NumericError(where + ": the local fit is degenerate (non-finite curvature)");
     }
   }
   return out;

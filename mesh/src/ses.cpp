@@ -794,9 +794,18 @@ int find_root(std::vector<int>& parent, int v) {
   return v;
 }
 
-/// The vertex-connected components of `soup` that enclose a positive volume (face outwards);
-/// inward-facing ones line cavities. Vertex and face order are preserved.
-TriangleSoup outward_components(const TriangleSoup& soup) {
+/// The smallest volumes (A^3) a component of the grid mesh must enclose to be kept.
+struct ComponentVolumes {
+  double outward = 0.0;  ///< an outward component (a body of the molecule)
+  double cavity = 0.0;   ///< an inward one (a cavity), when cavities are kept at all
+  bool keep_cavities = false;
+};
+
+/// The vertex-connected components of `soup` that are kept: outward-facing ones (positive
+/// enclosed volume) of at least `limits.outward`, and with `limits.keep_cavities` inward-facing
+/// ones (they line cavities) of at least `limits.cavity` in absolute value. The outward
+/// component of largest volume is always kept. Vertex and face order are preserved.
+TriangleSoup kept_components(const TriangleSoup& soup, const ComponentVolumes& limits) {
   const auto n = static_cast<std::size_t>(soup.positions.rows());
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
@@ -814,10 +823,19 @@ TriangleSoup outward_components(const TriangleSoup& soup) {
     const Vec3 c = soup.positions.row(soup.faces(f, 2));
     volume[static_cast<std::size_t>(find_root(parent, soup.faces(f, 0)))] += a.dot(b.cross(c)) / 6.0;
   }
+  // Roots are the lowest vertex of their component, so a tie goes to the lowest index.
+  const auto largest = static_cast<std::size_t>(
+      std::distance(volume.begin(), std::max_element(volume.begin(), volume.end())));
+  std::vector<bool> kept_root(n, false);
+  for (std::size_t root = 0; root < n; ++root) {
+    const double v = volume[root];
+    kept_root[root] = v > 0.0 ? v >= limits.outward || root == largest
+                              : limits.keep_cavities && -v >= limits.cavity;
+  }
   std::vector<int> new_index(n, -1);
   std::vector<Eigen::Index> kept;
   for (Eigen::Index f = 0; f < soup.faces.rows(); ++f) {
-    if (volume[static_cast<std::size_t>(find_root(parent, soup.faces(f, 0)))] <= 0.0) continue;
+    if (!kept_root[static_cast<std::size_t>(find_root(parent, soup.faces(f, 0)))]) continue;
     kept.push_back(f);
     for (int k = 0; k < 3; ++k) new_index[static_cast<std::size_t>(soup.faces(f, k))] = 0;
   }
@@ -1113,6 +1131,12 @@ void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
     throw OptionError(what + ": probe radius " + std::to_string(options.probe_radius) +
                       " A; expected a finite value >= 0");
   }
+  if (!(options.min_component_volume_fraction >= 0.0 &&
+        options.min_component_volume_fraction <= 1.0)) {
+    throw OptionError(what + ": min_component_volume_fraction " +
+                      std::to_string(options.min_component_volume_fraction) +
+                      "; expected a value in [0, 1]");
+  }
   if (!std::isfinite(options.voxel_size) || options.voxel_size < 0.0) {
     throw OptionError(what + ": voxel size " + std::to_string(options.voxel_size) +
                       " A; expected a finite value > 0, or 0 for automatic");
@@ -1147,7 +1171,13 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   const openvdb::FloatGrid::Ptr grid = excluded ? sample_band(SesField{sas}, centers, reach, voxel)
                                                 : sample_band(SasField{sas}, centers, reach, voxel);
   TriangleSoup soup = extract_isosurface(*grid);
-  if (!options.keep_cavities) soup = outward_components(soup);
+  // A component holding an atom holds its whole van der Waals ball, and a cavity the probe's.
+  const double fraction = options.min_component_volume_fraction;
+  ComponentVolumes limits;
+  limits.outward = fraction * 4.0 / 3.0 * M_PI * std::pow(radii.minCoeff(), 3);
+  limits.cavity = fraction * 4.0 / 3.0 * M_PI * std::pow(options.probe_radius, 3);
+  limits.keep_cavities = options.keep_cavities;
+  soup = kept_components(soup, limits);
   if (soup.faces.rows() == 0) {
     throw TopologyError(what + ": the isosurface is empty at voxel size " + std::to_string(voxel) + " A");
   }

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <exception>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -61,6 +62,47 @@ auto rdkit_call(const std::string& source, const std::string& what, Call&& call)
   }
 }
 
+/// `text` (PDB) with one alternate location per atom, as RDKit would otherwise read only the
+/// locations ' ', 'A' and '1' and lose an atom present only as 'B' (the ATP of 1RDQ). Records
+/// without an alternate location stay. Of an atom's alternate locations the first in the file
+/// stays, relabelled ' '; an atom is its chain, residue number, insertion code and name. Where
+/// the alternate locations of one residue position carry different residue names
+/// (microheterogeneity), only the first name's records stay. Each MODEL is treated alone.
+std::string first_alternate_locations(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  std::map<std::string, std::string> residue_name_at;  // residue position -> first name
+  std::map<std::string, char> location_of;              // atom -> its first alternate location
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    const std::size_t newline = text.find('\n', begin);
+    const std::size_t end = newline == std::string::npos ? text.size() : newline + 1;
+    std::string line = text.substr(begin, end - begin);
+    begin = end;
+    if (line.compare(0, 6, "MODEL ") == 0) {
+      residue_name_at.clear();
+      location_of.clear();
+    }
+    const bool atom_record = line.compare(0, 6, "ATOM  ") == 0 || line.compare(0, 6, "HETATM") == 0;
+    // Columns 13-16 atom name, 17 alternate location, 18-20 residue name, 22-27 chain, residue
+    // number and insertion code.
+    if (!atom_record || line.size() < 27 || line[16] == ' ') {
+      out += line;
+      continue;
+    }
+    const std::string position = line.substr(21, 6);
+    const std::string residue_name = line.substr(17, 3);
+    if (residue_name_at.emplace(position, residue_name).first->second != residue_name) continue;
+    const char location = line[16];
+    if (location_of.emplace(position + line.substr(12, 4), location).first->second != location) {
+      continue;
+    }
+    line[16] = ' ';
+    out += line;
+  }
+  return out;
+}
+
 std::unique_ptr<RDKit::RWMol> parse(const std::string& text, RdkitFormat format,
                                     const std::string& source) {
   return rdkit_call(source, "parse the file", [&]() {
@@ -72,7 +114,8 @@ std::unique_ptr<RDKit::RWMol> parse(const std::string& text, RdkitFormat format,
       case RdkitFormat::pdb:
         break;
     }
-    return std::unique_ptr<RDKit::RWMol>(RDKit::PDBBlockToMol(text, false, false, 0, true));
+    return std::unique_ptr<RDKit::RWMol>(
+        RDKit::PDBBlockToMol(first_alternate_locations(text), false, false, 0, true));
   });
 }
 

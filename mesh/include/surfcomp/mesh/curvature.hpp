@@ -48,7 +48,8 @@ struct CurvatureOptions {
   int jet_degree = 2;
   /// Default 12. When a neighbourhood holds fewer vertices, further rings are added until it
   /// holds this many (or the vertex's connected component is exhausted). Must be at least the
-  /// number of fitted coefficients: 9 for quadric, (jet_degree+1)(jet_degree+2)/2 for jet.
+  /// number of fitted coefficients: 9 for quadric, (jet_degree+1)(jet_degree+2)/2 for jet. A
+  /// component with fewer vertices is fitted by a sphere (see principal_curvatures).
   int min_points = 12;
 };
 
@@ -71,10 +72,16 @@ struct PrincipalCurvatures {
 /// polynomial fitting of osculating jets", 2005). The fit's normal is turned to agree with the
 /// vertex normal (surface.normals() when has_normals(), else area-weighted face normals), so
 /// the sign follows the surface's orientation: an inside-out sphere gives cc = +1/r and shape
-/// index -1. Each vertex is
-/// fitted independently (in parallel), so the result does not depend on the thread count.
+/// index -1. A vertex whose connected component has fewer than `min_points` vertices (a
+/// closed fragment of a few vertices, which its neighbourhood then covers whole: a height fit
+/// would mix its near and far sides) is given the curvature of the sphere fitted to all of the
+/// component's vertices (algebraic least squares, 4 coefficients): cc1 = cc2 = -1/r when the
+/// vertex normal points away from the centre, +1/r when towards it, 0 when the vertices are
+/// coplanar. A tetrahedron or octahedron inscribed in a sphere of radius r thus gets exactly
+/// -1/r. Each vertex is fitted independently (in parallel), so the result does not depend on
+/// the thread count.
 /// Throws TopologyError when the surface has no faces or a vertex's connected component has
-/// fewer vertices than the jet has coefficients, OptionError for options outside their domain,
+/// fewer than 4 vertices (a lone triangle), OptionError for options outside their domain,
 /// NumericError when a fit is degenerate (e.g. collinear neighbours).
 PrincipalCurvatures principal_curvatures(const Surface& surface,
                                          const CurvatureOptions& options = {});

@@ -27,6 +27,17 @@ struct SesOptions {
   /// them but cannot reach them from outside). Default false: only outward-facing components
   /// (positive enclosed volume) are kept, as MSMS and EDTSurf do by default.
   bool keep_cavities = false;
+  /// Default 0.5; in [0, 1], 0 keeps every component. Closed components of the grid mesh that
+  /// enclose less than this fraction of the smallest body they could hold are dropped: for an
+  /// outward component the smallest atom's van der Waals ball (4/3 pi r_min^3), for a cavity
+  /// (keep_cavities) the probe's ball. Every atom's ball lies inside the SES, so a smaller
+  /// outward component holds no atom and bounds no part of the molecule: it is what the grid
+  /// keeps of a feature thinner than a voxel, typically one voxel of a neck of ~0.1 A radius
+  /// where the probe just fails to pass between two atoms (the grid loses the neck and leaves
+  /// an isolated 8-vertex cube, which remeshing shrinks to a tetrahedron of < 0.1 A^2; Kahraman
+  /// sites 1DV2, 1E8X, 1NAZ, 1PP9, 1QLA). The fraction leaves room for the grid's volume error
+  /// on a lone atom. The outward component of largest volume is always kept.
+  double min_component_volume_fraction = 0.5;
 };
 
 /// The solvent-excluded surface (Richards 1977; Connolly 1983): the boundary of the region a
@@ -37,16 +48,18 @@ struct SesOptions {
 /// two spheres meet, vertices where three meet), sampled only near the surface into a sparse
 /// OpenVDB grid (adaptive octree culling, the field being 1-Lipschitz), meshed by
 /// openvdb::tools::volumeToMesh (quads split along the shorter diagonal), filtered by
-/// component (keep_cavities), remeshed isotropically (CGAL, 2 rounds), and every vertex is
-/// projected onto the exact SES (convex sphere caps, toroidal and spherical re-entrant
-/// patches), with the exact normal, then moved by the chord compensation.
-/// Disjoint molecules give several outward components.
+/// component (keep_cavities, min_component_volume_fraction), remeshed isotropically (CGAL,
+/// 2 rounds), and every vertex is projected onto the exact SES (convex sphere caps, toroidal
+/// and spherical re-entrant patches), with the exact normal, then moved by the chord
+/// compensation. Disjoint molecules give several outward components; so do parts joined only
+/// by a neck thinner than a voxel (the grid loses the neck).
 /// `centers` is #A by 3 (A), `radii` #A van der Waals radii (A).
 /// Returns a closed, 2-manifold, outward-oriented surface (positive volume) with exact unit
 /// outward vertex normals; source() is "<ses>". Deterministic: the same input gives the same
 /// arrays whatever the thread count.
 /// Throws InputError for no atoms, a size mismatch, a non-finite centre or radius or a radius
-/// <= 0; OptionError for a probe < 0, a density <= 0, a voxel_size < 0 or > r_min / 2;
+/// <= 0; OptionError for a probe < 0, a density <= 0, a voxel_size < 0 or > r_min / 2, a
+/// min_component_volume_fraction outside [0, 1];
 /// TopologyError if the mesh is not a closed manifold (a bug, reported rather than returned).
 Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                   const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options = {});

@@ -45,6 +45,11 @@ bool is_molecule_file(const std::filesystem::path& path);
 /// Reads the molecule in `path`, chosen by extension (see is_molecule_file):
 /// - SDF/MOL: the first record; MOL2: the first molecule; PDB: every model-1 atom (RDKit's
 ///   reader with proximity bonding); PQR: read_pqr(). Hydrogens present in the file are kept.
+/// - PDB alternate locations: one per atom. An atom without one is read; of an atom's
+///   alternate locations the first in the file is read (usually 'A'), so an atom or residue
+///   present only as 'B' is read too (the ATP of 1RDQ). An atom is its chain, residue number,
+///   insertion code and name; where one residue position has alternate residue names
+///   (microheterogeneity), only the first name's records are read.
 /// - Radii: Bondi (surfcomp::bondi_radius) except PQR, whose radii are taken as given.
 /// - Charges (e): see ChargeModel. Gasteiger or MMFF on a protein PDB is an OptionError. Computed charges of implicit hydrogens (atoms the file does
 ///   not list) are added to their heavy atom, so the charges sum to the formal charge.
