@@ -8,10 +8,10 @@
 //
 // The match runs with each parameter set of variants(); the sites are built once.
 //
-//   ./build/r/bench/site_bench [entries.txt [PREFIX]]
-// entries.txt defaults to ../shared/datasets/kahraman-dev/entries.txt; PREFIX, when given, makes
-// PREFIX.<variant>.csv with one row per pair (sites, same type, top-1 pairs, points, r_chem, overlay scores,
-// imaged CPs, ms).
+//   ./build/r/bench/site_bench [entries.txt [PREFIX [VARIANTS]]]
+// entries.txt defaults to ../shared/datasets/kahraman-dev/entries.txt; PREFIX, when given and not
+// "-", makes PREFIX.<variant>.csv with one row per pair (sites, same type, top-1 pairs, points,
+// r_chem, overlay scores, imaged CPs, ms); VARIANTS, a comma-separated list, runs those only.
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
@@ -176,6 +176,11 @@ std::vector<Variant> variants() {
        defaults.overlap_tolerance_degrees);
   make("image0.3", defaults.fuzzy_threshold, 0.3, defaults.distance_tolerance, defaults.overlap_tolerance_degrees);
   make("loose", defaults.fuzzy_threshold, 0.3, 2.5, 45.0);
+  // The overlay compares only the pocket lining: vertices within 4 A of a site critical point
+  // (themselves within 4 A of the ligand) instead of the patch radius, 8 A.
+  make("image0.3-lining", defaults.fuzzy_threshold, 0.3, defaults.distance_tolerance,
+       defaults.overlap_tolerance_degrees);
+  out.back().options.site_overlay_radius = 4.0;
   return out;
 }
 
@@ -240,6 +245,7 @@ int main(int argc, char** argv) {
     }
 
     for (const Variant& variant : variants()) {
+      if (argc > 3 && ("," + std::string(argv[3]) + ",").find("," + std::string(variant.name) + ",") == std::string::npos) continue;
       const matching::MatchOptions& match_options = variant.options;
       const auto& g = match_options.graph;
       std::printf("\n== %s: fuzzy F %.2f, image R %.2f, distance t %.1f A, overlap j_tol %.0f deg\n", variant.name,
@@ -252,7 +258,12 @@ int main(int argc, char** argv) {
           r.b = b;
           r.same = sites[a].entry.ligand == sites[b].entry.ligand;
           const auto start = Clock::now();
-          const auto match = matching::match_surfaces(sites[a].descriptors, sites[b].descriptors, match_options);
+          // The descriptions hold only the sites' critical points; the masks (all set) say that
+          // this is a site match, so the overlay compares the pockets, not the whole chains.
+          const std::vector<bool> all_a(sites[a].descriptors.critical_points.size(), true);
+          const std::vector<bool> all_b(sites[b].descriptors.critical_points.size(), true);
+          const auto match =
+              matching::match_surfaces(sites[a].descriptors, sites[b].descriptors, match_options, &all_a, &all_b);
           r.match_ms = ms_since(start);
           if (!match.alignments.empty()) {
             const auto& top = match.alignments.front();
@@ -294,7 +305,7 @@ int main(int argc, char** argv) {
              return smaller > 0 ? static_cast<double>(r.points) / smaller * (1.0 + r.r_chem) / 2.0 : 0.0;
            }},
       };
-      if (argc > 2) {
+      if (argc > 2 && std::string(argv[2]) != "-") {
         std::ofstream csv(std::string(argv[2]) + "." + variant.name + ".csv");
         if (!csv) throw FileError(argv[2], "cannot write the pairs table");
         csv << "a,b,same,pairs,points,r_chem,overlay,overlay_shape,overlay_chem,imaged_a,imaged_b,match_ms\n";

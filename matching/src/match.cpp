@@ -24,15 +24,21 @@ struct Placed {
   OverlayScore overlay;
 };
 
-/// Vertices within `radius` of an allowed critical point; null (all vertices) without a site.
+/// The vertices the overlay compares: all of them, unless the match is restricted to a binding
+/// site, by an `allowed` mask or by descriptions built only at a site's critical points (the
+/// others skipped); then those within `radius` of a critical point that takes part.
 std::optional<std::vector<bool>> site_vertices(const harmonic::SurfaceDescriptors& descriptors,
                                                const std::vector<bool>* allowed, double radius) {
-  if (allowed == nullptr) return std::nullopt;
+  const auto& cps = descriptors.critical_points;
+  const auto skipped = [&](std::size_t c) { return cps[c].status == harmonic::PatchStatus::skipped; };
+  bool any_skipped = false;
+  for (std::size_t c = 0; c < cps.size(); ++c) any_skipped = any_skipped || skipped(c);
+  if (allowed == nullptr && !any_skipped) return std::nullopt;
   const Eigen::MatrixX3d positions = descriptors.surface.positions();
   std::vector<bool> inside(static_cast<std::size_t>(positions.rows()), false);
-  for (std::size_t c = 0; c < descriptors.critical_points.size(); ++c) {
-    if (!(*allowed)[c]) continue;
-    const Eigen::Vector3d centre = descriptors.critical_points[c].point.position;
+  for (std::size_t c = 0; c < cps.size(); ++c) {
+    if ((allowed != nullptr && !(*allowed)[c]) || skipped(c)) continue;
+    const Eigen::Vector3d centre = cps[c].point.position;
     for (Eigen::Index v = 0; v < positions.rows(); ++v) {
       if ((Eigen::Vector3d(positions.row(v)) - centre).squaredNorm() <= radius * radius) inside[static_cast<std::size_t>(v)] = true;
     }

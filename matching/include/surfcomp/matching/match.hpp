@@ -31,9 +31,9 @@ struct MatchOptions {
   /// seed). Must be >= 0.
   int refine_top = 10;
   OverlayOptions overlay;                 ///< sigma 1 A, spacing 1.5 A, chemistry weight 6
-  /// Default 0 (the patch radius of the descriptions). With a binding site (the allowed
-  /// masks), the overlay samples only the vertices within this distance of an allowed
-  /// critical point. Must be >= 0.
+  /// Default 0 (the patch radius of the descriptions). With a binding site (allowed masks, or
+  /// descriptions built only at a site's critical points, the others skipped), the overlay
+  /// samples only the vertices within this distance of a critical point taking part. Must be >= 0.
   double site_overlay_radius = 0.0;
 };
 
