@@ -66,7 +66,7 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     p.transform = clusters[static_cast<std::size_t>(r.cluster)].fit.transform;
     placed.push_back(p);
   }
-  if (placed.empty()) return placed;
+  if (placed.empty() || options.refine_top == 0) return placed;
   const double radius = options.site_overlay_radius > 0.0 ? options.site_overlay_radius
                                                            : std::max(reference.options.patch.radius, probe.options.patch.radius);
   const auto reference_mask = site_vertices(reference, reference_allowed, radius);
