@@ -87,10 +87,11 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
           return largest_move(s, placed[k].transform) <= kRepeatDistance;
         })) {
       starts.push_back(placed[k].transform);
-      placed[k].transform = overlay.refine(placed[k].transform);
+      placed[k].transform = overlay.refine(placed[k].transform, &placed[k].overlay);
       placed[k].refined = true;
+    } else {
+      placed[k].overlay = overlay.score(placed[k].transform);
     }
-    placed[k].overlay = overlay.score(placed[k].transform);
   }
   // Refined ones by score (stable: consensus order breaks ties), then the repeats.
   std::stable_sort(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined),

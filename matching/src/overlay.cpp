@@ -21,19 +21,6 @@ void require_positive(double value, const char* name) {
   }
 }
 
-/// Vertex areas: a third of each incident triangle's area.
-Eigen::VectorXd vertex_areas(const Eigen::MatrixX3d& positions, const Eigen::MatrixX3i& faces) {
-  Eigen::VectorXd area = Eigen::VectorXd::Zero(positions.rows());
-  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    const Eigen::Vector3d p0 = positions.row(faces(f, 0));
-    const Eigen::Vector3d p1 = positions.row(faces(f, 1));
-    const Eigen::Vector3d p2 = positions.row(faces(f, 2));
-    const double third = (p1 - p0).cross(p2 - p0).norm() / 6.0;
-    for (int k = 0; k < 3; ++k) area(faces(f, k)) += third;
-  }
-  return area;
-}
-
 /// sqrt(sum w x^2 / sum w) over both samples' values; 1 when it is zero (no such property).
 double root_mean_square(const Eigen::VectorXd& a, const Eigen::VectorXd& wa, const Eigen::VectorXd& b,
                         const Eigen::VectorXd& wb) {
@@ -60,7 +47,7 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing, const
     copy.compute_normals();
     normals = copy.normals();
   }
-  const Eigen::VectorXd area = vertex_areas(positions, surface.faces());
+  const Eigen::VectorXd area = mesh::vertex_areas(surface);
   const auto property_or_zero = [&](const char* name) {
     return surface.has_property(name) ? surface.property(name) : Eigen::VectorXd(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n)));
   };
@@ -244,14 +231,14 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
 
 }  // namespace
 
-RigidTransform SurfaceOverlay::refine(const RigidTransform& start) const {
+RigidTransform SurfaceOverlay::refine(const RigidTransform& start, OverlayScore* final_score) const {
   constexpr double kMaxAlpha = 8.0;
   const Eigen::Index n = probe_.points.cols();
   const Eigen::Vector3d probe_centroid = probe_.points * probe_.weights / probe_.weights.sum();
   Eigen::Matrix3Xd targets(3, n), next_targets(3, n);
   Eigen::VectorXd weights(n), next_weights(n);
   RigidTransform current = start;
-  double current_score = tanimoto(overlap(reference_, reference_grid_, probe_, current, &targets, &weights)).score;
+  OverlayScore current_score = tanimoto(overlap(reference_, reference_grid_, probe_, current, &targets, &weights));
   // Expectation-maximisation steps, over-relaxed: while they keep raising the score, the step
   // is stretched (alpha doubles up to kMaxAlpha); one that does not is retried plain.
   double alpha = 1.0;
@@ -259,15 +246,15 @@ RigidTransform SurfaceOverlay::refine(const RigidTransform& start) const {
     if (!(weights.sum() > 0.0)) break;
     const RigidTransform em = fit_rigid_weighted(probe_.points, targets, weights).transform;
     RigidTransform next = extrapolate(current, em, current.apply(probe_centroid), alpha);
-    double next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights)).score;
-    if (!(next_score > current_score) && alpha > 1.0) {
+    OverlayScore next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights));
+    if (!(next_score.score > current_score.score) && alpha > 1.0) {
       alpha = 1.0;
       next = em;
-      next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights)).score;
+      next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights));
     } else {
       alpha = std::min(2.0 * alpha, kMaxAlpha);
     }
-    if (!(next_score > current_score)) break;
+    if (!(next_score.score > current_score.score)) break;
     const double moved = (next.apply(probe_.points) - current.apply(probe_.points)).colwise().norm().maxCoeff();
     current = next;
     current_score = next_score;
@@ -275,6 +262,7 @@ RigidTransform SurfaceOverlay::refine(const RigidTransform& start) const {
     weights.swap(next_weights);
     if (moved <= options_.tolerance) break;
   }
+  if (final_score != nullptr) *final_score = current_score;
   return current;
 }
 

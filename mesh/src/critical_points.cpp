@@ -40,23 +40,6 @@ Kind kind_of(double cc1, double cc2) {
   return Kind::none;
 }
 
-/// Barycentric vertex areas: a third of the area of every incident triangle, A^2.
-Eigen::VectorXd vertex_areas(const TriMesh& mesh) {
-  Eigen::VectorXd area = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
-  for (const auto f : mesh.faces()) {
-    const auto h = mesh.halfedge_handle(f);
-    const auto a = mesh.from_vertex_handle(h);
-    const auto b = mesh.to_vertex_handle(h);
-    const auto c = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
-    const double third =
-        OpenMesh::cross(mesh.point(b) - mesh.point(a), mesh.point(c) - mesh.point(a)).norm() / 6.0;
-    area(a.idx()) += third;
-    area(b.idx()) += third;
-    area(c.idx()) += third;
-  }
-  return area;
-}
-
 /// Unit normal at `v`: the stored one when the surface has normals, else the area-weighted
 /// normal of the incident triangles (zero for a vertex in no triangle of non-zero area).
 Eigen::Vector3d vertex_normal(const Surface& surface, TriMesh::VertexHandle v) {
@@ -164,7 +147,7 @@ std::vector<CriticalPoint> detect_critical_points(const Surface& surface,
   const bool has_lp = surface.has_property(property::lp);
   const Eigen::VectorXd esp = has_esp ? surface.property(property::esp) : Eigen::VectorXd();
   const Eigen::VectorXd lp = has_lp ? surface.property(property::lp) : Eigen::VectorXd();
-  const Eigen::VectorXd area = vertex_areas(mesh);
+  const Eigen::VectorXd area = vertex_areas(surface);
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
   std::vector<CriticalPoint> out;

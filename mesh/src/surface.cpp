@@ -196,6 +196,24 @@ void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
   }
 }
 
+/// Barycentric vertex areas: a third of the area of every incident triangle, A^2.
+Eigen::VectorXd vertex_areas(const Surface& surface) {
+  const TriMesh& mesh = surface.mesh();
+  Eigen::VectorXd area = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
+  for (const auto f : mesh.faces()) {
+    const auto h = mesh.halfedge_handle(f);
+    const auto a = mesh.from_vertex_handle(h);
+    const auto b = mesh.to_vertex_handle(h);
+    const auto c = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
+    const double third =
+        OpenMesh::cross(mesh.point(b) - mesh.point(a), mesh.point(c) - mesh.point(a)).norm() / 6.0;
+    area(a.idx()) += third;
+    area(b.idx()) += third;
+    area(c.idx()) += third;
+  }
+  return area;
+}
+
 SurfaceMeasures measure_surface(const Surface& surface) {
   const TriMesh& mesh = surface.mesh();
   SurfaceMeasures m;

@@ -93,8 +93,9 @@ class SurfaceOverlay {
   /// and takes the weighted least-squares rigid fit of the probe points onto those means (an
   /// expectation-maximisation step of the Gaussian overlay), until options.iterations or
   /// options.tolerance. A step that lowers the score is not taken. Returns `start` unchanged
-  /// when no probe point has a neighbour.
-  RigidTransform refine(const RigidTransform& start) const;
+  /// when no probe point has a neighbour. With `final_score`, also the returned transform's
+  /// scores (as score() gives them).
+  RigidTransform refine(const RigidTransform& start, OverlayScore* final_score = nullptr) const;
 
   const OverlayOptions& options() const { return options_; }
   /// The probe sample's points (probe frame, A).

@@ -112,6 +112,9 @@ class Surface {
 void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
                        const Eigen::Vector3d& translation);
 
+/// Barycentric vertex areas: a third of the area of every incident triangle, A^2.
+Eigen::VectorXd vertex_areas(const Surface& surface);
+
 /// Global measures of a closed or open surface.
 struct SurfaceMeasures {
   double area = 0.0;        ///< A^2
