@@ -9,9 +9,10 @@
 // ligands top-1 >= 90 % and top-5 100 %; therm pairs above Open3DAlign; <= 1 s per ligand pair
 // from molecules, <= 50 ms from prebuilt descriptors (.hsi).
 //
-// Usage: overlay_bench [--quick] [--seed N]
-//   --quick   1 pose per five-ligand pair and 20 therm pairs instead of 5 and 100
-//   --seed N  seed of the std::mt19937 drawing poses and therm pairs (default 20261122)
+// Usage: overlay_bench [--quick] [--seed N] [--axes-starts N]
+//   --quick          1 pose per five-ligand pair and 20 therm pairs instead of 5 and 100
+//   --seed N         seed of the std::mt19937 drawing poses and therm pairs (default 20261122)
+//   --axes-starts N  MatchOptions::principal_axes_starts for our match (0, 4 or 24; default 0)
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
@@ -196,7 +197,8 @@ struct Outcome {
   std::string error;
 };
 
-Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pose) {
+Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pose,
+                     const matching::MatchOptions& options) {
   Outcome out;
   if (!reference.descriptors || !probe.descriptors) {
     out.error = !reference.descriptors ? reference.name + ": " + reference.our_error : probe.name + ": " + probe.our_error;
@@ -211,7 +213,7 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
     const auto start = Clock::now();
     const auto described = harmonic::describe_surface(mesh::build_molecular_surface(posed));
     const auto match_start = Clock::now();
-    const auto result = matching::match_surfaces(*reference.descriptors, described);
+    const auto result = matching::match_surfaces(*reference.descriptors, described, options);
     out.match_ms = ms_since(match_start);
     // End to end for the pair: both molecules described, then matched. The reference's
     // description was timed once when it was built.
@@ -445,12 +447,13 @@ void print_load_failures(const std::vector<Entry>& entries) {
   }
 }
 
-Trial run_trial(const Entry& reference, const Entry& probe, int pose_index, const Pose& pose) {
+Trial run_trial(const Entry& reference, const Entry& probe, int pose_index, const Pose& pose,
+                const matching::MatchOptions& options) {
   Trial trial;
   trial.reference = reference.name;
   trial.probe = probe.name;
   trial.pose = pose_index;
-  trial.ours = run_surfcomp(reference, probe, pose);
+  trial.ours = run_surfcomp(reference, probe, pose, options);
   trial.mmff = run_o3a(reference, probe, pose, O3aScheme::mmff);
   trial.crippen = run_o3a(reference, probe, pose, O3aScheme::crippen);
   return trial;
@@ -461,14 +464,18 @@ Trial run_trial(const Entry& reference, const Entry& probe, int pose_index, cons
 int main(int argc, char** argv) {
   bool quick = false;
   unsigned seed = 20261122u;
+  matching::MatchOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--quick") {
       quick = true;
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
+    } else if (arg == "--axes-starts" && i + 1 < argc) {
+      options.principal_axes_starts = std::atoi(argv[++i]);
     } else {
-      std::fprintf(stderr, "overlay_bench: unknown argument '%s' (expected --quick or --seed N)\n", arg.c_str());
+      std::fprintf(stderr, "overlay_bench: unknown argument '%s' (expected --quick, --seed N or --axes-starts N)\n",
+                   arg.c_str());
       return 2;
     }
   }
@@ -481,8 +488,9 @@ int main(int argc, char** argv) {
   boost::logging::disable_logs("rdApp.*");
   const int poses_per_pair = quick ? 1 : 5;
   const std::size_t therm_pairs = quick ? 20 : 100;
-  std::printf("overlay_bench: seed %u, %s run (%d pose(s) per five-ligand pair, %zu therm pairs), %u hardware threads\n",
-              seed, quick ? "quick" : "full", poses_per_pair, therm_pairs, std::thread::hardware_concurrency());
+  std::printf("overlay_bench: seed %u, %s run (%d pose(s) per five-ligand pair, %zu therm pairs), %u hardware threads, "
+              "%d principal-axes starts\n", seed, quick ? "quick" : "full", poses_per_pair, therm_pairs,
+              std::thread::hardware_concurrency(), options.principal_axes_starts);
   std::printf("poses: rotation uniform on SO(3) about the probe's heavy-atom centroid, then %.0f A in a random direction\n",
               kPoseTranslation);
   std::mt19937 rng(seed);
@@ -499,7 +507,7 @@ int main(int argc, char** argv) {
     for (const Entry& probe : ligands) {
       if (&reference == &probe) continue;
       for (int p = 0; p < poses_per_pair; ++p) {
-        five.push_back(run_trial(reference, probe, p, random_pose(rng, heavy_atom_centroid(probe))));
+        five.push_back(run_trial(reference, probe, p, random_pose(rng, heavy_atom_centroid(probe)), options));
       }
     }
   }
@@ -536,7 +544,7 @@ int main(int argc, char** argv) {
     }
     print_load_failures(therm);
     for (const auto& [i, j] : pairs) {
-      therm_trials.push_back(run_trial(therm[i], therm[j], 0, random_pose(rng, heavy_atom_centroid(therm[j]))));
+      therm_trials.push_back(run_trial(therm[i], therm[j], 0, random_pose(rng, heavy_atom_centroid(therm[j])), options));
     }
   } catch (const std::exception& e) {
     std::printf("[therm] stopped: %s\n", e.what());

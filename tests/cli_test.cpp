@@ -51,7 +51,7 @@ TEST(Cli, MatchWritesTheResultContract) {
   const fs::path json = scratch("result.json");
   const fs::path aligned = scratch("aligned.sdf");
   const ProgramRun r = run("match " + ref.string() + " " + probe.string() + " -o " + json.string() +
-                    " --aligned-out " + aligned.string() + " --trace");
+                    " --aligned-out " + aligned.string() + " --trace --axes-starts 24");
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(json);
   const nlohmann::json doc = nlohmann::json::parse(in);
@@ -61,6 +61,7 @@ TEST(Cli, MatchWritesTheResultContract) {
   const auto& alignments = doc["alignments"];
   ASSERT_GE(alignments.size(), 1u);
   int expected_rank = 1;
+  std::size_t from_axes = 0;
   for (const auto& a : alignments) {
     EXPECT_EQ(a["rank"].get<int>(), expected_rank++);
     ASSERT_EQ(a["transform"].size(), 4u);
@@ -73,10 +74,20 @@ TEST(Cli, MatchWritesTheResultContract) {
     EXPECT_NEAR((rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-9);
     EXPECT_NEAR(rotation.determinant(), 1.0, 1e-9);
     EXPECT_EQ(a["transform"][3], nlohmann::json({0.0, 0.0, 0.0, 1.0}));
-    EXPECT_LE(a["rmsd"].get<double>(), 4.0);
-    EXPECT_GT(a["n_points"].get<int>(), 0);
     EXPECT_TRUE(a["r_chem"].is_number());
     EXPECT_TRUE(a["consensus"].is_number());
+    if (a["source"] == "principal_axes") {  // no CP correspondences, no place in the tree
+      ++from_axes;
+      EXPECT_TRUE(a["refined"].get<bool>());
+      EXPECT_EQ(a["n_points"].get<int>(), 0);
+      EXPECT_TRUE(a["cp_pairs"].empty());
+      EXPECT_TRUE(a["parent"].is_null());
+      EXPECT_TRUE(a["children"].empty());
+      continue;
+    }
+    EXPECT_EQ(a["source"], "cliques");
+    EXPECT_LE(a["rmsd"].get<double>(), 4.0);
+    EXPECT_GT(a["n_points"].get<int>(), 0);
     EXPECT_GE(a["cp_pairs"].size(), 2u);
     for (const auto& pair : a["cp_pairs"]) EXPECT_EQ(pair.size(), 2u);
     EXPECT_TRUE(a["parent"].is_null() || a["parent"].get<int>() >= 1);
@@ -85,6 +96,11 @@ TEST(Cli, MatchWritesTheResultContract) {
       EXPECT_EQ(alignments[child.get<int>() - 1]["parent"], a["rank"]);
     }
   }
+  EXPECT_GT(from_axes, 0u);
+  EXPECT_LE(from_axes, 24u);
+  EXPECT_EQ(doc["parameters"]["principal_axes_starts"], 24);
+  EXPECT_EQ(doc["parameters"]["site_principal_axes_starts"], 24);
+  EXPECT_TRUE(doc["parameters"]["site_overlay_radius"].is_number());
   const auto& trace = doc["trace"];
   ASSERT_EQ(trace.size(), 5u);
   EXPECT_EQ(trace[0]["stage"], "critical points");
@@ -114,6 +130,7 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
       {"match " + ligand.string() + " " + ligand.string() + " --site-sphere 1,2", "x,y,z,r"},
       {"match " + ligand.string(), "REF and PROBE"},
       {"surf-build " + ligand.string() + " --probe nan", "probe"},
+      {"match " + ligand.string() + " " + ligand.string() + " --axes-starts 5", "axes-starts"},
   };
   for (const Case& c : cases) {
     const ProgramRun r = run(c.arguments + " -o " + json.string());

@@ -1,6 +1,7 @@
 // The match end to end on real surfaces: a surface against itself and against a moved copy
 // gives back the identity and the motion; the 1THL and 4TMN crystal ligands, whose true overlay
 // is known, align from random probe poses.
+#include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
@@ -14,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <random>
 
 namespace surfcomp {
@@ -155,6 +157,85 @@ TEST(Match, RefinedAlignmentsLeadByOverlayScoreAndRefineTopZeroKeepsTheConsensus
               angle, shift);
   EXPECT_LT(angle, 15.0);
   EXPECT_LT(shift, 1.5);
+}
+
+/// A molecule's described surface and a copy moved by a random motion (seeded), described.
+struct MovedCopy {
+  harmonic::SurfaceDescriptors reference, probe;
+  Eigen::Matrix4d motion;  ///< moves the reference onto the probe
+};
+
+MovedCopy moved_copy(const std::filesystem::path& file, unsigned seed) {
+  const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
+  std::mt19937 rng(seed);
+  const Eigen::Matrix4d motion = random_motion(rng);
+  return {harmonic::describe_surface(surface), harmonic::describe_surface(moved_surface(surface, motion)), motion};
+}
+
+TEST(Match, PrincipalAxesStartsJoinTheRefinedAlignments) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "4TMN_ligand.sdf");
+  const auto [reference, probe, motion] = moved_copy(file, 777u);
+  const auto cliques_only = matching::match_surfaces(reference, probe);
+  matching::MatchOptions options;
+  options.principal_axes_starts = 24;
+  const auto result = matching::match_surfaces(reference, probe, options);
+  // The axes starts add at most 24 alignments, every one refined, without CP correspondences or
+  // a place in the merge tree, and listed among the scored ones (before the alignments beyond
+  // refine_top, which have no overlay score).
+  std::size_t axes = 0;
+  bool unscored_seen = false;
+  for (std::size_t k = 0; k < result.alignments.size(); ++k) {
+    const auto& a = result.alignments[k];
+    EXPECT_EQ(a.rank, static_cast<int>(k) + 1);
+    unscored_seen = unscored_seen || a.overlay.score == 0.0;
+    if (a.source != matching::AlignmentSource::principal_axes) continue;
+    ++axes;
+    EXPECT_TRUE(a.refined);
+    EXPECT_FALSE(unscored_seen);
+    EXPECT_TRUE(a.cp_pairs.empty());
+    EXPECT_EQ(a.n_points, 0u);
+    EXPECT_EQ(a.parent, 0);
+    EXPECT_TRUE(a.children.empty());
+    for (const auto& other : result.alignments) {  // nothing in the tree points at it
+      EXPECT_NE(other.parent, a.rank);
+      for (int child : other.children) EXPECT_NE(child, a.rank);
+    }
+  }
+  EXPECT_GT(axes, 0u);
+  EXPECT_LE(axes, 24u);
+  EXPECT_EQ(result.alignments.size(), cliques_only.alignments.size() + axes);
+  // The moved copy is still recovered at the top.
+  const auto [angle, shift] = transform_error(result.alignments[0].transform, motion.inverse(), centroid(probe.surface));
+  std::printf("[ axes     ] %zu principal-axes alignments; top-1 %.3f deg, %.3f A from the motion\n", axes, angle, shift);
+  EXPECT_LT(angle, 2.0);
+  EXPECT_LT(shift, 0.5);
+  options.principal_axes_starts = 5;
+  EXPECT_THROW(matching::match_surfaces(reference, probe, options), OptionError);
+}
+
+TEST(Match, SiteMatchWithoutCliquesStillAlignsFromThePrincipalAxes) {
+  // A site match whose graph admits no CP pair (image threshold above any correlation) has no
+  // clique; the pocket overlay from the principal axes still gives alignments, and without
+  // them (site.principal_axes_starts 0) there are none. The site here is the whole molecule.
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
+  const auto [reference, probe, motion] = moved_copy(file, 99u);
+  const std::vector<bool> all_reference(reference.critical_points.size(), true);
+  const std::vector<bool> all_probe(probe.critical_points.size(), true);
+  matching::MatchOptions options;
+  options.graph.image_threshold = 1.5;  // above any correlation
+  const auto result = matching::match_surfaces(reference, probe, options, &all_reference, &all_probe);
+  EXPECT_EQ(result.cliques, 0u);
+  ASSERT_FALSE(result.alignments.empty());
+  for (const auto& a : result.alignments) EXPECT_EQ(a.source, matching::AlignmentSource::principal_axes);
+  // Shape alone ranks site poses (site.chem_weight 0): score and shape Tanimoto coincide.
+  EXPECT_DOUBLE_EQ(result.alignments[0].overlay.score, result.alignments[0].overlay.shape);
+  const auto [angle, shift] = transform_error(result.alignments[0].transform, motion.inverse(), centroid(probe.surface));
+  std::printf("[ site axes] no clique; top-1 of %zu axes alignments: %.3f deg, %.3f A from the motion, shape %.3f\n",
+              result.alignments.size(), angle, shift, result.alignments[0].overlay.shape);
+  EXPECT_LT(angle, 2.0);
+  EXPECT_LT(shift, 0.5);
+  options.site.principal_axes_starts = 0;
+  EXPECT_TRUE(matching::match_surfaces(reference, probe, options, &all_reference, &all_probe).alignments.empty());
 }
 
 }  // namespace

@@ -10,7 +10,9 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace surfcomp {
 namespace {
@@ -123,6 +125,46 @@ TEST(Overlay, RefinementRecoversAKnownMotion) {
     EXPECT_LT(shift, 0.2);
     EXPECT_GT(overlay.score(refined).score, overlay.score(start).score);
   }
+}
+
+TEST(Overlay, PrincipalAxesStartsHoldTheMotionAndAreProperRotations) {
+  const mesh::Surface reference = labelled_ellipsoid();  // axes 4, 2.5, 1.5 A: variances far apart
+  const RigidTransform truth = motion(150.0, Eigen::Vector3d(1.0, 2.0, -1.0), Eigen::Vector3d(-6.0, 4.0, 9.0));
+  const mesh::Surface probe = moved(reference, truth);
+  const matching::SurfaceSample a = matching::sample_surface(reference, 1.0);
+  const matching::SurfaceSample b = matching::sample_surface(probe, 1.0);
+  const RigidTransform answer = inverse(truth);
+  const Eigen::Vector3d centre = probe.positions().colwise().mean();
+  const auto error = [&](const RigidTransform& t) {
+    return std::pair<double, double>{matching::rotation_angle_degrees(t.rotation * answer.rotation.transpose()),
+                                     (t.apply(centre) - answer.apply(centre)).norm()};
+  };
+  const auto four = matching::principal_axes_starts(a, b);
+  const auto all = matching::principal_axes_starts(a, b, true);
+  ASSERT_EQ(four.size(), 4u);
+  ASSERT_EQ(all.size(), 24u);
+  // Every start is a proper rotation; the 24 are distinct (the rotation group of the cube
+  // carried by the two frames) and include the four.
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    EXPECT_NEAR(all[i].rotation.determinant(), 1.0, 1e-12);
+    EXPECT_LT((all[i].rotation.transpose() * all[i].rotation - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    for (std::size_t j = 0; j < i; ++j) EXPECT_GT((all[i].rotation - all[j].rotation).norm(), 0.5);
+  }
+  for (const RigidTransform& t : four) {
+    EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const RigidTransform& u) {
+      return (t.rotation - u.rotation).norm() < 1e-12 && (t.translation - u.translation).norm() < 1e-12;
+    }));
+  }
+  // One of the four is the motion, up to the two samplings' cells; the others are 180 degrees off.
+  double best_angle = 180.0, best_shift = 0.0;
+  for (const RigidTransform& t : four) {
+    const auto [angle, shift] = error(t);
+    if (angle < best_angle) std::tie(best_angle, best_shift) = std::tie(angle, shift);
+  }
+  std::printf("[ axes     ] best of 4 starts: %.3f deg, %.3f A from the motion\n", best_angle, best_shift);
+  EXPECT_LT(best_angle, 3.0);
+  EXPECT_LT(best_shift, 0.3);
+  EXPECT_THROW(matching::principal_axes_starts(a, matching::SurfaceSample{}), InputError);
 }
 
 TEST(Overlay, WeightedFitIgnoresPointsWithoutWeight) {

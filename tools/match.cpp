@@ -28,12 +28,16 @@ constexpr const char* kUsage =
     "shape images, distances and overlap; maximal cliques; least-squares fits on the images'\n"
     "corresponding points; single-linkage merging; consensus ranking (METHOD sections 5-7); then\n"
     "the first --refine-top alignments are refined on the whole surfaces (Gaussian overlay of shape,\n"
-    "ESP and LP) and ranked by that overlay score (table column 'overlay', * = refined).\n\n"
+    "ESP and LP) and ranked by that overlay score (table column 'overlay', * = refined), together\n"
+    "with --axes-starts principal-axes superpositions refined the same way (column 'from': axes).\n\n"
     "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .pqr), a mesh (.ply .vert .off .obj) or a .hsi\n"
     "            file from hsi-build (two .hsi files must have been built with the same parameters)\n"
     "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand build\n"
     "the protein's surface without that residue and keep the critical points within --site-radius\n"
-    "of its atoms; --site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds spheres.";
+    "of its atoms; --site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds spheres.\n"
+    "A site match overlays the pocket linings (within --site-overlay-radius of the site's critical\n"
+    "points) on shape alone (--site-chem-weight 0) from the cliques and 24 principal-axes starts;\n"
+    "the top-1 overlay score is then the sites' similarity (shape Tanimoto of the linings).";
 
 struct Side {
   std::filesystem::path path;
@@ -117,7 +121,8 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
     }
     nlohmann::json pairs = nlohmann::json::array();
     for (const auto& [x, y] : a.cp_pairs) pairs.push_back({x, y});
-    alignments.push_back({{"rank", a.rank}, {"transform", transform}, {"rmsd", a.rmsd},
+    const char* source = a.source == matching::AlignmentSource::cliques ? "cliques" : "principal_axes";
+    alignments.push_back({{"rank", a.rank}, {"source", source}, {"transform", transform}, {"rmsd", a.rmsd},
                           {"n_points", a.n_points}, {"r_chem", a.r_chem}, {"consensus", a.consensus},
                           {"refined", a.refined},
                           {"overlay", {{"score", a.overlay.score}, {"shape", a.overlay.shape}, {"chem", a.overlay.chem}}},
@@ -145,6 +150,10 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
             {"min_clique_size", options.min_clique_size}, {"refine_top", options.refine_top},
             {"overlay_sigma", options.overlay.sigma}, {"overlay_spacing", options.overlay.spacing},
             {"overlay_chem_weight", options.overlay.chem_weight},
+            {"principal_axes_starts", options.principal_axes_starts},
+            {"site_overlay_radius", options.site.overlay_radius},
+            {"site_chem_weight", options.site.chem_weight},
+            {"site_principal_axes_starts", options.site.principal_axes_starts},
             {"critical_point_radius", ref.descriptors.options.critical_points.radius},
             {"patch_radius", ref.descriptors.options.patch.radius},
             {"image_rings", ref.descriptors.options.image.radial_samples},
@@ -219,6 +228,14 @@ int match(const std::vector<std::string>& args) {
        "Gaussian width of the whole-surface overlay, A")
       ("overlay-chem-weight", po::value(&options.overlay.chem_weight)->default_value(options.overlay.chem_weight),
        "weight of the ESP/LP Tanimoto against the shape Tanimoto in the overlay score")
+      ("axes-starts", po::value(&options.principal_axes_starts)->default_value(options.principal_axes_starts),
+       "also refine this many principal-axes superpositions of the whole surfaces: 0, 4 or 24")
+      ("site-overlay-radius", po::value(&options.site.overlay_radius)->default_value(options.site.overlay_radius),
+       "site matches: overlay the vertices within this distance of the site's critical points, A")
+      ("site-chem-weight", po::value(&options.site.chem_weight)->default_value(options.site.chem_weight),
+       "site matches: --overlay-chem-weight for the pocket overlay")
+      ("site-axes-starts", po::value(&options.site.principal_axes_starts)->default_value(options.site.principal_axes_starts),
+       "site matches: --axes-starts for the pocket overlay (0, 4 or 24)")
       ("patch-radius", po::value(&descriptor_options.patch.radius)->default_value(descriptor_options.patch.radius),
        "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)");
   add_surface_options(described, input);
@@ -239,6 +256,14 @@ int match(const std::vector<std::string>& args) {
   require_in_range("refine-top", options.refine_top, 0, 1e6);
   require_in_range("overlay-sigma", options.overlay.sigma, 0.1, 10.0);
   require_in_range("overlay-chem-weight", options.overlay.chem_weight, 0.0, 100.0);
+  require_in_range("site-overlay-radius", options.site.overlay_radius, 0.1, 100.0);
+  require_in_range("site-chem-weight", options.site.chem_weight, 0.0, 100.0);
+  for (const auto& [name, value] : {std::pair<const char*, int>{"axes-starts", options.principal_axes_starts},
+                                    std::pair<const char*, int>{"site-axes-starts", options.site.principal_axes_starts}}) {
+    if (value != 0 && value != 4 && value != 24) {
+      throw OptionError(std::string("--") + name + " must be 0, 4 or 24, got " + std::to_string(value));
+    }
+  }
   require_one_of("ranking", ranking, {"rank", "number", "vote"});
   options.ranking.scheme = ranking == "number" ? matching::ConsensusScheme::rank_by_number
                            : ranking == "vote" ? matching::ConsensusScheme::rank_by_vote
@@ -305,17 +330,23 @@ int match(const std::vector<std::string>& args) {
               ref_path.string().c_str(), probe_path.string().c_str(), result.alignments.size(),
               prepare_ms, total_ms - prepare_ms);
   if (!result.alignments.empty()) {
-    std::printf("%5s %8s %8s %8s %9s %8s %6s %7s  %s\n", "rank", "rmsd", "points", "r_chem", "consensus",
+    std::printf("%5s %-7s %8s %8s %8s %9s %8s %6s %7s  %s\n", "rank", "from", "rmsd", "points", "r_chem", "consensus",
                 "overlay", "pairs", "parent", "rotation (deg) / translation (A)");
   }
   for (const auto& a : result.alignments) {
     if (a.rank > top) break;
     const Eigen::Matrix3d r = a.transform.topLeftCorner<3, 3>();
     const double angle = std::acos(std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
-    std::printf("%5d %8.3f %8zu %8.3f %9.3f %7.3f%s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank, a.rmsd,
-                a.n_points, a.r_chem, a.consensus, a.overlay.score, a.refined ? "*" : " ", a.cp_pairs.size(),
-                a.parent > 0 ? std::to_string(a.parent).c_str() : "-", angle, a.transform(0, 3),
-                a.transform(1, 3), a.transform(2, 3));
+    if (a.source == matching::AlignmentSource::cliques) {
+      std::printf("%5d %-7s %8.3f %8zu %8.3f %9.3f %7.3f%s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank, "cliques",
+                  a.rmsd, a.n_points, a.r_chem, a.consensus, a.overlay.score, a.refined ? "*" : " ", a.cp_pairs.size(),
+                  a.parent > 0 ? std::to_string(a.parent).c_str() : "-", angle, a.transform(0, 3),
+                  a.transform(1, 3), a.transform(2, 3));
+    } else {  // no CP correspondences behind it: no fit RMSD, points, R_chem, consensus or tree
+      std::printf("%5d %-7s %8s %8s %8s %9s %7.3f%s %6s %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank, "axes", "-", "-",
+                  "-", "-", a.overlay.score, a.refined ? "*" : " ", "-", "-", angle, a.transform(0, 3),
+                  a.transform(1, 3), a.transform(2, 3));
+    }
   }
   // Outputs last, each atomic; a failure of the second removes the first.
   if (!aligned_out.empty()) {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <map>
 #include <optional>
+#include <utility>
 
 namespace surfcomp::matching {
 namespace {
@@ -17,7 +18,8 @@ double since_ms(std::chrono::steady_clock::time_point start) {
 
 /// An alignment in its final place.
 struct Placed {
-  int cluster = -1;
+  AlignmentSource source = AlignmentSource::cliques;
+  int cluster = -1;  ///< for source cliques
   double consensus = 0.0;
   RigidTransform transform;
   bool refined = false;
@@ -47,9 +49,11 @@ std::optional<std::vector<bool>> site_vertices(const harmonic::SurfaceDescriptor
 }
 
 /// The consensus order with its first options.refine_top alignments refined on the whole
-/// surfaces (those whose start does not repeat an earlier one's) and moved ahead, best overlay
-/// score first, repeats of a better pose after the distinct ones (MatchOptions::refine_top).
-/// Those first refine_top alignments get their overlay score.
+/// surfaces (those whose start does not repeat an earlier one's) and moved ahead together with
+/// the refined principal-axes starts (MatchOptions::principal_axes_starts), best overlay score
+/// first, repeats of a better pose after the distinct ones (MatchOptions::refine_top). Those
+/// first refine_top alignments get their overlay score. A site match overlays the pocket
+/// linings with MatchOptions::site's settings.
 std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking, const std::vector<Cluster>& clusters,
                                      const harmonic::SurfaceDescriptors& reference,
                                      const harmonic::SurfaceDescriptors& probe, const MatchOptions& options,
@@ -57,7 +61,12 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
                                      const std::vector<bool>* probe_allowed) {
   constexpr double kRepeatDistance = 0.5;  // A, largest move of a sampled probe point
   if (options.refine_top < 0) throw OptionError("refine_top must be >= 0, got " + std::to_string(options.refine_top));
-  if (!(options.site_overlay_radius >= 0.0)) throw OptionError("site_overlay_radius must be >= 0");
+  const auto check_starts = [](int n, const char* name) {
+    if (n != 0 && n != 4 && n != 24) throw OptionError(std::string(name) + " must be 0, 4 or 24, got " + std::to_string(n));
+  };
+  check_starts(options.principal_axes_starts, "principal_axes_starts");
+  check_starts(options.site.principal_axes_starts, "site.principal_axes_starts");
+  if (!(options.site.overlay_radius > 0.0)) throw OptionError("site.overlay_radius must be > 0");
   std::vector<Placed> placed;
   for (const RankedAlignment& r : ranking) {
     Placed p;
@@ -66,14 +75,26 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     p.transform = clusters[static_cast<std::size_t>(r.cluster)].fit.transform;
     placed.push_back(p);
   }
-  if (placed.empty() || options.refine_top == 0) return placed;
-  const double radius = options.site_overlay_radius > 0.0 ? options.site_overlay_radius
-                                                           : std::max(reference.options.patch.radius, probe.options.patch.radius);
-  const auto reference_mask = site_vertices(reference, reference_allowed, radius);
-  const auto probe_mask = site_vertices(probe, probe_allowed, radius);
-  const SurfaceOverlay overlay(
-      sample_surface(reference.surface, options.overlay.spacing, reference_mask ? &*reference_mask : nullptr),
-      sample_surface(probe.surface, options.overlay.spacing, probe_mask ? &*probe_mask : nullptr), options.overlay);
+  if (options.refine_top == 0) return placed;
+  const auto reference_mask = site_vertices(reference, reference_allowed, options.site.overlay_radius);
+  const auto probe_mask = site_vertices(probe, probe_allowed, options.site.overlay_radius);
+  const bool site = reference_mask.has_value() || probe_mask.has_value();
+  OverlayOptions overlay_options = options.overlay;
+  if (site) overlay_options.chem_weight = options.site.chem_weight;
+  const int n_axes_starts = site ? options.site.principal_axes_starts : options.principal_axes_starts;
+  if (placed.empty() && n_axes_starts == 0) return placed;
+  SurfaceSample reference_sample =
+      sample_surface(reference.surface, overlay_options.spacing, reference_mask ? &*reference_mask : nullptr);
+  SurfaceSample probe_sample = sample_surface(probe.surface, overlay_options.spacing, probe_mask ? &*probe_mask : nullptr);
+  // A site region can be empty (no participating CP); then there is nothing to overlay.
+  if (reference_sample.size() == 0 || probe_sample.size() == 0) {
+    if (placed.empty()) return placed;
+    throw InputError(reference.surface.source() + " and " + probe.surface.source() + ": the overlay region of the " +
+                     (reference_sample.size() == 0 ? "reference" : "probe") + " has no vertices");
+  }
+  std::vector<RigidTransform> axes_starts;
+  if (n_axes_starts > 0) axes_starts = principal_axes_starts(reference_sample, probe_sample, n_axes_starts == 24);
+  const SurfaceOverlay overlay(std::move(reference_sample), std::move(probe_sample), overlay_options);
   const std::size_t n_refined = std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
   const Eigen::Matrix3Xd& points = overlay.probe_points();
   const auto largest_move = [&](const RigidTransform& x, const RigidTransform& y) {
@@ -93,15 +114,29 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
       placed[k].overlay = overlay.score(placed[k].transform);
     }
   }
-  // Refined ones by score (stable: consensus order breaks ties), then the repeats.
-  std::stable_sort(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined),
+  std::vector<Placed> candidates(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
+  for (const RigidTransform& start : axes_starts) {
+    Placed p;
+    p.source = AlignmentSource::principal_axes;
+    p.transform = overlay.refine(start, &p.overlay);
+    p.refined = true;
+    candidates.push_back(p);
+  }
+  // Refined ones by score (stable: consensus order, then the axes starts, breaks ties), then
+  // the repeats; a principal-axes pose that repeats a better one is dropped (it has no merge
+  // tree place to keep).
+  std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Placed& x, const Placed& y) { return x.overlay.score > y.overlay.score; });
   std::vector<Placed> distinct, repeats;
-  for (std::size_t k = 0; k < n_refined; ++k) {
+  for (const Placed& candidate : candidates) {
     const bool repeat = std::any_of(distinct.begin(), distinct.end(), [&](const Placed& d) {
-      return largest_move(d.transform, placed[k].transform) <= kRepeatDistance;
+      return largest_move(d.transform, candidate.transform) <= kRepeatDistance;
     });
-    (repeat ? repeats : distinct).push_back(placed[k]);
+    if (!repeat) {
+      distinct.push_back(candidate);
+    } else if (candidate.source == AlignmentSource::cliques) {
+      repeats.push_back(candidate);
+    }
   }
   distinct.insert(distinct.end(), repeats.begin(), repeats.end());
   distinct.insert(distinct.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined), placed.end());
@@ -158,21 +193,27 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
   const std::vector<Placed> placed = refine_and_order(ranking, clusters, reference, probe, options,
                                                       reference_allowed, probe_allowed);
   std::vector<int> rank_of(clusters.size(), 0);
-  for (std::size_t k = 0; k < placed.size(); ++k) rank_of[static_cast<std::size_t>(placed[k].cluster)] = static_cast<int>(k) + 1;
-  for (const Placed& p : placed) {
-    const Cluster& c = clusters[static_cast<std::size_t>(p.cluster)];
+  for (std::size_t k = 0; k < placed.size(); ++k) {
+    if (placed[k].source == AlignmentSource::cliques) rank_of[static_cast<std::size_t>(placed[k].cluster)] = static_cast<int>(k) + 1;
+  }
+  for (std::size_t k = 0; k < placed.size(); ++k) {
+    const Placed& p = placed[k];
     Alignment a;
-    a.rank = rank_of[static_cast<std::size_t>(p.cluster)];
+    a.source = p.source;
+    a.rank = static_cast<int>(k) + 1;
     a.transform = p.transform.matrix();
-    a.rmsd = c.fit.rmsd;
-    a.n_points = c.fit.n_points;
-    a.r_chem = c.r_chem;
     a.consensus = p.consensus;
     a.refined = p.refined;
     a.overlay = p.overlay;
-    for (const MatchedPair& pair : c.pairs) a.cp_pairs.emplace_back(pair.a, pair.b);
-    a.parent = c.parent >= 0 ? rank_of[static_cast<std::size_t>(c.parent)] : 0;
-    for (int child : c.children) a.children.push_back(rank_of[static_cast<std::size_t>(child)]);
+    if (p.source == AlignmentSource::cliques) {
+      const Cluster& c = clusters[static_cast<std::size_t>(p.cluster)];
+      a.rmsd = c.fit.rmsd;
+      a.n_points = c.fit.n_points;
+      a.r_chem = c.r_chem;
+      for (const MatchedPair& pair : c.pairs) a.cp_pairs.emplace_back(pair.a, pair.b);
+      a.parent = c.parent >= 0 ? rank_of[static_cast<std::size_t>(c.parent)] : 0;
+      for (int child : c.children) a.children.push_back(rank_of[static_cast<std::size_t>(child)]);
+    }
     result.alignments.push_back(std::move(a));
   }
   result.timing_ms.emplace_back("overlay refinement", since_ms(clock));

@@ -72,6 +72,16 @@ struct SurfaceSample {
 SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
                              const std::vector<bool>* vertex_mask = nullptr);
 
+/// The proper rotations that superpose the probe sample's area-weighted principal axes on the
+/// reference sample's, with the weighted centroids coincident: the starts Gaussian-overlay
+/// tools (Shape-it, ROCS) refine, independent of any critical point. With `all_orders` false,
+/// the four that pair the axes in order of their variance (signs taken in the four ways that
+/// keep a right-handed frame); with it true, the 24 that pair them in any order (for samples
+/// whose variances are too close for the order to mean much, as pockets' often are). Throws
+/// InputError when a sample is empty.
+std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference, const SurfaceSample& probe,
+                                                  bool all_orders = false);
+
 /// The Tanimoto scores of one transform (see the file comment).
 struct OverlayScore {
   double shape = 0.0;  ///< about [0, 1]
