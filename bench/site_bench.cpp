@@ -27,6 +27,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <random>
+#include <utility>
 #include <set>
 #include <sstream>
 #include <string>
@@ -211,6 +213,40 @@ double roc_auc(const std::vector<double>& scores, const std::vector<bool>& posit
   return wins / (p * n);
 }
 
+/// 95 % interval of the ROC AUC of `score` over site resamples: `draws` times, the sites are
+/// drawn with replacement (std::mt19937, `seed`) and the AUC taken over the pairs of distinct
+/// drawn sites (a site drawn twice brings its pairs twice). It says how much the AUC owes to
+/// which 36 sites happen to be in the set.
+std::pair<double, double> site_bootstrap_auc(const std::vector<PairResult>& results, std::size_t n_sites,
+                                             const std::function<double(const PairResult&)>& score, unsigned seed,
+                                             int draws) {
+  std::vector<std::vector<const PairResult*>> pair_of(n_sites, std::vector<const PairResult*>(n_sites, nullptr));
+  for (const auto& r : results) pair_of[r.a][r.b] = pair_of[r.b][r.a] = &r;
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(0, n_sites - 1);
+  std::vector<double> aucs;
+  for (int d = 0; d < draws; ++d) {
+    std::vector<std::size_t> drawn(n_sites);
+    for (auto& site : drawn) site = pick(rng);
+    std::vector<double> values;
+    std::vector<bool> positive;
+    for (std::size_t i = 0; i < drawn.size(); ++i) {
+      for (std::size_t j = i + 1; j < drawn.size(); ++j) {
+        const PairResult* r = pair_of[drawn[i]][drawn[j]];
+        if (drawn[i] == drawn[j] || r == nullptr) continue;
+        values.push_back(score(*r));
+        positive.push_back(r->same);
+      }
+    }
+    const auto n_positive = std::count(positive.begin(), positive.end(), true);
+    if (n_positive == 0 || n_positive == static_cast<std::ptrdiff_t>(positive.size())) continue;
+    aucs.push_back(roc_auc(values, positive));
+  }
+  std::sort(aucs.begin(), aucs.end());
+  const auto at = [&](double q) { return aucs[static_cast<std::size_t>(q * static_cast<double>(aucs.size() - 1))]; };
+  return aucs.empty() ? std::pair<double, double>{0.0, 0.0} : std::pair<double, double>{at(0.025), at(0.975)};
+}
+
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
@@ -350,6 +386,9 @@ int main(int argc, char** argv) {
         for (const auto& r : results) values.push_back(score.value(r, sites[r.a], sites[r.b]));
         std::printf("AUC %-14s %.3f   (%s)\n", score.name, roc_auc(values, positive), score.definition);
       }
+      const auto [low, high] = site_bootstrap_auc(
+          results, sites.size(), [](const PairResult& r) { return r.overlay.shape; }, 20261122u, 300);
+      std::printf("AUC overlay_shape, 95 %% interval over 300 site resamples (seed 20261122): %.3f - %.3f\n", low, high);
       std::printf("site build (read, surface, site descriptors): median %.0f ms, max %.0f ms\n", median(build_ms),
                   *std::max_element(build_ms.begin(), build_ms.end()));
       std::printf("match per pair (descriptors built): median %.1f ms, max %.1f ms\n", median(match_ms),
