@@ -472,7 +472,12 @@ int main(int argc, char** argv) {
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
     } else if (arg == "--axes-starts" && i + 1 < argc) {
-      options.principal_axes_starts = std::atoi(argv[++i]);
+      const std::string value = argv[++i];
+      if (value != "0" && value != "4" && value != "24") {
+        std::fprintf(stderr, "overlay_bench: --axes-starts must be 0, 4 or 24, got '%s'\n", value.c_str());
+        return 2;
+      }
+      options.principal_axes_starts = std::stoi(value);
     } else {
       std::fprintf(stderr, "overlay_bench: unknown argument '%s' (expected --quick, --seed N or --axes-starts N)\n",
                    arg.c_str());

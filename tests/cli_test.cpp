@@ -131,6 +131,9 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
       {"match " + ligand.string(), "REF and PROBE"},
       {"surf-build " + ligand.string() + " --probe nan", "probe"},
       {"match " + ligand.string() + " " + ligand.string() + " --axes-starts 5", "axes-starts"},
+      {"match " + ligand.string() + " " + ligand.string() + " --site-axes-starts 3", "site-axes-starts"},
+      {"match " + ligand.string() + " " + ligand.string() + " --site-overlay-radius 0", "site-overlay-radius"},
+      {"match " + ligand.string() + " " + ligand.string() + " --site-chem-weight -1", "site-chem-weight"},
   };
   for (const Case& c : cases) {
     const ProgramRun r = run(c.arguments + " -o " + json.string());

@@ -229,7 +229,8 @@ int match(const std::vector<std::string>& args) {
       ("overlay-chem-weight", po::value(&options.overlay.chem_weight)->default_value(options.overlay.chem_weight),
        "weight of the ESP/LP Tanimoto against the shape Tanimoto in the overlay score")
       ("axes-starts", po::value(&options.principal_axes_starts)->default_value(options.principal_axes_starts),
-       "also refine this many principal-axes superpositions of the whole surfaces: 0, 4 or 24")
+       "also refine this many principal-axes superpositions of the whole surfaces: 0, 4 or 24 "
+       "(with --refine-top > 0; so do the --site-* overlay options)")
       ("site-overlay-radius", po::value(&options.site.overlay_radius)->default_value(options.site.overlay_radius),
        "site matches: overlay the vertices within this distance of the site's critical points, A")
       ("site-chem-weight", po::value(&options.site.chem_weight)->default_value(options.site.chem_weight),

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <utility>
@@ -66,7 +67,12 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   };
   check_starts(options.principal_axes_starts, "principal_axes_starts");
   check_starts(options.site.principal_axes_starts, "site.principal_axes_starts");
-  if (!(options.site.overlay_radius > 0.0)) throw OptionError("site.overlay_radius must be > 0");
+  if (!(options.site.overlay_radius > 0.0) || !std::isfinite(options.site.overlay_radius)) {
+    throw OptionError("site.overlay_radius must be a finite number > 0, got " + std::to_string(options.site.overlay_radius));
+  }
+  if (!(options.site.chem_weight >= 0.0) || !std::isfinite(options.site.chem_weight)) {
+    throw OptionError("site.chem_weight must be a finite number >= 0, got " + std::to_string(options.site.chem_weight));
+  }
   std::vector<Placed> placed;
   for (const RankedAlignment& r : ranking) {
     Placed p;

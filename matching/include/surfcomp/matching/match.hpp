@@ -79,12 +79,15 @@ struct Alignment {
   int parent = 0;                        ///< rank of the cluster this one merged into; 0 for a root
   std::vector<int> children;             ///< ranks of the two clusters merged into this one
   bool refined = false;                  ///< transform refined on the whole surfaces (refine_top)
-  OverlayScore overlay;                  ///< whole-surface Tanimoto scores of the transform, for the
-                                         ///< first refine_top of the consensus ranking; 0 for the others
+  OverlayScore overlay;                  ///< Tanimoto scores of the transform (whole surfaces, or
+                                         ///< the pocket linings of a site match), for the first
+                                         ///< refine_top of the consensus ranking and the axes
+                                         ///< starts; 0 for the others
 };
 
 struct MatchResult {
-  std::vector<Alignment> alignments;          ///< every cluster of the tree, best first
+  std::vector<Alignment> alignments;          ///< every cluster of the tree and each distinct
+                                              ///< principal-axes pose, best first
   std::vector<TraceStage> trace;              ///< nodes and edges after each graph stage
   std::size_t cliques = 0;                    ///< maximal cliques of at least min_clique_size
   std::vector<std::pair<std::string, double>> timing_ms;  ///< per stage, in order
@@ -93,7 +96,9 @@ struct MatchResult {
 /// Aligns `probe` onto `reference`. `reference_allowed` / `probe_allowed` (one flag per
 /// critical point, or null for all) restrict the graph to a binding site (METHOD section 7).
 /// Throws InputError when the two descriptions were built with different image grids (their
-/// images cannot be compared) or a mask has the wrong size.
+/// images cannot be compared), a mask has the wrong size, or a site's overlay region holds no
+/// vertex while cliques need scoring; OptionError for options outside their domain (start
+/// counts other than 0, 4, 24; site.overlay_radius <= 0; site.chem_weight < 0).
 MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
                            const harmonic::SurfaceDescriptors& probe, const MatchOptions& options = {},
                            const std::vector<bool>* reference_allowed = nullptr,
