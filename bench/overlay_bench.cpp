@@ -473,11 +473,13 @@ int main(int argc, char** argv) {
       seed = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
     } else if (arg == "--axes-starts" && i + 1 < argc) {
       const std::string value = argv[++i];
-      if (value != "0" && value != "4" && value != "24") {
+      char* end = nullptr;
+      const long n = std::strtol(value.c_str(), &end, 10);
+      if (value.empty() || *end != '\0' || !matching::is_axes_start_count(static_cast<int>(n))) {
         std::fprintf(stderr, "overlay_bench: --axes-starts must be 0, 4 or 24, got '%s'\n", value.c_str());
         return 2;
       }
-      options.principal_axes_starts = std::stoi(value);
+      options.principal_axes_starts = static_cast<int>(n);
     } else {
       std::fprintf(stderr, "overlay_bench: unknown argument '%s' (expected --quick, --seed N or --axes-starts N)\n",
                    arg.c_str());

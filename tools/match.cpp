@@ -261,7 +261,7 @@ int match(const std::vector<std::string>& args) {
   require_in_range("site-chem-weight", options.site.chem_weight, 0.0, 100.0);
   for (const auto& [name, value] : {std::pair<const char*, int>{"axes-starts", options.principal_axes_starts},
                                     std::pair<const char*, int>{"site-axes-starts", options.site.principal_axes_starts}}) {
-    if (value != 0 && value != 4 && value != 24) {
+    if (!matching::is_axes_start_count(value)) {
       throw OptionError(std::string("--") + name + " must be 0, 4 or 24, got " + std::to_string(value));
     }
   }

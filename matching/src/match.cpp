@@ -19,8 +19,7 @@ double since_ms(std::chrono::steady_clock::time_point start) {
 
 /// An alignment in its final place.
 struct Placed {
-  AlignmentSource source = AlignmentSource::cliques;
-  int cluster = -1;  ///< for source cliques
+  int cluster = -1;  ///< index in the merge tree; -1 for a principal-axes pose
   double consensus = 0.0;
   RigidTransform transform;
   bool refined = false;
@@ -63,7 +62,7 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   constexpr double kRepeatDistance = 0.5;  // A, largest move of a sampled probe point
   if (options.refine_top < 0) throw OptionError("refine_top must be >= 0, got " + std::to_string(options.refine_top));
   const auto check_starts = [](int n, const char* name) {
-    if (n != 0 && n != 4 && n != 24) throw OptionError(std::string(name) + " must be 0, 4 or 24, got " + std::to_string(n));
+    if (!is_axes_start_count(n)) throw OptionError(std::string(name) + " must be 0, 4 or 24, got " + std::to_string(n));
   };
   check_starts(options.principal_axes_starts, "principal_axes_starts");
   check_starts(options.site.principal_axes_starts, "site.principal_axes_starts");
@@ -122,8 +121,7 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   }
   std::vector<Placed> candidates(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
   for (const RigidTransform& start : axes_starts) {
-    Placed p;
-    p.source = AlignmentSource::principal_axes;
+    Placed p;  // no cluster
     p.transform = overlay.refine(start, &p.overlay);
     p.refined = true;
     candidates.push_back(p);
@@ -140,7 +138,7 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     });
     if (!repeat) {
       distinct.push_back(candidate);
-    } else if (candidate.source == AlignmentSource::cliques) {
+    } else if (candidate.cluster >= 0) {
       repeats.push_back(candidate);
     }
   }
@@ -200,18 +198,18 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
                                                       reference_allowed, probe_allowed);
   std::vector<int> rank_of(clusters.size(), 0);
   for (std::size_t k = 0; k < placed.size(); ++k) {
-    if (placed[k].source == AlignmentSource::cliques) rank_of[static_cast<std::size_t>(placed[k].cluster)] = static_cast<int>(k) + 1;
+    if (placed[k].cluster >= 0) rank_of[static_cast<std::size_t>(placed[k].cluster)] = static_cast<int>(k) + 1;
   }
   for (std::size_t k = 0; k < placed.size(); ++k) {
     const Placed& p = placed[k];
     Alignment a;
-    a.source = p.source;
+    a.source = p.cluster >= 0 ? AlignmentSource::cliques : AlignmentSource::principal_axes;
     a.rank = static_cast<int>(k) + 1;
     a.transform = p.transform.matrix();
     a.consensus = p.consensus;
     a.refined = p.refined;
     a.overlay = p.overlay;
-    if (p.source == AlignmentSource::cliques) {
+    if (p.cluster >= 0) {
       const Cluster& c = clusters[static_cast<std::size_t>(p.cluster)];
       a.rmsd = c.fit.rmsd;
       a.n_points = c.fit.n_points;

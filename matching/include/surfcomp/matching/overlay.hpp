@@ -82,6 +82,9 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
 std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference, const SurfaceSample& probe,
                                                   bool all_orders = false);
 
+/// Whether `n` is a number of principal-axes starts there are: 0 (none), 4 or 24.
+inline bool is_axes_start_count(int n) { return n == 0 || n == 4 || n == 24; }
+
 /// The Tanimoto scores of one transform (see the file comment).
 struct OverlayScore {
   double shape = 0.0;  ///< about [0, 1]
