@@ -12,7 +12,8 @@
 // Usage: overlay_bench [--quick] [--seed N] [--axes-starts N]
 //   --quick          1 pose per five-ligand pair and 20 therm pairs instead of 5 and 100
 //   --seed N         seed of the std::mt19937 drawing poses and therm pairs (default 20261122)
-//   --axes-starts N  MatchOptions::principal_axes_starts for our match (0, 4 or 24; default 0)
+//   --axes-starts N  MatchOptions::principal_axes_starts for our match (0, 4 or 24; default 24)
+//   --threads N      worker threads for our match and descriptions (default all cores)
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
@@ -26,6 +27,7 @@
 #include <GraphMol/MolAlign/O3AAlignMolecules.h>
 #include <GraphMol/ROMol.h>
 #include <RDGeneral/RDLog.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
@@ -92,6 +94,7 @@ Entry load_entry(const std::string& name, const fs::path& path) {
     }
     const auto start = Clock::now();
     entry.descriptors = harmonic::describe_surface(mesh::build_molecular_surface(*entry.molecule));
+    entry.descriptors->atoms = harmonic::surface_atoms(*entry.molecule);
     entry.describe_ms = ms_since(start);
   } catch (const std::exception& e) {
     entry.molecule.reset();
@@ -211,7 +214,8 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
   const std::vector<bool> heavy = heavy_atoms(*probe.molecule);
   try {
     const auto start = Clock::now();
-    const auto described = harmonic::describe_surface(mesh::build_molecular_surface(posed));
+    auto described = harmonic::describe_surface(mesh::build_molecular_surface(posed));
+    described.atoms = harmonic::surface_atoms(posed);
     const auto match_start = Clock::now();
     const auto result = matching::match_surfaces(*reference.descriptors, described, options);
     out.match_ms = ms_since(match_start);
@@ -241,7 +245,8 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
       const matching::MatchOptions defaults;
       const matching::SurfaceOverlay overlay(
           matching::sample_surface(reference.descriptors->surface, defaults.overlay.spacing),
-          matching::sample_surface(described.surface, defaults.overlay.spacing), defaults.overlay);
+          matching::sample_surface(described.surface, defaults.overlay.spacing), defaults.overlay,
+          matching::sample_atoms(reference.descriptors->atoms), matching::sample_atoms(described.atoms));
       matching::RigidTransform truth_transform;  // the inverse of the pose
       truth_transform.rotation = pose.rotation.transpose();
       truth_transform.translation = -(pose.rotation.transpose() * pose.translation);
@@ -459,12 +464,21 @@ Trial run_trial(const Entry& reference, const Entry& probe, int pose_index, cons
   return trial;
 }
 
+/// The whole number `text` spells, or nullopt.
+std::optional<long> whole_number(const std::string& text) {
+  char* end = nullptr;
+  const long n = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0') return std::nullopt;
+  return n;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   bool quick = false;
   unsigned seed = 20261122u;
   matching::MatchOptions options;
+  int threads = 0;  // all
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--quick") {
@@ -472,19 +486,29 @@ int main(int argc, char** argv) {
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
     } else if (arg == "--axes-starts" && i + 1 < argc) {
-      const std::string value = argv[++i];
-      char* end = nullptr;
-      const long n = std::strtol(value.c_str(), &end, 10);
-      if (value.empty() || *end != '\0' || !matching::is_axes_start_count(static_cast<int>(n))) {
-        std::fprintf(stderr, "overlay_bench: --axes-starts must be 0, 4 or 24, got '%s'\n", value.c_str());
+      const std::optional<long> n = whole_number(argv[++i]);
+      if (!n || !matching::is_axes_start_count(static_cast<int>(*n))) {
+        std::fprintf(stderr, "overlay_bench: --axes-starts must be 0, 4 or 24, got '%s'\n", argv[i]);
         return 2;
       }
-      options.principal_axes_starts = static_cast<int>(n);
+      options.principal_axes_starts = static_cast<int>(*n);
+    } else if (arg == "--threads" && i + 1 < argc) {
+      const std::optional<long> n = whole_number(argv[++i]);
+      if (!n || *n < 1 || *n > 1024) {
+        std::fprintf(stderr, "overlay_bench: --threads must be a number from 1 to 1024, got '%s'\n", argv[i]);
+        return 2;
+      }
+      threads = static_cast<int>(*n);
     } else {
-      std::fprintf(stderr, "overlay_bench: unknown argument '%s' (expected --quick, --seed N or --axes-starts N)\n",
+      std::fprintf(stderr, "overlay_bench: unknown argument '%s' (expected --quick, --seed N, --axes-starts N or --threads N)\n",
                    arg.c_str());
       return 2;
     }
+  }
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0) {
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  static_cast<std::size_t>(threads));
   }
   const fs::path ligand_dir = kShared / "thermolysin/ligands-common-frame";
   const fs::path therm_sdf = kShared / "sutherland/therm_3dqsar.sdf";
@@ -496,8 +520,9 @@ int main(int argc, char** argv) {
   const int poses_per_pair = quick ? 1 : 5;
   const std::size_t therm_pairs = quick ? 20 : 100;
   std::printf("overlay_bench: seed %u, %s run (%d pose(s) per five-ligand pair, %zu therm pairs), %u hardware threads, "
-              "%d principal-axes starts\n", seed, quick ? "quick" : "full", poses_per_pair, therm_pairs,
-              std::thread::hardware_concurrency(), options.principal_axes_starts);
+              "%s, %d principal-axes starts\n", seed, quick ? "quick" : "full", poses_per_pair, therm_pairs,
+              std::thread::hardware_concurrency(), threads > 0 ? ("--threads " + std::to_string(threads)).c_str() : "all used",
+              options.principal_axes_starts);
   std::printf("poses: rotation uniform on SO(3) about the probe's heavy-atom centroid, then %.0f A in a random direction\n",
               kPoseTranslation);
   std::mt19937 rng(seed);

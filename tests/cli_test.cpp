@@ -51,7 +51,7 @@ TEST(Cli, MatchWritesTheResultContract) {
   const fs::path json = scratch("result.json");
   const fs::path aligned = scratch("aligned.sdf");
   const ProgramRun r = run("match " + ref.string() + " " + probe.string() + " -o " + json.string() +
-                    " --aligned-out " + aligned.string() + " --trace --axes-starts 24");
+                    " --aligned-out " + aligned.string() + " --trace");
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(json);
   const nlohmann::json doc = nlohmann::json::parse(in);
@@ -76,6 +76,7 @@ TEST(Cli, MatchWritesTheResultContract) {
     EXPECT_EQ(a["transform"][3], nlohmann::json({0.0, 0.0, 0.0, 1.0}));
     EXPECT_TRUE(a["r_chem"].is_number());
     EXPECT_TRUE(a["consensus"].is_number());
+    for (const char* key : {"score", "shape", "chem", "atoms"}) EXPECT_TRUE(a["overlay"][key].is_number()) << key;
     if (a["source"] == "principal_axes") {  // no CP correspondences, no place in the tree
       ++from_axes;
       EXPECT_TRUE(a["refined"].get<bool>());
@@ -98,6 +99,11 @@ TEST(Cli, MatchWritesTheResultContract) {
   }
   EXPECT_GT(from_axes, 0u);
   EXPECT_LE(from_axes, 24u);
+  // Both inputs are molecules: the top pose is judged on their heteroatoms too.
+  EXPECT_GT(alignments[0]["overlay"]["atoms"].get<double>(), 0.0);
+  EXPECT_LE(alignments[0]["overlay"]["atoms"].get<double>(), 1.0);
+  EXPECT_EQ(doc["parameters"]["overlay_atom_weight"], 14.0);
+  EXPECT_EQ(doc["parameters"]["overlay_tolerance"], 0.1);
   EXPECT_EQ(doc["parameters"]["principal_axes_starts"], 24);
   EXPECT_EQ(doc["parameters"]["site_principal_axes_starts"], 24);
   EXPECT_TRUE(doc["parameters"]["site_overlay_radius"].is_number());
@@ -109,6 +115,35 @@ TEST(Cli, MatchWritesTheResultContract) {
   }
   EXPECT_TRUE(fs::exists(aligned));
   EXPECT_GT(fs::file_size(aligned), 1000u);
+}
+
+// A .hsi file built from a molecule keeps its heavy atoms: matching the .hsi files gives the
+// alignments that matching the molecules gives, atom term included.
+TEST(Cli, HsiFilesMatchAsTheirMoleculesDo) {
+  SURFCOMP_SHARED_OR_SKIP(ref, "thermolysin/ligands-common-frame/3TMN_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/1TMN_ligand.sdf");
+  const fs::path ref_hsi = scratch("3TMN.hsi");
+  const fs::path probe_hsi = scratch("1TMN.hsi");
+  ASSERT_EQ(run("hsi-build " + ref.string() + " -o " + ref_hsi.string()).status, 0);
+  ASSERT_EQ(run("hsi-build " + probe.string() + " -o " + probe_hsi.string()).status, 0);
+  const fs::path from_molecules = scratch("molecules.json");
+  const fs::path from_hsi = scratch("hsi.json");
+  ASSERT_EQ(run("match " + ref.string() + " " + probe.string() + " -o " + from_molecules.string()).status, 0);
+  ASSERT_EQ(run("match " + ref_hsi.string() + " " + probe_hsi.string() + " -o " + from_hsi.string()).status, 0);
+  std::ifstream a_in(from_molecules), b_in(from_hsi);
+  const nlohmann::json a = nlohmann::json::parse(a_in), b = nlohmann::json::parse(b_in);
+  ASSERT_EQ(a["alignments"].size(), b["alignments"].size());
+  ASSERT_GE(a["alignments"].size(), 1u);
+  const auto& top_a = a["alignments"][0];
+  const auto& top_b = b["alignments"][0];
+  EXPECT_GT(top_a["overlay"]["atoms"].get<double>(), 0.0);
+  EXPECT_NEAR(top_a["overlay"]["atoms"].get<double>(), top_b["overlay"]["atoms"].get<double>(), 1e-12);
+  EXPECT_NEAR(top_a["overlay"]["score"].get<double>(), top_b["overlay"]["score"].get<double>(), 1e-12);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      EXPECT_NEAR(top_a["transform"][i][j].get<double>(), top_b["transform"][i][j].get<double>(), 1e-9);
+    }
+  }
 }
 
 TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
@@ -134,6 +169,8 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
       {"match " + ligand.string() + " " + ligand.string() + " --site-axes-starts 3", "site-axes-starts"},
       {"match " + ligand.string() + " " + ligand.string() + " --site-overlay-radius 0", "site-overlay-radius"},
       {"match " + ligand.string() + " " + ligand.string() + " --site-chem-weight -1", "site-chem-weight"},
+      {"match " + ligand.string() + " " + ligand.string() + " --overlay-atom-weight -1", "overlay-atom-weight"},
+      {"match " + ligand.string() + " " + ligand.string() + " --overlay-tolerance -0.1", "overlay-tolerance"},
   };
   for (const Case& c : cases) {
     const ProgramRun r = run(c.arguments + " -o " + json.string());

@@ -2,6 +2,7 @@
 // images invariant under rigid motion and independent of the sampling density (Zhang & Hebert),
 // thread-count independence, and the .hsi file.
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/binary_stream.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
@@ -151,10 +152,16 @@ TEST(Descriptors, ResultDoesNotDependOnTheThreadCount) {
 
 TEST(HsiFile, RoundTripsExactly) {
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
-  const auto d = harmonic::describe_surface(ligand_surface(file));
+  auto d = harmonic::describe_surface(ligand_surface(file));
+  d.atoms = harmonic::surface_atoms(io::read_molecule(file));
   const auto bytes = encoded(d);
   const auto back = harmonic::io::decode_hsi(bytes, "memory.hsi");
   EXPECT_TRUE(encoded(back) == bytes);
+  ASSERT_EQ(back.atoms.size(), d.atoms.size());
+  for (std::size_t i = 0; i < d.atoms.size(); ++i) {
+    EXPECT_EQ(back.atoms[i].element, d.atoms[i].element);
+    EXPECT_TRUE(back.atoms[i].position == d.atoms[i].position);
+  }
   ASSERT_EQ(back.critical_points.size(), d.critical_points.size());
   EXPECT_EQ(back.surface.n_vertices(), d.surface.n_vertices());
   EXPECT_EQ(back.surface.property_names(), d.surface.property_names());
@@ -198,15 +205,75 @@ TEST(HsiFile, CorruptTruncatedAndOtherVersionFilesAreRejected) {
   EXPECT_EQ(rejected, 200) << "every truncation and every flipped byte must be detected";
 
   auto other_version = bytes;
-  other_version[8] = 2;  // the version field follows the 8-byte magic
+  other_version[8] = 3;  // the version field follows the 8-byte magic
   try {
-    harmonic::io::decode_hsi(other_version, "v2.hsi");
-    FAIL() << "a version-2 file was accepted";
+    harmonic::io::decode_hsi(other_version, "v3.hsi");
+    FAIL() << "a version-3 file was accepted";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("version 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("version 3"), std::string::npos) << e.what();
   }
   EXPECT_THROW(harmonic::io::decode_hsi({'P', 'L', 'Y'}, "x.hsi"), FormatError);
   EXPECT_THROW(harmonic::io::read_hsi("/nonexistent/x.hsi"), FileError);
+}
+
+/// `bytes` (a version-2 file) re-headed as `version` with `payload` in place of its payload.
+std::vector<std::uint8_t> with_payload(const std::vector<std::uint8_t>& bytes, std::uint32_t version,
+                                       const std::vector<std::uint8_t>& payload) {
+  constexpr std::size_t kHeader = 32;  // magic, version, byte-order mark, size, checksum
+  std::vector<std::uint8_t> out(bytes.begin(), bytes.begin() + kHeader);
+  const auto put = [&](std::size_t at, std::uint64_t value, int n) {
+    for (int k = 0; k < n; ++k) out[at + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(value >> (8 * k));
+  };
+  put(8, version, 4);
+  put(16, payload.size(), 8);
+  put(24, surfcomp::io::fnv1a64(payload.data(), payload.size()), 8);
+  out.insert(out.end(), payload.begin(), payload.end());
+  return out;
+}
+
+// Version 2 added the atoms after the critical points; a version-1 file (the same payload
+// without them) still reads, with no atoms, and an atom that is not an element is refused.
+TEST(HsiFile, VersionOneFilesReadWithoutAtomsAndBadAtomsAreRefused) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "3TMN_ligand.sdf");
+  auto d = harmonic::describe_surface(ligand_surface(file));
+  const auto without_atoms = encoded(d);
+  const std::vector<std::uint8_t> payload(without_atoms.begin() + 32, without_atoms.end() - 8);  // less the atom count
+  const auto v1 = harmonic::io::decode_hsi(with_payload(without_atoms, 1, payload), "v1.hsi");
+  EXPECT_TRUE(v1.atoms.empty());
+  EXPECT_EQ(v1.critical_points.size(), d.critical_points.size());
+  EXPECT_TRUE(encoded(v1) == without_atoms);
+
+  d.atoms = {{"O", Eigen::Vector3d(1.0, 2.0, 3.0)}};
+  auto bytes = encoded(d);
+  std::vector<std::uint8_t> bad(bytes.begin() + 32, bytes.end());
+  const std::size_t symbol = bad.size() - 3 * 8 - 1;  // the "O" before the three coordinates
+  ASSERT_EQ(bad[symbol], 'O');
+  bad[symbol] = 'Q';
+  try {
+    harmonic::io::decode_hsi(with_payload(bytes, 2, bad), "bad_atom.hsi");
+    FAIL() << "an atom 'Q' was accepted";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad_atom.hsi"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'Q'"), std::string::npos) << e.what();
+  }
+}
+
+// The atoms a description keeps: the heavy ones, in the molecule's order.
+TEST(SurfaceAtoms, KeepTheHeavyAtomsInOrder) {
+  Molecule m;
+  for (const char* element : {"C", "H", "O", "H", "Cl", "N"}) {
+    Atom atom;
+    atom.element = element;
+    m.atoms.push_back(atom);
+  }
+  m.atoms[4].position = Eigen::Vector3d(1.0, 2.0, 3.0);
+  const auto atoms = harmonic::surface_atoms(m);
+  ASSERT_EQ(atoms.size(), 4u);
+  EXPECT_EQ(atoms[0].element, "C");
+  EXPECT_EQ(atoms[1].element, "O");
+  EXPECT_EQ(atoms[2].element, "Cl");
+  EXPECT_EQ(atoms[3].element, "N");
+  EXPECT_TRUE(atoms[2].position == Eigen::Vector3d(1.0, 2.0, 3.0));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The whole-surface overlay: sampling keeps the area, the Tanimoto scores are 1 exactly for a
-// surface on itself (also moved) and symmetric in the two surfaces, refinement climbs back to
-// a known motion, and the weighted rigid fit ignores what has no weight.
+// surface on itself (also moved) and symmetric in the two surfaces, two points overlap by the
+// Gaussian of their distance, same-element heteroatoms tell apart poses the surface cannot,
+// refinement climbs back to a known motion, and the weighted rigid fit ignores what has no weight.
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/mesh/surface.hpp"
@@ -12,7 +13,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 namespace surfcomp {
 namespace {
@@ -187,6 +191,90 @@ TEST(Overlay, WeightedFitIgnoresPointsWithoutWeight) {
   EXPECT_LT((plain.transform.matrix() - equal.transform.matrix()).norm(), 1e-12);
   EXPECT_NEAR(plain.rmsd, equal.rmsd, 1e-12);
   EXPECT_THROW(matching::fit_rigid_weighted(from, to, Eigen::VectorXd::Zero(6)), InputError);
+}
+
+/// One point of weight 1 at `position`, facing +z, with the given ESP and LP.
+matching::SurfaceSample one_point(const Eigen::Vector3d& position, double esp = 0.0, double lp = 0.0) {
+  matching::SurfaceSample s;
+  s.points = position;
+  s.normals = Eigen::Vector3d::UnitZ();
+  s.weights = Eigen::VectorXd::Ones(1);
+  s.esp = Eigen::VectorXd::Constant(1, esp);
+  s.lp = Eigen::VectorXd::Constant(1, lp);
+  return s;
+}
+
+// Two facing points d apart overlap by g = exp(-d^2 / (2 sigma^2)) (cut at 3 sigma) against
+// self-overlaps of 1: shape = g / (2 - g). The overlay tabulates g; it must stay within 1e-6
+// (linear interpolation in d^2 over 2048 steps of (3 sigma)^2: at most 6e-7).
+// Without ESP or LP on either side the chemistry Tanimoto is 0, not 0 / 0.
+TEST(Overlay, TwoPointsOverlapByTheGaussianOfTheirDistance) {
+  for (double sigma : {1.0, 0.7}) {
+    matching::OverlayOptions options;
+    options.sigma = sigma;
+    const matching::SurfaceOverlay overlay(one_point(Eigen::Vector3d::Zero()), one_point(Eigen::Vector3d::Zero()), options);
+    for (double d : {0.0, 0.05, 0.3, 0.77, 1.0, 1.9, 2.5, 2.99}) {
+      const double g = d < 3.0 * sigma ? std::exp(-d * d / (2.0 * sigma * sigma)) : 0.0;
+      const matching::OverlayScore s = overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(d, 0.0, 0.0)));
+      EXPECT_NEAR(s.shape, g / (2.0 - g), 1e-5) << "sigma " << sigma << ", d " << d;
+      EXPECT_NEAR(2.0 * s.shape / (1.0 + s.shape), g, 1e-6) << "sigma " << sigma << ", d " << d;  // g itself
+      EXPECT_EQ(s.chem, 0.0);
+      EXPECT_EQ(s.atoms, 0.0);
+      EXPECT_NEAR(s.score, s.shape / (1.0 + options.chem_weight), 1e-15);
+    }
+    EXPECT_EQ(overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(3.01 * sigma, 0.0, 0.0))).shape, 0.0);
+  }
+}
+
+/// An atom sample from (element, x, y, z) rows.
+matching::AtomSample atoms(const std::vector<std::pair<std::string, Eigen::Vector3d>>& rows) {
+  std::vector<harmonic::SurfaceAtom> list;
+  for (const auto& [element, position] : rows) list.push_back({element, position});
+  return matching::sample_atoms(list);
+}
+
+// A surface symmetric under a half turn about z (an ellipsoid without chemistry) cannot tell
+// the turn from the identity; its molecule's heteroatoms can. Only same-element heteroatoms
+// count: carbons and hydrogens are not sampled, and an O does not pair with an N.
+TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
+  const matching::SurfaceSample shape = matching::sample_surface(test::ellipsoid(4.0, 2.5, 1.5, 24), 1.0);
+  const auto molecule = atoms({{"O", {3.0, 0.0, 0.0}}, {"N", {0.0, 1.5, 0.0}}, {"C", {0.0, 0.0, 0.0}}, {"H", {1.0, 0.0, 0.0}}});
+  ASSERT_EQ(molecule.size(), 2u);
+  EXPECT_EQ(molecule.elements, (std::vector<std::string>{"O", "N"}));
+  const matching::OverlayOptions options;  // chem weight 6, atom weight 14
+  const matching::SurfaceOverlay overlay(shape, shape, options, molecule, molecule);
+  ASSERT_TRUE(overlay.uses_atoms());
+  const RigidTransform turn = motion(180.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
+  const matching::OverlayScore at_identity = overlay.score(RigidTransform{});
+  const matching::OverlayScore turned = overlay.score(turn);
+  EXPECT_NEAR(at_identity.atoms, 1.0, 1e-12);
+  EXPECT_LT(turned.atoms, 0.01);  // only the N's tails meet, 3 A apart: 0.011 / 4
+  EXPECT_NEAR(turned.shape, at_identity.shape, 0.05);  // the two cell samplings differ slightly
+  const double weights = 1.0 + options.chem_weight + options.atom_weight;
+  EXPECT_NEAR(at_identity.score, (at_identity.shape + options.chem_weight * at_identity.chem + options.atom_weight) / weights, 1e-12);
+  EXPECT_GT(at_identity.score - turned.score, 0.5);
+  // The refinement's final score carries the atom term too.
+  matching::OverlayScore refined;
+  overlay.refine(motion(3.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d(0.2, 0.0, 0.0)), &refined);
+  EXPECT_GT(refined.atoms, 0.9);
+  EXPECT_NEAR(refined.score, (refined.shape + options.chem_weight * refined.chem + options.atom_weight * refined.atoms) / weights, 1e-12);
+
+  // The O and N swapped: no same-element pair at the identity.
+  const auto swapped = atoms({{"N", {3.0, 0.0, 0.0}}, {"O", {0.0, 1.5, 0.0}}});
+  EXPECT_LT(matching::SurfaceOverlay(shape, shape, options, molecule, swapped).score(RigidTransform{}).atoms, 0.01);
+  // No atoms on one side, or weight 0: the surface score alone.
+  for (const auto& [probe_atoms, weight] : {std::pair<matching::AtomSample, double>{{}, 14.0}, {molecule, 0.0}}) {
+    matching::OverlayOptions o = options;
+    o.atom_weight = weight;
+    const matching::SurfaceOverlay plain(shape, shape, o, molecule, probe_atoms);
+    EXPECT_FALSE(plain.uses_atoms());
+    const matching::OverlayScore s = plain.score(turn);
+    EXPECT_EQ(s.atoms, 0.0);
+    EXPECT_NEAR(s.score, (s.shape + o.chem_weight * s.chem) / (1.0 + o.chem_weight), 1e-15);
+  }
+  matching::OverlayOptions negative = options;
+  negative.atom_weight = -1.0;
+  EXPECT_THROW(matching::SurfaceOverlay(shape, shape, negative, molecule, molecule), OptionError);
 }
 
 TEST(Overlay, RejectsBadOptionsAndEmptySamples) {

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -66,17 +67,13 @@ Site build_site(const std::filesystem::path& pdb, const std::string& ligand_name
   mesh::Surface surface = mesh::build_molecular_surface(site.protein);
   site.surface_ms = ms_since(start);
   start = Clock::now();
-  site.descriptors.options = options;
-  const auto points = mesh::detect_critical_points(surface, options.critical_points);
-  for (const auto& point : points) {
-    for (const auto& sphere : site.spheres) {
-      if ((point.position - sphere.center).norm() <= sphere.radius) {
-        site.descriptors.critical_points.push_back(harmonic::describe_point(surface, point, options));
-        break;
-      }
-    }
-  }
-  site.descriptors.surface = std::move(surface);
+  // As `surfcomp match --site-ligand` builds it: images only at the critical points in the
+  // site, the others kept as skipped, so that the match overlays the pocket linings.
+  site.descriptors = harmonic::describe_surface(std::move(surface), options, [&](const mesh::CriticalPoint& point) {
+    return std::any_of(site.spheres.begin(), site.spheres.end(), [&](const matching::SiteSphere& sphere) {
+      return (point.position - sphere.center).norm() <= sphere.radius;
+    });
+  });
   site.describe_ms = ms_since(start);
   return site;
 }
@@ -138,10 +135,10 @@ TEST(SiteMatch, ThermolysinSitesAlignWithinTwoAngstrom) {
   const Site probe = build_site(probe_pdb, "0DB", options);
   std::printf("[ sites    ] 4TMN: %zu atoms, %zu vertices, %zu site CPs (surface %.0f ms, describe %.0f ms)\n",
               ref.protein.atoms.size(), ref.descriptors.surface.n_vertices(),
-              ref.descriptors.critical_points.size(), ref.surface_ms, ref.describe_ms);
+              harmonic::count_descriptors(ref.descriptors).imaged, ref.surface_ms, ref.describe_ms);
   std::printf("[ sites    ] 1THL: %zu atoms, %zu vertices, %zu site CPs (surface %.0f ms, describe %.0f ms)\n",
               probe.protein.atoms.size(), probe.descriptors.surface.n_vertices(),
-              probe.descriptors.critical_points.size(), probe.surface_ms, probe.describe_ms);
+              harmonic::count_descriptors(probe.descriptors).imaged, probe.surface_ms, probe.describe_ms);
 
   const auto start = Clock::now();
   const auto result = matching::match_surfaces(ref.descriptors, probe.descriptors);

@@ -99,6 +99,7 @@ Side load_side(const std::filesystem::path& path, SurfaceInput input, const std:
   side.descriptors = side.site.empty()
                          ? harmonic::describe_surface(std::move(loaded.surface), options)
                          : harmonic::describe_surface(std::move(loaded.surface), options, in_site);
+  if (side.molecule) side.descriptors.atoms = harmonic::surface_atoms(*side.molecule);
   return side;
 }
 
@@ -125,7 +126,11 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
     alignments.push_back({{"rank", a.rank}, {"source", source}, {"transform", transform}, {"rmsd", a.rmsd},
                           {"n_points", a.n_points}, {"r_chem", a.r_chem}, {"consensus", a.consensus},
                           {"refined", a.refined},
-                          {"overlay", {{"score", a.overlay.score}, {"shape", a.overlay.shape}, {"chem", a.overlay.chem}}},
+                          {"overlay",
+                           {{"score", a.overlay.score},
+                            {"shape", a.overlay.shape},
+                            {"chem", a.overlay.chem},
+                            {"atoms", a.overlay.atoms}}},
                           {"cp_pairs", pairs},
                           {"parent", a.parent > 0 ? nlohmann::json(a.parent) : nlohmann::json(nullptr)},
                           {"children", a.children}});
@@ -150,6 +155,8 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
             {"min_clique_size", options.min_clique_size}, {"refine_top", options.refine_top},
             {"overlay_sigma", options.overlay.sigma}, {"overlay_spacing", options.overlay.spacing},
             {"overlay_chem_weight", options.overlay.chem_weight},
+            {"overlay_atom_weight", options.overlay.atom_weight},
+            {"overlay_tolerance", options.overlay.tolerance},
             {"principal_axes_starts", options.principal_axes_starts},
             {"site_overlay_radius", options.site.overlay_radius},
             {"site_chem_weight", options.site.chem_weight},
@@ -228,6 +235,11 @@ int match(const std::vector<std::string>& args) {
        "Gaussian width of the whole-surface overlay, A")
       ("overlay-chem-weight", po::value(&options.overlay.chem_weight)->default_value(options.overlay.chem_weight),
        "weight of the ESP/LP Tanimoto against the shape Tanimoto in the overlay score")
+      ("overlay-atom-weight", po::value(&options.overlay.atom_weight)->default_value(options.overlay.atom_weight),
+       "weight of the same-element heteroatom Tanimoto in the overlay score, where both inputs are "
+       "molecules (or .hsi files built from molecules); not for site matches")
+      ("overlay-tolerance", po::value(&options.overlay.tolerance)->default_value(options.overlay.tolerance),
+       "a refinement stops when a step moves no sampled probe point farther than this, A")
       ("axes-starts", po::value(&options.principal_axes_starts)->default_value(options.principal_axes_starts),
        "also refine this many principal-axes superpositions of the whole surfaces: 0, 4 or 24 "
        "(with --refine-top > 0; so do the --site-* overlay options)")
@@ -257,6 +269,8 @@ int match(const std::vector<std::string>& args) {
   require_in_range("refine-top", options.refine_top, 0, 1e6);
   require_in_range("overlay-sigma", options.overlay.sigma, 0.1, 10.0);
   require_in_range("overlay-chem-weight", options.overlay.chem_weight, 0.0, 100.0);
+  require_in_range("overlay-atom-weight", options.overlay.atom_weight, 0.0, 1000.0);
+  require_in_range("overlay-tolerance", options.overlay.tolerance, 0.0, 10.0);
   require_in_range("site-overlay-radius", options.site.overlay_radius, 0.1, 100.0);
   require_in_range("site-chem-weight", options.site.chem_weight, 0.0, 100.0);
   for (const auto& [name, value] : {std::pair<const char*, int>{"axes-starts", options.principal_axes_starts},

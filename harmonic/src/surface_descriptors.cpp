@@ -69,6 +69,14 @@ SurfaceDescriptors describe_surface(mesh::Surface surface, const DescriptorOptio
   return result;
 }
 
+std::vector<SurfaceAtom> surface_atoms(const Molecule& molecule) {
+  std::vector<SurfaceAtom> atoms;
+  for (const Atom& atom : molecule.atoms) {
+    if (atom.element != "H") atoms.push_back(SurfaceAtom{atom.element, atom.position});
+  }
+  return atoms;
+}
+
 DescriptorCounts count_descriptors(const SurfaceDescriptors& descriptors) {
   DescriptorCounts counts;
   for (const auto& cp : descriptors.critical_points) {

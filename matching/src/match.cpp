@@ -6,9 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <optional>
 #include <utility>
+
+#include <tbb/parallel_for.h>
 
 namespace surfcomp::matching {
 namespace {
@@ -85,7 +88,10 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   const auto probe_mask = site_vertices(probe, probe_allowed, options.site.overlay_radius);
   const bool site = reference_mask.has_value() || probe_mask.has_value();
   OverlayOptions overlay_options = options.overlay;
-  if (site) overlay_options.chem_weight = options.site.chem_weight;
+  if (site) {
+    overlay_options.chem_weight = options.site.chem_weight;
+    overlay_options.atom_weight = 0.0;  // pockets are compared on their linings' shape
+  }
   const int n_axes_starts = site ? options.site.principal_axes_starts : options.principal_axes_starts;
   if (placed.empty() && n_axes_starts == 0) return placed;
   SurfaceSample reference_sample =
@@ -99,32 +105,59 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   }
   std::vector<RigidTransform> axes_starts;
   if (n_axes_starts > 0) axes_starts = principal_axes_starts(reference_sample, probe_sample, n_axes_starts == 24);
-  const SurfaceOverlay overlay(std::move(reference_sample), std::move(probe_sample), overlay_options);
+  const SurfaceOverlay overlay(std::move(reference_sample), std::move(probe_sample), overlay_options,
+                               site ? AtomSample{} : sample_atoms(reference.atoms),
+                               site ? AtomSample{} : sample_atoms(probe.atoms));
   const std::size_t n_refined = std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
   const Eigen::Matrix3Xd& points = overlay.probe_points();
   const auto largest_move = [&](const RigidTransform& x, const RigidTransform& y) {
     return (x.apply(points) - y.apply(points)).colwise().norm().maxCoeff();
   };
   // A start within kRepeatDistance of an earlier refined start (merge-tree neighbours often
-  // share their transform) would refine to the same pose: it is scored where it is.
+  // share their transform) would refine to the same pose: it is scored where it is. The
+  // refinements are independent, each into its own slot, and run in parallel (TBB): the result
+  // does not depend on the thread count.
   std::vector<RigidTransform> starts;
+  std::vector<std::size_t> to_refine;
   for (std::size_t k = 0; k < n_refined; ++k) {
     if (std::none_of(starts.begin(), starts.end(), [&](const RigidTransform& s) {
           return largest_move(s, placed[k].transform) <= kRepeatDistance;
         })) {
       starts.push_back(placed[k].transform);
-      placed[k].transform = overlay.refine(placed[k].transform, &placed[k].overlay);
-      placed[k].refined = true;
+      to_refine.push_back(k);
     } else {
       placed[k].overlay = overlay.score(placed[k].transform);
     }
   }
-  std::vector<Placed> candidates(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
-  for (const RigidTransform& start : axes_starts) {
-    Placed p;  // no cluster
-    p.transform = overlay.refine(start, &p.overlay);
+  tbb::parallel_for(std::size_t{0}, to_refine.size(), [&](std::size_t i) {
+    Placed& p = placed[to_refine[i]];
+    p.transform = overlay.refine(p.transform, &p.overlay);
     p.refined = true;
-    candidates.push_back(p);
+  });
+  std::vector<Placed> candidates(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
+  // A principal-axes start whose refinement reaches a pose refined from the cliques would end
+  // as its repeat, which is dropped: it is abandoned there. (The probe points' centroid moves
+  // no farther than the farthest point: a cheap first test.)
+  const Eigen::Vector3d centroid = points.rowwise().mean();
+  const auto reached = [&](const RigidTransform& pose) {
+    const Eigen::Vector3d moved = pose.rotation * centroid + pose.translation;
+    return std::any_of(candidates.begin(), candidates.end(), [&](const Placed& c) {
+      const Eigen::Vector3d other = c.transform.rotation * centroid + c.transform.translation;
+      return c.refined && (other - moved).norm() <= kRepeatDistance &&
+             largest_move(c.transform, pose) <= kRepeatDistance;
+    });
+  };
+  std::vector<std::optional<Placed>> axes_poses(axes_starts.size());
+  tbb::parallel_for(std::size_t{0}, axes_starts.size(), [&](std::size_t i) {
+    Placed p;  // no cluster
+    const std::optional<RigidTransform> refined = overlay.refine(axes_starts[i], &p.overlay, reached);
+    if (!refined) return;
+    p.transform = *refined;
+    p.refined = true;
+    axes_poses[i] = p;
+  });
+  for (const auto& p : axes_poses) {
+    if (p) candidates.push_back(*p);
   }
   // Refined ones by score (stable: consensus order, then the axes starts, breaks ties), then
   // the repeats; a principal-axes pose that repeats a better one is dropped (it has no merge

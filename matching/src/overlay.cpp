@@ -98,6 +98,19 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing, const
   return sample;
 }
 
+AtomSample sample_atoms(const std::vector<harmonic::SurfaceAtom>& atoms) {
+  AtomSample sample;
+  for (const harmonic::SurfaceAtom& atom : atoms) {
+    if (atom.element != "H" && atom.element != "C") sample.elements.push_back(atom.element);
+  }
+  sample.points.resize(3, static_cast<Eigen::Index>(sample.elements.size()));
+  Eigen::Index k = 0;
+  for (const harmonic::SurfaceAtom& atom : atoms) {
+    if (atom.element != "H" && atom.element != "C") sample.points.col(k++) = atom.position;
+  }
+  return sample;
+}
+
 namespace {
 
 /// The weighted centroid and principal axes (columns, by increasing variance, right-handed)
@@ -139,59 +152,64 @@ std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference
   return starts;
 }
 
-SurfaceOverlay::Grid SurfaceOverlay::make_grid(const SurfaceSample& sample, double cell) {
+SurfaceOverlay::Grid SurfaceOverlay::make_grid(const SurfaceSample& sample, double cell, double cutoff) {
   Grid grid;
   grid.cell = cell;
-  grid.origin = sample.points.rowwise().minCoeff();
-  const Eigen::Vector3d extent = sample.points.rowwise().maxCoeff() - grid.origin;
+  grid.origin = sample.points.rowwise().minCoeff().array() - cutoff;
+  const Eigen::Vector3d extent = sample.points.rowwise().maxCoeff().array() + cutoff - grid.origin.array();
   for (int d = 0; d < 3; ++d) grid.size(d) = static_cast<int>(std::floor(extent(d) / cell)) + 1;
-  const auto cell_of = [&](Eigen::Index i) {
-    const Eigen::Vector3i c = ((sample.points.col(i) - grid.origin) / cell).array().floor().cast<int>();
-    return (c.z() * grid.size.y() + c.y()) * grid.size.x() + c.x();
-  };
+  // A cell holds every point within the cutoff of any of its places: within the cutoff plus
+  // half the cell's diagonal of its centre.
+  const double reach = cutoff + 0.5 * std::sqrt(3.0) * cell;
   const std::size_t cells = static_cast<std::size_t>(grid.size.prod());
-  grid.start.assign(cells + 1, 0);
-  for (Eigen::Index i = 0; i < sample.points.cols(); ++i) ++grid.start[static_cast<std::size_t>(cell_of(i)) + 1];
-  for (std::size_t c = 0; c < cells; ++c) grid.start[c + 1] += grid.start[c];
-  grid.points.resize(sample.size());
-  std::vector<int> fill(grid.start.begin(), grid.start.end() - 1);
+  std::vector<std::vector<int>> lists(cells);
   for (Eigen::Index i = 0; i < sample.points.cols(); ++i) {
-    grid.points[static_cast<std::size_t>(fill[static_cast<std::size_t>(cell_of(i))]++)] = static_cast<int>(i);
+    const Eigen::Vector3d p = sample.points.col(i);
+    const Eigen::Vector3i low = ((p.array() - reach - grid.origin.array()) / cell).floor().cast<int>().max(0);
+    const Eigen::Vector3i high =
+        ((p.array() + reach - grid.origin.array()) / cell).floor().cast<int>().min(grid.size.array() - 1);
+    for (int z = low.z(); z <= high.z(); ++z) {
+      for (int y = low.y(); y <= high.y(); ++y) {
+        for (int x = low.x(); x <= high.x(); ++x) {
+          const Eigen::Vector3d centre = grid.origin + cell * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
+          if ((centre - p).squaredNorm() > reach * reach) continue;
+          lists[static_cast<std::size_t>((z * grid.size.y() + y) * grid.size.x() + x)].push_back(static_cast<int>(i));
+        }
+      }
+    }
   }
+  grid.start.assign(cells + 1, 0);
+  for (std::size_t c = 0; c < cells; ++c) grid.start[c + 1] = grid.start[c] + static_cast<int>(lists[c].size());
+  grid.points.reserve(static_cast<std::size_t>(grid.start[cells]));
+  for (const auto& list : lists) grid.points.insert(grid.points.end(), list.begin(), list.end());
   return grid;
 }
 
 namespace {
 
-/// Calls visit(i) for each point i of `grid` in the 3 x 3 x 3 cells around `p`: with cells no
-/// smaller than the cutoff, they hold every point within the cutoff of p.
+/// Calls visit(i) for each point i listed for the cell of `p`: a superset of the points within
+/// the grid's cutoff of p (none when p is outside the grid).
 template <typename Grid, typename Visit>
 void visit_near(const Grid& grid, const Eigen::Vector3d& p, const Visit& visit) {
   const Eigen::Vector3d local = (p - grid.origin) / grid.cell;
-  // Far outside the grid (also guards the int conversion below).
-  if ((local.array() < -1.0).any() || (local.array() > grid.size.template cast<double>().array() + 1.0).any()) return;
+  // Outside the grid (also guards the int conversion below).
+  if ((local.array() < 0.0).any() || (local.array() >= grid.size.template cast<double>().array()).any()) return;
   const Eigen::Vector3i c = local.array().floor().cast<int>();
-  for (int z = std::max(c.z() - 1, 0); z <= std::min(c.z() + 1, grid.size.z() - 1); ++z) {
-    for (int y = std::max(c.y() - 1, 0); y <= std::min(c.y() + 1, grid.size.y() - 1); ++y) {
-      for (int x = std::max(c.x() - 1, 0); x <= std::min(c.x() + 1, grid.size.x() - 1); ++x) {
-        const std::size_t cell = static_cast<std::size_t>((z * grid.size.y() + y) * grid.size.x() + x);
-        for (int k = grid.start[cell]; k < grid.start[cell + 1]; ++k) visit(grid.points[static_cast<std::size_t>(k)]);
-      }
-    }
-  }
+  const std::size_t cell = static_cast<std::size_t>((c.z() * grid.size.y() + c.y()) * grid.size.x() + c.x());
+  for (int k = grid.start[cell]; k < grid.start[cell + 1]; ++k) visit(grid.points[static_cast<std::size_t>(k)]);
 }
 
 }  // namespace
 
-double SurfaceOverlay::chemistry(const SurfaceSample& a, int i, const SurfaceSample& b, int j) const {
-  return std::max(0.0, a.esp(i) * b.esp(j)) / (esp_rms_ * esp_rms_) + std::max(0.0, a.lp(i) * b.lp(j)) / (lp_rms_ * lp_rms_);
+double SurfaceOverlay::chemistry(const SurfaceSample& a, int i, const SurfaceSample& b, int j) {
+  // The samples' ESP and LP were divided by their root mean squares on construction.
+  return std::max(0.0, a.esp(i) * b.esp(j)) + std::max(0.0, a.lp(i) * b.lp(j));
 }
 
 SurfaceOverlay::Sums SurfaceOverlay::overlap(const SurfaceSample& a, const Grid& grid, const SurfaceSample& b,
                                              const RigidTransform& transform, Eigen::Matrix3Xd* targets,
                                              Eigen::VectorXd* target_weights) const {
   const double cutoff2 = std::pow(kCutoffSigmas * options_.sigma, 2);
-  const double inv2s2 = 1.0 / (2.0 * options_.sigma * options_.sigma);
   Sums sums;
   for (Eigen::Index j = 0; j < b.points.cols(); ++j) {
     const Eigen::Vector3d q = transform.rotation * b.points.col(j) + transform.translation;
@@ -203,7 +221,7 @@ SurfaceOverlay::Sums SurfaceOverlay::overlap(const SurfaceSample& a, const Grid&
       if (d2 > cutoff2) return;
       const double facing = a.normals.col(i).dot(m);
       if (facing <= 0.0) return;
-      const double k = a.weights(i) * std::exp(-d2 * inv2s2) * facing;
+      const double k = a.weights(i) * gaussian(d2) * facing;
       const double c = chemistry(a, i, b, static_cast<int>(j));
       sums.shape += b.weights(j) * k;
       sums.chem += b.weights(j) * k * c;
@@ -219,20 +237,55 @@ SurfaceOverlay::Sums SurfaceOverlay::overlap(const SurfaceSample& a, const Grid&
   return sums;
 }
 
+double SurfaceOverlay::atom_overlap(const AtomSample& a, const AtomSample& b, const RigidTransform& transform) const {
+  const double inv2s2 = 1.0 / (2.0 * options_.sigma * options_.sigma);
+  double sum = 0.0;
+  for (std::size_t l = 0; l < b.size(); ++l) {
+    const Eigen::Vector3d y = transform.rotation * b.points.col(static_cast<Eigen::Index>(l)) + transform.translation;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      if (a.elements[k] != b.elements[l]) continue;
+      sum += std::exp(-(a.points.col(static_cast<Eigen::Index>(k)) - y).squaredNorm() * inv2s2);
+    }
+  }
+  return sum;
+}
+
+double SurfaceOverlay::surface_score(const OverlayScore& s) const {
+  return (s.shape + options_.chem_weight * s.chem) / (1.0 + options_.chem_weight);
+}
+
 OverlayScore SurfaceOverlay::tanimoto(const Sums& sums) const {
   OverlayScore s;
   s.shape = sums.shape / (self_.shape - sums.shape);
-  s.chem = sums.chem / (self_.chem - sums.chem);
-  s.score = (s.shape + options_.chem_weight * s.chem) / (1.0 + options_.chem_weight);
+  // Without ESP and LP (a mesh without a molecule) there is no chemistry to overlap: 0, not 0 / 0.
+  s.chem = self_.chem > 0.0 ? sums.chem / (self_.chem - sums.chem) : 0.0;
+  s.score = surface_score(s);
   return s;
 }
 
-SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, const OverlayOptions& options)
-    : reference_(std::move(reference)), probe_(std::move(probe)), options_(options) {
+OverlayScore SurfaceOverlay::with_atoms(OverlayScore s, const RigidTransform& transform) const {
+  if (!uses_atoms()) return s;
+  const double h = atom_overlap(reference_atoms_, probe_atoms_, transform);
+  s.atoms = h / (atom_self_ - h);
+  s.score = (s.shape + options_.chem_weight * s.chem + options_.atom_weight * s.atoms) /
+            (1.0 + options_.chem_weight + options_.atom_weight);
+  return s;
+}
+
+SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, const OverlayOptions& options,
+                               AtomSample reference_atoms, AtomSample probe_atoms)
+    : reference_(std::move(reference)),
+      probe_(std::move(probe)),
+      options_(options),
+      reference_atoms_(std::move(reference_atoms)),
+      probe_atoms_(std::move(probe_atoms)) {
   require_positive(options_.sigma, "sigma");
   require_positive(options_.spacing, "spacing");
   if (!(options_.chem_weight >= 0.0) || !std::isfinite(options_.chem_weight)) {
     throw OptionError("overlay: chem_weight must be a finite number >= 0, got " + std::to_string(options_.chem_weight));
+  }
+  if (!(options_.atom_weight >= 0.0) || !std::isfinite(options_.atom_weight)) {
+    throw OptionError("overlay: atom_weight must be a finite number >= 0, got " + std::to_string(options_.atom_weight));
   }
   if (options_.iterations < 0) throw OptionError("overlay: iterations must be >= 0, got " + std::to_string(options_.iterations));
   if (!(options_.tolerance >= 0.0)) throw OptionError("overlay: tolerance must be >= 0");
@@ -242,18 +295,30 @@ SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, con
   }
   esp_rms_ = root_mean_square(reference_.esp, reference_.weights, probe_.esp, probe_.weights);
   lp_rms_ = root_mean_square(reference_.lp, reference_.weights, probe_.lp, probe_.weights);
-  const double cell = kCutoffSigmas * options_.sigma;
-  reference_grid_ = make_grid(reference_, cell);
-  const Grid probe_grid = make_grid(probe_, cell);
+  for (SurfaceSample* sample : {&reference_, &probe_}) {
+    sample->esp /= esp_rms_;
+    sample->lp /= lp_rms_;
+  }
+  const double cutoff = kCutoffSigmas * options_.sigma;
+  gaussian_scale_ = kGaussianSamples / (cutoff * cutoff);
+  gaussian_.resize(kGaussianSamples + 2);
+  for (std::size_t k = 0; k < gaussian_.size(); ++k) {
+    gaussian_[k] = std::exp(-static_cast<double>(k) / gaussian_scale_ / (2.0 * options_.sigma * options_.sigma));
+  }
+  reference_grid_ = make_grid(reference_, options_.sigma, cutoff);
+  const Grid probe_grid = make_grid(probe_, options_.sigma, cutoff);
   const RigidTransform identity;
   const Sums reference_self = overlap(reference_, reference_grid_, reference_, identity);
   const Sums probe_self = overlap(probe_, probe_grid, probe_, identity);
   self_.shape = reference_self.shape + probe_self.shape;
   self_.chem = reference_self.chem + probe_self.chem;
+  if (reference_atoms_.size() > 0 && probe_atoms_.size() > 0) {
+    atom_self_ = atom_overlap(reference_atoms_, reference_atoms_, identity) + atom_overlap(probe_atoms_, probe_atoms_, identity);
+  }
 }
 
 OverlayScore SurfaceOverlay::score(const RigidTransform& transform) const {
-  return tanimoto(overlap(reference_, reference_grid_, probe_, transform));
+  return with_atoms(tanimoto(overlap(reference_, reference_grid_, probe_, transform)), transform);
 }
 
 namespace {
@@ -274,7 +339,8 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
 
 }  // namespace
 
-RigidTransform SurfaceOverlay::refine(const RigidTransform& start, OverlayScore* final_score) const {
+std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start, OverlayScore* final_score,
+                                                     const std::function<bool(const RigidTransform&)>& abandon) const {
   constexpr double kMaxAlpha = 8.0;
   const Eigen::Index n = probe_.points.cols();
   const Eigen::Vector3d probe_centroid = probe_.points * probe_.weights / probe_.weights.sum();
@@ -290,22 +356,23 @@ RigidTransform SurfaceOverlay::refine(const RigidTransform& start, OverlayScore*
     const RigidTransform em = fit_rigid_weighted(probe_.points, targets, weights).transform;
     RigidTransform next = extrapolate(current, em, current.apply(probe_centroid), alpha);
     OverlayScore next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights));
-    if (!(next_score.score > current_score.score) && alpha > 1.0) {
+    if (!(surface_score(next_score) > surface_score(current_score)) && alpha > 1.0) {
       alpha = 1.0;
       next = em;
       next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights));
     } else {
       alpha = std::min(2.0 * alpha, kMaxAlpha);
     }
-    if (!(next_score.score > current_score.score)) break;
+    if (!(surface_score(next_score) > surface_score(current_score))) break;
     const double moved = (next.apply(probe_.points) - current.apply(probe_.points)).colwise().norm().maxCoeff();
     current = next;
     current_score = next_score;
     targets.swap(next_targets);
     weights.swap(next_weights);
+    if (abandon && abandon(current)) return std::nullopt;
     if (moved <= options_.tolerance) break;
   }
-  if (final_score != nullptr) *final_score = current_score;
+  if (final_score != nullptr) *final_score = with_atoms(current_score, current);
   return current;
 }
 

@@ -1,5 +1,6 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 
+#include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/binary_stream.hpp"
@@ -259,6 +260,11 @@ std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& d) {
     payload.double_matrix(cp.map.uv);
     put_image(payload, cp.image);
   }
+  payload.u64(d.atoms.size());
+  for (const SurfaceAtom& atom : d.atoms) {
+    payload.string(atom.element);
+    put_vector3(payload, atom.position);
+  }
   BinaryWriter file;
   for (char c : kMagic) file.u8(static_cast<std::uint8_t>(c));
   file.u32(hsi_format_version);
@@ -281,8 +287,8 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
     throw FormatError(source, "byte order mark " + std::to_string(mark) +
                                   " is not that of a .hsi file written by surfcomp");
   }
-  if (version != hsi_format_version) {
-    throw FormatError(source, "format version " + std::to_string(version) + ", this surfcomp reads version " +
+  if (version != 1 && version != hsi_format_version) {
+    throw FormatError(source, "format version " + std::to_string(version) + ", this surfcomp reads versions 1 to " +
                                   std::to_string(hsi_format_version) + "; rebuild it with surfcomp hsi-build");
   }
   const std::uint64_t size = header.u64();
@@ -314,7 +320,20 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
     cp.map.uv = uv;
     cp.image = get_image(r, static_cast<std::size_t>(cp.patch.faces.rows()), d.options.image);
   }
-  if (r.remaining() != 0) r.fail("unexpected bytes after the last critical point");
+  if (version >= 2) {
+    const std::uint64_t n_atoms = r.u64();
+    if (n_atoms > r.remaining() / 28) r.fail("implausible atom count");
+    d.atoms.resize(n_atoms);
+    for (SurfaceAtom& atom : d.atoms) {
+      atom.element = r.string();
+      if (!bondi_radius(atom.element) || atom.element != normalize_element(atom.element)) {
+        r.fail("atom element '" + atom.element + "' is not an element symbol");
+      }
+      atom.position = get_vector3(r);
+      if (!atom.position.allFinite()) r.fail("atom position is not finite");
+    }
+  }
+  if (r.remaining() != 0) r.fail("unexpected bytes after the " + std::string(version >= 2 ? "atoms" : "last critical point"));
   return d;
 }
 

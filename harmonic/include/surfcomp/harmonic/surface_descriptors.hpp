@@ -4,6 +4,7 @@
 #pragma once
 
 #include "surfcomp/harmonic/disk_map.hpp"
+#include "surfcomp/core/molecule.hpp"
 #include "surfcomp/harmonic/shape_image.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
 #include "surfcomp/mesh/patch.hpp"
@@ -52,12 +53,26 @@ struct CriticalPointDescriptor {
   ShapeImage image;     ///< image_property resampled on the polar grid
 };
 
+/// A heavy atom of the molecule a surface was built from, kept with the description so that a
+/// comparison can judge a pose on atoms too (matching::OverlayOptions::atom_weight).
+struct SurfaceAtom {
+  std::string element;                                 ///< capitalised symbol, "C", "Cl"
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< A, in the surface's frame
+};
+
 /// A surface with its coarse-level description.
 struct SurfaceDescriptors {
   DescriptorOptions options;
   mesh::Surface surface;
   std::vector<CriticalPointDescriptor> critical_points;  ///< detect_critical_points order
+  /// The heavy atoms of the molecule the surface was built from (surface_atoms); empty when
+  /// the surface came from a mesh without a molecule. describe_surface leaves it empty: the
+  /// caller that holds the molecule fills it.
+  std::vector<SurfaceAtom> atoms;
 };
+
+/// The heavy (non-hydrogen) atoms of `molecule`, in its order.
+std::vector<SurfaceAtom> surface_atoms(const Molecule& molecule);
 
 /// Detects the critical points of `surface` and builds, for each, its patch (extract_patch),
 /// harmonic map (harmonic_disk_map) and image (harmonic_shape_image of

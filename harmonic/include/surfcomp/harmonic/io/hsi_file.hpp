@@ -8,7 +8,8 @@
 //   u64       payload size in bytes
 //   u64       FNV-1a 64 checksum of the payload
 //   payload   parameters, surface (positions, normals, faces, named properties with their
-//             stored types), critical points, then per point: status, patch, map, image
+//             stored types), critical points, then per point: status, patch, map, image;
+//             from version 2, then the heavy atoms (count, then element and position each)
 // The file is a pure function of the SurfaceDescriptors: byte-identical for identical input.
 #pragma once
 
@@ -20,13 +21,14 @@
 
 namespace surfcomp::harmonic::io {
 
-inline constexpr std::uint32_t hsi_format_version = 1;
+/// The version written. Version 1 files (no atoms) are still read, with no atoms.
+inline constexpr std::uint32_t hsi_format_version = 2;
 
 /// Encodes `descriptors` as the bytes of a .hsi file.
 std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& descriptors);
 
-/// Decodes the bytes of a .hsi file. Throws FormatError naming `source` for a wrong magic, a
-/// byte-swapped or other-version file, a size or checksum mismatch (truncated or corrupt),
+/// Decodes the bytes of a .hsi file (version 1 or 2). Throws FormatError naming `source` for a
+/// wrong magic, a byte-swapped or unknown-version file, a size or checksum mismatch (truncated or corrupt),
 /// or any inconsistent count or index inside.
 SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std::string& source);
 
