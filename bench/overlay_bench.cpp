@@ -9,7 +9,7 @@
 // ligands top-1 >= 90 % and top-5 100 %; therm pairs above Open3DAlign; <= 1 s per ligand pair
 // from molecules, <= 50 ms from prebuilt descriptors (.hsi).
 //
-// Usage: overlay_bench [--quick] [--seed N] [--axes-starts N]
+// Usage: overlay_bench [--quick] [--seed N] [--axes-starts N] [--threads N]
 //   --quick          1 pose per five-ligand pair and 20 therm pairs instead of 5 and 100
 //   --seed N         seed of the std::mt19937 drawing poses and therm pairs (default 20261122)
 //   --axes-starts N  MatchOptions::principal_axes_starts for our match (0, 4 or 24; default 24)
@@ -93,8 +93,7 @@ Entry load_entry(const std::string& name, const fs::path& path) {
                        " atoms, RDKit " + std::to_string(entry.rdkit->getNumAtoms()));
     }
     const auto start = Clock::now();
-    entry.descriptors = harmonic::describe_surface(mesh::build_molecular_surface(*entry.molecule));
-    entry.descriptors->atoms = harmonic::surface_atoms(*entry.molecule);
+    entry.descriptors = harmonic::describe_surface(mesh::build_molecular_surface(*entry.molecule), *entry.molecule);
     entry.describe_ms = ms_since(start);
   } catch (const std::exception& e) {
     entry.molecule.reset();
@@ -214,8 +213,7 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
   const std::vector<bool> heavy = heavy_atoms(*probe.molecule);
   try {
     const auto start = Clock::now();
-    auto described = harmonic::describe_surface(mesh::build_molecular_surface(posed));
-    described.atoms = harmonic::surface_atoms(posed);
+    const auto described = harmonic::describe_surface(mesh::build_molecular_surface(posed), posed);
     const auto match_start = Clock::now();
     const auto result = matching::match_surfaces(*reference.descriptors, described, options);
     out.match_ms = ms_since(match_start);

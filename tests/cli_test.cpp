@@ -144,6 +144,12 @@ TEST(Cli, HsiFilesMatchAsTheirMoleculesDo) {
       EXPECT_NEAR(top_a["transform"][i][j].get<double>(), top_b["transform"][i][j].get<double>(), 1e-9);
     }
   }
+  // A mesh carries no atoms: the match says the atom term is off, and still runs.
+  const fs::path mesh = scratch("1TMN.ply");
+  ASSERT_EQ(run("surf-build " + probe.string() + " -o " + mesh.string()).status, 0);
+  const ProgramRun with_mesh = run("match " + ref.string() + " " + mesh.string() + " -o " + scratch("mesh.json").string());
+  EXPECT_EQ(with_mesh.status, 0) << with_mesh.err;
+  EXPECT_NE(with_mesh.err.find("1TMN.ply carries no atoms"), std::string::npos) << with_mesh.err;
 }
 
 TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {

@@ -256,6 +256,18 @@ TEST(HsiFile, VersionOneFilesReadWithoutAtomsAndBadAtomsAreRefused) {
     EXPECT_NE(std::string(e.what()).find("bad_atom.hsi"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("'Q'"), std::string::npos) << e.what();
   }
+  // A position that is not finite, and a count no payload could hold.
+  std::vector<std::uint8_t> not_finite(bytes.begin() + 32, bytes.end());
+  for (std::size_t k = 0; k < 8; ++k) not_finite[not_finite.size() - 8 + k] = k < 6 ? 0x00 : (k == 6 ? 0xf8 : 0x7f);  // NaN
+  EXPECT_THROW(harmonic::io::decode_hsi(with_payload(bytes, 2, not_finite), "nan_atom.hsi"), FormatError);
+  std::vector<std::uint8_t> huge(bytes.begin() + 32, bytes.end() - (4 + 1 + 24));  // up to the atom count
+  for (std::size_t k = 0; k < 8; ++k) huge[huge.size() - 8 + k] = 0xff;
+  EXPECT_THROW(harmonic::io::decode_hsi(with_payload(bytes, 2, huge), "huge_count.hsi"), FormatError);
+  // Nor does encoding write what decoding would refuse.
+  d.atoms[0].element = "Xx";
+  EXPECT_THROW(encoded(d), InputError);
+  d.atoms[0] = {"O", Eigen::Vector3d(std::nan(""), 0.0, 0.0)};
+  EXPECT_THROW(encoded(d), InputError);
 }
 
 // The atoms a description keeps: the heavy ones, in the molecule's order.

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -207,22 +208,25 @@ matching::SurfaceSample one_point(const Eigen::Vector3d& position, double esp = 
 // Two facing points d apart overlap by g = exp(-d^2 / (2 sigma^2)) (cut at 3 sigma) against
 // self-overlaps of 1: shape = g / (2 - g). The overlay tabulates g; it must stay within 1e-6
 // (linear interpolation in d^2 over 2048 steps of (3 sigma)^2: at most 6e-7).
-// Without ESP or LP on either side the chemistry Tanimoto is 0, not 0 / 0.
+// Without ESP or LP on either side the chemistry Tanimoto is 0, not 0 / 0, and the score is the
+// shape's. A position that is not a number overlaps nothing.
 TEST(Overlay, TwoPointsOverlapByTheGaussianOfTheirDistance) {
   for (double sigma : {1.0, 0.7}) {
     matching::OverlayOptions options;
     options.sigma = sigma;
     const matching::SurfaceOverlay overlay(one_point(Eigen::Vector3d::Zero()), one_point(Eigen::Vector3d::Zero()), options);
-    for (double d : {0.0, 0.05, 0.3, 0.77, 1.0, 1.9, 2.5, 2.99}) {
+    for (double d : {0.0, 0.05, 0.3, 0.77, 1.0, 1.9, 2.5, 2.99, 3.0 * sigma * (1.0 - 1e-12)}) {
       const double g = d < 3.0 * sigma ? std::exp(-d * d / (2.0 * sigma * sigma)) : 0.0;
       const matching::OverlayScore s = overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(d, 0.0, 0.0)));
       EXPECT_NEAR(s.shape, g / (2.0 - g), 1e-5) << "sigma " << sigma << ", d " << d;
       EXPECT_NEAR(2.0 * s.shape / (1.0 + s.shape), g, 1e-6) << "sigma " << sigma << ", d " << d;  // g itself
       EXPECT_EQ(s.chem, 0.0);
       EXPECT_EQ(s.atoms, 0.0);
-      EXPECT_NEAR(s.score, s.shape / (1.0 + options.chem_weight), 1e-15);
+      EXPECT_EQ(s.score, s.shape);  // no chemistry: its weight leaves the score
     }
     EXPECT_EQ(overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(3.01 * sigma, 0.0, 0.0))).shape, 0.0);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(nan, 0.0, 0.0))).shape, 0.0);
   }
 }
 
@@ -233,11 +237,13 @@ matching::AtomSample atoms(const std::vector<std::pair<std::string, Eigen::Vecto
   return matching::sample_atoms(list);
 }
 
-// A surface symmetric under a half turn about z (an ellipsoid without chemistry) cannot tell
+// A surface symmetric under a half turn about z (an ellipsoid with uniform chemistry) cannot tell
 // the turn from the identity; its molecule's heteroatoms can. Only same-element heteroatoms
 // count: carbons and hydrogens are not sampled, and an O does not pair with an N.
 TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
-  const matching::SurfaceSample shape = matching::sample_surface(test::ellipsoid(4.0, 2.5, 1.5, 24), 1.0);
+  matching::SurfaceSample shape = matching::sample_surface(test::ellipsoid(4.0, 2.5, 1.5, 24), 1.0);
+  shape.esp.setOnes();  // chemistry that a half turn about z leaves as it is
+  shape.lp.setConstant(-0.5);
   const auto molecule = atoms({{"O", {3.0, 0.0, 0.0}}, {"N", {0.0, 1.5, 0.0}}, {"C", {0.0, 0.0, 0.0}}, {"H", {1.0, 0.0, 0.0}}});
   ASSERT_EQ(molecule.size(), 2u);
   EXPECT_EQ(molecule.elements, (std::vector<std::string>{"O", "N"}));
@@ -275,6 +281,9 @@ TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
   matching::OverlayOptions negative = options;
   negative.atom_weight = -1.0;
   EXPECT_THROW(matching::SurfaceOverlay(shape, shape, negative, molecule, molecule), OptionError);
+  matching::AtomSample short_of_points = molecule;
+  short_of_points.points.conservativeResize(3, 1);
+  EXPECT_THROW(matching::SurfaceOverlay(shape, shape, options, molecule, short_of_points), InputError);
 }
 
 TEST(Overlay, RejectsBadOptionsAndEmptySamples) {

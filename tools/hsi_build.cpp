@@ -78,8 +78,9 @@ int hsi_build(const std::vector<std::string>& args) {
   Stopwatch clock;
   LoadedSurface loaded = load_surface(path, input);
   const double surface_ms = clock.elapsed_ms();
-  harmonic::SurfaceDescriptors descriptors = harmonic::describe_surface(std::move(loaded.surface), options);
-  if (loaded.molecule) descriptors.atoms = harmonic::surface_atoms(*loaded.molecule);
+  const harmonic::SurfaceDescriptors descriptors =
+      loaded.molecule ? harmonic::describe_surface(std::move(loaded.surface), *loaded.molecule, options)
+                      : harmonic::describe_surface(std::move(loaded.surface), options);
   const double total_ms = clock.elapsed_ms();
   harmonic::io::write_hsi(descriptors, output);
 

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -29,7 +30,9 @@ constexpr const char* kUsage =
     "corresponding points; single-linkage merging; consensus ranking (METHOD sections 5-7); then\n"
     "the first --refine-top alignments are refined on the whole surfaces (Gaussian overlay of shape,\n"
     "ESP and LP) and ranked by that overlay score (table column 'overlay', * = refined), together\n"
-    "with --axes-starts principal-axes superpositions refined the same way (column 'from': axes).\n\n"
+    "with --axes-starts principal-axes superpositions refined the same way (column 'from': axes).\n"
+    "Where both inputs are molecules (or .hsi files built from molecules), a refined pose's score\n"
+    "also weighs the overlap of same-element heteroatoms (--overlay-atom-weight).\n\n"
     "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .pqr), a mesh (.ply .vert .off .obj) or a .hsi\n"
     "            file from hsi-build (two .hsi files must have been built with the same parameters)\n"
     "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand build\n"
@@ -96,10 +99,11 @@ Side load_side(const std::filesystem::path& path, SurfaceInput input, const std:
       return (p.position - s.center).norm() <= s.radius;
     });
   };
-  side.descriptors = side.site.empty()
-                         ? harmonic::describe_surface(std::move(loaded.surface), options)
-                         : harmonic::describe_surface(std::move(loaded.surface), options, in_site);
-  if (side.molecule) side.descriptors.atoms = harmonic::surface_atoms(*side.molecule);
+  const std::function<bool(const mesh::CriticalPoint&)> describe_if =
+      side.site.empty() ? std::function<bool(const mesh::CriticalPoint&)>{} : in_site;
+  side.descriptors = side.molecule
+                         ? harmonic::describe_surface(std::move(loaded.surface), *side.molecule, options, describe_if)
+                         : harmonic::describe_surface(std::move(loaded.surface), options, describe_if);
   return side;
 }
 
@@ -327,6 +331,12 @@ int match(const std::vector<std::string>& args) {
                        std::to_string(side->site.size()) + " spheres, " +
                        std::to_string(side->descriptors.critical_points.size()) + " critical points)");
     }
+  }
+  if (ref.site.empty() && probe.site.empty() && options.overlay.atom_weight > 0.0 &&
+      ref.descriptors.atoms.empty() != probe.descriptors.atoms.empty()) {
+    const Side& without = ref.descriptors.atoms.empty() ? ref : probe;
+    std::fprintf(stderr, "note: %s carries no atoms (a mesh, or a .hsi file of format version 1): poses are judged "
+                         "on the surfaces alone\n", without.path.string().c_str());
   }
   const double prepare_ms = clock.elapsed_ms();
   const matching::MatchResult result = matching::match_surfaces(

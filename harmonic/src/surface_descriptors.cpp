@@ -77,6 +77,13 @@ std::vector<SurfaceAtom> surface_atoms(const Molecule& molecule) {
   return atoms;
 }
 
+SurfaceDescriptors describe_surface(mesh::Surface surface, const Molecule& molecule, const DescriptorOptions& options,
+                                    const std::function<bool(const mesh::CriticalPoint&)>& describe_if) {
+  SurfaceDescriptors result = describe_surface(std::move(surface), options, describe_if);
+  result.atoms = surface_atoms(molecule);
+  return result;
+}
+
 DescriptorCounts count_descriptors(const SurfaceDescriptors& descriptors) {
   DescriptorCounts counts;
   for (const auto& cp : descriptors.critical_points) {

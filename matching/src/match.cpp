@@ -135,9 +135,10 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     p.refined = true;
   });
   std::vector<Placed> candidates(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
-  // A principal-axes start whose refinement reaches a pose refined from the cliques would end
-  // as its repeat, which is dropped: it is abandoned there. (The probe points' centroid moves
-  // no farther than the farthest point: a cheap first test.)
+  // A principal-axes start whose refinement comes within kRepeatDistance of a pose refined
+  // from the cliques is taken for a repeat of it and abandoned there (it could have climbed on
+  // past it; the benchmark figures are with this rule). The probe points' centroid moves no
+  // farther than the farthest point: a cheap first test.
   const Eigen::Vector3d centroid = points.rowwise().mean();
   const auto reached = [&](const RigidTransform& pose) {
     const Eigen::Vector3d moved = pose.rotation * centroid + pose.translation;

@@ -99,14 +99,15 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing, const
 }
 
 AtomSample sample_atoms(const std::vector<harmonic::SurfaceAtom>& atoms) {
-  AtomSample sample;
+  std::vector<const harmonic::SurfaceAtom*> kept;
   for (const harmonic::SurfaceAtom& atom : atoms) {
-    if (atom.element != "H" && atom.element != "C") sample.elements.push_back(atom.element);
+    if (atom.element != "H" && atom.element != "C") kept.push_back(&atom);
   }
-  sample.points.resize(3, static_cast<Eigen::Index>(sample.elements.size()));
-  Eigen::Index k = 0;
-  for (const harmonic::SurfaceAtom& atom : atoms) {
-    if (atom.element != "H" && atom.element != "C") sample.points.col(k++) = atom.position;
+  AtomSample sample;
+  sample.points.resize(3, static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    sample.points.col(static_cast<Eigen::Index>(k)) = kept[k]->position;
+    sample.elements.push_back(kept[k]->element);
   }
   return sample;
 }
@@ -153,35 +154,43 @@ std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference
 }
 
 SurfaceOverlay::Grid SurfaceOverlay::make_grid(const SurfaceSample& sample, double cell, double cutoff) {
+  constexpr double kMaxCells = 1 << 22;  // a larger box gets larger cells (a whole protein at small sigma)
   Grid grid;
-  grid.cell = cell;
   grid.origin = sample.points.rowwise().minCoeff().array() - cutoff;
   const Eigen::Vector3d extent = sample.points.rowwise().maxCoeff().array() + cutoff - grid.origin.array();
-  for (int d = 0; d < 3; ++d) grid.size(d) = static_cast<int>(std::floor(extent(d) / cell)) + 1;
-  // A cell holds every point within the cutoff of any of its places: within the cutoff plus
-  // half the cell's diagonal of its centre.
-  const double reach = cutoff + 0.5 * std::sqrt(3.0) * cell;
-  const std::size_t cells = static_cast<std::size_t>(grid.size.prod());
-  std::vector<std::vector<int>> lists(cells);
-  for (Eigen::Index i = 0; i < sample.points.cols(); ++i) {
+  grid.cell = std::max(cell, std::cbrt(extent.prod() / kMaxCells));
+  for (int d = 0; d < 3; ++d) grid.size(d) = static_cast<int>(std::floor(extent(d) / grid.cell)) + 1;
+  const auto cell_index = [&](int x, int y, int z) {
+    return (static_cast<std::size_t>(z) * static_cast<std::size_t>(grid.size.y()) + static_cast<std::size_t>(y)) *
+               static_cast<std::size_t>(grid.size.x()) +
+           static_cast<std::size_t>(x);
+  };
+  // A cell lists every point within the cutoff of any of its places: within the cutoff plus
+  // half the cell's diagonal of its centre. Two passes: count, then fill.
+  const double reach = cutoff + 0.5 * std::sqrt(3.0) * grid.cell;
+  const auto for_each_cell_near = [&](Eigen::Index i, const auto& visit) {
     const Eigen::Vector3d p = sample.points.col(i);
-    const Eigen::Vector3i low = ((p.array() - reach - grid.origin.array()) / cell).floor().cast<int>().max(0);
+    const Eigen::Vector3i low = ((p.array() - reach - grid.origin.array()) / grid.cell).floor().cast<int>().max(0);
     const Eigen::Vector3i high =
-        ((p.array() + reach - grid.origin.array()) / cell).floor().cast<int>().min(grid.size.array() - 1);
+        ((p.array() + reach - grid.origin.array()) / grid.cell).floor().cast<int>().min(grid.size.array() - 1);
     for (int z = low.z(); z <= high.z(); ++z) {
       for (int y = low.y(); y <= high.y(); ++y) {
         for (int x = low.x(); x <= high.x(); ++x) {
-          const Eigen::Vector3d centre = grid.origin + cell * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
-          if ((centre - p).squaredNorm() > reach * reach) continue;
-          lists[static_cast<std::size_t>((z * grid.size.y() + y) * grid.size.x() + x)].push_back(static_cast<int>(i));
+          const Eigen::Vector3d centre = grid.origin + grid.cell * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
+          if ((centre - p).squaredNorm() <= reach * reach) visit(cell_index(x, y, z));
         }
       }
     }
-  }
+  };
+  const std::size_t cells = cell_index(0, 0, grid.size.z());
   grid.start.assign(cells + 1, 0);
-  for (std::size_t c = 0; c < cells; ++c) grid.start[c + 1] = grid.start[c] + static_cast<int>(lists[c].size());
-  grid.points.reserve(static_cast<std::size_t>(grid.start[cells]));
-  for (const auto& list : lists) grid.points.insert(grid.points.end(), list.begin(), list.end());
+  for (Eigen::Index i = 0; i < sample.points.cols(); ++i) for_each_cell_near(i, [&](std::size_t c) { ++grid.start[c + 1]; });
+  for (std::size_t c = 0; c < cells; ++c) grid.start[c + 1] += grid.start[c];
+  grid.points.resize(grid.start[cells]);
+  std::vector<std::size_t> fill(grid.start.begin(), grid.start.end() - 1);
+  for (Eigen::Index i = 0; i < sample.points.cols(); ++i) {
+    for_each_cell_near(i, [&](std::size_t c) { grid.points[fill[c]++] = static_cast<int>(i); });
+  }
   return grid;
 }
 
@@ -192,11 +201,14 @@ namespace {
 template <typename Grid, typename Visit>
 void visit_near(const Grid& grid, const Eigen::Vector3d& p, const Visit& visit) {
   const Eigen::Vector3d local = (p - grid.origin) / grid.cell;
-  // Outside the grid (also guards the int conversion below).
-  if ((local.array() < 0.0).any() || (local.array() >= grid.size.template cast<double>().array()).any()) return;
+  // Outside the grid, or not a number (also guards the int conversion below).
+  if (!((local.array() >= 0.0).all() && (local.array() < grid.size.template cast<double>().array()).all())) return;
   const Eigen::Vector3i c = local.array().floor().cast<int>();
-  const std::size_t cell = static_cast<std::size_t>((c.z() * grid.size.y() + c.y()) * grid.size.x() + c.x());
-  for (int k = grid.start[cell]; k < grid.start[cell + 1]; ++k) visit(grid.points[static_cast<std::size_t>(k)]);
+  const std::size_t cell =
+      (static_cast<std::size_t>(c.z()) * static_cast<std::size_t>(grid.size.y()) + static_cast<std::size_t>(c.y())) *
+          static_cast<std::size_t>(grid.size.x()) +
+      static_cast<std::size_t>(c.x());
+  for (std::size_t k = grid.start[cell]; k < grid.start[cell + 1]; ++k) visit(grid.points[k]);
 }
 
 }  // namespace
@@ -218,7 +230,7 @@ SurfaceOverlay::Sums SurfaceOverlay::overlap(const SurfaceSample& a, const Grid&
     double total = 0.0;
     visit_near(grid, q, [&](int i) {
       const double d2 = (a.points.col(i) - q).squaredNorm();
-      if (d2 > cutoff2) return;
+      if (!(d2 <= cutoff2)) return;
       const double facing = a.normals.col(i).dot(m);
       if (facing <= 0.0) return;
       const double k = a.weights(i) * gaussian(d2) * facing;
@@ -250,16 +262,18 @@ double SurfaceOverlay::atom_overlap(const AtomSample& a, const AtomSample& b, co
   return sum;
 }
 
-double SurfaceOverlay::surface_score(const OverlayScore& s) const {
-  return (s.shape + options_.chem_weight * s.chem) / (1.0 + options_.chem_weight);
+double SurfaceOverlay::combined(const OverlayScore& s, bool with_atoms) const {
+  const double atom_weight = with_atoms ? options_.atom_weight : 0.0;
+  return (s.shape + chem_weight_ * s.chem + atom_weight * s.atoms) / (1.0 + chem_weight_ + atom_weight);
 }
 
 OverlayScore SurfaceOverlay::tanimoto(const Sums& sums) const {
   OverlayScore s;
   s.shape = sums.shape / (self_.shape - sums.shape);
-  // Without ESP and LP (a mesh without a molecule) there is no chemistry to overlap: 0, not 0 / 0.
+  // Without ESP and LP (a mesh without a molecule) there is no chemistry to overlap: 0, and
+  // its weight leaves the score (chem_weight_).
   s.chem = self_.chem > 0.0 ? sums.chem / (self_.chem - sums.chem) : 0.0;
-  s.score = surface_score(s);
+  s.score = combined(s, false);
   return s;
 }
 
@@ -267,8 +281,7 @@ OverlayScore SurfaceOverlay::with_atoms(OverlayScore s, const RigidTransform& tr
   if (!uses_atoms()) return s;
   const double h = atom_overlap(reference_atoms_, probe_atoms_, transform);
   s.atoms = h / (atom_self_ - h);
-  s.score = (s.shape + options_.chem_weight * s.chem + options_.atom_weight * s.atoms) /
-            (1.0 + options_.chem_weight + options_.atom_weight);
+  s.score = combined(s, true);
   return s;
 }
 
@@ -293,11 +306,20 @@ SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, con
     throw InputError(std::string("overlay: the ") + (reference_.size() == 0 ? "reference" : "probe") +
                      " sample has no points (an empty surface or site region)");
   }
-  esp_rms_ = root_mean_square(reference_.esp, reference_.weights, probe_.esp, probe_.weights);
-  lp_rms_ = root_mean_square(reference_.lp, reference_.weights, probe_.lp, probe_.weights);
+  for (const AtomSample* atoms : {&reference_atoms_, &probe_atoms_}) {
+    if (static_cast<std::size_t>(atoms->points.cols()) != atoms->size() || !atoms->points.allFinite()) {
+      throw InputError(std::string("overlay: the ") + (atoms == &reference_atoms_ ? "reference" : "probe") +
+                       " atoms have " + std::to_string(atoms->points.cols()) + " positions for " +
+                       std::to_string(atoms->size()) + " elements, or a position that is not finite");
+    }
+  }
+  // ESP and LP over their root mean squares over both samples, so that the two properties
+  // count alike whatever their units.
+  const double esp_rms = root_mean_square(reference_.esp, reference_.weights, probe_.esp, probe_.weights);
+  const double lp_rms = root_mean_square(reference_.lp, reference_.weights, probe_.lp, probe_.weights);
   for (SurfaceSample* sample : {&reference_, &probe_}) {
-    sample->esp /= esp_rms_;
-    sample->lp /= lp_rms_;
+    sample->esp /= esp_rms;
+    sample->lp /= lp_rms;
   }
   const double cutoff = kCutoffSigmas * options_.sigma;
   gaussian_scale_ = kGaussianSamples / (cutoff * cutoff);
@@ -312,6 +334,7 @@ SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, con
   const Sums probe_self = overlap(probe_, probe_grid, probe_, identity);
   self_.shape = reference_self.shape + probe_self.shape;
   self_.chem = reference_self.chem + probe_self.chem;
+  chem_weight_ = self_.chem > 0.0 ? options_.chem_weight : 0.0;
   if (reference_atoms_.size() > 0 && probe_atoms_.size() > 0) {
     atom_self_ = atom_overlap(reference_atoms_, reference_atoms_, identity) + atom_overlap(probe_atoms_, probe_atoms_, identity);
   }
@@ -356,14 +379,14 @@ std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start
     const RigidTransform em = fit_rigid_weighted(probe_.points, targets, weights).transform;
     RigidTransform next = extrapolate(current, em, current.apply(probe_centroid), alpha);
     OverlayScore next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights));
-    if (!(surface_score(next_score) > surface_score(current_score)) && alpha > 1.0) {
+    if (!(next_score.score > current_score.score) && alpha > 1.0) {
       alpha = 1.0;
       next = em;
       next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights));
     } else {
       alpha = std::min(2.0 * alpha, kMaxAlpha);
     }
-    if (!(surface_score(next_score) > surface_score(current_score))) break;
+    if (!(next_score.score > current_score.score)) break;
     const double moved = (next.apply(probe_.points) - current.apply(probe_.points)).colwise().norm().maxCoeff();
     current = next;
     current_score = next_score;

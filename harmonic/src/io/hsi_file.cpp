@@ -22,6 +22,11 @@ constexpr std::array<char, 8> kMagic{'S', 'U', 'R', 'F', 'H', 'S', 'I', '\n'};
 constexpr std::uint32_t kByteOrderMark = 0x01020304u;
 constexpr std::size_t kHeaderSize = 8 + 4 + 4 + 8 + 8;
 
+/// A capitalised element symbol ("C", "Cl"), as SurfaceAtom holds it.
+bool is_element_symbol(const std::string& symbol) {
+  return bondi_radius(symbol).has_value() && symbol == normalize_element(symbol);
+}
+
 // ---- encoding -------------------------------------------------------------------------------
 
 void put_options(BinaryWriter& w, const DescriptorOptions& o) {
@@ -261,7 +266,12 @@ std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& d) {
     put_image(payload, cp.image);
   }
   payload.u64(d.atoms.size());
-  for (const SurfaceAtom& atom : d.atoms) {
+  for (std::size_t i = 0; i < d.atoms.size(); ++i) {
+    const SurfaceAtom& atom = d.atoms[i];
+    if (!is_element_symbol(atom.element) || !atom.position.allFinite()) {  // what decode_hsi would refuse
+      throw InputError(d.surface.source() + ": atom " + std::to_string(i + 1) + " ('" + atom.element +
+                       "') is not an element symbol with a finite position; no .hsi written");
+    }
     payload.string(atom.element);
     put_vector3(payload, atom.position);
   }
@@ -326,7 +336,7 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
     d.atoms.resize(n_atoms);
     for (SurfaceAtom& atom : d.atoms) {
       atom.element = r.string();
-      if (!bondi_radius(atom.element) || atom.element != normalize_element(atom.element)) {
+      if (!is_element_symbol(atom.element)) {
         r.fail("atom element '" + atom.element + "' is not an element symbol");
       }
       atom.position = get_vector3(r);

@@ -66,13 +66,17 @@ struct SurfaceDescriptors {
   mesh::Surface surface;
   std::vector<CriticalPointDescriptor> critical_points;  ///< detect_critical_points order
   /// The heavy atoms of the molecule the surface was built from (surface_atoms); empty when
-  /// the surface came from a mesh without a molecule. describe_surface leaves it empty: the
-  /// caller that holds the molecule fills it.
+  /// the surface came from a mesh without a molecule (describe_surface without a molecule).
   std::vector<SurfaceAtom> atoms;
 };
 
 /// The heavy (non-hydrogen) atoms of `molecule`, in its order.
 std::vector<SurfaceAtom> surface_atoms(const Molecule& molecule);
+
+/// describe_surface of a surface built from `molecule` (or carrying its properties), keeping
+/// the molecule's heavy atoms in SurfaceDescriptors::atoms.
+SurfaceDescriptors describe_surface(mesh::Surface surface, const Molecule& molecule, const DescriptorOptions& options = {},
+                                    const std::function<bool(const mesh::CriticalPoint&)>& describe_if = {});
 
 /// Detects the critical points of `surface` and builds, for each, its patch (extract_patch),
 /// harmonic map (harmonic_disk_map) and image (harmonic_shape_image of

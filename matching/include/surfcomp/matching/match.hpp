@@ -36,8 +36,8 @@ struct MatchOptions {
   /// land on a pose already found: a route to the right pose independent of the cliques.
   /// Measured on ligands (bench/overlay_bench, seed 20261122), 0 / 4 / 24 starts: with the
   /// heteroatom term (refined candidates re-ranked offline) five ligands top-1 90 / 90 / 99 %,
-  /// therm 61 / 66 / 76 %; without it, five ligands 90 % each, therm 53 / 49 / 51 %. Must be
-  /// 0, 4 or 24.
+  /// therm 61 / 66 / 76 % (in the match itself, 0 and 24: 90 / 99 % and 61 / 74 %); without it,
+  /// five ligands 90 % each, therm 53 / 49 / 51 %. Must be 0, 4 or 24.
   int principal_axes_starts = 24;
   OverlayOptions overlay;                 ///< sigma 1 A, spacing 1.5 A, chemistry weight 6, atom weight 14
   /// What changes when the match is restricted to binding sites (allowed masks, or descriptions

@@ -24,7 +24,8 @@
 // (S_AA + S_BB - S_AB) and chem = C_AB / (C_AA + C_BB - C_AB), 1 for a sample on itself and
 // near 0 without contact (two samplings of one surface can give slightly more than 1, as the
 // normal factor and the cutoff make the kernel only nearly positive definite); the combined
-// score is (shape + chem_weight chem) / (1 + chem_weight).
+// score is (shape + chem_weight chem) / (1 + chem_weight) (shape alone when neither surface has
+// ESP or LP).
 //
 // Where both surfaces were built from molecules (SurfaceDescriptors::atoms), the score also
 // judges the pose on their heteroatoms (heavy atoms other than carbon): with P the pairs of a
@@ -76,9 +77,10 @@ struct OverlayOptions {
   /// Default 40. Most refinement steps per transform. Must be >= 0.
   int iterations = 40;
   /// Default 0.1 A. Refinement stops when a step moves no sampled probe point by more than this.
-  /// Measured (bench/overlay_bench, seed 20261122, defaults otherwise): 0.05 / 0.1 / 0.15 A give
-  /// five ligands 99 % top-1 each, therm 76 / 74 / 74 %, match from descriptors 56 / 44 / 42 ms
-  /// (five ligands; 2 threads; the 0.05 A run before the parallel refinement: 71 ms). Must be >= 0.
+  /// Measured (bench/overlay_bench, seed 20261122, defaults otherwise, one sweep): 0.05 / 0.1 /
+  /// 0.15 A give five ligands 99 % top-1 each, therm 76 / 74 / 74 %, match from descriptors 56 /
+  /// 44 / 42 ms median (five ligands, 2 threads; a later run of the final defaults: 39.5 ms, the
+  /// spread between runs on this machine). Must be >= 0.
   double tolerance = 0.1;
 };
 
@@ -170,15 +172,16 @@ class SurfaceOverlay {
   const Eigen::Matrix3Xd& probe_points() const { return probe_.points; }
 
  private:
-  /// Neighbour lists of a sample on a grid of cubic cells of edge sigma over its bounding box
-  /// grown by the cutoff: cell c lists the points within the cutoff of some place in c, so a
-  /// query looks at one list instead of 27 cells of 3 sigma. [choice: the same sums; match from
-  /// descriptors, five ligands with 24 axes starts in bench/overlay_bench, 111 -> 86 ms median.]
+  /// Neighbour lists of a sample on a grid of cubic cells of edge sigma (larger where the box
+  /// would need more than 2^22 cells) over its bounding box grown by the cutoff: cell c lists
+  /// the points within the cutoff of some place in c, so a query looks at one list instead of
+  /// 27 cells of 3 sigma. [choice: the same sums; match from descriptors, five ligands with 24
+  /// axes starts in bench/overlay_bench, 111 -> 86 ms median.]
   struct Grid {
     Eigen::Vector3d origin = Eigen::Vector3d::Zero();
     double cell = 1.0;
     Eigen::Vector3i size = Eigen::Vector3i::Zero();
-    std::vector<int> start;   ///< points listed for cell c: points[start[c] .. start[c + 1])
+    std::vector<std::size_t> start;  ///< points listed for cell c: points[start[c] .. start[c + 1])
     std::vector<int> points;
   };
   static Grid make_grid(const SurfaceSample& sample, double cell, double cutoff);
@@ -192,17 +195,17 @@ class SurfaceOverlay {
   /// by w_i g max(0, n_i . R n_j) (1 + chem_weight c_ij), and that weight's sum times w_j.
   Sums overlap(const SurfaceSample& a, const Grid& grid, const SurfaceSample& b, const RigidTransform& transform,
                Eigen::Matrix3Xd* targets = nullptr, Eigen::VectorXd* target_weights = nullptr) const;
-  /// The surface scores of the sums (atoms 0, score the surface part).
+  /// The surface scores of the sums (atoms 0, score the surface part: what refine climbs).
   OverlayScore tanimoto(const Sums& sums) const;
   /// `s` with the atom term of `transform` added, when the overlay uses atoms.
   OverlayScore with_atoms(OverlayScore s, const RigidTransform& transform) const;
-  /// The surface part of a score (see refine).
-  double surface_score(const OverlayScore& s) const;
+  /// The weighted mean of s's terms (the atom term only `with_atoms`).
+  double combined(const OverlayScore& s, bool with_atoms) const;
   /// Unnormalised same-element heteroatom overlap of `a` and `b` moved by `transform`.
   double atom_overlap(const AtomSample& a, const AtomSample& b, const RigidTransform& transform) const;
   static double chemistry(const SurfaceSample& a, int i, const SurfaceSample& b, int j);
   /// g = exp(-d2 / (2 sigma^2)) for 0 <= d2 <= (3 sigma)^2, interpolated linearly in d2 from
-  /// kGaussianSamples + 1 tabulated values (absolute error below 1e-6, overlay_test). [choice:
+  /// kGaussianSamples + 1 tabulated values (and one spare) (absolute error below 1e-6, overlay_test). [choice:
   /// perf put std::exp at about a quarter of the overlap sums' time; the refinement stage of
   /// `surfcomp match` 4TMN.hsi 3TMN.hsi, best of 8 runs, 62 -> 47 ms.]
   double gaussian(double d2) const {
@@ -216,8 +219,7 @@ class SurfaceOverlay {
   SurfaceSample probe_;
   OverlayOptions options_;
   Grid reference_grid_;
-  double esp_rms_ = 1.0;  ///< over both samples; the samples' esp and lp are stored divided by them
-  double lp_rms_ = 1.0;
+  double chem_weight_ = 0.0;  ///< options_.chem_weight, 0 when neither sample has ESP or LP
   Sums self_;  ///< S_AA + S_BB and C_AA + C_BB
   std::vector<double> gaussian_;  ///< g at d2 = k / gaussian_scale_, k = 0 .. kGaussianSamples + 1
   double gaussian_scale_ = 1.0;
