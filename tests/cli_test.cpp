@@ -104,6 +104,7 @@ TEST(Cli, MatchWritesTheResultContract) {
   EXPECT_LE(alignments[0]["overlay"]["atoms"].get<double>(), 1.0);
   EXPECT_EQ(doc["parameters"]["overlay_atom_weight"], 14.0);
   EXPECT_EQ(doc["parameters"]["overlay_tolerance"], 0.1);
+  EXPECT_EQ(doc["parameters"]["polish_top"], 5);
   EXPECT_EQ(doc["parameters"]["principal_axes_starts"], 24);
   EXPECT_EQ(doc["parameters"]["site_principal_axes_starts"], 24);
   EXPECT_TRUE(doc["parameters"]["site_overlay_radius"].is_number());
@@ -177,6 +178,7 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
       {"match " + ligand.string() + " " + ligand.string() + " --site-chem-weight -1", "site-chem-weight"},
       {"match " + ligand.string() + " " + ligand.string() + " --overlay-atom-weight -1", "overlay-atom-weight"},
       {"match " + ligand.string() + " " + ligand.string() + " --overlay-tolerance -0.1", "overlay-tolerance"},
+      {"match " + ligand.string() + " " + ligand.string() + " --polish-top -1", "polish-top"},
   };
   for (const Case& c : cases) {
     const ProgramRun r = run(c.arguments + " -o " + json.string());

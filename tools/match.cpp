@@ -32,7 +32,8 @@ constexpr const char* kUsage =
     "ESP and LP) and ranked by that overlay score (table column 'overlay', * = refined), together\n"
     "with --axes-starts principal-axes superpositions refined the same way (column 'from': axes).\n"
     "Where both inputs are molecules (or .hsi files built from molecules), a refined pose's score\n"
-    "also weighs the overlap of same-element heteroatoms (--overlay-atom-weight).\n\n"
+    "also weighs the overlap of same-element heteroatoms (--overlay-atom-weight), and the first\n"
+    "--polish-top poses are refined again on that whole score.\n\n"
     "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .pqr), a mesh (.ply .vert .off .obj) or a .hsi\n"
     "            file from hsi-build (two .hsi files must have been built with the same parameters)\n"
     "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand build\n"
@@ -160,6 +161,7 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
             {"overlay_sigma", options.overlay.sigma}, {"overlay_spacing", options.overlay.spacing},
             {"overlay_chem_weight", options.overlay.chem_weight},
             {"overlay_atom_weight", options.overlay.atom_weight},
+            {"polish_top", options.polish_top},
             {"overlay_tolerance", options.overlay.tolerance},
             {"principal_axes_starts", options.principal_axes_starts},
             {"site_overlay_radius", options.site.overlay_radius},
@@ -242,6 +244,9 @@ int match(const std::vector<std::string>& args) {
       ("overlay-atom-weight", po::value(&options.overlay.atom_weight)->default_value(options.overlay.atom_weight),
        "weight of the same-element heteroatom Tanimoto in the overlay score, where both inputs are "
        "molecules (or .hsi files built from molecules); not for site matches")
+      ("polish-top", po::value(&options.polish_top)->default_value(options.polish_top),
+       "with the atom term, refine the first N alignments again on the whole score, heteroatoms "
+       "pulled too, and order them again (0: no polish)")
       ("overlay-tolerance", po::value(&options.overlay.tolerance)->default_value(options.overlay.tolerance),
        "a refinement stops when a step moves no sampled probe point farther than this, A")
       ("axes-starts", po::value(&options.principal_axes_starts)->default_value(options.principal_axes_starts),
@@ -275,6 +280,7 @@ int match(const std::vector<std::string>& args) {
   require_in_range("overlay-chem-weight", options.overlay.chem_weight, 0.0, 100.0);
   require_in_range("overlay-atom-weight", options.overlay.atom_weight, 0.0, 1000.0);
   require_in_range("overlay-tolerance", options.overlay.tolerance, 0.0, 10.0);
+  require_in_range("polish-top", options.polish_top, 0, 1e6);
   require_in_range("site-overlay-radius", options.site.overlay_radius, 0.1, 100.0);
   require_in_range("site-chem-weight", options.site.chem_weight, 0.0, 100.0);
   for (const auto& [name, value] : {std::pair<const char*, int>{"axes-starts", options.principal_axes_starts},

@@ -64,6 +64,7 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
                                      const std::vector<bool>* probe_allowed) {
   constexpr double kRepeatDistance = 0.5;  // A, largest move of a sampled probe point
   if (options.refine_top < 0) throw OptionError("refine_top must be >= 0, got " + std::to_string(options.refine_top));
+  if (options.polish_top < 0) throw OptionError("polish_top must be >= 0, got " + std::to_string(options.polish_top));
   const auto check_starts = [](int n, const char* name) {
     if (!is_axes_start_count(n)) throw OptionError(std::string(name) + " must be 0, 4 or 24, got " + std::to_string(n));
   };
@@ -163,22 +164,34 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   // Refined ones by score (stable: consensus order, then the axes starts, breaks ties), then
   // the repeats; a principal-axes pose that repeats a better one is dropped (it has no merge
   // tree place to keep).
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Placed& x, const Placed& y) { return x.overlay.score > y.overlay.score; });
-  std::vector<Placed> distinct, repeats;
-  for (const Placed& candidate : candidates) {
-    const bool repeat = std::any_of(distinct.begin(), distinct.end(), [&](const Placed& d) {
-      return largest_move(d.transform, candidate.transform) <= kRepeatDistance;
-    });
-    if (!repeat) {
-      distinct.push_back(candidate);
-    } else if (candidate.cluster >= 0) {
-      repeats.push_back(candidate);
+  const auto best_first = [&](std::vector<Placed> all) {
+    std::stable_sort(all.begin(), all.end(), [](const Placed& x, const Placed& y) { return x.overlay.score > y.overlay.score; });
+    std::vector<Placed> distinct, repeats;
+    for (const Placed& candidate : all) {
+      const bool repeat = std::any_of(distinct.begin(), distinct.end(), [&](const Placed& d) {
+        return largest_move(d.transform, candidate.transform) <= kRepeatDistance;
+      });
+      if (!repeat) {
+        distinct.push_back(candidate);
+      } else if (candidate.cluster >= 0) {
+        repeats.push_back(candidate);
+      }
     }
+    distinct.insert(distinct.end(), repeats.begin(), repeats.end());
+    return distinct;
+  };
+  std::vector<Placed> ordered = best_first(std::move(candidates));
+  // The first polish_top are polished on the whole score, their heteroatoms pulled too
+  // (SurfaceOverlay::refine with pull_atoms), and the list ordered again.
+  if (overlay.uses_atoms() && options.polish_top > 0) {
+    const std::size_t n_polished = std::min(ordered.size(), static_cast<std::size_t>(options.polish_top));
+    tbb::parallel_for(std::size_t{0}, n_polished, [&](std::size_t i) {
+      if (ordered[i].refined) ordered[i].transform = *overlay.refine(ordered[i].transform, &ordered[i].overlay, {}, true);
+    });
+    ordered = best_first(std::move(ordered));
   }
-  distinct.insert(distinct.end(), repeats.begin(), repeats.end());
-  distinct.insert(distinct.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined), placed.end());
-  return distinct;
+  ordered.insert(ordered.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined), placed.end());
+  return ordered;
 }
 
 }  // namespace

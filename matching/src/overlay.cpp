@@ -363,26 +363,59 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
 }  // namespace
 
 std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start, OverlayScore* final_score,
-                                                     const std::function<bool(const RigidTransform&)>& abandon) const {
+                                                     const std::function<bool(const RigidTransform&)>& abandon,
+                                                     bool pull_atoms) const {
   constexpr double kMaxAlpha = 8.0;
+  pull_atoms = pull_atoms && uses_atoms();
   const Eigen::Index n = probe_.points.cols();
+  const Eigen::Index m = pull_atoms ? probe_atoms_.points.cols() : 0;
+  Eigen::Matrix3Xd from(3, n + m);
+  from.leftCols(n) = probe_.points;
+  if (m > 0) from.rightCols(m) = probe_atoms_.points;
   const Eigen::Vector3d probe_centroid = probe_.points * probe_.weights / probe_.weights.sum();
-  Eigen::Matrix3Xd targets(3, n), next_targets(3, n);
-  Eigen::VectorXd weights(n), next_weights(n);
+  Eigen::Matrix3Xd targets(3, n + m), next_targets(3, n + m);
+  Eigen::VectorXd weights(n + m), next_weights(n + m);
+  // Each term pulls in proportion to its weight in the score over its self-overlap (the
+  // Tanimoto's scale): a surface point by its share of S + chem_weight C (its EM weight) over
+  // S_AA + S_BB, a heteroatom by its share of H times atom_weight over H_AA + H_BB; the common
+  // factor 1 / (S_AA + S_BB) is taken out.
+  const double atom_scale = pull_atoms ? options_.atom_weight * self_.shape / atom_self_ : 0.0;
+  const double inv2s2 = 1.0 / (2.0 * options_.sigma * options_.sigma);
+  // The scores at `t` (the atom term's too when pulling atoms) and the EM targets and weights
+  // there, the heteroatoms' after the surface points'.
+  const auto step = [&](const RigidTransform& t, Eigen::Matrix3Xd& tg, Eigen::VectorXd& w) {
+    OverlayScore score = tanimoto(overlap(reference_, reference_grid_, probe_, t, &tg, &w));
+    if (!pull_atoms) return score;
+    for (Eigen::Index l = 0; l < m; ++l) {
+      const Eigen::Vector3d y = t.rotation * probe_atoms_.points.col(l) + t.translation;
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      double total = 0.0;
+      for (std::size_t k = 0; k < reference_atoms_.size(); ++k) {
+        if (reference_atoms_.elements[k] != probe_atoms_.elements[static_cast<std::size_t>(l)]) continue;
+        const Eigen::Vector3d x = reference_atoms_.points.col(static_cast<Eigen::Index>(k));
+        const double g = std::exp(-(x - y).squaredNorm() * inv2s2);
+        mean += g * x;
+        total += g;
+      }
+      tg.col(n + l) = total > 0.0 ? Eigen::Vector3d(mean / total) : y;
+      w(n + l) = atom_scale * total;
+    }
+    return with_atoms(score, t);
+  };
   RigidTransform current = start;
-  OverlayScore current_score = tanimoto(overlap(reference_, reference_grid_, probe_, current, &targets, &weights));
+  OverlayScore current_score = step(current, targets, weights);
   // Expectation-maximisation steps, over-relaxed: while they keep raising the score, the step
   // is stretched (alpha doubles up to kMaxAlpha); one that does not is retried plain.
   double alpha = 1.0;
   for (int iteration = 0; iteration < options_.iterations; ++iteration) {
     if (!(weights.sum() > 0.0)) break;
-    const RigidTransform em = fit_rigid_weighted(probe_.points, targets, weights).transform;
+    const RigidTransform em = fit_rigid_weighted(from, targets, weights).transform;
     RigidTransform next = extrapolate(current, em, current.apply(probe_centroid), alpha);
-    OverlayScore next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights));
+    OverlayScore next_score = step(next, next_targets, next_weights);
     if (!(next_score.score > current_score.score) && alpha > 1.0) {
       alpha = 1.0;
       next = em;
-      next_score = tanimoto(overlap(reference_, reference_grid_, probe_, next, &next_targets, &next_weights));
+      next_score = step(next, next_targets, next_weights);
     } else {
       alpha = std::min(2.0 * alpha, kMaxAlpha);
     }
@@ -395,7 +428,7 @@ std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start
     if (abandon && abandon(current)) return std::nullopt;
     if (moved <= options_.tolerance) break;
   }
-  if (final_score != nullptr) *final_score = with_atoms(current_score, current);
+  if (final_score != nullptr) *final_score = pull_atoms ? current_score : with_atoms(current_score, current);
   return current;
 }
 

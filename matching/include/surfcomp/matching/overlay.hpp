@@ -33,7 +33,9 @@
 //   H(A, T B) = sum_(k,l in P) exp(-|x_k - T y_l|^2 / (2 sigma^2)),
 // its Tanimoto atoms = H_AB / (H_AA + H_BB - H_AB), and the score becomes
 // (shape + chem_weight chem + atom_weight atoms) / (1 + chem_weight + atom_weight). The
-// refinement climbs the surface part alone; the atom term decides between the refined poses.
+// refinement climbs the surface part alone; the atom term decides between the refined poses,
+// and the best few are then polished on the whole score (refine with pull_atoms;
+// MatchOptions::polish_top).
 // [choice, beyond the seed: measured in bench/overlay_bench (seed 20261122, 24 principal-axes
 // starts), where the surface score ranks a wrong pose first in 48 of the 49 therm failures with
 // the true pose among the candidates. Re-ranked offline by the surface score plus a term over
@@ -158,9 +160,13 @@ class SurfaceOverlay {
   /// when no probe point has a neighbour. With `final_score`, also the returned transform's
   /// scores (as score() gives them). With `abandon`, the refinement stops as soon as it returns
   /// true for the current transform (say, one that has come to a pose already found), and
-  /// refine returns nullopt.
+  /// refine returns nullopt. With `pull_atoms` (and uses_atoms()), the refinement climbs the
+  /// whole score instead: each step also pulls every probe heteroatom toward the Gaussian-
+  /// weighted mean of the reference heteroatoms of its element, weighted as the atom term
+  /// weighs in the score, and must raise the score, atom term included.
   std::optional<RigidTransform> refine(const RigidTransform& start, OverlayScore* final_score,
-                                       const std::function<bool(const RigidTransform&)>& abandon) const;
+                                       const std::function<bool(const RigidTransform&)>& abandon,
+                                       bool pull_atoms = false) const;
   RigidTransform refine(const RigidTransform& start, OverlayScore* final_score = nullptr) const {
     return *refine(start, final_score, {});
   }
