@@ -151,6 +151,7 @@ TEST(Match, PolishedAlignmentsScoreAtLeastAsHighAndStayOrdered) {
   const double rmsd_after = heavy_atom_rmsd(probe, after.alignments[0].transform, probe);
   std::printf("[ polish   ] 3TMN <- 4TMN top-1: score %.4f -> %.4f, heavy-atom RMSD to the crystal overlay %.2f -> %.2f A\n",
               before.alignments[0].overlay.score, after.alignments[0].overlay.score, rmsd_before, rmsd_after);
+  EXPECT_LT(rmsd_after, rmsd_before);
   EXPECT_LT(rmsd_after, 2.0);
   matching::MatchOptions negative;
   negative.polish_top = -1;

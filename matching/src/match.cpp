@@ -54,9 +54,10 @@ std::optional<std::vector<bool>> site_vertices(const harmonic::SurfaceDescriptor
 /// The consensus order with its first options.refine_top alignments refined on the whole
 /// surfaces (those whose start does not repeat an earlier one's) and moved ahead together with
 /// the refined principal-axes starts (MatchOptions::principal_axes_starts), best overlay score
-/// first, repeats of a better pose after the distinct ones (MatchOptions::refine_top). Those
-/// first refine_top alignments get their overlay score. A site match overlays the pocket
-/// linings with MatchOptions::site's settings.
+/// first, repeats of a better pose after the distinct ones (MatchOptions::refine_top), the
+/// first polish_top of them polished on the whole score where atoms take part
+/// (MatchOptions::polish_top). Those first refine_top alignments get their overlay score. A
+/// site match overlays the pocket linings with MatchOptions::site's settings.
 std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking, const std::vector<Cluster>& clusters,
                                      const harmonic::SurfaceDescriptors& reference,
                                      const harmonic::SurfaceDescriptors& probe, const MatchOptions& options,
@@ -161,37 +162,48 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   for (const auto& p : axes_poses) {
     if (p) candidates.push_back(*p);
   }
-  // Refined ones by score (stable: consensus order, then the axes starts, breaks ties), then
-  // the repeats; a principal-axes pose that repeats a better one is dropped (it has no merge
-  // tree place to keep).
+  // Refined ones by score, then the repeats (a pose within kRepeatDistance of a better one); a
+  // principal-axes pose that repeats a better one is dropped (it has no merge tree place to
+  // keep). Ties keep the order given: first the consensus order, then the axes starts.
+  struct Ordered {
+    std::vector<Placed> list;  ///< the distinct ones, then the repeats
+    std::size_t distinct = 0;
+  };
   const auto best_first = [&](std::vector<Placed> all) {
     std::stable_sort(all.begin(), all.end(), [](const Placed& x, const Placed& y) { return x.overlay.score > y.overlay.score; });
-    std::vector<Placed> distinct, repeats;
+    Ordered out;
+    std::vector<Placed> repeats;
     for (const Placed& candidate : all) {
-      const bool repeat = std::any_of(distinct.begin(), distinct.end(), [&](const Placed& d) {
+      const bool repeat = std::any_of(out.list.begin(), out.list.end(), [&](const Placed& d) {
         return largest_move(d.transform, candidate.transform) <= kRepeatDistance;
       });
       if (!repeat) {
-        distinct.push_back(candidate);
+        out.list.push_back(candidate);
       } else if (candidate.cluster >= 0) {
         repeats.push_back(candidate);
       }
     }
-    distinct.insert(distinct.end(), repeats.begin(), repeats.end());
-    return distinct;
+    out.distinct = out.list.size();
+    out.list.insert(out.list.end(), repeats.begin(), repeats.end());
+    return out;
   };
-  std::vector<Placed> ordered = best_first(std::move(candidates));
-  // The first polish_top are polished on the whole score, their heteroatoms pulled too
-  // (SurfaceOverlay::refine with pull_atoms), and the list ordered again.
+  Ordered ordered = best_first(std::move(candidates));
+  // The first polish_top distinct refined poses are polished on the whole score, their
+  // heteroatoms pulled too (SurfaceOverlay::refine with pull_atoms), and the list is ordered
+  // again (a polished pose that comes to repeat a better one goes after the distinct ones).
   if (overlay.uses_atoms() && options.polish_top > 0) {
-    const std::size_t n_polished = std::min(ordered.size(), static_cast<std::size_t>(options.polish_top));
-    tbb::parallel_for(std::size_t{0}, n_polished, [&](std::size_t i) {
-      if (ordered[i].refined) ordered[i].transform = *overlay.refine(ordered[i].transform, &ordered[i].overlay, {}, true);
+    std::vector<std::size_t> to_polish;
+    for (std::size_t i = 0; i < ordered.distinct && to_polish.size() < static_cast<std::size_t>(options.polish_top); ++i) {
+      if (ordered.list[i].refined) to_polish.push_back(i);
+    }
+    tbb::parallel_for(std::size_t{0}, to_polish.size(), [&](std::size_t k) {
+      Placed& p = ordered.list[to_polish[k]];
+      p.transform = *overlay.refine(p.transform, &p.overlay, {}, true);
     });
-    ordered = best_first(std::move(ordered));
+    ordered = best_first(std::move(ordered.list));
   }
-  ordered.insert(ordered.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined), placed.end());
-  return ordered;
+  ordered.list.insert(ordered.list.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined), placed.end());
+  return ordered.list;
 }
 
 }  // namespace

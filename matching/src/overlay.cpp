@@ -375,10 +375,12 @@ std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start
   const Eigen::Vector3d probe_centroid = probe_.points * probe_.weights / probe_.weights.sum();
   Eigen::Matrix3Xd targets(3, n + m), next_targets(3, n + m);
   Eigen::VectorXd weights(n + m), next_weights(n + m);
-  // Each term pulls in proportion to its weight in the score over its self-overlap (the
-  // Tanimoto's scale): a surface point by its share of S + chem_weight C (its EM weight) over
-  // S_AA + S_BB, a heteroatom by its share of H times atom_weight over H_AA + H_BB; the common
-  // factor 1 / (S_AA + S_BB) is taken out.
+  // Each term pulls about in proportion to its weight in the score over its self-overlap: a
+  // surface point by its share of S + chem_weight C (its EM weight) over S_AA + S_BB, a
+  // heteroatom by its share of H times atom_weight over H_AA + H_BB, the common factor
+  // 1 / (S_AA + S_BB) taken out. An approximation: a Tanimoto x / (D - x) rises by
+  // (1 + T)^2 / D per unit of x, so the ratio is exact only where the shape and atom Tanimotos
+  // are equal; as a step must raise the score, it can only cost steps, not correctness.
   const double atom_scale = pull_atoms ? options_.atom_weight * self_.shape / atom_self_ : 0.0;
   const double inv2s2 = 1.0 / (2.0 * options_.sigma * options_.sigma);
   // The scores at `t` (the atom term's too when pulling atoms) and the EM targets and weights
@@ -408,7 +410,7 @@ std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start
   // is stretched (alpha doubles up to kMaxAlpha); one that does not is retried plain.
   double alpha = 1.0;
   for (int iteration = 0; iteration < options_.iterations; ++iteration) {
-    if (!(weights.sum() > 0.0)) break;
+    if (!(weights.head(n).sum() > 0.0)) break;  // no surface contact: nothing to climb
     const RigidTransform em = fit_rigid_weighted(from, targets, weights).transform;
     RigidTransform next = extrapolate(current, em, current.apply(probe_centroid), alpha);
     OverlayScore next_score = step(next, next_targets, next_weights);

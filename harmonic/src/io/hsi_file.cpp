@@ -297,7 +297,7 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
     throw FormatError(source, "byte order mark " + std::to_string(mark) +
                                   " is not that of a .hsi file written by surfcomp");
   }
-  if (version != 1 && version != hsi_format_version) {
+  if (version < 1 || version > hsi_format_version) {
     throw FormatError(source, "format version " + std::to_string(version) + ", this surfcomp reads versions 1 to " +
                                   std::to_string(hsi_format_version) + "; rebuild it with surfcomp hsi-build");
   }
@@ -332,7 +332,7 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
   }
   if (version >= 2) {
     const std::uint64_t n_atoms = r.u64();
-    if (n_atoms > r.remaining() / 28) r.fail("implausible atom count");
+    if (n_atoms > r.remaining() / 29) r.fail("implausible atom count");  // 4 + 1 + 24 bytes at least
     d.atoms.resize(n_atoms);
     for (SurfaceAtom& atom : d.atoms) {
       atom.element = r.string();

@@ -27,8 +27,8 @@ struct MatchOptions {
   /// Default 10. The alignments first in the consensus ranking that are refined on the whole
   /// surfaces (SurfaceOverlay::refine) and then ranked by their overlay score, ahead of the
   /// others; an alignment whose refined pose repeats a better one's (every sampled probe
-  /// point within 0.5 A) goes after the distinct ones. 0 ranks by the consensus alone (the
-  /// seed). Must be >= 0.
+  /// point within 0.5 A) goes after the distinct ones; the first of them may then be polished
+  /// (polish_top). 0 ranks by the consensus alone (the seed). Must be >= 0.
   int refine_top = 10;
   /// Default 24. With refine_top > 0, this many principal-axes superpositions of the two
   /// samples (principal_axes_starts: 4 in the axes' variance order, or 24 in any order) are
@@ -36,7 +36,8 @@ struct MatchOptions {
   /// land on a pose already found: a route to the right pose independent of the cliques.
   /// Measured on ligands (bench/overlay_bench, seed 20261122), 0 / 4 / 24 starts: with the
   /// heteroatom term (refined candidates re-ranked offline) five ligands top-1 90 / 90 / 99 %,
-  /// therm 61 / 66 / 76 % (in the match itself, 0 and 24: 90 / 99 % and 61 / 74 %); without it,
+  /// therm 61 / 66 / 76 % (in the match itself, 0 and 24 starts, with the polish: 90 / 100 % and
+  /// 64 / 76 %); without it,
   /// five ligands 90 % each, therm 53 / 49 / 51 %. Must be 0, 4 or 24.
   int principal_axes_starts = 24;
   /// Default 5. Where the overlay uses atoms (OverlayOptions::atom_weight), the first
@@ -47,7 +48,10 @@ struct MatchOptions {
   /// 100 / 100 %, therm top-1 76 / 72 %, top-5 86 / 88 % (median 0.78 / 0.65 A). Pulling the
   /// heteroatoms in every refinement instead (seed 20261122, pulls of 7, 2.1 and 0.7 times this
   /// one's strength) gave five ligands 94 / 92 / 90 % and therm 67 / 65 / 68 %. 0 leaves them as
-  /// the surfaces' refinement left them. Must be >= 0.
+  /// the surfaces' refinement left them. On by default for what it does to the crystal overlays
+  /// (the five ligands: every top-5 within 2 A, median 0.80 -> 0.53 A) and to the pose
+  /// precision on therm; its effect on the therm top-1 is mixed (+2 and -4 points on the two
+  /// seeds). Must be >= 0.
   int polish_top = 5;
   OverlayOptions overlay;                 ///< sigma 1 A, spacing 1.5 A, chemistry weight 6, atom weight 14
   /// What changes when the match is restricted to binding sites (allowed masks, or descriptions

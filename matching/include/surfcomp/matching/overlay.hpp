@@ -69,20 +69,21 @@ struct OverlayOptions {
   /// 50 %, 53 %, 52 % at weights 1, 3, 6, 10; five ligands 90 % at each. Must be >= 0.
   double chem_weight = 6.0;
   /// Default 14. Weight of the heteroatom Tanimoto (same-element heteroatoms, Gaussians of
-  /// width sigma) in the score, where both sides have heteroatoms; it takes no part in the
-  /// refinement's pull. Measured (bench/overlay_bench, seed 20261122, 24 axes starts; the
-  /// refined candidates re-ranked offline): therm top-1 51 / 72 / 76 / 76 / 78 % at weights
-  /// 0 / 3.5 / 7 / 14 / 28, five ligands 90 % at 0 and 99 % from 3.5 up. In the match with
-  /// these defaults: five ligands 99 %, therm 74 %; with seed 7 (other poses and therm pairs,
-  /// not used in the choice) 100 % and 76 %, O3A-MMFF 68 %. Must be >= 0.
+  /// width sigma) in the score, where both sides have heteroatoms; it pulls only in the polish
+  /// (refine with pull_atoms; MatchOptions::polish_top). Measured (bench/overlay_bench, seed
+  /// 20261122, 24 axes starts; the refined candidates re-ranked offline): therm top-1 51 / 72 /
+  /// 76 / 76 / 78 % at weights 0 / 3.5 / 7 / 14 / 28, five ligands 90 % at 0 and 99 % from 3.5
+  /// up. In the match with these defaults, before the polish: five ligands 99 %, therm 74 %;
+  /// with seed 7 (other poses and therm pairs, not used in the choice) 100 % and 76 %, O3A-MMFF
+  /// 68 %. Must be >= 0.
   double atom_weight = 14.0;
   /// Default 40. Most refinement steps per transform. Must be >= 0.
   int iterations = 40;
   /// Default 0.1 A. Refinement stops when a step moves no sampled probe point by more than this.
   /// Measured (bench/overlay_bench, seed 20261122, defaults otherwise, one sweep): 0.05 / 0.1 /
   /// 0.15 A give five ligands 99 % top-1 each, therm 76 / 74 / 74 %, match from descriptors 56 /
-  /// 44 / 42 ms median (five ligands, 2 threads; a later run of the final defaults: 39.5 ms, the
-  /// spread between runs on this machine). Must be >= 0.
+  /// 44 / 42 ms median (five ligands, 2 threads; later runs of the final defaults: 36-42 ms,
+  /// the spread between runs on this machine). Must be >= 0.
   double tolerance = 0.1;
 };
 
@@ -155,15 +156,15 @@ class SurfaceOverlay {
   /// with the Gaussian- and chemistry-weighted mean of its reference neighbours (within 3 sigma)
   /// and takes the weighted least-squares rigid fit of the probe points onto those means (an
   /// expectation-maximisation step of the Gaussian overlay), until options.iterations or
-  /// options.tolerance. A step that lowers the surface part of the score, (shape + chem_weight
-  /// chem) / (1 + chem_weight), is not taken. Returns `start` unchanged
-  /// when no probe point has a neighbour. With `final_score`, also the returned transform's
+  /// options.tolerance. A step must raise the surface part of the score, (shape + chem_weight
+  /// chem) / (1 + chem_weight), or the refinement stops. Returns `start` unchanged when no probe
+  /// point has a neighbour. With `final_score`, also the returned transform's
   /// scores (as score() gives them). With `abandon`, the refinement stops as soon as it returns
   /// true for the current transform (say, one that has come to a pose already found), and
   /// refine returns nullopt. With `pull_atoms` (and uses_atoms()), the refinement climbs the
   /// whole score instead: each step also pulls every probe heteroatom toward the Gaussian-
-  /// weighted mean of the reference heteroatoms of its element, weighted as the atom term
-  /// weighs in the score, and must raise the score, atom term included.
+  /// weighted mean of the reference heteroatoms of its element, weighted about as the atom
+  /// term weighs in the score, and must raise the score, atom term included.
   std::optional<RigidTransform> refine(const RigidTransform& start, OverlayScore* final_score,
                                        const std::function<bool(const RigidTransform&)>& abandon,
                                        bool pull_atoms = false) const;
@@ -179,7 +180,7 @@ class SurfaceOverlay {
 
  private:
   /// Neighbour lists of a sample on a grid of cubic cells of edge sigma (larger where the box
-  /// would need more than 2^22 cells) over its bounding box grown by the cutoff: cell c lists
+  /// would need more than about 2^22 cells) over its bounding box grown by the cutoff: cell c lists
   /// the points within the cutoff of some place in c, so a query looks at one list instead of
   /// 27 cells of 3 sigma. [choice: the same sums; match from descriptors, five ligands with 24
   /// axes starts in bench/overlay_bench, 111 -> 86 ms median.]
