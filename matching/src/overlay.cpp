@@ -160,11 +160,6 @@ SurfaceOverlay::Grid SurfaceOverlay::make_grid(const SurfaceSample& sample, doub
   const Eigen::Vector3d extent = sample.points.rowwise().maxCoeff().array() + cutoff - grid.origin.array();
   grid.cell = std::max(cell, std::cbrt(extent.prod() / kMaxCells));
   for (int d = 0; d < 3; ++d) grid.size(d) = static_cast<int>(std::floor(extent(d) / grid.cell)) + 1;
-  const auto cell_index = [&](int x, int y, int z) {
-    return (static_cast<std::size_t>(z) * static_cast<std::size_t>(grid.size.y()) + static_cast<std::size_t>(y)) *
-               static_cast<std::size_t>(grid.size.x()) +
-           static_cast<std::size_t>(x);
-  };
   // A cell lists every point within the cutoff of any of its places: within the cutoff plus
   // half the cell's diagonal of its centre. Two passes: count, then fill.
   const double reach = cutoff + 0.5 * std::sqrt(3.0) * grid.cell;
@@ -177,12 +172,12 @@ SurfaceOverlay::Grid SurfaceOverlay::make_grid(const SurfaceSample& sample, doub
       for (int y = low.y(); y <= high.y(); ++y) {
         for (int x = low.x(); x <= high.x(); ++x) {
           const Eigen::Vector3d centre = grid.origin + grid.cell * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
-          if ((centre - p).squaredNorm() <= reach * reach) visit(cell_index(x, y, z));
+          if ((centre - p).squaredNorm() <= reach * reach) visit(grid.index(x, y, z));
         }
       }
     }
   };
-  const std::size_t cells = cell_index(0, 0, grid.size.z());
+  const std::size_t cells = grid.index(0, 0, grid.size.z());
   grid.start.assign(cells + 1, 0);
   for (Eigen::Index i = 0; i < sample.points.cols(); ++i) for_each_cell_near(i, [&](std::size_t c) { ++grid.start[c + 1]; });
   for (std::size_t c = 0; c < cells; ++c) grid.start[c + 1] += grid.start[c];
@@ -204,10 +199,7 @@ void visit_near(const Grid& grid, const Eigen::Vector3d& p, const Visit& visit) 
   // Outside the grid, or not a number (also guards the int conversion below).
   if (!((local.array() >= 0.0).all() && (local.array() < grid.size.template cast<double>().array()).all())) return;
   const Eigen::Vector3i c = local.array().floor().cast<int>();
-  const std::size_t cell =
-      (static_cast<std::size_t>(c.z()) * static_cast<std::size_t>(grid.size.y()) + static_cast<std::size_t>(c.y())) *
-          static_cast<std::size_t>(grid.size.x()) +
-      static_cast<std::size_t>(c.x());
+  const std::size_t cell = grid.index(c.x(), c.y(), c.z());
   for (std::size_t k = grid.start[cell]; k < grid.start[cell + 1]; ++k) visit(grid.points[k]);
 }
 
@@ -249,14 +241,25 @@ SurfaceOverlay::Sums SurfaceOverlay::overlap(const SurfaceSample& a, const Grid&
   return sums;
 }
 
-double SurfaceOverlay::atom_overlap(const AtomSample& a, const AtomSample& b, const RigidTransform& transform) const {
+double SurfaceOverlay::atom_overlap(const AtomSample& a, const AtomSample& b, const RigidTransform& transform,
+                                    Eigen::Matrix3Xd* targets, Eigen::VectorXd* totals) const {
   const double inv2s2 = 1.0 / (2.0 * options_.sigma * options_.sigma);
   double sum = 0.0;
   for (std::size_t l = 0; l < b.size(); ++l) {
     const Eigen::Vector3d y = transform.rotation * b.points.col(static_cast<Eigen::Index>(l)) + transform.translation;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    double total = 0.0;
     for (std::size_t k = 0; k < a.size(); ++k) {
       if (a.elements[k] != b.elements[l]) continue;
-      sum += std::exp(-(a.points.col(static_cast<Eigen::Index>(k)) - y).squaredNorm() * inv2s2);
+      const Eigen::Vector3d x = a.points.col(static_cast<Eigen::Index>(k));
+      const double g = std::exp(-(x - y).squaredNorm() * inv2s2);
+      sum += g;
+      mean += g * x;
+      total += g;
+    }
+    if (targets != nullptr) {
+      targets->col(static_cast<Eigen::Index>(l)) = total > 0.0 ? Eigen::Vector3d(mean / total) : y;
+      (*totals)(static_cast<Eigen::Index>(l)) = total;
     }
   }
   return sum;
@@ -278,8 +281,10 @@ OverlayScore SurfaceOverlay::tanimoto(const Sums& sums) const {
 }
 
 OverlayScore SurfaceOverlay::with_atoms(OverlayScore s, const RigidTransform& transform) const {
-  if (!uses_atoms()) return s;
-  const double h = atom_overlap(reference_atoms_, probe_atoms_, transform);
+  return uses_atoms() ? with_atom_overlap(s, atom_overlap(reference_atoms_, probe_atoms_, transform)) : s;
+}
+
+OverlayScore SurfaceOverlay::with_atom_overlap(OverlayScore s, double h) const {
   s.atoms = h / (atom_self_ - h);
   s.score = combined(s, true);
   return s;
@@ -382,27 +387,17 @@ std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start
   // (1 + T)^2 / D per unit of x, so the ratio is exact only where the shape and atom Tanimotos
   // are equal; as a step must raise the score, it can only cost steps, not correctness.
   const double atom_scale = pull_atoms ? options_.atom_weight * self_.shape / atom_self_ : 0.0;
-  const double inv2s2 = 1.0 / (2.0 * options_.sigma * options_.sigma);
+  Eigen::Matrix3Xd atom_targets(3, m);
+  Eigen::VectorXd atom_totals(m);
   // The scores at `t` (the atom term's too when pulling atoms) and the EM targets and weights
   // there, the heteroatoms' after the surface points'.
   const auto step = [&](const RigidTransform& t, Eigen::Matrix3Xd& tg, Eigen::VectorXd& w) {
-    OverlayScore score = tanimoto(overlap(reference_, reference_grid_, probe_, t, &tg, &w));
+    const OverlayScore score = tanimoto(overlap(reference_, reference_grid_, probe_, t, &tg, &w));
     if (!pull_atoms) return score;
-    for (Eigen::Index l = 0; l < m; ++l) {
-      const Eigen::Vector3d y = t.rotation * probe_atoms_.points.col(l) + t.translation;
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      double total = 0.0;
-      for (std::size_t k = 0; k < reference_atoms_.size(); ++k) {
-        if (reference_atoms_.elements[k] != probe_atoms_.elements[static_cast<std::size_t>(l)]) continue;
-        const Eigen::Vector3d x = reference_atoms_.points.col(static_cast<Eigen::Index>(k));
-        const double g = std::exp(-(x - y).squaredNorm() * inv2s2);
-        mean += g * x;
-        total += g;
-      }
-      tg.col(n + l) = total > 0.0 ? Eigen::Vector3d(mean / total) : y;
-      w(n + l) = atom_scale * total;
-    }
-    return with_atoms(score, t);
+    const double h = atom_overlap(reference_atoms_, probe_atoms_, t, &atom_targets, &atom_totals);
+    tg.rightCols(m) = atom_targets;
+    w.tail(m) = atom_scale * atom_totals;
+    return with_atom_overlap(score, h);
   };
   RigidTransform current = start;
   OverlayScore current_score = step(current, targets, weights);

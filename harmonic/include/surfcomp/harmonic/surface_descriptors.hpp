@@ -3,8 +3,8 @@
 // harmonic shape image (METHOD sections 2-4; seed 3.2, 3.4, 3.6).
 #pragma once
 
-#include "surfcomp/harmonic/disk_map.hpp"
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/harmonic/disk_map.hpp"
 #include "surfcomp/harmonic/shape_image.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
 #include "surfcomp/mesh/patch.hpp"

@@ -80,9 +80,10 @@ struct OverlayOptions {
   /// Default 40. Most refinement steps per transform. Must be >= 0.
   int iterations = 40;
   /// Default 0.1 A. Refinement stops when a step moves no sampled probe point by more than this.
-  /// Measured (bench/overlay_bench, seed 20261122, defaults otherwise, one sweep): 0.05 / 0.1 /
-  /// 0.15 A give five ligands 99 % top-1 each, therm 76 / 74 / 74 %, match from descriptors 56 /
-  /// 44 / 42 ms median (five ligands, 2 threads; later runs of the final defaults: 36-42 ms,
+  /// Measured (bench/overlay_bench, seed 20261122, before the polish): 0.05 / 0.1 / 0.15 A give
+  /// five ligands 99 % top-1 each, therm 76 / 74 / 74 %. Match from descriptors, five ligands,
+  /// median: 71 / 59 ms at 0.05 / 0.15 A with the refinements run one after another; 44 / 42 ms
+  /// at 0.1 / 0.15 A run in parallel on 2 threads (later runs of the final defaults: 36-42 ms,
   /// the spread between runs on this machine). Must be >= 0.
   double tolerance = 0.1;
 };
@@ -190,6 +191,13 @@ class SurfaceOverlay {
     Eigen::Vector3i size = Eigen::Vector3i::Zero();
     std::vector<std::size_t> start;  ///< points listed for cell c: points[start[c] .. start[c + 1])
     std::vector<int> points;
+
+    /// The index c of the cell (x, y, z).
+    std::size_t index(int x, int y, int z) const {
+      return (static_cast<std::size_t>(z) * static_cast<std::size_t>(size.y()) + static_cast<std::size_t>(y)) *
+                 static_cast<std::size_t>(size.x()) +
+             static_cast<std::size_t>(x);
+    }
   };
   static Grid make_grid(const SurfaceSample& sample, double cell, double cutoff);
   /// Unnormalised overlaps S and C of `a` (bucketed by `grid`) and `b` moved by `transform`.
@@ -206,10 +214,16 @@ class SurfaceOverlay {
   OverlayScore tanimoto(const Sums& sums) const;
   /// `s` with the atom term of `transform` added, when the overlay uses atoms.
   OverlayScore with_atoms(OverlayScore s, const RigidTransform& transform) const;
+  /// `s` with the atom term of the overlap `h` (atom_overlap of the two samples) added.
+  OverlayScore with_atom_overlap(OverlayScore s, double h) const;
   /// The weighted mean of s's terms (the atom term only `with_atoms`).
   double combined(const OverlayScore& s, bool with_atoms) const;
-  /// Unnormalised same-element heteroatom overlap of `a` and `b` moved by `transform`.
-  double atom_overlap(const AtomSample& a, const AtomSample& b, const RigidTransform& transform) const;
+  /// Unnormalised same-element heteroatom overlap H of `a` and `b` moved by `transform`. With
+  /// `targets`, also the refinement's step for b's atoms: for each, the Gaussian-weighted mean
+  /// of a's atoms of its element (its own moved position when there is none) and, in
+  /// `totals`, the sum of those weights.
+  double atom_overlap(const AtomSample& a, const AtomSample& b, const RigidTransform& transform,
+                      Eigen::Matrix3Xd* targets = nullptr, Eigen::VectorXd* totals = nullptr) const;
   static double chemistry(const SurfaceSample& a, int i, const SurfaceSample& b, int j);
   /// g = exp(-d2 / (2 sigma^2)) for 0 <= d2 <= (3 sigma)^2, interpolated linearly in d2 from
   /// kGaussianSamples + 1 tabulated values (and one spare) (absolute error below 1e-6, overlay_test). [choice:
