@@ -16,8 +16,9 @@ namespace {
 
 using namespace surfcomp;
 
-const std::filesystem::path kLigand = std::filesystem::path(SURFCOMP_SOURCE_DIR).parent_path() /
-                                      "shared/datasets/thermolysin/ligands-common-frame/1THL_ligand.sdf";
+const std::filesystem::path kLigand =
+    std::filesystem::path(SURFCOMP_SOURCE_DIR).parent_path() /
+    "shared/datasets/thermolysin/ligands-common-frame/1THL_ligand.sdf";
 
 const mesh::Surface& ligand_surface() {
   static const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(kLigand));
@@ -52,9 +53,13 @@ int main(int argc, char** argv) {
     std::printf("skipped: %s is absent\n", kLigand.c_str());
     return 0;
   }
-  benchmark::RegisterBenchmark("surface_build/1THL", BM_SurfaceBuild)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("surface_build/1THL", BM_SurfaceBuild)
+      ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("describe_surface/1THL/threads", BM_DescribeSurface)
-      ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+      ->Arg(1)
+      ->Arg(2)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
   benchmark::RegisterBenchmark("encode_hsi/1THL", BM_EncodeHsi)->Unit(benchmark::kMillisecond);
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

@@ -67,12 +67,12 @@ double ms_since(Clock::time_point start) {
 /// may have failed; the reason is kept.
 struct Entry {
   std::string name;
-  std::optional<Molecule> molecule;             ///< ours, in the common frame
-  std::shared_ptr<RDKit::ROMol> rdkit;          ///< RDKit's, in the common frame
+  std::optional<Molecule> molecule;                         ///< ours, in the common frame
+  std::shared_ptr<RDKit::ROMol> rdkit;                      ///< RDKit's, in the common frame
   std::optional<harmonic::SurfaceDescriptors> descriptors;  ///< of the common-frame molecule
-  double describe_ms = 0.0;                     ///< surface build + describe_surface, ms
-  std::string our_error;                        ///< why ours is absent
-  std::string rdkit_error;                      ///< why RDKit's is absent
+  double describe_ms = 0.0;  ///< surface build + describe_surface, ms
+  std::string our_error;     ///< why ours is absent
+  std::string rdkit_error;   ///< why RDKit's is absent
 };
 
 /// Reads `path` with both readers and describes our molecule's surface (timed).
@@ -89,11 +89,13 @@ Entry load_entry(const std::string& name, const fs::path& path) {
   try {
     entry.molecule = io::read_molecule(path);
     if (entry.rdkit != nullptr && entry.rdkit->getNumAtoms() != entry.molecule->atoms.size()) {
-      throw InputError(path.string() + ": our reader has " + std::to_string(entry.molecule->atoms.size()) +
-                       " atoms, RDKit " + std::to_string(entry.rdkit->getNumAtoms()));
+      throw InputError(path.string() + ": our reader has " +
+                       std::to_string(entry.molecule->atoms.size()) + " atoms, RDKit " +
+                       std::to_string(entry.rdkit->getNumAtoms()));
     }
     const auto start = Clock::now();
-    entry.descriptors = harmonic::describe_surface(mesh::build_molecular_surface(*entry.molecule), *entry.molecule);
+    entry.descriptors =
+        harmonic::describe_surface(mesh::build_molecular_surface(*entry.molecule), *entry.molecule);
     entry.describe_ms = ms_since(start);
   } catch (const std::exception& e) {
     entry.molecule.reset();
@@ -113,16 +115,19 @@ struct Pose {
 Pose random_pose(std::mt19937& rng, const Eigen::Vector3d& centre) {
   std::normal_distribution<double> gauss;
   Pose pose;
-  pose.rotation = Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
-  const Eigen::Vector3d direction = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+  pose.rotation = Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng))
+                      .normalized()
+                      .toRotationMatrix();
+  const Eigen::Vector3d direction =
+      Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
   pose.translation = centre - pose.rotation * centre + kPoseTranslation * direction;
   return pose;
 }
 
 /// Heavy-atom RMSD, A, between `moved` and `truth` (the same atoms, in order), over the atoms
 /// whose `heavy` flag is set.
-double heavy_atom_rmsd(const std::vector<Eigen::Vector3d>& moved, const std::vector<Eigen::Vector3d>& truth,
-                       const std::vector<bool>& heavy) {
+double heavy_atom_rmsd(const std::vector<Eigen::Vector3d>& moved,
+                       const std::vector<Eigen::Vector3d>& truth, const std::vector<bool>& heavy) {
   double sum = 0.0;
   int n = 0;
   for (std::size_t i = 0; i < truth.size(); ++i) {
@@ -145,7 +150,8 @@ std::vector<Eigen::Vector3d> conformer_positions(const RDKit::ROMol& mol) {
 
 std::vector<bool> heavy_atoms(const RDKit::ROMol& mol) {
   std::vector<bool> heavy;
-  for (unsigned i = 0; i < mol.getNumAtoms(); ++i) heavy.push_back(mol.getAtomWithIdx(i)->getAtomicNum() != 1);
+  for (unsigned i = 0; i < mol.getNumAtoms(); ++i)
+    heavy.push_back(mol.getAtomWithIdx(i)->getAtomicNum() != 1);
   return heavy;
 }
 
@@ -184,18 +190,18 @@ Eigen::Vector3d heavy_atom_centroid(const Entry& entry) {
 
 /// One method's outcome on one trial. rmsd is +inf when the method gave no answer.
 struct Outcome {
-  bool attempted = false;     ///< false when an input could not be read or typed
-  double rmsd = kInf;         ///< top-1 heavy-atom RMSD, A
-  double best_top5 = kInf;    ///< ours: best heavy-atom RMSD among the top 5, A
-  int best_rank = 0;          ///< ours: rank of that best alignment
-  double best_any = kInf;     ///< ours: best heavy-atom RMSD among all alignments, A (diagnosis)
-  int best_any_rank = 0;      ///< ours: rank of that one
+  bool attempted = false;   ///< false when an input could not be read or typed
+  double rmsd = kInf;       ///< top-1 heavy-atom RMSD, A
+  double best_top5 = kInf;  ///< ours: best heavy-atom RMSD among the top 5, A
+  int best_rank = 0;        ///< ours: rank of that best alignment
+  double best_any = kInf;   ///< ours: best heavy-atom RMSD among all alignments, A (diagnosis)
+  int best_any_rank = 0;    ///< ours: rank of that one
   std::size_t alignments = 0;
-  double top_score = 0.0;     ///< ours: overlay score of the top-1 alignment
-  double truth_score = 0.0;   ///< ours: overlay score of the true pose refined (diagnosis: when it
-                              ///< beats top_score, the right answer was never a candidate)
-  double ms = 0.0;            ///< from molecules in memory, ms
-  double match_ms = 0.0;      ///< ours: match_surfaces alone (prebuilt descriptors), ms
+  double top_score = 0.0;    ///< ours: overlay score of the top-1 alignment
+  double truth_score = 0.0;  ///< ours: overlay score of the true pose refined (diagnosis: when it
+                             ///< beats top_score, the right answer was never a candidate)
+  double ms = 0.0;           ///< from molecules in memory, ms
+  double match_ms = 0.0;     ///< ours: match_surfaces alone (prebuilt descriptors), ms
   std::string error;
 };
 
@@ -203,7 +209,8 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
                      const matching::MatchOptions& options) {
   Outcome out;
   if (!reference.descriptors || !probe.descriptors) {
-    out.error = !reference.descriptors ? reference.name + ": " + reference.our_error : probe.name + ": " + probe.our_error;
+    out.error = !reference.descriptors ? reference.name + ": " + reference.our_error
+                                       : probe.name + ": " + probe.our_error;
     return out;
   }
   out.attempted = true;
@@ -244,7 +251,8 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
       const matching::SurfaceOverlay overlay(
           matching::sample_surface(reference.descriptors->surface, defaults.overlay.spacing),
           matching::sample_surface(described.surface, defaults.overlay.spacing), defaults.overlay,
-          matching::sample_atoms(reference.descriptors->atoms), matching::sample_atoms(described.atoms));
+          matching::sample_atoms(reference.descriptors->atoms),
+          matching::sample_atoms(described.atoms));
       matching::RigidTransform truth_transform;  // the inverse of the pose
       truth_transform.rotation = pose.rotation.transpose();
       truth_transform.translation = -(pose.rotation.transpose() * pose.translation);
@@ -262,7 +270,8 @@ enum class O3aScheme { mmff, crippen };
 Outcome run_o3a(const Entry& reference, const Entry& probe, const Pose& pose, O3aScheme scheme) {
   Outcome out;
   if (!reference.rdkit || !probe.rdkit) {
-    out.error = !reference.rdkit ? reference.name + ": " + reference.rdkit_error : probe.name + ": " + probe.rdkit_error;
+    out.error = !reference.rdkit ? reference.name + ": " + reference.rdkit_error
+                                 : probe.name + ": " + probe.rdkit_error;
     return out;
   }
   RDKit::ROMol ref(*reference.rdkit);
@@ -296,7 +305,8 @@ Outcome run_o3a(const Entry& reference, const Entry& probe, const Pose& pose, O3
     }
     out.ms = ms_since(start);
     out.alignments = 1;
-    out.rmsd = heavy_atom_rmsd(conformer_positions(prb), conformer_positions(*probe.rdkit), heavy_atoms(prb));
+    out.rmsd = heavy_atom_rmsd(conformer_positions(prb), conformer_positions(*probe.rdkit),
+                               heavy_atoms(prb));
   } catch (const std::exception& e) {
     out.attempted = true;
     out.error = e.what();
@@ -360,61 +370,82 @@ Row summarise(const std::string& set, const std::string& method, const std::vect
 }
 
 void print_trials(const std::string& set, const std::vector<Trial>& trials) {
-  std::printf("\n[%s] per trial: top-1 RMSD (A) ours | best of top 5 (rank) | O3A-MMFF | O3A-Crippen; "
-              "ours ms from molecules / match only\n", set.c_str());
+  std::printf(
+      "\n[%s] per trial: top-1 RMSD (A) ours | best of top 5 (rank) | O3A-MMFF | O3A-Crippen; "
+      "ours ms from molecules / match only\n",
+      set.c_str());
   for (const Trial& t : trials) {
-    std::printf("  %-18s <- %-18s pose %d: %7.2f | %7.2f (%d) | %7.2f | %7.2f   %7.1f / %6.1f ms%s\n",
-                t.reference.c_str(), t.probe.c_str(), t.pose, t.ours.rmsd, t.ours.best_top5, t.ours.best_rank,
-                t.mmff.rmsd, t.crippen.rmsd, t.ours.ms, t.ours.match_ms,
-                t.ours.rmsd < kSuccessRmsd ? "" : "   <- ours fails");
+    std::printf(
+        "  %-18s <- %-18s pose %d: %7.2f | %7.2f (%d) | %7.2f | %7.2f   %7.1f / %6.1f ms%s\n",
+        t.reference.c_str(), t.probe.c_str(), t.pose, t.ours.rmsd, t.ours.best_top5,
+        t.ours.best_rank, t.mmff.rmsd, t.crippen.rmsd, t.ours.ms, t.ours.match_ms,
+        t.ours.rmsd < kSuccessRmsd ? "" : "   <- ours fails");
   }
 }
 
 void print_failures(const std::string& set, const std::vector<Trial>& trials) {
-  std::printf("\n[%s] our top-1 failures (RMSD >= %.0f A or no answer):\n", set.c_str(), kSuccessRmsd);
+  std::printf("\n[%s] our top-1 failures (RMSD >= %.0f A or no answer):\n", set.c_str(),
+              kSuccessRmsd);
   std::size_t n = 0;
   for (const Trial& t : trials) {
     if (t.ours.rmsd < kSuccessRmsd) continue;
     ++n;
-    std::printf("  %s <- %s pose %d: top-1 %.2f A, best of top 5 %.2f A (rank %d), best of all %zu alignments "
-                "%.2f A (rank %d); overlay score top-1 %.3f, true pose refined %.3f; O3A-MMFF %.2f A, O3A-Crippen %.2f A%s%s\n",
-                t.reference.c_str(), t.probe.c_str(), t.pose, t.ours.rmsd, t.ours.best_top5, t.ours.best_rank,
-                t.ours.alignments, t.ours.best_any, t.ours.best_any_rank, t.ours.top_score, t.ours.truth_score,
-                t.mmff.rmsd, t.crippen.rmsd, t.ours.error.empty() ? "" : "; error: ",
-                t.ours.error.c_str());
+    std::printf(
+        "  %s <- %s pose %d: top-1 %.2f A, best of top 5 %.2f A (rank %d), best of all %zu "
+        "alignments "
+        "%.2f A (rank %d); overlay score top-1 %.3f, true pose refined %.3f; O3A-MMFF %.2f A, "
+        "O3A-Crippen %.2f A%s%s\n",
+        t.reference.c_str(), t.probe.c_str(), t.pose, t.ours.rmsd, t.ours.best_top5,
+        t.ours.best_rank, t.ours.alignments, t.ours.best_any, t.ours.best_any_rank,
+        t.ours.top_score, t.ours.truth_score, t.mmff.rmsd, t.crippen.rmsd,
+        t.ours.error.empty() ? "" : "; error: ", t.ours.error.c_str());
   }
   if (n == 0) std::printf("  none\n");
   std::size_t missed = 0;
-  for (const Trial& t : trials) missed += t.ours.rmsd >= kSuccessRmsd && t.ours.truth_score > t.ours.top_score;
+  for (const Trial& t : trials)
+    missed += t.ours.rmsd >= kSuccessRmsd && t.ours.truth_score > t.ours.top_score;
   if (n > 0) {
-    std::printf("  of these %zu, %zu score the refined true pose above our top-1 (no candidate led there); in %zu the "
-                "overlay score prefers a wrong pose\n", n, missed, n - missed);
+    std::printf(
+        "  of these %zu, %zu score the refined true pose above our top-1 (no candidate led there); "
+        "in %zu the "
+        "overlay score prefers a wrong pose\n",
+        n, missed, n - missed);
   }
   for (const Trial& t : trials) {
-    if (!t.mmff.error.empty()) std::printf("  O3A-MMFF not run on %s <- %s: %s\n", t.reference.c_str(), t.probe.c_str(), t.mmff.error.c_str());
-    if (!t.crippen.error.empty()) std::printf("  O3A-Crippen not run on %s <- %s: %s\n", t.reference.c_str(), t.probe.c_str(), t.crippen.error.c_str());
+    if (!t.mmff.error.empty())
+      std::printf("  O3A-MMFF not run on %s <- %s: %s\n", t.reference.c_str(), t.probe.c_str(),
+                  t.mmff.error.c_str());
+    if (!t.crippen.error.empty())
+      std::printf("  O3A-Crippen not run on %s <- %s: %s\n", t.reference.c_str(), t.probe.c_str(),
+                  t.crippen.error.c_str());
   }
 }
 
 std::string percent(std::size_t k, std::size_t n) {
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%3zu/%-3zu %5.1f%%", k, n, n == 0 ? 0.0 : 100.0 * static_cast<double>(k) / static_cast<double>(n));
+  std::snprintf(buffer, sizeof buffer, "%3zu/%-3zu %5.1f%%", k, n,
+                n == 0 ? 0.0 : 100.0 * static_cast<double>(k) / static_cast<double>(n));
   return buffer;
 }
 
 void print_summary(const std::vector<Row>& rows) {
-  std::printf("\nSummary (success: heavy-atom RMSD to the true position < %.0f A; median RMSD over all trials, "
-              "a trial without an answer counted as +inf;\n times per pair, median (max), ms: from molecules in memory, and from prebuilt descriptors = match only)\n",
-              kSuccessRmsd);
-  std::printf("%-12s %-12s %-16s %-16s %10s %18s %16s %8s\n", "set", "method", "top-1 success", "top-5 success",
-              "med. RMSD", "from molecules", "from descriptors", "not run");
+  std::printf(
+      "\nSummary (success: heavy-atom RMSD to the true position < %.0f A; median RMSD over all "
+      "trials, "
+      "a trial without an answer counted as +inf;\n times per pair, median (max), ms: from "
+      "molecules in memory, and from prebuilt descriptors = match only)\n",
+      kSuccessRmsd);
+  std::printf("%-12s %-12s %-16s %-16s %10s %18s %16s %8s\n", "set", "method", "top-1 success",
+              "top-5 success", "med. RMSD", "from molecules", "from descriptors", "not run");
   for (const Row& r : rows) {
     const std::string top5 = r.ours ? percent(r.top5, r.trials) : "-";
     char ms[32], match_ms[32] = "-";
     std::snprintf(ms, sizeof ms, "%.1f (%.0f)", r.median_ms, r.max_ms);
-    if (r.ours) std::snprintf(match_ms, sizeof match_ms, "%.1f (%.0f)", r.median_match_ms, r.max_match_ms);
+    if (r.ours)
+      std::snprintf(match_ms, sizeof match_ms, "%.1f (%.0f)", r.median_match_ms, r.max_match_ms);
     std::printf("%-12s %-12s %-16s %-16s %8.2f A %18s %16s %8zu\n", r.set.c_str(), r.method.c_str(),
-                percent(r.top1, r.trials).c_str(), top5.c_str(), r.median_rmsd, ms, match_ms, r.not_run);
+                percent(r.top1, r.trials).c_str(), top5.c_str(), r.median_rmsd, ms, match_ms,
+                r.not_run);
   }
 }
 
@@ -445,8 +476,10 @@ std::string record_title(const fs::path& path) {
 
 void print_load_failures(const std::vector<Entry>& entries) {
   for (const Entry& e : entries) {
-    if (!e.our_error.empty()) std::printf("  our reader/surface failed on %s: %s\n", e.name.c_str(), e.our_error.c_str());
-    if (!e.rdkit_error.empty()) std::printf("  RDKit failed on %s: %s\n", e.name.c_str(), e.rdkit_error.c_str());
+    if (!e.our_error.empty())
+      std::printf("  our reader/surface failed on %s: %s\n", e.name.c_str(), e.our_error.c_str());
+    if (!e.rdkit_error.empty())
+      std::printf("  RDKit failed on %s: %s\n", e.name.c_str(), e.rdkit_error.c_str());
   }
 }
 
@@ -486,19 +519,23 @@ int main(int argc, char** argv) {
     } else if (arg == "--axes-starts" && i + 1 < argc) {
       const std::optional<long> n = whole_number(argv[++i]);
       if (!n || !matching::is_axes_start_count(static_cast<int>(*n))) {
-        std::fprintf(stderr, "overlay_bench: --axes-starts must be 0, 4 or 24, got '%s'\n", argv[i]);
+        std::fprintf(stderr, "overlay_bench: --axes-starts must be 0, 4 or 24, got '%s'\n",
+                     argv[i]);
         return 2;
       }
       options.principal_axes_starts = static_cast<int>(*n);
     } else if (arg == "--threads" && i + 1 < argc) {
       const std::optional<long> n = whole_number(argv[++i]);
       if (!n || *n < 1 || *n > 1024) {
-        std::fprintf(stderr, "overlay_bench: --threads must be a number from 1 to 1024, got '%s'\n", argv[i]);
+        std::fprintf(stderr, "overlay_bench: --threads must be a number from 1 to 1024, got '%s'\n",
+                     argv[i]);
         return 2;
       }
       threads = static_cast<int>(*n);
     } else {
-      std::fprintf(stderr, "overlay_bench: unknown argument '%s' (expected --quick, --seed N, --axes-starts N or --threads N)\n",
+      std::fprintf(stderr,
+                   "overlay_bench: unknown argument '%s' (expected --quick, --seed N, "
+                   "--axes-starts N or --threads N)\n",
                    arg.c_str());
       return 2;
     }
@@ -517,12 +554,18 @@ int main(int argc, char** argv) {
   boost::logging::disable_logs("rdApp.*");
   const int poses_per_pair = quick ? 1 : 5;
   const std::size_t therm_pairs = quick ? 20 : 100;
-  std::printf("overlay_bench: seed %u, %s run (%d pose(s) per five-ligand pair, %zu therm pairs), %u hardware threads, "
-              "%s, %d principal-axes starts\n", seed, quick ? "quick" : "full", poses_per_pair, therm_pairs,
-              std::thread::hardware_concurrency(), threads > 0 ? ("--threads " + std::to_string(threads)).c_str() : "all used",
-              options.principal_axes_starts);
-  std::printf("poses: rotation uniform on SO(3) about the probe's heavy-atom centroid, then %.0f A in a random direction\n",
-              kPoseTranslation);
+  std::printf(
+      "overlay_bench: seed %u, %s run (%d pose(s) per five-ligand pair, %zu therm pairs), %u "
+      "hardware threads, "
+      "%s, %d principal-axes starts\n",
+      seed, quick ? "quick" : "full", poses_per_pair, therm_pairs,
+      std::thread::hardware_concurrency(),
+      threads > 0 ? ("--threads " + std::to_string(threads)).c_str() : "all used",
+      options.principal_axes_starts);
+  std::printf(
+      "poses: rotation uniform on SO(3) about the probe's heavy-atom centroid, then %.0f A in a "
+      "random direction\n",
+      kPoseTranslation);
   std::mt19937 rng(seed);
   std::vector<Row> rows;
 
@@ -537,7 +580,8 @@ int main(int argc, char** argv) {
     for (const Entry& probe : ligands) {
       if (&reference == &probe) continue;
       for (int p = 0; p < poses_per_pair; ++p) {
-        five.push_back(run_trial(reference, probe, p, random_pose(rng, heavy_atom_centroid(probe)), options));
+        five.push_back(
+            run_trial(reference, probe, p, random_pose(rng, heavy_atom_centroid(probe)), options));
       }
     }
   }
@@ -548,7 +592,8 @@ int main(int argc, char** argv) {
   rows.push_back(summarise("five-ligand", "O3A-Crippen", five, &Trial::crippen, false));
 
   // Set 2: random ordered pairs of the Sutherland thermolysin set.
-  const fs::path scratch = fs::temp_directory_path() / ("surfcomp_overlay_bench_" + std::to_string(::getpid()));
+  const fs::path scratch =
+      fs::temp_directory_path() / ("surfcomp_overlay_bench_" + std::to_string(::getpid()));
   fs::create_directories(scratch);
   std::vector<Entry> therm;
   std::vector<Trial> therm_trials;
@@ -559,7 +604,8 @@ int main(int argc, char** argv) {
     std::uniform_int_distribution<std::size_t> pick(0, records.size() - 1);
     while (pairs.size() < therm_pairs) {
       const std::size_t i = pick(rng), j = pick(rng);
-      if (i != j && std::find(pairs.begin(), pairs.end(), std::make_pair(i, j)) == pairs.end()) pairs.emplace_back(i, j);
+      if (i != j && std::find(pairs.begin(), pairs.end(), std::make_pair(i, j)) == pairs.end())
+        pairs.emplace_back(i, j);
     }
     std::vector<bool> needed(records.size(), false);
     for (const auto& [i, j] : pairs) needed[i] = needed[j] = true;
@@ -574,7 +620,8 @@ int main(int argc, char** argv) {
     }
     print_load_failures(therm);
     for (const auto& [i, j] : pairs) {
-      therm_trials.push_back(run_trial(therm[i], therm[j], 0, random_pose(rng, heavy_atom_centroid(therm[j])), options));
+      therm_trials.push_back(run_trial(therm[i], therm[j], 0,
+                                       random_pose(rng, heavy_atom_centroid(therm[j])), options));
     }
   } catch (const std::exception& e) {
     std::printf("[therm] stopped: %s\n", e.what());

@@ -42,7 +42,8 @@ Patch sphere_cap() {
     const double planar = std::hypot(p.x(), p.y());
     const double rho = std::acos(std::min(1.0, p.z())) / cap_angle;
     index[static_cast<std::size_t>(v)] = static_cast<int>(uv.size());
-    uv.push_back(planar > 0.0 ? Eigen::Vector2d(p.x() / planar * rho, p.y() / planar * rho) : Eigen::Vector2d::Zero());
+    uv.push_back(planar > 0.0 ? Eigen::Vector2d(p.x() / planar * rho, p.y() / planar * rho)
+                              : Eigen::Vector2d::Zero());
   }
   std::vector<Eigen::Vector3i> faces;
   for (Eigen::Index f = 0; f < sphere.faces.rows(); ++f) {
@@ -56,9 +57,11 @@ Patch sphere_cap() {
   }
   Patch patch;
   patch.uv.resize(static_cast<Eigen::Index>(uv.size()), 2);
-  for (std::size_t v = 0; v < uv.size(); ++v) patch.uv.row(static_cast<Eigen::Index>(v)) = uv[v].transpose();
+  for (std::size_t v = 0; v < uv.size(); ++v)
+    patch.uv.row(static_cast<Eigen::Index>(v)) = uv[v].transpose();
   patch.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) patch.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    patch.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
   return patch;
 }
 
@@ -70,7 +73,8 @@ Eigen::VectorXd random_field(const Eigen::MatrixX2d& uv, unsigned seed) {
   for (int m = 0; m < 8; ++m) {
     const double direction = angle(generator), k = wave(generator), phase = angle(generator);
     for (Eigen::Index v = 0; v < uv.rows(); ++v) {
-      values(v) += std::cos(k * (std::cos(direction) * uv(v, 0) + std::sin(direction) * uv(v, 1)) + phase);
+      values(v) +=
+          std::cos(k * (std::cos(direction) * uv(v, 0) + std::sin(direction) * uv(v, 1)) + phase);
     }
   }
   return values;
@@ -108,7 +112,8 @@ double direct_best_correlation(const ShapeImage& a, const ShapeImage& b) {
       const double w = r + 0.5;
       for (int j = 0; j < n; ++j) {
         const int ia = r * n + j, ib = r * n + (j + s) % n;
-        if (!a.valid[static_cast<std::size_t>(ia)] || !b.valid[static_cast<std::size_t>(ib)]) continue;
+        if (!a.valid[static_cast<std::size_t>(ia)] || !b.valid[static_cast<std::size_t>(ib)])
+          continue;
         const double x = a.values(ia), y = b.values(ib);
         w_sum += w;
         sa += w * x;
@@ -132,7 +137,10 @@ const ShapeImage& cap_image(unsigned seed) {
   static std::map<unsigned, ShapeImage> images;
   auto found = images.find(seed);
   if (found == images.end()) {
-    found = images.emplace(seed, harmonic_shape_image(patch().uv, patch().faces, random_field(patch().uv, seed))).first;
+    found = images
+                .emplace(seed, harmonic_shape_image(patch().uv, patch().faces,
+                                                    random_field(patch().uv, seed)))
+                .first;
   }
   return found->second;
 }
@@ -195,7 +203,8 @@ class SummaryReporter : public benchmark::ConsoleReporter {
  public:
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& run : runs) {
-      if (!run.error_occurred && run.iterations > 0) times_us[run.benchmark_name()] = run.GetAdjustedCPUTime();
+      if (!run.error_occurred && run.iterations > 0)
+        times_us[run.benchmark_name()] = run.GetAdjustedCPUTime();
     }
     ConsoleReporter::ReportRuns(runs);
   }
@@ -212,7 +221,8 @@ int main(int argc, char** argv) {
   int cap_valid = 0, cap_full_rings = 0;
   for (int r = 0; r < 16; ++r) {
     int ring_valid = 0;
-    for (int j = 0; j < 180; ++j) ring_valid += cap_image(1).valid[static_cast<std::size_t>(r * 180 + j)];
+    for (int j = 0; j < 180; ++j)
+      ring_valid += cap_image(1).valid[static_cast<std::size_t>(r * 180 + j)];
     cap_valid += ring_valid;
     cap_full_rings += ring_valid == 180 ? 1 : 0;
   }
@@ -221,12 +231,16 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("prepare_image/cap", BM_PrepareImage)->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("compare_prepared/full_masks", BM_ComparePrepared, full_a, full_b)
       ->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark("compare_prepared/cap", BM_ComparePrepared, cap_image(1), cap_image(2))
+  benchmark::RegisterBenchmark("compare_prepared/cap", BM_ComparePrepared, cap_image(1),
+                               cap_image(2))
       ->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark("compare_prepared/random_masks", BM_ComparePrepared, sparse_a, sparse_b)
+  benchmark::RegisterBenchmark("compare_prepared/random_masks", BM_ComparePrepared, sparse_a,
+                               sparse_b)
       ->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark("compare_unprepared/cap", BM_CompareUnprepared)->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark("compare_direct/cap", BM_CompareDirect)->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("compare_unprepared/cap", BM_CompareUnprepared)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("compare_direct/cap", BM_CompareDirect)
+      ->Unit(benchmark::kMicrosecond);
   benchmark::Initialize(&argc, argv);
   SummaryReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
@@ -235,19 +249,26 @@ int main(int argc, char** argv) {
     const auto found = reporter.times_us.find(name);
     return found == reporter.times_us.end() ? std::nan("") : found->second;
   };
-  std::printf("\npatch: %lld vertices, %lld faces; its image has %d of 2880 points valid, %d of 16 rings full\n",
-              static_cast<long long>(patch().uv.rows()), static_cast<long long>(patch().faces.rows()), cap_valid,
-              cap_full_rings);
-  std::printf("build one image (AABB tree + 2880 queries): %.1f us; prepare it for comparison: %.1f us\n",
-              time("build_image/cap"), time("prepare_image/cap"));
+  std::printf(
+      "\npatch: %lld vertices, %lld faces; its image has %d of 2880 points valid, %d of 16 rings "
+      "full\n",
+      static_cast<long long>(patch().uv.rows()), static_cast<long long>(patch().faces.rows()),
+      cap_valid, cap_full_rings);
+  std::printf(
+      "build one image (AABB tree + 2880 queries): %.1f us; prepare it for comparison: %.1f us\n",
+      time("build_image/cap"), time("prepare_image/cap"));
   std::printf("compare two prepared images over 180 rotations (target <= 20 us):\n");
-  for (const char* name : {"compare_prepared/full_masks", "compare_prepared/cap", "compare_prepared/random_masks"}) {
+  for (const char* name :
+       {"compare_prepared/full_masks", "compare_prepared/cap", "compare_prepared/random_masks"}) {
     const double t = time(name);
-    std::printf("  %-32s %7.2f us  %s\n", name, t, t <= 20.0 ? "meets the target" : "MISSES the target");
+    std::printf("  %-32s %7.2f us  %s\n", name, t,
+                t <= 20.0 ? "meets the target" : "MISSES the target");
   }
-  std::printf("compare two unprepared images (prepares both): %.1f us\n", time("compare_unprepared/cap"));
+  std::printf("compare two unprepared images (prepares both): %.1f us\n",
+              time("compare_unprepared/cap"));
   std::printf("direct evaluation of all rotations: %.1f us = %.0f x the prepared FFT comparison\n",
-              time("compare_direct/cap"), time("compare_direct/cap") / time("compare_prepared/cap"));
+              time("compare_direct/cap"),
+              time("compare_direct/cap") / time("compare_prepared/cap"));
   benchmark::Shutdown();
   return 0;
 }

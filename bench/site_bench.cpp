@@ -28,10 +28,10 @@
 #include <fstream>
 #include <functional>
 #include <random>
-#include <utility>
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -40,8 +40,8 @@ namespace fs = std::filesystem;
 using namespace surfcomp;
 using Clock = std::chrono::steady_clock;
 
-constexpr double kSiteRadius = 4.0;   // A, spheres around the ligand's atoms (the CLI's default)
-constexpr double kPatchRadius = 8.0;  // A, as in tests/site_match_test.cpp (thermolysin sites)
+constexpr double kSiteRadius = 4.0;     // A, spheres around the ligand's atoms (the CLI's default)
+constexpr double kPatchRadius = 8.0;    // A, as in tests/site_match_test.cpp (thermolysin sites)
 constexpr double kContactRadius = 5.0;  // A, a chain with an atom this close to the ligand is kept
 
 double ms_since(Clock::time_point start) {
@@ -65,7 +65,8 @@ std::vector<Entry> read_entries(const fs::path& path) {
     std::istringstream fields(line);
     Entry e;
     if (!(fields >> e.pdb >> e.ligand >> e.residue_number >> e.chain)) {
-      throw FormatError(path.string(), line_number, "'" + line + "': expected PDB ligand residue-number chain");
+      throw FormatError(path.string(), line_number,
+                        "'" + line + "': expected PDB ligand residue-number chain");
     }
     entries.push_back(e);
   }
@@ -89,7 +90,8 @@ struct Site {
 /// cost #vertices x #atoms, several minutes for the 32,000-atom 1A49 and 1PP9 entries, and
 /// chains that do not touch the ligand are far from its site. Throws InputError when that copy
 /// is absent.
-Site build_site(const Entry& entry, const fs::path& pdb, const harmonic::DescriptorOptions& options) {
+Site build_site(const Entry& entry, const fs::path& pdb,
+                const harmonic::DescriptorOptions& options) {
   const auto start = Clock::now();
   Site site;
   site.entry = entry;
@@ -127,9 +129,10 @@ Site build_site(const Entry& entry, const fs::path& pdb, const harmonic::Descrip
   mesh::Surface surface = mesh::build_molecular_surface(protein);
   site.descriptors.options = options;
   for (const auto& point : mesh::detect_critical_points(surface, options.critical_points)) {
-    const bool inside = std::any_of(spheres.begin(), spheres.end(), [&](const matching::SiteSphere& s) {
-      return (point.position - s.center).norm() <= s.radius;
-    });
+    const bool inside =
+        std::any_of(spheres.begin(), spheres.end(), [&](const matching::SiteSphere& s) {
+          return (point.position - s.center).norm() <= s.radius;
+        });
     if (!inside) continue;
     site.descriptors.critical_points.push_back(harmonic::describe_point(surface, point, options));
     if (site.descriptors.critical_points.back().status == harmonic::PatchStatus::ok) ++site.imaged;
@@ -142,11 +145,12 @@ Site build_site(const Entry& entry, const fs::path& pdb, const harmonic::Descrip
 /// The top-1 alignment of one site pair, and the pair's figures.
 struct PairResult {
   std::size_t a = 0, b = 0;
-  bool same = false;        ///< the same ligand type
+  bool same = false;           ///< the same ligand type
   std::size_t alignments = 0;  ///< alignments found (cliques' and principal axes')
-  std::size_t pairs = 0;    ///< critical-point pairs of the top-1 alignment (0: none, or from the axes)
-  std::size_t points = 0;   ///< its corresponding surface points
-  double r_chem = 0;        ///< its ESP correlation at those points
+  std::size_t pairs =
+      0;  ///< critical-point pairs of the top-1 alignment (0: none, or from the axes)
+  std::size_t points = 0;          ///< its corresponding surface points
+  double r_chem = 0;               ///< its ESP correlation at those points
   matching::OverlayScore overlay;  ///< its whole-site overlay scores (0 when not refined)
   double match_ms = 0;
 };
@@ -167,7 +171,8 @@ struct Variant {
 
 std::vector<Variant> variants() {
   std::vector<Variant> out;
-  const auto make = [&](const char* name, double fuzzy, double image, double distance, double overlap) {
+  const auto make = [&](const char* name, double fuzzy, double image, double distance,
+                        double overlap) {
     Variant v{name, {}};
     v.options.graph.fuzzy_threshold = fuzzy;
     v.options.graph.image_threshold = image;
@@ -180,7 +185,8 @@ std::vector<Variant> variants() {
   // overlaid on shape alone from the cliques' and 24 principal-axes starts.
   make("default", defaults.fuzzy_threshold, defaults.image_threshold, defaults.distance_tolerance,
        defaults.overlap_tolerance_degrees);
-  const auto vary = [&](const char* name, const std::function<void(matching::MatchOptions&)>& change) {
+  const auto vary = [&](const char* name,
+                        const std::function<void(matching::MatchOptions&)>& change) {
     make(name, defaults.fuzzy_threshold, defaults.image_threshold, defaults.distance_tolerance,
          defaults.overlap_tolerance_degrees);
     change(out.back().options);
@@ -217,10 +223,12 @@ double roc_auc(const std::vector<double>& scores, const std::vector<bool>& posit
 /// drawn with replacement (std::mt19937, `seed`) and the AUC taken over the pairs of distinct
 /// drawn sites (a site drawn twice brings its pairs twice). It says how much the AUC owes to
 /// which 36 sites happen to be in the set.
-std::pair<double, double> site_bootstrap_auc(const std::vector<PairResult>& results, std::size_t n_sites,
-                                             const std::function<double(const PairResult&)>& score, unsigned seed,
-                                             int draws) {
-  std::vector<std::vector<const PairResult*>> pair_of(n_sites, std::vector<const PairResult*>(n_sites, nullptr));
+std::pair<double, double> site_bootstrap_auc(const std::vector<PairResult>& results,
+                                             std::size_t n_sites,
+                                             const std::function<double(const PairResult&)>& score,
+                                             unsigned seed, int draws) {
+  std::vector<std::vector<const PairResult*>> pair_of(
+      n_sites, std::vector<const PairResult*>(n_sites, nullptr));
   for (const auto& r : results) pair_of[r.a][r.b] = pair_of[r.b][r.a] = &r;
   std::mt19937 rng(seed);
   std::uniform_int_distribution<std::size_t> pick(0, n_sites - 1);
@@ -243,8 +251,11 @@ std::pair<double, double> site_bootstrap_auc(const std::vector<PairResult>& resu
     aucs.push_back(roc_auc(values, positive));
   }
   std::sort(aucs.begin(), aucs.end());
-  const auto at = [&](double q) { return aucs[static_cast<std::size_t>(q * static_cast<double>(aucs.size() - 1))]; };
-  return aucs.empty() ? std::pair<double, double>{0.0, 0.0} : std::pair<double, double>{at(0.025), at(0.975)};
+  const auto at = [&](double q) {
+    return aucs[static_cast<std::size_t>(q * static_cast<double>(aucs.size() - 1))];
+  };
+  return aucs.empty() ? std::pair<double, double>{0.0, 0.0}
+                      : std::pair<double, double>{at(0.025), at(0.975)};
 }
 
 double median(std::vector<double> values) {
@@ -256,9 +267,9 @@ double median(std::vector<double> values) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const fs::path entries_path =
-      argc > 1 ? fs::path(argv[1])
-               : fs::path(SURFCOMP_SOURCE_DIR).parent_path() / "shared/datasets/kahraman-dev/entries.txt";
+  const fs::path entries_path = argc > 1 ? fs::path(argv[1])
+                                         : fs::path(SURFCOMP_SOURCE_DIR).parent_path() /
+                                               "shared/datasets/kahraman-dev/entries.txt";
   if (!fs::exists(entries_path)) {
     std::printf("skipped: %s is absent\n", entries_path.c_str());
     return 0;
@@ -269,33 +280,39 @@ int main(int argc, char** argv) {
     options.patch.radius = kPatchRadius;
     std::printf("site radius %.1f A, patch radius %.1f A, chains within %.1f A of the ligand\n\n",
                 kSiteRadius, kPatchRadius, kContactRadius);
-    std::printf("%-5s %-4s %6s %-2s %-6s %7s %6s %9s %6s %7s %9s\n", "pdb", "lig", "resnum", "ch", "kept", "atoms",
-                "ligat", "vertices", "cps", "imaged", "build_ms");
+    std::printf("%-5s %-4s %6s %-2s %-6s %7s %6s %9s %6s %7s %9s\n", "pdb", "lig", "resnum", "ch",
+                "kept", "atoms", "ligat", "vertices", "cps", "imaged", "build_ms");
     std::vector<Site> sites;
     std::vector<std::string> skipped;
     for (const Entry& e : entries) {
       // A site whose surface a stage rejects is reported and left out of the pairs.
       try {
-        sites.push_back(build_site(e, entries_path.parent_path() / "pdb" / (e.pdb + ".pdb"), options));
+        sites.push_back(
+            build_site(e, entries_path.parent_path() / "pdb" / (e.pdb + ".pdb"), options));
       } catch (const Error& error) {
         std::printf("%-5s %-4s skipped: %s\n", e.pdb.c_str(), e.ligand.c_str(), error.what());
         skipped.push_back(e.pdb);
         continue;
       }
       const Site& s = sites.back();
-      std::printf("%-5s %-4s %6d %-2s %-6s %7zu %6zu %9zu %6zu %7zu %9.0f\n", e.pdb.c_str(), e.ligand.c_str(),
-                  e.residue_number, e.chain.c_str(), s.chains.c_str(), s.atoms, s.ligand_atoms,
-                  s.descriptors.surface.n_vertices(),
+      std::printf("%-5s %-4s %6d %-2s %-6s %7zu %6zu %9zu %6zu %7zu %9.0f\n", e.pdb.c_str(),
+                  e.ligand.c_str(), e.residue_number, e.chain.c_str(), s.chains.c_str(), s.atoms,
+                  s.ligand_atoms, s.descriptors.surface.n_vertices(),
                   s.descriptors.critical_points.size(), s.imaged, s.build_ms);
       std::fflush(stdout);
     }
 
     for (const Variant& variant : variants()) {
-      if (argc > 3 && ("," + std::string(argv[3]) + ",").find("," + std::string(variant.name) + ",") == std::string::npos) continue;
+      if (argc > 3 &&
+          ("," + std::string(argv[3]) + ",").find("," + std::string(variant.name) + ",") ==
+              std::string::npos)
+        continue;
       const matching::MatchOptions& match_options = variant.options;
       const auto& g = match_options.graph;
-      std::printf("\n== %s: fuzzy F %.2f, image R %.2f, distance t %.1f A, overlap j_tol %.0f deg\n", variant.name,
-                  g.fuzzy_threshold, g.image_threshold, g.distance_tolerance, g.overlap_tolerance_degrees);
+      std::printf(
+          "\n== %s: fuzzy F %.2f, image R %.2f, distance t %.1f A, overlap j_tol %.0f deg\n",
+          variant.name, g.fuzzy_threshold, g.image_threshold, g.distance_tolerance,
+          g.overlap_tolerance_degrees);
       std::vector<PairResult> results;
       for (std::size_t a = 0; a < sites.size(); ++a) {
         for (std::size_t b = a + 1; b < sites.size(); ++b) {
@@ -308,8 +325,8 @@ int main(int argc, char** argv) {
           // this is a site match, so the overlay compares the pockets, not the whole chains.
           const std::vector<bool> all_a(sites[a].descriptors.critical_points.size(), true);
           const std::vector<bool> all_b(sites[b].descriptors.critical_points.size(), true);
-          const auto match =
-              matching::match_surfaces(sites[a].descriptors, sites[b].descriptors, match_options, &all_a, &all_b);
+          const auto match = matching::match_surfaces(sites[a].descriptors, sites[b].descriptors,
+                                                      match_options, &all_a, &all_b);
           r.match_ms = ms_since(start);
           r.alignments = match.alignments.size();
           if (!match.alignments.empty()) {
@@ -329,7 +346,9 @@ int main(int argc, char** argv) {
       // onto the other.
       const std::vector<Score> scores = {
           {"pairs", "critical-point pairs of the top-1 alignment",
-           [](const PairResult& r, const Site&, const Site&) { return static_cast<double>(r.pairs); }},
+           [](const PairResult& r, const Site&, const Site&) {
+             return static_cast<double>(r.pairs);
+           }},
           {"coverage", "top-1 n_points / min(imaged site critical points of the two sites)",
            [](const PairResult& r, const Site& x, const Site& y) {
              const double smaller = static_cast<double>(std::min(x.imaged, y.imaged));
@@ -337,30 +356,36 @@ int main(int argc, char** argv) {
            }},
           {"pairs_jaccard", "top-1 pairs / (imaged_a + imaged_b - pairs)",
            [](const PairResult& r, const Site& x, const Site& y) {
-             const double union_size = static_cast<double>(x.imaged + y.imaged) - static_cast<double>(r.pairs);
+             const double union_size =
+                 static_cast<double>(x.imaged + y.imaged) - static_cast<double>(r.pairs);
              return union_size > 0 ? static_cast<double>(r.pairs) / union_size : 0.0;
            }},
-          {"overlay", "top-1 overlay score of the pocket linings (shape + w chem) / (1 + w), w = site.chem_weight",
+          {"overlay",
+           "top-1 overlay score of the pocket linings (shape + w chem) / (1 + w), w = "
+           "site.chem_weight",
            [](const PairResult& r, const Site&, const Site&) { return r.overlay.score; }},
-          {"overlay_shape", "top-1 shape Tanimoto of the pocket linings (the documented site similarity)",
+          {"overlay_shape",
+           "top-1 shape Tanimoto of the pocket linings (the documented site similarity)",
            [](const PairResult& r, const Site&, const Site&) { return r.overlay.shape; }},
           {"overlay_chem", "top-1 ESP/LP colour Tanimoto of the site regions",
            [](const PairResult& r, const Site&, const Site&) { return r.overlay.chem; }},
           {"coverage_chem", "coverage * (1 + r_chem) / 2",
            [](const PairResult& r, const Site& x, const Site& y) {
              const double smaller = static_cast<double>(std::min(x.imaged, y.imaged));
-             return smaller > 0 ? static_cast<double>(r.points) / smaller * (1.0 + r.r_chem) / 2.0 : 0.0;
+             return smaller > 0 ? static_cast<double>(r.points) / smaller * (1.0 + r.r_chem) / 2.0
+                                : 0.0;
            }},
       };
       if (argc > 2 && std::string(argv[2]) != "-") {
         std::ofstream csv(std::string(argv[2]) + "." + variant.name + ".csv");
         if (!csv) throw FileError(argv[2], "cannot write the pairs table");
-        csv << "a,b,same,pairs,points,r_chem,overlay,overlay_shape,overlay_chem,imaged_a,imaged_b,match_ms\n";
+        csv << "a,b,same,pairs,points,r_chem,overlay,overlay_shape,overlay_chem,imaged_a,imaged_b,"
+               "match_ms\n";
         for (const auto& r : results) {
-          csv << sites[r.a].entry.pdb << ',' << sites[r.b].entry.pdb << ',' << r.same << ',' << r.pairs << ','
-              << r.points << ',' << r.r_chem << ',' << r.overlay.score << ',' << r.overlay.shape << ','
-              << r.overlay.chem << ',' << sites[r.a].imaged << ',' << sites[r.b].imaged << ','
-              << r.match_ms << '\n';
+          csv << sites[r.a].entry.pdb << ',' << sites[r.b].entry.pdb << ',' << r.same << ','
+              << r.pairs << ',' << r.points << ',' << r.r_chem << ',' << r.overlay.score << ','
+              << r.overlay.shape << ',' << r.overlay.chem << ',' << sites[r.a].imaged << ','
+              << sites[r.b].imaged << ',' << r.match_ms << '\n';
         }
       }
       std::vector<bool> positive;
@@ -371,30 +396,38 @@ int main(int argc, char** argv) {
         match_ms.push_back(r.match_ms);
         pair_ms.push_back(sites[r.a].build_ms + sites[r.b].build_ms + r.match_ms);
       }
-      const auto positives = static_cast<std::size_t>(std::count(positive.begin(), positive.end(), true));
-      const auto aligned =
-          std::count_if(results.begin(), results.end(), [](const PairResult& r) { return r.alignments > 0; });
-      const auto from_cliques =
-          std::count_if(results.begin(), results.end(), [](const PairResult& r) { return r.pairs > 0; });
+      const auto positives =
+          static_cast<std::size_t>(std::count(positive.begin(), positive.end(), true));
+      const auto aligned = std::count_if(results.begin(), results.end(),
+                                         [](const PairResult& r) { return r.alignments > 0; });
+      const auto from_cliques = std::count_if(results.begin(), results.end(),
+                                              [](const PairResult& r) { return r.pairs > 0; });
       std::printf("%zu sites built, %zu skipped", sites.size(), skipped.size());
       for (const auto& name : skipped) std::printf(" %s", name.c_str());
-      std::printf("\n%zu sites, %zu pairs (%zu same ligand type, %zu different), %td with an alignment, "
-                  "%td with a top-1 from the cliques\n",
-                  sites.size(), results.size(), positives, results.size() - positives, aligned, from_cliques);
+      std::printf(
+          "\n%zu sites, %zu pairs (%zu same ligand type, %zu different), %td with an alignment, "
+          "%td with a top-1 from the cliques\n",
+          sites.size(), results.size(), positives, results.size() - positives, aligned,
+          from_cliques);
       for (const Score& score : scores) {
         std::vector<double> values;
         for (const auto& r : results) values.push_back(score.value(r, sites[r.a], sites[r.b]));
-        std::printf("AUC %-14s %.3f   (%s)\n", score.name, roc_auc(values, positive), score.definition);
+        std::printf("AUC %-14s %.3f   (%s)\n", score.name, roc_auc(values, positive),
+                    score.definition);
       }
       const auto [low, high] = site_bootstrap_auc(
-          results, sites.size(), [](const PairResult& r) { return r.overlay.shape; }, 20261122u, 300);
-      std::printf("AUC overlay_shape, 95 %% interval over 300 site resamples (seed 20261122): %.3f - %.3f\n", low, high);
-      std::printf("site build (read, surface, site descriptors): median %.0f ms, max %.0f ms\n", median(build_ms),
-                  *std::max_element(build_ms.begin(), build_ms.end()));
-      std::printf("match per pair (descriptors built): median %.1f ms, max %.1f ms\n", median(match_ms),
-                  *std::max_element(match_ms.begin(), match_ms.end()));
-      std::printf("site pair from PDB files (both builds + match): median %.0f ms, max %.0f ms\n", median(pair_ms),
-                  *std::max_element(pair_ms.begin(), pair_ms.end()));
+          results, sites.size(), [](const PairResult& r) { return r.overlay.shape; }, 20261122u,
+          300);
+      std::printf(
+          "AUC overlay_shape, 95 %% interval over 300 site resamples (seed 20261122): %.3f - "
+          "%.3f\n",
+          low, high);
+      std::printf("site build (read, surface, site descriptors): median %.0f ms, max %.0f ms\n",
+                  median(build_ms), *std::max_element(build_ms.begin(), build_ms.end()));
+      std::printf("match per pair (descriptors built): median %.1f ms, max %.1f ms\n",
+                  median(match_ms), *std::max_element(match_ms.begin(), match_ms.end()));
+      std::printf("site pair from PDB files (both builds + match): median %.0f ms, max %.0f ms\n",
+                  median(pair_ms), *std::max_element(pair_ms.begin(), pair_ms.end()));
       std::fflush(stdout);
     }
   } catch (const Error& e) {

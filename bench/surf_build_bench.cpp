@@ -27,9 +27,9 @@ const fs::path kWork = fs::temp_directory_path() / "surfcomp_bench";
 
 struct Input {
   std::string name;
-  fs::path molecule;      // what surf-build reads
-  fs::path edtsurf_pdb;   // the same atoms as ATOM records, what EDTSurf reads
-  int edtsurf_scale;      // EDTSurf -f, chosen for a vertex count similar to ours
+  fs::path molecule;     // what surf-build reads
+  fs::path edtsurf_pdb;  // the same atoms as ATOM records, what EDTSurf reads
+  int edtsurf_scale;     // EDTSurf -f, chosen for a vertex count similar to ours
 };
 
 std::map<std::string, Input>& inputs() {
@@ -70,7 +70,8 @@ EdtsurfRun run_edtsurf(const Input& input, int scale) {
   const std::string s = text.str();
   EdtsurfRun run;
   std::smatch m;
-  if (std::regex_search(s, m, std::regex(R"(No\. vertices (\d+))"))) run.vertices = std::stoul(m[1]);
+  if (std::regex_search(s, m, std::regex(R"(No\. vertices (\d+))")))
+    run.vertices = std::stoul(m[1]);
   if (std::regex_search(s, m, std::regex(R"(Total area ([0-9.]+))"))) run.area = std::stod(m[1]);
   return run;
 }
@@ -120,7 +121,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
     for (const Run& run : runs) {
       if (run.error_occurred || run.iterations == 0) continue;
       times_ms[run.run_name.function_name] = run.GetAdjustedRealTime();
-      vertices[run.run_name.function_name] = run.counters.count("vertices") ? run.counters.at("vertices").value : 0;
+      vertices[run.run_name.function_name] =
+          run.counters.count("vertices") ? run.counters.at("vertices").value : 0;
     }
     ConsoleReporter::ReportRuns(runs);
   }
@@ -135,7 +137,8 @@ int main(int argc, char** argv) {
   const fs::path ligand = shared / "thermolysin" / "ligands-common-frame" / "1THL_ligand.pdb";
   const fs::path protein = kSource / "datasets" / "cache" / "edtsurf" / "4we2.pdb";
   if (fs::exists(ligand)) {
-    inputs()["1THL_ligand"] = {"1THL_ligand", ligand.string(), atom_records_copy(ligand, "1THL"), 2};
+    inputs()["1THL_ligand"] = {"1THL_ligand", ligand.string(), atom_records_copy(ligand, "1THL"),
+                               2};
   } else {
     std::printf("skipping the 1THL ligand: %s is absent\n", ligand.c_str());
   }
@@ -146,11 +149,14 @@ int main(int argc, char** argv) {
   }
   for (const auto& [name, input] : inputs()) {
     benchmark::RegisterBenchmark(("surf_build/" + name).c_str(), BM_SurfBuild, name)
-        ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(1.0);
     benchmark::RegisterBenchmark(("ses_only/" + name).c_str(), BM_SesOnly, name)
-        ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(1.0);
     benchmark::RegisterBenchmark(("edtsurf/" + name).c_str(), BM_Edtsurf, name)
-        ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(1.0);
   }
   benchmark::Initialize(&argc, argv);
   RatioReporter reporter;
@@ -162,13 +168,15 @@ int main(int argc, char** argv) {
     const auto ses = reporter.times_ms.find("ses_only/" + name);
     const auto edt = reporter.times_ms.find("edtsurf/" + name);
     if (ours == reporter.times_ms.end() || edt == reporter.times_ms.end()) continue;
-    std::printf("  %-12s surf-build %.1f ms (%.0f vertices), SES geometry only %.1f ms, EDTSurf -f %d "
-                "%.1f ms (%.0f vertices): surf-build / EDTSurf = %.2f, SES only / EDTSurf = %.2f\n",
-                name.c_str(), ours->second, reporter.vertices["surf_build/" + name],
-                ses->second, input.edtsurf_scale, edt->second, reporter.vertices["edtsurf/" + name],
-                ours->second / edt->second, ses->second / edt->second);
+    std::printf(
+        "  %-12s surf-build %.1f ms (%.0f vertices), SES geometry only %.1f ms, EDTSurf -f %d "
+        "%.1f ms (%.0f vertices): surf-build / EDTSurf = %.2f, SES only / EDTSurf = %.2f\n",
+        name.c_str(), ours->second, reporter.vertices["surf_build/" + name], ses->second,
+        input.edtsurf_scale, edt->second, reporter.vertices["edtsurf/" + name],
+        ours->second / edt->second, ses->second / edt->second);
   }
-  std::printf("\nSES area beside EDTSurf's (no exact reference: EDTSurf's area grows with its scale):\n");
+  std::printf(
+      "\nSES area beside EDTSurf's (no exact reference: EDTSurf's area grows with its scale):\n");
   for (const auto& [name, input] : inputs()) {
     const mesh::Surface ours = mesh::build_molecular_surface(io::read_molecule(input.molecule));
     std::printf("  %-12s surfcomp %.1f A^2 (%zu vertices)", name.c_str(),

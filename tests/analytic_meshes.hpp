@@ -34,22 +34,21 @@ inline MeshArrays unit_icosphere_arrays(int frequency) {
   if (frequency < 1) throw std::invalid_argument("icosphere frequency must be >= 1");
   const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
   const std::array<Eigen::Vector3d, 12> corners = {
-      Eigen::Vector3d(-1, phi, 0), Eigen::Vector3d(1, phi, 0),   Eigen::Vector3d(-1, -phi, 0),
-      Eigen::Vector3d(1, -phi, 0), Eigen::Vector3d(0, -1, phi),  Eigen::Vector3d(0, 1, phi),
-      Eigen::Vector3d(0, -1, -phi), Eigen::Vector3d(0, 1, -phi), Eigen::Vector3d(phi, 0, -1),
-      Eigen::Vector3d(phi, 0, 1),  Eigen::Vector3d(-phi, 0, -1), Eigen::Vector3d(-phi, 0, 1)};
-  const std::array<std::array<int, 3>, 20> icosahedron = {{
-      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-      {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}}};
+      Eigen::Vector3d(-1, phi, 0),  Eigen::Vector3d(1, phi, 0),   Eigen::Vector3d(-1, -phi, 0),
+      Eigen::Vector3d(1, -phi, 0),  Eigen::Vector3d(0, -1, phi),  Eigen::Vector3d(0, 1, phi),
+      Eigen::Vector3d(0, -1, -phi), Eigen::Vector3d(0, 1, -phi),  Eigen::Vector3d(phi, 0, -1),
+      Eigen::Vector3d(phi, 0, 1),   Eigen::Vector3d(-phi, 0, -1), Eigen::Vector3d(-phi, 0, 1)};
+  const std::array<std::array<int, 3>, 20> icosahedron = {
+      {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+       {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+       {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}}};
   const int n = frequency;
   // A point (i*A + j*B + k*C) / n is keyed by its corners and weights, sorted by corner, so
   // that the faces sharing an edge or a corner share the vertex.
   std::map<std::array<int, 6>, int> index_of;
   std::vector<Eigen::Vector3d> points;
   auto vertex = [&](const std::array<int, 3>& face, int i, int j) {
-    std::array<std::pair<int, int>, 3> terms = {
-        {{face[0], i}, {face[1], j}, {face[2], n - i - j}}};
+    std::array<std::pair<int, int>, 3> terms = {{{face[0], i}, {face[1], j}, {face[2], n - i - j}}};
     std::sort(terms.begin(), terms.end());
     std::array<int, 6> key{};
     int slot = 0;
@@ -136,10 +135,11 @@ inline mesh::Surface ellipsoid(double a, double b, double c, int frequency) {
 inline std::pair<double, double> ellipsoid_principal_curvatures(double a, double b, double c,
                                                                 const Eigen::Vector3d& p) {
   const double a2 = a * a, b2 = b * b, c2 = c * c;
-  const double s = p.x() * p.x() / (a2 * a2) + p.y() * p.y() / (b2 * b2) +
-                   p.z() * p.z() / (c2 * c2);
+  const double s =
+      p.x() * p.x() / (a2 * a2) + p.y() * p.y() / (b2 * b2) + p.z() * p.z() / (c2 * c2);
   const double gaussian = 1.0 / (a2 * b2 * c2 * s * s);
-  const double mean = std::abs(p.squaredNorm() - a2 - b2 - c2) / (2.0 * a2 * b2 * c2 * std::pow(s, 1.5));
+  const double mean =
+      std::abs(p.squaredNorm() - a2 - b2 - c2) / (2.0 * a2 * b2 * c2 * std::pow(s, 1.5));
   const double root = std::sqrt(std::max(0.0, mean * mean - gaussian));
   return {mean + root, mean - root};
 }
@@ -221,15 +221,15 @@ inline mesh::Surface disk(double radius, int rings) {
   }
   m.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
   for (std::size_t f = 0; f < triangles.size(); ++f) {
-    m.faces.row(static_cast<Eigen::Index>(f)) << triangles[f][0], triangles[f][1],
-        triangles[f][2];
+    m.faces.row(static_cast<Eigen::Index>(f)) << triangles[f][0], triangles[f][1], triangles[f][2];
   }
   return mesh::Surface::from_arrays(m.positions, m.faces, "disk");
 }
 
 /// The regular tetrahedron (4 vertices) inscribed in the sphere of radius `radius` (A) about
 /// `centre`: the smallest closed triangle mesh.
-inline mesh::Surface tetrahedron(double radius, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
+inline mesh::Surface tetrahedron(double radius,
+                                 const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
   Eigen::MatrixX3d p(4, 3);
   p << 1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1;
   p *= radius / std::sqrt(3.0);
@@ -241,7 +241,8 @@ inline mesh::Surface tetrahedron(double radius, const Eigen::Vector3d& centre = 
 
 /// The regular octahedron (6 vertices) inscribed in the sphere of radius `radius` (A) about
 /// `centre`.
-inline mesh::Surface octahedron(double radius, const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
+inline mesh::Surface octahedron(double radius,
+                                const Eigen::Vector3d& centre = Eigen::Vector3d::Zero()) {
   Eigen::MatrixX3d p(6, 3);
   p << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
   p *= radius;

@@ -1,11 +1,11 @@
 // The association graph and its four filters (seed 3.3, 3.5-3.8; METHOD 5) on hand-built cases
 // with known outcomes, a surface against a moved copy of itself, and the thesis' 1THL vs 4TMN
 // trace (Table 3-1).
+#include "surfcomp/matching/association_graph.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/disk_map.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
-#include "surfcomp/matching/association_graph.hpp"
 #include "surfcomp/matching/cliques.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/patch.hpp"
@@ -33,7 +33,8 @@ using Edges = std::vector<std::pair<int, int>>;
 
 constexpr double kPi = 3.14159265358979323846;
 
-harmonic::CriticalPointDescriptor point_at(CriticalPointType type, const Eigen::Vector3d& position) {
+harmonic::CriticalPointDescriptor point_at(CriticalPointType type,
+                                           const Eigen::Vector3d& position) {
   harmonic::CriticalPointDescriptor cp;
   cp.point.type = type;
   cp.point.position = position;
@@ -55,23 +56,26 @@ std::vector<std::pair<int, int>> pairs_of(const std::vector<PointPair>& nodes) {
 
 TEST(AssociationGraph, InitialPairsAreSameTypePairsAndTheCompleteEdgeCountExcludesSharedPoints) {
   harmonic::SurfaceDescriptors a, b;
-  for (const auto type : {CriticalPointType::peak, CriticalPointType::valley, CriticalPointType::peak,
-                          CriticalPointType::peak, CriticalPointType::valley}) {
+  for (const auto type :
+       {CriticalPointType::peak, CriticalPointType::valley, CriticalPointType::peak,
+        CriticalPointType::peak, CriticalPointType::valley}) {
     a.critical_points.push_back(point_at(type, Eigen::Vector3d::Zero()));
   }
-  for (const auto type : {CriticalPointType::valley, CriticalPointType::peak, CriticalPointType::peak}) {
+  for (const auto type :
+       {CriticalPointType::valley, CriticalPointType::peak, CriticalPointType::peak}) {
     b.critical_points.push_back(point_at(type, Eigen::Vector3d::Zero()));
   }
   const auto nodes = matching::initial_pairs(a, b);
-  const std::vector<std::pair<int, int>> expected = {{0, 1}, {0, 2}, {1, 0}, {2, 1}, {2, 2},
-                                                     {3, 1}, {3, 2}, {4, 0}};
+  const std::vector<std::pair<int, int>> expected = {{0, 1}, {0, 2}, {1, 0}, {2, 1},
+                                                     {2, 2}, {3, 1}, {3, 2}, {4, 0}};
   EXPECT_EQ(pairs_of(nodes), expected);
   // C(8, 2) = 28 minus pairs sharing A's points (peaks 0, 2, 3 twice each: 3) and B's points
   // (valley 0 twice: 1; peaks 1, 2 three times each: 6) = 18; brute force agrees.
   EXPECT_EQ(matching::count_complete_edges(nodes), 18u);
   std::size_t brute = 0;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    for (std::size_t j = i + 1; j < nodes.size(); ++j) brute += nodes[i].a != nodes[j].a && nodes[i].b != nodes[j].b;
+    for (std::size_t j = i + 1; j < nodes.size(); ++j)
+      brute += nodes[i].a != nodes[j].a && nodes[i].b != nodes[j].b;
   }
   EXPECT_EQ(brute, 18u);
 
@@ -149,9 +153,10 @@ TEST(AssociationGraph, ImageFilterKeepsCorrelatedImagesWithTheirAngleAndDropsPoi
   harmonic::SurfaceDescriptors a, b;
   a.critical_points.push_back(point_at(CriticalPointType::peak, Eigen::Vector3d::Zero()));
   a.critical_points[0].image = polar_image(one_lobe);
-  for (int k = 0; k < 3; ++k) b.critical_points.push_back(point_at(CriticalPointType::peak, Eigen::Vector3d::Zero()));
+  for (int k = 0; k < 3; ++k)
+    b.critical_points.push_back(point_at(CriticalPointType::peak, Eigen::Vector3d::Zero()));
   b.critical_points[0].image = polar_image(one_lobe, 10);  // a rotated by 20 degrees
-  b.critical_points[1].image = polar_image(three_lobes);  // orthogonal harmonics
+  b.critical_points[1].image = polar_image(three_lobes);   // orthogonal harmonics
   b.critical_points[2].image = polar_image(one_lobe);
   b.critical_points[2].status = harmonic::PatchStatus::map_failed;
 
@@ -177,15 +182,16 @@ TEST(AssociationGraph, DistanceFilterGivesTheExactEdgeSet) {
                                    Eigen::Vector3d(0, 4, 0), Eigen::Vector3d(1, 0, 0)}) {
     a.critical_points.push_back(point_at(CriticalPointType::peak, p));
   }
-  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 3.5, 0),
-                                   Eigen::Vector3d(5, 0, 0)}) {
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 3.5, 0), Eigen::Vector3d(5, 0, 0)}) {
     b.critical_points.push_back(point_at(CriticalPointType::peak, p));
   }
   const std::vector<PointPair> nodes = {node(0, 0), node(1, 1), node(2, 2), node(3, 1), node(1, 0)};
   // d_A / d_B: 0-1 3 / 3.5; 0-2 4 / 5; 1-2 5 / 6.10; 2-3 4.12 / 6.10 (off by 1.98); 2-4 5 / 5;
   // 3-4 2 / 3.5 (off by exactly 1.5, d_A exactly d_min); 0-3 d_A 1 < d_min; 0-4, 1-3, 1-4 share
   // a point.
-  EXPECT_EQ(matching::distance_filter(nodes, a, b, 1.5, 2.0), (Edges{{0, 1}, {0, 2}, {1, 2}, {2, 4}, {3, 4}}));
+  EXPECT_EQ(matching::distance_filter(nodes, a, b, 1.5, 2.0),
+            (Edges{{0, 1}, {0, 2}, {1, 2}, {2, 4}, {3, 4}}));
   EXPECT_EQ(matching::distance_filter(nodes, a, b, 1.0, 2.0), (Edges{{0, 1}, {0, 2}, {2, 4}}));
   EXPECT_EQ(matching::distance_filter(nodes, a, b, 1.5, 3.2), (Edges{{0, 2}, {1, 2}, {2, 4}}));
   // Zero tolerance: only equal distances.
@@ -204,8 +210,10 @@ TEST(AssociationGraph, BearingOnAFlatPatchIsThePlanarDirection) {
   positions.rowwise().squaredNorm().minCoeff(&centre);
   harmonic::CriticalPointDescriptor from;
   from.point.vertex = centre;
-  from.patch = mesh::extract_patch(disk, centre, mesh::PatchOptions{5.0, 0.05, mesh::GeodesicMethod::fast_marching});
-  from.map = harmonic::harmonic_disk_map(from.patch.positions, from.patch.faces, from.patch.outer_boundary);
+  from.patch = mesh::extract_patch(
+      disk, centre, mesh::PatchOptions{5.0, 0.05, mesh::GeodesicMethod::fast_marching});
+  from.map = harmonic::harmonic_disk_map(from.patch.positions, from.patch.faces,
+                                         from.patch.outer_boundary);
   const Eigen::Vector3d first = from.patch.positions.row(from.patch.outer_boundary[0]);
   const double offset = -std::atan2(first.y(), first.x()) * 180.0 / kPi;  // map puts it at 0
   double worst = 0.0;
@@ -213,7 +221,8 @@ TEST(AssociationGraph, BearingOnAFlatPatchIsThePlanarDirection) {
     const double phi = 30.0 * k + 7.0;
     for (const double radius : {3.0, 8.0}) {  // inside the patch, and beyond its border
       mesh::CriticalPoint to;
-      to.position = Eigen::Vector3d(radius * std::cos(phi * kPi / 180), radius * std::sin(phi * kPi / 180), 0);
+      to.position = Eigen::Vector3d(radius * std::cos(phi * kPi / 180),
+                                    radius * std::sin(phi * kPi / 180), 0);
       Eigen::Index nearest = 0;
       (positions.rowwise() - to.position.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
       to.vertex = radius < 5.0 ? static_cast<int>(nearest) : -1;
@@ -253,7 +262,9 @@ harmonic::SurfaceDescriptors moved_copy_with_rotated_maps(const harmonic::Surfac
   std::mt19937 rng(11u);
   std::normal_distribution<double> gauss;
   const Eigen::Matrix3d rotation =
-      Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
+      Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng))
+          .normalized()
+          .toRotationMatrix();
   const Eigen::Vector3d shift(-7.0, 25.0, 3.0);
   harmonic::SurfaceDescriptors moved = d;
   mesh::transform_surface(moved.surface, rotation, shift);
@@ -270,7 +281,8 @@ harmonic::SurfaceDescriptors moved_copy_with_rotated_maps(const harmonic::Surfac
     const Eigen::Matrix2d turn = Eigen::Rotation2Dd(theta * kPi / 180.0).toRotationMatrix();
     cp.map.uv = cp.map.uv * turn.transpose();
     Eigen::VectorXd values(static_cast<Eigen::Index>(cp.patch.surface_vertex.size()));
-    for (std::size_t v = 0; v < cp.patch.surface_vertex.size(); ++v) values[static_cast<Eigen::Index>(v)] = shape[cp.patch.surface_vertex[v]];
+    for (std::size_t v = 0; v < cp.patch.surface_vertex.size(); ++v)
+      values[static_cast<Eigen::Index>(v)] = shape[cp.patch.surface_vertex[v]];
     cp.image = harmonic::harmonic_shape_image(cp.map.uv, cp.patch.faces, values, d.options.image);
   }
   return moved;
@@ -292,7 +304,9 @@ TEST(AssociationGraph, IdentityPairsOfAMovedCopySurviveEveryFilterAndFormOneCliq
       if (p.a == static_cast<int>(i) && p.b == static_cast<int>(i)) {
         identity.push_back(static_cast<int>(k));
         EXPECT_NEAR(p.image_correlation, 1.0, 1e-6) << i;
-        EXPECT_NEAR(matching::angular_difference_degrees(p.image_angle_degrees, thetas[i]), 0.0, 1e-9) << i;
+        EXPECT_NEAR(matching::angular_difference_degrees(p.image_angle_degrees, thetas[i]), 0.0,
+                    1e-9)
+            << i;
       }
     }
   }
@@ -306,14 +320,17 @@ TEST(AssociationGraph, IdentityPairsOfAMovedCopySurviveEveryFilterAndFormOneCliq
       const PointPair& p = graph.nodes[static_cast<std::size_t>(identity[x])];
       const PointPair& q = graph.nodes[static_cast<std::size_t>(identity[y])];
       const double d = (a.critical_points[static_cast<std::size_t>(p.a)].point.position -
-                        a.critical_points[static_cast<std::size_t>(q.a)].point.position).norm();
+                        a.critical_points[static_cast<std::size_t>(q.a)].point.position)
+                           .norm();
       if (d < 2.0) continue;
       ++expected_edges;
       missing += edges.count({identity[x], identity[y]}) == 0;
     }
   }
-  std::printf("[ identity ] %zu identity nodes, %zu identity edges expected, %zu missing; graph %zu nodes %zu edges\n",
-              identity.size(), expected_edges, missing, graph.nodes.size(), graph.edges.size());
+  std::printf(
+      "[ identity ] %zu identity nodes, %zu identity edges expected, %zu missing; graph %zu nodes "
+      "%zu edges\n",
+      identity.size(), expected_edges, missing, graph.nodes.size(), graph.edges.size());
   EXPECT_EQ(missing, 0u);
   EXPECT_GT(expected_edges, 100u);
   // With d_min 0 every two identity nodes are joined, and they form one maximal clique.
@@ -322,14 +339,16 @@ TEST(AssociationGraph, IdentityPairsOfAMovedCopySurviveEveryFilterAndFormOneCliq
   const auto close_graph = matching::build_association_graph(a, b, no_min_distance);
   std::vector<int> close_identity;
   for (std::size_t k = 0; k < close_graph.nodes.size(); ++k) {
-    if (close_graph.nodes[k].a == close_graph.nodes[k].b) close_identity.push_back(static_cast<int>(k));
+    if (close_graph.nodes[k].a == close_graph.nodes[k].b)
+      close_identity.push_back(static_cast<int>(k));
   }
   EXPECT_EQ(close_identity.size(), imaged);
   const auto cliques = matching::maximal_cliques(close_graph, 2);
   EXPECT_NE(std::find(cliques.begin(), cliques.end(), close_identity), cliques.end());
-  std::printf("[ identity ] d_min 0: %zu maximal cliques, all %zu identity nodes in one: %s\n", cliques.size(),
-              close_identity.size(),
-              std::find(cliques.begin(), cliques.end(), close_identity) != cliques.end() ? "yes" : "no");
+  std::printf(
+      "[ identity ] d_min 0: %zu maximal cliques, all %zu identity nodes in one: %s\n",
+      cliques.size(), close_identity.size(),
+      std::find(cliques.begin(), cliques.end(), close_identity) != cliques.end() ? "yes" : "no");
 
   // The angles matter: the overlap filter drops every identity edge when both nodes' angles
   // are off by 90 degrees, and keeps it when one node's angle is still right.
@@ -359,19 +378,24 @@ TEST(AssociationGraph, ThermolysinLigandsTraceBesideTheThesis) {
   const auto first = matching::build_association_graph(a, b);  // TBB's thread pool starts here
   const auto start = std::chrono::steady_clock::now();
   const auto graph = matching::build_association_graph(a, b);
-  const double graph_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double graph_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const auto clique_start = std::chrono::steady_clock::now();
   const auto cliques = matching::maximal_cliques(graph, 2);
-  const double clique_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - clique_start).count();
+  const double clique_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - clique_start)
+          .count();
 
   const std::size_t thesis[5][2] = {{553, 274841}, {162, 17982}, {63, 1260}, {63, 359}, {60, 93}};
-  std::printf("[ trace    ] 1THL (%zu+%zu CPs) vs 4TMN (%zu+%zu CPs)\n", ca.peaks, ca.valleys, cb.peaks, cb.valleys);
-  std::printf("[ trace    ] %-16s %8s %10s   %8s %10s %8s\n", "stage", "nodes", "edges", "thesis", "edges", "ms");
+  std::printf("[ trace    ] 1THL (%zu+%zu CPs) vs 4TMN (%zu+%zu CPs)\n", ca.peaks, ca.valleys,
+              cb.peaks, cb.valleys);
+  std::printf("[ trace    ] %-16s %8s %10s   %8s %10s %8s\n", "stage", "nodes", "edges", "thesis",
+              "edges", "ms");
   ASSERT_EQ(graph.trace.size(), 5u);
   for (std::size_t s = 0; s < graph.trace.size(); ++s) {
     const auto& t = graph.trace[s];
-    std::printf("[ trace    ] %-16s %8zu %10zu   %8zu %10zu %8.2f\n", t.stage.c_str(), t.nodes, t.edges,
-                thesis[s][0], thesis[s][1], t.milliseconds);
+    std::printf("[ trace    ] %-16s %8zu %10zu   %8zu %10zu %8.2f\n", t.stage.c_str(), t.nodes,
+                t.edges, thesis[s][0], thesis[s][1], t.milliseconds);
   }
   std::map<std::size_t, int> sizes;
   for (const auto& c : cliques) ++sizes[c.size()];
@@ -394,17 +418,21 @@ TEST(AssociationGraph, ThermolysinLigandsTraceBesideTheThesis) {
   for (std::size_t k = 0; k < graph.nodes.size(); ++k) {
     const PointPair& p = graph.nodes[k];
     true_node[k] = (a.critical_points[static_cast<std::size_t>(p.a)].point.position -
-                    b.critical_points[static_cast<std::size_t>(p.b)].point.position).norm() < 2.0;
+                    b.critical_points[static_cast<std::size_t>(p.b)].point.position)
+                       .norm() < 2.0;
     n_true += true_node[k];
   }
   std::size_t largest_true_clique = 0;
   for (const auto& c : cliques) {
-    if (std::all_of(c.begin(), c.end(), [&](int v) { return true_node[static_cast<std::size_t>(v)]; })) {
+    if (std::all_of(c.begin(), c.end(),
+                    [&](int v) { return true_node[static_cast<std::size_t>(v)]; })) {
       largest_true_clique = std::max(largest_true_clique, c.size());
     }
   }
-  std::printf("[ truth    ] %zu of %zu final nodes are true pairs (< 2 A apart in the common frame); "
-              "largest all-true clique %zu\n", n_true, graph.nodes.size(), largest_true_clique);
+  std::printf(
+      "[ truth    ] %zu of %zu final nodes are true pairs (< 2 A apart in the common frame); "
+      "largest all-true clique %zu\n",
+      n_true, graph.nodes.size(), largest_true_clique);
   EXPECT_GE(n_true, 5u);
   EXPECT_GE(largest_true_clique, 3u);
 
@@ -432,9 +460,11 @@ TEST(AssociationGraph, ThermolysinLigandsTraceBesideTheThesis) {
   std::vector<double> true_r, other_r;
   for (const PointPair& p : all) {
     if (a.critical_points[static_cast<std::size_t>(p.a)].status != harmonic::PatchStatus::ok ||
-        b.critical_points[static_cast<std::size_t>(p.b)].status != harmonic::PatchStatus::ok) continue;
+        b.critical_points[static_cast<std::size_t>(p.b)].status != harmonic::PatchStatus::ok)
+      continue;
     const double d = (a.critical_points[static_cast<std::size_t>(p.a)].point.position -
-                      b.critical_points[static_cast<std::size_t>(p.b)].point.position).norm();
+                      b.critical_points[static_cast<std::size_t>(p.b)].point.position)
+                         .norm();
     (d < 1.5 ? true_r : other_r).push_back(p.image_correlation);
   }
   auto quantile = [](std::vector<double> v, double q) {
@@ -442,13 +472,15 @@ TEST(AssociationGraph, ThermolysinLigandsTraceBesideTheThesis) {
     return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
   };
   ASSERT_GE(true_r.size(), 5u);
-  std::printf("[ image R  ] true pairs (%zu): q10 %.3f median %.3f q90 %.3f; others (%zu): q10 %.3f median %.3f q90 %.3f\n",
-              true_r.size(), quantile(true_r, 0.1), quantile(true_r, 0.5), quantile(true_r, 0.9),
-              other_r.size(), quantile(other_r, 0.1), quantile(other_r, 0.5), quantile(other_r, 0.9));
+  std::printf(
+      "[ image R  ] true pairs (%zu): q10 %.3f median %.3f q90 %.3f; others (%zu): q10 %.3f median "
+      "%.3f q90 %.3f\n",
+      true_r.size(), quantile(true_r, 0.1), quantile(true_r, 0.5), quantile(true_r, 0.9),
+      other_r.size(), quantile(other_r, 0.1), quantile(other_r, 0.5), quantile(other_r, 0.9));
   std::size_t true_kept = 0;
   for (const double r : true_r) true_kept += r >= matching::GraphParameters{}.image_threshold;
-  std::printf("[ image R  ] default R %.2f keeps %zu of %zu true pairs\n", matching::GraphParameters{}.image_threshold,
-              true_kept, true_r.size());
+  std::printf("[ image R  ] default R %.2f keeps %zu of %zu true pairs\n",
+              matching::GraphParameters{}.image_threshold, true_kept, true_r.size());
   EXPECT_GT(quantile(true_r, 0.5), quantile(other_r, 0.5));
 }
 

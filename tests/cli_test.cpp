@@ -51,7 +51,7 @@ TEST(Cli, MatchWritesTheResultContract) {
   const fs::path json = scratch("result.json");
   const fs::path aligned = scratch("aligned.sdf");
   const ProgramRun r = run("match " + ref.string() + " " + probe.string() + " -o " + json.string() +
-                    " --aligned-out " + aligned.string() + " --trace");
+                           " --aligned-out " + aligned.string() + " --trace");
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(json);
   const nlohmann::json doc = nlohmann::json::parse(in);
@@ -76,7 +76,8 @@ TEST(Cli, MatchWritesTheResultContract) {
     EXPECT_EQ(a["transform"][3], nlohmann::json({0.0, 0.0, 0.0, 1.0}));
     EXPECT_TRUE(a["r_chem"].is_number());
     EXPECT_TRUE(a["consensus"].is_number());
-    for (const char* key : {"score", "shape", "chem", "atoms"}) EXPECT_TRUE(a["overlay"][key].is_number()) << key;
+    for (const char* key : {"score", "shape", "chem", "atoms"})
+      EXPECT_TRUE(a["overlay"][key].is_number()) << key;
     if (a["source"] == "principal_axes") {  // no CP correspondences, no place in the tree
       ++from_axes;
       EXPECT_TRUE(a["refined"].get<bool>());
@@ -129,8 +130,12 @@ TEST(Cli, HsiFilesMatchAsTheirMoleculesDo) {
   ASSERT_EQ(run("hsi-build " + probe.string() + " -o " + probe_hsi.string()).status, 0);
   const fs::path from_molecules = scratch("molecules.json");
   const fs::path from_hsi = scratch("hsi.json");
-  ASSERT_EQ(run("match " + ref.string() + " " + probe.string() + " -o " + from_molecules.string()).status, 0);
-  ASSERT_EQ(run("match " + ref_hsi.string() + " " + probe_hsi.string() + " -o " + from_hsi.string()).status, 0);
+  ASSERT_EQ(
+      run("match " + ref.string() + " " + probe.string() + " -o " + from_molecules.string()).status,
+      0);
+  ASSERT_EQ(run("match " + ref_hsi.string() + " " + probe_hsi.string() + " -o " + from_hsi.string())
+                .status,
+            0);
   std::ifstream a_in(from_molecules), b_in(from_hsi);
   const nlohmann::json a = nlohmann::json::parse(a_in), b = nlohmann::json::parse(b_in);
   ASSERT_EQ(a["alignments"].size(), b["alignments"].size());
@@ -138,17 +143,21 @@ TEST(Cli, HsiFilesMatchAsTheirMoleculesDo) {
   const auto& top_a = a["alignments"][0];
   const auto& top_b = b["alignments"][0];
   EXPECT_GT(top_a["overlay"]["atoms"].get<double>(), 0.0);
-  EXPECT_NEAR(top_a["overlay"]["atoms"].get<double>(), top_b["overlay"]["atoms"].get<double>(), 1e-12);
-  EXPECT_NEAR(top_a["overlay"]["score"].get<double>(), top_b["overlay"]["score"].get<double>(), 1e-12);
+  EXPECT_NEAR(top_a["overlay"]["atoms"].get<double>(), top_b["overlay"]["atoms"].get<double>(),
+              1e-12);
+  EXPECT_NEAR(top_a["overlay"]["score"].get<double>(), top_b["overlay"]["score"].get<double>(),
+              1e-12);
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 4; ++j) {
-      EXPECT_NEAR(top_a["transform"][i][j].get<double>(), top_b["transform"][i][j].get<double>(), 1e-9);
+      EXPECT_NEAR(top_a["transform"][i][j].get<double>(), top_b["transform"][i][j].get<double>(),
+                  1e-9);
     }
   }
   // A mesh carries no atoms: the match says the atom term is off, and still runs.
   const fs::path mesh = scratch("1TMN.ply");
   ASSERT_EQ(run("surf-build " + probe.string() + " -o " + mesh.string()).status, 0);
-  const ProgramRun with_mesh = run("match " + ref.string() + " " + mesh.string() + " -o " + scratch("mesh.json").string());
+  const ProgramRun with_mesh =
+      run("match " + ref.string() + " " + mesh.string() + " -o " + scratch("mesh.json").string());
   EXPECT_EQ(with_mesh.status, 0) << with_mesh.err;
   EXPECT_NE(with_mesh.err.find("1TMN.ply carries no atoms"), std::string::npos) << with_mesh.err;
 }
@@ -160,24 +169,32 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
   const fs::path hsi_a = scratch("a.hsi");
   const fs::path hsi_b = scratch("b.hsi");
   ASSERT_EQ(run("hsi-build " + ligand.string() + " -o " + hsi_a.string()).status, 0);
-  ASSERT_EQ(run("hsi-build " + ligand.string() + " -o " + hsi_b.string() + " --patch-radius 6").status, 0);
+  ASSERT_EQ(
+      run("hsi-build " + ligand.string() + " -o " + hsi_b.string() + " --patch-radius 6").status,
+      0);
   struct Case {
     std::string arguments, expected;
   };
   const Case cases[] = {
       {"match /nonexistent/a.sdf " + ligand.string(), "a.sdf"},
       {"match " + protein.string() + " " + protein.string() + " --site-ligand XYZ", "XYZ"},
-      {"match " + protein.string() + " " + protein.string() + " --site-sphere 0,0,0,1", "no critical point"},
+      {"match " + protein.string() + " " + protein.string() + " --site-sphere 0,0,0,1",
+       "no critical point"},
       {"match " + hsi_a.string() + " " + hsi_b.string(), "different parameters"},
       {"match " + ligand.string() + " " + ligand.string() + " --site-sphere 1,2", "x,y,z,r"},
       {"match " + ligand.string(), "REF and PROBE"},
       {"surf-build " + ligand.string() + " --probe nan", "probe"},
       {"match " + ligand.string() + " " + ligand.string() + " --axes-starts 5", "axes-starts"},
-      {"match " + ligand.string() + " " + ligand.string() + " --site-axes-starts 3", "site-axes-starts"},
-      {"match " + ligand.string() + " " + ligand.string() + " --site-overlay-radius 0", "site-overlay-radius"},
-      {"match " + ligand.string() + " " + ligand.string() + " --site-chem-weight -1", "site-chem-weight"},
-      {"match " + ligand.string() + " " + ligand.string() + " --overlay-atom-weight -1", "overlay-atom-weight"},
-      {"match " + ligand.string() + " " + ligand.string() + " --overlay-tolerance -0.1", "overlay-tolerance"},
+      {"match " + ligand.string() + " " + ligand.string() + " --site-axes-starts 3",
+       "site-axes-starts"},
+      {"match " + ligand.string() + " " + ligand.string() + " --site-overlay-radius 0",
+       "site-overlay-radius"},
+      {"match " + ligand.string() + " " + ligand.string() + " --site-chem-weight -1",
+       "site-chem-weight"},
+      {"match " + ligand.string() + " " + ligand.string() + " --overlay-atom-weight -1",
+       "overlay-atom-weight"},
+      {"match " + ligand.string() + " " + ligand.string() + " --overlay-tolerance -0.1",
+       "overlay-tolerance"},
       {"match " + ligand.string() + " " + ligand.string() + " --polish-top -1", "polish-top"},
   };
   for (const Case& c : cases) {

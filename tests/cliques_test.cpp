@@ -1,7 +1,7 @@
 // Maximal cliques (seed 3.9, METHOD 6) on small graphs with known answers, against brute force
 // on random graphs, and timed on graphs of the association graph's sizes.
-#include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/cliques.hpp"
+#include "surfcomp/core/error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,14 +23,16 @@ matching::AssociationGraph graph_of(int n, const std::vector<std::pair<int, int>
 
 TEST(Cliques, SmallGraphsGiveTheirKnownMaximalCliques) {
   // Two triangles sharing vertex 2.
-  EXPECT_EQ(matching::maximal_cliques(graph_of(5, {{0, 1}, {1, 2}, {0, 2}, {2, 3}, {3, 4}, {2, 4}})),
-            (Cliques{{0, 1, 2}, {2, 3, 4}}));
+  EXPECT_EQ(
+      matching::maximal_cliques(graph_of(5, {{0, 1}, {1, 2}, {0, 2}, {2, 3}, {3, 4}, {2, 4}})),
+      (Cliques{{0, 1, 2}, {2, 3, 4}}));
   // K4 minus the edge 0-1.
   EXPECT_EQ(matching::maximal_cliques(graph_of(4, {{0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}})),
             (Cliques{{0, 2, 3}, {1, 2, 3}}));
   // K4, edges given in any order and direction.
-  EXPECT_EQ(matching::maximal_cliques(graph_of(4, {{3, 2}, {0, 1}, {2, 0}, {1, 3}, {0, 3}, {2, 1}})),
-            (Cliques{{0, 1, 2, 3}}));
+  EXPECT_EQ(
+      matching::maximal_cliques(graph_of(4, {{3, 2}, {0, 1}, {2, 0}, {1, 3}, {0, 3}, {2, 1}})),
+      (Cliques{{0, 1, 2, 3}}));
   // A path and an isolated vertex: the isolated vertex only with min_size 1.
   const auto path = graph_of(4, {{0, 1}, {1, 2}});
   EXPECT_EQ(matching::maximal_cliques(path), (Cliques{{0, 1}, {1, 2}}));
@@ -47,21 +49,25 @@ TEST(Cliques, SmallGraphsGiveTheirKnownMaximalCliques) {
 }
 
 // Brute force: every vertex subset that is a clique and cannot be extended.
-Cliques brute_force_maximal_cliques(int n, const std::vector<std::vector<bool>>& adjacent, int min_size) {
+Cliques brute_force_maximal_cliques(int n, const std::vector<std::vector<bool>>& adjacent,
+                                    int min_size) {
   Cliques out;
   for (unsigned mask = 1; mask < (1u << n); ++mask) {
     std::vector<int> members;
-    for (int v = 0; v < n; ++v) if (mask & (1u << v)) members.push_back(v);
+    for (int v = 0; v < n; ++v)
+      if (mask & (1u << v)) members.push_back(v);
     bool clique = true;
     for (std::size_t x = 0; x < members.size() && clique; ++x)
       for (std::size_t y = x + 1; y < members.size() && clique; ++y)
-        clique = adjacent[static_cast<std::size_t>(members[x])][static_cast<std::size_t>(members[y])];
+        clique =
+            adjacent[static_cast<std::size_t>(members[x])][static_cast<std::size_t>(members[y])];
     if (!clique) continue;
     bool maximal = true;
     for (int v = 0; v < n && maximal; ++v) {
       if (mask & (1u << v)) continue;
       bool joins_all = true;
-      for (const int m : members) joins_all = joins_all && adjacent[static_cast<std::size_t>(v)][static_cast<std::size_t>(m)];
+      for (const int m : members)
+        joins_all = joins_all && adjacent[static_cast<std::size_t>(v)][static_cast<std::size_t>(m)];
       maximal = !joins_all;
     }
     if (maximal && static_cast<int>(members.size()) >= min_size) out.push_back(members);
@@ -74,12 +80,16 @@ std::vector<std::pair<int, int>> random_edges(int n, double p, std::mt19937& rng
                                               std::vector<std::vector<bool>>* adjacent = nullptr) {
   std::bernoulli_distribution coin(p);
   std::vector<std::pair<int, int>> edges;
-  if (adjacent) adjacent->assign(static_cast<std::size_t>(n), std::vector<bool>(static_cast<std::size_t>(n), false));
+  if (adjacent)
+    adjacent->assign(static_cast<std::size_t>(n),
+                     std::vector<bool>(static_cast<std::size_t>(n), false));
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
       if (!coin(rng)) continue;
       edges.emplace_back(i, j);
-      if (adjacent) (*adjacent)[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = (*adjacent)[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = true;
+      if (adjacent)
+        (*adjacent)[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] =
+            (*adjacent)[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = true;
     }
   }
   return edges;
@@ -103,15 +113,18 @@ TEST(Cliques, RandomGraphsAgreeWithBruteForce) {
 // Timing on graphs larger than the ligand graphs (~60 nodes, ~100 edges after all filters).
 TEST(Cliques, TimingOnAssociationGraphSizes) {
   std::mt19937 rng(7u);
-  for (const auto& [n, p] : {std::pair{100, 0.05}, std::pair{400, 0.05}, std::pair{1000, 0.02}, std::pair{2000, 0.01}}) {
+  for (const auto& [n, p] :
+       {std::pair{100, 0.05}, std::pair{400, 0.05}, std::pair{1000, 0.02}, std::pair{2000, 0.01}}) {
     const auto g = graph_of(n, random_edges(n, p, rng));
     const auto start = std::chrono::steady_clock::now();
     const auto cliques = matching::maximal_cliques(g);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::size_t largest = 0;
     for (const auto& c : cliques) largest = std::max(largest, c.size());
-    std::printf("[ timing   ] %d nodes, %zu edges (seed 7): %zu maximal cliques, largest %zu, %.1f ms\n", n,
-                g.edges.size(), cliques.size(), largest, ms);
+    std::printf(
+        "[ timing   ] %d nodes, %zu edges (seed 7): %zu maximal cliques, largest %zu, %.1f ms\n", n,
+        g.edges.size(), cliques.size(), largest, ms);
     EXPECT_LT(ms, 5000.0);
     EXPECT_FALSE(cliques.empty());
   }

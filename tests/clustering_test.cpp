@@ -1,16 +1,16 @@
 // Single-linkage merging of clique alignments (seed 3.9) on synthetic correspondences: each CP
 // pair (a, b) gets 30 points p around a place that depends on a and their images q under the
 // inverse of a chosen motion (plus noise), so that fitting B onto A recovers that motion.
-#include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/clustering.hpp"
+#include "surfcomp/core/error.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -34,14 +34,17 @@ const RigidTransform kOther = motion(120.0, {0, 0, 1}, {20, 0, 0});
 
 class Synthetic {
  public:
-  void add(int a, int b, const RigidTransform& m, double noise = 0.05) { specs_[{a, b}] = {m, noise}; }
+  void add(int a, int b, const RigidTransform& m, double noise = 0.05) {
+    specs_[{a, b}] = {m, noise};
+  }
 
   Correspondences operator()(const MatchedPair& pair) const {
     const PairSpec& spec = specs_.at({pair.a, pair.b});
     std::mt19937 rng(static_cast<unsigned>(1000 * pair.a + pair.b + 17));
     std::uniform_real_distribution<double> box(-2.0, 2.0);
     std::normal_distribution<double> gauss;
-    const Eigen::Vector3d centre(4.0 * pair.a, 6.0 * std::sin(pair.a), 5.0 * std::cos(1.3 * pair.a));
+    const Eigen::Vector3d centre(4.0 * pair.a, 6.0 * std::sin(pair.a),
+                                 5.0 * std::cos(1.3 * pair.a));
     Correspondences c;
     const int n = 30;
     c.a_points.resize(3, n);
@@ -50,8 +53,9 @@ class Synthetic {
     c.b_property.resize(n);
     for (int i = 0; i < n; ++i) {
       c.a_points.col(i) = centre + Eigen::Vector3d(box(rng), box(rng), box(rng));
-      c.b_points.col(i) = spec.motion.rotation.transpose() * (c.a_points.col(i) - spec.motion.translation) +
-                          spec.noise * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+      c.b_points.col(i) =
+          spec.motion.rotation.transpose() * (c.a_points.col(i) - spec.motion.translation) +
+          spec.noise * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
       c.a_property(i) = gauss(rng);
       c.b_property(i) = c.a_property(i) + 0.3 * gauss(rng);
     }
@@ -76,9 +80,11 @@ std::vector<MatchedPair> pairs(std::initializer_list<std::pair<int, int>> list) 
   return out;
 }
 
-std::vector<Cluster> run(const Synthetic& synthetic, const std::vector<std::vector<MatchedPair>>& cliques,
+std::vector<Cluster> run(const Synthetic& synthetic,
+                         const std::vector<std::vector<MatchedPair>>& cliques,
                          const ClusteringOptions& options = {}) {
-  return cluster_alignments(cliques, [&](const MatchedPair& p) { return synthetic(p); }, options);
+  return cluster_alignments(
+      cliques, [&](const MatchedPair& p) { return synthetic(p); }, options);
 }
 
 double rotation_error(const RigidTransform& fitted, const RigidTransform& truth) {
@@ -109,7 +115,8 @@ TEST(Clustering, TwoCliquesOfOneMotionMergeAndRecoverIt) {
   const RigidFit direct = fit_rigid(s.of(root.pairs).b_points, s.of(root.pairs).a_points);
   EXPECT_NEAR(direct.rmsd, root.fit.rmsd, 1e-12);
   std::printf("[ merge    ] root: %zu points, RMSD %.4f A, rotation error %.4f deg, R_chem %.4f\n",
-              root.fit.n_points, root.fit.rmsd, rotation_error(root.fit.transform, kMotion), root.r_chem);
+              root.fit.n_points, root.fit.rmsd, rotation_error(root.fit.transform, kMotion),
+              root.r_chem);
 }
 
 // CP 3 of A is paired with 3 of B in one clique and with 5 of B in the other: same motion,
@@ -137,17 +144,18 @@ TEST(Clustering, AFarOffAlignmentStaysSeparateUnlessTheMergeCutIsLifted) {
   for (int k = 0; k < 4; ++k) s.add(k, k, kMotion);
   s.add(10, 10, kOther);
   s.add(11, 11, kOther);
-  const std::vector<std::vector<MatchedPair>> cliques = {pairs({{0, 0}, {1, 1}}), pairs({{10, 10}, {11, 11}}),
-                                                         pairs({{2, 2}, {3, 3}})};
+  const std::vector<std::vector<MatchedPair>> cliques = {
+      pairs({{0, 0}, {1, 1}}), pairs({{10, 10}, {11, 11}}), pairs({{2, 2}, {3, 3}})};
   const auto clusters = run(s, cliques);
   ASSERT_EQ(clusters.size(), 4u);
   EXPECT_EQ(clusters[3].children, (std::vector<int>{0, 2}));
   EXPECT_EQ(clusters[1].parent, -1);
   EXPECT_LT(rotation_error(clusters[1].fit.transform, kOther), 0.5);
-  const double distance = std::min(rmsd_under(clusters[1].fit.transform, s.of(clusters[3].pairs).b_points,
-                                              s.of(clusters[3].pairs).a_points),
-                                   rmsd_under(clusters[3].fit.transform, s.of(clusters[1].pairs).b_points,
-                                              s.of(clusters[1].pairs).a_points));
+  const double distance =
+      std::min(rmsd_under(clusters[1].fit.transform, s.of(clusters[3].pairs).b_points,
+                          s.of(clusters[3].pairs).a_points),
+               rmsd_under(clusters[3].fit.transform, s.of(clusters[1].pairs).b_points,
+                          s.of(clusters[1].pairs).a_points));
   std::printf("[ far off  ] linkage distance to the merged cluster %.2f A\n", distance);
   EXPECT_GT(distance, 4.0);
 
@@ -163,7 +171,8 @@ TEST(Clustering, AFarOffAlignmentStaysSeparateUnlessTheMergeCutIsLifted) {
 TEST(Clustering, TheClosestPairMergesFirst) {
   Synthetic s;
   for (int k = 0; k < 6; ++k) s.add(k, k, kMotion, k == 2 || k == 3 ? 1.0 : 0.02);
-  const auto clusters = run(s, {pairs({{0, 0}, {1, 1}}), pairs({{2, 2}, {3, 3}}), pairs({{4, 4}, {5, 5}})});
+  const auto clusters =
+      run(s, {pairs({{0, 0}, {1, 1}}), pairs({{2, 2}, {3, 3}}), pairs({{4, 4}, {5, 5}})});
   ASSERT_EQ(clusters.size(), 5u);
   EXPECT_EQ(clusters[3].children, (std::vector<int>{0, 2}));
   EXPECT_EQ(clusters[4].children, (std::vector<int>{1, 3}));
@@ -177,8 +186,8 @@ TEST(Clustering, TheRmsdCutDropsABadClique) {
   s.add(1, 1, kMotion);
   s.add(2, 2, kMotion);
   s.add(12, 12, kOther);
-  const std::vector<std::vector<MatchedPair>> cliques = {pairs({{0, 0}, {12, 12}}), pairs({{0, 0}, {1, 1}}),
-                                                         pairs({{2, 2}})};
+  const std::vector<std::vector<MatchedPair>> cliques = {pairs({{0, 0}, {12, 12}}),
+                                                         pairs({{0, 0}, {1, 1}}), pairs({{2, 2}})};
   const double bad = fit_rigid(s.of(cliques[0]).b_points, s.of(cliques[0]).a_points).rmsd;
   std::printf("[ cut      ] the mixed clique fits with RMSD %.2f A\n", bad);
   EXPECT_GT(bad, 4.0);
@@ -209,7 +218,9 @@ TEST(Clustering, TheTreeIsConsistentOnARandomCase) {
       // a and b from disjoint blocks per motion, so a pair always belongs to one motion.
       const int a = 10 * m + static_cast<int>(rng() % 10);
       const int b = 10 * m + static_cast<int>(rng() % 10);
-      if (std::any_of(clique.begin(), clique.end(), [&](const MatchedPair& p) { return p.a == a || p.b == b; })) continue;
+      if (std::any_of(clique.begin(), clique.end(),
+                      [&](const MatchedPair& p) { return p.a == a || p.b == b; }))
+        continue;
       clique.push_back({a, b, 0});
       s.add(a, b, motions[m], 0.2);
     }
@@ -219,7 +230,8 @@ TEST(Clustering, TheTreeIsConsistentOnARandomCase) {
   int roots = 0, leaves = 0;
   for (std::size_t i = 0; i < clusters.size(); ++i) {
     const Cluster& c = clusters[i];
-    if (c.parent < 0) ++roots;
+    if (c.parent < 0)
+      ++roots;
     else {
       EXPECT_GT(c.parent, static_cast<int>(i));
       const auto& siblings = clusters[static_cast<std::size_t>(c.parent)].children;
@@ -236,7 +248,8 @@ TEST(Clustering, TheTreeIsConsistentOnARandomCase) {
     }
     ASSERT_EQ(c.children.size(), 2u);
     std::vector<MatchedPair> joined = clusters[static_cast<std::size_t>(c.children[0])].pairs;
-    for (const auto& p : clusters[static_cast<std::size_t>(c.children[1])].pairs) joined.push_back(p);
+    for (const auto& p : clusters[static_cast<std::size_t>(c.children[1])].pairs)
+      joined.push_back(p);
     std::sort(joined.begin(), joined.end());
     joined.erase(std::unique(joined.begin(), joined.end()), joined.end());
     EXPECT_TRUE(joined == c.pairs);
@@ -248,7 +261,8 @@ TEST(Clustering, TheTreeIsConsistentOnARandomCase) {
       if (x.parent >= 0 || y.parent >= 0 || !compatible_pairs(x.pairs, y.pairs)) continue;
       const Correspondences cx = s.of(x.pairs), cy = s.of(y.pairs);
       EXPECT_GT(std::min(rmsd_under(y.fit.transform, cx.b_points, cx.a_points),
-                         rmsd_under(x.fit.transform, cy.b_points, cy.a_points)), 4.0);
+                         rmsd_under(x.fit.transform, cy.b_points, cy.a_points)),
+                4.0);
     }
   }
   std::printf("[ random   ] seed 99: 40 cliques -> %d leaves, %zu clusters, %d roots\n", leaves,

@@ -67,11 +67,12 @@ void expect_identical(const std::vector<CriticalPoint>& a, const std::vector<Cri
 TEST(DetectCriticalPoints, EllipsoidHasTwoPeaksAtTheEndsOfTheLongAxis) {
   const double a = 4.0, b = 2.0, c = 1.5;
   Surface ellipsoid = with_curvatures(test::ellipsoid(a, b, c, 16));  // 2,562 vertices
-  ellipsoid.set_property(property::esp, Eigen::VectorXd::Constant(
-                                            static_cast<Eigen::Index>(ellipsoid.n_vertices()), 2.5));
+  ellipsoid.set_property(
+      property::esp,
+      Eigen::VectorXd::Constant(static_cast<Eigen::Index>(ellipsoid.n_vertices()), 2.5));
   const auto cps = detect_critical_points(ellipsoid);
-  std::cout << "ellipsoid (4, 2, 1.5), " << ellipsoid.n_vertices() << " vertices: "
-            << count_type(cps, CriticalPointType::peak) << " peaks, "
+  std::cout << "ellipsoid (4, 2, 1.5), " << ellipsoid.n_vertices()
+            << " vertices: " << count_type(cps, CriticalPointType::peak) << " peaks, "
             << count_type(cps, CriticalPointType::valley) << " valleys\n";
   ASSERT_EQ(cps.size(), 2U);
   EXPECT_EQ(count_type(cps, CriticalPointType::valley), 0);
@@ -81,8 +82,8 @@ TEST(DetectCriticalPoints, EllipsoidHasTwoPeaksAtTheEndsOfTheLongAxis) {
     const double off = (cp.position - tip).norm();
     std::cout << "  peak " << cp.vertex << " at " << cp.position.transpose() << ": " << off
               << " A from the tip; cc1 " << cp.cc1 << " cc2 " << cp.cc2 << " (exact "
-              << -a / (c * c) << ", " << -a / (b * b) << "), shape index (disc) "
-              << cp.shape_index << ", curvedness " << cp.curvedness << "\n";
+              << -a / (c * c) << ", " << -a / (b * b) << "), shape index (disc) " << cp.shape_index
+              << ", curvedness " << cp.curvedness << "\n";
     EXPECT_LE(off, longest_edge_at(ellipsoid, cp.vertex));
     EXPECT_GT(cp.normal.dot(tip.normalized()), 0.99);
     EXPECT_NEAR(cp.cc1, -a / (c * c), 0.1 * a / (c * c));
@@ -91,7 +92,7 @@ TEST(DetectCriticalPoints, EllipsoidHasTwoPeaksAtTheEndsOfTheLongAxis) {
     // average reaches towards the flatter sides.
     EXPECT_GT(cp.shape_index, 0.7);
     EXPECT_LT(cp.shape_index, 0.9);
-    EXPECT_DOUBLE_EQ(cp.esp, 2.5);  // a constant averages to itself
+    EXPECT_DOUBLE_EQ(cp.esp, 2.5);   // a constant averages to itself
     EXPECT_TRUE(std::isnan(cp.lp));  // no lp property
   }
   EXPECT_LT(cps[0].vertex, cps[1].vertex);
@@ -100,7 +101,8 @@ TEST(DetectCriticalPoints, EllipsoidHasTwoPeaksAtTheEndsOfTheLongAxis) {
 
 TEST(DetectCriticalPoints, InsideOutEllipsoidHasValleysWhereThePeaksWere) {
   const Surface outward = with_curvatures(test::ellipsoid(4.0, 2.0, 1.5, 16));
-  const Surface inward = with_curvatures(test::with_flipped_faces(test::ellipsoid(4.0, 2.0, 1.5, 16)));
+  const Surface inward =
+      with_curvatures(test::with_flipped_faces(test::ellipsoid(4.0, 2.0, 1.5, 16)));
   const auto peaks = detect_critical_points(outward);
   const auto valleys = detect_critical_points(inward);
   ASSERT_EQ(peaks.size(), 2U);
@@ -160,8 +162,8 @@ TEST(DetectCriticalPoints, TorusHasNoValleysAndPeaksOnlyOnItsConvexOuterHalf) {
   const double major = 4.0, minor = 1.5;
   const Surface torus = with_curvatures(test::torus(major, minor, 64, 24));
   const auto cps = detect_critical_points(torus);
-  std::cout << "torus (4, 1.5), " << torus.n_vertices() << " vertices: "
-            << count_type(cps, CriticalPointType::peak) << " peaks, "
+  std::cout << "torus (4, 1.5), " << torus.n_vertices()
+            << " vertices: " << count_type(cps, CriticalPointType::peak) << " peaks, "
             << count_type(cps, CriticalPointType::valley) << " valleys\n";
   EXPECT_EQ(count_type(cps, CriticalPointType::valley), 0);
   EXPECT_GE(count_type(cps, CriticalPointType::peak), 1);

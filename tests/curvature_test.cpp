@@ -59,9 +59,9 @@ TEST(PrincipalCurvatures, SphereHasMinusOneOverRadiusAtEveryScale) {
     const double cc1 = fraction_within(c.cc1, -1.0 / r, 0.05);
     const double cc2 = fraction_within(c.cc2, -1.0 / r, 0.05);
     const double s = fraction_near(c.shape_index, 1.0, 0.02);
-    std::cout << "sphere r " << r << " (" << c.cc1.size() << " vertices): cc1 within 5% "
-              << cc1 << ", cc2 " << cc2 << ", shape index within 0.02 of +1 " << s
-              << "; mean cc1*r " << c.cc1.mean() * r << "\n";
+    std::cout << "sphere r " << r << " (" << c.cc1.size() << " vertices): cc1 within 5% " << cc1
+              << ", cc2 " << cc2 << ", shape index within 0.02 of +1 " << s << "; mean cc1*r "
+              << c.cc1.mean() * r << "\n";
     EXPECT_GE(cc1, 0.95) << "r " << r;
     EXPECT_GE(cc2, 0.95) << "r " << r;
     EXPECT_GE(s, 0.95) << "r " << r;
@@ -84,8 +84,8 @@ TEST(PrincipalCurvatures, SphereAtMolecularSurfaceDensity) {
     const double cc1 = fraction_within(c.cc1, -1.0 / r, 0.05);
     const double cc2 = fraction_within(c.cc2, -1.0 / r, 0.05);
     std::cout << "sphere r " << r << " at " << sphere.n_vertices() / (4 * M_PI * r * r)
-              << " vertices/A^2 (" << sphere.n_vertices() << "): cc1 within 5% " << cc1
-              << ", cc2 " << cc2 << "\n";
+              << " vertices/A^2 (" << sphere.n_vertices() << "): cc1 within 5% " << cc1 << ", cc2 "
+              << cc2 << "\n";
     EXPECT_GE(cc1, 0.95);
     EXPECT_GE(cc2, 0.95);
     EXPECT_GE(fraction_near(c.shape_index, 1.0, 0.02), 0.95);
@@ -142,13 +142,14 @@ TEST(PrincipalCurvatures, EllipsoidMatchesTheClosedForm) {
   for (Eigen::Index v = 0; v < positions.rows(); ++v) {
     const auto [k_max, k_min] =
         test::ellipsoid_principal_curvatures(a, b, c, positions.row(v).transpose());
-    if (std::abs(-k.cc1(v) - k_max) <= 0.05 * k_max && std::abs(-k.cc2(v) - k_min) <= 0.05 * k_max) {
+    if (std::abs(-k.cc1(v) - k_max) <= 0.05 * k_max &&
+        std::abs(-k.cc2(v) - k_min) <= 0.05 * k_max) {
       ++good;
     }
   }
   const double fraction = static_cast<double>(good) / static_cast<double>(positions.rows());
-  std::cout << "ellipsoid (3, 2, 1.5): both curvatures within 5% of k_max at " << fraction
-            << " of " << positions.rows() << " vertices\n";
+  std::cout << "ellipsoid (3, 2, 1.5): both curvatures within 5% of k_max at " << fraction << " of "
+            << positions.rows() << " vertices\n";
   EXPECT_GE(fraction, 0.95);
   // At the ends of the long axis: a / c^2 and a / b^2 (convex positive).
   for (const double side : {1.0, -1.0}) {
@@ -159,8 +160,8 @@ TEST(PrincipalCurvatures, EllipsoidMatchesTheClosedForm) {
     EXPECT_NEAR(k_min, a / (b * b), 0.02 * a / (b * b));
     EXPECT_NEAR(-k.cc1(tip), k_max, 0.05 * k_max);
     EXPECT_NEAR(-k.cc2(tip), k_min, 0.05 * k_min);
-    std::cout << "ellipsoid tip " << side * a << ": cc1 " << k.cc1(tip) << " (analytic "
-              << -k_max << "), cc2 " << k.cc2(tip) << " (" << -k_min << ")\n";
+    std::cout << "ellipsoid tip " << side * a << ": cc1 " << k.cc1(tip) << " (analytic " << -k_max
+              << "), cc2 " << k.cc2(tip) << " (" << -k_min << ")\n";
   }
 }
 
@@ -190,8 +191,7 @@ TEST(PrincipalCurvatures, TorusEquators) {
       if (i == 0) {
         std::cout << "torus R " << t.major << " r " << t.minor << ": outer cc1 " << k.cc1(outer)
                   << " cc2 " << k.cc2(outer) << "; inner cc1 " << k.cc1(inner) << " cc2 "
-                  << k.cc2(inner) << " S " << k.shape_index(inner) << " (analytic " << s
-                  << ")\n";
+                  << k.cc2(inner) << " S " << k.shape_index(inner) << " (analytic " << s << ")\n";
       }
     }
   }

@@ -43,9 +43,10 @@ TEST(Descriptors, ThermolysinCriticalPointCountsAreOfTheThesisOrder) {
     SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + id + "_ligand.sdf");
     const auto d = harmonic::describe_surface(ligand_surface(file));
     const auto counts = harmonic::count_descriptors(d);
-    std::printf("[ cps      ] %s: %zu vertices, %zu peaks + %zu valleys = %zu (thesis: %s), %zu images\n",
-                id, d.surface.n_vertices(), counts.peaks, counts.valleys, counts.peaks + counts.valleys,
-                std::string(id) == "1THL" ? "27" : "29", counts.imaged);
+    std::printf(
+        "[ cps      ] %s: %zu vertices, %zu peaks + %zu valleys = %zu (thesis: %s), %zu images\n",
+        id, d.surface.n_vertices(), counts.peaks, counts.valleys, counts.peaks + counts.valleys,
+        std::string(id) == "1THL" ? "27" : "29", counts.imaged);
     EXPECT_GE(counts.peaks + counts.valleys, 22u) << id;
     EXPECT_LE(counts.peaks + counts.valleys, 36u) << id;
     EXPECT_GT(counts.peaks, counts.valleys) << id << ": the seed finds more peaks than valleys";
@@ -61,7 +62,9 @@ TEST(Descriptors, RotatingTheSurfaceLeavesEveryImageUnchanged) {
   std::mt19937 rng(7u);
   std::normal_distribution<double> gauss;
   const Eigen::Matrix3d rotation =
-      Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
+      Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng))
+          .normalized()
+          .toRotationMatrix();
   const Eigen::Vector3d shift(12.0, -3.0, 40.0);
   mesh::Surface moved = surface;
   mesh::transform_surface(moved, rotation, shift);
@@ -106,8 +109,11 @@ TEST(Descriptors, ImagesDoNotDependOnTheSamplingDensity) {
   for (const auto& a : coarse.critical_points) {
     if (a.status != harmonic::PatchStatus::ok) continue;
     Eigen::Index nearest = 0;
-    farthest = std::max(farthest, std::sqrt((fine_positions.rowwise() - a.point.position.transpose())
-                                                .rowwise().squaredNorm().minCoeff(&nearest)));
+    farthest =
+        std::max(farthest, std::sqrt((fine_positions.rowwise() - a.point.position.transpose())
+                                         .rowwise()
+                                         .squaredNorm()
+                                         .minCoeff(&nearest)));
     mesh::CriticalPoint there = a.point;
     there.vertex = static_cast<int>(nearest);
     const auto b = harmonic::describe_point(fine_surface, there, fine.options);
@@ -127,13 +133,18 @@ TEST(Descriptors, ImagesDoNotDependOnTheSamplingDensity) {
   ASSERT_GE(same_place.size(), 10u);
   std::vector<double> sorted = same_place;
   std::sort(sorted.begin(), sorted.end());
-  std::printf("[ density  ] same place (nearest vertex within %.2f A), %zu points: min R %.3f, "
-              "20th percentile %.3f, median %.3f\n", farthest, sorted.size(), sorted.front(),
-              sorted[sorted.size() / 5], median(sorted));
-  std::printf("[ density  ] detected independently, %zu pairs: median R %.3f; unrelated (> 5 A "
-              "apart), %zu pairs: median R %.3f, 90th percentile %.3f\n", detected.size(),
-              median(detected), unrelated.size(), median(unrelated),
-              [&] { auto u = unrelated; std::sort(u.begin(), u.end()); return u[u.size() * 9 / 10]; }());
+  std::printf(
+      "[ density  ] same place (nearest vertex within %.2f A), %zu points: min R %.3f, "
+      "20th percentile %.3f, median %.3f\n",
+      farthest, sorted.size(), sorted.front(), sorted[sorted.size() / 5], median(sorted));
+  std::printf(
+      "[ density  ] detected independently, %zu pairs: median R %.3f; unrelated (> 5 A "
+      "apart), %zu pairs: median R %.3f, 90th percentile %.3f\n",
+      detected.size(), median(detected), unrelated.size(), median(unrelated), [&] {
+        auto u = unrelated;
+        std::sort(u.begin(), u.end());
+        return u[u.size() * 9 / 10];
+      }());
   EXPECT_GE(sorted[sorted.size() / 5], 0.9) << "fewer than 80 % of the points reach R 0.9";
   EXPECT_LE(median(unrelated), median(same_place) - 0.4);
 }
@@ -165,7 +176,8 @@ TEST(HsiFile, RoundTripsExactly) {
   ASSERT_EQ(back.critical_points.size(), d.critical_points.size());
   EXPECT_EQ(back.surface.n_vertices(), d.surface.n_vertices());
   EXPECT_EQ(back.surface.property_names(), d.surface.property_names());
-  EXPECT_TRUE(back.surface.property(mesh::property::esp) == d.surface.property(mesh::property::esp));
+  EXPECT_TRUE(back.surface.property(mesh::property::esp) ==
+              d.surface.property(mesh::property::esp));
   for (std::size_t i = 0; i < d.critical_points.size(); ++i) {
     const auto& x = d.critical_points[i];
     const auto& y = back.critical_points[i];
@@ -217,12 +229,14 @@ TEST(HsiFile, CorruptTruncatedAndOtherVersionFilesAreRejected) {
 }
 
 /// `bytes` (a version-2 file) re-headed as `version` with `payload` in place of its payload.
-std::vector<std::uint8_t> with_payload(const std::vector<std::uint8_t>& bytes, std::uint32_t version,
+std::vector<std::uint8_t> with_payload(const std::vector<std::uint8_t>& bytes,
+                                       std::uint32_t version,
                                        const std::vector<std::uint8_t>& payload) {
   constexpr std::size_t kHeader = 32;  // magic, version, byte-order mark, size, checksum
   std::vector<std::uint8_t> out(bytes.begin(), bytes.begin() + kHeader);
   const auto put = [&](std::size_t at, std::uint64_t value, int n) {
-    for (int k = 0; k < n; ++k) out[at + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(value >> (8 * k));
+    for (int k = 0; k < n; ++k)
+      out[at + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(value >> (8 * k));
   };
   put(8, version, 4);
   put(16, payload.size(), 8);
@@ -237,7 +251,8 @@ TEST(HsiFile, VersionOneFilesReadWithoutAtomsAndBadAtomsAreRefused) {
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "3TMN_ligand.sdf");
   auto d = harmonic::describe_surface(ligand_surface(file));
   const auto without_atoms = encoded(d);
-  const std::vector<std::uint8_t> payload(without_atoms.begin() + 32, without_atoms.end() - 8);  // less the atom count
+  const std::vector<std::uint8_t> payload(without_atoms.begin() + 32,
+                                          without_atoms.end() - 8);  // less the atom count
   const auto v1 = harmonic::io::decode_hsi(with_payload(without_atoms, 1, payload), "v1.hsi");
   EXPECT_TRUE(v1.atoms.empty());
   EXPECT_EQ(v1.critical_points.size(), d.critical_points.size());
@@ -258,11 +273,15 @@ TEST(HsiFile, VersionOneFilesReadWithoutAtomsAndBadAtomsAreRefused) {
   }
   // A position that is not finite, and a count no payload could hold.
   std::vector<std::uint8_t> not_finite(bytes.begin() + 32, bytes.end());
-  for (std::size_t k = 0; k < 8; ++k) not_finite[not_finite.size() - 8 + k] = k < 6 ? 0x00 : (k == 6 ? 0xf8 : 0x7f);  // NaN
-  EXPECT_THROW(harmonic::io::decode_hsi(with_payload(bytes, 2, not_finite), "nan_atom.hsi"), FormatError);
-  std::vector<std::uint8_t> huge(bytes.begin() + 32, bytes.end() - (4 + 1 + 24));  // up to the atom count
+  for (std::size_t k = 0; k < 8; ++k)
+    not_finite[not_finite.size() - 8 + k] = k < 6 ? 0x00 : (k == 6 ? 0xf8 : 0x7f);  // NaN
+  EXPECT_THROW(harmonic::io::decode_hsi(with_payload(bytes, 2, not_finite), "nan_atom.hsi"),
+               FormatError);
+  std::vector<std::uint8_t> huge(bytes.begin() + 32,
+                                 bytes.end() - (4 + 1 + 24));  // up to the atom count
   for (std::size_t k = 0; k < 8; ++k) huge[huge.size() - 8 + k] = 0xff;
-  EXPECT_THROW(harmonic::io::decode_hsi(with_payload(bytes, 2, huge), "huge_count.hsi"), FormatError);
+  EXPECT_THROW(harmonic::io::decode_hsi(with_payload(bytes, 2, huge), "huge_count.hsi"),
+               FormatError);
   // Nor does encoding write what decoding would refuse.
   d.atoms[0].element = "Xx";
   EXPECT_THROW(encoded(d), InputError);

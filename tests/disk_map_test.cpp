@@ -2,9 +2,9 @@
 // planar disk, agreement with CGAL's Surface_mesh_parameterization for every weight kind,
 // the border on the unit circle by arc length, no folds, invariance under similarity
 // transforms, and the errors of bad input.
+#include "surfcomp/harmonic/disk_map.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/harmonic/cgal_reference.hpp"
-#include "surfcomp/harmonic/disk_map.hpp"
 
 #include "analytic_meshes.hpp"
 #include "disk_map_patches.hpp"
@@ -33,7 +33,6 @@ using test::torus_patch_with_hole;
 
 constexpr SpringWeights all_weights[] = {SpringWeights::inverse_length, SpringWeights::uniform,
                                          SpringWeights::cotangent, SpringWeights::mean_value};
-
 
 /// Cumulative border length (A) from outer_boundary[0] to outer_boundary[k], k = 0..#B (the
 /// last is the perimeter).

@@ -20,7 +20,6 @@
 namespace surfcomp::harmonic {
 namespace {
 
-
 TEST(DiskMapThermolysinTest, CriticalPointPatchesOf1thlAgreeWithCgalAndDoNotFold) {
   SURFCOMP_SHARED_OR_SKIP(file, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
   const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));

@@ -1,7 +1,7 @@
 // The fuzzy chemical filter's pieces (seed 3.5, METHOD 5): triangular memberships on autoscaled
 // values, their similarity, and the autoscaling of critical point properties.
-#include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/fuzzy.hpp"
+#include "surfcomp/core/error.hpp"
 
 #include "analytic_meshes.hpp"
 
@@ -19,7 +19,8 @@ using matching::fuzzy_similarity;
 TEST(Fuzzy, MembershipsAreOneHotAtTheCentresAndSumToOne) {
   for (int centre = -2; centre <= 2; ++centre) {
     const auto m = fuzzy_memberships(centre);
-    for (int k = 0; k < 5; ++k) EXPECT_DOUBLE_EQ(m[static_cast<std::size_t>(k)], k == centre + 2 ? 1.0 : 0.0);
+    for (int k = 0; k < 5; ++k)
+      EXPECT_DOUBLE_EQ(m[static_cast<std::size_t>(k)], k == centre + 2 ? 1.0 : 0.0);
   }
   for (double z = -4.0; z <= 4.0; z += 0.037) {
     const auto m = fuzzy_memberships(z);
@@ -47,7 +48,8 @@ TEST(Fuzzy, MembershipsAreOneHotAtTheCentresAndSumToOne) {
 }
 
 TEST(Fuzzy, SimilarityIsOneForEqualZeroForFarApartSymmetricAndKnownInBetween) {
-  for (const double z : {-3.0, -1.3, 0.0, 0.2, 1.7, 5.0}) EXPECT_DOUBLE_EQ(fuzzy_similarity(z, z), 1.0);
+  for (const double z : {-3.0, -1.3, 0.0, 0.2, 1.7, 5.0})
+    EXPECT_DOUBLE_EQ(fuzzy_similarity(z, z), 1.0);
   EXPECT_DOUBLE_EQ(fuzzy_similarity(-2.0, 0.0), 0.0);
   EXPECT_DOUBLE_EQ(fuzzy_similarity(0.0, 2.0), 0.0);
   EXPECT_DOUBLE_EQ(fuzzy_similarity(-3.0, 3.0), 0.0);
@@ -68,7 +70,8 @@ TEST(Fuzzy, SimilarityIsOneForEqualZeroForFarApartSymmetricAndKnownInBetween) {
   // Within the centres the similarity of d apart is (1 - d) / (1 + d).
   EXPECT_NEAR(fuzzy_similarity(-0.8, -0.6), 0.8 / 1.2, 1e-12);
   EXPECT_TRUE(std::isnan(fuzzy_similarity(std::nan(""), 0.0)));
-  EXPECT_THROW(fuzzy_similarity(matching::FuzzyMemberships{}, matching::FuzzyMemberships{}), InputError);
+  EXPECT_THROW(fuzzy_similarity(matching::FuzzyMemberships{}, matching::FuzzyMemberships{}),
+               InputError);
 }
 
 TEST(Fuzzy, PointValuesAreZScoresAgainstTheirOwnSurface) {
@@ -93,7 +96,8 @@ TEST(Fuzzy, PointValuesAreZScoresAgainstTheirOwnSurface) {
   // Constant property: every z is 0.
   for (const double v : matching::autoscaled_point_values(d, mesh::property::lp)) EXPECT_EQ(v, 0.0);
   d.surface.remove_property(mesh::property::lp);
-  for (const double v : matching::autoscaled_point_values(d, mesh::property::lp)) EXPECT_TRUE(std::isnan(v));
+  for (const double v : matching::autoscaled_point_values(d, mesh::property::lp))
+    EXPECT_TRUE(std::isnan(v));
   EXPECT_THROW(matching::autoscaled_point_values(d, "shape_index"), InputError);
 }
 

@@ -1,10 +1,10 @@
 // The match end to end on real surfaces: a surface against itself and against a moved copy
 // gives back the identity and the motion; the 1THL, 3TMN and 4TMN crystal ligands, whose true
 // overlays are known, align from random probe poses; the thread count changes nothing.
+#include "surfcomp/matching/match.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
-#include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/rigid_fit.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 
@@ -28,8 +28,9 @@ const char* kLigands = "thermolysin/ligands-common-frame/";
 Eigen::Matrix4d random_motion(std::mt19937& rng) {
   std::normal_distribution<double> gauss;
   Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-  m.topLeftCorner<3, 3>() =
-      Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
+  m.topLeftCorner<3, 3>() = Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng))
+                                .normalized()
+                                .toRotationMatrix();
   m.topRightCorner<3, 1>() = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)) * 10.0;
   return m;
 }
@@ -42,24 +43,28 @@ mesh::Surface moved_surface(const mesh::Surface& surface, const Eigen::Matrix4d&
 
 /// Rotation error (degrees) and translation error (A) of `found` against `truth`, the latter
 /// measured at `centre` (a point of the molecule), where it matters, rather than at the origin.
-std::pair<double, double> transform_error(const Eigen::Matrix4d& found, const Eigen::Matrix4d& truth,
+std::pair<double, double> transform_error(const Eigen::Matrix4d& found,
+                                          const Eigen::Matrix4d& truth,
                                           const Eigen::Vector3d& centre) {
   const Eigen::Matrix3d dr = found.topLeftCorner<3, 3>() * truth.topLeftCorner<3, 3>().transpose();
   const Eigen::Vector4d c(centre.x(), centre.y(), centre.z(), 1.0);
   return {matching::rotation_angle_degrees(dr), (found * c - truth * c).head<3>().norm()};
 }
 
-Eigen::Vector3d centroid(const mesh::Surface& surface) { return surface.positions().colwise().mean(); }
+Eigen::Vector3d centroid(const mesh::Surface& surface) {
+  return surface.positions().colwise().mean();
+}
 
 TEST(Match, SurfaceAgainstItselfGivesTheIdentity) {
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
   const auto d = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(file)));
   const auto result = matching::match_surfaces(d, d);
   ASSERT_FALSE(result.alignments.empty());
-  const auto [angle, shift] =
-      transform_error(result.alignments[0].transform, Eigen::Matrix4d::Identity(), centroid(d.surface));
-  std::printf("[ self     ] top-1: %zu pairs, RMSD %.4f A, rotation error %.4f deg, translation %.4f A\n",
-              result.alignments[0].cp_pairs.size(), result.alignments[0].rmsd, angle, shift);
+  const auto [angle, shift] = transform_error(result.alignments[0].transform,
+                                              Eigen::Matrix4d::Identity(), centroid(d.surface));
+  std::printf(
+      "[ self     ] top-1: %zu pairs, RMSD %.4f A, rotation error %.4f deg, translation %.4f A\n",
+      result.alignments[0].cp_pairs.size(), result.alignments[0].rmsd, angle, shift);
   EXPECT_LT(angle, 2.0);
   EXPECT_LT(shift, 0.5);
 }
@@ -76,16 +81,18 @@ TEST(Match, MovedCopyOfASurfaceRecoversTheMotion) {
     const auto result = matching::match_surfaces(reference, probe);
     ASSERT_FALSE(result.alignments.empty());
     // The alignment moves PROBE into REF's frame: the inverse of the motion.
-    const auto [angle, shift] = transform_error(result.alignments[0].transform, motion.inverse(),
-                                                centroid(probe.surface));
-    std::printf("[ moved    ] trial %d: rotation error %.4f deg, translation error %.4f A\n", trial, angle, shift);
+    const auto [angle, shift] =
+        transform_error(result.alignments[0].transform, motion.inverse(), centroid(probe.surface));
+    std::printf("[ moved    ] trial %d: rotation error %.4f deg, translation error %.4f A\n", trial,
+                angle, shift);
     EXPECT_LT(angle, 2.0);
     EXPECT_LT(shift, 0.5);
   }
 }
 
 /// Heavy-atom RMSD of `probe` moved by `transform` to its own (true) coordinates `truth`.
-double heavy_atom_rmsd(const Molecule& probe, const Eigen::Matrix4d& transform, const Molecule& truth) {
+double heavy_atom_rmsd(const Molecule& probe, const Eigen::Matrix4d& transform,
+                       const Molecule& truth) {
   double sum = 0.0;
   int n = 0;
   for (std::size_t i = 0; i < probe.atoms.size(); ++i) {
@@ -121,8 +128,10 @@ TEST(Match, ThermolysinLigandsAlignFromRandomPoses) {
       const auto result = matching::match_surfaces(reference, describe_molecule(probe));
       ASSERT_FALSE(result.alignments.empty());
       const double rmsd = heavy_atom_rmsd(probe, result.alignments[0].transform, truth);
-      std::printf("[ %s-4TMN] pose %d: top-1 heavy-atom RMSD to the crystal overlay %.2f A (%zu alignments, atoms %.2f)\n",
-                  code, pose, rmsd, result.alignments.size(), result.alignments[0].overlay.atoms);
+      std::printf(
+          "[ %s-4TMN] pose %d: top-1 heavy-atom RMSD to the crystal overlay %.2f A (%zu "
+          "alignments, atoms %.2f)\n",
+          code, pose, rmsd, result.alignments.size(), result.alignments[0].overlay.atoms);
       EXPECT_LT(rmsd, 2.0) << code << " pose " << pose;
     }
   }
@@ -135,22 +144,28 @@ TEST(Match, PolishedAlignmentsScoreAtLeastAsHighAndStayOrdered) {
   SURFCOMP_SHARED_OR_SKIP(ref_file, std::string(kLigands) + "3TMN_ligand.sdf");
   SURFCOMP_SHARED_OR_SKIP(probe_file, std::string(kLigands) + "4TMN_ligand.sdf");
   const auto reference = describe_molecule(io::read_molecule(ref_file));
-  const Molecule probe = io::read_molecule(probe_file);  // in the common frame: the truth is the identity
+  const Molecule probe =
+      io::read_molecule(probe_file);  // in the common frame: the truth is the identity
   const auto described = describe_molecule(probe);
   matching::MatchOptions unpolished;
   unpolished.polish_top = 0;
   const auto before = matching::match_surfaces(reference, described, unpolished);
   const auto after = matching::match_surfaces(reference, described);
   ASSERT_GE(after.alignments.size(), 5u);
-  EXPECT_LE(after.alignments.size(), before.alignments.size());  // a polished axes pose may repeat another
+  EXPECT_LE(after.alignments.size(),
+            before.alignments.size());  // a polished axes pose may repeat another
   EXPECT_GE(after.alignments[0].overlay.score, before.alignments[0].overlay.score);
   for (std::size_t k = 1; k < 5; ++k) {
-    EXPECT_GE(after.alignments[k - 1].overlay.score, after.alignments[k].overlay.score) << "rank " << k + 1;
+    EXPECT_GE(after.alignments[k - 1].overlay.score, after.alignments[k].overlay.score)
+        << "rank " << k + 1;
   }
   const double rmsd_before = heavy_atom_rmsd(probe, before.alignments[0].transform, probe);
   const double rmsd_after = heavy_atom_rmsd(probe, after.alignments[0].transform, probe);
-  std::printf("[ polish   ] 3TMN <- 4TMN top-1: score %.4f -> %.4f, heavy-atom RMSD to the crystal overlay %.2f -> %.2f A\n",
-              before.alignments[0].overlay.score, after.alignments[0].overlay.score, rmsd_before, rmsd_after);
+  std::printf(
+      "[ polish   ] 3TMN <- 4TMN top-1: score %.4f -> %.4f, heavy-atom RMSD to the crystal overlay "
+      "%.2f -> %.2f A\n",
+      before.alignments[0].overlay.score, after.alignments[0].overlay.score, rmsd_before,
+      rmsd_after);
   EXPECT_LT(rmsd_after, rmsd_before);
   EXPECT_LT(rmsd_after, 2.0);
   matching::MatchOptions negative;
@@ -185,8 +200,10 @@ TEST(Match, TheThreadCountDoesNotChangeTheAlignments) {
 TEST(Match, RefinedAlignmentsLeadByOverlayScoreAndRefineTopZeroKeepsTheConsensus) {
   SURFCOMP_SHARED_OR_SKIP(ref_file, std::string(kLigands) + "1THL_ligand.sdf");
   SURFCOMP_SHARED_OR_SKIP(probe_file, std::string(kLigands) + "4TMN_ligand.sdf");
-  const auto reference = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(ref_file)));
-  const auto probe = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(probe_file)));
+  const auto reference =
+      harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(ref_file)));
+  const auto probe =
+      harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(probe_file)));
   matching::MatchOptions seed_options;  // the cliques' alignments alone
   seed_options.refine_top = 0;
   seed_options.principal_axes_starts = 0;
@@ -217,11 +234,13 @@ TEST(Match, RefinedAlignmentsLeadByOverlayScoreAndRefineTopZeroKeepsTheConsensus
     EXPECT_LE(refined.alignments[k - 1].consensus, refined.alignments[k].consensus);
   }
   // The crystal overlay is the identity here: refinement must not take the top pose away from it.
-  const auto [angle, shift] = transform_error(refined.alignments[0].transform, Eigen::Matrix4d::Identity(),
-                                              centroid(probe.surface));
-  std::printf("[ refined  ] top-1 overlay %.3f (shape %.3f, chem %.3f): %.2f deg, %.2f A from the crystal overlay\n",
-              refined.alignments[0].overlay.score, refined.alignments[0].overlay.shape, refined.alignments[0].overlay.chem,
-              angle, shift);
+  const auto [angle, shift] = transform_error(refined.alignments[0].transform,
+                                              Eigen::Matrix4d::Identity(), centroid(probe.surface));
+  std::printf(
+      "[ refined  ] top-1 overlay %.3f (shape %.3f, chem %.3f): %.2f deg, %.2f A from the crystal "
+      "overlay\n",
+      refined.alignments[0].overlay.score, refined.alignments[0].overlay.shape,
+      refined.alignments[0].overlay.chem, angle, shift);
   EXPECT_LT(angle, 15.0);
   EXPECT_LT(shift, 1.5);
 }
@@ -236,7 +255,8 @@ MovedCopy moved_copy(const std::filesystem::path& file, unsigned seed) {
   const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
   std::mt19937 rng(seed);
   const Eigen::Matrix4d motion = random_motion(rng);
-  return {harmonic::describe_surface(surface), harmonic::describe_surface(moved_surface(surface, motion)), motion};
+  return {harmonic::describe_surface(surface),
+          harmonic::describe_surface(moved_surface(surface, motion)), motion};
 }
 
 TEST(Match, PrincipalAxesStartsJoinTheRefinedAlignments) {
@@ -273,8 +293,11 @@ TEST(Match, PrincipalAxesStartsJoinTheRefinedAlignments) {
   EXPECT_LE(axes, 24u);
   EXPECT_EQ(result.alignments.size(), cliques_only.alignments.size() + axes);
   // The moved copy is still recovered at the top.
-  const auto [angle, shift] = transform_error(result.alignments[0].transform, motion.inverse(), centroid(probe.surface));
-  std::printf("[ axes     ] %zu principal-axes alignments; top-1 %.3f deg, %.3f A from the motion\n", axes, angle, shift);
+  const auto [angle, shift] =
+      transform_error(result.alignments[0].transform, motion.inverse(), centroid(probe.surface));
+  std::printf(
+      "[ axes     ] %zu principal-axes alignments; top-1 %.3f deg, %.3f A from the motion\n", axes,
+      angle, shift);
   EXPECT_LT(angle, 2.0);
   EXPECT_LT(shift, 0.5);
   options.principal_axes_starts = 5;
@@ -291,19 +314,25 @@ TEST(Match, SiteMatchWithoutCliquesStillAlignsFromThePrincipalAxes) {
   const std::vector<bool> all_probe(probe.critical_points.size(), true);
   matching::MatchOptions options;
   options.graph.image_threshold = 1.5;  // above any correlation
-  const auto result = matching::match_surfaces(reference, probe, options, &all_reference, &all_probe);
+  const auto result =
+      matching::match_surfaces(reference, probe, options, &all_reference, &all_probe);
   EXPECT_EQ(result.cliques, 0u);
   ASSERT_FALSE(result.alignments.empty());
-  for (const auto& a : result.alignments) EXPECT_EQ(a.source, matching::AlignmentSource::principal_axes);
+  for (const auto& a : result.alignments)
+    EXPECT_EQ(a.source, matching::AlignmentSource::principal_axes);
   // Shape alone ranks site poses (site.chem_weight 0): score and shape Tanimoto coincide.
   EXPECT_DOUBLE_EQ(result.alignments[0].overlay.score, result.alignments[0].overlay.shape);
-  const auto [angle, shift] = transform_error(result.alignments[0].transform, motion.inverse(), centroid(probe.surface));
-  std::printf("[ site axes] no clique; top-1 of %zu axes alignments: %.3f deg, %.3f A from the motion, shape %.3f\n",
-              result.alignments.size(), angle, shift, result.alignments[0].overlay.shape);
+  const auto [angle, shift] =
+      transform_error(result.alignments[0].transform, motion.inverse(), centroid(probe.surface));
+  std::printf(
+      "[ site axes] no clique; top-1 of %zu axes alignments: %.3f deg, %.3f A from the motion, "
+      "shape %.3f\n",
+      result.alignments.size(), angle, shift, result.alignments[0].overlay.shape);
   EXPECT_LT(angle, 2.0);
   EXPECT_LT(shift, 0.5);
   options.site.principal_axes_starts = 0;
-  EXPECT_TRUE(matching::match_surfaces(reference, probe, options, &all_reference, &all_probe).alignments.empty());
+  EXPECT_TRUE(matching::match_surfaces(reference, probe, options, &all_reference, &all_probe)
+                  .alignments.empty());
 }
 
 }  // namespace

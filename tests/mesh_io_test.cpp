@@ -70,14 +70,14 @@ void expect_identical(const Surface& a, const Surface& b) {
 /// A regular tetrahedron-like closed surface with coordinates that are not short decimals.
 Surface tetrahedron() {
   Eigen::MatrixX3d p(4, 3);
-  p << 0.1, 1.0 / 3.0, -2.0 / 7.0,  //
-      1.0e-7, 2.718281828459045, 0.3,  //
+  p << 0.1, 1.0 / 3.0, -2.0 / 7.0,          //
+      1.0e-7, 2.718281828459045, 0.3,       //
       -1.4142135623730951, 0.0, 1e5 / 3.0,  //
       0.5, -0.6, std::acos(-1.0);
   Eigen::MatrixX3i f(4, 3);
   f << 0, 2, 1,  //
-      0, 1, 3,  //
-      0, 3, 2,  //
+      0, 1, 3,   //
+      0, 3, 2,   //
       1, 2, 3;
   return Surface::from_arrays(p, f, "tetrahedron");
 }
@@ -248,8 +248,7 @@ TEST(MeshIoPly, WriteRejectsValuesOutsideTheirStorageType) {
   EXPECT_THROW(io::write_ply(u, out), InputError);
 }
 
-constexpr const char* octahedron_vertices =
-    "0 0 1\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n0 0 -1\n";
+constexpr const char* octahedron_vertices = "0 0 1\n1 0 0\n0 1 0\n-1 0 0\n0 -1 0\n0 0 -1\n";
 
 TEST(MeshIoPly, SkipsOtherElementsListsAndSplitsPolygons) {
   // An ascii square pyramid: a quad base (split into 2 triangles) and 4 sides; a vertex list
@@ -364,13 +363,14 @@ TEST(MeshIoPly, MalformedInputGivesFormatErrorsWithLineNumbers) {
 
   // A header claiming 10^12 vertices fails before allocating anything, and fast.
   const auto start = std::chrono::steady_clock::now();
-  const std::string huge = ply_error<FormatError>(
-      ascii_ply("1000000000000", octahedron_vertices, octahedron_faces));
+  const std::string huge =
+      ply_error<FormatError>(ascii_ply("1000000000000", octahedron_vertices, octahedron_faces));
   EXPECT_NE(huge.find("bad.ply:3: the header claims 1000000000000 items of element 'vertex'"),
-            std::string::npos) << huge;
+            std::string::npos)
+      << huge;
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
-  const std::string many = ply_error<FormatError>(
-      ascii_ply("4000000", octahedron_vertices, octahedron_faces));
+  const std::string many =
+      ply_error<FormatError>(ascii_ply("4000000", octahedron_vertices, octahedron_faces));
   EXPECT_NE(many.find("claims 4000000"), std::string::npos) << many;
 
   // Line 11 is the first data line.
@@ -381,25 +381,28 @@ TEST(MeshIoPly, MalformedInputGivesFormatErrorsWithLineNumbers) {
   const std::string inf = ply_error<FormatError>(
       ascii_ply("6", "0 0 1\n1 0 0\n0 1 0\n-1 0 0\n0 -1 inf\n0 0 -1\n", octahedron_faces));
   EXPECT_NE(inf.find("bad.ply:14:"), std::string::npos) << inf;
-  const std::string index = ply_error<FormatError>(
-      ascii_ply("6", octahedron_vertices, "3 0 1 2\n3 0 2 6\n3 0 3 4\n3 0 4 1\n"
-                                          "3 5 2 1\n3 5 3 2\n3 5 4 3\n3 5 1 4\n"));
+  const std::string index =
+      ply_error<FormatError>(ascii_ply("6", octahedron_vertices,
+                                       "3 0 1 2\n3 0 2 6\n3 0 3 4\n3 0 4 1\n"
+                                       "3 5 2 1\n3 5 3 2\n3 5 4 3\n3 5 1 4\n"));
   EXPECT_NE(index.find("bad.ply:17: expected a vertex index in 0..5, found 6"), std::string::npos)
       << index;
   const std::string word = ply_error<FormatError>(
       ascii_ply("6", "0 0 1\n1 0 0\n0 one 0\n-1 0 0\n0 -1 0\n0 0 -1\n", octahedron_faces));
   EXPECT_NE(word.find("bad.ply:12: expected a float for property 'y', found 'one'"),
-            std::string::npos) << word;
+            std::string::npos)
+      << word;
   const std::string short_line = ply_error<FormatError>(
       ascii_ply("6", "0 0 1\n1 0 0\n0 1\n-1 0 0\n0 -1 0\n0 0 -1\n", octahedron_faces));
   EXPECT_NE(short_line.find("bad.ply:12: expected a value for property 'z'"), std::string::npos)
       << short_line;
-  const std::string missing = ply_error<FormatError>(
-      ascii_ply("6", octahedron_vertices, "3 0 1 2\n3 0 2 3\n"));
+  const std::string missing =
+      ply_error<FormatError>(ascii_ply("6", octahedron_vertices, "3 0 1 2\n3 0 2 3\n"));
   EXPECT_NE(missing.find("expected item 3 of 8 of element 'face', found the end of the file"),
-            std::string::npos) << missing;
-  const std::string extra = ply_error<FormatError>(
-      ascii_ply("6", octahedron_vertices, octahedron_faces, "7"));
+            std::string::npos)
+      << missing;
+  const std::string extra =
+      ply_error<FormatError>(ascii_ply("6", octahedron_vertices, octahedron_faces, "7"));
   EXPECT_NE(extra.find("bad.ply:23: expected the end of the file"), std::string::npos) << extra;
   const std::string two = ply_error<FormatError>(
       ascii_ply("6", octahedron_vertices, std::string("2 0 1\n") + octahedron_faces));
@@ -475,7 +478,8 @@ TEST(MeshIoMsms, ReadsLysozymeWithNormals) {
   write_text(dir / "lys.vert",
              "# MSMS solvent excluded surface vertices for lys1.xyzr\n"
              "#vertex #sphere density probe_r\n"
-             "   7201    1001  1.00  1.50\n" + read_bytes(vert));
+             "   7201    1001  1.00  1.50\n" +
+                 read_bytes(vert));
   write_text(dir / "lys.face",
              "# MSMS solvent excluded surface faces for lys1.xyzr\n"
              "#faces  #sphere density probe_r\n"
@@ -491,7 +495,8 @@ TEST(MeshIoMsms, ReadsLysozymeWithNormals) {
     FAIL() << "expected FormatError";
   } catch (const FormatError& e) {
     EXPECT_NE(std::string(e.what()).find("bad.vert:3: the header claims 7200 vertices, found 7201"),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -515,7 +520,8 @@ TEST(MeshIoMsms, MalformedFilesGiveFormatErrors) {
   } catch (const FormatError& e) {
     EXPECT_NE(std::string(e.what()).find("oct.face:2: expected a vertex number (an integer in "
                                          "1..6), found '7'"),
-              std::string::npos) << e.what();
+              std::string::npos)
+        << e.what();
   }
   write_text(dir / "oct.face", "1 2 3 1 1\n1 3 0 1 1\n");
   EXPECT_THROW(io::read_msms(dir / "oct.vert"), FormatError);

@@ -125,8 +125,8 @@ std::pair<std::string, std::string> msms_bytes(const Surface& s) {
   vert.setf(std::ios::fixed);
   vert.precision(3);
   for (Eigen::Index i = 0; i < p.rows(); ++i) {
-    vert << p(i, 0) << ' ' << p(i, 1) << ' ' << p(i, 2) << ' ' << n(i, 0) << ' ' << n(i, 1)
-         << ' ' << n(i, 2) << " 0 1 2\n";
+    vert << p(i, 0) << ' ' << p(i, 1) << ' ' << p(i, 2) << ' ' << n(i, 0) << ' ' << n(i, 1) << ' '
+         << n(i, 2) << " 0 1 2\n";
   }
   face << "# MSMS solvent excluded surface faces for sphere.xyzr\n"
        << "#faces  #sphere density probe_r\n"
@@ -170,11 +170,21 @@ std::string obj_bytes(const Surface& s) {
     for (Eigen::Index k = 0; k < 3; ++k) {
       const int v = f(i, k) + 1;
       switch ((i + k) % 5) {
-        case 0: out << ' ' << v; break;
-        case 1: out << ' ' << v << '/' << v; break;
-        case 2: out << ' ' << v << "//" << v; break;
-        case 3: out << ' ' << v << '/' << v << '/' << v; break;
-        default: out << ' ' << v - 1 - n; break;
+        case 0:
+          out << ' ' << v;
+          break;
+        case 1:
+          out << ' ' << v << '/' << v;
+          break;
+        case 2:
+          out << ' ' << v << "//" << v;
+          break;
+        case 3:
+          out << ' ' << v << '/' << v << '/' << v;
+          break;
+        default:
+          out << ' ' << v - 1 - n;
+          break;
       }
     }
     out << '\n';
@@ -204,8 +214,9 @@ std::string mutate(const std::string& bytes, std::mt19937& rng, std::string& kin
     return uniform(0, end - 1);
   };
   static const std::string textual = "0123456789-+.eE \n\t/#nainf";
-  static const char* const extremes[] = {"-1", "0", "4294967296", "99999999999999999999",
-                                         "1e308", "-1e-320", "nan", "inf", "2147483647", "3"};
+  static const char* const extremes[] = {
+      "-1",      "0",   "4294967296", "99999999999999999999", "1e308",
+      "-1e-320", "nan", "inf",        "2147483647",           "3"};
   std::string out = bytes;
   truncated = false;
   switch (uniform(0, 6)) {
@@ -237,8 +248,8 @@ std::string mutate(const std::string& bytes, std::mt19937& rng, std::string& kin
       std::string garbage;
       const bool text = uniform(0, 1) == 0;
       for (std::size_t i = 0; i < n; ++i) {
-        garbage += text ? textual[uniform(0, textual.size() - 1)]
-                        : static_cast<char>(uniform(0, 255));
+        garbage +=
+            text ? textual[uniform(0, textual.size() - 1)] : static_cast<char>(uniform(0, 255));
       }
       const std::size_t at = position(out.size() + 1);
       out.insert(at, garbage);
@@ -324,8 +335,8 @@ Tally fuzz(const Input& input, int iterations, unsigned seed) {
   std::mt19937 rng(seed);
   int reported = 0;
   for (int i = 0; i < iterations; ++i) {
-    const std::size_t which = std::uniform_int_distribution<std::size_t>(
-        0, input.files.size() - 1)(rng);
+    const std::size_t which =
+        std::uniform_int_distribution<std::size_t>(0, input.files.size() - 1)(rng);
     std::string kind;
     bool truncated = false;
     const auto& [name, bytes] = input.files[which];
@@ -361,8 +372,8 @@ Input ply_input(const std::string& bytes) {
 constexpr int iterations = 300;
 
 TEST(MeshReaderRobustness, PlyAsciiSmall) {
-  const Tally t = fuzz(ply_input(ply_bytes(uv_sphere(), io::PlyFormat::ascii)), iterations,
-                       base_seed() + 1);
+  const Tally t =
+      fuzz(ply_input(ply_bytes(uv_sphere(), io::PlyFormat::ascii)), iterations, base_seed() + 1);
   EXPECT_EQ(t.read + t.rejected, iterations);
   EXPECT_GT(t.rejected, iterations / 4);
 }
@@ -421,9 +432,9 @@ TEST(MeshReaderRobustness, Msms) {
 
 TEST(MeshReaderRobustness, MsmsLysozymeWithoutHeader) {
   SURFCOMP_SHARED_OR_SKIP(vert, "surfaces/lysozyme-msms/geometry/Lys1.vert");
-  const Input input{{{"lys.vert", read_bytes(vert)},
-                     {"lys.face", read_bytes(vert.parent_path() / "Lys1.face")}},
-                    [](const TempDir& d) { return io::read_msms(d / "lys"); }};
+  const Input input{
+      {{"lys.vert", read_bytes(vert)}, {"lys.face", read_bytes(vert.parent_path() / "Lys1.face")}},
+      [](const TempDir& d) { return io::read_msms(d / "lys"); }};
   const Tally t = fuzz(input, iterations, base_seed() + 21);
   EXPECT_EQ(t.read + t.rejected, iterations);
   EXPECT_GT(t.rejected, 0);

@@ -33,7 +33,8 @@ namespace fs = std::filesystem;
 // written by RDKit 2022.09 from SequenceToMol after setting those formal charges, embedded
 // with ETKDGv3 (seed 42): heavy atoms only, in the same order in both blocks. RDKit's
 // Crippen MolLogP of it is -16.7003.
-constexpr const char* kPeptidePdb = R"(ATOM      1  N   GLY A   1       7.179   3.473  -5.160  1.00  0.00           N1+
+constexpr const char* kPeptidePdb =
+    R"(ATOM      1  N   GLY A   1       7.179   3.473  -5.160  1.00  0.00           N1+
 ATOM      2  CA  GLY A   1       6.122   4.429  -5.466  1.00  0.00           C
 ATOM      3  C   GLY A   1       4.810   3.747  -5.402  1.00  0.00           C
 ATOM      4  O   GLY A   1       4.814   2.506  -5.096  1.00  0.00           O
@@ -580,7 +581,8 @@ $$$$
 
 // Alternate locations: SER 1 with CB and OG in A and B, residue 2 as ALA (A) or GLY (B)
 // (microheterogeneity), and a sulfate present only as B.
-constexpr const char* kAltlocPdb = R"(ATOM      1  N   SER A   1       0.000   0.000   0.000  1.00 10.00           N
+constexpr const char* kAltlocPdb =
+    R"(ATOM      1  N   SER A   1       0.000   0.000   0.000  1.00 10.00           N
 ATOM      2  CA  SER A   1       1.458   0.000   0.000  1.00 10.00           C
 ATOM      3  C   SER A   1       2.009   1.420   0.000  1.00 10.00           C
 ATOM      4  O   SER A   1       1.251   2.390   0.000  1.00 10.00           O
@@ -867,12 +869,12 @@ TEST(MoleculeIo, PdbKeepsTheFirstAlternateLocationOfEveryAtom) {
     Eigen::Vector3d position;
   };
   const std::vector<Expected> expected = {
-      {"SER", 1, "N", {0.000, 0.000, 0.000}},     {"SER", 1, "CA", {1.458, 0.000, 0.000}},
-      {"SER", 1, "C", {2.009, 1.420, 0.000}},     {"SER", 1, "O", {1.251, 2.390, 0.000}},
-      {"SER", 1, "CB", {1.988, -0.773, -1.199}},  {"SER", 1, "OG", {3.400, -0.800, -1.250}},
-      {"ALA", 2, "N", {3.332, 1.547, 0.000}},     {"ALA", 2, "CA", {3.956, 2.862, 0.000}},
-      {"ALA", 2, "C", {5.470, 2.732, 0.000}},     {"ALA", 2, "O", {6.020, 1.631, 0.000}},
-      {"ALA", 2, "CB", {3.500, 3.650, 1.220}},    {"SO4", 101, "S", {12.000, 12.000, 12.000}},
+      {"SER", 1, "N", {0.000, 0.000, 0.000}},       {"SER", 1, "CA", {1.458, 0.000, 0.000}},
+      {"SER", 1, "C", {2.009, 1.420, 0.000}},       {"SER", 1, "O", {1.251, 2.390, 0.000}},
+      {"SER", 1, "CB", {1.988, -0.773, -1.199}},    {"SER", 1, "OG", {3.400, -0.800, -1.250}},
+      {"ALA", 2, "N", {3.332, 1.547, 0.000}},       {"ALA", 2, "CA", {3.956, 2.862, 0.000}},
+      {"ALA", 2, "C", {5.470, 2.732, 0.000}},       {"ALA", 2, "O", {6.020, 1.631, 0.000}},
+      {"ALA", 2, "CB", {3.500, 3.650, 1.220}},      {"SO4", 101, "S", {12.000, 12.000, 12.000}},
       {"SO4", 101, "O1", {12.850, 12.850, 12.850}}, {"SO4", 101, "O2", {11.150, 11.150, 12.850}},
       {"SO4", 101, "O3", {11.150, 12.850, 11.150}}, {"SO4", 101, "O4", {12.850, 11.150, 11.150}}};
   const Molecule whole = read_molecule(file);
@@ -962,7 +964,7 @@ TEST(ProteinLipophilicity, TableMatchesRdkitCrippenOnAPeptide) {
 
 TEST(MoleculeIo, BadInputRaisesTheRightErrorNamingTheFile) {
   TempDir dir;
-  const fs::path missing = dir.write("placeholder.txt", "") .parent_path() / "missing.sdf";
+  const fs::path missing = dir.write("placeholder.txt", "").parent_path() / "missing.sdf";
   EXPECT_THROW(read_molecule(missing), FileError);
   expect_error_naming([&] { read_molecule(missing); }, "missing.sdf");
   EXPECT_THROW(read_molecule(dir.write("a.xyz", "1\n\nC 0 0 0\n")), FormatError);
@@ -978,10 +980,10 @@ TEST(MoleculeIo, BadInputRaisesTheRightErrorNamingTheFile) {
     EXPECT_THROW(read_molecule(path), InputError) << name;
     expect_error_naming([&] { read_molecule(path); }, name);
   }
-  const fs::path nan_pqr = dir.write(
-      "nan.pqr",
-      "ATOM      1  N   LYS     1       3.294  10.164  10.266 -0.3200 1.5000\n"
-      "ATOM      2  CA  LYS     1         nan   9.177  10.419  0.3300 2.0000\n");
+  const fs::path nan_pqr =
+      dir.write("nan.pqr",
+                "ATOM      1  N   LYS     1       3.294  10.164  10.266 -0.3200 1.5000\n"
+                "ATOM      2  CA  LYS     1         nan   9.177  10.419  0.3300 2.0000\n");
   EXPECT_THROW(read_pqr(nan_pqr), InputError);
   expect_error_naming([&] { read_pqr(nan_pqr); }, "nan.pqr:2");
   const fs::path short_pqr =

@@ -147,8 +147,7 @@ struct Tally {
 // Reads `cases` corruptions of `valid` (written as `name`) under each of `option_sets`.
 Tally fuzz(const std::string& valid, const std::string& name,
            const std::vector<MoleculeReadOptions>& option_sets, unsigned seed) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("surfcomp_fuzz_" + std::to_string(::getpid()));
+  const fs::path dir = fs::temp_directory_path() / ("surfcomp_fuzz_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / name;
   std::mt19937 rng(seed);
@@ -208,18 +207,18 @@ TEST(MoleculeReaderRobustness, CorruptedMol2) {
 
 TEST(MoleculeReaderRobustness, CorruptedPdb) {
   SURFCOMP_SHARED_OR_SKIP(path, "thermolysin/ligands-common-frame/1THL_ligand.pdb");
-  expect_both_outcomes(fuzz(pdb_atoms_only(read_text(path)), "ligand.pdb",
-                            {with(ChargeModel::file), with(ChargeModel::file, "0DB"),
-                             with(ChargeModel::mmff, "0DB")},
-                            1003));
+  expect_both_outcomes(fuzz(
+      pdb_atoms_only(read_text(path)), "ligand.pdb",
+      {with(ChargeModel::file), with(ChargeModel::file, "0DB"), with(ChargeModel::mmff, "0DB")},
+      1003));
 }
 
 TEST(MoleculeReaderRobustness, CorruptedPqr) {
   SURFCOMP_SHARED_OR_SKIP(path, "thermolysin/ligands-common-frame/1THL_ligand.pdb");
   const std::string pqr = pqr_from_pdb(read_text(path));
   ASSERT_EQ(lines_of(pqr).size(), 36u);  // 35 atoms and END
-  expect_both_outcomes(fuzz(pqr, "ligand.pqr",
-                            {with(ChargeModel::file), with(ChargeModel::file, "0DB")}, 1004));
+  expect_both_outcomes(
+      fuzz(pqr, "ligand.pqr", {with(ChargeModel::file), with(ChargeModel::file, "0DB")}, 1004));
 }
 
 }  // namespace

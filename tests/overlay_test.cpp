@@ -2,8 +2,8 @@
 // surface on itself (also moved) and symmetric in the two surfaces, two points overlap by the
 // Gaussian of their distance, same-element heteroatoms tell apart poses the surface cannot,
 // refinement climbs back to a known motion, and the weighted rigid fit ignores what has no weight.
-#include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/overlay.hpp"
+#include "surfcomp/core/error.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
 #include "analytic_meshes.hpp"
@@ -62,7 +62,8 @@ TEST(Overlay, SampleWeightsAddUpToTheArea) {
   const matching::SurfaceSample sample = matching::sample_surface(surface, 1.0);
   EXPECT_NEAR(sample.weights.sum(), surface_area(surface), 1e-9 * surface_area(surface));
   EXPECT_LT(sample.size(), surface.n_vertices());
-  for (std::size_t i = 0; i < sample.size(); ++i) EXPECT_NEAR(sample.normals.col(static_cast<Eigen::Index>(i)).norm(), 1.0, 1e-12);
+  for (std::size_t i = 0; i < sample.size(); ++i)
+    EXPECT_NEAR(sample.normals.col(static_cast<Eigen::Index>(i)).norm(), 1.0, 1e-12);
   // A mask keeping the half x > 0 keeps about half the area, and only points there.
   const Eigen::MatrixX3d p = surface.positions();
   std::vector<bool> half(surface.n_vertices());
@@ -82,13 +83,16 @@ TEST(Overlay, ASurfaceOnItselfScoresOneAndLessWhenMoved) {
   EXPECT_NEAR(at_identity.score, 1.0, 1e-12);
   double last = 1.0;
   for (double shift : {0.5, 1.0, 2.0, 4.0}) {
-    const double s = overlay.score(motion(0.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d(shift, 0.0, 0.0))).score;
+    const double s =
+        overlay.score(motion(0.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d(shift, 0.0, 0.0)))
+            .score;
     EXPECT_LT(s, last) << "shift " << shift;
     EXPECT_GE(s, 0.0);
     last = s;
   }
   // Turned by 180 degrees about z the shape nearly coincides but the ESP (along x) is reversed.
-  const matching::OverlayScore turned = overlay.score(motion(180.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
+  const matching::OverlayScore turned =
+      overlay.score(motion(180.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()));
   EXPECT_GT(turned.shape, 0.9);
   EXPECT_LT(turned.chem, 0.5 * turned.shape);
 }
@@ -98,7 +102,8 @@ TEST(Overlay, ScoresAreSymmetricInTheTwoSurfaces) {
   const mesh::Surface b = test::icosphere(2.5, 12);
   const matching::SurfaceSample sa = matching::sample_surface(a, 1.0);
   const matching::SurfaceSample sb = matching::sample_surface(b, 1.0);
-  const RigidTransform t = motion(37.0, Eigen::Vector3d(1.0, 2.0, 3.0), Eigen::Vector3d(0.7, -0.4, 0.2));
+  const RigidTransform t =
+      motion(37.0, Eigen::Vector3d(1.0, 2.0, 3.0), Eigen::Vector3d(0.7, -0.4, 0.2));
   const matching::OverlayScore ab = matching::SurfaceOverlay(sa, sb).score(t);
   const matching::OverlayScore ba = matching::SurfaceOverlay(sb, sa).score(inverse(t));
   EXPECT_GT(ab.shape, 0.05);
@@ -110,22 +115,30 @@ TEST(Overlay, ScoresAreSymmetricInTheTwoSurfaces) {
 TEST(Overlay, RefinementRecoversAKnownMotion) {
   const mesh::Surface reference = labelled_ellipsoid();
   // The probe is the reference moved by `truth`; the answer is its inverse.
-  const RigidTransform truth = motion(70.0, Eigen::Vector3d(1.0, -1.0, 2.0), Eigen::Vector3d(5.0, -3.0, 8.0));
+  const RigidTransform truth =
+      motion(70.0, Eigen::Vector3d(1.0, -1.0, 2.0), Eigen::Vector3d(5.0, -3.0, 8.0));
   const mesh::Surface probe = moved(reference, truth);
-  const matching::SurfaceOverlay overlay(matching::sample_surface(reference, 1.0), matching::sample_surface(probe, 1.0));
+  const matching::SurfaceOverlay overlay(matching::sample_surface(reference, 1.0),
+                                         matching::sample_surface(probe, 1.0));
   const RigidTransform answer = inverse(truth);
   const Eigen::Vector3d centre = probe.positions().colwise().mean();
-  for (const RigidTransform& error : {motion(12.0, Eigen::Vector3d(0.0, 1.0, 1.0), Eigen::Vector3d(0.8, 0.3, -0.5)),
-                                      motion(-8.0, Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(-1.0, 0.5, 0.5))}) {
+  for (const RigidTransform& error :
+       {motion(12.0, Eigen::Vector3d(0.0, 1.0, 1.0), Eigen::Vector3d(0.8, 0.3, -0.5)),
+        motion(-8.0, Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(-1.0, 0.5, 0.5))}) {
     RigidTransform start;  // the answer, then off by `error`
     start.rotation = error.rotation * answer.rotation;
     start.translation = error.rotation * answer.translation + error.translation;
     const RigidTransform refined = overlay.refine(start);
-    const double angle = matching::rotation_angle_degrees(refined.rotation * answer.rotation.transpose());
-    const double shift = ((refined.rotation * centre + refined.translation) - (answer.rotation * centre + answer.translation)).norm();
-    const double start_angle = matching::rotation_angle_degrees(start.rotation * answer.rotation.transpose());
-    std::printf("[ refine   ] start %.1f deg off -> %.3f deg, %.3f A; score %.3f -> %.3f\n", start_angle, angle, shift,
-                overlay.score(start).score, overlay.score(refined).score);
+    const double angle =
+        matching::rotation_angle_degrees(refined.rotation * answer.rotation.transpose());
+    const double shift = ((refined.rotation * centre + refined.translation) -
+                          (answer.rotation * centre + answer.translation))
+                             .norm();
+    const double start_angle =
+        matching::rotation_angle_degrees(start.rotation * answer.rotation.transpose());
+    std::printf("[ refine   ] start %.1f deg off -> %.3f deg, %.3f A; score %.3f -> %.3f\n",
+                start_angle, angle, shift, overlay.score(start).score,
+                overlay.score(refined).score);
     EXPECT_LT(angle, 1.0);
     EXPECT_LT(shift, 0.2);
     EXPECT_GT(overlay.score(refined).score, overlay.score(start).score);
@@ -134,15 +147,17 @@ TEST(Overlay, RefinementRecoversAKnownMotion) {
 
 TEST(Overlay, PrincipalAxesStartsHoldTheMotionAndAreProperRotations) {
   const mesh::Surface reference = labelled_ellipsoid();  // axes 4, 2.5, 1.5 A: variances far apart
-  const RigidTransform truth = motion(150.0, Eigen::Vector3d(1.0, 2.0, -1.0), Eigen::Vector3d(-6.0, 4.0, 9.0));
+  const RigidTransform truth =
+      motion(150.0, Eigen::Vector3d(1.0, 2.0, -1.0), Eigen::Vector3d(-6.0, 4.0, 9.0));
   const mesh::Surface probe = moved(reference, truth);
   const matching::SurfaceSample a = matching::sample_surface(reference, 1.0);
   const matching::SurfaceSample b = matching::sample_surface(probe, 1.0);
   const RigidTransform answer = inverse(truth);
   const Eigen::Vector3d centre = probe.positions().colwise().mean();
   const auto error = [&](const RigidTransform& t) {
-    return std::pair<double, double>{matching::rotation_angle_degrees(t.rotation * answer.rotation.transpose()),
-                                     (t.apply(centre) - answer.apply(centre)).norm()};
+    return std::pair<double, double>{
+        matching::rotation_angle_degrees(t.rotation * answer.rotation.transpose()),
+        (t.apply(centre) - answer.apply(centre)).norm()};
   };
   const auto four = matching::principal_axes_starts(a, b);
   const auto all = matching::principal_axes_starts(a, b, true);
@@ -152,12 +167,14 @@ TEST(Overlay, PrincipalAxesStartsHoldTheMotionAndAreProperRotations) {
   // carried by the two frames) and include the four.
   for (std::size_t i = 0; i < all.size(); ++i) {
     EXPECT_NEAR(all[i].rotation.determinant(), 1.0, 1e-12);
-    EXPECT_LT((all[i].rotation.transpose() * all[i].rotation - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_LT((all[i].rotation.transpose() * all[i].rotation - Eigen::Matrix3d::Identity()).norm(),
+              1e-12);
     for (std::size_t j = 0; j < i; ++j) EXPECT_GT((all[i].rotation - all[j].rotation).norm(), 0.5);
   }
   for (const RigidTransform& t : four) {
     EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const RigidTransform& u) {
-      return (t.rotation - u.rotation).norm() < 1e-12 && (t.translation - u.translation).norm() < 1e-12;
+      return (t.rotation - u.rotation).norm() < 1e-12 &&
+             (t.translation - u.translation).norm() < 1e-12;
     }));
   }
   // One of the four is the motion, up to the two samplings' cells; the others are 180 degrees off.
@@ -166,14 +183,16 @@ TEST(Overlay, PrincipalAxesStartsHoldTheMotionAndAreProperRotations) {
     const auto [angle, shift] = error(t);
     if (angle < best_angle) std::tie(best_angle, best_shift) = std::tie(angle, shift);
   }
-  std::printf("[ axes     ] best of 4 starts: %.3f deg, %.3f A from the motion\n", best_angle, best_shift);
+  std::printf("[ axes     ] best of 4 starts: %.3f deg, %.3f A from the motion\n", best_angle,
+              best_shift);
   EXPECT_LT(best_angle, 3.0);
   EXPECT_LT(best_shift, 0.3);
   EXPECT_THROW(matching::principal_axes_starts(a, matching::SurfaceSample{}), InputError);
 }
 
 TEST(Overlay, WeightedFitIgnoresPointsWithoutWeight) {
-  const RigidTransform truth = motion(50.0, Eigen::Vector3d(0.3, 1.0, -0.2), Eigen::Vector3d(1.0, 2.0, 3.0));
+  const RigidTransform truth =
+      motion(50.0, Eigen::Vector3d(0.3, 1.0, -0.2), Eigen::Vector3d(1.0, 2.0, 3.0));
   Eigen::Matrix3Xd from(3, 6);
   from << 0, 1, 0, 0, 2, -1,  //
       0, 0, 1, 0, 1, 3,       //
@@ -188,14 +207,16 @@ TEST(Overlay, WeightedFitIgnoresPointsWithoutWeight) {
   EXPECT_LT(fit.rmsd, 1e-12);
   // Equal weights: the unweighted fit.
   const matching::RigidFit plain = matching::fit_rigid(from, to);
-  const matching::RigidFit equal = matching::fit_rigid_weighted(from, to, Eigen::VectorXd::Constant(6, 2.0));
+  const matching::RigidFit equal =
+      matching::fit_rigid_weighted(from, to, Eigen::VectorXd::Constant(6, 2.0));
   EXPECT_LT((plain.transform.matrix() - equal.transform.matrix()).norm(), 1e-12);
   EXPECT_NEAR(plain.rmsd, equal.rmsd, 1e-12);
   EXPECT_THROW(matching::fit_rigid_weighted(from, to, Eigen::VectorXd::Zero(6)), InputError);
 }
 
 /// One point of weight 1 at `position`, facing +z, with the given ESP and LP.
-matching::SurfaceSample one_point(const Eigen::Vector3d& position, double esp = 0.0, double lp = 0.0) {
+matching::SurfaceSample one_point(const Eigen::Vector3d& position, double esp = 0.0,
+                                  double lp = 0.0) {
   matching::SurfaceSample s;
   s.points = position;
   s.normals = Eigen::Vector3d::UnitZ();
@@ -214,19 +235,28 @@ TEST(Overlay, TwoPointsOverlapByTheGaussianOfTheirDistance) {
   for (double sigma : {1.0, 0.7}) {
     matching::OverlayOptions options;
     options.sigma = sigma;
-    const matching::SurfaceOverlay overlay(one_point(Eigen::Vector3d::Zero()), one_point(Eigen::Vector3d::Zero()), options);
+    const matching::SurfaceOverlay overlay(one_point(Eigen::Vector3d::Zero()),
+                                           one_point(Eigen::Vector3d::Zero()), options);
     for (double d : {0.0, 0.05, 0.3, 0.77, 1.0, 1.9, 2.5, 2.99, 3.0 * sigma * (1.0 - 1e-12)}) {
       const double g = d < 3.0 * sigma ? std::exp(-d * d / (2.0 * sigma * sigma)) : 0.0;
-      const matching::OverlayScore s = overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(d, 0.0, 0.0)));
+      const matching::OverlayScore s =
+          overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(d, 0.0, 0.0)));
       EXPECT_NEAR(s.shape, g / (2.0 - g), 1e-5) << "sigma " << sigma << ", d " << d;
-      EXPECT_NEAR(2.0 * s.shape / (1.0 + s.shape), g, 1e-6) << "sigma " << sigma << ", d " << d;  // g itself
+      EXPECT_NEAR(2.0 * s.shape / (1.0 + s.shape), g, 1e-6)
+          << "sigma " << sigma << ", d " << d;  // g itself
       EXPECT_EQ(s.chem, 0.0);
       EXPECT_EQ(s.atoms, 0.0);
       EXPECT_EQ(s.score, s.shape);  // no chemistry: its weight leaves the score
     }
-    EXPECT_EQ(overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(3.01 * sigma, 0.0, 0.0))).shape, 0.0);
+    EXPECT_EQ(
+        overlay
+            .score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(3.01 * sigma, 0.0, 0.0)))
+            .shape,
+        0.0);
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_EQ(overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(nan, 0.0, 0.0))).shape, 0.0);
+    EXPECT_EQ(
+        overlay.score(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(nan, 0.0, 0.0))).shape,
+        0.0);
   }
 }
 
@@ -244,7 +274,10 @@ TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
   matching::SurfaceSample shape = matching::sample_surface(test::ellipsoid(4.0, 2.5, 1.5, 24), 1.0);
   shape.esp.setOnes();  // chemistry that a half turn about z leaves as it is
   shape.lp.setConstant(-0.5);
-  const auto molecule = atoms({{"O", {3.0, 0.0, 0.0}}, {"N", {0.0, 1.5, 0.0}}, {"C", {0.0, 0.0, 0.0}}, {"H", {1.0, 0.0, 0.0}}});
+  const auto molecule = atoms({{"O", {3.0, 0.0, 0.0}},
+                               {"N", {0.0, 1.5, 0.0}},
+                               {"C", {0.0, 0.0, 0.0}},
+                               {"H", {1.0, 0.0, 0.0}}});
   ASSERT_EQ(molecule.size(), 2u);
   EXPECT_EQ(molecule.elements, (std::vector<std::string>{"O", "N"}));
   const matching::OverlayOptions options;  // chem weight 6, atom weight 14
@@ -257,24 +290,34 @@ TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
   EXPECT_LT(turned.atoms, 0.01);  // only the N's tails meet, 3 A apart: 0.011 / 4
   EXPECT_NEAR(turned.shape, at_identity.shape, 0.05);  // the two cell samplings differ slightly
   const double weights = 1.0 + options.chem_weight + options.atom_weight;
-  EXPECT_NEAR(at_identity.score, (at_identity.shape + options.chem_weight * at_identity.chem + options.atom_weight) / weights, 1e-12);
+  EXPECT_NEAR(
+      at_identity.score,
+      (at_identity.shape + options.chem_weight * at_identity.chem + options.atom_weight) / weights,
+      1e-12);
   EXPECT_GT(at_identity.score - turned.score, 0.5);
   // The refinement's final score carries the atom term too.
   matching::OverlayScore refined;
   overlay.refine(motion(3.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d(0.2, 0.0, 0.0)), &refined);
   EXPECT_GT(refined.atoms, 0.9);
-  EXPECT_NEAR(refined.score, (refined.shape + options.chem_weight * refined.chem + options.atom_weight * refined.atoms) / weights, 1e-12);
+  EXPECT_NEAR(
+      refined.score,
+      (refined.shape + options.chem_weight * refined.chem + options.atom_weight * refined.atoms) /
+          weights,
+      1e-12);
 
   // Polishing the surfaces' refinement of a pose 8 degrees and 0.6 A off on the whole score
   // (heteroatoms pulled too), as the match does, ends at least as high, its heteroatoms on the
   // reference's.
-  const RigidTransform off = motion(8.0, Eigen::Vector3d(1.0, 1.0, 0.0), Eigen::Vector3d(0.6, -0.3, 0.0));
+  const RigidTransform off =
+      motion(8.0, Eigen::Vector3d(1.0, 1.0, 0.0), Eigen::Vector3d(0.6, -0.3, 0.0));
   matching::OverlayScore plain_score, pulled_score;
   const RigidTransform surfaces_only = overlay.refine(off, &plain_score);
   const RigidTransform pulled = *overlay.refine(surfaces_only, &pulled_score, {}, true);
-  std::printf("[ polish   ] from 8 deg off: surfaces alone %.3f deg (score %.4f), atoms pulled too %.3f deg (score %.4f)\n",
-              matching::rotation_angle_degrees(surfaces_only.rotation), plain_score.score,
-              matching::rotation_angle_degrees(pulled.rotation), pulled_score.score);
+  std::printf(
+      "[ polish   ] from 8 deg off: surfaces alone %.3f deg (score %.4f), atoms pulled too %.3f "
+      "deg (score %.4f)\n",
+      matching::rotation_angle_degrees(surfaces_only.rotation), plain_score.score,
+      matching::rotation_angle_degrees(pulled.rotation), pulled_score.score);
   EXPECT_GE(pulled_score.score, plain_score.score - 1e-12);
   EXPECT_GT(pulled_score.atoms, 0.99);
   EXPECT_LT(matching::rotation_angle_degrees(pulled.rotation), 1.0);
@@ -291,9 +334,13 @@ TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
 
   // The O and N swapped: no same-element pair at the identity.
   const auto swapped = atoms({{"N", {3.0, 0.0, 0.0}}, {"O", {0.0, 1.5, 0.0}}});
-  EXPECT_LT(matching::SurfaceOverlay(shape, shape, options, molecule, swapped).score(RigidTransform{}).atoms, 0.01);
+  EXPECT_LT(matching::SurfaceOverlay(shape, shape, options, molecule, swapped)
+                .score(RigidTransform{})
+                .atoms,
+            0.01);
   // No atoms on one side, or weight 0: the surface score alone.
-  for (const auto& [probe_atoms, weight] : {std::pair<matching::AtomSample, double>{{}, 14.0}, {molecule, 0.0}}) {
+  for (const auto& [probe_atoms, weight] :
+       {std::pair<matching::AtomSample, double>{{}, 14.0}, {molecule, 0.0}}) {
     matching::OverlayOptions o = options;
     o.atom_weight = weight;
     const matching::SurfaceOverlay plain(shape, shape, o, molecule, probe_atoms);
@@ -307,7 +354,8 @@ TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
   EXPECT_THROW(matching::SurfaceOverlay(shape, shape, negative, molecule, molecule), OptionError);
   matching::AtomSample short_of_points = molecule;
   short_of_points.points.conservativeResize(3, 1);
-  EXPECT_THROW(matching::SurfaceOverlay(shape, shape, options, molecule, short_of_points), InputError);
+  EXPECT_THROW(matching::SurfaceOverlay(shape, shape, options, molecule, short_of_points),
+               InputError);
 }
 
 TEST(Overlay, RejectsBadOptionsAndEmptySamples) {
@@ -318,7 +366,8 @@ TEST(Overlay, RejectsBadOptionsAndEmptySamples) {
   EXPECT_THROW(matching::SurfaceOverlay(sample, sample, options), OptionError);
   EXPECT_THROW(matching::sample_surface(surface, -1.0), OptionError);
   const std::vector<bool> none(surface.n_vertices(), false);
-  EXPECT_THROW(matching::SurfaceOverlay(sample, matching::sample_surface(surface, 1.0, &none)), InputError);
+  EXPECT_THROW(matching::SurfaceOverlay(sample, matching::sample_surface(surface, 1.0, &none)),
+               InputError);
   const std::vector<bool> wrong_size(3, true);
   EXPECT_THROW(matching::sample_surface(surface, 1.0, &wrong_size), InputError);
 }

@@ -135,8 +135,8 @@ void expect_valid_patch(const Surface& surface, const Patch& patch, const PatchO
   std::set<std::array<int, 3>> oriented;
   for (Eigen::Index f = 0; f < surface_faces.rows(); ++f) {
     for (int k = 0; k < 3; ++k) {
-      oriented.insert({surface_faces(f, k), surface_faces(f, (k + 1) % 3),
-                       surface_faces(f, (k + 2) % 3)});
+      oriented.insert(
+          {surface_faces(f, k), surface_faces(f, (k + 1) % 3), surface_faces(f, (k + 2) % 3)});
     }
   }
   for (Eigen::Index f = 0; f < patch.faces.rows(); ++f) {
@@ -174,8 +174,7 @@ void expect_valid_patch(const Surface& surface, const Patch& patch, const PatchO
     walked += loop.size();
   }
   EXPECT_EQ(walked, border.size());
-  EXPECT_EQ(euler_characteristic(patch),
-            2 - 2 * patch.genus - static_cast<int>(loops.size()));
+  EXPECT_EQ(euler_characteristic(patch), 2 - 2 * patch.genus - static_cast<int>(loops.size()));
   // Connected through shared edges.
   std::map<std::pair<int, int>, std::vector<Eigen::Index>> faces_of_edge;
   for (Eigen::Index f = 0; f < patch.faces.rows(); ++f) {
@@ -221,17 +220,23 @@ TEST(PatchSteps, PreselectEuclideanKeepsTheBall) {
   const Surface g = grid();
   EXPECT_EQ(preselect_euclidean(g, gv(3, 3), 1.5), block());
   EXPECT_EQ(preselect_euclidean(g, gv(3, 3), 0.0), std::vector<int>{gv(3, 3)});
-  EXPECT_EQ(preselect_euclidean(g, gv(0, 0), 1.0), (std::vector<int>{gv(0, 0), gv(1, 0), gv(0, 1)}));
+  EXPECT_EQ(preselect_euclidean(g, gv(0, 0), 1.0),
+            (std::vector<int>{gv(0, 0), gv(1, 0), gv(0, 1)}));
 }
 
 TEST(PatchSteps, PatchDistancesRunDijkstraInsideThePreselection) {
   const Surface g = grid();
   const auto d = patch_distances(g, gv(3, 3), block(), 10.0);
   ASSERT_EQ(d.size(), 9U);
-  const std::map<int, double> expected = {
-      {gv(2, 2), std::sqrt(2.0)}, {gv(3, 2), 1.0}, {gv(4, 2), 2.0},
-      {gv(2, 3), 1.0},            {gv(3, 3), 0.0}, {gv(4, 3), 1.0},
-      {gv(2, 4), 2.0},            {gv(3, 4), 1.0}, {gv(4, 4), std::sqrt(2.0)}};
+  const std::map<int, double> expected = {{gv(2, 2), std::sqrt(2.0)},
+                                          {gv(3, 2), 1.0},
+                                          {gv(4, 2), 2.0},
+                                          {gv(2, 3), 1.0},
+                                          {gv(3, 3), 0.0},
+                                          {gv(4, 3), 1.0},
+                                          {gv(2, 4), 2.0},
+                                          {gv(3, 4), 1.0},
+                                          {gv(4, 4), std::sqrt(2.0)}};
   for (const auto& [v, dist] : d) EXPECT_DOUBLE_EQ(dist, expected.at(v)) << "vertex " << v;
   // Without (4, 3) and (3, 2) the corner (4, 2) cannot be reached inside the preselection.
   std::vector<int> cut = block();
@@ -251,7 +256,8 @@ TEST(PatchSteps, SelectWithinRadiusAddsOnlyMarginVerticesNextToTheCore) {
   // next to (5, 3); (4, 4) is beyond the margin.
   const std::vector<std::pair<int, double>> d = {
       {gv(3, 3), 0.0}, {gv(4, 3), 1.0}, {gv(5, 3), 1.04}, {gv(6, 3), 1.05}, {gv(4, 4), 1.2}};
-  EXPECT_EQ(select_within_radius(g, d, 1.0, 0.05), (std::vector<int>{gv(3, 3), gv(4, 3), gv(5, 3)}));
+  EXPECT_EQ(select_within_radius(g, d, 1.0, 0.05),
+            (std::vector<int>{gv(3, 3), gv(4, 3), gv(5, 3)}));
   EXPECT_EQ(select_within_radius(g, d, 1.0, 0.0), (std::vector<int>{gv(3, 3), gv(4, 3)}));
   EXPECT_EQ(select_within_radius(g, d, 1.0, 0.25),
             (std::vector<int>{gv(3, 3), gv(4, 3), gv(5, 3), gv(4, 4)}));
@@ -307,8 +313,8 @@ TEST(PatchSteps, BowTieKeepsTheLargerFanAndComponentKeepsTheCentre) {
   EXPECT_THROW(boundary_loops(g, both), TopologyError);
   // Both fans at (4, 4) have two triangles; the one with the lower face index stays.
   std::vector<int> expected = hexagon();
-  expected.insert(expected.end(), {upper_face(5, 4), lower_face(4, 5), lower_face(5, 5),
-                                   upper_face(5, 5)});
+  expected.insert(expected.end(),
+                  {upper_face(5, 4), lower_face(4, 5), lower_face(5, 5), upper_face(5, 5)});
   EXPECT_EQ(resolve_nonmanifold_vertices(g, both), sorted(expected));
   EXPECT_EQ(keep_component(g, sorted(expected), gv(3, 3)), sorted(hexagon()));
   EXPECT_TRUE(keep_component(g, sorted(hexagon()), gv(6, 6)).empty());
@@ -320,22 +326,24 @@ TEST(PatchSteps, BowTieKeepsTheLargerFanAndComponentKeepsTheCentre) {
   PatchSelection selection;
   selection.faces = both;
   for (const int f : both) {
-    for (const auto v : g.mesh().fv_range(TriMesh::FaceHandle(f))) selection.vertices.push_back(v.idx());
+    for (const auto v : g.mesh().fv_range(TriMesh::FaceHandle(f)))
+      selection.vertices.push_back(v.idx());
   }
   std::sort(selection.vertices.begin(), selection.vertices.end());
   selection.vertices.erase(std::unique(selection.vertices.begin(), selection.vertices.end()),
                            selection.vertices.end());
   const PatchSelection refined = refine_patch(g, selection, gv(3, 3));
   EXPECT_EQ(refined.faces, sorted(hexagon()));
-  EXPECT_EQ(refined.vertices, sorted({gv(2, 2), gv(3, 2), gv(4, 3), gv(4, 4), gv(3, 4),
-                                      gv(2, 3), gv(3, 3)}));
+  EXPECT_EQ(refined.vertices,
+            sorted({gv(2, 2), gv(3, 2), gv(4, 3), gv(4, 4), gv(3, 4), gv(2, 3), gv(3, 3)}));
 }
 
 TEST(PatchSteps, BoundaryLoopsWalkTheOuterBorderCounterClockwise) {
   const Surface g = grid();
   const BoundaryLoops hex = boundary_loops(g, sorted(hexagon()));
   // Seen from +z, counter-clockwise around (3, 3), starting at the lowest index.
-  EXPECT_EQ(hex.outer, (std::vector<int>{gv(2, 2), gv(3, 2), gv(4, 3), gv(4, 4), gv(3, 4), gv(2, 3)}));
+  EXPECT_EQ(hex.outer,
+            (std::vector<int>{gv(2, 2), gv(3, 2), gv(4, 3), gv(4, 4), gv(3, 4), gv(2, 3)}));
   EXPECT_TRUE(hex.holes.empty());
   // The 4 x 4 block of squares around (3, 3) without the hexagon: an annulus. Its outer
   // border (perimeter 16 A) beats the hexagonal hole (4 + 2 sqrt 2 A), which is walked with the
@@ -354,7 +362,8 @@ TEST(PatchSteps, BoundaryLoopsWalkTheOuterBorderCounterClockwise) {
   annulus = sorted(annulus);
   const BoundaryLoops loops = boundary_loops(g, annulus);
   ASSERT_EQ(loops.holes.size(), 1U);
-  EXPECT_EQ(loops.holes[0], (std::vector<int>{gv(2, 2), gv(2, 3), gv(3, 4), gv(4, 4), gv(4, 3), gv(3, 2)}));
+  EXPECT_EQ(loops.holes[0],
+            (std::vector<int>{gv(2, 2), gv(2, 3), gv(3, 4), gv(4, 4), gv(4, 3), gv(3, 2)}));
   EXPECT_EQ(loops.outer.size(), 16U);
   EXPECT_EQ(loops.outer.front(), gv(1, 1));
   EXPECT_EQ(loops.outer[1], gv(2, 1));  // counter-clockwise: along +x first
@@ -371,8 +380,8 @@ TEST(ExtractPatch, GridPatchIsTheExpectedHexagon) {
   expect_valid_patch(g, patch, options);
   // Distance <= 1.5: the centre, its four axis neighbours and the diagonal (2,2), (4,4); the
   // margin adds nothing (the next vertices are at 2). Faces with three of them: the hexagon.
-  EXPECT_EQ(patch.surface_vertex, sorted({gv(2, 2), gv(3, 2), gv(2, 3), gv(3, 3), gv(4, 3),
-                                          gv(3, 4), gv(4, 4)}));
+  EXPECT_EQ(patch.surface_vertex,
+            sorted({gv(2, 2), gv(3, 2), gv(2, 3), gv(3, 3), gv(4, 3), gv(3, 4), gv(4, 4)}));
   EXPECT_EQ(patch.faces.rows(), 6);
   EXPECT_EQ(patch.surface_vertex[static_cast<std::size_t>(patch.center)], gv(3, 3));
   EXPECT_EQ(patch.outer_boundary.size(), 6U);
@@ -407,8 +416,8 @@ TEST(ExtractPatch, SphereCapMatchesTheSphericalCap) {
           farthest_arc = std::max(farthest_arc, r * std::acos(std::clamp(cosine, -1.0, 1.0)));
         }
         std::cout << (dijkstra ? "dijkstra" : "fast marching") << ", sphere r 5, rho " << rho
-                  << ", centre " << centre << ": " << patch.surface_vertex.size()
-                  << " vertices, " << patch.faces.rows() << " faces, area / cap " << ratio
+                  << ", centre " << centre << ": " << patch.surface_vertex.size() << " vertices, "
+                  << patch.faces.rows() << " faces, area / cap " << ratio
                   << ", farthest great-circle distance " << farthest_arc << " A, outer border "
                   << patch.outer_boundary.size() << " vertices\n";
         lowest = std::min(lowest, ratio);
@@ -440,10 +449,10 @@ TEST(ExtractPatch, TorusPatchWrappingTheTubeIsAnAnnulus) {
     options.radius = 6.0;
     const Patch patch = extract_patch(torus, centre, options);
     expect_valid_patch(torus, patch, options);
-    std::cout << "torus (4, 1.5), centre " << centre << ", radius 6: "
-              << patch.surface_vertex.size() << " vertices, " << patch.holes.size()
-              << " holes, Euler characteristic " << euler_characteristic(patch) << ", genus "
-              << patch.genus << "\n";
+    std::cout << "torus (4, 1.5), centre " << centre
+              << ", radius 6: " << patch.surface_vertex.size() << " vertices, "
+              << patch.holes.size() << " holes, Euler characteristic "
+              << euler_characteristic(patch) << ", genus " << patch.genus << "\n";
     EXPECT_EQ(patch.genus, 0);
     EXPECT_EQ(euler_characteristic(patch), 1 - static_cast<int>(patch.holes.size()));
   }
@@ -455,8 +464,8 @@ TEST(ExtractPatch, TorusPatchWrappingTheTubeIsAnAnnulus) {
   options.radius = 12.0;
   const Patch big = extract_patch(torus, 0, options);
   expect_valid_patch(torus, big, options);
-  std::cout << "torus, centre 0, radius 12: genus " << big.genus << ", "
-            << big.holes.size() + 1 << " border loops\n";
+  std::cout << "torus, centre 0, radius 12: genus " << big.genus << ", " << big.holes.size() + 1
+            << " border loops\n";
   EXPECT_EQ(big.genus, 1);
 }
 
@@ -466,7 +475,8 @@ TEST(ExtractPatch, DeterministicAndThreadSafeWithTimings) {
   PatchOptions options;  // 5 A
   std::vector<Patch> sequential(static_cast<std::size_t>(n));
   const auto start = std::chrono::steady_clock::now();
-  for (int v = 0; v < n; ++v) sequential[static_cast<std::size_t>(v)] = extract_patch(sphere, v, options);
+  for (int v = 0; v < n; ++v)
+    sequential[static_cast<std::size_t>(v)] = extract_patch(sphere, v, options);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t vertices = 0;
@@ -484,8 +494,9 @@ TEST(ExtractPatch, DeterministicAndThreadSafeWithTimings) {
     });
   }
   for (auto& w : workers) w.join();
-  for (int v = 0; v < n; v += 37) expect_identical(sequential[static_cast<std::size_t>(v)],
-                                                   threaded[static_cast<std::size_t>(v)]);
+  for (int v = 0; v < n; v += 37)
+    expect_identical(sequential[static_cast<std::size_t>(v)],
+                     threaded[static_cast<std::size_t>(v)]);
   for (int v = 0; v < n; ++v) {
     ASSERT_EQ(sequential[static_cast<std::size_t>(v)].surface_vertex,
               threaded[static_cast<std::size_t>(v)].surface_vertex);

@@ -73,7 +73,7 @@ TEST(ElectrostaticPotential, TwoChargesSuperpose) {
 TEST(ElectrostaticPotential, DistancesBelowTheMinimumAreClamped) {
   const Molecule m = molecule_of({atom_at(Eigen::Vector3d::Zero(), 1.0)});
   Eigen::MatrixX3d points(3, 3);
-  points << 0, 0, 0,  0.2, 0, 0,  0, 0, 2.0;
+  points << 0, 0, 0, 0.2, 0, 0, 0, 0, 2.0;
   const Eigen::VectorXd esp = electrostatic_potential(points, m);
   EXPECT_DOUBLE_EQ(esp(0), 332.06 / 0.5);
   EXPECT_DOUBLE_EQ(esp(1), 332.06 / 0.5);
@@ -83,7 +83,7 @@ TEST(ElectrostaticPotential, DistancesBelowTheMinimumAreClamped) {
 TEST(LipophilicPotential, KernelsAtKnownDistances) {
   const Molecule m = molecule_of({atom_at(Eigen::Vector3d(1, 2, 3), 0.0, 1.0)});
   Eigen::MatrixX3d points(4, 3);
-  points << 1, 2, 3.5,  1, 0, 3,  4, 2, 3,  1, 2, 9;  // d = 0.5, 2, 3, 6
+  points << 1, 2, 3.5, 1, 0, 3, 4, 2, 3, 1, 2, 9;  // d = 0.5, 2, 3, 6
   const double d[] = {0.5, 2.0, 3.0, 6.0};
   const Eigen::VectorXd fauchere = lipophilic_potential(points, m);
   LpOptions dubost_options;
@@ -103,8 +103,8 @@ TEST(LipophilicPotential, KernelsAtKnownDistances) {
 }
 
 TEST(LipophilicPotential, IncrementsWeighTheKernel) {
-  const Molecule m = molecule_of({atom_at(Eigen::Vector3d(0, 0, 0), 0.0, 0.6),
-                                  atom_at(Eigen::Vector3d(2, 0, 0), 0.0, -0.3)});
+  const Molecule m = molecule_of(
+      {atom_at(Eigen::Vector3d(0, 0, 0), 0.0, 0.6), atom_at(Eigen::Vector3d(2, 0, 0), 0.0, -0.3)});
   Eigen::MatrixX3d points(1, 3);
   points << 0, 1, 0;
   EXPECT_NEAR(lipophilic_potential(points, m)(0),
@@ -115,7 +115,8 @@ TEST(Potentials, RigidMotionLeavesValuesUnchanged) {
   Molecule m = molecule_of({atom_at(Eigen::Vector3d(0, 0, 0), 0.5, 0.4),
                             atom_at(Eigen::Vector3d(1.5, 0.2, 0), -0.3, -0.8),
                             atom_at(Eigen::Vector3d(0.3, 1.4, 0.5), -0.2, 0.1)});
-  const Eigen::MatrixX3d points = test::icosphere(3.5, 5, Eigen::Vector3d(0.5, 0.5, 0.2)).positions();
+  const Eigen::MatrixX3d points =
+      test::icosphere(3.5, 5, Eigen::Vector3d(0.5, 0.5, 0.2)).positions();
   const Eigen::VectorXd esp = electrostatic_potential(points, m);
   const Eigen::VectorXd lp = lipophilic_potential(points, m);
 
@@ -136,7 +137,7 @@ TEST(Potentials, RigidMotionLeavesValuesUnchanged) {
 TEST(Potentials, RejectInvalidInput) {
   const Molecule good = molecule_of({atom_at(Eigen::Vector3d::Zero(), 1.0, 1.0)});
   Eigen::MatrixX3d points(2, 3);
-  points << 1, 0, 0,  0, 2, 0;
+  points << 1, 0, 0, 0, 2, 0;
   EXPECT_THROW(electrostatic_potential(points, molecule_of({})), InputError);
   EXPECT_THROW(lipophilic_potential(points, molecule_of({})), InputError);
 
@@ -179,12 +180,13 @@ TEST(Potentials, Timing) {
   const auto middle = std::chrono::steady_clock::now();
   const Eigen::VectorXd lp = lipophilic_potential(points, m);
   const auto end = std::chrono::steady_clock::now();
-  std::cout << "ESP " << points.rows() << " points x " << m.atoms.size() << " atoms: "
-            << std::chrono::duration<double>(middle - start).count() << " s; LP "
+  std::cout << "ESP " << points.rows() << " points x " << m.atoms.size()
+            << " atoms: " << std::chrono::duration<double>(middle - start).count() << " s; LP "
             << std::chrono::duration<double>(end - middle).count() << " s\n";
   // Spot check one point against a serial sum.
   double expected = 0.0;
-  for (const Atom& a : m.atoms) expected += 332.06 * a.charge / (points.row(7) - a.position.transpose()).norm();
+  for (const Atom& a : m.atoms)
+    expected += 332.06 * a.charge / (points.row(7) - a.position.transpose()).norm();
   EXPECT_NEAR(esp(7), expected, 1e-9 * std::abs(expected) + 1e-12);
   EXPECT_EQ(lp.size(), points.rows());
 }

@@ -1,7 +1,7 @@
 // Residue charges for proteins read from PDB files: formal charges of ionisable groups at pH 7.
+#include "surfcomp/core/protein_charges.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
-#include "surfcomp/core/protein_charges.hpp"
 
 #include "test_data.hpp"
 
@@ -16,13 +16,17 @@ namespace surfcomp {
 namespace {
 
 TEST(ProteinCharges, IonisableGroupsCarryTheirFormalCharge) {
-  EXPECT_DOUBLE_EQ(*protein_atom_formal_charge("ASP", "OD1") + *protein_atom_formal_charge("ASP", "OD2"), -1.0);
-  EXPECT_DOUBLE_EQ(*protein_atom_formal_charge("GLU", " OE1") + *protein_atom_formal_charge("GLU", "OE2"), -1.0);
+  EXPECT_DOUBLE_EQ(
+      *protein_atom_formal_charge("ASP", "OD1") + *protein_atom_formal_charge("ASP", "OD2"), -1.0);
+  EXPECT_DOUBLE_EQ(
+      *protein_atom_formal_charge("GLU", " OE1") + *protein_atom_formal_charge("GLU", "OE2"), -1.0);
   EXPECT_DOUBLE_EQ(*protein_atom_formal_charge("LYS", "NZ"), 1.0);
   EXPECT_NEAR(*protein_atom_formal_charge("ARG", "NE") + *protein_atom_formal_charge("ARG", "NH1") +
-                  *protein_atom_formal_charge("ARG", "NH2"), 1.0, 1e-15);
+                  *protein_atom_formal_charge("ARG", "NH2"),
+              1.0, 1e-15);
   EXPECT_DOUBLE_EQ(*protein_atom_formal_charge("HIS", "NE2"), 0.0);
-  EXPECT_DOUBLE_EQ(*protein_atom_formal_charge("HIP", "ND1") + *protein_atom_formal_charge("HIP", "NE2"), 1.0);
+  EXPECT_DOUBLE_EQ(
+      *protein_atom_formal_charge("HIP", "ND1") + *protein_atom_formal_charge("HIP", "NE2"), 1.0);
   EXPECT_DOUBLE_EQ(*protein_atom_formal_charge("ALA", "CB"), 0.0);
   EXPECT_FALSE(protein_atom_formal_charge("0DB", "C1").has_value());
   EXPECT_EQ(*usual_ionic_charge("ZN"), 2);

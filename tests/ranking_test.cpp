@@ -1,7 +1,7 @@
 // Consensus ranking (seed 3.10, eq. 3-6 to 3-9) on synthetic scores whose consensus values are
 // computed by hand in the comments.
-#include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/ranking.hpp"
+#include "surfcomp/core/error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -76,7 +76,8 @@ TEST(Ranking, RankByNumberAveragesNormalisedScores) {
 TEST(Ranking, RankByVoteCountsTopFractions) {
   RankingOptions options;
   options.scheme = ConsensusScheme::rank_by_vote;
-  options.vote_top_fraction = 0.25;  // k = 1: best RMSD c2, most points c1, best R_chem c1 and c3 (tie)
+  options.vote_top_fraction =
+      0.25;  // k = 1: best RMSD c2, most points c1, best R_chem c1 and c3 (tie)
   auto ranking = rank_alignments(kClusters, options);
   EXPECT_EQ(order(ranking), (std::vector<int>{1, 2, 3, 0}));
   EXPECT_EQ(ranking[0].consensus, 2.0);

@@ -1,7 +1,7 @@
 // Least-squares rigid fits (seed eq. 3-5): exact recovery of a known motion, the RMSD of a noisy
 // fit against its analytic expectation, and proper rotations for mirror-image targets.
-#include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/rigid_fit.hpp"
+#include "surfcomp/core/error.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -15,7 +15,9 @@ namespace {
 
 Eigen::Matrix3d random_rotation(std::mt19937& rng) {
   std::normal_distribution<double> gauss;
-  return Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
+  return Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng))
+      .normalized()
+      .toRotationMatrix();
 }
 
 Eigen::Matrix3Xd random_points(std::mt19937& rng, int n, double spread) {
@@ -35,14 +37,17 @@ TEST(RigidFit, RecoversAKnownMotionExactly) {
     const Eigen::Matrix3Xd from = random_points(rng, 5 + 50 * trial, 10.0);
     const Eigen::Matrix3Xd to = (rotation * from).colwise() + translation;
     const RigidFit fit = fit_rigid(from, to);
-    worst_rotation = std::max(worst_rotation, (fit.transform.rotation - rotation).cwiseAbs().maxCoeff());
-    worst_translation = std::max(worst_translation, (fit.transform.translation - translation).cwiseAbs().maxCoeff());
+    worst_rotation =
+        std::max(worst_rotation, (fit.transform.rotation - rotation).cwiseAbs().maxCoeff());
+    worst_translation = std::max(worst_translation,
+                                 (fit.transform.translation - translation).cwiseAbs().maxCoeff());
     worst_rmsd = std::max(worst_rmsd, fit.rmsd);
     EXPECT_EQ(fit.n_points, static_cast<std::size_t>(from.cols()));
     EXPECT_NEAR(fit.transform.rotation.determinant(), 1.0, 1e-12);
     const Eigen::Matrix4d m = fit.transform.matrix();
     EXPECT_TRUE(m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1)));
-    EXPECT_LT((m.topLeftCorner<3, 3>() * from.col(0) + m.topRightCorner<3, 1>() - to.col(0)).norm(), 1e-10);
+    EXPECT_LT((m.topLeftCorner<3, 3>() * from.col(0) + m.topRightCorner<3, 1>() - to.col(0)).norm(),
+              1e-10);
   }
   std::printf("[ exact    ] worst |dR| %.2e, |dt| %.2e A, RMSD %.2e A\n", worst_rotation,
               worst_translation, worst_rmsd);
@@ -66,15 +71,18 @@ TEST(RigidFit, NoisyRmsdMatchesTheLeastSquaresExpectation) {
     motion.translation = 5.0 * Eigen::Vector3d::Random();
     const Eigen::Matrix3Xd from = random_points(rng, n, 6.0);
     Eigen::Matrix3Xd to = motion.apply(from);
-    for (int i = 0; i < n; ++i) to.col(i) += sigma * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+    for (int i = 0; i < n; ++i)
+      to.col(i) += sigma * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
     const RigidFit fit = fit_rigid(from, to);
     fitted += fit.rmsd * fit.rmsd / trials;
     true_motion += std::pow(rmsd_under(motion, from, to), 2) / trials;
     EXPECT_LE(fit.rmsd, rmsd_under(motion, from, to) + 1e-12) << "the fit is not least squares";
   }
   const double expected = sigma * sigma * (3.0 * n - 6.0) / n;
-  std::printf("[ noise    ] seed 77: mean RMSD^2 %.5f (expected %.5f), under the true motion %.5f "
-              "(expected %.5f)\n", fitted, expected, true_motion, 3.0 * sigma * sigma);
+  std::printf(
+      "[ noise    ] seed 77: mean RMSD^2 %.5f (expected %.5f), under the true motion %.5f "
+      "(expected %.5f)\n",
+      fitted, expected, true_motion, 3.0 * sigma * sigma);
   EXPECT_NEAR(fitted / expected, 1.0, 0.02);
   EXPECT_NEAR(true_motion / (3.0 * sigma * sigma), 1.0, 0.02);
 }
@@ -96,16 +104,21 @@ TEST(RigidFit, MirrorImagesGiveProperRotations) {
   const Eigen::Matrix3Xd solid = random_points(rng, 40, 8.0);
   const RigidFit fit = fit_rigid(solid, mirror * solid);
   EXPECT_NEAR(fit.transform.rotation.determinant(), 1.0, 1e-12);
-  EXPECT_LT((fit.transform.rotation.transpose() * fit.transform.rotation - Eigen::Matrix3d::Identity())
-                .cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT(
+      (fit.transform.rotation.transpose() * fit.transform.rotation - Eigen::Matrix3d::Identity())
+          .cwiseAbs()
+          .maxCoeff(),
+      1e-12);
   EXPECT_GT(fit.rmsd, 1.0);
   EXPECT_NEAR(rmsd_under(fit.transform, solid, mirror * solid), fit.rmsd, 1e-12);
   double lowest_neighbour = 1e300;
   for (int axis = 0; axis < 3; ++axis) {
     for (double angle : {-1e-3, 1e-3}) {
       RigidTransform moved = fit.transform;
-      moved.rotation = Eigen::AngleAxisd(angle, Eigen::Vector3d::Unit(axis)).toRotationMatrix() * moved.rotation;
-      moved.translation = (mirror * solid).rowwise().mean() - moved.rotation * solid.rowwise().mean();
+      moved.rotation =
+          Eigen::AngleAxisd(angle, Eigen::Vector3d::Unit(axis)).toRotationMatrix() * moved.rotation;
+      moved.translation =
+          (mirror * solid).rowwise().mean() - moved.rotation * solid.rowwise().mean();
       lowest_neighbour = std::min(lowest_neighbour, rmsd_under(moved, solid, mirror * solid));
     }
   }
@@ -117,7 +130,8 @@ TEST(RigidFit, MirrorImagesGiveProperRotations) {
 TEST(RigidFit, RotationAngleIsAccurateForSmallAndLargeAngles) {
   for (double degrees : {1e-7, 0.5, 90.0, 179.0, 180.0}) {
     const Eigen::Matrix3d r =
-        Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+        Eigen::AngleAxisd(degrees * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized())
+            .toRotationMatrix();
     EXPECT_NEAR(rotation_angle_degrees(r), degrees, 1e-9 * std::max(1.0, degrees));
   }
 }
@@ -129,7 +143,8 @@ TEST(RigidFit, BadInputsAreRejected) {
   Eigen::Matrix3Xd bad = three;
   bad(1, 1) = std::nan("");
   EXPECT_THROW(fit_rigid(bad, three), InputError);
-  EXPECT_THROW(rmsd_under(RigidTransform{}, Eigen::Matrix3Xd(3, 0), Eigen::Matrix3Xd(3, 0)), InputError);
+  EXPECT_THROW(rmsd_under(RigidTransform{}, Eigen::Matrix3Xd(3, 0), Eigen::Matrix3Xd(3, 0)),
+               InputError);
 }
 
 }  // namespace

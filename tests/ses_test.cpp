@@ -1,9 +1,9 @@
+#include "surfcomp/mesh/ses.hpp"
+#include "surface_components.hpp"
 #include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/mesh/remesh.hpp"
-#include "surfcomp/mesh/ses.hpp"
 #include "surfcomp/mesh/surface.hpp"
-#include "surface_components.hpp"
 #include "test_data.hpp"
 
 #include <gtest/gtest.h>
@@ -153,7 +153,8 @@ TEST(Ses, ZeroProbeGivesTheVanDerWaalsSurface) {
   const double r1 = 1.7, r2 = 1.5, d = 2.5;
   const double x1 = (d * d + r1 * r1 - r2 * r2) / (2.0 * d);
   const double x2 = d - x1;
-  const double area = 2.0 * M_PI * r1 * r1 * (1.0 + x1 / r1) + 2.0 * M_PI * r2 * r2 * (1.0 + x2 / r2);
+  const double area =
+      2.0 * M_PI * r1 * r1 * (1.0 + x1 / r1) + 2.0 * M_PI * r2 * r2 * (1.0 + x2 / r2);
   SesOptions options;
   options.probe_radius = 0.0;
   const Atoms atoms = make_atoms({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(d, 0, 0)}, {r1, r2});
@@ -181,8 +182,8 @@ TEST(Sas, TwoAtomsAreTwoSphereCaps) {
   // intersection plane at x1 = (d^2 + R1^2 - R2^2) / (2 d) from centre 1.
   const double big1 = 1.7 + 1.4, big2 = 1.5 + 1.4, d = 2.5;
   const double x1 = (d * d + big1 * big1 - big2 * big2) / (2.0 * d);
-  const double area =
-      2.0 * M_PI * big1 * big1 * (1.0 + x1 / big1) + 2.0 * M_PI * big2 * big2 * (1.0 + (d - x1) / big2);
+  const double area = 2.0 * M_PI * big1 * big1 * (1.0 + x1 / big1) +
+                      2.0 * M_PI * big2 * big2 * (1.0 + (d - x1) / big2);
   const Atoms atoms = make_atoms({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, d, 0)}, {1.7, 1.5});
   const SurfaceMeasures m = measure_surface(build_sas(atoms.centers, atoms.radii));
   std::cout << "SAS two atoms: area " << m.area << " (exact " << area << ")\n";
@@ -242,8 +243,8 @@ TEST(Sas, CreasedClusterMatchesShrakeRupley) {
   for (Eigen::Index v = 0; v < p.rows(); ++v) {
     double depth = std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < atoms.centers.rows(); ++i) {
-      depth = std::min(depth, (p.row(v) - atoms.centers.row(i)).norm() - atoms.radii(i) -
-                                  options.probe_radius);
+      depth = std::min(
+          depth, (p.row(v) - atoms.centers.row(i)).norm() - atoms.radii(i) - options.probe_radius);
     }
     ASSERT_GT(depth, -1e-9) << "vertex " << v;
     ASSERT_LT(depth, 0.05) << "vertex " << v;
@@ -284,8 +285,7 @@ TwoAtomSes two_atom_ses(double r1, double r2, double d, double p) {
   const double phi2 = std::atan2(-out.h, d - x0);
   const double cap1 = 2.0 * M_PI * r1 * r1 * (1.0 + x0 / big1);
   const double cap2 = 2.0 * M_PI * r2 * r2 * (1.0 + (d - x0) / big2);
-  const double torus =
-      2.0 * M_PI * p * (out.h * (phi2 - phi1) - p * ((d - x0) / big2 + x0 / big1));
+  const double torus = 2.0 * M_PI * p * (out.h * (phi2 - phi1) - p * ((d - x0) / big2 + x0 / big1));
   out.area = cap1 + cap2 + torus;
   const Eigen::Vector2d t1 = r1 / big1 * Eigen::Vector2d(x0, out.h);
   const Eigen::Vector2d t2 = Eigen::Vector2d(d, 0) + r2 / big2 * Eigen::Vector2d(x0 - d, out.h);
@@ -335,8 +335,8 @@ TEST(Ses, RigidMotionKeepsAreaAndVolume) {
   }
   const SurfaceMeasures a = measure_surface(build_ses(atoms.centers, atoms.radii));
   const SurfaceMeasures b = measure_surface(build_ses(moved.centers, moved.radii));
-  std::cout << "cresol (seed " << seed << "): area " << a.area << " -> " << b.area
-            << ", volume " << a.volume << " -> " << b.volume << "\n";
+  std::cout << "cresol (seed " << seed << "): area " << a.area << " -> " << b.area << ", volume "
+            << a.volume << " -> " << b.volume << "\n";
   EXPECT_NEAR(b.area, a.area, 0.005 * a.area);
   EXPECT_NEAR(b.volume, a.volume, 0.005 * a.volume);
 }
@@ -507,11 +507,10 @@ TEST(Ses, ThermolysinLigand) {
 }
 
 TEST(Ses, AllThermolysinStructuresGiveClosedSurfaces) {
-  for (const std::string name : {"ligands-common-frame/1THL_ligand.pdb",
-                                 "ligands-common-frame/1TLP_ligand.pdb",
-                                 "ligands-common-frame/1TMN_ligand.pdb",
-                                 "ligands-common-frame/3TMN_ligand.pdb",
-                                 "ligands-common-frame/4TMN_ligand.pdb", "1THL.pdb"}) {
+  for (const std::string name :
+       {"ligands-common-frame/1THL_ligand.pdb", "ligands-common-frame/1TLP_ligand.pdb",
+        "ligands-common-frame/1TMN_ligand.pdb", "ligands-common-frame/3TMN_ligand.pdb",
+        "ligands-common-frame/4TMN_ligand.pdb", "1THL.pdb"}) {
     SURFCOMP_SHARED_OR_SKIP(path, "thermolysin/" + name);
     const Atoms atoms = read_pdb_heavy_atoms(path);
     const auto start = std::chrono::steady_clock::now();

@@ -48,13 +48,16 @@ double smooth_field(double u, double v) {
 /// from the given seed.
 Eigen::VectorXd random_field(const Eigen::MatrixX2d& uv, unsigned seed) {
   std::mt19937 generator(seed);
-  std::uniform_real_distribution<double> angle(0.0, 2.0 * kPi), wave(4.0, 10.0), amplitude(0.5, 1.0);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * kPi), wave(4.0, 10.0),
+      amplitude(0.5, 1.0);
   Eigen::VectorXd values = Eigen::VectorXd::Zero(uv.rows());
   for (int m = 0; m < 8; ++m) {
     const double direction = angle(generator), k = wave(generator), phase = angle(generator),
                  a = amplitude(generator);
     for (Eigen::Index v = 0; v < uv.rows(); ++v) {
-      values(v) += a * std::cos(k * (std::cos(direction) * uv(v, 0) + std::sin(direction) * uv(v, 1)) + phase);
+      values(v) +=
+          a *
+          std::cos(k * (std::cos(direction) * uv(v, 0) + std::sin(direction) * uv(v, 1)) + phase);
     }
   }
   return values;
@@ -68,7 +71,8 @@ Eigen::VectorXd field_values(const Eigen::MatrixX2d& uv, double (*f)(double, dou
 
 int valid_count(const ShapeImage& image, int ring) {
   int count = 0;
-  for (int j = 0; j < image.angular_samples; ++j) count += image.valid[static_cast<std::size_t>(ring * image.angular_samples + j)];
+  for (int j = 0; j < image.angular_samples; ++j)
+    count += image.valid[static_cast<std::size_t>(ring * image.angular_samples + j)];
   return count;
 }
 
@@ -163,7 +167,8 @@ TEST(ShapeImage, ReproducesLinearFunctionsExactly) {
   const DiskPatch patch = unit_disk_patch(8);
   auto linear = [](double u, double v) { return 0.3 + 1.7 * u - 2.2 * v; };
   Eigen::VectorXd values(patch.uv.rows());
-  for (Eigen::Index v = 0; v < values.size(); ++v) values(v) = linear(patch.uv(v, 0), patch.uv(v, 1));
+  for (Eigen::Index v = 0; v < values.size(); ++v)
+    values(v) = linear(patch.uv(v, 0), patch.uv(v, 1));
   const ShapeImage image = harmonic_shape_image(patch.uv, patch.faces, values);
   ASSERT_EQ(image.values.size(), 2880);
   // The disk polygon's innermost boundary point is at cos(pi / 48) = 0.9979 > 15.5 / 16.
@@ -176,7 +181,8 @@ TEST(ShapeImage, ReproducesLinearFunctionsExactly) {
     EXPECT_GE(image.barycentric.row(i).minCoeff(), -1e-12);
     // The barycentric coordinates reproduce the grid point itself from the face's corners.
     Eigen::Vector2d back = Eigen::Vector2d::Zero();
-    for (int c = 0; c < 3; ++c) back += image.barycentric(i, c) * patch.uv.row(patch.faces(image.face(i), c)).transpose();
+    for (int c = 0; c < 3; ++c)
+      back += image.barycentric(i, c) * patch.uv.row(patch.faces(image.face(i), c)).transpose();
     EXPECT_LE((back - q).norm(), 1e-14);
   }
   EXPECT_LE(worst, 1e-12);
@@ -192,20 +198,25 @@ TEST(ShapeImage, LocatesTheLowestIndexTriangle) {
   const DiskPatch patch = unit_disk_patch(8);
   for (const double theta : {0.0, 13.0}) {
     const Eigen::MatrixX2d uv = rotated(patch.uv, theta);
-    const ShapeImage image = harmonic_shape_image(uv, patch.faces, Eigen::VectorXd::Zero(uv.rows()));
+    const ShapeImage image =
+        harmonic_shape_image(uv, patch.faces, Eigen::VectorXd::Zero(uv.rows()));
     int not_candidate = 0, on_edge = 0, shared = 0;
     for (int i = 0; i < 2880; ++i) {
       const Eigen::Vector2d q = image_grid_point({}, i);
       std::vector<int> candidates;
       for (int f = 0; f < patch.faces.rows(); ++f) {
-        const Eigen::Vector2d p0 = uv.row(patch.faces(f, 0)).transpose(), p1 = uv.row(patch.faces(f, 1)).transpose(),
+        const Eigen::Vector2d p0 = uv.row(patch.faces(f, 0)).transpose(),
+                              p1 = uv.row(patch.faces(f, 1)).transpose(),
                               p2 = uv.row(patch.faces(f, 2)).transpose();
-        auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
+        auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+          return a.x() * b.y() - a.y() * b.x();
+        };
         const double area = cross(p1 - p0, p2 - p0);
         const double l0 = cross(p1 - q, p2 - q) / area, l1 = cross(p2 - q, p0 - q) / area;
         if (std::min({l0, l1, 1.0 - l0 - l1}) >= -1e-12) candidates.push_back(f);
       }
-      if (std::find(candidates.begin(), candidates.end(), image.face(i)) == candidates.end()) ++not_candidate;
+      if (std::find(candidates.begin(), candidates.end(), image.face(i)) == candidates.end())
+        ++not_candidate;
       shared += candidates.size() > 1 ? 1 : 0;
       if (theta == 0.0 && i % 180 == 0) {
         ++on_edge;
@@ -214,8 +225,8 @@ TEST(ShapeImage, LocatesTheLowestIndexTriangle) {
       }
     }
     EXPECT_EQ(not_candidate, 0) << "rotation " << theta;
-    std::cout << "rotation " << theta << ": " << shared << " grid points on shared edges, " << on_edge
-              << " checked for the lowest index\n";
+    std::cout << "rotation " << theta << ": " << shared << " grid points on shared edges, "
+              << on_edge << " checked for the lowest index\n";
   }
 }
 
@@ -224,7 +235,8 @@ TEST(ShapeImage, GridPointsOutsideThePatchAreInvalid) {
   // rings 0-7 (radii up to 7.5 / 16 = 0.469) lie inside, rings 8-15 (from 0.531) outside.
   const DiskPatch patch = unit_disk_patch(8);
   const Eigen::MatrixX2d half = 0.5 * patch.uv;
-  const ShapeImage image = harmonic_shape_image(half, patch.faces, Eigen::VectorXd::Ones(half.rows()));
+  const ShapeImage image =
+      harmonic_shape_image(half, patch.faces, Eigen::VectorXd::Ones(half.rows()));
   for (int r = 0; r < 16; ++r) {
     EXPECT_EQ(valid_count(image, r), r < 8 ? 180 : 0) << "ring " << r;
   }
@@ -253,8 +265,10 @@ TEST(ShapeImage, HolesAreInvalid) {
   }
   ASSERT_EQ(patch.faces.rows() - static_cast<Eigen::Index>(kept.size()), 18 + 24);
   Eigen::MatrixX3i faces(static_cast<Eigen::Index>(kept.size()), 3);
-  for (std::size_t i = 0; i < kept.size(); ++i) faces.row(static_cast<Eigen::Index>(i)) = patch.faces.row(kept[i]);
-  const ShapeImage image = harmonic_shape_image(patch.uv, faces, Eigen::VectorXd::Ones(patch.uv.rows()));
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    faces.row(static_cast<Eigen::Index>(i)) = patch.faces.row(kept[i]);
+  const ShapeImage image =
+      harmonic_shape_image(patch.uv, faces, Eigen::VectorXd::Ones(patch.uv.rows()));
   for (int r = 0; r < 16; ++r) {
     EXPECT_EQ(valid_count(image, r), r == 6 || r == 7 ? 0 : 180) << "ring " << r;
   }
@@ -269,20 +283,26 @@ TEST(ShapeImage, GridPointsMapBackToThePlanarPatch) {
   const Eigen::Vector3d translation(3.0, -1.5, 12.25);
   Eigen::MatrixX3d positions(patch.uv.rows(), 3);
   for (Eigen::Index v = 0; v < patch.uv.rows(); ++v) {
-    positions.row(v) = (rotation * Eigen::Vector3d(2.5 * patch.uv(v, 0), 2.5 * patch.uv(v, 1), 0.0) + translation).transpose();
+    positions.row(v) =
+        (rotation * Eigen::Vector3d(2.5 * patch.uv(v, 0), 2.5 * patch.uv(v, 1), 0.0) + translation)
+            .transpose();
   }
-  const ShapeImage image = harmonic_shape_image(patch.uv, patch.faces, Eigen::VectorXd::Zero(patch.uv.rows()));
+  const ShapeImage image =
+      harmonic_shape_image(patch.uv, patch.faces, Eigen::VectorXd::Zero(patch.uv.rows()));
   double worst = 0.0;
   for (int i = 0; i < 2880; ++i) {
     ASSERT_TRUE(image.valid[static_cast<std::size_t>(i)]);
     const Eigen::Vector2d q = image_grid_point({}, i);
-    const Eigen::Vector3d expected = rotation * Eigen::Vector3d(2.5 * q.x(), 2.5 * q.y(), 0.0) + translation;
-    worst = std::max(worst, (image_point_to_surface(image, i, positions, patch.faces) - expected).norm());
+    const Eigen::Vector3d expected =
+        rotation * Eigen::Vector3d(2.5 * q.x(), 2.5 * q.y(), 0.0) + translation;
+    worst = std::max(worst,
+                     (image_point_to_surface(image, i, positions, patch.faces) - expected).norm());
   }
   EXPECT_LE(worst, 1e-12);
 
   // An invalid grid point and a grid index outside the grid are errors.
-  const ShapeImage small = harmonic_shape_image(0.5 * patch.uv, patch.faces, Eigen::VectorXd::Zero(patch.uv.rows()));
+  const ShapeImage small =
+      harmonic_shape_image(0.5 * patch.uv, patch.faces, Eigen::VectorXd::Zero(patch.uv.rows()));
   EXPECT_THROW(image_point_to_surface(small, 15 * 180, positions, patch.faces), InputError);
   EXPECT_THROW(image_point_to_surface(small, 2880, positions, patch.faces), InputError);
 }
@@ -301,7 +321,8 @@ TEST(ShapeImage, RotationAngleIsRecovered) {
     EXPECT_DOUBLE_EQ(match.angle_degrees, theta);
     EXPECT_GE(match.correlation, 0.99);
     EXPECT_EQ(match.overlap, 2880);
-    std::cout << "theta " << theta << ": angle " << match.angle_degrees << ", R = " << match.correlation << "\n";
+    std::cout << "theta " << theta << ": angle " << match.angle_degrees
+              << ", R = " << match.correlation << "\n";
   }
   double lowest = 1.0;
   for (const double theta : {1.0, 7.3, 45.9, 123.4, 271.0, 359.5}) {
@@ -311,7 +332,8 @@ TEST(ShapeImage, RotationAngleIsRecovered) {
     EXPECT_LE(error, 1.0 + 1e-9) << "theta " << theta << " found " << match.angle_degrees;
     EXPECT_GE(match.correlation, 0.98);
     lowest = std::min(lowest, match.correlation);
-    std::cout << "theta " << theta << ": angle " << match.angle_degrees << ", R = " << match.correlation << "\n";
+    std::cout << "theta " << theta << ": angle " << match.angle_degrees
+              << ", R = " << match.correlation << "\n";
   }
   std::cout << "lowest R at angles off the grid: " << lowest << "\n";
 }
@@ -334,8 +356,10 @@ TEST(ShapeImage, UnrelatedFieldsCorrelateLess) {
   const DiskPatch patch = unit_disk_patch(12);
   double highest = -1.0, total = 0.0, total_unrotated = 0.0;
   for (unsigned seed = 101; seed <= 110; ++seed) {
-    const PreparedImage a(harmonic_shape_image(patch.uv, patch.faces, random_field(patch.uv, seed)));
-    const PreparedImage b(harmonic_shape_image(patch.uv, patch.faces, random_field(patch.uv, seed + 100)));
+    const PreparedImage a(
+        harmonic_shape_image(patch.uv, patch.faces, random_field(patch.uv, seed)));
+    const PreparedImage b(
+        harmonic_shape_image(patch.uv, patch.faces, random_field(patch.uv, seed + 100)));
     const double r = compare_images(a, b).correlation;
     highest = std::max(highest, r);
     total += r;
@@ -361,12 +385,14 @@ TEST(ShapeImage, FastComparisonEqualsDirectEvaluation) {
     for (int trial = 0; trial < 4; ++trial) {
       const ShapeImage a = random_image(c.rings, c.n, c.density, generator);
       const ShapeImage b = random_image(c.rings, c.n, c.density, generator);
-      const RotationProfile fast = rotation_profile(PreparedImage(a), PreparedImage(b), c.min_overlap);
+      const RotationProfile fast =
+          rotation_profile(PreparedImage(a), PreparedImage(b), c.min_overlap);
       const RotationProfile direct = naive_profile(a, b, c.min_overlap);
       ASSERT_EQ(fast.correlation.size(), c.n);
       for (int s = 0; s < c.n; ++s) {
         EXPECT_EQ(fast.overlap(s), direct.overlap(s)) << c.rings << "x" << c.n << " shift " << s;
-        EXPECT_NEAR(fast.correlation(s), direct.correlation(s), 1e-12) << c.rings << "x" << c.n << " shift " << s;
+        EXPECT_NEAR(fast.correlation(s), direct.correlation(s), 1e-12)
+            << c.rings << "x" << c.n << " shift " << s;
       }
       Eigen::Index best = 0;
       direct.correlation.maxCoeff(&best);
@@ -423,11 +449,13 @@ TEST(ShapeImage, TiesAndDegenerateImages) {
   for (Eigen::Index v = 0; v < radial.size(); ++v) radial(v) = patch.uv.row(v).squaredNorm();
   const ShapeImage symmetric = harmonic_shape_image(patch.uv, patch.faces, radial);
   // A constant image has no variance: correlation 0 at every rotation.
-  const ShapeImage constant = harmonic_shape_image(patch.uv, patch.faces, Eigen::VectorXd::Constant(patch.uv.rows(), 0.3));
+  const ShapeImage constant =
+      harmonic_shape_image(patch.uv, patch.faces, Eigen::VectorXd::Constant(patch.uv.rows(), 0.3));
   const RotationProfile flat = rotation_profile(PreparedImage(constant), PreparedImage(symmetric));
   EXPECT_EQ(flat.correlation.cwiseAbs().maxCoeff(), 0.0);
   // Images that never overlap in min_overlap points: correlation -1, shift 0.
-  const ShapeImage inner = harmonic_shape_image(0.2 * patch.uv, patch.faces, radial);  // rings 0-2 valid
+  const ShapeImage inner =
+      harmonic_shape_image(0.2 * patch.uv, patch.faces, radial);  // rings 0-2 valid
   const ShapeImage outer = harmonic_shape_image(patch.uv, patch.faces, radial);
   const ImageMatch none = compare_images(inner, outer, 3 * 180 + 1);
   EXPECT_EQ(none.correlation, -1.0);
@@ -442,7 +470,9 @@ TEST(ShapeImage, IsDeterministic) {
   const ShapeImage first = harmonic_shape_image(uv, patch.faces, values);
   const ShapeImage second = harmonic_shape_image(uv, patch.faces, values);
   EXPECT_EQ(std::memcmp(first.values.data(), second.values.data(), sizeof(double) * 2880), 0);
-  EXPECT_EQ(std::memcmp(first.barycentric.data(), second.barycentric.data(), sizeof(double) * 3 * 2880), 0);
+  EXPECT_EQ(
+      std::memcmp(first.barycentric.data(), second.barycentric.data(), sizeof(double) * 3 * 2880),
+      0);
   EXPECT_EQ(first.face, second.face);
   EXPECT_EQ(first.valid, second.valid);
 }
@@ -457,7 +487,8 @@ TEST(ShapeImage, RejectsBadInput) {
   Eigen::VectorXd nan_values = values;
   nan_values(4) = std::nan("");
   EXPECT_THROW(harmonic_shape_image(patch.uv, patch.faces, nan_values), InputError);
-  EXPECT_THROW(harmonic_shape_image(patch.uv, patch.faces, values, ImageOptions{16, 0}), OptionError);
+  EXPECT_THROW(harmonic_shape_image(patch.uv, patch.faces, values, ImageOptions{16, 0}),
+               OptionError);
   const ShapeImage a = harmonic_shape_image(patch.uv, patch.faces, values);
   const ShapeImage b = harmonic_shape_image(patch.uv, patch.faces, values, ImageOptions{16, 90});
   EXPECT_THROW(compare_images(a, b), InputError);

@@ -69,11 +69,13 @@ Site build_site(const std::filesystem::path& pdb, const std::string& ligand_name
   start = Clock::now();
   // As `surfcomp match --site-ligand` builds it: images only at the critical points in the
   // site, the others kept as skipped, so that the match overlays the pocket linings.
-  site.descriptors = harmonic::describe_surface(std::move(surface), options, [&](const mesh::CriticalPoint& point) {
-    return std::any_of(site.spheres.begin(), site.spheres.end(), [&](const matching::SiteSphere& sphere) {
-      return (point.position - sphere.center).norm() <= sphere.radius;
-    });
-  });
+  site.descriptors = harmonic::describe_surface(
+      std::move(surface), options, [&](const mesh::CriticalPoint& point) {
+        return std::any_of(site.spheres.begin(), site.spheres.end(),
+                           [&](const matching::SiteSphere& sphere) {
+                             return (point.position - sphere.center).norm() <= sphere.radius;
+                           });
+      });
   site.describe_ms = ms_since(start);
   return site;
 }
@@ -81,15 +83,16 @@ Site build_site(const std::filesystem::path& pdb, const std::string& ligand_name
 /// Positions of `molecule`'s atoms as a 3 by N array.
 Eigen::Matrix3Xd positions(const Molecule& molecule) {
   Eigen::Matrix3Xd out(3, static_cast<Eigen::Index>(molecule.atoms.size()));
-  for (std::size_t i = 0; i < molecule.atoms.size(); ++i) out.col(static_cast<Eigen::Index>(i)) = molecule.atoms[i].position;
+  for (std::size_t i = 0; i < molecule.atoms.size(); ++i)
+    out.col(static_cast<Eigen::Index>(i)) = molecule.atoms[i].position;
   return out;
 }
 
 /// C-alpha positions of the protein residues with an atom within `radius` of a ligand atom,
 /// keyed by residue number (thermolysin's numbering is shared between the entries; each has one
 /// chain, A in 1THL and E in 4TMN).
-std::map<int, Eigen::Vector3d> site_c_alphas(const Molecule& protein,
-                                                                     const Molecule& ligand, double radius) {
+std::map<int, Eigen::Vector3d> site_c_alphas(const Molecule& protein, const Molecule& ligand,
+                                             double radius) {
   std::set<int> residues;
   for (const Atom& atom : protein.atoms) {
     if (atom.hetero) continue;
@@ -124,7 +127,8 @@ TEST(SiteMatch, ThermolysinSitesAlignWithinTwoAngstrom) {
   const Molecule from = io::read_molecule(original);
   const Molecule to = io::read_molecule(common);
   ASSERT_EQ(from.atoms.size(), to.atoms.size());
-  for (std::size_t i = 0; i < from.atoms.size(); ++i) ASSERT_EQ(from.atoms[i].name, to.atoms[i].name) << i;
+  for (std::size_t i = 0; i < from.atoms.size(); ++i)
+    ASSERT_EQ(from.atoms[i].name, to.atoms[i].name) << i;
   const matching::RigidFit truth_fit = matching::fit_rigid(positions(from), positions(to));
   ASSERT_LT(truth_fit.rmsd, 0.01);
   const Eigen::Matrix4d truth = truth_fit.transform.matrix();
@@ -133,12 +137,16 @@ TEST(SiteMatch, ThermolysinSitesAlignWithinTwoAngstrom) {
   options.patch.radius = kPatchRadius;
   const Site ref = build_site(ref_pdb, "0PK", options);
   const Site probe = build_site(probe_pdb, "0DB", options);
-  std::printf("[ sites    ] 4TMN: %zu atoms, %zu vertices, %zu site CPs (surface %.0f ms, describe %.0f ms)\n",
-              ref.protein.atoms.size(), ref.descriptors.surface.n_vertices(),
-              harmonic::count_descriptors(ref.descriptors).imaged, ref.surface_ms, ref.describe_ms);
-  std::printf("[ sites    ] 1THL: %zu atoms, %zu vertices, %zu site CPs (surface %.0f ms, describe %.0f ms)\n",
-              probe.protein.atoms.size(), probe.descriptors.surface.n_vertices(),
-              harmonic::count_descriptors(probe.descriptors).imaged, probe.surface_ms, probe.describe_ms);
+  std::printf(
+      "[ sites    ] 4TMN: %zu atoms, %zu vertices, %zu site CPs (surface %.0f ms, describe %.0f "
+      "ms)\n",
+      ref.protein.atoms.size(), ref.descriptors.surface.n_vertices(),
+      harmonic::count_descriptors(ref.descriptors).imaged, ref.surface_ms, ref.describe_ms);
+  std::printf(
+      "[ sites    ] 1THL: %zu atoms, %zu vertices, %zu site CPs (surface %.0f ms, describe %.0f "
+      "ms)\n",
+      probe.protein.atoms.size(), probe.descriptors.surface.n_vertices(),
+      harmonic::count_descriptors(probe.descriptors).imaged, probe.surface_ms, probe.describe_ms);
 
   const auto start = Clock::now();
   const auto result = matching::match_surfaces(ref.descriptors, probe.descriptors);
@@ -150,7 +158,8 @@ TEST(SiteMatch, ThermolysinSitesAlignWithinTwoAngstrom) {
   ASSERT_GE(probe_cas.size(), 10u);
   auto ca_rmsd = [&](const Eigen::Matrix4d& found) {
     double sum = 0;
-    for (const auto& [key, ca] : probe_cas) sum += (apply(found, ca) - apply(truth, ca)).squaredNorm();
+    for (const auto& [key, ca] : probe_cas)
+      sum += (apply(found, ca) - apply(truth, ca)).squaredNorm();
     return std::sqrt(sum / static_cast<double>(probe_cas.size()));
   };
   // The truth against 4TMN's own C-alphas (shared numbering): how well the two sites agree at all.
@@ -162,15 +171,18 @@ TEST(SiteMatch, ThermolysinSitesAlignWithinTwoAngstrom) {
     sum += (apply(truth, ca) - found->second).squaredNorm();
     ++n;
   }
-  std::printf("[ sites    ] %zu site residues; true transform vs 4TMN C-alphas: RMSD %.2f A over %zu\n",
-              probe_cas.size(), std::sqrt(sum / static_cast<double>(n)), n);
+  std::printf(
+      "[ sites    ] %zu site residues; true transform vs 4TMN C-alphas: RMSD %.2f A over %zu\n",
+      probe_cas.size(), std::sqrt(sum / static_cast<double>(n)), n);
   for (std::size_t i = 0; i < std::min<std::size_t>(5, result.alignments.size()); ++i) {
     const auto& a = result.alignments[i];
-    std::printf("[ sites    ] rank %d: %zu pairs, %zu points, RMSD %.2f A, site C-alpha RMSD %.2f A\n", a.rank,
-                a.cp_pairs.size(), a.n_points, a.rmsd, ca_rmsd(a.transform));
+    std::printf(
+        "[ sites    ] rank %d: %zu pairs, %zu points, RMSD %.2f A, site C-alpha RMSD %.2f A\n",
+        a.rank, a.cp_pairs.size(), a.n_points, a.rmsd, ca_rmsd(a.transform));
   }
   for (const auto& stage : result.trace) {
-    std::printf("[ sites    ] %-10s %6zu nodes %8zu edges\n", stage.stage.c_str(), stage.nodes, stage.edges);
+    std::printf("[ sites    ] %-10s %6zu nodes %8zu edges\n", stage.stage.c_str(), stage.nodes,
+                stage.edges);
   }
   std::printf("[ sites    ] match %.0f ms; site pair from PDB files %.0f ms\n", match_ms,
               match_ms + ref.surface_ms + ref.describe_ms + probe.surface_ms + probe.describe_ms);

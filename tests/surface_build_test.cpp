@@ -15,9 +15,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <regex>
 #include <sstream>
@@ -31,7 +31,8 @@ void write_pdb_with_radii(const Molecule& molecule, const std::filesystem::path&
   int serial = 1;
   for (const Atom& atom : molecule.atoms) {
     char line[100];
-    std::snprintf(line, sizeof line, "ATOM  %5d %-4s MOL A   1    %8.3f%8.3f%8.3f%6.2f  0.00          %2s\n",
+    std::snprintf(line, sizeof line,
+                  "ATOM  %5d %-4s MOL A   1    %8.3f%8.3f%8.3f%6.2f  0.00          %2s\n",
                   serial++ % 100000, atom.element.c_str(), atom.position.x(), atom.position.y(),
                   atom.position.z(), atom.radius, atom.element.c_str());
     out << line;
@@ -45,8 +46,10 @@ std::optional<double> freesasa_area(const Molecule& molecule, const std::string&
   if (std::system("command -v freesasa >/dev/null 2>&1") != 0) return std::nullopt;
   const auto pdb = std::filesystem::temp_directory_path() / ("surfcomp_sasa_" + tag + ".pdb");
   write_pdb_with_radii(molecule, pdb);
-  const std::string command = "freesasa --lee-richards --resolution=100 --probe-radius=1.4 "
-                              "--radius-from-occupancy --hetatm --hydrogen " + pdb.string();
+  const std::string command =
+      "freesasa --lee-richards --resolution=100 --probe-radius=1.4 "
+      "--radius-from-occupancy --hetatm --hydrogen " +
+      pdb.string();
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return std::nullopt;
   std::ostringstream text;
@@ -82,10 +85,12 @@ void expect_sas_matches_freesasa(const std::filesystem::path& file, const std::s
   atoms_as_arrays(molecule, centers, radii);
   const mesh::Surface sas = mesh::build_sas(centers, radii, options);
   const double area = mesh::measure_surface(sas).area;
-  std::printf("[ SAS      ] %s: %zu atoms, voxel %s, ours %.2f A^2, FreeSASA Lee-Richards %.2f A^2 (%+.2f%%)\n",
-              tag.c_str(), molecule.atoms.size(),
-              options.voxel_size > 0 ? std::to_string(options.voxel_size).c_str() : "auto", area, *reference,
-              100.0 * (area - *reference) / *reference);
+  std::printf(
+      "[ SAS      ] %s: %zu atoms, voxel %s, ours %.2f A^2, FreeSASA Lee-Richards %.2f A^2 "
+      "(%+.2f%%)\n",
+      tag.c_str(), molecule.atoms.size(),
+      options.voxel_size > 0 ? std::to_string(options.voxel_size).c_str() : "auto", area,
+      *reference, 100.0 * (area - *reference) / *reference);
   EXPECT_NEAR(area, *reference, 0.01 * *reference);
 }
 
@@ -106,8 +111,8 @@ TEST(SurfaceBuild, SasOf4we2MatchesFreeSasa) {
 
 TEST(SurfaceBuild, LigandSurfacesAreClosedSpheresTopologically) {
   for (const char* id : {"1THL", "4TMN", "1TLP", "1TMN", "3TMN"}) {
-    SURFCOMP_SHARED_OR_SKIP(file, std::string("thermolysin/ligands-common-frame/") + id +
-                                      "_ligand.sdf");
+    SURFCOMP_SHARED_OR_SKIP(file,
+                            std::string("thermolysin/ligands-common-frame/") + id + "_ligand.sdf");
     const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
     const mesh::SurfaceMeasures m = mesh::measure_surface(surface);
     EXPECT_EQ(m.euler_characteristic, 2) << id;
@@ -195,8 +200,10 @@ TEST(SurfaceBuild, OneAtomSurfaceHasSphereCurvatureAndCapShapeIndex) {
     EXPECT_NEAR(esp(v), 332.06 / r, 1e-9 * 332.06 / r);
   }
   const double n = static_cast<double>(cc1.size());
-  std::printf("[ sphere   ] %zu vertices: %.1f%% with cc1, cc2 within 5%% of -1/r, %.1f%% with S = 1 +- 0.02\n",
-              surface.n_vertices(), 100.0 * good_curvature / n, 100.0 * good_index / n);
+  std::printf(
+      "[ sphere   ] %zu vertices: %.1f%% with cc1, cc2 within 5%% of -1/r, %.1f%% with S = 1 +- "
+      "0.02\n",
+      surface.n_vertices(), 100.0 * good_curvature / n, 100.0 * good_index / n);
   EXPECT_GE(good_curvature / n, 0.95);
   EXPECT_GE(good_index / n, 0.95);
 }
@@ -236,8 +243,9 @@ Eigen::Vector3d closest_barycentric(const Eigen::Vector3d& p, const Eigen::Vecto
 
 /// A property of `surface` interpolated at the point of the triangles around `near_vertex`
 /// closest to `p`; also returns that point's distance to `p`.
-std::pair<double, double> interpolate_near(const mesh::Surface& surface, const Eigen::VectorXd& values,
-                                           int near_vertex, const Eigen::Vector3d& p) {
+std::pair<double, double> interpolate_near(const mesh::Surface& surface,
+                                           const Eigen::VectorXd& values, int near_vertex,
+                                           const Eigen::Vector3d& p) {
   const mesh::TriMesh& m = surface.mesh();
   double best_distance = std::numeric_limits<double>::infinity(), best_value = 0.0;
   for (auto f : m.vf_range(mesh::TriMesh::VertexHandle(near_vertex))) {
@@ -291,9 +299,9 @@ TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
   };
   const Eigen::MatrixX3d pa = a.positions();
   const Eigen::MatrixX3d pb = b.positions();
-  for (const Tolerance& tol : {Tolerance{mesh::property::esp, 0.01, 0.03},
-                               Tolerance{mesh::property::lp, 0.01, 0.03},
-                               Tolerance{mesh::property::shape_index, 0.05, 0.25}}) {
+  for (const Tolerance& tol :
+       {Tolerance{mesh::property::esp, 0.01, 0.03}, Tolerance{mesh::property::lp, 0.01, 0.03},
+        Tolerance{mesh::property::shape_index, 0.05, 0.25}}) {
     const Eigen::VectorXd va = a.property(tol.name);
     const Eigen::VectorXd vb = b.property(tol.name);
     const double range = va.maxCoeff() - va.minCoeff();
@@ -310,9 +318,10 @@ TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
     std::sort(errors.begin(), errors.end());
     const double median = errors[errors.size() / 2];
     const double p95 = errors[errors.size() * 95 / 100];
-    std::printf("[ motion   ] %s: moved vertices within %.3f A of the original surface; "
-                "|difference| / range: median %.4f, 95th percentile %.4f\n",
-                tol.name, max_distance, median, p95);
+    std::printf(
+        "[ motion   ] %s: moved vertices within %.3f A of the original surface; "
+        "|difference| / range: median %.4f, 95th percentile %.4f\n",
+        tol.name, max_distance, median, p95);
     // Two triangulations of one surface: they differ by the chords' sag (edges ~0.68 A).
     EXPECT_LT(max_distance, 0.2) << tol.name;
     EXPECT_LT(median, tol.median) << tol.name;

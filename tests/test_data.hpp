@@ -60,14 +60,14 @@ class TempDir {
 }  // namespace surfcomp::test
 
 /// Binds `var` to ../shared/datasets/<relative> or skips the test, saying which file is missing.
-#define SURFCOMP_SHARED_OR_SKIP(var, relative)                                             \
-  const auto var##_opt = ::surfcomp::test::shared_dataset(relative);                       \
-  if (!var##_opt) GTEST_SKIP() << "../shared/datasets/" << (relative) << " is absent";     \
+#define SURFCOMP_SHARED_OR_SKIP(var, relative)                                         \
+  const auto var##_opt = ::surfcomp::test::shared_dataset(relative);                   \
+  if (!var##_opt) GTEST_SKIP() << "../shared/datasets/" << (relative) << " is absent"; \
   const std::filesystem::path var = *var##_opt
 
 /// Binds `var` to datasets/cache/<relative> or skips, telling the user to run the fetch script.
-#define SURFCOMP_FETCHED_OR_SKIP(var, relative)                                            \
-  const auto var##_opt = ::surfcomp::test::fetched_dataset(relative);                      \
-  if (!var##_opt)                                                                          \
+#define SURFCOMP_FETCHED_OR_SKIP(var, relative)                                             \
+  const auto var##_opt = ::surfcomp::test::fetched_dataset(relative);                       \
+  if (!var##_opt)                                                                           \
     GTEST_SKIP() << "datasets/cache/" << (relative) << " is absent: run datasets/fetch.sh"; \
   const std::filesystem::path var = *var##_opt

@@ -54,7 +54,8 @@ void write_points_pdb(const std::vector<mesh::CriticalPoint>& points, std::ostre
     const auto& p = points[i];
     const bool peak = p.type == mesh::CriticalPointType::peak;
     char line[96];
-    std::snprintf(line, sizeof line, "HETATM%5zu  %-3s %3s X%4zu    %8.3f%8.3f%8.3f  1.00%6.2f           %s\n",
+    std::snprintf(line, sizeof line,
+                  "HETATM%5zu  %-3s %3s X%4zu    %8.3f%8.3f%8.3f  1.00%6.2f           %s\n",
                   (i + 1) % 100000, peak ? "PK" : "VL", peak ? "CPK" : "CVL", (i + 1) % 10000,
                   p.position.x(), p.position.y(), p.position.z(), p.cc1, peak ? "C" : "O");
     out << line;
@@ -89,14 +90,14 @@ int cp_detect(const std::vector<std::string>& args) {
   SurfaceInput input;
   mesh::CriticalPointOptions cp_options;
   po::options_description described("options");
-  described.add_options()
-      ("help,h", "print this help")
-      ("output,o", po::value(&output)->required(), "critical points as JSON")
-      ("points-out", po::value(&points_out), "also write the points for viewing: .pdb or .ply")
-      ("radius", po::value(&cp_options.radius)->default_value(cp_options.radius),
-       "on-surface radius r_cp, A")
-      ("disc-radius", po::value(&cp_options.property_disc_radius)->default_value(cp_options.property_disc_radius),
-       "geodesic disc over which shape index, ESP and LP are averaged, A");
+  described.add_options()("help,h", "print this help")("output,o", po::value(&output)->required(),
+                                                       "critical points as JSON")(
+      "points-out", po::value(&points_out), "also write the points for viewing: .pdb or .ply")(
+      "radius", po::value(&cp_options.radius)->default_value(cp_options.radius),
+      "on-surface radius r_cp, A")(
+      "disc-radius",
+      po::value(&cp_options.property_disc_radius)->default_value(cp_options.property_disc_radius),
+      "geodesic disc over which shape index, ESP and LP are averaged, A");
   add_surface_options(described, input);
   po::variables_map vm;
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
@@ -129,7 +130,8 @@ int cp_detect(const std::vector<std::string>& args) {
 
   const nlohmann::json document = {
       {"input", path.string()},
-      {"parameters", {{"radius", cp_options.radius}, {"disc_radius", cp_options.property_disc_radius}}},
+      {"parameters",
+       {{"radius", cp_options.radius}, {"disc_radius", cp_options.property_disc_radius}}},
       {"surface_vertices", n_vertices},
       {"peaks", peaks},
       {"valleys", points.size() - peaks},
@@ -138,13 +140,15 @@ int cp_detect(const std::vector<std::string>& args) {
   // so a failure leaves no output at all.
   if (!points_out.empty()) {
     if (points_extension == ".pdb") {
-      surfcomp::io::write_file_atomically(points_out, [&](std::ostream& out) { write_points_pdb(points, out); });
+      surfcomp::io::write_file_atomically(
+          points_out, [&](std::ostream& out) { write_points_pdb(points, out); });
     } else {
       mesh::io::write_ply(points_as_surface(points), points_out, mesh::io::PlyFormat::ascii);
     }
   }
   try {
-    surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
+    surfcomp::io::write_file_atomically(
+        output, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
   } catch (...) {
     if (!points_out.empty()) std::filesystem::remove(points_out);
     throw;

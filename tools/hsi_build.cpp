@@ -40,20 +40,22 @@ int hsi_build(const std::vector<std::string>& args) {
   SurfaceInput input;
   harmonic::DescriptorOptions options;
   po::options_description described("options");
-  described.add_options()
-      ("help,h", "print this help")
-      ("output,o", po::value(&output)->required(), "output .hsi file")
-      ("radius", po::value(&options.critical_points.radius)->default_value(options.critical_points.radius),
-       "critical point radius r_cp (on-surface), A")
-      ("patch-radius", po::value(&options.patch.radius)->default_value(options.patch.radius),
-       "patch radius (on-surface), A; about 5 for ligands, larger for protein sites")
-      ("grid-rings", po::value(&options.image.radial_samples)->default_value(options.image.radial_samples),
-       "image grid: rings of the polar grid")
-      ("grid-sectors", po::value(&options.image.angular_samples)->default_value(options.image.angular_samples),
-       "image grid: samples per ring (180 = 2-degree rotation steps)")
-      ("weights", po::value(&weights)->default_value("inverse-length"),
-       "harmonic map spring weights: inverse-length (seed) | uniform | cotangent | mean-value")
-      ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
+  described.add_options()("help,h", "print this help")("output,o", po::value(&output)->required(),
+                                                       "output .hsi file")(
+      "radius",
+      po::value(&options.critical_points.radius)->default_value(options.critical_points.radius),
+      "critical point radius r_cp (on-surface), A")(
+      "patch-radius", po::value(&options.patch.radius)->default_value(options.patch.radius),
+      "patch radius (on-surface), A; about 5 for ligands, larger for protein sites")(
+      "grid-rings",
+      po::value(&options.image.radial_samples)->default_value(options.image.radial_samples),
+      "image grid: rings of the polar grid")(
+      "grid-sectors",
+      po::value(&options.image.angular_samples)->default_value(options.image.angular_samples),
+      "image grid: samples per ring (180 = 2-degree rotation steps)")(
+      "weights", po::value(&weights)->default_value("inverse-length"),
+      "harmonic map spring weights: inverse-length (seed) | uniform | cotangent | mean-value")(
+      "threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
   add_surface_options(described, input);
   po::variables_map vm;
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
@@ -79,16 +81,18 @@ int hsi_build(const std::vector<std::string>& args) {
   LoadedSurface loaded = load_surface(path, input);
   const double surface_ms = clock.elapsed_ms();
   const harmonic::SurfaceDescriptors descriptors =
-      loaded.molecule ? harmonic::describe_surface(std::move(loaded.surface), *loaded.molecule, options)
-                      : harmonic::describe_surface(std::move(loaded.surface), options);
+      loaded.molecule
+          ? harmonic::describe_surface(std::move(loaded.surface), *loaded.molecule, options)
+          : harmonic::describe_surface(std::move(loaded.surface), options);
   const double total_ms = clock.elapsed_ms();
   harmonic::io::write_hsi(descriptors, output);
 
   const harmonic::DescriptorCounts counts = harmonic::count_descriptors(descriptors);
-  std::printf("%s: %zu vertices, %zu peaks, %zu valleys, %zu images, surface %.0f ms, "
-              "images %.0f ms -> %s\n",
-              path.string().c_str(), descriptors.surface.n_vertices(), counts.peaks, counts.valleys,
-              counts.imaged, surface_ms, total_ms - surface_ms, output.c_str());
+  std::printf(
+      "%s: %zu vertices, %zu peaks, %zu valleys, %zu images, surface %.0f ms, "
+      "images %.0f ms -> %s\n",
+      path.string().c_str(), descriptors.surface.n_vertices(), counts.peaks, counts.valleys,
+      counts.imaged, surface_ms, total_ms - surface_ms, output.c_str());
   return 0;
 }
 

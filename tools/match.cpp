@@ -23,30 +23,35 @@ namespace surfcomp::tools {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: surfcomp match REF PROBE [-o result.json] [--aligned-out FILE.sdf|.pdb|.ply] [options]\n\n"
+    "usage: surfcomp match REF PROBE [-o result.json] [--aligned-out FILE.sdf|.pdb|.ply] "
+    "[options]\n\n"
     "Finds where PROBE's surface looks and feels like REF's and returns ranked rigid alignments\n"
     "that move PROBE into REF's frame: critical-point pairs filtered by ESP/LP (fuzzy), harmonic\n"
     "shape images, distances and overlap; maximal cliques; least-squares fits on the images'\n"
     "corresponding points; single-linkage merging; consensus ranking (METHOD sections 5-7); then\n"
-    "the first --refine-top alignments are refined on the whole surfaces (Gaussian overlay of shape,\n"
+    "the first --refine-top alignments are refined on the whole surfaces (Gaussian overlay of "
+    "shape,\n"
     "ESP and LP) and ranked by that overlay score (table column 'overlay', * = refined), together\n"
     "with --axes-starts principal-axes superpositions refined the same way (column 'from': axes).\n"
     "Where both inputs are molecules (or .hsi files built from molecules), a refined pose's score\n"
     "also weighs the overlap of same-element heteroatoms (--overlay-atom-weight), and the first\n"
     "--polish-top poses are refined again on that whole score.\n\n"
     "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .pqr), a mesh (.ply .vert .off .obj) or a .hsi\n"
-    "            file from hsi-build (two .hsi files must have been built with the same parameters)\n"
+    "            file from hsi-build (two .hsi files must have been built with the same "
+    "parameters)\n"
     "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand build\n"
     "the protein's surface without that residue and keep the critical points within --site-radius\n"
-    "of its atoms; --site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds spheres.\n"
-    "A site match overlays the pocket linings (within --site-overlay-radius of the site's critical\n"
+    "of its atoms; --site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds "
+    "spheres.\n"
+    "A site match overlays the pocket linings (within --site-overlay-radius of the site's "
+    "critical\n"
     "points) on shape alone (--site-chem-weight 0) from the cliques and 24 principal-axes starts;\n"
     "the top-1 overlay score is then the sites' similarity (shape Tanimoto of the linings).";
 
 struct Side {
   std::filesystem::path path;
   harmonic::SurfaceDescriptors descriptors;
-  std::optional<Molecule> molecule;   // the molecule read, for --aligned-out and messages
+  std::optional<Molecule> molecule;  // the molecule read, for --aligned-out and messages
   std::vector<matching::SiteSphere> site;
 };
 
@@ -62,13 +67,15 @@ matching::SiteSphere parse_sphere(const std::string& text) {
   return s;
 }
 
-Side load_side(const std::filesystem::path& path, SurfaceInput input, const std::string& site_ligand,
-               double site_radius, const harmonic::DescriptorOptions& options) {
+Side load_side(const std::filesystem::path& path, SurfaceInput input,
+               const std::string& site_ligand, double site_radius,
+               const harmonic::DescriptorOptions& options) {
   Side side;
   side.path = path;
   if (harmonic::io::is_hsi_file(path)) {
     if (!site_ligand.empty()) {
-      throw OptionError(path.string() + ": --site-ligand needs the structure, not a .hsi file; use --site-sphere");
+      throw OptionError(path.string() +
+                        ": --site-ligand needs the structure, not a .hsi file; use --site-sphere");
     }
     side.descriptors = harmonic::io::read_hsi(path);
     return side;
@@ -80,13 +87,17 @@ Side load_side(const std::filesystem::path& path, SurfaceInput input, const std:
     io::MoleculeReadOptions whole = input.read;
     whole.ligand.clear();
     const Molecule structure = io::read_molecule(path, whole);
-    const auto same_name = [&](const Atom& atom) { return residue_key(atom.residue_name) == residue_key(site_ligand); };
+    const auto same_name = [&](const Atom& atom) {
+      return residue_key(atom.residue_name) == residue_key(site_ligand);
+    };
     const auto first = std::find_if(structure.atoms.begin(), structure.atoms.end(), same_name);
     if (first == structure.atoms.end()) {
-      throw InputError(path.string() + ": no residue named '" + site_ligand + "' for the binding site");
+      throw InputError(path.string() + ": no residue named '" + site_ligand +
+                       "' for the binding site");
     }
     for (const Atom& atom : structure.atoms) {
-      if (same_name(atom) && atom.chain == first->chain && atom.residue_number == first->residue_number) {
+      if (same_name(atom) && atom.chain == first->chain &&
+          atom.residue_number == first->residue_number) {
         side.site.push_back({atom.position, site_radius});
       }
     }
@@ -102,18 +113,20 @@ Side load_side(const std::filesystem::path& path, SurfaceInput input, const std:
   };
   const std::function<bool(const mesh::CriticalPoint&)> describe_if =
       side.site.empty() ? std::function<bool(const mesh::CriticalPoint&)>{} : in_site;
-  side.descriptors = side.molecule
-                         ? harmonic::describe_surface(std::move(loaded.surface), *side.molecule, options, describe_if)
-                         : harmonic::describe_surface(std::move(loaded.surface), options, describe_if);
+  side.descriptors =
+      side.molecule ? harmonic::describe_surface(std::move(loaded.surface), *side.molecule, options,
+                                                 describe_if)
+                    : harmonic::describe_surface(std::move(loaded.surface), options, describe_if);
   return side;
 }
 
 bool same_options(const harmonic::DescriptorOptions& x, const harmonic::DescriptorOptions& y) {
   return x.critical_points.radius == y.critical_points.radius &&
          x.critical_points.property_disc_radius == y.critical_points.property_disc_radius &&
-         x.critical_points.distance == y.critical_points.distance && x.patch.radius == y.patch.radius &&
-         x.patch.margin == y.patch.margin && x.patch.distance == y.patch.distance &&
-         x.disk_map.weights == y.disk_map.weights && x.image.radial_samples == y.image.radial_samples &&
+         x.critical_points.distance == y.critical_points.distance &&
+         x.patch.radius == y.patch.radius && x.patch.margin == y.patch.margin &&
+         x.patch.distance == y.patch.distance && x.disk_map.weights == y.disk_map.weights &&
+         x.image.radial_samples == y.image.radial_samples &&
          x.image.angular_samples == y.image.angular_samples && x.image_property == y.image_property;
 }
 
@@ -123,22 +136,30 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
   for (const auto& a : result.alignments) {
     nlohmann::json transform = nlohmann::json::array();
     for (int r = 0; r < 4; ++r) {
-      transform.push_back({a.transform(r, 0), a.transform(r, 1), a.transform(r, 2), a.transform(r, 3)});
+      transform.push_back(
+          {a.transform(r, 0), a.transform(r, 1), a.transform(r, 2), a.transform(r, 3)});
     }
     nlohmann::json pairs = nlohmann::json::array();
     for (const auto& [x, y] : a.cp_pairs) pairs.push_back({x, y});
-    const char* source = a.source == matching::AlignmentSource::cliques ? "cliques" : "principal_axes";
-    alignments.push_back({{"rank", a.rank}, {"source", source}, {"transform", transform}, {"rmsd", a.rmsd},
-                          {"n_points", a.n_points}, {"r_chem", a.r_chem}, {"consensus", a.consensus},
-                          {"refined", a.refined},
-                          {"overlay",
-                           {{"score", a.overlay.score},
-                            {"shape", a.overlay.shape},
-                            {"chem", a.overlay.chem},
-                            {"atoms", a.overlay.atoms}}},
-                          {"cp_pairs", pairs},
-                          {"parent", a.parent > 0 ? nlohmann::json(a.parent) : nlohmann::json(nullptr)},
-                          {"children", a.children}});
+    const char* source =
+        a.source == matching::AlignmentSource::cliques ? "cliques" : "principal_axes";
+    alignments.push_back(
+        {{"rank", a.rank},
+         {"source", source},
+         {"transform", transform},
+         {"rmsd", a.rmsd},
+         {"n_points", a.n_points},
+         {"r_chem", a.r_chem},
+         {"consensus", a.consensus},
+         {"refined", a.refined},
+         {"overlay",
+          {{"score", a.overlay.score},
+           {"shape", a.overlay.shape},
+           {"chem", a.overlay.chem},
+           {"atoms", a.overlay.atoms}}},
+         {"cp_pairs", pairs},
+         {"parent", a.parent > 0 ? nlohmann::json(a.parent) : nlohmann::json(nullptr)},
+         {"children", a.children}});
   }
   nlohmann::json trace = nlohmann::json::array();
   for (const auto& stage : result.trace) {
@@ -153,12 +174,17 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
           {"trace", trace},
           {"timing_ms", timing},
           {"parameters",
-           {{"fuzzy_threshold", g.fuzzy_threshold}, {"image_threshold", g.image_threshold},
-            {"distance_tolerance", g.distance_tolerance}, {"min_distance", g.min_distance},
+           {{"fuzzy_threshold", g.fuzzy_threshold},
+            {"image_threshold", g.image_threshold},
+            {"distance_tolerance", g.distance_tolerance},
+            {"min_distance", g.min_distance},
             {"overlap_tolerance_degrees", g.overlap_tolerance_degrees},
-            {"rmsd_cut", options.clustering.rmsd_cut}, {"merge_cut", options.clustering.merge_cut},
-            {"min_clique_size", options.min_clique_size}, {"refine_top", options.refine_top},
-            {"overlay_sigma", options.overlay.sigma}, {"overlay_spacing", options.overlay.spacing},
+            {"rmsd_cut", options.clustering.rmsd_cut},
+            {"merge_cut", options.clustering.merge_cut},
+            {"min_clique_size", options.min_clique_size},
+            {"refine_top", options.refine_top},
+            {"overlay_sigma", options.overlay.sigma},
+            {"overlay_spacing", options.overlay.spacing},
             {"overlay_chem_weight", options.overlay.chem_weight},
             {"overlay_atom_weight", options.overlay.atom_weight},
             {"polish_top", options.polish_top},
@@ -187,7 +213,8 @@ void write_aligned(const Side& probe, const Eigen::Matrix4d& transform, const st
   } else {
     Molecule moved = *probe.molecule;
     transform_molecule(moved, rotation, translation);
-    surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { io::write_pdb(moved, out); });
+    surfcomp::io::write_file_atomically(output,
+                                        [&](std::ostream& out) { io::write_pdb(moved, out); });
   }
 }
 
@@ -205,65 +232,80 @@ int match(const std::vector<std::string>& args) {
   harmonic::DescriptorOptions descriptor_options;
   po::options_description described("options");
   auto& g = options.graph;
-  described.add_options()
-      ("help,h", "print this help")
-      ("output,o", po::value(&output), "write the result as JSON (alignments, trace, timing_ms, parameters)")
-      ("aligned-out", po::value(&aligned_out),
-       "write PROBE moved by the top alignment: .sdf (SDF/MOL/MOL2 PROBE), .pdb (molecule PROBE) or .ply")
-      ("top", po::value(&top)->default_value(top), "alignments shown in the table")
-      ("trace", po::bool_switch(), "print the association graph's nodes and edges after each stage")
-      ("site-ligand", po::value(&site_ligand), "binding site of both proteins: this ligand residue name")
-      ("ref-site-ligand", po::value(&ref_site_ligand), "binding site of REF only")
-      ("probe-site-ligand", po::value(&probe_site_ligand), "binding site of PROBE only")
-      ("site-radius", po::value(&site_radius)->default_value(site_radius),
-       "radius of the spheres around the site ligand's atoms, A")
-      ("site-sphere", po::value(&site_spheres)->composing(), "site sphere x,y,z,r on both sides (A)")
-      ("ref-site-sphere", po::value(&ref_site_spheres)->composing(), "site sphere on REF only")
-      ("probe-site-sphere", po::value(&probe_site_spheres)->composing(), "site sphere on PROBE only")
-      ("fuzzy", po::value(&g.fuzzy_threshold)->default_value(g.fuzzy_threshold),
-       "fuzzy ESP/LP similarity threshold F")
-      ("hsi-r", po::value(&g.image_threshold)->default_value(g.image_threshold),
-       "harmonic shape image correlation threshold R")
-      ("distance-tolerance", po::value(&g.distance_tolerance)->default_value(g.distance_tolerance),
-       "distance filter tolerance t, A")
-      ("min-distance", po::value(&g.min_distance)->default_value(g.min_distance),
-       "distance filter minimum d_min, A")
-      ("overlap-tolerance", po::value(&g.overlap_tolerance_degrees)->default_value(g.overlap_tolerance_degrees),
-       "overlap filter tolerance j_tol, degrees")
-      ("rmsd-cut", po::value(&options.clustering.rmsd_cut)->default_value(options.clustering.rmsd_cut),
-       "drop cliques whose fit RMSD exceeds this, A")
-      ("ranking", po::value(&ranking)->default_value("rank"),
-       "consensus: rank (rank-by-rank) | number (rank-by-number) | vote (rank-by-vote)")
-      ("refine-top", po::value(&options.refine_top)->default_value(options.refine_top),
-       "refine this many alignments on the whole surfaces and rank them by their overlay score "
-       "(0: the seed's consensus ranking alone)")
-      ("overlay-sigma", po::value(&options.overlay.sigma)->default_value(options.overlay.sigma),
-       "Gaussian width of the whole-surface overlay, A")
-      ("overlay-chem-weight", po::value(&options.overlay.chem_weight)->default_value(options.overlay.chem_weight),
-       "weight of the ESP/LP Tanimoto against the shape Tanimoto in the overlay score")
-      ("overlay-atom-weight", po::value(&options.overlay.atom_weight)->default_value(options.overlay.atom_weight),
-       "weight of the same-element heteroatom Tanimoto in the overlay score, where both inputs are "
-       "molecules (or .hsi files built from molecules); not for site matches")
-      ("polish-top", po::value(&options.polish_top)->default_value(options.polish_top),
-       "with the atom term, refine the first N alignments again on the whole score, heteroatoms "
-       "pulled too, and order them again (0: no polish)")
-      ("overlay-tolerance", po::value(&options.overlay.tolerance)->default_value(options.overlay.tolerance),
-       "a refinement stops when a step moves no sampled probe point farther than this, A")
-      ("axes-starts", po::value(&options.principal_axes_starts)->default_value(options.principal_axes_starts),
-       "also refine this many principal-axes superpositions of the whole surfaces: 0, 4 or 24 "
-       "(with --refine-top > 0; so do the --site-* overlay options)")
-      ("site-overlay-radius", po::value(&options.site.overlay_radius)->default_value(options.site.overlay_radius),
-       "site matches: overlay the vertices within this distance of the site's critical points, A")
-      ("site-chem-weight", po::value(&options.site.chem_weight)->default_value(options.site.chem_weight),
-       "site matches: --overlay-chem-weight for the pocket overlay")
-      ("site-axes-starts", po::value(&options.site.principal_axes_starts)->default_value(options.site.principal_axes_starts),
-       "site matches: --axes-starts for the pocket overlay (0, 4 or 24)")
-      ("patch-radius", po::value(&descriptor_options.patch.radius)->default_value(descriptor_options.patch.radius),
-       "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)");
+  described.add_options()("help,h", "print this help")(
+      "output,o", po::value(&output),
+      "write the result as JSON (alignments, trace, timing_ms, parameters)")(
+      "aligned-out", po::value(&aligned_out),
+      "write PROBE moved by the top alignment: .sdf (SDF/MOL/MOL2 PROBE), .pdb (molecule PROBE) or "
+      ".ply")("top", po::value(&top)->default_value(top), "alignments shown in the table")(
+      "trace", po::bool_switch(), "print the association graph's nodes and edges after each stage")(
+      "site-ligand", po::value(&site_ligand),
+      "binding site of both proteins: this ligand residue name")(
+      "ref-site-ligand", po::value(&ref_site_ligand), "binding site of REF only")(
+      "probe-site-ligand", po::value(&probe_site_ligand), "binding site of PROBE only")(
+      "site-radius", po::value(&site_radius)->default_value(site_radius),
+      "radius of the spheres around the site ligand's atoms, A")(
+      "site-sphere", po::value(&site_spheres)->composing(),
+      "site sphere x,y,z,r on both sides (A)")(
+      "ref-site-sphere", po::value(&ref_site_spheres)->composing(), "site sphere on REF only")(
+      "probe-site-sphere", po::value(&probe_site_spheres)->composing(),
+      "site sphere on PROBE only")("fuzzy",
+                                   po::value(&g.fuzzy_threshold)->default_value(g.fuzzy_threshold),
+                                   "fuzzy ESP/LP similarity threshold F")(
+      "hsi-r", po::value(&g.image_threshold)->default_value(g.image_threshold),
+      "harmonic shape image correlation threshold R")(
+      "distance-tolerance", po::value(&g.distance_tolerance)->default_value(g.distance_tolerance),
+      "distance filter tolerance t, A")("min-distance",
+                                        po::value(&g.min_distance)->default_value(g.min_distance),
+                                        "distance filter minimum d_min, A")(
+      "overlap-tolerance",
+      po::value(&g.overlap_tolerance_degrees)->default_value(g.overlap_tolerance_degrees),
+      "overlap filter tolerance j_tol, degrees")(
+      "rmsd-cut",
+      po::value(&options.clustering.rmsd_cut)->default_value(options.clustering.rmsd_cut),
+      "drop cliques whose fit RMSD exceeds this, A")(
+      "ranking", po::value(&ranking)->default_value("rank"),
+      "consensus: rank (rank-by-rank) | number (rank-by-number) | vote (rank-by-vote)")(
+      "refine-top", po::value(&options.refine_top)->default_value(options.refine_top),
+      "refine this many alignments on the whole surfaces and rank them by their overlay score "
+      "(0: the seed's consensus ranking alone)")(
+      "overlay-sigma", po::value(&options.overlay.sigma)->default_value(options.overlay.sigma),
+      "Gaussian width of the whole-surface overlay, A")(
+      "overlay-chem-weight",
+      po::value(&options.overlay.chem_weight)->default_value(options.overlay.chem_weight),
+      "weight of the ESP/LP Tanimoto against the shape Tanimoto in the overlay score")(
+      "overlay-atom-weight",
+      po::value(&options.overlay.atom_weight)->default_value(options.overlay.atom_weight),
+      "weight of the same-element heteroatom Tanimoto in the overlay score, where both inputs are "
+      "molecules (or .hsi files built from molecules); not for site matches")(
+      "polish-top", po::value(&options.polish_top)->default_value(options.polish_top),
+      "with the atom term, refine the first N alignments again on the whole score, heteroatoms "
+      "pulled too, and order them again (0: no polish)")(
+      "overlay-tolerance",
+      po::value(&options.overlay.tolerance)->default_value(options.overlay.tolerance),
+      "a refinement stops when a step moves no sampled probe point farther than this, A")(
+      "axes-starts",
+      po::value(&options.principal_axes_starts)->default_value(options.principal_axes_starts),
+      "also refine this many principal-axes superpositions of the whole surfaces: 0, 4 or 24 "
+      "(with --refine-top > 0; so do the --site-* overlay options)")(
+      "site-overlay-radius",
+      po::value(&options.site.overlay_radius)->default_value(options.site.overlay_radius),
+      "site matches: overlay the vertices within this distance of the site's critical points, A")(
+      "site-chem-weight",
+      po::value(&options.site.chem_weight)->default_value(options.site.chem_weight),
+      "site matches: --overlay-chem-weight for the pocket overlay")(
+      "site-axes-starts",
+      po::value(&options.site.principal_axes_starts)
+          ->default_value(options.site.principal_axes_starts),
+      "site matches: --axes-starts for the pocket overlay (0, 4 or 24)")(
+      "patch-radius",
+      po::value(&descriptor_options.patch.radius)->default_value(descriptor_options.patch.radius),
+      "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)");
   add_surface_options(described, input);
   po::variables_map vm;
   if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
-  const auto inputs = vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  const auto inputs =
+      vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
   if (inputs.size() != 2) throw OptionError("expected REF and PROBE (see --help)");
   finish_surface_options(input);
   require_in_range("top", top, 1, 1e9);
@@ -283,10 +325,12 @@ int match(const std::vector<std::string>& args) {
   require_in_range("polish-top", options.polish_top, 0, 1e6);
   require_in_range("site-overlay-radius", options.site.overlay_radius, 0.1, 100.0);
   require_in_range("site-chem-weight", options.site.chem_weight, 0.0, 100.0);
-  for (const auto& [name, value] : {std::pair<const char*, int>{"axes-starts", options.principal_axes_starts},
-                                    std::pair<const char*, int>{"site-axes-starts", options.site.principal_axes_starts}}) {
+  for (const auto& [name, value] :
+       {std::pair<const char*, int>{"axes-starts", options.principal_axes_starts},
+        std::pair<const char*, int>{"site-axes-starts", options.site.principal_axes_starts}}) {
     if (!matching::is_axes_start_count(value)) {
-      throw OptionError(std::string("--") + name + " must be 0, 4 or 24, got " + std::to_string(value));
+      throw OptionError(std::string("--") + name + " must be 0, 4 or 24, got " +
+                        std::to_string(value));
     }
   }
   require_one_of("ranking", ranking, {"rank", "number", "vote"});
@@ -314,9 +358,10 @@ int match(const std::vector<std::string>& args) {
   Side ref = load_side(ref_path, input, ref_site_ligand, site_radius, descriptor_options);
   Side probe = load_side(probe_path, input, probe_site_ligand, site_radius, descriptor_options);
   if (!same_options(ref.descriptors.options, probe.descriptors.options)) {
-    throw InputError(ref_path.string() + " and " + probe_path.string() +
-                     ": the .hsi files were built with different parameters (critical point radius, "
-                     "patch radius, weights or image grid); rebuild one with the other's");
+    throw InputError(
+        ref_path.string() + " and " + probe_path.string() +
+        ": the .hsi files were built with different parameters (critical point radius, "
+        "patch radius, weights or image grid); rebuild one with the other's");
   }
   if (!aligned_out.empty() && aligned_extension != ".ply" && !probe.molecule) {
     throw OptionError("--aligned-out " + aligned_out + ": PROBE is not a molecule; use .ply");
@@ -335,14 +380,18 @@ int match(const std::vector<std::string>& args) {
     if (std::find(allowed.begin(), allowed.end(), true) == allowed.end()) {
       throw InputError(side->path.string() + ": the binding site holds no critical point (" +
                        std::to_string(side->site.size()) + " spheres, " +
-                       std::to_string(side->descriptors.critical_points.size()) + " critical points)");
+                       std::to_string(side->descriptors.critical_points.size()) +
+                       " critical points)");
     }
   }
   if (ref.site.empty() && probe.site.empty() && options.overlay.atom_weight > 0.0 &&
       ref.descriptors.atoms.empty() != probe.descriptors.atoms.empty()) {
     const Side& without = ref.descriptors.atoms.empty() ? ref : probe;
-    std::fprintf(stderr, "note: %s carries no atoms (a mesh, or a .hsi file of format version 1): poses are judged "
-                         "on the surfaces alone\n", without.path.string().c_str());
+    std::fprintf(
+        stderr,
+        "note: %s carries no atoms (a mesh, or a .hsi file of format version 1): poses are judged "
+        "on the surfaces alone\n",
+        without.path.string().c_str());
   }
   const double prepare_ms = clock.elapsed_ms();
   const matching::MatchResult result = matching::match_surfaces(
@@ -353,7 +402,8 @@ int match(const std::vector<std::string>& args) {
   if (vm["trace"].as<bool>()) {
     std::printf("%-16s %8s %10s %10s\n", "stage", "nodes", "edges", "ms");
     for (const auto& stage : result.trace) {
-      std::printf("%-16s %8zu %10zu %10.2f\n", stage.stage.c_str(), stage.nodes, stage.edges, stage.milliseconds);
+      std::printf("%-16s %8zu %10zu %10.2f\n", stage.stage.c_str(), stage.nodes, stage.edges,
+                  stage.milliseconds);
     }
     std::printf("%zu maximal cliques\n\n", result.cliques);
   }
@@ -361,33 +411,37 @@ int match(const std::vector<std::string>& args) {
               ref_path.string().c_str(), probe_path.string().c_str(), result.alignments.size(),
               prepare_ms, total_ms - prepare_ms);
   if (!result.alignments.empty()) {
-    std::printf("%5s %-7s %8s %8s %8s %9s %8s %6s %7s  %s\n", "rank", "from", "rmsd", "points", "r_chem", "consensus",
-                "overlay", "pairs", "parent", "rotation (deg) / translation (A)");
+    std::printf("%5s %-7s %8s %8s %8s %9s %8s %6s %7s  %s\n", "rank", "from", "rmsd", "points",
+                "r_chem", "consensus", "overlay", "pairs", "parent",
+                "rotation (deg) / translation (A)");
   }
   for (const auto& a : result.alignments) {
     if (a.rank > top) break;
     const Eigen::Matrix3d r = a.transform.topLeftCorner<3, 3>();
     const double angle = std::acos(std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
     if (a.source == matching::AlignmentSource::cliques) {
-      std::printf("%5d %-7s %8.3f %8zu %8.3f %9.3f %7.3f%s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank, "cliques",
-                  a.rmsd, a.n_points, a.r_chem, a.consensus, a.overlay.score, a.refined ? "*" : " ", a.cp_pairs.size(),
+      std::printf("%5d %-7s %8.3f %8zu %8.3f %9.3f %7.3f%s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n",
+                  a.rank, "cliques", a.rmsd, a.n_points, a.r_chem, a.consensus, a.overlay.score,
+                  a.refined ? "*" : " ", a.cp_pairs.size(),
                   a.parent > 0 ? std::to_string(a.parent).c_str() : "-", angle, a.transform(0, 3),
                   a.transform(1, 3), a.transform(2, 3));
     } else {  // no CP correspondences behind it: no fit RMSD, points, R_chem, consensus or tree
-      std::printf("%5d %-7s %8s %8s %8s %9s %7.3f%s %6s %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank, "axes", "-", "-",
-                  "-", "-", a.overlay.score, a.refined ? "*" : " ", "-", "-", angle, a.transform(0, 3),
-                  a.transform(1, 3), a.transform(2, 3));
+      std::printf("%5d %-7s %8s %8s %8s %9s %7.3f%s %6s %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank,
+                  "axes", "-", "-", "-", "-", a.overlay.score, a.refined ? "*" : " ", "-", "-",
+                  angle, a.transform(0, 3), a.transform(1, 3), a.transform(2, 3));
     }
   }
   // Outputs last, each atomic; a failure of the second removes the first.
   if (!aligned_out.empty()) {
-    if (result.alignments.empty()) throw InputError("no alignment found: nothing to write to " + aligned_out);
+    if (result.alignments.empty())
+      throw InputError("no alignment found: nothing to write to " + aligned_out);
     write_aligned(probe, result.alignments.front().transform, aligned_out);
   }
   if (!output.empty()) {
     try {
       const nlohmann::json document = to_json(result, options, ref, probe);
-      surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
+      surfcomp::io::write_file_atomically(
+          output, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
     } catch (...) {
       if (!aligned_out.empty()) std::filesystem::remove(aligned_out);
       throw;

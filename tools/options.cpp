@@ -6,9 +6,8 @@
 namespace surfcomp::tools {
 
 bool parse_command_line(const std::vector<std::string>& args,
-                        const boost::program_options::options_description& options,
-                        int max_inputs, const char* usage,
-                        boost::program_options::variables_map& vm) {
+                        const boost::program_options::options_description& options, int max_inputs,
+                        const char* usage, boost::program_options::variables_map& vm) {
   namespace po = boost::program_options;
   po::options_description all;
   all.add(options);

@@ -15,14 +15,15 @@ namespace surfcomp::tools {
 /// Parses `args` with `options` (plus one or more positional INPUT arguments under "input").
 /// Returns false when --help was asked (the help text is already printed).
 bool parse_command_line(const std::vector<std::string>& args,
-                        const boost::program_options::options_description& options,
-                        int max_inputs, const char* usage, boost::program_options::variables_map& vm);
+                        const boost::program_options::options_description& options, int max_inputs,
+                        const char* usage, boost::program_options::variables_map& vm);
 
 /// Throws OptionError "--name: value V is outside [lo, hi]" unless lo <= value <= hi and finite.
 void require_in_range(const char* name, double value, double lo, double hi);
 
 /// Throws OptionError unless `value` is one of `allowed`.
-void require_one_of(const char* name, const std::string& value, const std::vector<std::string>& allowed);
+void require_one_of(const char* name, const std::string& value,
+                    const std::vector<std::string>& allowed);
 
 /// Milliseconds since construction.
 class Stopwatch {

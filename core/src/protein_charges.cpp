@@ -9,7 +9,8 @@
 
 namespace surfcomp {
 
-std::optional<double> protein_atom_formal_charge(std::string_view residue, std::string_view atom_name) {
+std::optional<double> protein_atom_formal_charge(std::string_view residue,
+                                                 std::string_view atom_name) {
   const std::string res = residue_key(residue);
   const std::string name = residue_key(atom_name);
   // A standard residue is one the lipophilicity table knows (its CA is always listed).

@@ -217,9 +217,12 @@ double half_angle_tangent(const Eigen::Vector3d& i, const Eigen::Vector3d& j,
 double spring_constant(SpringWeights weights, const Eigen::Vector3d& pi, const Eigen::Vector3d& pj,
                        const Eigen::Vector3d& left, const Eigen::Vector3d& right) {
   switch (weights) {
-    case SpringWeights::inverse_length: return 1.0 / (pj - pi).norm();
-    case SpringWeights::uniform: return 1.0;
-    case SpringWeights::cotangent: return cotangent_at(pi, pj, left) + cotangent_at(pi, pj, right);
+    case SpringWeights::inverse_length:
+      return 1.0 / (pj - pi).norm();
+    case SpringWeights::uniform:
+      return 1.0;
+    case SpringWeights::cotangent:
+      return cotangent_at(pi, pj, left) + cotangent_at(pi, pj, right);
     case SpringWeights::mean_value:
       return (half_angle_tangent(pi, pj, left) + half_angle_tangent(pi, pj, right)) /
              (pj - pi).norm();
@@ -227,15 +230,18 @@ double spring_constant(SpringWeights weights, const Eigen::Vector3d& pi, const E
   return 0.0;
 }
 
-
 }  // namespace
 
 const char* to_string(SpringWeights weights) {
   switch (weights) {
-    case SpringWeights::inverse_length: return "inverse_length";
-    case SpringWeights::uniform: return "uniform";
-    case SpringWeights::cotangent: return "cotangent";
-    case SpringWeights::mean_value: return "mean_value";
+    case SpringWeights::inverse_length:
+      return "inverse_length";
+    case SpringWeights::uniform:
+      return "uniform";
+    case SpringWeights::cotangent:
+      return "cotangent";
+    case SpringWeights::mean_value:
+      return "mean_value";
   }
   return "?";
 }
@@ -336,8 +342,8 @@ DiskMap harmonic_disk_map(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
   if (solver.info() != Eigen::Success) {
     throw NumericError(std::string(caller) + ": the sparse LU factorisation of the " +
                        std::to_string(n_free) + " by " + std::to_string(n_free) + " " +
-                       to_string(options.weights) + " system failed (" +
-                       solver.lastErrorMessage() + "), expected a non-singular system");
+                       to_string(options.weights) + " system failed (" + solver.lastErrorMessage() +
+                       "), expected a non-singular system");
   }
   const Eigen::MatrixX2d solution = solver.solve(rhs);
   if (solver.info() != Eigen::Success || !solution.allFinite()) {

@@ -17,8 +17,8 @@
 #include <iterator>
 #include <limits>
 #include <map>
-#include <utility>
 #include <string>
+#include <utility>
 
 namespace surfcomp::harmonic {
 namespace {
@@ -37,9 +37,10 @@ constexpr double kTie = 1e-12;
 
 void check_grid(int radial_samples, int angular_samples) {
   if (radial_samples < 1 || angular_samples < 1) {
-    throw OptionError("shape image: the polar grid must have at least one ring and one sample per ring, got " +
-                      std::to_string(radial_samples) + " rings of " + std::to_string(angular_samples) +
-                      " samples");
+    throw OptionError(
+        "shape image: the polar grid must have at least one ring and one sample per ring, got " +
+        std::to_string(radial_samples) + " rings of " + std::to_string(angular_samples) +
+        " samples");
   }
 }
 
@@ -63,8 +64,8 @@ Eigen::Vector2d image_grid_point(const ImageOptions& options, int grid_index) {
   check_grid(options.radial_samples, options.angular_samples);
   const long long size = static_cast<long long>(options.radial_samples) * options.angular_samples;
   if (grid_index < 0 || grid_index >= size) {
-    throw InputError("shape image: grid point " + std::to_string(grid_index) + " is outside the grid of " +
-                     std::to_string(size) + " points");
+    throw InputError("shape image: grid point " + std::to_string(grid_index) +
+                     " is outside the grid of " + std::to_string(size) + " points");
   }
   const int ring = grid_index / options.angular_samples;
   const int sector = grid_index % options.angular_samples;
@@ -75,16 +76,19 @@ Eigen::Vector2d image_grid_point(const ImageOptions& options, int grid_index) {
 
 ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces,
-                                const Eigen::Ref<const Eigen::VectorXd>& values, const ImageOptions& options) {
+                                const Eigen::Ref<const Eigen::VectorXd>& values,
+                                const ImageOptions& options) {
   check_grid(options.radial_samples, options.angular_samples);
   const Eigen::Index vertex_count = uv.rows();
   if (values.size() != vertex_count) {
     throw InputError("shape image: " + std::to_string(values.size()) + " values for " +
-                     std::to_string(vertex_count) + " embedded vertices; expected one value per vertex");
+                     std::to_string(vertex_count) +
+                     " embedded vertices; expected one value per vertex");
   }
   for (Eigen::Index v = 0; v < vertex_count; ++v) {
     if (!std::isfinite(uv(v, 0)) || !std::isfinite(uv(v, 1))) {
-      throw InputError("shape image: embedded vertex " + std::to_string(v) + " has a non-finite coordinate");
+      throw InputError("shape image: embedded vertex " + std::to_string(v) +
+                       " has a non-finite coordinate");
     }
     if (!std::isfinite(values(v))) {
       throw InputError("shape image: vertex " + std::to_string(v) + " has a non-finite value");
@@ -114,7 +118,8 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
       c[k] = Kernel::Point_2(uv(v, 0), uv(v, 1));
     }
     if (CGAL::collinear(c[0], c[1], c[2])) continue;
-    triangles.emplace_back(Kernel::Point_3(c[0].x(), c[0].y(), 0.0), Kernel::Point_3(c[1].x(), c[1].y(), 0.0),
+    triangles.emplace_back(Kernel::Point_3(c[0].x(), c[0].y(), 0.0),
+                           Kernel::Point_3(c[1].x(), c[1].y(), 0.0),
                            Kernel::Point_3(c[2].x(), c[2].y(), 0.0));
     corners.push_back(c);
     triangle_face.push_back(static_cast<int>(f));
@@ -139,7 +144,8 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
 
   const Tree tree(triangles.cbegin(), triangles.cend());
   std::vector<Primitive::Id> hits;
-  // Triangles sharing an edge (as vertex pairs): up to three neighbours per triangle, -1 where none.
+  // Triangles sharing an edge (as vertex pairs): up to three neighbours per triangle, -1 where
+  // none.
   std::vector<std::array<int, 3>> neighbour(triangles.size(), {-1, -1, -1});
   {
     std::map<std::pair<int, int>, std::pair<int, int>> edge_owner;  // edge -> (triangle, side)
@@ -148,11 +154,12 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
       for (int side = 0; side < 3; ++side) {
         const int v0 = faces(f, side), v1 = faces(f, (side + 1) % 3);
         const auto key = std::minmax(v0, v1);
-        const auto [it, inserted] = edge_owner.emplace(key, std::make_pair(static_cast<int>(t), side));
+        const auto [it, inserted] =
+            edge_owner.emplace(key, std::make_pair(static_cast<int>(t), side));
         if (inserted) continue;
         neighbour[t][static_cast<std::size_t>(side)] = it->second.first;
-        neighbour[static_cast<std::size_t>(it->second.first)][static_cast<std::size_t>(it->second.second)] =
-            static_cast<int>(t);
+        neighbour[static_cast<std::size_t>(it->second.first)]
+                 [static_cast<std::size_t>(it->second.second)] = static_cast<int>(t);
       }
     }
   }
@@ -198,7 +205,9 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
     const Eigen::Vector2d p0 = uv.row(faces(face, 0)).transpose();
     const Eigen::Vector2d p1 = uv.row(faces(face, 1)).transpose();
     const Eigen::Vector2d p2 = uv.row(faces(face, 2)).transpose();
-    auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
+    auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+      return a.x() * b.y() - a.y() * b.x();
+    };
     const double area = cross(p1 - p0, p2 - p0);
     const double l0 = cross(p1 - q, p2 - q) / area;
     const double l1 = cross(p2 - q, p0 - q) / area;
@@ -206,7 +215,8 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
     image.valid[static_cast<std::size_t>(i)] = 1;
     image.face(i) = face;
     image.barycentric.row(i) << l0, l1, l2;
-    image.values(i) = l0 * values(faces(face, 0)) + l1 * values(faces(face, 1)) + l2 * values(faces(face, 2));
+    image.values(i) =
+        l0 * values(faces(face, 0)) + l1 * values(faces(face, 1)) + l2 * values(faces(face, 2));
   }
   return image;
 }
@@ -226,15 +236,17 @@ Eigen::Vector3d image_point_to_surface(const ShapeImage& image, int grid_index,
                      " is not valid (no triangle under it)");
   }
   if (face >= faces.rows()) {
-    throw InputError("image_point_to_surface: grid point " + std::to_string(grid_index) + " lies on face " +
-                     std::to_string(face) + " but the patch has " + std::to_string(faces.rows()) + " faces");
+    throw InputError("image_point_to_surface: grid point " + std::to_string(grid_index) +
+                     " lies on face " + std::to_string(face) + " but the patch has " +
+                     std::to_string(faces.rows()) + " faces");
   }
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   for (int c = 0; c < 3; ++c) {
     const int v = faces(face, c);
     if (v < 0 || v >= positions.rows()) {
-      throw InputError("image_point_to_surface: face " + std::to_string(face) + " refers to vertex " +
-                       std::to_string(v) + " but there are " + std::to_string(positions.rows()) + " positions");
+      throw InputError("image_point_to_surface: face " + std::to_string(face) +
+                       " refers to vertex " + std::to_string(v) + " but there are " +
+                       std::to_string(positions.rows()) + " positions");
     }
     point += image.barycentric(grid_index, c) * positions.row(v).transpose();
   }
@@ -254,7 +266,8 @@ PreparedImage::PreparedImage(const ShapeImage& image)
   bins_ = n / 2 + 1;
   ring_full_.assign(static_cast<std::size_t>(radial_samples_), 0);
   ring_empty_.assign(static_cast<std::size_t>(radial_samples_), 0);
-  spectra_.assign(static_cast<std::size_t>(radial_samples_) * 6 * static_cast<std::size_t>(bins_), 0.0);
+  spectra_.assign(static_cast<std::size_t>(radial_samples_) * 6 * static_cast<std::size_t>(bins_),
+                  0.0);
 
   // Area-weighted mean over the valid points: subtracting it changes no correlation but keeps
   // the sums of squares small.
@@ -262,7 +275,8 @@ PreparedImage::PreparedImage(const ShapeImage& image)
   for (int i = 0; i < size; ++i) {
     if (!image.valid[static_cast<std::size_t>(i)]) continue;
     if (!std::isfinite(image.values(i))) {
-      throw InputError("shape image: grid point " + std::to_string(i) + " is valid but has a non-finite value");
+      throw InputError("shape image: grid point " + std::to_string(i) +
+                       " is valid but has a non-finite value");
     }
     weight_sum += ring_weight(i / n);
     value_sum += ring_weight(i / n) * image.values(i);
@@ -304,11 +318,13 @@ PreparedImage::PreparedImage(const ShapeImage& image)
   }
 }
 
-void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* correlation, int* overlap) const {
+void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* correlation,
+                              int* overlap) const {
   const PreparedImage& a = *this;
   if (a.radial_samples_ != b.radial_samples_ || a.angular_samples_ != b.angular_samples_) {
     throw InputError("compare shape images: grids of " + std::to_string(a.radial_samples_) + " x " +
-                     std::to_string(a.angular_samples_) + " and " + std::to_string(b.radial_samples_) + " x " +
+                     std::to_string(a.angular_samples_) + " and " +
+                     std::to_string(b.radial_samples_) + " x " +
                      std::to_string(b.angular_samples_) + " points; expected equal grids");
   }
   if (min_overlap < 1) {
@@ -332,7 +348,9 @@ void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* c
   spectrum.resize(static_cast<std::size_t>(bins));
   auto spectrum_re = [&](int t) { return scratch.data() + static_cast<std::size_t>(2 * t * bins); };
   auto spectrum_im = [&](int t) { return spectrum_re(t) + bins; };
-  auto sums = [&](int t) { return scratch.data() + spectra_size + static_cast<std::size_t>(t * n); };
+  auto sums = [&](int t) {
+    return scratch.data() + spectra_size + static_cast<std::size_t>(t * n);
+  };
   // A sum whose spectrum stayed zero beyond frequency 0 is the same for every shift.
   std::array<bool, kSums> varies{};
 
@@ -381,14 +399,15 @@ void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* c
       std::fill(out, out + n, spectrum_re(t)[0] * inv_n);
       continue;
     }
-    for (int k = 0; k < bins; ++k) spectrum[static_cast<std::size_t>(k)] = {spectrum_re(t)[k], spectrum_im(t)[k]};
+    for (int k = 0; k < bins; ++k)
+      spectrum[static_cast<std::size_t>(k)] = {spectrum_re(t)[k], spectrum_im(t)[k]};
     fft.inv(out, spectrum.data(), n);
     for (int s = 0; s < n; ++s) out[s] *= inv_n;
   }
 
   const double* count_sum = sums(kCount);
-  const double *weight_sum = sums(kWeight), *a_sum = sums(kA), *aa_sum = sums(kAA), *b_sum = sums(kB),
-               *bb_sum = sums(kBB), *ab_sum = sums(kAB);
+  const double *weight_sum = sums(kWeight), *a_sum = sums(kA), *aa_sum = sums(kAA),
+               *b_sum = sums(kB), *bb_sum = sums(kBB), *ab_sum = sums(kAB);
   for (int s = 0; s < n; ++s) {
     // Counts are integers; the FFT returns them to within far less than 0.5.
     const int count = static_cast<int>(count_sum[s] + 0.5);
@@ -401,7 +420,8 @@ void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* c
     const double sa = a_sum[s], sb = b_sum[s];
     const double var_a = aa_sum[s] - sa * sa * inv_weight;
     const double var_b = bb_sum[s] - sb * sb * inv_weight;
-    if (var_a <= kConstantVariance * weight * a.mean_square_ || var_b <= kConstantVariance * weight * b.mean_square_) {
+    if (var_a <= kConstantVariance * weight * a.mean_square_ ||
+        var_b <= kConstantVariance * weight * b.mean_square_) {
       correlation[s] = 0.0;
       continue;
     }

@@ -41,7 +41,8 @@ void describe_point(const mesh::Surface& surface, const Eigen::VectorXd& image_v
 
 }  // namespace
 
-CriticalPointDescriptor describe_point(const mesh::Surface& surface, const mesh::CriticalPoint& point,
+CriticalPointDescriptor describe_point(const mesh::Surface& surface,
+                                       const mesh::CriticalPoint& point,
                                        const DescriptorOptions& options) {
   CriticalPointDescriptor out;
   out.point = point;
@@ -49,8 +50,9 @@ CriticalPointDescriptor describe_point(const mesh::Surface& surface, const mesh:
   return out;
 }
 
-SurfaceDescriptors describe_surface(mesh::Surface surface, const DescriptorOptions& options,
-                                    const std::function<bool(const mesh::CriticalPoint&)>& describe_if) {
+SurfaceDescriptors describe_surface(
+    mesh::Surface surface, const DescriptorOptions& options,
+    const std::function<bool(const mesh::CriticalPoint&)>& describe_if) {
   SurfaceDescriptors result;
   result.options = options;
   const std::vector<mesh::CriticalPoint> points =
@@ -77,8 +79,9 @@ std::vector<SurfaceAtom> surface_atoms(const Molecule& molecule) {
   return atoms;
 }
 
-SurfaceDescriptors describe_surface(mesh::Surface surface, const Molecule& molecule, const DescriptorOptions& options,
-                                    const std::function<bool(const mesh::CriticalPoint&)>& describe_if) {
+SurfaceDescriptors describe_surface(
+    mesh::Surface surface, const Molecule& molecule, const DescriptorOptions& options,
+    const std::function<bool(const mesh::CriticalPoint&)>& describe_if) {
   SurfaceDescriptors result = describe_surface(std::move(surface), options, describe_if);
   result.atoms = surface_atoms(molecule);
   return result;

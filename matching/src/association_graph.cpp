@@ -72,8 +72,9 @@ class BearingCache {
   double operator()(int from, int to) {
     double& value = values_[static_cast<std::size_t>(from) * n_ + static_cast<std::size_t>(to)];
     if (std::isnan(value)) {
-      value = patch_bearing_degrees(descriptors_.critical_points[static_cast<std::size_t>(from)],
-                                    descriptors_.critical_points[static_cast<std::size_t>(to)].point);
+      value =
+          patch_bearing_degrees(descriptors_.critical_points[static_cast<std::size_t>(from)],
+                                descriptors_.critical_points[static_cast<std::size_t>(to)].point);
     }
     return value;
   }
@@ -89,7 +90,8 @@ class BearingCache {
 std::vector<PointPair> initial_pairs(const SurfaceDescriptors& a, const SurfaceDescriptors& b,
                                      const std::vector<bool>* a_allowed,
                                      const std::vector<bool>* b_allowed) {
-  for (const auto& [d, allowed, name] : {std::tuple{&a, a_allowed, "A"}, std::tuple{&b, b_allowed, "B"}}) {
+  for (const auto& [d, allowed, name] :
+       {std::tuple{&a, a_allowed, "A"}, std::tuple{&b, b_allowed, "B"}}) {
     if (allowed && allowed->size() != d->critical_points.size()) {
       throw InputError(std::string("initial_pairs: the site restriction of surface ") + name +
                        " has " + std::to_string(allowed->size()) +
@@ -155,8 +157,7 @@ std::vector<PointPair> fuzzy_filter(std::vector<PointPair> nodes, const SurfaceD
   return kept;
 }
 
-std::vector<PointPair> with_image_matches(std::vector<PointPair> nodes,
-                                          const SurfaceDescriptors& a,
+std::vector<PointPair> with_image_matches(std::vector<PointPair> nodes, const SurfaceDescriptors& a,
                                           const SurfaceDescriptors& b) {
   check_nodes(nodes, a, b, "with_image_matches");
   // Prepare each image that some node needs, once.
@@ -281,9 +282,9 @@ std::vector<std::pair<int, int>> overlap_filter(const std::vector<PointPair>& no
                                                 const SurfaceDescriptors& a,
                                                 const SurfaceDescriptors& b,
                                                 double tolerance_degrees) {
-  check_option(std::isfinite(tolerance_degrees) && tolerance_degrees >= 0.0 &&
-                   tolerance_degrees <= 180.0,
-               "overlap_tolerance_degrees", tolerance_degrees, "a value in [0, 180] degrees");
+  check_option(
+      std::isfinite(tolerance_degrees) && tolerance_degrees >= 0.0 && tolerance_degrees <= 180.0,
+      "overlap_tolerance_degrees", tolerance_degrees, "a value in [0, 180] degrees");
   check_nodes(nodes, a, b, "overlap_filter");
   check_edges(edges, nodes.size(), "overlap_filter");
   BearingCache bearing_a(a), bearing_b(b);
@@ -292,8 +293,7 @@ std::vector<std::pair<int, int>> overlap_filter(const std::vector<PointPair>& no
   for (const auto& edge : edges) {
     const PointPair& p1 = nodes[static_cast<std::size_t>(edge.first)];
     const PointPair& p2 = nodes[static_cast<std::size_t>(edge.second)];
-    if (!has_image(a, p1.a) || !has_image(b, p1.b) || !has_image(a, p2.a) ||
-        !has_image(b, p2.b)) {
+    if (!has_image(a, p1.a) || !has_image(b, p1.b) || !has_image(a, p2.a) || !has_image(b, p2.b)) {
       kept.push_back(edge);
       continue;
     }
@@ -309,8 +309,7 @@ std::vector<std::pair<int, int>> overlap_filter(const std::vector<PointPair>& no
   return kept;
 }
 
-AssociationGraph build_association_graph(const SurfaceDescriptors& a,
-                                         const SurfaceDescriptors& b,
+AssociationGraph build_association_graph(const SurfaceDescriptors& a, const SurfaceDescriptors& b,
                                          const GraphParameters& parameters,
                                          const std::vector<bool>* a_allowed,
                                          const std::vector<bool>* b_allowed) {

@@ -97,7 +97,8 @@ double linkage(const Node& x, const Node& y) {
                   rmsd_from_moments(y.moments, x.cluster.fit.transform));
 }
 
-std::vector<MatchedPair> merged_pairs(const std::vector<MatchedPair>& x, const std::vector<MatchedPair>& y) {
+std::vector<MatchedPair> merged_pairs(const std::vector<MatchedPair>& x,
+                                      const std::vector<MatchedPair>& y) {
   std::vector<MatchedPair> out;
   std::set_union(x.begin(), x.end(), y.begin(), y.end(), std::back_inserter(out));
   return out;
@@ -141,8 +142,8 @@ std::vector<Cluster> cluster_alignments(const std::vector<std::vector<MatchedPai
       const auto [it, inserted] = shifts.emplace(PairKey{pair.a, pair.b}, pair.image_shift);
       if (!inserted && it->second != pair.image_shift) {
         throw InputError(where + ": CP pair " + pair_text(pair) + " has image shift " +
-                         std::to_string(pair.image_shift) + " here and " + std::to_string(it->second) +
-                         " elsewhere; expected one shift per pair");
+                         std::to_string(pair.image_shift) + " here and " +
+                         std::to_string(it->second) + " elsewhere; expected one shift per pair");
       }
     }
     sorted[c] = std::move(pairs);
@@ -165,8 +166,8 @@ std::vector<Cluster> cluster_alignments(const std::vector<std::vector<MatchedPai
   for (std::size_t c = 0; c < sorted.size(); ++c) {
     const std::size_t n = builder.count(sorted[c]);
     if (n < 3) {
-      throw InputError("cluster_alignments: clique " + std::to_string(c) + " has " + std::to_string(n) +
-                       " correspondences; a rigid fit needs at least 3");
+      throw InputError("cluster_alignments: clique " + std::to_string(c) + " has " +
+                       std::to_string(n) + " correspondences; a rigid fit needs at least 3");
     }
     Node node = builder.make(sorted[c]);
     if (node.cluster.fit.rmsd > options.rmsd_cut) continue;
@@ -183,7 +184,8 @@ std::vector<Cluster> cluster_alignments(const std::vector<std::vector<MatchedPai
                           nodes[static_cast<std::size_t>(j)].cluster.pairs)) {
       return;
     }
-    const double d = linkage(nodes[static_cast<std::size_t>(i)], nodes[static_cast<std::size_t>(j)]);
+    const double d =
+        linkage(nodes[static_cast<std::size_t>(i)], nodes[static_cast<std::size_t>(j)]);
     if (d <= options.merge_cut) heap.emplace(d, i, j);
   };
   for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {

@@ -10,8 +10,8 @@ namespace surfcomp::matching {
 
 namespace {
 
-const harmonic::CriticalPointDescriptor& imaged_point(const harmonic::SurfaceDescriptors& d, int index,
-                                                      const char* side) {
+const harmonic::CriticalPointDescriptor& imaged_point(const harmonic::SurfaceDescriptors& d,
+                                                      int index, const char* side) {
   if (index < 0 || static_cast<std::size_t>(index) >= d.critical_points.size()) {
     throw InputError(std::string("pair_correspondences: critical point ") + std::to_string(index) +
                      " of surface " + side + " (" + d.surface.source() + ") is outside its " +
@@ -29,8 +29,8 @@ const harmonic::CriticalPointDescriptor& imaged_point(const harmonic::SurfaceDes
 Eigen::VectorXd surface_property(const harmonic::SurfaceDescriptors& d, const std::string& name,
                                  const char* side) {
   if (!d.surface.has_property(name)) {
-    throw InputError(std::string("pair_correspondences: surface ") + side + " (" + d.surface.source() +
-                     ") has no vertex property '" + name + "'");
+    throw InputError(std::string("pair_correspondences: surface ") + side + " (" +
+                     d.surface.source() + ") has no vertex property '" + name + "'");
   }
   return d.surface.property(name);
 }
@@ -64,9 +64,9 @@ Correspondences pair_correspondences(const harmonic::SurfaceDescriptors& a,
   const harmonic::ShapeImage& ia = pa.image;
   const harmonic::ShapeImage& ib = pb.image;
   if (ia.radial_samples != ib.radial_samples || ia.angular_samples != ib.angular_samples) {
-    throw InputError("pair_correspondences: image grids " + std::to_string(ia.radial_samples) + " x " +
-                     std::to_string(ia.angular_samples) + " (A, point " + std::to_string(pair.a) +
-                     ") and " + std::to_string(ib.radial_samples) + " x " +
+    throw InputError("pair_correspondences: image grids " + std::to_string(ia.radial_samples) +
+                     " x " + std::to_string(ia.angular_samples) + " (A, point " +
+                     std::to_string(pair.a) + ") and " + std::to_string(ib.radial_samples) + " x " +
                      std::to_string(ib.angular_samples) + " (B, point " + std::to_string(pair.b) +
                      "); expected equal grids");
   }
@@ -93,8 +93,10 @@ Correspondences pair_correspondences(const harmonic::SurfaceDescriptors& a,
   out.b_property.resize(n);
   for (Eigen::Index k = 0; k < n; ++k) {
     const auto [i, j] = grid_pairs[static_cast<std::size_t>(k)];
-    out.a_points.col(k) = harmonic::image_point_to_surface(ia, i, pa.patch.positions, pa.patch.faces);
-    out.b_points.col(k) = harmonic::image_point_to_surface(ib, j, pb.patch.positions, pb.patch.faces);
+    out.a_points.col(k) =
+        harmonic::image_point_to_surface(ia, i, pa.patch.positions, pa.patch.faces);
+    out.b_points.col(k) =
+        harmonic::image_point_to_surface(ib, j, pb.patch.positions, pb.patch.faces);
     out.a_property(k) = property_at(pa, i, property_a);
     out.b_property(k) = property_at(pb, j, property_b);
   }
@@ -112,11 +114,13 @@ Correspondences concatenate(const std::vector<const Correspondences*>& parts) {
   Eigen::Index at = 0;
   for (const Correspondences* part : parts) {
     const Eigen::Index m = part->a_points.cols();
-    if (part->b_points.cols() != m || part->a_property.size() != m || part->b_property.size() != m) {
+    if (part->b_points.cols() != m || part->a_property.size() != m ||
+        part->b_property.size() != m) {
       throw InputError("concatenate: a part has " + std::to_string(m) + " A points, " +
                        std::to_string(part->b_points.cols()) + " B points and " +
                        std::to_string(part->a_property.size()) + " / " +
-                       std::to_string(part->b_property.size()) + " property values; expected equal counts");
+                       std::to_string(part->b_property.size()) +
+                       " property values; expected equal counts");
     }
     out.a_points.middleCols(at, m) = part->a_points;
     out.b_points.middleCols(at, m) = part->b_points;

@@ -35,8 +35,9 @@ double fuzzy_similarity(const FuzzyMemberships& m, const FuzzyMemberships& n) {
     maxima += std::max(m[k], n[k]);
   }
   if (!(maxima > 0.0)) {
-    throw InputError("fuzzy_similarity: both membership vectors are zero, expected memberships "
-                     "with a positive sum");
+    throw InputError(
+        "fuzzy_similarity: both membership vectors are zero, expected memberships "
+        "with a positive sum");
   }
   return minima / maxima;
 }

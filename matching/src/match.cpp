@@ -17,7 +17,8 @@ namespace surfcomp::matching {
 namespace {
 
 double since_ms(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
 }
 
 /// An alignment in its final place.
@@ -35,7 +36,9 @@ struct Placed {
 std::optional<std::vector<bool>> site_vertices(const harmonic::SurfaceDescriptors& descriptors,
                                                const std::vector<bool>* allowed, double radius) {
   const auto& cps = descriptors.critical_points;
-  const auto skipped = [&](std::size_t c) { return cps[c].status == harmonic::PatchStatus::skipped; };
+  const auto skipped = [&](std::size_t c) {
+    return cps[c].status == harmonic::PatchStatus::skipped;
+  };
   bool any_skipped = false;
   for (std::size_t c = 0; c < cps.size(); ++c) any_skipped = any_skipped || skipped(c);
   if (allowed == nullptr && !any_skipped) return std::nullopt;
@@ -45,7 +48,8 @@ std::optional<std::vector<bool>> site_vertices(const harmonic::SurfaceDescriptor
     if ((allowed != nullptr && !(*allowed)[c]) || skipped(c)) continue;
     const Eigen::Vector3d centre = cps[c].point.position;
     for (Eigen::Index v = 0; v < positions.rows(); ++v) {
-      if ((Eigen::Vector3d(positions.row(v)) - centre).squaredNorm() <= radius * radius) inside[static_cast<std::size_t>(v)] = true;
+      if ((Eigen::Vector3d(positions.row(v)) - centre).squaredNorm() <= radius * radius)
+        inside[static_cast<std::size_t>(v)] = true;
     }
   }
   return inside;
@@ -58,24 +62,31 @@ std::optional<std::vector<bool>> site_vertices(const harmonic::SurfaceDescriptor
 /// first polish_top of them polished on the whole score where atoms take part
 /// (MatchOptions::polish_top). Those first refine_top alignments get their overlay score. A
 /// site match overlays the pocket linings with MatchOptions::site's settings.
-std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking, const std::vector<Cluster>& clusters,
+std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking,
+                                     const std::vector<Cluster>& clusters,
                                      const harmonic::SurfaceDescriptors& reference,
-                                     const harmonic::SurfaceDescriptors& probe, const MatchOptions& options,
+                                     const harmonic::SurfaceDescriptors& probe,
+                                     const MatchOptions& options,
                                      const std::vector<bool>* reference_allowed,
                                      const std::vector<bool>* probe_allowed) {
   constexpr double kRepeatDistance = 0.5;  // A, largest move of a sampled probe point
-  if (options.refine_top < 0) throw OptionError("refine_top must be >= 0, got " + std::to_string(options.refine_top));
-  if (options.polish_top < 0) throw OptionError("polish_top must be >= 0, got " + std::to_string(options.polish_top));
+  if (options.refine_top < 0)
+    throw OptionError("refine_top must be >= 0, got " + std::to_string(options.refine_top));
+  if (options.polish_top < 0)
+    throw OptionError("polish_top must be >= 0, got " + std::to_string(options.polish_top));
   const auto check_starts = [](int n, const char* name) {
-    if (!is_axes_start_count(n)) throw OptionError(std::string(name) + " must be 0, 4 or 24, got " + std::to_string(n));
+    if (!is_axes_start_count(n))
+      throw OptionError(std::string(name) + " must be 0, 4 or 24, got " + std::to_string(n));
   };
   check_starts(options.principal_axes_starts, "principal_axes_starts");
   check_starts(options.site.principal_axes_starts, "site.principal_axes_starts");
   if (!(options.site.overlay_radius > 0.0) || !std::isfinite(options.site.overlay_radius)) {
-    throw OptionError("site.overlay_radius must be a finite number > 0, got " + std::to_string(options.site.overlay_radius));
+    throw OptionError("site.overlay_radius must be a finite number > 0, got " +
+                      std::to_string(options.site.overlay_radius));
   }
   if (!(options.site.chem_weight >= 0.0) || !std::isfinite(options.site.chem_weight)) {
-    throw OptionError("site.chem_weight must be a finite number >= 0, got " + std::to_string(options.site.chem_weight));
+    throw OptionError("site.chem_weight must be a finite number >= 0, got " +
+                      std::to_string(options.site.chem_weight));
   }
   std::vector<Placed> placed;
   for (const RankedAlignment& r : ranking) {
@@ -86,7 +97,8 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     placed.push_back(p);
   }
   if (options.refine_top == 0) return placed;
-  const auto reference_mask = site_vertices(reference, reference_allowed, options.site.overlay_radius);
+  const auto reference_mask =
+      site_vertices(reference, reference_allowed, options.site.overlay_radius);
   const auto probe_mask = site_vertices(probe, probe_allowed, options.site.overlay_radius);
   const bool site = reference_mask.has_value() || probe_mask.has_value();
   OverlayOptions overlay_options = options.overlay;
@@ -94,23 +106,28 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     overlay_options.chem_weight = options.site.chem_weight;
     overlay_options.atom_weight = 0.0;  // pockets are compared on their linings' shape
   }
-  const int n_axes_starts = site ? options.site.principal_axes_starts : options.principal_axes_starts;
+  const int n_axes_starts =
+      site ? options.site.principal_axes_starts : options.principal_axes_starts;
   if (placed.empty() && n_axes_starts == 0) return placed;
-  SurfaceSample reference_sample =
-      sample_surface(reference.surface, overlay_options.spacing, reference_mask ? &*reference_mask : nullptr);
-  SurfaceSample probe_sample = sample_surface(probe.surface, overlay_options.spacing, probe_mask ? &*probe_mask : nullptr);
+  SurfaceSample reference_sample = sample_surface(reference.surface, overlay_options.spacing,
+                                                  reference_mask ? &*reference_mask : nullptr);
+  SurfaceSample probe_sample =
+      sample_surface(probe.surface, overlay_options.spacing, probe_mask ? &*probe_mask : nullptr);
   // A site region can be empty (no participating CP); then there is nothing to overlay.
   if (reference_sample.size() == 0 || probe_sample.size() == 0) {
     if (placed.empty()) return placed;
-    throw InputError(reference.surface.source() + " and " + probe.surface.source() + ": the overlay region of the " +
+    throw InputError(reference.surface.source() + " and " + probe.surface.source() +
+                     ": the overlay region of the " +
                      (reference_sample.size() == 0 ? "reference" : "probe") + " has no vertices");
   }
   std::vector<RigidTransform> axes_starts;
-  if (n_axes_starts > 0) axes_starts = principal_axes_starts(reference_sample, probe_sample, n_axes_starts == 24);
-  const SurfaceOverlay overlay(std::move(reference_sample), std::move(probe_sample), overlay_options,
-                               site ? AtomSample{} : sample_atoms(reference.atoms),
+  if (n_axes_starts > 0)
+    axes_starts = principal_axes_starts(reference_sample, probe_sample, n_axes_starts == 24);
+  const SurfaceOverlay overlay(std::move(reference_sample), std::move(probe_sample),
+                               overlay_options, site ? AtomSample{} : sample_atoms(reference.atoms),
                                site ? AtomSample{} : sample_atoms(probe.atoms));
-  const std::size_t n_refined = std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
+  const std::size_t n_refined =
+      std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
   const Eigen::Matrix3Xd& points = overlay.probe_points();
   const auto largest_move = [&](const RigidTransform& x, const RigidTransform& y) {
     return (x.apply(points) - y.apply(points)).colwise().norm().maxCoeff();
@@ -136,7 +153,8 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     p.transform = overlay.refine(p.transform, &p.overlay);
     p.refined = true;
   });
-  std::vector<Placed> candidates(placed.begin(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
+  std::vector<Placed> candidates(placed.begin(),
+                                 placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
   // A principal-axes start whose refinement comes within kRepeatDistance of a pose refined
   // from the cliques is taken for a repeat of it and abandoned there (it could have climbed on
   // past it; the benchmark figures are with this rule). The probe points' centroid moves no
@@ -153,7 +171,8 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   std::vector<std::optional<Placed>> axes_poses(axes_starts.size());
   tbb::parallel_for(std::size_t{0}, axes_starts.size(), [&](std::size_t i) {
     Placed p;  // no cluster
-    const std::optional<RigidTransform> refined = overlay.refine(axes_starts[i], &p.overlay, reached);
+    const std::optional<RigidTransform> refined =
+        overlay.refine(axes_starts[i], &p.overlay, reached);
     if (!refined) return;
     p.transform = *refined;
     p.refined = true;
@@ -170,7 +189,9 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     std::size_t distinct = 0;
   };
   const auto best_first = [&](std::vector<Placed> all) {
-    std::stable_sort(all.begin(), all.end(), [](const Placed& x, const Placed& y) { return x.overlay.score > y.overlay.score; });
+    std::stable_sort(all.begin(), all.end(), [](const Placed& x, const Placed& y) {
+      return x.overlay.score > y.overlay.score;
+    });
     Ordered out;
     std::vector<Placed> repeats;
     for (const Placed& candidate : all) {
@@ -193,7 +214,9 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   // again (a polished pose that comes to repeat a better one goes after the distinct ones).
   if (overlay.uses_atoms() && options.polish_top > 0) {
     std::vector<std::size_t> to_polish;
-    for (std::size_t i = 0; i < ordered.distinct && to_polish.size() < static_cast<std::size_t>(options.polish_top); ++i) {
+    for (std::size_t i = 0;
+         i < ordered.distinct && to_polish.size() < static_cast<std::size_t>(options.polish_top);
+         ++i) {
       if (ordered.list[i].refined) to_polish.push_back(i);
     }
     tbb::parallel_for(std::size_t{0}, to_polish.size(), [&](std::size_t k) {
@@ -202,7 +225,8 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     });
     ordered = best_first(std::move(ordered.list));
   }
-  ordered.list.insert(ordered.list.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined), placed.end());
+  ordered.list.insert(ordered.list.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined),
+                      placed.end());
   return ordered.list;
 }
 
@@ -215,18 +239,19 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
   const auto& ga = reference.options.image;
   const auto& gb = probe.options.image;
   if (ga.radial_samples != gb.radial_samples || ga.angular_samples != gb.angular_samples) {
-    throw InputError(reference.surface.source() + " and " + probe.surface.source() +
-                     ": the images were built on different grids (" +
-                     std::to_string(ga.radial_samples) + "x" + std::to_string(ga.angular_samples) +
-                     " and " + std::to_string(gb.radial_samples) + "x" +
-                     std::to_string(gb.angular_samples) + "); rebuild them with the same parameters");
+    throw InputError(
+        reference.surface.source() + " and " + probe.surface.source() +
+        ": the images were built on different grids (" + std::to_string(ga.radial_samples) + "x" +
+        std::to_string(ga.angular_samples) + " and " + std::to_string(gb.radial_samples) + "x" +
+        std::to_string(gb.angular_samples) + "); rebuild them with the same parameters");
   }
   MatchResult result;
   auto clock = std::chrono::steady_clock::now();
   const AssociationGraph graph =
       build_association_graph(reference, probe, options.graph, reference_allowed, probe_allowed);
   result.trace = graph.trace;
-  for (const TraceStage& stage : graph.trace) result.timing_ms.emplace_back("graph: " + stage.stage, stage.milliseconds);
+  for (const TraceStage& stage : graph.trace)
+    result.timing_ms.emplace_back("graph: " + stage.stage, stage.milliseconds);
 
   clock = std::chrono::steady_clock::now();
   const std::vector<std::vector<int>> cliques = maximal_cliques(graph, options.min_clique_size);
@@ -244,8 +269,8 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
   result.timing_ms.emplace_back("cliques", since_ms(clock));
 
   clock = std::chrono::steady_clock::now();
-  const std::vector<Cluster> clusters = cluster_alignments(pair_cliques, reference, probe,
-                                                           options.clustering, options.correspondences);
+  const std::vector<Cluster> clusters = cluster_alignments(
+      pair_cliques, reference, probe, options.clustering, options.correspondences);
   result.timing_ms.emplace_back("fits and merging", since_ms(clock));
 
   clock = std::chrono::steady_clock::now();
@@ -257,7 +282,8 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
                                                       reference_allowed, probe_allowed);
   std::vector<int> rank_of(clusters.size(), 0);
   for (std::size_t k = 0; k < placed.size(); ++k) {
-    if (placed[k].cluster >= 0) rank_of[static_cast<std::size_t>(placed[k].cluster)] = static_cast<int>(k) + 1;
+    if (placed[k].cluster >= 0)
+      rank_of[static_cast<std::size_t>(placed[k].cluster)] = static_cast<int>(k) + 1;
   }
   for (std::size_t k = 0; k < placed.size(); ++k) {
     const Placed& p = placed[k];

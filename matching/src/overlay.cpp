@@ -19,26 +19,30 @@ constexpr double kCutoffSigmas = 3.0;
 
 void require_positive(double value, const char* name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
-    throw OptionError(std::string("overlay: ") + name + " must be a finite number > 0, got " + std::to_string(value));
+    throw OptionError(std::string("overlay: ") + name + " must be a finite number > 0, got " +
+                      std::to_string(value));
   }
 }
 
 /// sqrt(sum w x^2 / sum w) over both samples' values; 1 when it is zero (no such property).
-double root_mean_square(const Eigen::VectorXd& a, const Eigen::VectorXd& wa, const Eigen::VectorXd& b,
-                        const Eigen::VectorXd& wb) {
-  const double r = std::sqrt(((a.array().square() * wa.array()).sum() + (b.array().square() * wb.array()).sum()) /
-                             (wa.sum() + wb.sum()));
+double root_mean_square(const Eigen::VectorXd& a, const Eigen::VectorXd& wa,
+                        const Eigen::VectorXd& b, const Eigen::VectorXd& wb) {
+  const double r = std::sqrt(
+      ((a.array().square() * wa.array()).sum() + (b.array().square() * wb.array()).sum()) /
+      (wa.sum() + wb.sum()));
   return r > 0.0 ? r : 1.0;
 }
 
 }  // namespace
 
-SurfaceSample sample_surface(const mesh::Surface& surface, double spacing, const std::vector<bool>* vertex_mask) {
+SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
+                             const std::vector<bool>* vertex_mask) {
   require_positive(spacing, "spacing");
   const std::size_t n = surface.n_vertices();
   if (vertex_mask != nullptr && vertex_mask->size() != n) {
-    throw InputError(surface.source() + ": overlay vertex mask has " + std::to_string(vertex_mask->size()) +
-                     " flags for " + std::to_string(n) + " vertices");
+    throw InputError(surface.source() + ": overlay vertex mask has " +
+                     std::to_string(vertex_mask->size()) + " flags for " + std::to_string(n) +
+                     " vertices");
   }
   const Eigen::MatrixX3d positions = surface.positions();
   Eigen::MatrixX3d normals;
@@ -51,7 +55,9 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing, const
   }
   const Eigen::VectorXd area = mesh::vertex_areas(surface);
   const auto property_or_zero = [&](const char* name) {
-    return surface.has_property(name) ? surface.property(name) : Eigen::VectorXd(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n)));
+    return surface.has_property(name)
+               ? surface.property(name)
+               : Eigen::VectorXd(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n)));
   };
   const Eigen::VectorXd esp = property_or_zero(mesh::property::esp);
   const Eigen::VectorXd lp = property_or_zero(mesh::property::lp);
@@ -89,7 +95,8 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing, const
   for (const auto& [key, cell] : cells) {
     sample.points.col(k) = cell.position / cell.weight;
     const double length = cell.normal.norm();
-    sample.normals.col(k) = length > 0.0 ? Eigen::Vector3d(cell.normal / length) : Eigen::Vector3d::Zero();
+    sample.normals.col(k) =
+        length > 0.0 ? Eigen::Vector3d(cell.normal / length) : Eigen::Vector3d::Zero();
     sample.esp(k) = cell.esp / cell.weight;
     sample.lp(k) = cell.lp / cell.weight;
     sample.weights(k) = cell.weight;
@@ -120,7 +127,8 @@ std::pair<Eigen::Vector3d, Eigen::Matrix3d> principal_frame(const SurfaceSample&
   const double total = sample.weights.sum();
   const Eigen::Vector3d centroid = sample.points * sample.weights / total;
   const Eigen::Matrix3Xd centred = sample.points.colwise() - centroid;
-  const Eigen::Matrix3d covariance = centred * sample.weights.asDiagonal() * centred.transpose() / total;
+  const Eigen::Matrix3d covariance =
+      centred * sample.weights.asDiagonal() * centred.transpose() / total;
   Eigen::Matrix3d axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
   if (axes.determinant() < 0.0) axes.col(0) = -axes.col(0);
   return {centroid, axes};
@@ -128,11 +136,11 @@ std::pair<Eigen::Vector3d, Eigen::Matrix3d> principal_frame(const SurfaceSample&
 
 }  // namespace
 
-std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference, const SurfaceSample& probe,
-                                                  bool all_orders) {
+std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference,
+                                                  const SurfaceSample& probe, bool all_orders) {
   if (reference.size() == 0 || probe.size() == 0) {
-    throw InputError(std::string("principal axes: the ") + (reference.size() == 0 ? "reference" : "probe") +
-                     " sample has no points");
+    throw InputError(std::string("principal axes: the ") +
+                     (reference.size() == 0 ? "reference" : "probe") + " sample has no points");
   }
   const auto [reference_centroid, reference_axes] = principal_frame(reference);
   const auto [probe_centroid, probe_axes] = principal_frame(probe);
@@ -142,7 +150,8 @@ std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference
   do {
     for (int signs = 0; signs < 8; ++signs) {
       Eigen::Matrix3d p = Eigen::Matrix3d::Zero();
-      for (int j = 0; j < 3; ++j) p(perm[static_cast<std::size_t>(j)], j) = (signs >> j) & 1 ? -1.0 : 1.0;
+      for (int j = 0; j < 3; ++j)
+        p(perm[static_cast<std::size_t>(j)], j) = (signs >> j) & 1 ? -1.0 : 1.0;
       if (p.determinant() < 0.0) continue;
       RigidTransform t;
       t.rotation = reference_axes * p * probe_axes.transpose();
@@ -153,25 +162,33 @@ std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference
   return starts;
 }
 
-SurfaceOverlay::Grid SurfaceOverlay::make_grid(const SurfaceSample& sample, double cell, double cutoff) {
-  constexpr double kMaxCells = 1 << 22;  // a larger box gets larger cells (a whole protein at small sigma)
+SurfaceOverlay::Grid SurfaceOverlay::make_grid(const SurfaceSample& sample, double cell,
+                                               double cutoff) {
+  constexpr double kMaxCells =
+      1 << 22;  // a larger box gets larger cells (a whole protein at small sigma)
   Grid grid;
   grid.origin = sample.points.rowwise().minCoeff().array() - cutoff;
-  const Eigen::Vector3d extent = sample.points.rowwise().maxCoeff().array() + cutoff - grid.origin.array();
+  const Eigen::Vector3d extent =
+      sample.points.rowwise().maxCoeff().array() + cutoff - grid.origin.array();
   grid.cell = std::max(cell, std::cbrt(extent.prod() / kMaxCells));
-  for (int d = 0; d < 3; ++d) grid.size(d) = static_cast<int>(std::floor(extent(d) / grid.cell)) + 1;
+  for (int d = 0; d < 3; ++d)
+    grid.size(d) = static_cast<int>(std::floor(extent(d) / grid.cell)) + 1;
   // A cell lists every point within the cutoff of any of its places: within the cutoff plus
   // half the cell's diagonal of its centre. Two passes: count, then fill.
   const double reach = cutoff + 0.5 * std::sqrt(3.0) * grid.cell;
   const auto for_each_cell_near = [&](Eigen::Index i, const auto& visit) {
     const Eigen::Vector3d p = sample.points.col(i);
-    const Eigen::Vector3i low = ((p.array() - reach - grid.origin.array()) / grid.cell).floor().cast<int>().max(0);
-    const Eigen::Vector3i high =
-        ((p.array() + reach - grid.origin.array()) / grid.cell).floor().cast<int>().min(grid.size.array() - 1);
+    const Eigen::Vector3i low =
+        ((p.array() - reach - grid.origin.array()) / grid.cell).floor().cast<int>().max(0);
+    const Eigen::Vector3i high = ((p.array() + reach - grid.origin.array()) / grid.cell)
+                                     .floor()
+                                     .cast<int>()
+                                     .min(grid.size.array() - 1);
     for (int z = low.z(); z <= high.z(); ++z) {
       for (int y = low.y(); y <= high.y(); ++y) {
         for (int x = low.x(); x <= high.x(); ++x) {
-          const Eigen::Vector3d centre = grid.origin + grid.cell * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
+          const Eigen::Vector3d centre =
+              grid.origin + grid.cell * Eigen::Vector3d(x + 0.5, y + 0.5, z + 0.5);
           if ((centre - p).squaredNorm() <= reach * reach) visit(grid.index(x, y, z));
         }
       }
@@ -179,7 +196,8 @@ SurfaceOverlay::Grid SurfaceOverlay::make_grid(const SurfaceSample& sample, doub
   };
   const std::size_t cells = grid.index(0, 0, grid.size.z());
   grid.start.assign(cells + 1, 0);
-  for (Eigen::Index i = 0; i < sample.points.cols(); ++i) for_each_cell_near(i, [&](std::size_t c) { ++grid.start[c + 1]; });
+  for (Eigen::Index i = 0; i < sample.points.cols(); ++i)
+    for_each_cell_near(i, [&](std::size_t c) { ++grid.start[c + 1]; });
   for (std::size_t c = 0; c < cells; ++c) grid.start[c + 1] += grid.start[c];
   grid.points.resize(grid.start[cells]);
   std::vector<std::size_t> fill(grid.start.begin(), grid.start.end() - 1);
@@ -197,7 +215,9 @@ template <typename Grid, typename Visit>
 void visit_near(const Grid& grid, const Eigen::Vector3d& p, const Visit& visit) {
   const Eigen::Vector3d local = (p - grid.origin) / grid.cell;
   // Outside the grid, or not a number (also guards the int conversion below).
-  if (!((local.array() >= 0.0).all() && (local.array() < grid.size.template cast<double>().array()).all())) return;
+  if (!((local.array() >= 0.0).all() &&
+        (local.array() < grid.size.template cast<double>().array()).all()))
+    return;
   const Eigen::Vector3i c = local.array().floor().cast<int>();
   const std::size_t cell = grid.index(c.x(), c.y(), c.z());
   for (std::size_t k = grid.start[cell]; k < grid.start[cell + 1]; ++k) visit(grid.points[k]);
@@ -210,8 +230,10 @@ double SurfaceOverlay::chemistry(const SurfaceSample& a, int i, const SurfaceSam
   return std::max(0.0, a.esp(i) * b.esp(j)) + std::max(0.0, a.lp(i) * b.lp(j));
 }
 
-SurfaceOverlay::Sums SurfaceOverlay::overlap(const SurfaceSample& a, const Grid& grid, const SurfaceSample& b,
-                                             const RigidTransform& transform, Eigen::Matrix3Xd* targets,
+SurfaceOverlay::Sums SurfaceOverlay::overlap(const SurfaceSample& a, const Grid& grid,
+                                             const SurfaceSample& b,
+                                             const RigidTransform& transform,
+                                             Eigen::Matrix3Xd* targets,
                                              Eigen::VectorXd* target_weights) const {
   const double cutoff2 = std::pow(kCutoffSigmas * options_.sigma, 2);
   Sums sums;
@@ -241,12 +263,14 @@ SurfaceOverlay::Sums SurfaceOverlay::overlap(const SurfaceSample& a, const Grid&
   return sums;
 }
 
-double SurfaceOverlay::atom_overlap(const AtomSample& a, const AtomSample& b, const RigidTransform& transform,
-                                    Eigen::Matrix3Xd* targets, Eigen::VectorXd* totals) const {
+double SurfaceOverlay::atom_overlap(const AtomSample& a, const AtomSample& b,
+                                    const RigidTransform& transform, Eigen::Matrix3Xd* targets,
+                                    Eigen::VectorXd* totals) const {
   const double inv2s2 = 1.0 / (2.0 * options_.sigma * options_.sigma);
   double sum = 0.0;
   for (std::size_t l = 0; l < b.size(); ++l) {
-    const Eigen::Vector3d y = transform.rotation * b.points.col(static_cast<Eigen::Index>(l)) + transform.translation;
+    const Eigen::Vector3d y =
+        transform.rotation * b.points.col(static_cast<Eigen::Index>(l)) + transform.translation;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     double total = 0.0;
     for (std::size_t k = 0; k < a.size(); ++k) {
@@ -267,7 +291,8 @@ double SurfaceOverlay::atom_overlap(const AtomSample& a, const AtomSample& b, co
 
 double SurfaceOverlay::combined(const OverlayScore& s, bool with_atoms) const {
   const double atom_weight = with_atoms ? options_.atom_weight : 0.0;
-  return (s.shape + chem_weight_ * s.chem + atom_weight * s.atoms) / (1.0 + chem_weight_ + atom_weight);
+  return (s.shape + chem_weight_ * s.chem + atom_weight * s.atoms) /
+         (1.0 + chem_weight_ + atom_weight);
 }
 
 OverlayScore SurfaceOverlay::tanimoto(const Sums& sums) const {
@@ -281,7 +306,9 @@ OverlayScore SurfaceOverlay::tanimoto(const Sums& sums) const {
 }
 
 OverlayScore SurfaceOverlay::with_atoms(OverlayScore s, const RigidTransform& transform) const {
-  return uses_atoms() ? with_atom_overlap(s, atom_overlap(reference_atoms_, probe_atoms_, transform)) : s;
+  return uses_atoms()
+             ? with_atom_overlap(s, atom_overlap(reference_atoms_, probe_atoms_, transform))
+             : s;
 }
 
 OverlayScore SurfaceOverlay::with_atom_overlap(OverlayScore s, double h) const {
@@ -290,8 +317,9 @@ OverlayScore SurfaceOverlay::with_atom_overlap(OverlayScore s, double h) const {
   return s;
 }
 
-SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, const OverlayOptions& options,
-                               AtomSample reference_atoms, AtomSample probe_atoms)
+SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe,
+                               const OverlayOptions& options, AtomSample reference_atoms,
+                               AtomSample probe_atoms)
     : reference_(std::move(reference)),
       probe_(std::move(probe)),
       options_(options),
@@ -300,28 +328,37 @@ SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, con
   require_positive(options_.sigma, "sigma");
   require_positive(options_.spacing, "spacing");
   if (!(options_.chem_weight >= 0.0) || !std::isfinite(options_.chem_weight)) {
-    throw OptionError("overlay: chem_weight must be a finite number >= 0, got " + std::to_string(options_.chem_weight));
+    throw OptionError("overlay: chem_weight must be a finite number >= 0, got " +
+                      std::to_string(options_.chem_weight));
   }
   if (!(options_.atom_weight >= 0.0) || !std::isfinite(options_.atom_weight)) {
-    throw OptionError("overlay: atom_weight must be a finite number >= 0, got " + std::to_string(options_.atom_weight));
+    throw OptionError("overlay: atom_weight must be a finite number >= 0, got " +
+                      std::to_string(options_.atom_weight));
   }
-  if (options_.iterations < 0) throw OptionError("overlay: iterations must be >= 0, got " + std::to_string(options_.iterations));
+  if (options_.iterations < 0)
+    throw OptionError("overlay: iterations must be >= 0, got " +
+                      std::to_string(options_.iterations));
   if (!(options_.tolerance >= 0.0)) throw OptionError("overlay: tolerance must be >= 0");
   if (reference_.size() == 0 || probe_.size() == 0) {
-    throw InputError(std::string("overlay: the ") + (reference_.size() == 0 ? "reference" : "probe") +
+    throw InputError(std::string("overlay: the ") +
+                     (reference_.size() == 0 ? "reference" : "probe") +
                      " sample has no points (an empty surface or site region)");
   }
   for (const AtomSample* atoms : {&reference_atoms_, &probe_atoms_}) {
-    if (static_cast<std::size_t>(atoms->points.cols()) != atoms->size() || !atoms->points.allFinite()) {
-      throw InputError(std::string("overlay: the ") + (atoms == &reference_atoms_ ? "reference" : "probe") +
-                       " atoms have " + std::to_string(atoms->points.cols()) + " positions for " +
-                       std::to_string(atoms->size()) + " elements, or a position that is not finite");
+    if (static_cast<std::size_t>(atoms->points.cols()) != atoms->size() ||
+        !atoms->points.allFinite()) {
+      throw InputError(
+          std::string("overlay: the ") + (atoms == &reference_atoms_ ? "reference" : "probe") +
+          " atoms have " + std::to_string(atoms->points.cols()) + " positions for " +
+          std::to_string(atoms->size()) + " elements, or a position that is not finite");
     }
   }
   // ESP and LP over their root mean squares over both samples, so that the two properties
   // count alike whatever their units.
-  const double esp_rms = root_mean_square(reference_.esp, reference_.weights, probe_.esp, probe_.weights);
-  const double lp_rms = root_mean_square(reference_.lp, reference_.weights, probe_.lp, probe_.weights);
+  const double esp_rms =
+      root_mean_square(reference_.esp, reference_.weights, probe_.esp, probe_.weights);
+  const double lp_rms =
+      root_mean_square(reference_.lp, reference_.weights, probe_.lp, probe_.weights);
   for (SurfaceSample* sample : {&reference_, &probe_}) {
     sample->esp /= esp_rms;
     sample->lp /= lp_rms;
@@ -330,7 +367,8 @@ SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, con
   gaussian_scale_ = kGaussianSamples / (cutoff * cutoff);
   gaussian_.resize(kGaussianSamples + 2);
   for (std::size_t k = 0; k < gaussian_.size(); ++k) {
-    gaussian_[k] = std::exp(-static_cast<double>(k) / gaussian_scale_ / (2.0 * options_.sigma * options_.sigma));
+    gaussian_[k] = std::exp(-static_cast<double>(k) / gaussian_scale_ /
+                            (2.0 * options_.sigma * options_.sigma));
   }
   reference_grid_ = make_grid(reference_, options_.sigma, cutoff);
   const Grid probe_grid = make_grid(probe_, options_.sigma, cutoff);
@@ -341,7 +379,8 @@ SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, con
   self_.chem = reference_self.chem + probe_self.chem;
   chem_weight_ = self_.chem > 0.0 ? options_.chem_weight : 0.0;
   if (reference_atoms_.size() > 0 && probe_atoms_.size() > 0) {
-    atom_self_ = atom_overlap(reference_atoms_, reference_atoms_, identity) + atom_overlap(probe_atoms_, probe_atoms_, identity);
+    atom_self_ = atom_overlap(reference_atoms_, reference_atoms_, identity) +
+                 atom_overlap(probe_atoms_, probe_atoms_, identity);
   }
 }
 
@@ -353,12 +392,14 @@ namespace {
 
 /// `current` followed by `alpha` times the motion that takes `current` to `step` (rotation angle
 /// and translation scaled about `centre`, a point in the moved frame); alpha 1 gives `step`.
-RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& step, const Eigen::Vector3d& centre,
-                           double alpha) {
+RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& step,
+                           const Eigen::Vector3d& centre, double alpha) {
   const Eigen::Matrix3d relative = step.rotation * current.rotation.transpose();
-  const Eigen::Vector3d shift = relative * centre + (step.translation - relative * current.translation) - centre;
+  const Eigen::Vector3d shift =
+      relative * centre + (step.translation - relative * current.translation) - centre;
   const Eigen::AngleAxisd angle_axis(relative);
-  const Eigen::Matrix3d scaled = Eigen::AngleAxisd(alpha * angle_axis.angle(), angle_axis.axis()).toRotationMatrix();
+  const Eigen::Matrix3d scaled =
+      Eigen::AngleAxisd(alpha * angle_axis.angle(), angle_axis.axis()).toRotationMatrix();
   RigidTransform out;
   out.rotation = scaled * current.rotation;
   out.translation = scaled * (current.translation - centre) + centre + alpha * shift;
@@ -367,9 +408,9 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
 
 }  // namespace
 
-std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start, OverlayScore* final_score,
-                                                     const std::function<bool(const RigidTransform&)>& abandon,
-                                                     bool pull_atoms) const {
+std::optional<RigidTransform> SurfaceOverlay::refine(
+    const RigidTransform& start, OverlayScore* final_score,
+    const std::function<bool(const RigidTransform&)>& abandon, bool pull_atoms) const {
   constexpr double kMaxAlpha = 8.0;
   pull_atoms = pull_atoms && uses_atoms();
   const Eigen::Index n = probe_.points.cols();
@@ -417,7 +458,8 @@ std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start
       alpha = std::min(2.0 * alpha, kMaxAlpha);
     }
     if (!(next_score.score > current_score.score)) break;
-    const double moved = (next.apply(probe_.points) - current.apply(probe_.points)).colwise().norm().maxCoeff();
+    const double moved =
+        (next.apply(probe_.points) - current.apply(probe_.points)).colwise().norm().maxCoeff();
     current = next;
     current_score = next_score;
     targets.swap(next_targets);
@@ -425,7 +467,8 @@ std::optional<RigidTransform> SurfaceOverlay::refine(const RigidTransform& start
     if (abandon && abandon(current)) return std::nullopt;
     if (moved <= options_.tolerance) break;
   }
-  if (final_score != nullptr) *final_score = pull_atoms ? current_score : with_atoms(current_score, current);
+  if (final_score != nullptr)
+    *final_score = pull_atoms ? current_score : with_atoms(current_score, current);
   return current;
 }
 

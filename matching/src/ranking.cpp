@@ -39,15 +39,17 @@ void check_option(bool ok, const std::string& what) {
 
 std::vector<RankedAlignment> rank_alignments(const std::vector<Cluster>& clusters,
                                              const RankingOptions& options) {
-  const std::array<double, 3> weights = {options.weight_rmsd, options.weight_points, options.weight_chem};
+  const std::array<double, 3> weights = {options.weight_rmsd, options.weight_points,
+                                         options.weight_chem};
   for (double w : weights) {
     check_option(std::isfinite(w) && w >= 0.0,
                  "weight " + std::to_string(w) + "; expected finite and >= 0");
   }
   const double weight_sum = weights[0] + weights[1] + weights[2];
   check_option(weight_sum > 0.0, "all three weights are 0; expected at least one > 0");
-  check_option(options.vote_top_fraction > 0.0 && options.vote_top_fraction <= 1.0,
-               "vote_top_fraction " + std::to_string(options.vote_top_fraction) + "; expected in (0, 1]");
+  check_option(
+      options.vote_top_fraction > 0.0 && options.vote_top_fraction <= 1.0,
+      "vote_top_fraction " + std::to_string(options.vote_top_fraction) + "; expected in (0, 1]");
 
   // The scores, each oriented so that larger is better.
   const std::size_t n = clusters.size();
@@ -89,11 +91,12 @@ std::vector<RankedAlignment> rank_alignments(const std::vector<Cluster>& cluster
     }
     case ConsensusScheme::rank_by_vote: {
       const auto k = std::max<std::size_t>(
-          1, static_cast<std::size_t>(std::ceil(options.vote_top_fraction * static_cast<double>(n))));
+          1,
+          static_cast<std::size_t>(std::ceil(options.vote_top_fraction * static_cast<double>(n))));
       for (std::size_t j = 0; j < 3 && n > 0; ++j) {
         std::vector<double> best = scores[j];
-        std::nth_element(best.begin(), best.begin() + static_cast<std::ptrdiff_t>(k - 1), best.end(),
-                         std::greater<>());
+        std::nth_element(best.begin(), best.begin() + static_cast<std::ptrdiff_t>(k - 1),
+                         best.end(), std::greater<>());
         const double border = best[k - 1];
         for (std::size_t i = 0; i < n; ++i) {
           if (scores[j][i] >= border) consensus[i] += weights[j];
@@ -111,7 +114,8 @@ std::vector<RankedAlignment> rank_alignments(const std::vector<Cluster>& cluster
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-    const double cx = consensus[static_cast<std::size_t>(x)], cy = consensus[static_cast<std::size_t>(y)];
+    const double cx = consensus[static_cast<std::size_t>(x)],
+                 cy = consensus[static_cast<std::size_t>(y)];
     return lower_is_better ? cx < cy : cx > cy;
   });
   std::vector<RankedAlignment> out(n);

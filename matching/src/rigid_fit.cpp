@@ -76,18 +76,22 @@ RigidFit fit_rigid_weighted(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
                      std::to_string(to.cols()) + " targets and " + std::to_string(weights.size()) +
                      " weights; expected one target and one weight per point");
   }
-  if (!from.allFinite() || !to.allFinite() || !weights.allFinite() || (weights.array() < 0.0).any()) {
-    throw InputError("fit_rigid_weighted: a coordinate or weight is not finite or a weight is negative");
+  if (!from.allFinite() || !to.allFinite() || !weights.allFinite() ||
+      (weights.array() < 0.0).any()) {
+    throw InputError(
+        "fit_rigid_weighted: a coordinate or weight is not finite or a weight is negative");
   }
   const double total = weights.sum();
-  if (!(total > 0.0)) throw InputError("fit_rigid_weighted: the weights sum to zero; expected a positive sum");
+  if (!(total > 0.0))
+    throw InputError("fit_rigid_weighted: the weights sum to zero; expected a positive sum");
   const Eigen::Vector3d from_centroid = from * weights / total;
   const Eigen::Vector3d to_centroid = to * weights / total;
   const Eigen::Matrix3d cross = (from.colwise() - from_centroid) * weights.asDiagonal() *
                                 (to.colwise() - to_centroid).transpose();
   RigidFit fit;
   fit.transform = kabsch(cross, from_centroid, to_centroid);
-  fit.rmsd = std::sqrt((fit.transform.apply(from) - to).colwise().squaredNorm().dot(weights) / total);
+  fit.rmsd =
+      std::sqrt((fit.transform.apply(from) - to).colwise().squaredNorm().dot(weights) / total);
   fit.n_points = static_cast<std::size_t>(from.cols());
   return fit;
 }

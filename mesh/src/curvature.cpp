@@ -93,7 +93,8 @@ Adjacency vertex_adjacency(const TriMesh& mesh) {
 /// Area-weighted vertex normals (#V by 3, unit or zero) of the surface's triangles.
 Eigen::MatrixX3d area_weighted_normals(const Surface& surface) {
   const TriMesh& mesh = surface.mesh();
-  Eigen::MatrixX3d normals = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
+  Eigen::MatrixX3d normals =
+      Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
   for (auto f : mesh.faces()) {
     auto h = mesh.halfedge_handle(f);
     const auto& a = mesh.point(mesh.from_vertex_handle(h));
@@ -322,8 +323,7 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
   // normal for k > 0, so a convex surface under an outward normal has k < 0 (the seed's sign).
   const Eigen::Vector2d p = jet.gradient;
   const Eigen::Matrix2d first = Eigen::Matrix2d::Identity() + p * p.transpose();
-  const Eigen::Matrix2d shape =
-      first.inverse() * jet.hessian / std::sqrt(1.0 + p.squaredNorm());
+  const Eigen::Matrix2d shape = first.inverse() * jet.hessian / std::sqrt(1.0 + p.squaredNorm());
   const double mean = 0.5 * shape.trace();
   const double root = std::sqrt(std::max(0.0, mean * mean - shape.determinant()));
   return {(mean + root) / scale, (mean - root) / scale};
@@ -335,7 +335,8 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
   check_options(options);
   const TriMesh& mesh = surface.mesh();
   if (mesh.n_faces() == 0) {
-    throw TopologyError(surface.source() + ": principal_curvatures needs a surface with "
+    throw TopologyError(surface.source() +
+                        ": principal_curvatures needs a surface with "
                         "triangles; this one has none");
   }
   const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
@@ -374,13 +375,12 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
         status[vi] = FitStatus::too_few_points;
         continue;
       }
-      const auto [k1, k2] =
-          tiny_component ? sphere_curvatures(positions, scratch.members, normal)
-          : options.method == CurvatureMethod::jet
-              ? jet_curvatures(positions, scratch.members, normal,
-                               static_cast<std::size_t>(options.jet_degree))
-              : quadric_curvatures(positions, scratch.members, normal, options.quadric_passes,
-                                   options.quadric_ridge);
+      const auto [k1, k2] = tiny_component ? sphere_curvatures(positions, scratch.members, normal)
+                            : options.method == CurvatureMethod::jet
+                                ? jet_curvatures(positions, scratch.members, normal,
+                                                 static_cast<std::size_t>(options.jet_degree))
+                                : quadric_curvatures(positions, scratch.members, normal,
+                                                     options.quadric_passes, options.quadric_ridge);
       if (!std::isfinite(k1) || !std::isfinite(k2)) {
         status[vi] = FitStatus::not_finite;
         continue;
@@ -400,10 +400,11 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
 
   // Report the lowest failing vertex, whatever the thread schedule was.
   for (std::size_t v = 0; v < status.size(); ++v) {
-    const std::string where = surface.source() + ": principal_curvatures: vertex " +
-                              std::to_string(v);
+    const std::string where =
+        surface.source() + ": principal_curvatures: vertex " + std::to_string(v);
     switch (status[v]) {
-      case FitStatus::ok: continue;
+      case FitStatus::ok:
+        continue;
       case FitStatus::no_normal:
         throw NumericError(where + " has no defined normal (no triangle of non-zero area)");
       case FitStatus::too_few_points:
@@ -421,7 +422,8 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
 Eigen::VectorXd angle_defects(const Surface& surface) {
   const TriMesh& mesh = surface.mesh();
   if (mesh.n_faces() == 0) {
-    throw TopologyError(surface.source() + ": angle_defects needs a surface with triangles; "
+    throw TopologyError(surface.source() +
+                        ": angle_defects needs a surface with triangles; "
                         "this one has none");
   }
   Eigen::VectorXd angle_sum = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));

@@ -118,8 +118,7 @@ std::vector<std::pair<int, double>> GeodesicSolver::within(int source, double ma
         const auto u = mesh.to_vertex_handle(mesh.next_halfedge_handle(side));
         const auto ui = static_cast<std::size_t>(u.idx());
         if (!done_[ui]) continue;
-        const double across =
-            triangle_update(p, mesh.point(u), mesh.point(w), d, distance_[ui]);
+        const double across = triangle_update(p, mesh.point(u), mesh.point(w), d, distance_[ui]);
         // Dijkstra order needs candidates no smaller than the vertex being expanded.
         if (across < infinity) relax(w, std::max(across, d));
       }
@@ -140,8 +139,8 @@ Eigen::VectorXd edge_geodesic_distances(const Surface& surface, int source, doub
   check_source(surface, source, "edge_geodesic_distances");
   check_max_distance(surface, max_distance, "edge_geodesic_distances");
   GeodesicSolver solver(surface, method);
-  Eigen::VectorXd out = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(surface.n_vertices()),
-                                                  infinity);
+  Eigen::VectorXd out =
+      Eigen::VectorXd::Constant(static_cast<Eigen::Index>(surface.n_vertices()), infinity);
   for (const auto& [v, d] : solver.within(source, max_distance)) out(v) = d;
   return out;
 }

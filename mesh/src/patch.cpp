@@ -91,8 +91,7 @@ std::vector<std::pair<int, HalfedgeHandle>> border_halfedges(const TriMesh& mesh
       if (is_border(mesh, h, faces)) out.emplace_back(mesh.from_vertex_handle(h).idx(), h);
     }
   }
-  std::sort(out.begin(), out.end(),
-            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   return out;
 }
 
@@ -141,8 +140,10 @@ std::vector<std::pair<int, double>> patch_distances(const Surface& surface, int 
   check_length(surface, max_distance, "max_distance", caller);
   check_index_list(surface, preselected, surface.n_vertices(), "vertex", caller);
   if (!contains(preselected, center_vertex)) {
-    throw InputError(where(surface, caller) + "the preselected vertices do not contain the "
-                     "centre vertex " + std::to_string(center_vertex));
+    throw InputError(where(surface, caller) +
+                     "the preselected vertices do not contain the "
+                     "centre vertex " +
+                     std::to_string(center_vertex));
   }
   std::vector<char> allowed(surface.n_vertices(), 0);
   for (const int v : preselected) allowed[static_cast<std::size_t>(v)] = 1;
@@ -246,8 +247,8 @@ std::vector<int> resolve_nonmanifold_vertices(const Surface& surface,
       const auto& a = fans[i];
       const auto& b = fans[keep];
       if (a.size() > b.size() ||
-          (a.size() == b.size() && *std::min_element(a.begin(), a.end()) <
-                                       *std::min_element(b.begin(), b.end()))) {
+          (a.size() == b.size() &&
+           *std::min_element(a.begin(), a.end()) < *std::min_element(b.begin(), b.end()))) {
         keep = i;
       }
     }
@@ -264,8 +265,7 @@ std::vector<int> resolve_nonmanifold_vertices(const Surface& surface,
   return out;
 }
 
-std::vector<int> keep_component(const Surface& surface, const std::vector<int>& faces,
-                                int vertex) {
+std::vector<int> keep_component(const Surface& surface, const std::vector<int>& faces, int vertex) {
   const char* caller = "keep_component";
   check_vertex(surface, vertex, caller);
   check_index_list(surface, faces, surface.n_faces(), "face", caller);
@@ -377,9 +377,8 @@ Patch assemble_patch(const Surface& surface, int center_vertex, const std::vecto
     for (const auto v : mesh.fv_range(FaceHandle(f))) patch.surface_vertex.push_back(v.idx());
   }
   std::sort(patch.surface_vertex.begin(), patch.surface_vertex.end());
-  patch.surface_vertex.erase(
-      std::unique(patch.surface_vertex.begin(), patch.surface_vertex.end()),
-      patch.surface_vertex.end());
+  patch.surface_vertex.erase(std::unique(patch.surface_vertex.begin(), patch.surface_vertex.end()),
+                             patch.surface_vertex.end());
   const auto local = [&patch](int v) {
     return static_cast<int>(
         std::lower_bound(patch.surface_vertex.begin(), patch.surface_vertex.end(), v) -
@@ -397,9 +396,9 @@ Patch assemble_patch(const Surface& surface, int center_vertex, const std::vecto
     const int v = patch.surface_vertex[static_cast<std::size_t>(i)];
     const auto& p = mesh.point(VertexHandle(v));
     patch.positions.row(i) << p[0], p[1], p[2];
-    const auto it = std::lower_bound(
-        distances.begin(), distances.end(), v,
-        [](const std::pair<int, double>& e, int x) { return e.first < x; });
+    const auto it =
+        std::lower_bound(distances.begin(), distances.end(), v,
+                         [](const std::pair<int, double>& e, int x) { return e.first < x; });
     if (it == distances.end() || it->first != v) {
       throw InputError(where(surface, caller) + "patch vertex " + std::to_string(v) +
                        " has no distance");
@@ -416,11 +415,12 @@ Patch assemble_patch(const Surface& surface, int center_vertex, const std::vecto
   // Euler characteristic V - E + F; every interior edge is shared by two faces, every border
   // edge (one per border halfedge) by one.
   const auto border = border_halfedges(mesh, faces);
-  const long long edges = (3 * static_cast<long long>(faces.size()) +
-                           static_cast<long long>(border.size())) / 2;
+  const long long edges =
+      (3 * static_cast<long long>(faces.size()) + static_cast<long long>(border.size())) / 2;
   const long long euler = static_cast<long long>(n) - edges + static_cast<long long>(faces.size());
   BoundaryLoops loops = boundary_loops(surface, faces);
-  const long long n_loops = static_cast<long long>(loops.holes.size()) + (loops.outer.empty() ? 0 : 1);
+  const long long n_loops =
+      static_cast<long long>(loops.holes.size()) + (loops.outer.empty() ? 0 : 1);
   patch.genus = static_cast<int>((2 - euler - n_loops) / 2);
   for (const int v : loops.outer) patch.outer_boundary.push_back(local(v));
   for (const auto& hole : loops.holes) {
@@ -446,7 +446,8 @@ Patch extract_patch(const Surface& surface, int center_vertex, const PatchOption
   check_length(surface, options.margin, "margin", caller);
   const double reach = options.radius * (1.0 + options.margin);
   const std::vector<int> preselected = preselect_euclidean(surface, center_vertex, reach);
-  const auto distances = patch_distances(surface, center_vertex, preselected, reach, options.distance);
+  const auto distances =
+      patch_distances(surface, center_vertex, preselected, reach, options.distance);
   PatchSelection selection;
   selection.vertices = select_within_radius(surface, distances, options.radius, options.margin);
   selection.faces = faces_with_three_selected(surface, selection.vertices);

@@ -93,8 +93,8 @@ Eigen::VectorXd electrostatic_potential(const Eigen::Ref<const Eigen::MatrixX3d>
                                         const Molecule& molecule, const EspOptions& options) {
   constexpr const char* caller = "electrostatic_potential";
   if (!(options.dielectric > 0.0) || !std::isfinite(options.dielectric)) {
-    throw OptionError(std::string(caller) + ": dielectric is " +
-                      format_number(options.dielectric) + "; expected a finite value > 0");
+    throw OptionError(std::string(caller) + ": dielectric is " + format_number(options.dielectric) +
+                      "; expected a finite value > 0");
   }
   if (!(options.min_distance > 0.0) || !std::isfinite(options.min_distance)) {
     throw OptionError(std::string(caller) + ": min_distance is " +
@@ -122,15 +122,13 @@ Eigen::VectorXd lipophilic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& p
                       " A; expected a finite value >= 0 (0 = no cutoff)");
   }
   require_finite_points(points, caller);
-  const Sources sources =
-      collect_sources(molecule, &Atom::lipophilicity, "lipophilicity", caller);
+  const Sources sources = collect_sources(molecule, &Atom::lipophilicity, "lipophilicity", caller);
   const double cutoff = options.cutoff > 0.0 ? options.cutoff : HUGE_VAL;
   if (options.kernel == LipophilicKernel::dubost) {
     return sum_over_atoms(points, sources,
                           [=](double d) { return d > cutoff ? 0.0 : 1.0 / (1.0 + d); });
   }
-  return sum_over_atoms(points, sources,
-                        [=](double d) { return d > cutoff ? 0.0 : std::exp(-d); });
+  return sum_over_atoms(points, sources, [=](double d) { return d > cutoff ? 0.0 : std::exp(-d); });
 }
 
 }  // namespace surfcomp::mesh

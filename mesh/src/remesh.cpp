@@ -78,7 +78,8 @@ Surface isotropic_remesh(const Surface& input, double target_edge_length, int it
     throw OptionError(input.source() + ": " + std::to_string(iterations) +
                       " remeshing iterations: expected at least 1");
   }
-  if (input.n_faces() == 0) throw TopologyError(input.source() + ": nothing to remesh (no triangles)");
+  if (input.n_faces() == 0)
+    throw TopologyError(input.source() + ": nothing to remesh (no triangles)");
   CgalMesh mesh = to_cgal(input);
   CGAL::Polygon_mesh_processing::isotropic_remeshing(
       faces(mesh), target_edge_length, mesh,

@@ -127,7 +127,9 @@ class CellIndex {
   Eigen::Vector3i clamp(const Eigen::Vector3i& c) const {
     return c.cwiseMax(0).cwiseMin(dims_ - Eigen::Vector3i::Ones());
   }
-  int flat(const Eigen::Vector3i& c) const { return (c.x() * dims_.y() + c.y()) * dims_.z() + c.z(); }
+  int flat(const Eigen::Vector3i& c) const {
+    return (c.x() * dims_.y() + c.y()) * dims_.z() + c.z();
+  }
 
   double cell_ = 1.0;
   Vec3 lo_ = Vec3::Zero();
@@ -270,7 +272,8 @@ class SasGeometry {
         const int other = circle.i == i ? circle.j : circle.i;
         const double other_gap = gap_of[static_cast<std::size_t>(other)];
         // Visit each circle once, from the sphere with the smaller gap.
-        if (other_gap >= best.distance || other_gap < gap || (other_gap == gap && other < i)) continue;
+        if (other_gap >= best.distance || other_gap < gap || (other_gap == gap && other < i))
+          continue;
         const Vec3 v = x - circle.center;
         const double along = v.dot(circle.normal);
         const Vec3 radial = v - along * circle.normal;
@@ -355,8 +358,11 @@ class SasGeometry {
     }
     const NearestPoint q = nearest_boundary_point(x, reach, candidates);
     switch (q.feature) {
-      case Feature::none: return Spheres{-1, -1, -1};
-      case Feature::sphere: x = q.point; return sorted_spheres(q.index);
+      case Feature::none:
+        return Spheres{-1, -1, -1};
+      case Feature::sphere:
+        x = q.point;
+        return sorted_spheres(q.index);
       case Feature::circle: {
         const Circle& c = circles_[static_cast<std::size_t>(q.index)];
         x = q.point;
@@ -444,7 +450,8 @@ class SasGeometry {
   bool buried(const Vec3& p, const std::vector<int>& others, int a) const {
     for (const int k : others) {
       if (k == a) continue;
-      if ((p - center(k)).squaredNorm() < (radius(k) - burial_tolerance) * (radius(k) - burial_tolerance)) {
+      if ((p - center(k)).squaredNorm() <
+          (radius(k) - burial_tolerance) * (radius(k) - burial_tolerance)) {
         return true;
       }
     }
@@ -502,7 +509,8 @@ class SasGeometry {
           const double ca = offset.dot(circle.u);
           const double cb = offset.dot(circle.w);
           const double m = std::hypot(ca, cb);
-          const double t = (radius(k) * radius(k) - offset.squaredNorm() - rho2) / (2.0 * circle.radius);
+          const double t =
+              (radius(k) * radius(k) - offset.squaredNorm() - rho2) / (2.0 * circle.radius);
           if (t <= -m) continue;
           if (t >= m) {
             all_buried = true;
@@ -568,8 +576,10 @@ class SasGeometry {
   /// Mean curvature of the SES at x (positive where convex) given its nearest SAS feature q.
   double curvature_at(const Vec3& x, const Vec3& normal, const NearestPoint& q) const {
     switch (q.feature) {
-      case Feature::sphere: return 1.0 / atom_radius(q.index);
-      case Feature::vertex: return -1.0 / probe_;
+      case Feature::sphere:
+        return 1.0 / atom_radius(q.index);
+      case Feature::vertex:
+        return -1.0 / probe_;
       case Feature::circle: {
         // Torus: -1/probe along the probe's arc; around the axis, the parallel circle of
         // radius y has normal curvature (w . n) / y, w the unit vector away from the axis.
@@ -580,7 +590,8 @@ class SasGeometry {
         const double parallel = y > 0.0 ? radial.dot(normal) / (y * y) : 0.0;
         return 0.5 * (-1.0 / probe_ + std::min(parallel, 1.0 / probe_));
       }
-      case Feature::none: break;
+      case Feature::none:
+        break;
     }
     return 0.0;
   }
@@ -642,8 +653,8 @@ struct SasField {
 /// slots and written in a fixed order, so the grid does not depend on the thread count.
 template <class Field>
 openvdb::FloatGrid::Ptr sample_band(const Field& field,
-                                    const Eigen::Ref<const Eigen::MatrixX3d>& centers,
-                                    double reach, double voxel) {
+                                    const Eigen::Ref<const Eigen::MatrixX3d>& centers, double reach,
+                                    double voxel) {
   const auto band = static_cast<float>(band_voxels * voxel);
   auto grid = openvdb::FloatGrid::create(band);
   grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
@@ -821,7 +832,8 @@ TriangleSoup kept_components(const TriangleSoup& soup, const ComponentVolumes& l
     const Vec3 a = soup.positions.row(soup.faces(f, 0));
     const Vec3 b = soup.positions.row(soup.faces(f, 1));
     const Vec3 c = soup.positions.row(soup.faces(f, 2));
-    volume[static_cast<std::size_t>(find_root(parent, soup.faces(f, 0)))] += a.dot(b.cross(c)) / 6.0;
+    volume[static_cast<std::size_t>(find_root(parent, soup.faces(f, 0)))] +=
+        a.dot(b.cross(c)) / 6.0;
   }
   // Roots are the lowest vertex of their component, so a tie goes to the lowest index.
   const auto largest = static_cast<std::size_t>(
@@ -846,12 +858,14 @@ TriangleSoup kept_components(const TriangleSoup& soup, const ComponentVolumes& l
   TriangleSoup out;
   out.positions.resize(next, 3);
   for (std::size_t v = 0; v < n; ++v) {
-    if (new_index[v] >= 0) out.positions.row(new_index[v]) = soup.positions.row(static_cast<Eigen::Index>(v));
+    if (new_index[v] >= 0)
+      out.positions.row(new_index[v]) = soup.positions.row(static_cast<Eigen::Index>(v));
   }
   out.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
   for (std::size_t f = 0; f < kept.size(); ++f) {
     for (int k = 0; k < 3; ++k) {
-      out.faces(static_cast<Eigen::Index>(f), k) = new_index[static_cast<std::size_t>(soup.faces(kept[f], k))];
+      out.faces(static_cast<Eigen::Index>(f), k) =
+          new_index[static_cast<std::size_t>(soup.faces(kept[f], k))];
     }
   }
   return out;
@@ -954,8 +968,8 @@ bool move_keeps_orientation(const TriMesh& mesh, TriMesh::VertexHandle v, const 
 /// the crease vertices. Sets the exact normals (the mean of the spheres' at a crease) and, with
 /// `compensate`, moves the vertices on one sphere by the chord gap (crease vertices stay on
 /// their crease). Sequential after the parallel projection: deterministic.
-void place_sas_vertices(Surface& surface, const SasGeometry& sas, double reach,
-                        double edge_length, bool compensate) {
+void place_sas_vertices(Surface& surface, const SasGeometry& sas, double reach, double edge_length,
+                        bool compensate) {
   TriMesh& mesh = surface.mesh();
   const Spheres none{-1, -1, -1};
   OpenMesh::VPropHandleT<Spheres> label;
@@ -1072,9 +1086,9 @@ void place_sas_vertices(Surface& surface, const SasGeometry& sas, double reach,
         if (!share_sphere(mesh.property(label, w), mesh.property(label, kept))) compatible = false;
       }
       // Coincident ends (two vertices projected onto one SAS vertex) collapse unconditionally.
-      if (length > 0.0 && (!compatible || !move_keeps_orientation(mesh, removed,
-                                                                  to_vec(mesh.point(kept)), kept,
-                                                                  min_area))) {
+      if (length > 0.0 &&
+          (!compatible ||
+           !move_keeps_orientation(mesh, removed, to_vec(mesh.point(kept)), kept, min_area))) {
         continue;
       }
       mesh.collapse(h);
@@ -1179,7 +1193,8 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   limits.keep_cavities = options.keep_cavities;
   soup = kept_components(soup, limits);
   if (soup.faces.rows() == 0) {
-    throw TopologyError(what + ": the isosurface is empty at voxel size " + std::to_string(voxel) + " A");
+    throw TopologyError(what + ": the isosurface is empty at voxel size " + std::to_string(voxel) +
+                        " A");
   }
   Surface surface = Surface::from_arrays(soup.positions, soup.faces, what);
   if (options.remesh) surface = isotropic_remesh(surface, edge_length, remesh_iterations, false);
@@ -1187,7 +1202,8 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   const double projection_reach = reach_voxels * voxel;
   if (excluded) {
     place_vertices(
-        surface, [&](Vec3& x, Vec3& n, double& h) { sas.project_to_ses(x, projection_reach, n, h); },
+        surface,
+        [&](Vec3& x, Vec3& n, double& h) { sas.project_to_ses(x, projection_reach, n, h); },
         options.compensate_chords);
   } else {
     place_sas_vertices(surface, sas, projection_reach, edge_length, options.compensate_chords);

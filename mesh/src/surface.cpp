@@ -10,13 +10,17 @@ namespace surfcomp::mesh {
 std::size_t value_size(ValueType type) {
   switch (type) {
     case ValueType::int8:
-    case ValueType::uint8: return 1;
+    case ValueType::uint8:
+      return 1;
     case ValueType::int16:
-    case ValueType::uint16: return 2;
+    case ValueType::uint16:
+      return 2;
     case ValueType::int32:
     case ValueType::uint32:
-    case ValueType::float32: return 4;
-    case ValueType::float64: return 8;
+    case ValueType::float32:
+      return 4;
+    case ValueType::float64:
+      return 8;
   }
   return 8;
 }
@@ -95,8 +99,8 @@ void Surface::set_normals(const Eigen::Ref<const Eigen::MatrixX3d>& normals) {
                      std::to_string(mesh_.n_vertices()) + " vertices");
   }
   for (auto v : mesh_.vertices()) {
-    mesh_.set_normal(v, TriMesh::Normal(normals(v.idx(), 0), normals(v.idx(), 1),
-                                        normals(v.idx(), 2)));
+    mesh_.set_normal(
+        v, TriMesh::Normal(normals(v.idx(), 0), normals(v.idx(), 1), normals(v.idx(), 2)));
   }
   has_normals_ = true;
 }
@@ -141,8 +145,8 @@ double Surface::property(const std::string& name, std::size_t vertex) const {
   return mesh_.property(handle(name), TriMesh::VertexHandle(static_cast<int>(vertex)));
 }
 
-void Surface::set_property(const std::string& name,
-                           const Eigen::Ref<const Eigen::VectorXd>& values, ValueType stored_as) {
+void Surface::set_property(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values,
+                           ValueType stored_as) {
   if (static_cast<std::size_t>(values.size()) != mesh_.n_vertices()) {
     throw InputError(source_ + ": property '" + name + "' has " + std::to_string(values.size()) +
                      " values for " + std::to_string(mesh_.n_vertices()) + " vertices");
@@ -239,11 +243,11 @@ void require_closed_manifold(const Surface& surface, double min_area) {
   if (mesh.n_faces() == 0) throw TopologyError(src + ": the surface has no triangles");
   for (auto e : mesh.edges()) {
     if (mesh.is_boundary(e)) {
-      throw TopologyError(src + ": the surface is open (boundary edge between vertices " +
-                          std::to_string(mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)).idx()) +
-                          " and " +
-                          std::to_string(mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)).idx()) +
-                          "); a closed surface is required");
+      throw TopologyError(
+          src + ": the surface is open (boundary edge between vertices " +
+          std::to_string(mesh.from_vertex_handle(mesh.halfedge_handle(e, 0)).idx()) + " and " +
+          std::to_string(mesh.to_vertex_handle(mesh.halfedge_handle(e, 0)).idx()) +
+          "); a closed surface is required");
     }
   }
   for (auto v : mesh.vertices()) {

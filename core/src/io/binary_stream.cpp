@@ -16,11 +16,13 @@ std::uint64_t fnv1a64(const std::uint8_t* data, std::size_t size) {
 }
 
 void BinaryWriter::u32(std::uint32_t value) {
-  for (int shift = 0; shift < 32; shift += 8) bytes_.push_back(static_cast<std::uint8_t>(value >> shift));
+  for (int shift = 0; shift < 32; shift += 8)
+    bytes_.push_back(static_cast<std::uint8_t>(value >> shift));
 }
 
 void BinaryWriter::u64(std::uint64_t value) {
-  for (int shift = 0; shift < 64; shift += 8) bytes_.push_back(static_cast<std::uint8_t>(value >> shift));
+  for (int shift = 0; shift < 64; shift += 8)
+    bytes_.push_back(static_cast<std::uint8_t>(value >> shift));
 }
 
 void BinaryWriter::f64(double value) {

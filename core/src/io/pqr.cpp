@@ -93,8 +93,9 @@ std::string ligand_pdb_block(const Molecule& molecule) {
 Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& options) {
   const std::string source = path.string();
   if (options.charges != ChargeModel::file) {
-    throw OptionError(source + ": a PQR file carries its own charges; only the 'file' charge "
-                               "model applies");
+    throw OptionError(source +
+                      ": a PQR file carries its own charges; only the 'file' charge "
+                      "model applies");
   }
   const std::string text = detail::read_text_file(path);
   Molecule molecule;
@@ -110,8 +111,7 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
     if (fields.empty()) continue;
     const std::string record = fields[0];
     if (record == "ENDMDL" || record == "END") break;
-    if ((record == "HEADER" || record == "TITLE" || record == "COMPND") &&
-        molecule.title.empty()) {
+    if ((record == "HEADER" || record == "TITLE" || record == "COMPND") && molecule.title.empty()) {
       const std::size_t start = line.find_first_not_of(' ', record.size());
       if (start != std::string::npos) molecule.title = line.substr(start);
       continue;
@@ -127,7 +127,8 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
       throw FormatError(source, line_number,
                         "expected 9 or 10 fields after " + record.substr(0, 6) +
                             " (serial, name, residue, [chain,] residue number, x, y, z, "
-                            "charge, radius), found " + std::to_string(fields.size()));
+                            "charge, radius), found " +
+                            std::to_string(fields.size()));
     }
     const bool has_chain = fields.size() == 10;
     const std::size_t k = has_chain ? 4 : 3;  // index of the residue number
@@ -161,7 +162,8 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
       if (!detail::is_dropped_residue(atom.residue_name, options)) atoms.push_back(atom);
     }
     molecule.atoms = std::move(atoms);
-    if (molecule.atoms.empty()) throw InputError(source + ": no atoms left besides water and excluded residues");
+    if (molecule.atoms.empty())
+      throw InputError(source + ": no atoms left besides water and excluded residues");
   }
   if (!options.ligand.empty()) {
     const auto selected = detail::select_ligand(molecule.atoms, options.ligand, source);

@@ -2,8 +2,8 @@
 #include "molecule_reader_detail.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
-#include "surfcomp/core/protein_charges.hpp"
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/core/protein_charges.hpp"
 
 #include <GraphMol/Descriptors/Crippen.h>
 #include <GraphMol/FileParsers/FileParsers.h>
@@ -72,7 +72,7 @@ std::string first_alternate_locations(const std::string& text) {
   std::string out;
   out.reserve(text.size());
   std::map<std::string, std::string> residue_name_at;  // residue position -> first name
-  std::map<std::string, char> location_of;              // atom -> its first alternate location
+  std::map<std::string, char> location_of;             // atom -> its first alternate location
   std::size_t begin = 0;
   while (begin < text.size()) {
     const std::size_t newline = text.find('\n', begin);
@@ -204,8 +204,9 @@ void check_mol2_structure(const std::string& text, const std::string& source) {
     for (std::size_t k : {std::size_t{1}, std::size_t{2}}) {
       const std::optional<long> id = parse_integer(fields[k]);
       if (!id || *id < 1 || *id > *atom_count) {
-        throw FormatError(source, i + 1, "bond atom id '" + fields[k] + "' is not in [1, " +
-                                             std::to_string(*atom_count) + "]");
+        throw FormatError(
+            source, i + 1,
+            "bond atom id '" + fields[k] + "' is not in [1, " + std::to_string(*atom_count) + "]");
       }
     }
   }
@@ -261,8 +262,8 @@ Molecule convert_atoms(const RDKit::ROMol& mol, const std::string& source) {
     const RDGeom::Point3D& p = conformer.getAtomPos(rd_atom->getIdx());
     atom.position = Eigen::Vector3d(p.x, p.y, p.z);
     atom.element = rd_atom->getAtomicNum() > 0 ? rd_atom->getSymbol() : "";
-    if (const auto* info = dynamic_cast<const RDKit::AtomPDBResidueInfo*>(
-            rd_atom->getMonomerInfo())) {
+    if (const auto* info =
+            dynamic_cast<const RDKit::AtomPDBResidueInfo*>(rd_atom->getMonomerInfo())) {
       atom.name = trimmed(info->getName());
       atom.residue_name = trimmed(info->getResidueName());
       atom.residue_number = info->getResidueNumber();
@@ -299,8 +300,8 @@ void keep_atoms(RDKit::RWMol& mol, Molecule& molecule, const std::vector<std::si
 }
 
 bool is_metal(int atomic_number) {
-  static const std::vector<int> nonmetals{1,  2,  5,  6,  7,  8,  9,  10, 14, 15, 16, 17,
-                                          18, 33, 34, 35, 36, 52, 53, 54, 85, 86};
+  static const std::vector<int> nonmetals{1,  2,  5,  6,  7,  8,  9,  10, 14, 15, 16,
+                                          17, 18, 33, 34, 35, 36, 52, 53, 54, 85, 86};
   return atomic_number > 0 &&
          std::find(nonmetals.begin(), nonmetals.end(), atomic_number) == nonmetals.end();
 }
@@ -383,8 +384,9 @@ std::vector<double> mmff_charges(const RDKit::ROMol& mol, const std::string& sou
   const auto with_h = with_explicit_hydrogens(mol);
   RDKit::MMFF::MMFFMolProperties properties(*with_h);
   if (!properties.isValid()) {
-    throw InputError(source + ": MMFF94 atom typing failed (RDKit found an atom without an "
-                              "MMFF94 type); use ChargeModel::gasteiger");
+    throw InputError(source +
+                     ": MMFF94 atom typing failed (RDKit found an atom without an "
+                     "MMFF94 type); use ChargeModel::gasteiger");
   }
   std::vector<double> charges(with_h->getNumAtoms());
   for (unsigned int i = 0; i < with_h->getNumAtoms(); ++i) {
@@ -458,7 +460,8 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& te
   // is not sanitised.
   const bool protein = whole_structure && has_standard_residue(molecule.atoms);
   if (protein && options.charges != ChargeModel::file) {
-    throw OptionError(source + ": Gasteiger and MMFF charges need bond orders, which a protein "
+    throw OptionError(source +
+                      ": Gasteiger and MMFF charges need bond orders, which a protein "
                       "PDB file lacks; use the residue charges (charges 'file') or a PQR file");
   }
   if (!protein) sanitize(mol, format, source);
@@ -471,8 +474,8 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& te
   }
 
   const std::string charge_type = format == RdkitFormat::mol2 ? mol2_charge_type(text) : "";
-  const bool file_charges = options.charges == ChargeModel::file && !charge_type.empty() &&
-                            charge_type != "NO_CHARGES";
+  const bool file_charges =
+      options.charges == ChargeModel::file && !charge_type.empty() && charge_type != "NO_CHARGES";
   std::vector<double> charges;
   if (protein) {
     assign_protein_formal_charges(molecule);
@@ -481,8 +484,8 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& te
     charges = tripos_charges(*mol, source);
     molecule.charge_source = ChargeSource::file;
   } else if (options.charges == ChargeModel::mmff) {
-    charges = rdkit_call(source, "compute MMFF94 charges",
-                         [&]() { return mmff_charges(*mol, source); });
+    charges =
+        rdkit_call(source, "compute MMFF94 charges", [&]() { return mmff_charges(*mol, source); });
     molecule.charge_source = ChargeSource::mmff;
   } else {
     charges = gasteiger_charges(*mol, molecule);
@@ -544,13 +547,15 @@ std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Mat
   } else if (extension == ".mol2") {
     format = detail::RdkitFormat::mol2;
   } else {
-    throw InputError(source + ": a moved SDF copy needs an SDF, MOL or MOL2 input (write .pdb instead)");
+    throw InputError(source +
+                     ": a moved SDF copy needs an SDF, MOL or MOL2 input (write .pdb instead)");
   }
   const RDLog::LogStateSetter quiet;
   const std::string text = detail::read_text_file(input);
   if (format == detail::RdkitFormat::mol2) detail::check_mol2_structure(text, source);
   auto mol = detail::parse(text, format, source);
-  if (!mol || mol->getNumConformers() == 0) throw FormatError(source, "RDKit could not read the molecule");
+  if (!mol || mol->getNumConformers() == 0)
+    throw FormatError(source, "RDKit could not read the molecule");
   RDKit::Conformer& conformer = mol->getConformer();
   for (unsigned i = 0; i < mol->getNumAtoms(); ++i) {
     const RDGeom::Point3D& p = conformer.getAtomPos(i);

@@ -131,8 +131,8 @@ mesh::Surface get_surface(BinaryReader& r) {
   if (faces.cols() != 3 && faces.rows() != 0) r.fail("faces are not triangles");
   mesh::Surface s;
   try {
-    s = mesh::Surface::from_arrays(positions, faces.rows() ? Eigen::MatrixX3i(faces) : Eigen::MatrixX3i(0, 3),
-                                   r.source());
+    s = mesh::Surface::from_arrays(
+        positions, faces.rows() ? Eigen::MatrixX3i(faces) : Eigen::MatrixX3i(0, 3), r.source());
   } catch (const Error& e) {
     r.fail(std::string("the stored surface is invalid: ") + e.what());
   }
@@ -201,7 +201,8 @@ mesh::Patch get_patch(BinaryReader& r, std::size_t surface_vertices) {
   p.positions = positions;
   const Eigen::MatrixXi faces = r.int_matrix();
   if (faces.cols() != 3) r.fail("patch faces are not triangles");
-  if (faces.size() > 0 && (faces.minCoeff() < 0 || static_cast<std::size_t>(faces.maxCoeff()) >= n)) {
+  if (faces.size() > 0 &&
+      (faces.minCoeff() < 0 || static_cast<std::size_t>(faces.maxCoeff()) >= n)) {
     r.fail("patch face index outside the patch");
   }
   p.faces = faces;
@@ -224,14 +225,16 @@ ShapeImage get_image(BinaryReader& r, std::size_t n_faces, const ImageOptions& g
   ShapeImage image;
   image.radial_samples = r.i32();
   image.angular_samples = r.i32();
-  if (image.radial_samples != grid.radial_samples || image.angular_samples != grid.angular_samples) {
+  if (image.radial_samples != grid.radial_samples ||
+      image.angular_samples != grid.angular_samples) {
     r.fail("an image grid differs from the file's parameters");
   }
   const std::size_t n = static_cast<std::size_t>(grid.radial_samples) *
                         static_cast<std::size_t>(grid.angular_samples);
   image.values = r.doubles();
   const std::uint64_t n_valid = r.u64();
-  if (static_cast<std::size_t>(image.values.size()) != n || n_valid != n || n_valid > r.remaining()) {
+  if (static_cast<std::size_t>(image.values.size()) != n || n_valid != n ||
+      n_valid > r.remaining()) {
     r.fail("image sizes do not match its grid");
   }
   image.valid.resize(n);
@@ -239,7 +242,8 @@ ShapeImage get_image(BinaryReader& r, std::size_t n_faces, const ImageOptions& g
   const std::vector<int> faces = r.ints();
   if (faces.size() != n) r.fail("image face list does not match its grid");
   for (int f : faces) {
-    if (f < -1 || (f >= 0 && static_cast<std::size_t>(f) >= n_faces)) r.fail("image face outside the patch");
+    if (f < -1 || (f >= 0 && static_cast<std::size_t>(f) >= n_faces))
+      r.fail("image face outside the patch");
   }
   image.face = Eigen::Map<const Eigen::VectorXi>(faces.data(), static_cast<Eigen::Index>(n));
   const Eigen::MatrixXd barycentric = r.double_matrix();
@@ -268,8 +272,10 @@ std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& d) {
   payload.u64(d.atoms.size());
   for (std::size_t i = 0; i < d.atoms.size(); ++i) {
     const SurfaceAtom& atom = d.atoms[i];
-    if (!is_element_symbol(atom.element) || !atom.position.allFinite()) {  // what decode_hsi would refuse
-      throw InputError(d.surface.source() + ": atom " + std::to_string(i + 1) + " ('" + atom.element +
+    if (!is_element_symbol(atom.element) ||
+        !atom.position.allFinite()) {  // what decode_hsi would refuse
+      throw InputError(d.surface.source() + ": atom " + std::to_string(i + 1) + " ('" +
+                       atom.element +
                        "') is not an element symbol with a finite position; no .hsi written");
     }
     payload.string(atom.element);
@@ -298,14 +304,17 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
                                   " is not that of a .hsi file written by surfcomp");
   }
   if (version < 1 || version > hsi_format_version) {
-    throw FormatError(source, "format version " + std::to_string(version) + ", this surfcomp reads versions 1 to " +
-                                  std::to_string(hsi_format_version) + "; rebuild it with surfcomp hsi-build");
+    throw FormatError(source, "format version " + std::to_string(version) +
+                                  ", this surfcomp reads versions 1 to " +
+                                  std::to_string(hsi_format_version) +
+                                  "; rebuild it with surfcomp hsi-build");
   }
   const std::uint64_t size = header.u64();
   const std::uint64_t checksum = header.u64();
   if (size != bytes.size() - kHeaderSize) {
     throw FormatError(source, "the payload has " + std::to_string(bytes.size() - kHeaderSize) +
-                                  " bytes, the header says " + std::to_string(size) + " (truncated?)");
+                                  " bytes, the header says " + std::to_string(size) +
+                                  " (truncated?)");
   }
   const std::uint8_t* payload = bytes.data() + kHeaderSize;
   if (surfcomp::io::fnv1a64(payload, size) != checksum) {
@@ -332,7 +341,8 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
   }
   if (version >= 2) {
     const std::uint64_t n_atoms = r.u64();
-    if (n_atoms > r.remaining() / 29) r.fail("implausible atom count");  // 4 + 1 + 24 bytes at least
+    if (n_atoms > r.remaining() / 29)
+      r.fail("implausible atom count");  // 4 + 1 + 24 bytes at least
     d.atoms.resize(n_atoms);
     for (SurfaceAtom& atom : d.atoms) {
       atom.element = r.string();
@@ -343,21 +353,25 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
       if (!atom.position.allFinite()) r.fail("atom position is not finite");
     }
   }
-  if (r.remaining() != 0) r.fail("unexpected bytes after the " + std::string(version >= 2 ? "atoms" : "last critical point"));
+  if (r.remaining() != 0)
+    r.fail("unexpected bytes after the " +
+           std::string(version >= 2 ? "atoms" : "last critical point"));
   return d;
 }
 
 void write_hsi(const SurfaceDescriptors& descriptors, const std::filesystem::path& path) {
   const std::vector<std::uint8_t> bytes = encode_hsi(descriptors);
   surfcomp::io::write_file_atomically(path, [&](std::ostream& out) {
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.write(reinterpret_cast<const char*>(bytes.data()),
+              static_cast<std::streamsize>(bytes.size()));
   });
 }
 
 SurfaceDescriptors read_hsi(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FileError(path.string(), "cannot open for reading");
-  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
   if (in.bad()) throw FileError(path.string(), "read error");
   return decode_hsi(bytes, path.string());
 }

@@ -39,10 +39,10 @@ MsmsLines skip_header(detail::LineCursor& lines, const std::string& name) {
   if (tokens.size() != 4) {
     throw FormatError(name, out.header_line,
                       "expected the MSMS count line 'count n_spheres density probe_radius' after "
-                      "the '#' comments, found " + quote(line));
+                      "the '#' comments, found " +
+                          quote(line));
   }
-  out.claimed = detail::parse_integer(tokens[0], at, "a count", 0,
-                                      std::numeric_limits<int>::max());
+  out.claimed = detail::parse_integer(tokens[0], at, "a count", 0, std::numeric_limits<int>::max());
   detail::parse_integer(tokens[1], at, "a sphere count", 0, std::numeric_limits<int>::max());
   detail::parse_double(tokens[2], at, "a density");
   detail::parse_double(tokens[3], at, "a probe radius");
@@ -110,8 +110,9 @@ std::vector<int> read_face(const std::filesystem::path& path, std::size_t n_vert
     const Location at{name, lines.line_number()};
     detail::split_tokens(line, tokens);
     if (tokens.size() < 3 || tokens.size() > 5) {
-      throw FormatError(name, at.line, "expected 'v1 v2 v3 [type sphere]' (3 to 5 values), found " +
-                                           std::to_string(tokens.size()) + " values");
+      throw FormatError(name, at.line,
+                        "expected 'v1 v2 v3 [type sphere]' (3 to 5 values), found " +
+                            std::to_string(tokens.size()) + " values");
     }
     for (std::size_t k = 0; k < 3; ++k) {
       triangles.push_back(static_cast<int>(

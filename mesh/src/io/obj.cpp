@@ -42,8 +42,9 @@ Surface read_obj(const std::filesystem::path& path) {
     const Location at{name, lines.line_number()};
     if (tokens[0] == "v") {
       if (tokens.size() < 4 || tokens.size() > 7) {
-        throw FormatError(name, at.line, "expected 'v x y z [w | r g b]', found " +
-                                             std::to_string(tokens.size() - 1) + " values");
+        throw FormatError(name, at.line,
+                          "expected 'v x y z [w | r g b]', found " +
+                              std::to_string(tokens.size() - 1) + " values");
       }
       if (positions.size() / 3 >= static_cast<std::size_t>(std::numeric_limits<int>::max())) {
         throw FormatError(name, at.line, "expected at most 2^31-1 vertices");
@@ -53,8 +54,9 @@ Surface read_obj(const std::filesystem::path& path) {
       }
     } else if (tokens[0] == "f") {
       if (tokens.size() < 4) {
-        throw FormatError(name, at.line, "expected a face of at least 3 corners, found " +
-                                             std::to_string(tokens.size() - 1));
+        throw FormatError(
+            name, at.line,
+            "expected a face of at least 3 corners, found " + std::to_string(tokens.size() - 1));
       }
       polygon.clear();
       for (std::size_t k = 1; k < tokens.size(); ++k) {

@@ -46,8 +46,9 @@ Surface read_off(const std::filesystem::path& path) {
   }
   const Location counts_at{name, lines.line_number()};
   if (tokens.size() != 3) {
-    throw FormatError(name, counts_at.line, "expected the counts '#V #F #E', found " +
-                                                std::to_string(tokens.size()) + " values");
+    throw FormatError(
+        name, counts_at.line,
+        "expected the counts '#V #F #E', found " + std::to_string(tokens.size()) + " values");
   }
   constexpr std::int64_t max_int = std::numeric_limits<int>::max();
   const std::int64_t n_vertices = detail::parse_integer(tokens[0], counts_at, "#V", 0, max_int);
@@ -63,17 +64,18 @@ Surface read_off(const std::filesystem::path& path) {
   Eigen::MatrixX3d positions(n_vertices, 3);
   for (Eigen::Index i = 0; i < n_vertices; ++i) {
     if (!next_content(lines, tokens)) {
-      end_of_file(lines, name, "vertex " + std::to_string(i + 1) + " of " +
-                                   std::to_string(n_vertices));
+      end_of_file(lines, name,
+                  "vertex " + std::to_string(i + 1) + " of " + std::to_string(n_vertices));
     }
     const Location at{name, lines.line_number()};
     if (tokens.size() != 3) {
-      throw FormatError(name, at.line, "expected a vertex 'x y z', found " +
-                                           std::to_string(tokens.size()) + " values");
+      throw FormatError(
+          name, at.line,
+          "expected a vertex 'x y z', found " + std::to_string(tokens.size()) + " values");
     }
     for (Eigen::Index c = 0; c < 3; ++c) {
-      positions(i, c) = detail::parse_double(tokens[static_cast<std::size_t>(c)], at,
-                                             "a finite coordinate");
+      positions(i, c) =
+          detail::parse_double(tokens[static_cast<std::size_t>(c)], at, "a finite coordinate");
     }
   }
   std::vector<int> triangles;
@@ -110,8 +112,8 @@ void write_off(const Surface& s, const std::filesystem::path& path) {
   surfcomp::io::write_file_atomically(path, [&s](std::ostream& out) {
     const Eigen::MatrixX3d positions = s.positions();
     const Eigen::MatrixX3i faces = s.faces();
-    std::string text = "OFF\n" + std::to_string(positions.rows()) + " " +
-                       std::to_string(faces.rows()) + " 0\n";
+    std::string text =
+        "OFF\n" + std::to_string(positions.rows()) + " " + std::to_string(faces.rows()) + " 0\n";
     for (Eigen::Index i = 0; i < positions.rows(); ++i) {
       for (Eigen::Index c = 0; c < 3; ++c) {
         if (c > 0) text += ' ';

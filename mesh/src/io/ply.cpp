@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cfloat>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -60,27 +60,35 @@ const char* type_name(ValueType type) {
   return "double";
 }
 
-bool is_integer(ValueType type) {
-  return type != ValueType::float32 && type != ValueType::float64;
-}
+bool is_integer(ValueType type) { return type != ValueType::float32 && type != ValueType::float64; }
 
 std::int64_t min_of(ValueType type) {
   switch (type) {
-    case ValueType::int8: return INT8_MIN;
-    case ValueType::int16: return INT16_MIN;
-    case ValueType::int32: return INT32_MIN;
-    default: return 0;
+    case ValueType::int8:
+      return INT8_MIN;
+    case ValueType::int16:
+      return INT16_MIN;
+    case ValueType::int32:
+      return INT32_MIN;
+    default:
+      return 0;
   }
 }
 
 std::int64_t max_of(ValueType type) {
   switch (type) {
-    case ValueType::int8: return INT8_MAX;
-    case ValueType::uint8: return UINT8_MAX;
-    case ValueType::int16: return INT16_MAX;
-    case ValueType::uint16: return UINT16_MAX;
-    case ValueType::int32: return INT32_MAX;
-    default: return UINT32_MAX;
+    case ValueType::int8:
+      return INT8_MAX;
+    case ValueType::uint8:
+      return UINT8_MAX;
+    case ValueType::int16:
+      return INT16_MAX;
+    case ValueType::uint16:
+      return UINT16_MAX;
+    case ValueType::int32:
+      return INT32_MAX;
+    default:
+      return UINT32_MAX;
   }
 }
 
@@ -105,14 +113,22 @@ double load_value(const char* p, ValueType type, bool swap) {
   std::memcpy(b, p, size);
   if (swap) std::reverse(b, b + size);
   switch (type) {
-    case ValueType::int8: return load_as<std::int8_t>(b);
-    case ValueType::uint8: return load_as<std::uint8_t>(b);
-    case ValueType::int16: return load_as<std::int16_t>(b);
-    case ValueType::uint16: return load_as<std::uint16_t>(b);
-    case ValueType::int32: return load_as<std::int32_t>(b);
-    case ValueType::uint32: return load_as<std::uint32_t>(b);
-    case ValueType::float32: return static_cast<double>(load_as<float>(b));
-    case ValueType::float64: return load_as<double>(b);
+    case ValueType::int8:
+      return load_as<std::int8_t>(b);
+    case ValueType::uint8:
+      return load_as<std::uint8_t>(b);
+    case ValueType::int16:
+      return load_as<std::int16_t>(b);
+    case ValueType::uint16:
+      return load_as<std::uint16_t>(b);
+    case ValueType::int32:
+      return load_as<std::int32_t>(b);
+    case ValueType::uint32:
+      return load_as<std::uint32_t>(b);
+    case ValueType::float32:
+      return static_cast<double>(load_as<float>(b));
+    case ValueType::float64:
+      return load_as<double>(b);
   }
   return 0.0;
 }
@@ -180,9 +196,9 @@ PlyHeader parse_header(std::string_view data, const std::string& name) {
       } else if (tokens[1] == "binary_big_endian") {
         header.format = PlyFormat::binary_big_endian;
       } else {
-        throw FormatError(name, number,
-                          "expected ascii, binary_little_endian or binary_big_endian, found " +
-                              quote(tokens[1]));
+        throw FormatError(
+            name, number,
+            "expected ascii, binary_little_endian or binary_big_endian, found " + quote(tokens[1]));
       }
       have_format = true;
     } else if (keyword == "element") {
@@ -193,13 +209,13 @@ PlyHeader parse_header(std::string_view data, const std::string& name) {
       element.name = std::string(tokens[1]);
       for (const auto& other : header.elements) {
         if (other.name == element.name) {
-          throw FormatError(name, number, "expected each element once, found a second " +
-                                              quote(element.name));
+          throw FormatError(name, number,
+                            "expected each element once, found a second " + quote(element.name));
         }
       }
-      element.count = static_cast<std::uint64_t>(detail::parse_integer(
-          tokens[2], Location{name, number}, "an element count", 0,
-          std::numeric_limits<std::int64_t>::max()));
+      element.count = static_cast<std::uint64_t>(
+          detail::parse_integer(tokens[2], Location{name, number}, "an element count", 0,
+                                std::numeric_limits<std::int64_t>::max()));
       element.line = number;
       header.elements.push_back(std::move(element));
     } else if (keyword == "property") {
@@ -211,22 +227,25 @@ PlyHeader parse_header(std::string_view data, const std::string& name) {
       if (is_list ? tokens.size() != 5 : tokens.size() != 3) {
         throw FormatError(name, number,
                           "expected 'property <type> <name>' or 'property list <count type> "
-                          "<item type> <name>', found " + quote(line));
+                          "<item type> <name>', found " +
+                              quote(line));
       }
       const std::size_t type_at = is_list ? 3 : 1;
       const auto type = parse_type_name(tokens[type_at]);
       if (!type) {
-        throw FormatError(name, number, "expected a PLY type (char, uchar, short, ushort, int, "
-                                        "uint, float, double or int8...float64), found " +
-                                            quote(tokens[type_at]));
+        throw FormatError(name, number,
+                          "expected a PLY type (char, uchar, short, ushort, int, "
+                          "uint, float, double or int8...float64), found " +
+                              quote(tokens[type_at]));
       }
       property.type = *type;
       property.is_list = is_list;
       if (is_list) {
         const auto count_type = parse_type_name(tokens[2]);
         if (!count_type || !is_integer(*count_type)) {
-          throw FormatError(name, number, "expected an integer type for the list count, found " +
-                                              quote(tokens[2]));
+          throw FormatError(
+              name, number,
+              "expected an integer type for the list count, found " + quote(tokens[2]));
         }
         property.count_type = *count_type;
       }
@@ -234,15 +253,18 @@ PlyHeader parse_header(std::string_view data, const std::string& name) {
       auto& properties = header.elements.back().properties;
       for (const auto& other : properties) {
         if (other.name == property.name) {
-          throw FormatError(name, number, "expected each property of an element once, found a "
-                                          "second " + quote(property.name));
+          throw FormatError(name, number,
+                            "expected each property of an element once, found a "
+                            "second " +
+                                quote(property.name));
         }
       }
       properties.push_back(std::move(property));
     } else {
       throw FormatError(name, number,
                         "expected a header line (format, element, property, comment, obj_info "
-                        "or end_header), found " + quote(line));
+                        "or end_header), found " +
+                            quote(line));
     }
   }
   throw FormatError(name, lines.line_number(), "expected 'end_header', found the end of the file");
@@ -277,9 +299,9 @@ Roles assign_roles(const PlyHeader& header, const std::string& name) {
   }
   const PlyElement& vertex = header.elements[roles.vertex];
   if (vertex.count > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
-    throw FormatError(name, vertex.line, "expected at most " +
-                                             std::to_string(std::numeric_limits<int>::max()) +
-                                             " vertices, found " + std::to_string(vertex.count));
+    throw FormatError(name, vertex.line,
+                      "expected at most " + std::to_string(std::numeric_limits<int>::max()) +
+                          " vertices, found " + std::to_string(vertex.count));
   }
   roles.n_vertices = static_cast<int>(vertex.count);
   const std::array<const char*, 3> xyz{"x", "y", "z"};
@@ -306,8 +328,8 @@ Roles assign_roles(const PlyHeader& header, const std::string& name) {
     }
     const PlyProperty& indices = face.properties[roles.face_indices];
     if (!indices.is_list || !is_integer(indices.type)) {
-      throw FormatError(name, face.line, "expected '" + indices.name +
-                                             "' to be a list of an integer type");
+      throw FormatError(name, face.line,
+                        "expected '" + indices.name + "' to be a list of an integer type");
     }
   }
   return roles;
@@ -373,8 +395,8 @@ class AsciiSource {
 
   void end_item(const PlyElement& element) {
     if (next_ != tokens_.size()) {
-      fail("expected " + std::to_string(next_) + " values for an item of element '" +
-           element.name + "', found more: " + quote(tokens_[next_]));
+      fail("expected " + std::to_string(next_) + " values for an item of element '" + element.name +
+           "', found more: " + quote(tokens_[next_]));
     }
   }
 
@@ -402,8 +424,10 @@ class AsciiSource {
   double parse(std::string_view token, ValueType type, const PlyProperty& p) const {
     const std::string what = std::string("a ") + type_name(type) + " for property '" + p.name + "'";
     switch (type) {
-      case ValueType::float32: return detail::parse_float(token, at(), what, false);
-      case ValueType::float64: return detail::parse_double(token, at(), what, false);
+      case ValueType::float32:
+        return detail::parse_float(token, at(), what, false);
+      case ValueType::float64:
+        return detail::parse_double(token, at(), what, false);
       default:
         return static_cast<double>(
             detail::parse_integer(token, at(), what, min_of(type), max_of(type)));
@@ -542,8 +566,7 @@ PlyData read_data(const PlyHeader& header, const Roles& roles, Source& source) {
           continue;
         }
         if (count < 3) {
-          source.fail("expected a polygon of at least 3 vertices, found " +
-                      std::to_string(count));
+          source.fail("expected a polygon of at least 3 vertices, found " + std::to_string(count));
         }
         polygon.clear();
         for (std::uint64_t j = 0; j < count; ++j) {
@@ -596,8 +619,8 @@ Surface read_ply_data(std::string_view data, const std::string& name) {
   }
   const auto n_triangles = static_cast<Eigen::Index>(ply.triangles.size() / 3);
   const Eigen::MatrixX3i faces =
-      Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(
-          ply.triangles.data(), n_triangles, 3);
+      Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(ply.triangles.data(),
+                                                                               n_triangles, 3);
   Surface surface = Surface::from_arrays(positions, faces, name);
   surface.set_position_type(common_type(vertex, roles.position));
   if (roles.has_normals) {
@@ -611,13 +634,11 @@ Surface read_ply_data(std::string_view data, const std::string& name) {
   }
   for (std::size_t k = 0; k < vertex.properties.size(); ++k) {
     const PlyProperty& p = vertex.properties[k];
-    const bool is_geometry = std::find(roles.position.begin(), roles.position.end(), k) !=
-                                 roles.position.end() ||
-                             std::find(roles.normal.begin(), roles.normal.end(), k) !=
-                                 roles.normal.end();
+    const bool is_geometry =
+        std::find(roles.position.begin(), roles.position.end(), k) != roles.position.end() ||
+        std::find(roles.normal.begin(), roles.normal.end(), k) != roles.normal.end();
     if (p.is_list || is_geometry) continue;
-    surface.set_property(p.name,
-                         Eigen::Map<const Eigen::VectorXd>(ply.vertex_columns[k].data(), n),
+    surface.set_property(p.name, Eigen::Map<const Eigen::VectorXd>(ply.vertex_columns[k].data(), n),
                          p.type);
   }
   return surface;
@@ -708,16 +729,21 @@ void append_binary(std::string& out, const Surface& s, const OutColumn& column, 
       return append_bytes(out, static_cast<std::int32_t>(checked_integer(s, column, i)), swap);
     case ValueType::uint32:
       return append_bytes(out, static_cast<std::uint32_t>(checked_integer(s, column, i)), swap);
-    case ValueType::float32: return append_bytes(out, checked_float(s, column, i), swap);
-    case ValueType::float64: return append_bytes(out, column.values(i), swap);
+    case ValueType::float32:
+      return append_bytes(out, checked_float(s, column, i), swap);
+    case ValueType::float64:
+      return append_bytes(out, column.values(i), swap);
   }
 }
 
 void append_text(std::string& out, const Surface& s, const OutColumn& column, Eigen::Index i) {
   switch (column.type) {
-    case ValueType::float32: return detail::append_number(out, checked_float(s, column, i));
-    case ValueType::float64: return detail::append_number(out, column.values(i));
-    default: return detail::append_number(out, checked_integer(s, column, i));
+    case ValueType::float32:
+      return detail::append_number(out, checked_float(s, column, i));
+    case ValueType::float64:
+      return detail::append_number(out, column.values(i));
+    default:
+      return detail::append_number(out, checked_integer(s, column, i));
   }
 }
 

@@ -32,8 +32,10 @@ Surface read_mesh(const std::filesystem::path& path) {
   if (ext == ".vert" || ext == ".face") return read_msms(path);
   if (ext == ".off") return read_off(path);
   if (ext == ".obj") return read_obj(path);
-  throw FormatError(path.string(), "expected a mesh extension (.ply, .vert, .face, .off or "
-                                   ".obj), found '" + path.extension().string() + "'");
+  throw FormatError(path.string(),
+                    "expected a mesh extension (.ply, .vert, .face, .off or "
+                    ".obj), found '" +
+                        path.extension().string() + "'");
 }
 
 void write_mesh(const Surface& s, const std::filesystem::path& path) {
@@ -41,8 +43,10 @@ void write_mesh(const Surface& s, const std::filesystem::path& path) {
   if (ext == ".ply") return write_ply(s, path, PlyFormat::binary_little_endian);
   if (ext == ".off") return write_off(s, path);
   if (ext == ".obj") return write_obj(s, path);
-  throw FormatError(path.string(), "expected an extension surfcomp writes (.ply, .off or .obj), "
-                                   "found '" + path.extension().string() + "'");
+  throw FormatError(path.string(),
+                    "expected an extension surfcomp writes (.ply, .off or .obj), "
+                    "found '" +
+                        path.extension().string() + "'");
 }
 
 }  // namespace surfcomp::mesh::io

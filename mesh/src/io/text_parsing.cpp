@@ -133,10 +133,9 @@ void check_count_fits(std::uint64_t count, std::uint64_t min_bytes_each,
                       std::uint64_t remaining_bytes, const Location& at, const std::string& what) {
   if (min_bytes_each == 0 || count <= remaining_bytes / min_bytes_each) return;
   throw FormatError(at.file, at.line,
-                    "the header claims " + std::to_string(count) + " " + what +
-                        " (at least " + std::to_string(min_bytes_each) +
-                        " bytes each), but only " + std::to_string(remaining_bytes) +
-                        " bytes follow");
+                    "the header claims " + std::to_string(count) + " " + what + " (at least " +
+                        std::to_string(min_bytes_each) + " bytes each), but only " +
+                        std::to_string(remaining_bytes) + " bytes follow");
 }
 
 namespace {

@@ -13,16 +13,16 @@ namespace surfcomp {
 /// One atom. Units: position in A, charge in e, radius in A, lipophilicity as a
 /// dimensionless logP increment (Wildman-Crippen for ligands, a residue-atom table for proteins).
 struct Atom {
-  std::string element;                                   ///< capitalised symbol, "C", "Cl", "Zn"
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();    ///< A
-  double charge = 0.0;                                   ///< partial charge, e
-  double radius = 0.0;                                   ///< van der Waals radius, A (Bondi by default)
-  double lipophilicity = 0.0;                            ///< logP increment f_i
-  std::string name;                                      ///< PDB atom name, "" when unknown
-  std::string residue_name;                              ///< PDB residue name, "" when unknown
-  int residue_number = 0;                                ///< PDB residue sequence number
-  std::string chain;                                     ///< PDB chain identifier
-  bool hetero = false;                                   ///< HETATM record in a PDB/PQR file
+  std::string element;                                 ///< capitalised symbol, "C", "Cl", "Zn"
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< A
+  double charge = 0.0;                                 ///< partial charge, e
+  double radius = 0.0;         ///< van der Waals radius, A (Bondi by default)
+  double lipophilicity = 0.0;  ///< logP increment f_i
+  std::string name;            ///< PDB atom name, "" when unknown
+  std::string residue_name;    ///< PDB residue name, "" when unknown
+  int residue_number = 0;      ///< PDB residue sequence number
+  std::string chain;           ///< PDB chain identifier
+  bool hetero = false;         ///< HETATM record in a PDB/PQR file
 };
 
 /// Where a molecule's charges came from, for the summary and for later stages.
@@ -30,11 +30,11 @@ enum class ChargeSource { none, file, gasteiger, mmff, residue_table };
 
 /// A molecule: its atoms (hydrogens included when the file has them) and provenance.
 struct Molecule {
-  std::string source;                       ///< file it was read from, for messages
-  std::string title;                        ///< title line / molecule name
+  std::string source;  ///< file it was read from, for messages
+  std::string title;   ///< title line / molecule name
   std::vector<Atom> atoms;
   ChargeSource charge_source = ChargeSource::none;
-  bool lipophilicity_assigned = false;      ///< f_i were set (Crippen or the residue table)
+  bool lipophilicity_assigned = false;  ///< f_i were set (Crippen or the residue table)
 };
 
 /// Checks that `molecule` has at least one atom and that every coordinate, radius and charge

@@ -15,7 +15,8 @@ namespace surfcomp {
 /// ARG NE/NH1/NH2 +1/3 each, HIP ND1/NE2 +1/2 each, OXT (C-terminal carboxylate, shared with
 /// the residue's O) -1/2; every other atom of a standard residue 0 (HIS = HIE is neutral).
 /// Returns nullopt for a residue that is not standard.
-std::optional<double> protein_atom_formal_charge(std::string_view residue, std::string_view atom_name);
+std::optional<double> protein_atom_formal_charge(std::string_view residue,
+                                                 std::string_view atom_name);
 
 /// The usual ionic charge of a free metal or halide ion (Na+, Ca2+, Zn2+, Cl-, ...), nullopt for
 /// other elements.

@@ -104,8 +104,8 @@ struct RotationProfile {
 /// the image's area-weighted mean first, which the correlation ignores but which keeps the
 /// sums well conditioned). Build it once per image (about 40 us for the default grid) and
 /// compare the prepared images; it holds
-/// 3 x radial_samples x (angular_samples / 2 + 1) complex numbers (70 KB for the default grid). Immutable after construction, so one prepared image may be
-/// used by many threads at once.
+/// 3 x radial_samples x (angular_samples / 2 + 1) complex numbers (70 KB for the default grid).
+/// Immutable after construction, so one prepared image may be used by many threads at once.
 class PreparedImage {
  public:
   /// Throws InputError when the image's arrays do not match its grid size, or a valid value is
@@ -141,7 +141,8 @@ class PreparedImage {
 /// is weighted by k + 0.5 in the Pearson sums; otherwise the small inner rings would dominate.
 /// A shift with fewer than min_overlap common valid points gets correlation -1; one where a or
 /// b is constant over the common points (weighted standard deviation there below 1e-10 of the
-/// image's weighted root mean square value, which absorbs interpolation round-off) gets 0. Throws InputError when the grids differ in size.
+/// image's weighted root mean square value, which absorbs interpolation round-off) gets 0. Throws
+/// InputError when the grids differ in size.
 RotationProfile rotation_profile(const PreparedImage& a, const PreparedImage& b,
                                  int min_overlap = 16);
 

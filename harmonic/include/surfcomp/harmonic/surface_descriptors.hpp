@@ -28,8 +28,8 @@ struct DescriptorOptions {
     options.distance = mesh::GeodesicMethod::fast_marching;
     return options;
   }();
-  DiskMapOptions disk_map;                     ///< spring weights 1/|p_i - p_j| (seed eq. 3-2)
-  ImageOptions image;                          ///< 16 rings x 180 sectors (2-degree steps)
+  DiskMapOptions disk_map;  ///< spring weights 1/|p_i - p_j| (seed eq. 3-2)
+  ImageOptions image;       ///< 16 rings x 180 sectors (2-degree steps)
   /// The vertex property resampled into the images; default the shape index (METHOD 0).
   std::string image_property = mesh::property::shape_index;
 };
@@ -48,9 +48,9 @@ enum class PatchStatus : std::uint8_t {
 struct CriticalPointDescriptor {
   mesh::CriticalPoint point;
   PatchStatus status = PatchStatus::ok;
-  mesh::Patch patch;    ///< patch-local vertices refer back to the surface (surface_vertex)
-  DiskMap map;          ///< uv of each patch vertex in the unit disk
-  ShapeImage image;     ///< image_property resampled on the polar grid
+  mesh::Patch patch;  ///< patch-local vertices refer back to the surface (surface_vertex)
+  DiskMap map;        ///< uv of each patch vertex in the unit disk
+  ShapeImage image;   ///< image_property resampled on the polar grid
 };
 
 /// A heavy atom of the molecule a surface was built from, kept with the description so that a
@@ -75,8 +75,9 @@ std::vector<SurfaceAtom> surface_atoms(const Molecule& molecule);
 
 /// describe_surface of a surface built from `molecule` (or carrying its properties), keeping
 /// the molecule's heavy atoms in SurfaceDescriptors::atoms.
-SurfaceDescriptors describe_surface(mesh::Surface surface, const Molecule& molecule, const DescriptorOptions& options = {},
-                                    const std::function<bool(const mesh::CriticalPoint&)>& describe_if = {});
+SurfaceDescriptors describe_surface(
+    mesh::Surface surface, const Molecule& molecule, const DescriptorOptions& options = {},
+    const std::function<bool(const mesh::CriticalPoint&)>& describe_if = {});
 
 /// Detects the critical points of `surface` and builds, for each, its patch (extract_patch),
 /// harmonic map (harmonic_disk_map) and image (harmonic_shape_image of
@@ -86,13 +87,15 @@ SurfaceDescriptors describe_surface(mesh::Surface surface, const Molecule& molec
 /// otherwise); option errors as the stages' own (OptionError).
 /// `describe_if`, when given, selects the critical points that get a patch, map and image (a
 /// binding site's, say); the others keep status skipped.
-SurfaceDescriptors describe_surface(mesh::Surface surface, const DescriptorOptions& options = {},
-                                    const std::function<bool(const mesh::CriticalPoint&)>& describe_if = {});
+SurfaceDescriptors describe_surface(
+    mesh::Surface surface, const DescriptorOptions& options = {},
+    const std::function<bool(const mesh::CriticalPoint&)>& describe_if = {});
 
 /// The patch, map and image around `point.vertex` of `surface`, as describe_surface builds them
 /// for each critical point (point is copied into the result; only its vertex is used).
 /// Requires the property options.image_property (InputError otherwise).
-CriticalPointDescriptor describe_point(const mesh::Surface& surface, const mesh::CriticalPoint& point,
+CriticalPointDescriptor describe_point(const mesh::Surface& surface,
+                                       const mesh::CriticalPoint& point,
                                        const DescriptorOptions& options = {});
 
 /// Counts of a description, for summaries.

@@ -74,9 +74,9 @@ struct TraceStage {
 
 /// The association graph after all filters.
 struct AssociationGraph {
-  std::vector<PointPair> nodes;                 ///< sorted by (a, b)
-  std::vector<std::pair<int, int>> edges;       ///< node indices (i < j), sorted
-  std::vector<TraceStage> trace;                ///< one entry per stage, in order
+  std::vector<PointPair> nodes;            ///< sorted by (a, b)
+  std::vector<std::pair<int, int>> edges;  ///< node indices (i < j), sorted
+  std::vector<TraceStage> trace;           ///< one entry per stage, in order
 };
 
 /// The initial nodes (seed 3.3): every pair of a peak of A with a peak of B and of a valley of

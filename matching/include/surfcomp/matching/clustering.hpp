@@ -50,7 +50,8 @@ struct ClusteringOptions {
 using CorrespondenceProvider = std::function<Correspondences(const MatchedPair&)>;
 
 /// The merge tree of the cliques (seed 3.9):
-/// 1. Each clique (a list of MatchedPair; order irrelevant) becomes a leaf: its pairs' correspondences
+/// 1. Each clique (a list of MatchedPair; order irrelevant) becomes a leaf: its pairs'
+/// correspondences
 ///    are concatenated and fitted (fit_rigid, B onto A); cliques with RMSD > rmsd_cut are dropped.
 ///    Leaves keep the order of the cliques they come from.
 /// 2. Single linkage: distance(X, Y) = min(RMSD of X's correspondences under Y's transform,

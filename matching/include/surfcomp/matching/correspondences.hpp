@@ -27,7 +27,9 @@ struct MatchedPair {
 inline bool operator<(const MatchedPair& x, const MatchedPair& y) {
   return x.a != y.a ? x.a < y.a : x.b < y.b;
 }
-inline bool operator==(const MatchedPair& x, const MatchedPair& y) { return x.a == y.a && x.b == y.b; }
+inline bool operator==(const MatchedPair& x, const MatchedPair& y) {
+  return x.a == y.a && x.b == y.b;
+}
 
 struct CorrespondenceOptions {
   /// Default 1 (every ring). Only rings r with r % ring_step == 0 are used. Must be >= 1.

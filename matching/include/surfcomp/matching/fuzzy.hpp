@@ -37,7 +37,8 @@ double fuzzy_similarity(double z_a, double z_b);
 /// positive regions of two molecules match whatever their net charges). One value per
 /// critical point, in descriptors.critical_points order. All NaN when the surface has no such
 /// property (then the fuzzy filter does not filter on it); all 0 when the property is constant
-/// over the surface (standard deviation <= 1e-12 max(1, |mean|)). Throws InputError for a property other than esp or lp.
+/// over the surface (standard deviation <= 1e-12 max(1, |mean|)). Throws InputError for a property
+/// other than esp or lp.
 std::vector<double> autoscaled_point_values(const harmonic::SurfaceDescriptors& descriptors,
                                             const std::string& property);
 

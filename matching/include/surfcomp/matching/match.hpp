@@ -53,7 +53,7 @@ struct MatchOptions {
   /// precision on therm; its effect on the therm top-1 is mixed (+2 and -4 points on the two
   /// seeds). Must be >= 0.
   int polish_top = 5;
-  OverlayOptions overlay;                 ///< sigma 1 A, spacing 1.5 A, chemistry weight 6, atom weight 14
+  OverlayOptions overlay;  ///< sigma 1 A, spacing 1.5 A, chemistry weight 6, atom weight 14
   /// What changes when the match is restricted to binding sites (allowed masks, or descriptions
   /// built only at a site's critical points, the others skipped).
   struct Site {
@@ -84,27 +84,28 @@ enum class AlignmentSource {
 /// rmsd, n_points, r_chem and consensus are 0, cp_pairs, parent and children empty.
 struct Alignment {
   AlignmentSource source = AlignmentSource::cliques;
-  int rank = 0;                          ///< 1-based, best first
-  Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  ///< moves PROBE coordinates into REF's frame
-  double rmsd = 0.0;                     ///< A, over the corresponding surface points
-  std::size_t n_points = 0;              ///< corresponding surface points
-  double r_chem = 0.0;                   ///< Pearson correlation of the property at those points
-  double consensus = 0.0;                ///< the ranking scheme's value
+  int rank = 0;  ///< 1-based, best first
+  Eigen::Matrix4d transform =
+      Eigen::Matrix4d::Identity();  ///< moves PROBE coordinates into REF's frame
+  double rmsd = 0.0;                ///< A, over the corresponding surface points
+  std::size_t n_points = 0;         ///< corresponding surface points
+  double r_chem = 0.0;              ///< Pearson correlation of the property at those points
+  double consensus = 0.0;           ///< the ranking scheme's value
   std::vector<std::pair<int, int>> cp_pairs;  ///< (REF critical point, PROBE critical point)
-  int parent = 0;                        ///< rank of the cluster this one merged into; 0 for a root
-  std::vector<int> children;             ///< ranks of the two clusters merged into this one
-  bool refined = false;                  ///< transform refined on the whole surfaces (refine_top)
-  OverlayScore overlay;                  ///< Tanimoto scores of the transform (whole surfaces, or
-                                         ///< the pocket linings of a site match), for the first
-                                         ///< refine_top of the consensus ranking and the axes
-                                         ///< starts; 0 for the others
+  int parent = 0;             ///< rank of the cluster this one merged into; 0 for a root
+  std::vector<int> children;  ///< ranks of the two clusters merged into this one
+  bool refined = false;       ///< transform refined on the whole surfaces (refine_top)
+  OverlayScore overlay;       ///< Tanimoto scores of the transform (whole surfaces, or
+                              ///< the pocket linings of a site match), for the first
+                              ///< refine_top of the consensus ranking and the axes
+                              ///< starts; 0 for the others
 };
 
 struct MatchResult {
-  std::vector<Alignment> alignments;          ///< every cluster of the tree and each distinct
-                                              ///< principal-axes pose, best first
-  std::vector<TraceStage> trace;              ///< nodes and edges after each graph stage
-  std::size_t cliques = 0;                    ///< maximal cliques of at least min_clique_size
+  std::vector<Alignment> alignments;  ///< every cluster of the tree and each distinct
+                                      ///< principal-axes pose, best first
+  std::vector<TraceStage> trace;      ///< nodes and edges after each graph stage
+  std::size_t cliques = 0;            ///< maximal cliques of at least min_clique_size
   std::vector<std::pair<std::string, double>> timing_ms;  ///< per stage, in order
 };
 
@@ -115,7 +116,8 @@ struct MatchResult {
 /// vertex while cliques need scoring; OptionError for options outside their domain (start
 /// counts other than 0, 4, 24; site.overlay_radius <= 0; site.chem_weight < 0).
 MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
-                           const harmonic::SurfaceDescriptors& probe, const MatchOptions& options = {},
+                           const harmonic::SurfaceDescriptors& probe,
+                           const MatchOptions& options = {},
                            const std::vector<bool>* reference_allowed = nullptr,
                            const std::vector<bool>* probe_allowed = nullptr);
 

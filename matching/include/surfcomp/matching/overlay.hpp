@@ -125,7 +125,8 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
 /// keep a right-handed frame); with it true, the 24 that pair them in any order (for samples
 /// whose variances are too close for the order to mean much, as pockets' often are). Throws
 /// InputError when a sample is empty.
-std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference, const SurfaceSample& probe,
+std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference,
+                                                  const SurfaceSample& probe,
                                                   bool all_orders = false);
 
 /// Whether `n` is a number of principal-axes starts there are: 0 (none), 4 or 24.
@@ -194,7 +195,8 @@ class SurfaceOverlay {
 
     /// The index c of the cell (x, y, z).
     std::size_t index(int x, int y, int z) const {
-      return (static_cast<std::size_t>(z) * static_cast<std::size_t>(size.y()) + static_cast<std::size_t>(y)) *
+      return (static_cast<std::size_t>(z) * static_cast<std::size_t>(size.y()) +
+              static_cast<std::size_t>(y)) *
                  static_cast<std::size_t>(size.x()) +
              static_cast<std::size_t>(x);
     }
@@ -208,8 +210,9 @@ class SurfaceOverlay {
   /// Sums over the pairs (i of a, j of b) within 3 sigma (see the file comment). With
   /// `targets`, also the refinement's step: for each j, the mean of its neighbours i weighted
   /// by w_i g max(0, n_i . R n_j) (1 + chem_weight c_ij), and that weight's sum times w_j.
-  Sums overlap(const SurfaceSample& a, const Grid& grid, const SurfaceSample& b, const RigidTransform& transform,
-               Eigen::Matrix3Xd* targets = nullptr, Eigen::VectorXd* target_weights = nullptr) const;
+  Sums overlap(const SurfaceSample& a, const Grid& grid, const SurfaceSample& b,
+               const RigidTransform& transform, Eigen::Matrix3Xd* targets = nullptr,
+               Eigen::VectorXd* target_weights = nullptr) const;
   /// The surface scores of the sums (atoms 0, score the surface part: what refine climbs).
   OverlayScore tanimoto(const Sums& sums) const;
   /// `s` with the atom term of `transform` added, when the overlay uses atoms.
@@ -226,9 +229,9 @@ class SurfaceOverlay {
                       Eigen::Matrix3Xd* targets = nullptr, Eigen::VectorXd* totals = nullptr) const;
   static double chemistry(const SurfaceSample& a, int i, const SurfaceSample& b, int j);
   /// g = exp(-d2 / (2 sigma^2)) for 0 <= d2 <= (3 sigma)^2, interpolated linearly in d2 from
-  /// kGaussianSamples + 1 tabulated values (and one spare) (absolute error below 1e-6, overlay_test). [choice:
-  /// perf put std::exp at about a quarter of the overlap sums' time; the refinement stage of
-  /// `surfcomp match` 4TMN.hsi 3TMN.hsi, best of 8 runs, 62 -> 47 ms.]
+  /// kGaussianSamples + 1 tabulated values (and one spare) (absolute error below 1e-6,
+  /// overlay_test). [choice: perf put std::exp at about a quarter of the overlap sums' time; the
+  /// refinement stage of `surfcomp match` 4TMN.hsi 3TMN.hsi, best of 8 runs, 62 -> 47 ms.]
   double gaussian(double d2) const {
     const double x = d2 * gaussian_scale_;
     const std::size_t k = static_cast<std::size_t>(x);
@@ -240,8 +243,8 @@ class SurfaceOverlay {
   SurfaceSample probe_;
   OverlayOptions options_;
   Grid reference_grid_;
-  double chem_weight_ = 0.0;  ///< options_.chem_weight, 0 when neither sample has ESP or LP
-  Sums self_;  ///< S_AA + S_BB and C_AA + C_BB
+  double chem_weight_ = 0.0;      ///< options_.chem_weight, 0 when neither sample has ESP or LP
+  Sums self_;                     ///< S_AA + S_BB and C_AA + C_BB
   std::vector<double> gaussian_;  ///< g at d2 = k / gaussian_scale_, k = 0 .. kGaussianSamples + 1
   double gaussian_scale_ = 1.0;
   AtomSample reference_atoms_;

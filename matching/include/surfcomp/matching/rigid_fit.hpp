@@ -12,7 +12,7 @@ namespace surfcomp::matching {
 /// x -> rotation * x + translation (A).
 struct RigidTransform {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< proper: R^T R = I, det R = +1
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();    ///< A
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();   ///< A
 
   /// The homogeneous 4x4 matrix [R t; 0 0 0 1].
   Eigen::Matrix4d matrix() const;

@@ -31,15 +31,15 @@ struct CriticalPointOptions {
 
 struct CriticalPoint {
   CriticalPointType type = CriticalPointType::peak;
-  int vertex = -1;                 ///< surface vertex index
-  Eigen::Vector3d position;        ///< A
-  Eigen::Vector3d normal;          ///< unit; surface.normals() when has_normals(), else the
-                                   ///< area-weighted normal of the incident triangles
-  double cc1 = 0.0, cc2 = 0.0;     ///< at the vertex, 1/A, seed sign (convex < 0)
-  double shape_index = 0.0;        ///< disc average, [-1, 1] (cap +1)
-  double curvedness = 0.0;         ///< at the vertex, 1/A
-  double esp = 0.0;                ///< disc average, kcal/(mol*e); NaN without property esp
-  double lp = 0.0;                 ///< disc average; NaN without property lp
+  int vertex = -1;              ///< surface vertex index
+  Eigen::Vector3d position;     ///< A
+  Eigen::Vector3d normal;       ///< unit; surface.normals() when has_normals(), else the
+                                ///< area-weighted normal of the incident triangles
+  double cc1 = 0.0, cc2 = 0.0;  ///< at the vertex, 1/A, seed sign (convex < 0)
+  double shape_index = 0.0;     ///< disc average, [-1, 1] (cap +1)
+  double curvedness = 0.0;      ///< at the vertex, 1/A
+  double esp = 0.0;             ///< disc average, kcal/(mol*e); NaN without property esp
+  double lp = 0.0;              ///< disc average; NaN without property lp
 };
 
 /// The peaks and valleys of `surface` (seed eq. 3-1):

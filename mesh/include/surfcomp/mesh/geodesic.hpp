@@ -50,8 +50,7 @@ Eigen::VectorXd edge_geodesic_distances(
 class GeodesicSolver {
  public:
   /// Throws TopologyError for a surface without vertices.
-  explicit GeodesicSolver(const Surface& surface,
-                          GeodesicMethod method = GeodesicMethod::dijkstra);
+  explicit GeodesicSolver(const Surface& surface, GeodesicMethod method = GeodesicMethod::dijkstra);
 
   /// The vertices whose Dijkstra distance from `source` is at most `max_distance` (A), as
   /// (vertex, distance) pairs sorted by vertex; the source itself is included at distance 0.

@@ -11,9 +11,9 @@
 namespace surfcomp::mesh {
 
 struct MolecularSurfaceOptions {
-  SesOptions ses;               ///< probe 1.4 A, about 2.5 vertices per A^2
-  EspOptions esp;               ///< eps = 1, Coulomb
-  LpOptions lp;                 ///< Fauchere kernel exp(-d)
+  SesOptions ses;  ///< probe 1.4 A, about 2.5 vertices per A^2
+  EspOptions esp;  ///< eps = 1, Coulomb
+  LpOptions lp;    ///< Fauchere kernel exp(-d)
   /// Curvature fitted over a 2 A geodesic-ball neighbourhood rather than CurvatureOptions'
   /// 2-ring default: a fixed size in A makes the shape index, and so the harmonic shape images,
   /// independent of the vertex density (1THL ligand, densities 2 and 4 vertices/A^2, patches
@@ -29,7 +29,8 @@ struct MolecularSurfaceOptions {
 /// vertex properties esp (kcal/(mol*e)), lp, cc1, cc2 (1/A), shape_index and curvedness.
 /// Preconditions: validate_molecule(molecule) passes (checked; throws InputError otherwise).
 /// The result is closed, 2-manifold and outward-oriented (checked; TopologyError otherwise).
-Surface build_molecular_surface(const Molecule& molecule, const MolecularSurfaceOptions& options = {});
+Surface build_molecular_surface(const Molecule& molecule,
+                                const MolecularSurfaceOptions& options = {});
 
 /// Adds curvature properties (cc1, cc2, shape_index, curvedness) to a surface made elsewhere
 /// and, when `molecule` is given, esp and lp at its vertices. Normals are computed if absent.

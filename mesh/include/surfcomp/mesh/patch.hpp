@@ -39,11 +39,11 @@ struct PatchOptions {
 /// apply. Patch-local vertex i is surface vertex surface_vertex[i]; patch vertices are sorted
 /// by surface index.
 struct Patch {
-  int center = -1;                   ///< patch-local index of the centre vertex
-  std::vector<int> surface_vertex;   ///< step 7: surface vertex index of each patch vertex
-  Eigen::MatrixX3d positions;        ///< #patch vertices by 3, A, copied from the surface
-  Eigen::MatrixX3i faces;            ///< patch-local triangles, same orientation as on the surface
-  Eigen::VectorXd distance;          ///< on-surface (Dijkstra) distance from the centre, A
+  int center = -1;                  ///< patch-local index of the centre vertex
+  std::vector<int> surface_vertex;  ///< step 7: surface vertex index of each patch vertex
+  Eigen::MatrixX3d positions;       ///< #patch vertices by 3, A, copied from the surface
+  Eigen::MatrixX3i faces;           ///< patch-local triangles, same orientation as on the surface
+  Eigen::VectorXd distance;         ///< on-surface (Dijkstra) distance from the centre, A
   /// The outer border: patch-local vertices joined by border edges, each once, starting at the
   /// lowest index and walked counter-clockwise seen from outside (the side the faces'
   /// counter-clockwise order points to), i.e. with the patch on the left: each step a -> b is a
@@ -65,12 +65,12 @@ std::vector<int> preselect_euclidean(const Surface& surface, int center_vertex, 
 
 /// Step 2: Dijkstra distances (A; or fast-marching ones, per `method`) from `center_vertex`
 /// over paths inside the `preselected` vertices (sorted, unique, containing the centre), up to
-/// `max_distance`, as (vertex, distance) pairs sorted by vertex. Throws InputError for indices out of range, unsorted or
-/// without the centre, OptionError for a max_distance that is not finite and >= 0.
-std::vector<std::pair<int, double>> patch_distances(const Surface& surface, int center_vertex,
-                                                    const std::vector<int>& preselected,
-                                                    double max_distance,
-                                                    GeodesicMethod method = GeodesicMethod::dijkstra);
+/// `max_distance`, as (vertex, distance) pairs sorted by vertex. Throws InputError for indices out
+/// of range, unsorted or without the centre, OptionError for a max_distance that is not finite and
+/// >= 0.
+std::vector<std::pair<int, double>> patch_distances(
+    const Surface& surface, int center_vertex, const std::vector<int>& preselected,
+    double max_distance, GeodesicMethod method = GeodesicMethod::dijkstra);
 
 /// Step 3: the vertices with distance <= radius, plus those with distance <= radius * (1 +
 /// margin) that share an edge with one of them (seed: "points connected to them within a 5 %
@@ -107,8 +107,7 @@ std::vector<int> resolve_nonmanifold_vertices(const Surface& surface,
 /// The faces of `faces` that are edge-connected (through shared edges) to the lowest-index
 /// face of `faces` incident to `vertex`, sorted; empty when no face is incident to `vertex`.
 /// Throws InputError for bad indices.
-std::vector<int> keep_component(const Surface& surface, const std::vector<int>& faces,
-                                int vertex);
+std::vector<int> keep_component(const Surface& surface, const std::vector<int>& faces, int vertex);
 
 /// A patch under construction: sorted surface vertex and face indices.
 struct PatchSelection {

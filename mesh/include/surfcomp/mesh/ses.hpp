@@ -16,7 +16,7 @@ struct SesOptions {
   /// decides only the topology (features thinner than about a voxel are lost); vertices are
   /// projected onto the exact surface. Must be at most r_min / 2.
   double voxel_size = 0.0;
-  bool remesh = true;           ///< isotropic remeshing to edge length L; false keeps the grid mesh
+  bool remesh = true;  ///< isotropic remeshing to edge length L; false keeps the grid mesh
   /// Move each vertex along its normal by the mean gap between its flat triangles and the
   /// curved surface (H (a^2 + b^2 + c^2) / 24, H the exact mean curvature), so that area and
   /// volume are unbiased (default); false leaves every vertex exactly on the surface, whose

@@ -117,8 +117,8 @@ Eigen::VectorXd vertex_areas(const Surface& surface);
 
 /// Global measures of a closed or open surface.
 struct SurfaceMeasures {
-  double area = 0.0;        ///< A^2
-  double volume = 0.0;      ///< A^3, signed (divergence theorem); positive for outward faces
+  double area = 0.0;             ///< A^2
+  double volume = 0.0;           ///< A^3, signed (divergence theorem); positive for outward faces
   int euler_characteristic = 0;  ///< V - E + F
   std::size_t boundary_edges = 0;
 };

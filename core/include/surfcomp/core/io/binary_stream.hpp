@@ -22,11 +22,12 @@ class BinaryWriter {
   void u64(std::uint64_t value);
   void i32(std::int32_t value) { u32(static_cast<std::uint32_t>(value)); }
   void f64(double value);
-  void string(const std::string& value);                 ///< u32 length, then the bytes
-  void ints(const std::vector<int>& values);             ///< u64 count, then i32 each
+  void string(const std::string& value);                          ///< u32 length, then the bytes
+  void ints(const std::vector<int>& values);                      ///< u64 count, then i32 each
   void doubles(const Eigen::Ref<const Eigen::VectorXd>& values);  ///< u64 count, then f64 each
   void int_matrix(const Eigen::Ref<const Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic>>& m);
-  void double_matrix(const Eigen::Ref<const Eigen::MatrixXd>& m);  ///< u64 rows, u64 cols, row-major
+  void double_matrix(
+      const Eigen::Ref<const Eigen::MatrixXd>& m);  ///< u64 rows, u64 cols, row-major
 
   const std::vector<std::uint8_t>& bytes() const { return bytes_; }
 

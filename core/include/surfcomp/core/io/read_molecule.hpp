@@ -51,7 +51,8 @@ bool is_molecule_file(const std::filesystem::path& path);
 ///   insertion code and name; where one residue position has alternate residue names
 ///   (microheterogeneity), only the first name's records are read.
 /// - Radii: Bondi (surfcomp::bondi_radius) except PQR, whose radii are taken as given.
-/// - Charges (e): see ChargeModel. Gasteiger or MMFF on a protein PDB is an OptionError. Computed charges of implicit hydrogens (atoms the file does
+/// - Charges (e): see ChargeModel. Gasteiger or MMFF on a protein PDB is an OptionError. Computed
+/// charges of implicit hydrogens (atoms the file does
 ///   not list) are added to their heavy atom, so the charges sum to the formal charge.
 ///   Isolated single-atom ions without Gasteiger parameters (Zn, Ca, Na, Cl, ...) get their
 ///   formal charge from the file, else their usual ionic charge (Na/K +1, Mg/Ca/Zn/Mn/Fe/Co/

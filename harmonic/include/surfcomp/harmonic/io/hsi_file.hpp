@@ -28,8 +28,8 @@ inline constexpr std::uint32_t hsi_format_version = 2;
 std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& descriptors);
 
 /// Decodes the bytes of a .hsi file (version 1 or 2). Throws FormatError naming `source` for a
-/// wrong magic, a byte-swapped or unknown-version file, a size or checksum mismatch (truncated or corrupt),
-/// or any inconsistent count or index inside.
+/// wrong magic, a byte-swapped or unknown-version file, a size or checksum mismatch (truncated or
+/// corrupt), or any inconsistent count or index inside.
 SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std::string& source);
 
 /// Writes `descriptors` to `path` atomically (no partial file on failure).
