@@ -2,9 +2,12 @@
 
 #include "surfcomp/core/error.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <set>
 #include <string>
+#include <utility>
 
 namespace surfcomp {
 std::string residue_key(std::string_view name) {
@@ -13,6 +16,81 @@ std::string residue_key(std::string_view name) {
     if (c != ' ') key.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
   }
   return key;
+}
+
+bool is_water_residue(std::string_view residue_name) {
+  const std::string name = residue_key(residue_name);
+  return name == "HOH" || name == "WAT" || name == "DOD";
+}
+
+namespace {
+
+std::string without_blanks(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    if (c != ' ') out.push_back(c);
+  }
+  return out;
+}
+
+/// "A, B, C" of the first `most` entries, ", ..." when there are more.
+std::string listed(const std::vector<std::string>& items, std::size_t most) {
+  std::string list;
+  for (std::size_t i = 0; i < items.size() && i < most; ++i) list += (i > 0 ? ", " : "") + items[i];
+  if (items.size() > most) list += ", ...";
+  return list;
+}
+
+}  // namespace
+
+std::vector<std::size_t> select_ligand(const Molecule& molecule, const LigandSelector& selector) {
+  using Copy = std::pair<std::string, int>;  // chain, residue number
+  const std::string wanted = residue_key(selector.residue_name);
+  const auto named = [&](const Atom& atom) {
+    return atom.hetero && residue_key(atom.residue_name) == wanted;
+  };
+  const auto asked = [&](const Atom& atom) {
+    return (!selector.chain || without_blanks(atom.chain) == without_blanks(*selector.chain)) &&
+           (!selector.residue_number || atom.residue_number == *selector.residue_number);
+  };
+  std::set<Copy> copies;  // of the name, anywhere
+  std::optional<Copy> first;
+  for (const Atom& atom : molecule.atoms) {
+    if (!named(atom)) continue;
+    const Copy copy{atom.chain, atom.residue_number};
+    copies.insert(copy);
+    if (asked(atom) && (!first || copy < *first)) first = copy;
+  }
+  if (copies.empty()) {
+    std::vector<std::string> present;
+    for (const Atom& atom : molecule.atoms) {
+      if (atom.hetero &&
+          std::find(present.begin(), present.end(), atom.residue_name) == present.end()) {
+        present.push_back(atom.residue_name);
+      }
+    }
+    throw InputError(molecule.source + ": no HETATM residue named '" + selector.residue_name +
+                     "'; HETATM residues present: " +
+                     (present.empty() ? std::string("none") : listed(present, 10)));
+  }
+  if (!first) {
+    std::string asked_for;
+    if (selector.chain) asked_for += " in chain '" + *selector.chain + "'";
+    if (selector.residue_number)
+      asked_for += " numbered " + std::to_string(*selector.residue_number);
+    std::vector<std::string> present;
+    for (const auto& [chain, number] : copies)
+      present.push_back("chain '" + chain + "' number " + std::to_string(number));
+    throw InputError(molecule.source + ": no copy of HETATM residue '" + selector.residue_name +
+                     "'" + asked_for + "; its copies: " + listed(present, 10));
+  }
+  std::vector<std::size_t> selected;
+  for (std::size_t i = 0; i < molecule.atoms.size(); ++i) {
+    const Atom& atom = molecule.atoms[i];
+    if (named(atom) && atom.chain == first->first && atom.residue_number == first->second)
+      selected.push_back(i);
+  }
+  return selected;
 }
 
 std::string describe_atom(const Molecule& molecule, std::size_t index) {

@@ -20,17 +20,9 @@ enum class RdkitFormat { mdl, mol2, pdb };
 /// unreadable.
 std::string read_text_file(const std::filesystem::path& path);
 
-/// True for the water residue names HOH, WAT, DOD (blanks ignored, case-insensitive).
-bool is_water_residue(std::string_view residue_name);
 /// True when a whole-structure read drops this residue: water (if options.remove_water) or a
 /// name in options.exclude_residues (blanks ignored, case-insensitive).
 bool is_dropped_residue(std::string_view residue_name, const MoleculeReadOptions& options);
-
-/// Indices into `atoms` of the first copy (lowest chain, then residue number) of the HETATM
-/// residue named `ligand` (case-insensitive). Throws InputError naming `source` and listing up
-/// to ten HETATM residue names present when there is none.
-std::vector<std::size_t> select_ligand(const std::vector<Atom>& atoms, const std::string& ligand,
-                                       const std::string& source);
 
 /// True when some atom belongs to a residue protein_atom_lipophilicity() knows.
 bool has_standard_residue(const std::vector<Atom>& atoms);

@@ -166,7 +166,7 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
       throw InputError(source + ": no atoms left besides water and excluded residues");
   }
   if (!options.ligand.empty()) {
-    const auto selected = detail::select_ligand(molecule.atoms, options.ligand, source);
+    const auto selected = select_ligand(molecule, LigandSelector{options.ligand, {}, {}});
     std::vector<Atom> atoms;
     for (std::size_t i : selected) atoms.push_back(molecule.atoms[i]);
     molecule.atoms = std::move(atoms);

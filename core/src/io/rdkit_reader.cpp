@@ -438,7 +438,7 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& te
   if (format == RdkitFormat::pdb) {
     std::vector<std::size_t> keep;
     if (!options.ligand.empty()) {
-      keep = select_ligand(molecule.atoms, options.ligand, source);
+      keep = select_ligand(molecule, LigandSelector{options.ligand, {}, {}});
     } else {
       whole_structure = true;
       for (std::size_t i = 0; i < molecule.atoms.size(); ++i) {

@@ -11,7 +11,6 @@
 #include <fstream>
 #include <iterator>
 #include <system_error>
-#include <tuple>
 
 namespace surfcomp::io {
 namespace {
@@ -21,16 +20,6 @@ std::string lowercase_extension(const std::filesystem::path& path) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return extension;
-}
-
-std::string uppercase_trimmed(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    if (!std::isspace(static_cast<unsigned char>(c))) {
-      out.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
-    }
-  }
-  return out;
 }
 
 }  // namespace
@@ -48,49 +37,6 @@ std::string read_text_file(const std::filesystem::path& path) {
   std::string text((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
   if (stream.bad()) throw FileError(path.string(), "read error");
   return text;
-}
-
-bool is_water_residue(std::string_view residue_name) {
-  const std::string name = uppercase_trimmed(residue_name);
-  return name == "HOH" || name == "WAT" || name == "DOD";
-}
-
-std::vector<std::size_t> select_ligand(const std::vector<Atom>& atoms, const std::string& ligand,
-                                       const std::string& source) {
-  const std::string wanted = uppercase_trimmed(ligand);
-  bool found = false;
-  std::tuple<std::string, int> first_copy;
-  for (const Atom& atom : atoms) {
-    if (!atom.hetero || uppercase_trimmed(atom.residue_name) != wanted) continue;
-    const std::tuple<std::string, int> copy{atom.chain, atom.residue_number};
-    if (!found || copy < first_copy) first_copy = copy;
-    found = true;
-  }
-  if (!found) {
-    std::vector<std::string> present;
-    for (const Atom& atom : atoms) {
-      if (atom.hetero &&
-          std::find(present.begin(), present.end(), atom.residue_name) == present.end()) {
-        present.push_back(atom.residue_name);
-      }
-    }
-    std::string list;
-    for (std::size_t i = 0; i < present.size() && i < 10; ++i) {
-      list += (i > 0 ? ", " : "") + present[i];
-    }
-    if (present.size() > 10) list += ", ...";
-    throw InputError(source + ": no HETATM residue named '" + ligand + "'; HETATM residues " +
-                     (present.empty() ? std::string("present: none") : "present: " + list));
-  }
-  std::vector<std::size_t> selected;
-  for (std::size_t i = 0; i < atoms.size(); ++i) {
-    const Atom& atom = atoms[i];
-    if (atom.hetero && uppercase_trimmed(atom.residue_name) == wanted &&
-        std::tie(atom.chain, atom.residue_number) == first_copy) {
-      selected.push_back(i);
-    }
-  }
-  return selected;
 }
 
 bool is_dropped_residue(std::string_view residue_name, const MoleculeReadOptions& options) {

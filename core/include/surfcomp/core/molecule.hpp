@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,6 +45,29 @@ void validate_molecule(const Molecule& molecule);
 
 /// A residue or atom name as a comparison key: blanks removed, upper case (" oxt" -> "OXT").
 std::string residue_key(std::string_view name);
+
+/// True for the water residue names HOH, WAT and DOD (compared by residue_key).
+bool is_water_residue(std::string_view residue_name);
+
+/// Which copy of a ligand residue select_ligand takes.
+struct LigandSelector {
+  /// The HETATM residue name, compared by residue_key (blanks ignored, case-insensitive).
+  std::string residue_name;
+  /// Only the copies in this chain (compared as written, blanks ignored); default any chain.
+  std::optional<std::string> chain;
+  /// Only the copies with this residue number; default any number.
+  std::optional<int> residue_number;
+};
+
+/// Indices into molecule.atoms, in order, of one copy of a ligand residue: the HETATM atoms
+/// named selector.residue_name, narrowed to selector.chain and selector.residue_number when
+/// they are given; a copy is one (chain, residue number), and of several copies the one with
+/// the lowest chain, then the lowest residue number, is taken. This is the one ligand
+/// selection of the project (io::MoleculeReadOptions::ligand, matching::binding_site).
+/// Throws InputError naming molecule.source when no HETATM residue has that name (listing up
+/// to ten HETATM residue names present) or when no copy of it is in the chain and number asked
+/// for (listing the copies present).
+std::vector<std::size_t> select_ligand(const Molecule& molecule, const LigandSelector& selector);
 
 /// "atom N (element name residue numberchain)" for messages; N is 1-based.
 std::string describe_atom(const Molecule& molecule, std::size_t index);

@@ -24,8 +24,9 @@ enum class ChargeModel {
 struct MoleculeReadOptions {
   /// Charge model; default ChargeModel::file. PQR files accept only ChargeModel::file.
   ChargeModel charges = ChargeModel::file;
-  /// PDB/PQR: read only the HETATM residue with this name (the first copy by chain, then
-  /// residue number); default "" = the whole structure. Ignored for SDF/MOL/MOL2.
+  /// PDB/PQR: read only one copy of the HETATM residue with this name, the one select_ligand
+  /// takes (the lowest chain, then residue number); default "" = the whole structure. Ignored
+  /// for SDF/MOL/MOL2.
   std::string ligand;
   /// Whole-structure PDB/PQR: drop water residues (HOH, WAT, DOD); default true.
   bool remove_water = true;
