@@ -1,5 +1,6 @@
 #include "surfcomp/matching/association_graph.hpp"
 
+#include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/fuzzy.hpp"
 
@@ -45,13 +46,6 @@ void check_edges(const std::vector<std::pair<int, int>>& edges, std::size_t n_no
                        std::to_string(i) + " and " + std::to_string(j) +
                        ", expected two distinct indices in [0, " + std::to_string(n_nodes) + ")");
     }
-  }
-}
-
-void check_option(bool ok, const char* name, double value, const char* expected) {
-  if (!ok) {
-    throw OptionError(std::string("association graph: ") + name + " = " + std::to_string(value) +
-                      ", expected " + expected);
   }
 }
 
@@ -212,10 +206,7 @@ std::vector<std::pair<int, int>> distance_filter(const std::vector<PointPair>& n
                                                  const SurfaceDescriptors& a,
                                                  const SurfaceDescriptors& b, double tolerance,
                                                  double min_distance) {
-  check_option(std::isfinite(tolerance) && tolerance >= 0.0, "distance_tolerance", tolerance,
-               "a finite value >= 0 A");
-  check_option(std::isfinite(min_distance) && min_distance >= 0.0, "min_distance", min_distance,
-               "a finite value >= 0 A");
+  detail::check_distance_filter(tolerance, min_distance, {"distance_filter", ""});
   check_nodes(nodes, a, b, "distance_filter");
   auto position = [](const SurfaceDescriptors& d, int point) -> const Eigen::Vector3d& {
     return d.critical_points[static_cast<std::size_t>(point)].point.position;
@@ -282,9 +273,7 @@ std::vector<std::pair<int, int>> overlap_filter(const std::vector<PointPair>& no
                                                 const SurfaceDescriptors& a,
                                                 const SurfaceDescriptors& b,
                                                 double tolerance_degrees) {
-  check_option(
-      std::isfinite(tolerance_degrees) && tolerance_degrees >= 0.0 && tolerance_degrees <= 180.0,
-      "overlap_tolerance_degrees", tolerance_degrees, "a value in [0, 180] degrees");
+  detail::check_overlap_tolerance(tolerance_degrees, {"overlap_filter", ""});
   check_nodes(nodes, a, b, "overlap_filter");
   check_edges(edges, nodes.size(), "overlap_filter");
   BearingCache bearing_a(a), bearing_b(b);
@@ -314,17 +303,7 @@ AssociationGraph build_association_graph(const SurfaceDescriptors& a, const Surf
                                          const std::vector<bool>* a_allowed,
                                          const std::vector<bool>* b_allowed) {
   const GraphParameters& p = parameters;
-  check_option(p.fuzzy_threshold >= 0.0 && p.fuzzy_threshold <= 1.0, "fuzzy_threshold",
-               p.fuzzy_threshold, "a value in [0, 1]");
-  check_option(std::isfinite(p.image_threshold), "image_threshold", p.image_threshold,
-               "a finite value");
-  check_option(std::isfinite(p.distance_tolerance) && p.distance_tolerance >= 0.0,
-               "distance_tolerance", p.distance_tolerance, "a finite value >= 0 A");
-  check_option(std::isfinite(p.min_distance) && p.min_distance >= 0.0, "min_distance",
-               p.min_distance, "a finite value >= 0 A");
-  check_option(p.overlap_tolerance_degrees >= 0.0 && p.overlap_tolerance_degrees <= 180.0,
-               "overlap_tolerance_degrees", p.overlap_tolerance_degrees,
-               "a value in [0, 180] degrees");
+  detail::check_graph_options(p, {"association graph", ""});
 
   AssociationGraph graph;
   auto start = std::chrono::steady_clock::now();

@@ -1,5 +1,6 @@
 #include "surfcomp/matching/cliques.hpp"
 
+#include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 
 #include <boost/graph/adjacency_matrix.hpp>
@@ -25,10 +26,7 @@ struct CliqueCollector {
 }  // namespace
 
 std::vector<std::vector<int>> maximal_cliques(const AssociationGraph& g, int min_size) {
-  if (min_size < 1) {
-    throw OptionError("maximal_cliques: min_size = " + std::to_string(min_size) +
-                      ", expected >= 1");
-  }
+  detail::check_min_clique_size(min_size, "min_size", {"maximal_cliques", ""});
   const std::size_t n = g.nodes.size();
   for (std::size_t e = 0; e < g.edges.size(); ++e) {
     const auto [i, j] = g.edges[e];

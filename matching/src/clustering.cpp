@@ -1,5 +1,6 @@
 #include "surfcomp/matching/clustering.hpp"
 
+#include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 
 #include <algorithm>
@@ -85,13 +86,6 @@ std::string pair_text(const MatchedPair& p) {
   return "(" + std::to_string(p.a) + ", " + std::to_string(p.b) + ")";
 }
 
-void check_cut(double value, const char* name) {
-  if (!(value > 0.0)) {
-    throw OptionError(std::string("cluster_alignments: ") + name + " " + std::to_string(value) +
-                      " A; expected > 0");
-  }
-}
-
 double linkage(const Node& x, const Node& y) {
   return std::min(rmsd_from_moments(x.moments, y.cluster.fit.transform),
                   rmsd_from_moments(y.moments, x.cluster.fit.transform));
@@ -118,8 +112,7 @@ bool compatible_pairs(const std::vector<MatchedPair>& x, const std::vector<Match
 std::vector<Cluster> cluster_alignments(const std::vector<std::vector<MatchedPair>>& cliques,
                                         const CorrespondenceProvider& correspondences,
                                         const ClusteringOptions& options) {
-  check_cut(options.rmsd_cut, "rmsd_cut");
-  check_cut(options.merge_cut, "merge_cut");
+  detail::check_clustering_options(options, {"cluster_alignments", ""});
 
   // Normalise the cliques and collect the distinct pairs with their shifts.
   std::vector<std::vector<MatchedPair>> sorted(cliques.size());

@@ -1,5 +1,6 @@
 #include "surfcomp/matching/correspondences.hpp"
 
+#include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/harmonic/shape_image.hpp"
 
@@ -54,11 +55,7 @@ double property_at(const harmonic::CriticalPointDescriptor& point, int grid,
 Correspondences pair_correspondences(const harmonic::SurfaceDescriptors& a,
                                      const harmonic::SurfaceDescriptors& b, const MatchedPair& pair,
                                      const CorrespondenceOptions& options) {
-  if (options.ring_step < 1 || options.sector_step < 1) {
-    throw OptionError("pair_correspondences: ring_step " + std::to_string(options.ring_step) +
-                      " and sector_step " + std::to_string(options.sector_step) +
-                      "; expected both >= 1");
-  }
+  detail::check_correspondence_options(options, {"pair_correspondences", ""});
   const auto& pa = imaged_point(a, pair.a, "A");
   const auto& pb = imaged_point(b, pair.b, "B");
   const harmonic::ShapeImage& ia = pa.image;

@@ -1,5 +1,6 @@
 #include "surfcomp/matching/overlay.hpp"
 
+#include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -17,13 +18,6 @@ namespace {
 
 constexpr double kCutoffSigmas = 3.0;
 
-void require_positive(double value, const char* name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw OptionError(std::string("overlay: ") + name + " must be a finite number > 0, got " +
-                      std::to_string(value));
-  }
-}
-
 /// sqrt(sum w x^2 / sum w) over both samples' values; 1 when it is zero (no such property).
 double root_mean_square(const Eigen::VectorXd& a, const Eigen::VectorXd& wa,
                         const Eigen::VectorXd& b, const Eigen::VectorXd& wb) {
@@ -37,7 +31,7 @@ double root_mean_square(const Eigen::VectorXd& a, const Eigen::VectorXd& wa,
 
 SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
                              const std::vector<bool>* vertex_mask) {
-  require_positive(spacing, "spacing");
+  detail::check_overlay_spacing(spacing, {"sample_surface", ""});
   const std::size_t n = surface.n_vertices();
   if (vertex_mask != nullptr && vertex_mask->size() != n) {
     throw InputError(surface.source() + ": overlay vertex mask has " +
@@ -325,20 +319,7 @@ SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe,
       options_(options),
       reference_atoms_(std::move(reference_atoms)),
       probe_atoms_(std::move(probe_atoms)) {
-  require_positive(options_.sigma, "sigma");
-  require_positive(options_.spacing, "spacing");
-  if (!(options_.chem_weight >= 0.0) || !std::isfinite(options_.chem_weight)) {
-    throw OptionError("overlay: chem_weight must be a finite number >= 0, got " +
-                      std::to_string(options_.chem_weight));
-  }
-  if (!(options_.atom_weight >= 0.0) || !std::isfinite(options_.atom_weight)) {
-    throw OptionError("overlay: atom_weight must be a finite number >= 0, got " +
-                      std::to_string(options_.atom_weight));
-  }
-  if (options_.iterations < 0)
-    throw OptionError("overlay: iterations must be >= 0, got " +
-                      std::to_string(options_.iterations));
-  if (!(options_.tolerance >= 0.0)) throw OptionError("overlay: tolerance must be >= 0");
+  detail::check_overlay_options(options_, {"overlay", ""});
   if (reference_.size() == 0 || probe_.size() == 0) {
     throw InputError(std::string("overlay: the ") +
                      (reference_.size() == 0 ? "reference" : "probe") +

@@ -1,5 +1,6 @@
 #include "surfcomp/matching/ranking.hpp"
 
+#include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 
 #include <algorithm>
@@ -31,25 +32,14 @@ std::vector<double> fractional_ranks(const std::vector<double>& values) {
   return ranks;
 }
 
-void check_option(bool ok, const std::string& what) {
-  if (!ok) throw OptionError("rank_alignments: " + what);
-}
-
 }  // namespace
 
 std::vector<RankedAlignment> rank_alignments(const std::vector<Cluster>& clusters,
                                              const RankingOptions& options) {
   const std::array<double, 3> weights = {options.weight_rmsd, options.weight_points,
                                          options.weight_chem};
-  for (double w : weights) {
-    check_option(std::isfinite(w) && w >= 0.0,
-                 "weight " + std::to_string(w) + "; expected finite and >= 0");
-  }
+  detail::check_ranking_options(options, {"rank_alignments", ""});
   const double weight_sum = weights[0] + weights[1] + weights[2];
-  check_option(weight_sum > 0.0, "all three weights are 0; expected at least one > 0");
-  check_option(
-      options.vote_top_fraction > 0.0 && options.vote_top_fraction <= 1.0,
-      "vote_top_fraction " + std::to_string(options.vote_top_fraction) + "; expected in (0, 1]");
 
   // The scores, each oriented so that larger is better.
   const std::size_t n = clusters.size();
