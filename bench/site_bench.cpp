@@ -1,7 +1,8 @@
 // Binding-site comparison on the Kahraman dev set (issue 4, "Binding sites"): 36 sites of ATP,
-// HEM and FMN (../shared/datasets/kahraman-dev). Each site is built once: the surface of its
-// structure without water and without the site's own ligand copy, described (patch, harmonic map,
-// shape image) only at the critical points within kSiteRadius of that ligand's atoms. Every
+// HEM and FMN (../shared/datasets/kahraman-dev). Each site is built once (matching::binding_site
+// of the entry's ligand copy, its chains in contact): the surface of its structure without water
+// and without the site's own ligand copy, described (patch, harmonic map, shape image) only at
+// the critical points within kSiteRadius of that ligand's atoms (matching::describe_site). Every
 // unordered pair of sites is then matched (REF = the earlier entry) and scored from its top-1
 // alignment; the ROC AUC of each score separates same-ligand pairs from different-ligand pairs.
 // Targets: AUC >= 0.8, a site pair <= 10 s. The similarity score the project documents is
@@ -17,7 +18,7 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
-#include "surfcomp/mesh/critical_points.hpp"
+#include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 
 #include <algorithm>
@@ -73,71 +74,45 @@ std::vector<Entry> read_entries(const fs::path& path) {
   return entries;
 }
 
-/// A built site: its critical points (inside the spheres) with patches, maps and images.
+/// A built site: its description (the critical points outside the site skipped) and mask.
 struct Site {
   Entry entry;
   std::string chains;  ///< the chains kept
   std::size_t atoms = 0, ligand_atoms = 0;
   harmonic::SurfaceDescriptors descriptors;
-  std::size_t imaged = 0;  ///< site critical points with an image
-  double build_ms = 0;     ///< read, surface, critical points and site descriptors
+  std::vector<bool> in_site;  ///< one flag per critical point: inside the site
+  std::size_t site_cps = 0;   ///< critical points inside the site
+  std::size_t imaged = 0;     ///< site critical points with an image
+  double build_ms = 0;        ///< read, surface, critical points and site descriptors
 };
 
-/// Builds the site of `entry` from `pdb`: the structure without water, reduced to the chains
-/// with an atom within kContactRadius of the entry's ligand copy (residue name, number and
-/// chain), minus that copy, whose atoms give the site's spheres. Ions, cofactors and other
-/// ligand copies in those chains stay. Whole structures are not used: the surface's ESP and LP
-/// cost #vertices x #atoms, several minutes for the 32,000-atom 1A49 and 1PP9 entries, and
-/// chains that do not touch the ligand are far from its site. Throws InputError when that copy
-/// is absent.
+/// Builds the site of `entry` from `pdb`: the binding site of the entry's ligand copy (residue
+/// name, number and chain) on the structure reduced to the chains in contact with it. Whole
+/// structures are not used: the surface's ESP and LP cost #vertices x #atoms, and chains that
+/// do not touch the ligand are far from its site. Throws InputError when that copy is absent.
 Site build_site(const Entry& entry, const fs::path& pdb,
                 const harmonic::DescriptorOptions& options) {
   const auto start = Clock::now();
   Site site;
   site.entry = entry;
-  Molecule protein = io::read_molecule(pdb);
-  const auto is_ligand = [&](const Atom& atom) {
-    return atom.residue_name == entry.ligand && atom.residue_number == entry.residue_number &&
-           atom.chain == entry.chain;
-  };
-  std::vector<matching::SiteSphere> spheres;
-  for (const Atom& atom : protein.atoms) {
-    if (is_ligand(atom)) spheres.push_back({atom.position, kSiteRadius});
-  }
-  if (spheres.empty()) {
-    throw InputError(pdb.string() + ": no atom of ligand " + entry.ligand + " " +
-                     std::to_string(entry.residue_number) + " chain " + entry.chain);
-  }
-  std::set<std::string> chains = {entry.chain};
-  for (const Atom& atom : protein.atoms) {
-    if (chains.count(atom.chain)) continue;
-    for (const auto& s : spheres) {
-      if ((atom.position - s.center).norm() <= kContactRadius) {
-        chains.insert(atom.chain);
-        break;
-      }
-    }
-  }
-  std::vector<Atom> kept;
-  for (const Atom& atom : protein.atoms) {
-    if (!is_ligand(atom) && chains.count(atom.chain)) kept.push_back(atom);
-  }
+  matching::BindingSiteOptions site_options;
+  site_options.sphere_radius = kSiteRadius;
+  site_options.chain_contact_radius = kContactRadius;
+  const matching::BindingSite binding_site = matching::binding_site(
+      io::read_molecule(pdb), LigandSelector{entry.ligand, entry.chain, entry.residue_number},
+      site_options);
+  std::set<std::string> chains;
+  for (const Atom& atom : binding_site.ligand.atoms) chains.insert(atom.chain);
+  for (const Atom& atom : binding_site.structure.atoms) chains.insert(atom.chain);
   for (const auto& chain : chains) site.chains += chain;
-  protein.atoms = std::move(kept);
-  site.atoms = protein.atoms.size();
-  site.ligand_atoms = spheres.size();
-  mesh::Surface surface = mesh::build_molecular_surface(protein);
-  site.descriptors.options = options;
-  for (const auto& point : mesh::detect_critical_points(surface, options.critical_points)) {
-    const bool inside =
-        std::any_of(spheres.begin(), spheres.end(), [&](const matching::SiteSphere& s) {
-          return (point.position - s.center).norm() <= s.radius;
-        });
-    if (!inside) continue;
-    site.descriptors.critical_points.push_back(harmonic::describe_point(surface, point, options));
-    if (site.descriptors.critical_points.back().status == harmonic::PatchStatus::ok) ++site.imaged;
-  }
-  site.descriptors.surface = std::move(surface);
+  site.atoms = binding_site.structure.atoms.size();
+  site.ligand_atoms = binding_site.ligand.atoms.size();
+  site.descriptors = matching::describe_site(mesh::build_molecular_surface(binding_site.structure),
+                                             binding_site.structure, binding_site.spheres, options);
+  site.in_site = matching::critical_points_in_site(site.descriptors, binding_site.spheres);
+  site.site_cps =
+      static_cast<std::size_t>(std::count(site.in_site.begin(), site.in_site.end(), true));
+  site.imaged = harmonic::count_descriptors(site.descriptors).imaged;
   site.build_ms = ms_since(start);
   return site;
 }
@@ -174,6 +149,7 @@ std::vector<Variant> variants() {
   const auto make = [&](const char* name, double fuzzy, double image, double distance,
                         double overlap) {
     Variant v{name, {}};
+    v.options.mode = matching::MatchMode::binding_sites;
     v.options.graph.fuzzy_threshold = fuzzy;
     v.options.graph.image_threshold = image;
     v.options.graph.distance_tolerance = distance;
@@ -297,8 +273,8 @@ int main(int argc, char** argv) {
       const Site& s = sites.back();
       std::printf("%-5s %-4s %6d %-2s %-6s %7zu %6zu %9zu %6zu %7zu %9.0f\n", e.pdb.c_str(),
                   e.ligand.c_str(), e.residue_number, e.chain.c_str(), s.chains.c_str(), s.atoms,
-                  s.ligand_atoms, s.descriptors.surface.n_vertices(),
-                  s.descriptors.critical_points.size(), s.imaged, s.build_ms);
+                  s.ligand_atoms, s.descriptors.surface.n_vertices(), s.site_cps, s.imaged,
+                  s.build_ms);
       std::fflush(stdout);
     }
 
@@ -321,12 +297,9 @@ int main(int argc, char** argv) {
           r.b = b;
           r.same = sites[a].entry.ligand == sites[b].entry.ligand;
           const auto start = Clock::now();
-          // The descriptions hold only the sites' critical points; the masks (all set) say that
-          // this is a site match, so the overlay compares the pockets, not the whole chains.
-          const std::vector<bool> all_a(sites[a].descriptors.critical_points.size(), true);
-          const std::vector<bool> all_b(sites[b].descriptors.critical_points.size(), true);
-          const auto match = matching::match_surfaces(sites[a].descriptors, sites[b].descriptors,
-                                                      match_options, &all_a, &all_b);
+          const auto match =
+              matching::match_surfaces(sites[a].descriptors, sites[b].descriptors, match_options,
+                                       &sites[a].in_site, &sites[b].in_site);
           r.match_ms = ms_since(start);
           r.alignments = match.alignments.size();
           if (!match.alignments.empty()) {

@@ -307,12 +307,14 @@ TEST(Match, PrincipalAxesStartsJoinTheRefinedAlignments) {
 TEST(Match, SiteMatchWithoutCliquesStillAlignsFromThePrincipalAxes) {
   // A site match whose graph admits no CP pair (image threshold above any correlation) has no
   // clique; the pocket overlay from the principal axes still gives alignments, and without
-  // them (site.principal_axes_starts 0) there are none. The site here is the whole molecule.
+  // them (site.principal_axes_starts 0) there are none. The site here is the whole molecule:
+  // every critical point takes part, so the lining is the vertices within 2 A of any of them.
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
   const auto [reference, probe, motion] = moved_copy(file, 99u);
   const std::vector<bool> all_reference(reference.critical_points.size(), true);
   const std::vector<bool> all_probe(probe.critical_points.size(), true);
   matching::MatchOptions options;
+  options.mode = matching::MatchMode::binding_sites;
   options.graph.image_threshold = 1.5;  // above any correlation
   const auto result =
       matching::match_surfaces(reference, probe, options, &all_reference, &all_probe);
@@ -333,6 +335,108 @@ TEST(Match, SiteMatchWithoutCliquesStillAlignsFromThePrincipalAxes) {
   options.site.principal_axes_starts = 0;
   EXPECT_TRUE(matching::match_surfaces(reference, probe, options, &all_reference, &all_probe)
                   .alignments.empty());
+}
+
+// In whole-surface mode a mask restricts only the association graph: an all-true mask is no
+// restriction, and the result is the one without masks, bit for bit (polish included: both
+// descriptions carry atoms).
+TEST(Match, AnAllTrueMaskInWholeSurfaceModeChangesNothing) {
+  SURFCOMP_SHARED_OR_SKIP(ref_file, std::string(kLigands) + "3TMN_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(probe_file, std::string(kLigands) + "4TMN_ligand.sdf");
+  const auto reference = describe_molecule(io::read_molecule(ref_file));
+  const auto probe = describe_molecule(io::read_molecule(probe_file));
+  const std::vector<bool> all_reference(reference.critical_points.size(), true);
+  const std::vector<bool> all_probe(probe.critical_points.size(), true);
+  const matching::MatchOptions options;  // whole surfaces
+  const auto unmasked = matching::match_surfaces(reference, probe, options);
+  const auto masked =
+      matching::match_surfaces(reference, probe, options, &all_reference, &all_probe);
+  ASSERT_GT(unmasked.alignments.size(), 1u);
+  ASSERT_EQ(masked.alignments.size(), unmasked.alignments.size());
+  EXPECT_EQ(masked.cliques, unmasked.cliques);
+  for (std::size_t k = 0; k < unmasked.alignments.size(); ++k) {
+    const auto& x = masked.alignments[k];
+    const auto& y = unmasked.alignments[k];
+    EXPECT_TRUE(x.transform == y.transform) << "rank " << k + 1;
+    EXPECT_EQ(x.source, y.source) << "rank " << k + 1;
+    EXPECT_EQ(x.cp_pairs, y.cp_pairs) << "rank " << k + 1;
+    EXPECT_EQ(x.refined, y.refined) << "rank " << k + 1;
+    EXPECT_EQ(x.overlay.score, y.overlay.score) << "rank " << k + 1;
+    EXPECT_EQ(x.overlay.atoms, y.overlay.atoms) << "rank " << k + 1;
+  }
+  // The whole-surface score weighs the chemistry and the atoms; a binding-site match of the
+  // same masks ranks on the linings' shape alone.
+  EXPECT_NE(unmasked.alignments[0].overlay.score, unmasked.alignments[0].overlay.shape);
+  matching::MatchOptions site_options;
+  site_options.mode = matching::MatchMode::binding_sites;
+  const auto site =
+      matching::match_surfaces(reference, probe, site_options, &all_reference, &all_probe);
+  ASSERT_FALSE(site.alignments.empty());
+  EXPECT_EQ(site.alignments[0].overlay.score, site.alignments[0].overlay.shape);
+  EXPECT_EQ(site.alignments[0].overlay.atoms, 0.0);
+}
+
+// The options are checked before any work: a bad option is an OptionError naming it even where
+// the inputs would fail later (images on different grids are an InputError of the match).
+TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
+  const auto expect_named = [](const matching::MatchOptions& options, const std::string& name) {
+    try {
+      matching::validate(options);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const OptionError& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  };
+  EXPECT_NO_THROW(matching::validate(matching::MatchOptions{}));
+  matching::MatchOptions o;
+  o.graph.fuzzy_threshold = 1.5;
+  expect_named(o, "graph.fuzzy_threshold");
+  o = {};
+  o.graph.overlap_tolerance_degrees = 190.0;
+  expect_named(o, "graph.overlap_tolerance_degrees");
+  o = {};
+  o.min_clique_size = 0;
+  expect_named(o, "min_clique_size");
+  o = {};
+  o.correspondences.sector_step = 0;
+  expect_named(o, "correspondences.sector_step");
+  o = {};
+  o.clustering.merge_cut = 0.0;
+  expect_named(o, "clustering.merge_cut");
+  o = {};
+  o.ranking.vote_top_fraction = 1.5;
+  expect_named(o, "ranking.vote_top_fraction");
+  o = {};
+  o.refine_top = -1;
+  expect_named(o, "refine_top");
+  o = {};
+  o.principal_axes_starts = 5;
+  expect_named(o, "principal_axes_starts");
+  o = {};
+  o.polish_top = -1;
+  expect_named(o, "polish_top");
+  o = {};
+  o.overlay.sigma = 0.0;
+  expect_named(o, "overlay.sigma");
+  o = {};
+  o.overlay.iterations = -1;
+  expect_named(o, "overlay.iterations");
+  o = {};
+  o.site.overlay_radius = std::nan("");
+  expect_named(o, "site.overlay_radius");
+  o = {};
+  o.site.chem_weight = -1.0;
+  expect_named(o, "site.chem_weight");
+  o = {};
+  o.site.principal_axes_starts = 3;
+  expect_named(o, "site.principal_axes_starts");
+
+  harmonic::SurfaceDescriptors a, b;
+  b.options.image.radial_samples = a.options.image.radial_samples + 1;
+  EXPECT_THROW(matching::match_surfaces(a, b), InputError);
+  matching::MatchOptions bad;
+  bad.min_clique_size = 0;
+  EXPECT_THROW(matching::match_surfaces(a, b, bad), OptionError);
 }
 
 }  // namespace

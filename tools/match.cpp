@@ -8,14 +8,13 @@
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match.hpp"
+#include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
-#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -40,9 +39,9 @@ constexpr const char* kUsage =
     "            file from hsi-build (two .hsi files must have been built with the same "
     "parameters)\n"
     "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand build\n"
-    "the protein's surface without that residue and keep the critical points within --site-radius\n"
-    "of its atoms; --site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds "
-    "spheres.\n"
+    "the protein's surface without water and without one copy of that HETATM residue (the lowest\n"
+    "chain, then residue number) and keep the critical points within --site-radius of its atoms;\n"
+    "--site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds spheres.\n"
     "A site match overlays the pocket linings (within --site-overlay-radius of the site's "
     "critical\n"
     "points) on shape alone (--site-chem-weight 0) from the cliques and 24 principal-axes starts;\n"
@@ -67,9 +66,13 @@ matching::SiteSphere parse_sphere(const std::string& text) {
   return s;
 }
 
-Side load_side(const std::filesystem::path& path, SurfaceInput input,
-               const std::string& site_ligand, double site_radius,
-               const harmonic::DescriptorOptions& options) {
+/// Reads or builds one side's description. With `site_ligand`, the surface is the binding
+/// site's structure (matching::binding_site: the structure without water and without the
+/// ligand copy); with a site (the ligand's spheres and `spheres`), only its critical points get
+/// patches, maps and images (matching::describe_site).
+Side load_side(const std::filesystem::path& path, const SurfaceInput& input,
+               const std::string& site_ligand, std::vector<matching::SiteSphere> spheres,
+               double site_radius, const harmonic::DescriptorOptions& options) {
   Side side;
   side.path = path;
   if (harmonic::io::is_hsi_file(path)) {
@@ -78,45 +81,40 @@ Side load_side(const std::filesystem::path& path, SurfaceInput input,
                         ": --site-ligand needs the structure, not a .hsi file; use --site-sphere");
     }
     side.descriptors = harmonic::io::read_hsi(path);
+    side.site = std::move(spheres);
     return side;
   }
+  LoadedSurface loaded;
   if (!site_ligand.empty()) {
-    // The site's atoms come from the whole structure (its residue charges need no typing of the
-    // ligand, which Gasteiger cannot do for every ligand, e.g. phosphonates): the first copy of
-    // the residue by file order.
-    io::MoleculeReadOptions whole = input.read;
-    whole.ligand.clear();
-    const Molecule structure = io::read_molecule(path, whole);
-    const auto same_name = [&](const Atom& atom) {
-      return residue_key(atom.residue_name) == residue_key(site_ligand);
-    };
-    const auto first = std::find_if(structure.atoms.begin(), structure.atoms.end(), same_name);
-    if (first == structure.atoms.end()) {
-      throw InputError(path.string() + ": no residue named '" + site_ligand +
-                       "' for the binding site");
+    if (!io::is_molecule_file(path)) {
+      throw OptionError(path.string() +
+                        ": --site-ligand needs a molecule file (the structure); use --site-sphere");
     }
-    for (const Atom& atom : structure.atoms) {
-      if (same_name(atom) && atom.chain == first->chain &&
-          atom.residue_number == first->residue_number) {
-        side.site.push_back({atom.position, site_radius});
-      }
-    }
-    input.read.exclude_residues.push_back(site_ligand);
+    if (!input.read.ligand.empty())
+      throw OptionError("--ligand and --site-ligand cannot be combined");
+    matching::BindingSiteOptions site_options;
+    site_options.sphere_radius = site_radius;
+    matching::BindingSite site = matching::binding_site(
+        io::read_molecule(path, input.read), LigandSelector{site_ligand, {}, {}}, site_options);
+    side.site = std::move(site.spheres);
+    loaded.surface = mesh::build_molecular_surface(site.structure, input.surface);
+    loaded.molecule = std::move(site.structure);
+  } else {
+    loaded = load_surface(path, input);
   }
-  LoadedSurface loaded = load_surface(path, input);
+  side.site.insert(side.site.end(), spheres.begin(), spheres.end());
   side.molecule = std::move(loaded.molecule);
-  // With a site known now, only its critical points need patches and images.
-  const auto in_site = [&side](const mesh::CriticalPoint& p) {
-    return std::any_of(side.site.begin(), side.site.end(), [&p](const matching::SiteSphere& s) {
-      return (p.position - s.center).norm() <= s.radius;
-    });
-  };
-  const std::function<bool(const mesh::CriticalPoint&)> describe_if =
-      side.site.empty() ? std::function<bool(const mesh::CriticalPoint&)>{} : in_site;
-  side.descriptors =
-      side.molecule ? harmonic::describe_surface(std::move(loaded.surface), *side.molecule, options,
-                                                 describe_if)
-                    : harmonic::describe_surface(std::move(loaded.surface), options, describe_if);
+  if (side.site.empty()) {
+    side.descriptors =
+        side.molecule
+            ? harmonic::describe_surface(std::move(loaded.surface), *side.molecule, options)
+            : harmonic::describe_surface(std::move(loaded.surface), options);
+  } else {
+    side.descriptors =
+        side.molecule
+            ? matching::describe_site(std::move(loaded.surface), *side.molecule, side.site, options)
+            : matching::describe_site(std::move(loaded.surface), side.site, options);
+  }
   return side;
 }
 
@@ -337,14 +335,26 @@ int match(const std::vector<std::string>& args) {
   options.ranking.scheme = ranking == "number" ? matching::ConsensusScheme::rank_by_number
                            : ranking == "vote" ? matching::ConsensusScheme::rank_by_vote
                                                : matching::ConsensusScheme::rank_by_rank;
+  std::vector<matching::SiteSphere> ref_spheres, probe_spheres;
+  for (const auto& text : site_spheres) {
+    ref_spheres.push_back(parse_sphere(text));
+    probe_spheres.push_back(parse_sphere(text));
+  }
+  for (const auto& text : ref_site_spheres) ref_spheres.push_back(parse_sphere(text));
+  for (const auto& text : probe_site_spheres) probe_spheres.push_back(parse_sphere(text));
+  if (!site_ligand.empty()) {
+    if (ref_site_ligand.empty()) ref_site_ligand = site_ligand;
+    if (probe_site_ligand.empty()) probe_site_ligand = site_ligand;
+  }
+  if (!ref_site_ligand.empty() || !probe_site_ligand.empty() || !ref_spheres.empty() ||
+      !probe_spheres.empty()) {
+    options.mode = matching::MatchMode::binding_sites;
+  }
+  matching::validate(options);
   const std::string aligned_extension = std::filesystem::path(aligned_out).extension().string();
   if (!aligned_out.empty() && aligned_extension != ".sdf" && aligned_extension != ".pdb" &&
       aligned_extension != ".ply") {
     throw OptionError("--aligned-out " + aligned_out + ": use .sdf, .pdb or .ply");
-  }
-  if (!site_ligand.empty()) {
-    if (ref_site_ligand.empty()) ref_site_ligand = site_ligand;
-    if (probe_site_ligand.empty()) probe_site_ligand = site_ligand;
   }
 
   Stopwatch clock;
@@ -355,8 +365,10 @@ int match(const std::vector<std::string>& args) {
   } else if (harmonic::io::is_hsi_file(probe_path) && !harmonic::io::is_hsi_file(ref_path)) {
     descriptor_options = harmonic::io::read_hsi(probe_path).options;
   }
-  Side ref = load_side(ref_path, input, ref_site_ligand, site_radius, descriptor_options);
-  Side probe = load_side(probe_path, input, probe_site_ligand, site_radius, descriptor_options);
+  Side ref = load_side(ref_path, input, ref_site_ligand, std::move(ref_spheres), site_radius,
+                       descriptor_options);
+  Side probe = load_side(probe_path, input, probe_site_ligand, std::move(probe_spheres),
+                         site_radius, descriptor_options);
   if (!same_options(ref.descriptors.options, probe.descriptors.options)) {
     throw InputError(
         ref_path.string() + " and " + probe_path.string() +
@@ -366,12 +378,6 @@ int match(const std::vector<std::string>& args) {
   if (!aligned_out.empty() && aligned_extension != ".ply" && !probe.molecule) {
     throw OptionError("--aligned-out " + aligned_out + ": PROBE is not a molecule; use .ply");
   }
-  for (const auto& text : site_spheres) {
-    ref.site.push_back(parse_sphere(text));
-    probe.site.push_back(parse_sphere(text));
-  }
-  for (const auto& text : ref_site_spheres) ref.site.push_back(parse_sphere(text));
-  for (const auto& text : probe_site_spheres) probe.site.push_back(parse_sphere(text));
   std::vector<bool> ref_allowed, probe_allowed;
   for (Side* side : {&ref, &probe}) {
     if (side->site.empty()) continue;

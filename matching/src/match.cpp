@@ -1,14 +1,14 @@
 #include "surfcomp/matching/match.hpp"
 
+#include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/cliques.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <functional>
-#include <map>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include <tbb/parallel_for.h>
@@ -21,6 +21,9 @@ double since_ms(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+/// Largest move of a sampled probe point (A) below which two poses are the same pose.
+constexpr double kRepeatDistance = 0.5;
+
 /// An alignment in its final place.
 struct Placed {
   int cluster = -1;  ///< index in the merge tree; -1 for a principal-axes pose
@@ -30,22 +33,30 @@ struct Placed {
   OverlayScore overlay;
 };
 
-/// The vertices the overlay compares: all of them, unless the match is restricted to a binding
-/// site, by an `allowed` mask or by descriptions built only at a site's critical points (the
-/// others skipped); then those within `radius` of a critical point that takes part.
-std::optional<std::vector<bool>> site_vertices(const harmonic::SurfaceDescriptors& descriptors,
-                                               const std::vector<bool>* allowed, double radius) {
+/// The clusters in the consensus order, with the clusters' fits as their transforms.
+std::vector<Placed> consensus_order(const std::vector<RankedAlignment>& ranking,
+                                    const std::vector<Cluster>& clusters) {
+  std::vector<Placed> placed;
+  for (const RankedAlignment& r : ranking) {
+    Placed p;
+    p.cluster = r.cluster;
+    p.consensus = r.consensus;
+    p.transform = clusters[static_cast<std::size_t>(r.cluster)].fit.transform;
+    placed.push_back(p);
+  }
+  return placed;
+}
+
+/// A site's pocket lining: the vertices within `radius` of a critical point that takes part,
+/// allowed by `allowed` (all when null) and described (not PatchStatus::skipped).
+std::vector<bool> pocket_lining(const harmonic::SurfaceDescriptors& descriptors,
+                                const std::vector<bool>* allowed, double radius) {
   const auto& cps = descriptors.critical_points;
-  const auto skipped = [&](std::size_t c) {
-    return cps[c].status == harmonic::PatchStatus::skipped;
-  };
-  bool any_skipped = false;
-  for (std::size_t c = 0; c < cps.size(); ++c) any_skipped = any_skipped || skipped(c);
-  if (allowed == nullptr && !any_skipped) return std::nullopt;
   const Eigen::MatrixX3d positions = descriptors.surface.positions();
   std::vector<bool> inside(static_cast<std::size_t>(positions.rows()), false);
   for (std::size_t c = 0; c < cps.size(); ++c) {
-    if ((allowed != nullptr && !(*allowed)[c]) || skipped(c)) continue;
+    if ((allowed != nullptr && !(*allowed)[c]) || cps[c].status == harmonic::PatchStatus::skipped)
+      continue;
     const Eigen::Vector3d centre = cps[c].point.position;
     for (Eigen::Index v = 0; v < positions.rows(); ++v) {
       if ((Eigen::Vector3d(positions.row(v)) - centre).squaredNorm() <= radius * radius)
@@ -55,52 +66,24 @@ std::optional<std::vector<bool>> site_vertices(const harmonic::SurfaceDescriptor
   return inside;
 }
 
-/// The consensus order with its first options.refine_top alignments refined on the whole
-/// surfaces (those whose start does not repeat an earlier one's) and moved ahead together with
-/// the refined principal-axes starts (MatchOptions::principal_axes_starts), best overlay score
-/// first, repeats of a better pose after the distinct ones (MatchOptions::refine_top), the
-/// first polish_top of them polished on the whole score where atoms take part
-/// (MatchOptions::polish_top). Those first refine_top alignments get their overlay score. A
-/// site match overlays the pocket linings with MatchOptions::site's settings.
-std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking,
-                                     const std::vector<Cluster>& clusters,
-                                     const harmonic::SurfaceDescriptors& reference,
-                                     const harmonic::SurfaceDescriptors& probe,
-                                     const MatchOptions& options,
-                                     const std::vector<bool>* reference_allowed,
-                                     const std::vector<bool>* probe_allowed) {
-  constexpr double kRepeatDistance = 0.5;  // A, largest move of a sampled probe point
-  if (options.refine_top < 0)
-    throw OptionError("refine_top must be >= 0, got " + std::to_string(options.refine_top));
-  if (options.polish_top < 0)
-    throw OptionError("polish_top must be >= 0, got " + std::to_string(options.polish_top));
-  const auto check_starts = [](int n, const char* name) {
-    if (!is_axes_start_count(n))
-      throw OptionError(std::string(name) + " must be 0, 4 or 24, got " + std::to_string(n));
-  };
-  check_starts(options.principal_axes_starts, "principal_axes_starts");
-  check_starts(options.site.principal_axes_starts, "site.principal_axes_starts");
-  if (!(options.site.overlay_radius > 0.0) || !std::isfinite(options.site.overlay_radius)) {
-    throw OptionError("site.overlay_radius must be a finite number > 0, got " +
-                      std::to_string(options.site.overlay_radius));
-  }
-  if (!(options.site.chem_weight >= 0.0) || !std::isfinite(options.site.chem_weight)) {
-    throw OptionError("site.chem_weight must be a finite number >= 0, got " +
-                      std::to_string(options.site.chem_weight));
-  }
-  std::vector<Placed> placed;
-  for (const RankedAlignment& r : ranking) {
-    Placed p;
-    p.cluster = r.cluster;
-    p.consensus = r.consensus;
-    p.transform = clusters[static_cast<std::size_t>(r.cluster)].fit.transform;
-    placed.push_back(p);
-  }
-  if (options.refine_top == 0) return placed;
-  const auto reference_mask =
-      site_vertices(reference, reference_allowed, options.site.overlay_radius);
-  const auto probe_mask = site_vertices(probe, probe_allowed, options.site.overlay_radius);
-  const bool site = reference_mask.has_value() || probe_mask.has_value();
+/// The overlay the poses are refined and scored on, and the principal-axes starts refined
+/// with them.
+struct Refinement {
+  SurfaceOverlay overlay;
+  std::vector<RigidTransform> axes_starts;
+};
+
+/// The Refinement of a match in options.mode: the whole surfaces with options.overlay, the
+/// atoms and principal_axes_starts, or the pocket linings with options.site's settings and no
+/// atoms. None when there is nothing to refine (no alignment, and no axes start or an empty
+/// lining). Throws InputError when a lining is empty while there are alignments.
+std::optional<Refinement> prepare_refinement(const harmonic::SurfaceDescriptors& reference,
+                                             const harmonic::SurfaceDescriptors& probe,
+                                             const MatchOptions& options,
+                                             const std::vector<bool>* reference_allowed,
+                                             const std::vector<bool>* probe_allowed,
+                                             bool have_alignments) {
+  const bool site = options.mode == MatchMode::binding_sites;
   OverlayOptions overlay_options = options.overlay;
   if (site) {
     overlay_options.chem_weight = options.site.chem_weight;
@@ -108,14 +91,19 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   }
   const int n_axes_starts =
       site ? options.site.principal_axes_starts : options.principal_axes_starts;
-  if (placed.empty() && n_axes_starts == 0) return placed;
+  if (!have_alignments && n_axes_starts == 0) return std::nullopt;
+  std::vector<bool> reference_lining, probe_lining;
+  if (site) {
+    reference_lining = pocket_lining(reference, reference_allowed, options.site.overlay_radius);
+    probe_lining = pocket_lining(probe, probe_allowed, options.site.overlay_radius);
+  }
   SurfaceSample reference_sample = sample_surface(reference.surface, overlay_options.spacing,
-                                                  reference_mask ? &*reference_mask : nullptr);
+                                                  site ? &reference_lining : nullptr);
   SurfaceSample probe_sample =
-      sample_surface(probe.surface, overlay_options.spacing, probe_mask ? &*probe_mask : nullptr);
-  // A site region can be empty (no participating CP); then there is nothing to overlay.
+      sample_surface(probe.surface, overlay_options.spacing, site ? &probe_lining : nullptr);
+  // A lining can be empty (no critical point takes part); then there is nothing to overlay.
   if (reference_sample.size() == 0 || probe_sample.size() == 0) {
-    if (placed.empty()) return placed;
+    if (!have_alignments) return std::nullopt;
     throw InputError(reference.surface.source() + " and " + probe.surface.source() +
                      ": the overlay region of the " +
                      (reference_sample.size() == 0 ? "reference" : "probe") + " has no vertices");
@@ -123,24 +111,32 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   std::vector<RigidTransform> axes_starts;
   if (n_axes_starts > 0)
     axes_starts = principal_axes_starts(reference_sample, probe_sample, n_axes_starts == 24);
-  const SurfaceOverlay overlay(std::move(reference_sample), std::move(probe_sample),
-                               overlay_options, site ? AtomSample{} : sample_atoms(reference.atoms),
-                               site ? AtomSample{} : sample_atoms(probe.atoms));
-  const std::size_t n_refined =
-      std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
+  return Refinement{
+      SurfaceOverlay(std::move(reference_sample), std::move(probe_sample), overlay_options,
+                     site ? AtomSample{} : sample_atoms(reference.atoms),
+                     site ? AtomSample{} : sample_atoms(probe.atoms)),
+      std::move(axes_starts)};
+}
+
+/// The largest distance between a sampled probe point moved by `x` and moved by `y`, A.
+double largest_move(const SurfaceOverlay& overlay, const RigidTransform& x,
+                    const RigidTransform& y) {
   const Eigen::Matrix3Xd& points = overlay.probe_points();
-  const auto largest_move = [&](const RigidTransform& x, const RigidTransform& y) {
-    return (x.apply(points) - y.apply(points)).colwise().norm().maxCoeff();
-  };
-  // A start within kRepeatDistance of an earlier refined start (merge-tree neighbours often
-  // share their transform) would refine to the same pose: it is scored where it is. The
-  // refinements are independent, each into its own slot, and run in parallel (TBB): the result
-  // does not depend on the thread count.
+  return (x.apply(points) - y.apply(points)).colwise().norm().maxCoeff();
+}
+
+/// Refines the first `n` alignments of `placed` on the overlay and gives them their overlay
+/// score. A start within kRepeatDistance of an earlier refined start (merge-tree neighbours
+/// often share their transform) would refine to the same pose: it is scored where it is. The
+/// refinements are independent, each into its own slot, and run in parallel (TBB): the result
+/// does not depend on the thread count.
+void refine_consensus_head(std::vector<Placed>& placed, std::size_t n,
+                           const SurfaceOverlay& overlay) {
   std::vector<RigidTransform> starts;
   std::vector<std::size_t> to_refine;
-  for (std::size_t k = 0; k < n_refined; ++k) {
+  for (std::size_t k = 0; k < n; ++k) {
     if (std::none_of(starts.begin(), starts.end(), [&](const RigidTransform& s) {
-          return largest_move(s, placed[k].transform) <= kRepeatDistance;
+          return largest_move(overlay, s, placed[k].transform) <= kRepeatDistance;
         })) {
       starts.push_back(placed[k].transform);
       to_refine.push_back(k);
@@ -153,78 +149,116 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     p.transform = overlay.refine(p.transform, &p.overlay);
     p.refined = true;
   });
-  std::vector<Placed> candidates(placed.begin(),
-                                 placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
-  // A principal-axes start whose refinement comes within kRepeatDistance of a pose refined
-  // from the cliques is taken for a repeat of it and abandoned there (it could have climbed on
-  // past it; the benchmark figures are with this rule). The probe points' centroid moves no
-  // farther than the farthest point: a cheap first test.
-  const Eigen::Vector3d centroid = points.rowwise().mean();
+}
+
+/// The refined principal-axes poses, in the order of `starts`, in parallel (TBB, one slot
+/// each). A start whose refinement comes within kRepeatDistance of a refined pose of `found`
+/// is taken for a repeat of it and abandoned there (it could have climbed on past it). The
+/// probe points' centroid moves no farther than the farthest point: a cheap first test.
+std::vector<Placed> refine_axes_starts(const std::vector<RigidTransform>& starts,
+                                       const std::vector<Placed>& found,
+                                       const SurfaceOverlay& overlay) {
+  const Eigen::Vector3d centroid = overlay.probe_points().rowwise().mean();
   const auto reached = [&](const RigidTransform& pose) {
     const Eigen::Vector3d moved = pose.rotation * centroid + pose.translation;
-    return std::any_of(candidates.begin(), candidates.end(), [&](const Placed& c) {
+    return std::any_of(found.begin(), found.end(), [&](const Placed& c) {
       const Eigen::Vector3d other = c.transform.rotation * centroid + c.transform.translation;
       return c.refined && (other - moved).norm() <= kRepeatDistance &&
-             largest_move(c.transform, pose) <= kRepeatDistance;
+             largest_move(overlay, c.transform, pose) <= kRepeatDistance;
     });
   };
-  std::vector<std::optional<Placed>> axes_poses(axes_starts.size());
-  tbb::parallel_for(std::size_t{0}, axes_starts.size(), [&](std::size_t i) {
+  std::vector<std::optional<Placed>> poses(starts.size());
+  tbb::parallel_for(std::size_t{0}, starts.size(), [&](std::size_t i) {
     Placed p;  // no cluster
-    const std::optional<RigidTransform> refined =
-        overlay.refine(axes_starts[i], &p.overlay, reached);
+    const std::optional<RigidTransform> refined = overlay.refine(starts[i], &p.overlay, reached);
     if (!refined) return;
     p.transform = *refined;
     p.refined = true;
-    axes_poses[i] = p;
+    poses[i] = p;
   });
-  for (const auto& p : axes_poses) {
-    if (p) candidates.push_back(*p);
+  std::vector<Placed> out;
+  for (const auto& p : poses) {
+    if (p) out.push_back(*p);
   }
-  // Refined ones by score, then the repeats (a pose within kRepeatDistance of a better one); a
-  // principal-axes pose that repeats a better one is dropped (it has no merge tree place to
-  // keep). Ties keep the order given: first the consensus order, then the axes starts.
-  struct Ordered {
-    std::vector<Placed> list;  ///< the distinct ones, then the repeats
-    std::size_t distinct = 0;
-  };
-  const auto best_first = [&](std::vector<Placed> all) {
-    std::stable_sort(all.begin(), all.end(), [](const Placed& x, const Placed& y) {
-      return x.overlay.score > y.overlay.score;
+  return out;
+}
+
+/// Poses ordered best overlay score first, the distinct ones ahead of the repeats.
+struct Ordered {
+  std::vector<Placed> list;  ///< the distinct ones, then the repeats
+  std::size_t distinct = 0;
+};
+
+/// `all` by overlay score, then the repeats (a pose within kRepeatDistance of a better one);
+/// a principal-axes pose that repeats a better one is dropped (it has no merge-tree place to
+/// keep). Ties keep the order given: first the consensus order, then the axes starts.
+Ordered order_distinct_then_repeats(std::vector<Placed> all, const SurfaceOverlay& overlay) {
+  std::stable_sort(all.begin(), all.end(), [](const Placed& x, const Placed& y) {
+    return x.overlay.score > y.overlay.score;
+  });
+  Ordered out;
+  std::vector<Placed> repeats;
+  for (const Placed& candidate : all) {
+    const bool repeat = std::any_of(out.list.begin(), out.list.end(), [&](const Placed& d) {
+      return largest_move(overlay, d.transform, candidate.transform) <= kRepeatDistance;
     });
-    Ordered out;
-    std::vector<Placed> repeats;
-    for (const Placed& candidate : all) {
-      const bool repeat = std::any_of(out.list.begin(), out.list.end(), [&](const Placed& d) {
-        return largest_move(d.transform, candidate.transform) <= kRepeatDistance;
-      });
-      if (!repeat) {
-        out.list.push_back(candidate);
-      } else if (candidate.cluster >= 0) {
-        repeats.push_back(candidate);
-      }
+    if (!repeat) {
+      out.list.push_back(candidate);
+    } else if (candidate.cluster >= 0) {
+      repeats.push_back(candidate);
     }
-    out.distinct = out.list.size();
-    out.list.insert(out.list.end(), repeats.begin(), repeats.end());
-    return out;
-  };
-  Ordered ordered = best_first(std::move(candidates));
-  // The first polish_top distinct refined poses are polished on the whole score, their
-  // heteroatoms pulled too (SurfaceOverlay::refine with pull_atoms), and the list is ordered
-  // again (a polished pose that comes to repeat a better one goes after the distinct ones).
-  if (overlay.uses_atoms() && options.polish_top > 0) {
-    std::vector<std::size_t> to_polish;
-    for (std::size_t i = 0;
-         i < ordered.distinct && to_polish.size() < static_cast<std::size_t>(options.polish_top);
-         ++i) {
-      if (ordered.list[i].refined) to_polish.push_back(i);
-    }
-    tbb::parallel_for(std::size_t{0}, to_polish.size(), [&](std::size_t k) {
-      Placed& p = ordered.list[to_polish[k]];
-      p.transform = *overlay.refine(p.transform, &p.overlay, {}, true);
-    });
-    ordered = best_first(std::move(ordered.list));
   }
+  out.distinct = out.list.size();
+  out.list.insert(out.list.end(), repeats.begin(), repeats.end());
+  return out;
+}
+
+/// The first `polish_top` distinct refined poses of `ordered` polished on the whole score,
+/// their heteroatoms pulled too (SurfaceOverlay::refine with pull_atoms), in parallel (TBB),
+/// and the list ordered again (a polished pose that comes to repeat a better one goes after
+/// the distinct ones).
+Ordered polish(Ordered ordered, int polish_top, const SurfaceOverlay& overlay) {
+  std::vector<std::size_t> to_polish;
+  for (std::size_t i = 0;
+       i < ordered.distinct && to_polish.size() < static_cast<std::size_t>(polish_top); ++i) {
+    if (ordered.list[i].refined) to_polish.push_back(i);
+  }
+  tbb::parallel_for(std::size_t{0}, to_polish.size(), [&](std::size_t k) {
+    Placed& p = ordered.list[to_polish[k]];
+    p.transform = *overlay.refine(p.transform, &p.overlay, {}, true);
+  });
+  return order_distinct_then_repeats(std::move(ordered.list), overlay);
+}
+
+/// The consensus order with its first options.refine_top alignments refined on the overlay
+/// (refine_consensus_head) and moved ahead together with the refined principal-axes starts
+/// (refine_axes_starts), best overlay score first, repeats after the distinct ones
+/// (order_distinct_then_repeats), the first polish_top of them polished where the overlay
+/// uses atoms (polish); the rest follow in the consensus order, unscored.
+std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking,
+                                     const std::vector<Cluster>& clusters,
+                                     const harmonic::SurfaceDescriptors& reference,
+                                     const harmonic::SurfaceDescriptors& probe,
+                                     const MatchOptions& options,
+                                     const std::vector<bool>* reference_allowed,
+                                     const std::vector<bool>* probe_allowed) {
+  std::vector<Placed> placed = consensus_order(ranking, clusters);
+  if (options.refine_top == 0) return placed;
+  const std::optional<Refinement> refinement = prepare_refinement(
+      reference, probe, options, reference_allowed, probe_allowed, !placed.empty());
+  if (!refinement) return placed;
+  const SurfaceOverlay& overlay = refinement->overlay;
+  const std::size_t n_refined =
+      std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
+  refine_consensus_head(placed, n_refined, overlay);
+  std::vector<Placed> candidates(placed.begin(),
+                                 placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
+  const std::vector<Placed> axes_poses =
+      refine_axes_starts(refinement->axes_starts, candidates, overlay);
+  candidates.insert(candidates.end(), axes_poses.begin(), axes_poses.end());
+  Ordered ordered = order_distinct_then_repeats(std::move(candidates), overlay);
+  if (overlay.uses_atoms() && options.polish_top > 0)
+    ordered = polish(std::move(ordered), options.polish_top, overlay);
   ordered.list.insert(ordered.list.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined),
                       placed.end());
   return ordered.list;
@@ -232,10 +266,34 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
 
 }  // namespace
 
+void validate(const MatchOptions& options) {
+  const std::string caller = "match options";
+  const detail::OptionCheck check{caller, ""};
+  check.require(
+      options.mode == MatchMode::whole_surfaces || options.mode == MatchMode::binding_sites, "mode",
+      static_cast<int>(options.mode), "whole_surfaces or binding_sites");
+  detail::check_graph_options(options.graph, {caller, "graph."});
+  detail::check_min_clique_size(options.min_clique_size, "min_clique_size", check);
+  detail::check_correspondence_options(options.correspondences, {caller, "correspondences."});
+  detail::check_clustering_options(options.clustering, {caller, "clustering."});
+  detail::check_ranking_options(options.ranking, {caller, "ranking."});
+  check.require(options.refine_top >= 0, "refine_top", options.refine_top, ">= 0");
+  detail::check_axes_start_count(options.principal_axes_starts, "principal_axes_starts", check);
+  check.require(options.polish_top >= 0, "polish_top", options.polish_top, ">= 0");
+  detail::check_overlay_options(options.overlay, {caller, "overlay."});
+  const SiteMatchOptions& site = options.site;
+  check.require(std::isfinite(site.overlay_radius) && site.overlay_radius > 0.0,
+                "site.overlay_radius", site.overlay_radius, "a finite value > 0 A");
+  check.require(std::isfinite(site.chem_weight) && site.chem_weight >= 0.0, "site.chem_weight",
+                site.chem_weight, "a finite value >= 0");
+  detail::check_axes_start_count(site.principal_axes_starts, "site.principal_axes_starts", check);
+}
+
 MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
                            const harmonic::SurfaceDescriptors& probe, const MatchOptions& options,
                            const std::vector<bool>* reference_allowed,
                            const std::vector<bool>* probe_allowed) {
+  validate(options);
   const auto& ga = reference.options.image;
   const auto& gb = probe.options.image;
   if (ga.radial_samples != gb.radial_samples || ga.angular_samples != gb.angular_samples) {
@@ -307,21 +365,6 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
   }
   result.timing_ms.emplace_back("overlay refinement", since_ms(clock));
   return result;
-}
-
-std::vector<bool> critical_points_in_site(const harmonic::SurfaceDescriptors& descriptors,
-                                          const std::vector<SiteSphere>& spheres) {
-  std::vector<bool> inside(descriptors.critical_points.size(), false);
-  for (std::size_t i = 0; i < inside.size(); ++i) {
-    const Eigen::Vector3d& p = descriptors.critical_points[i].point.position;
-    for (const SiteSphere& s : spheres) {
-      if ((p - s.center).norm() <= s.radius) {
-        inside[i] = true;
-        break;
-      }
-    }
-  }
-  return inside;
 }
 
 }  // namespace surfcomp::matching

@@ -1,0 +1,77 @@
+// Binding sites (METHOD section 7): a site is a set of spheres on a structure, built around a
+// ligand copy or given; its surface is the structure's without water and without that copy,
+// described only at the critical points inside the spheres. match_surfaces compares two sites
+// with MatchMode::binding_sites and the sites' critical-point masks.
+#pragma once
+
+#include "surfcomp/core/molecule.hpp"
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/mesh/surface.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace surfcomp::matching {
+
+/// A sphere of a binding site, A.
+struct SiteSphere {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  double radius = 0.0;
+};
+
+struct BindingSiteOptions {
+  /// Default 4 A. Radius of the sphere around each atom of the ligand copy. Finite, > 0.
+  double sphere_radius = 4.0;
+  /// Default 0 A: the site's structure keeps every chain. When > 0, it keeps only the chains
+  /// with an atom within this distance of a sphere's centre (for a ligand, the ligand's own
+  /// chain among them), so that the surface, whose ESP and LP cost #vertices x #atoms, leaves
+  /// out chains far from the site. Finite, >= 0.
+  double chain_contact_radius = 0.0;
+};
+
+/// A binding site and the structure whose surface it lies on.
+struct BindingSite {
+  std::vector<SiteSphere> spheres;  ///< the site, A
+  /// The atoms of the ligand copy the site was built around, in the structure's order (source
+  /// and title the structure's); no atoms when the site was built from spheres.
+  Molecule ligand;
+  /// The structure without water, without the ligand copy (only that copy: other copies of the
+  /// ligand, ions and cofactors stay) and, with chain_contact_radius > 0, without the chains
+  /// out of contact; the atoms keep their order and properties.
+  Molecule structure;
+};
+
+/// The site of the ligand copy select_ligand(structure, ligand) takes: a sphere of
+/// options.sphere_radius around each of its atoms. Throws InputError when that copy is absent
+/// (select_ligand's message: the file and the residues present) or when no atom is left in the
+/// site's structure; OptionError for options outside their domain.
+BindingSite binding_site(const Molecule& structure, const LigandSelector& ligand,
+                         const BindingSiteOptions& options = {});
+
+/// The site made of `spheres` on `structure` (options.sphere_radius is not used). Throws
+/// InputError when there is no sphere, a sphere has a non-finite centre or a radius that is not
+/// a finite number > 0, or no atom is left in the site's structure; OptionError for options
+/// outside their domain.
+BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> spheres,
+                         const BindingSiteOptions& options = {});
+
+/// One flag per critical point of `descriptors`, in order: its position lies in at least one
+/// of `spheres` (distance to the centre <= radius).
+std::vector<bool> critical_points_in_site(const harmonic::SurfaceDescriptors& descriptors,
+                                          const std::vector<SiteSphere>& spheres);
+
+/// harmonic::describe_surface with patches, maps and images only at the critical points inside
+/// `spheres` (as critical_points_in_site flags them); the others keep PatchStatus::skipped, so
+/// that their indices stay those of detect_critical_points. Errors as describe_surface's.
+harmonic::SurfaceDescriptors describe_site(mesh::Surface surface,
+                                           const std::vector<SiteSphere>& spheres,
+                                           const harmonic::DescriptorOptions& options = {});
+
+/// describe_site of a surface built from `molecule`, keeping its heavy atoms
+/// (SurfaceDescriptors::atoms).
+harmonic::SurfaceDescriptors describe_site(mesh::Surface surface, const Molecule& molecule,
+                                           const std::vector<SiteSphere>& spheres,
+                                           const harmonic::DescriptorOptions& options = {});
+
+}  // namespace surfcomp::matching

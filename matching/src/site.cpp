@@ -1,0 +1,129 @@
+#include "surfcomp/matching/site.hpp"
+
+#include "surfcomp/core/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+#include <utility>
+
+namespace surfcomp::matching {
+namespace {
+
+bool inside(const Eigen::Vector3d& position, const std::vector<SiteSphere>& spheres) {
+  return std::any_of(spheres.begin(), spheres.end(),
+                     [&](const SiteSphere& s) { return (position - s.center).norm() <= s.radius; });
+}
+
+void check_options(const BindingSiteOptions& options) {
+  if (!(options.sphere_radius > 0.0) || !std::isfinite(options.sphere_radius)) {
+    throw OptionError("binding site: sphere_radius = " + std::to_string(options.sphere_radius) +
+                      " A, expected a finite number > 0");
+  }
+  if (!(options.chain_contact_radius >= 0.0) || !std::isfinite(options.chain_contact_radius)) {
+    throw OptionError(
+        "binding site: chain_contact_radius = " + std::to_string(options.chain_contact_radius) +
+        " A, expected a finite number >= 0");
+  }
+}
+
+/// `structure` without water, without the atoms flagged in `removed` and, with
+/// chain_contact_radius > 0, without the chains that have no atom (water left out) within it
+/// of a sphere's centre.
+Molecule site_structure(const Molecule& structure, const std::vector<bool>& removed,
+                        const std::vector<SiteSphere>& spheres, const BindingSiteOptions& options) {
+  const auto kept = [&](std::size_t i) {
+    return !removed[i] && !is_water_residue(structure.atoms[i].residue_name);
+  };
+  std::set<std::string> chains;
+  if (options.chain_contact_radius > 0.0) {
+    for (std::size_t i = 0; i < structure.atoms.size(); ++i) {
+      const Atom& atom = structure.atoms[i];
+      if (is_water_residue(atom.residue_name) || chains.count(atom.chain)) continue;
+      for (const SiteSphere& s : spheres) {
+        if ((atom.position - s.center).norm() <= options.chain_contact_radius) {
+          chains.insert(atom.chain);
+          break;
+        }
+      }
+    }
+  }
+  Molecule out = structure;
+  out.atoms.clear();
+  for (std::size_t i = 0; i < structure.atoms.size(); ++i) {
+    if (kept(i) && (options.chain_contact_radius == 0.0 || chains.count(structure.atoms[i].chain)))
+      out.atoms.push_back(structure.atoms[i]);
+  }
+  if (out.atoms.empty()) {
+    throw InputError(structure.source +
+                     ": the binding site's structure has no atoms besides water and the ligand");
+  }
+  return out;
+}
+
+}  // namespace
+
+BindingSite binding_site(const Molecule& structure, const LigandSelector& ligand,
+                         const BindingSiteOptions& options) {
+  check_options(options);
+  BindingSite site;
+  site.ligand = structure;
+  site.ligand.atoms.clear();
+  std::vector<bool> removed(structure.atoms.size(), false);
+  for (std::size_t i : select_ligand(structure, ligand)) {
+    const Atom& atom = structure.atoms[i];
+    site.ligand.atoms.push_back(atom);
+    site.spheres.push_back({atom.position, options.sphere_radius});
+    removed[i] = true;
+  }
+  site.structure = site_structure(structure, removed, site.spheres, options);
+  return site;
+}
+
+BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> spheres,
+                         const BindingSiteOptions& options) {
+  check_options(options);
+  if (spheres.empty()) throw InputError(structure.source + ": a binding site needs a sphere");
+  for (std::size_t k = 0; k < spheres.size(); ++k) {
+    const SiteSphere& s = spheres[k];
+    if (!s.center.allFinite() || !(s.radius > 0.0) || !std::isfinite(s.radius)) {
+      throw InputError(structure.source + ": site sphere " + std::to_string(k + 1) +
+                       " has radius " + std::to_string(s.radius) +
+                       " A; expected a finite centre and a finite radius > 0");
+    }
+  }
+  BindingSite site;
+  site.ligand.source = structure.source;
+  site.ligand.title = structure.title;
+  site.spheres = std::move(spheres);
+  site.structure = site_structure(structure, std::vector<bool>(structure.atoms.size(), false),
+                                  site.spheres, options);
+  return site;
+}
+
+std::vector<bool> critical_points_in_site(const harmonic::SurfaceDescriptors& descriptors,
+                                          const std::vector<SiteSphere>& spheres) {
+  std::vector<bool> flags(descriptors.critical_points.size(), false);
+  for (std::size_t i = 0; i < flags.size(); ++i)
+    flags[i] = inside(descriptors.critical_points[i].point.position, spheres);
+  return flags;
+}
+
+harmonic::SurfaceDescriptors describe_site(mesh::Surface surface,
+                                           const std::vector<SiteSphere>& spheres,
+                                           const harmonic::DescriptorOptions& options) {
+  return harmonic::describe_surface(
+      std::move(surface), options,
+      [&spheres](const mesh::CriticalPoint& point) { return inside(point.position, spheres); });
+}
+
+harmonic::SurfaceDescriptors describe_site(mesh::Surface surface, const Molecule& molecule,
+                                           const std::vector<SiteSphere>& spheres,
+                                           const harmonic::DescriptorOptions& options) {
+  return harmonic::describe_surface(
+      std::move(surface), molecule, options,
+      [&spheres](const mesh::CriticalPoint& point) { return inside(point.position, spheres); });
+}
+
+}  // namespace surfcomp::matching

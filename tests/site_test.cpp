@@ -1,0 +1,297 @@
+// Binding sites and the one ligand selection behind them: which copy of a ligand select_ligand
+// takes (and read_molecule's `ligand` option with it), what a site built from that copy or from
+// spheres holds, which chains the contact pruning keeps, and which critical points a site
+// flags and describes.
+#include "surfcomp/matching/site.hpp"
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/molecule.hpp"
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
+
+#include "test_data.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace surfcomp {
+namespace {
+
+Atom atom(const std::string& element, const Eigen::Vector3d& position, const std::string& residue,
+          int number, const std::string& chain, bool hetero) {
+  Atom a;
+  a.element = element;
+  a.name = element + "1";
+  a.position = position;
+  a.radius = 1.7;
+  a.residue_name = residue;
+  a.residue_number = number;
+  a.chain = chain;
+  a.hetero = hetero;
+  return a;
+}
+
+/// A three-atom copy of ligand LIG at `origin`.
+void add_ligand(Molecule& m, const Eigen::Vector3d& origin, int number, const std::string& chain) {
+  for (int k = 0; k < 3; ++k)
+    m.atoms.push_back(atom(k == 1 ? "O" : "C", origin + Eigen::Vector3d(1.4 * k, 0, 0), "LIG",
+                           number, chain, true));
+}
+
+/// A structure with three copies of LIG, listed B 5, A 9, A 7 (the file order differs from the
+/// selection order), a protein residue of chain A that carries the name LIG in an ATOM record
+/// (not a HETATM residue: never selected), an ion and water.
+Molecule structure_with_copies() {
+  Molecule m;
+  m.source = "copies.pdb";
+  m.atoms.push_back(atom("N", {0, 0, 0}, "ALA", 1, "A", false));
+  m.atoms.push_back(atom("C", {1.5, 0, 0}, "ALA", 1, "A", false));
+  m.atoms.push_back(atom("C", {-3, 0, 0}, "LIG", 1, "A", false));
+  add_ligand(m, {0, 30, 0}, 5, "B");
+  m.atoms.push_back(atom("O", {0, 31, 3}, "HOH", 101, "B", true));
+  add_ligand(m, {0, 0, 30}, 9, "A");
+  add_ligand(m, {5, 0, 0}, 7, "A");
+  m.atoms.push_back(atom("Zn", {5, 3, 0}, "ZN", 8, "A", true));
+  m.atoms.push_back(atom("O", {5, -3, 0}, "HOH", 102, "A", true));
+  return m;
+}
+
+/// The distinct (chain, residue number) of `indices` into `m`.
+std::set<std::pair<std::string, int>> copies(const Molecule& m,
+                                             const std::vector<std::size_t>& indices) {
+  std::set<std::pair<std::string, int>> out;
+  for (std::size_t i : indices) out.emplace(m.atoms[i].chain, m.atoms[i].residue_number);
+  return out;
+}
+
+using Copies = std::set<std::pair<std::string, int>>;
+
+TEST(SelectLigand, TakesTheLowestChainThenResidueNumberOfTheHetatmCopies) {
+  const Molecule m = structure_with_copies();
+  const auto selected = select_ligand(m, LigandSelector{"LIG", {}, {}});
+  EXPECT_EQ(selected, (std::vector<std::size_t>{10, 11, 12}));  // A 7, in file order
+  EXPECT_EQ(copies(m, selected), (Copies{{"A", 7}}));
+  // The name is compared without blanks and case.
+  EXPECT_EQ(select_ligand(m, LigandSelector{" lig", {}, {}}), selected);
+}
+
+TEST(SelectLigand, NarrowsByChainAndResidueNumber) {
+  const Molecule m = structure_with_copies();
+  EXPECT_EQ(copies(m, select_ligand(m, LigandSelector{"LIG", std::string("B"), {}})),
+            (Copies{{"B", 5}}));
+  EXPECT_EQ(copies(m, select_ligand(m, LigandSelector{"LIG", {}, 9})), (Copies{{"A", 9}}));
+  EXPECT_EQ(copies(m, select_ligand(m, LigandSelector{"LIG", std::string("A"), 9})),
+            (Copies{{"A", 9}}));
+  try {
+    select_ligand(m, LigandSelector{"LIG", std::string("B"), 9});
+    ADD_FAILURE() << "no copy B 9, none thrown";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("copies.pdb"), std::string::npos) << message;
+    EXPECT_NE(message.find("chain 'B' number 5"), std::string::npos) << message;
+    EXPECT_NE(message.find("chain 'A' number 7"), std::string::npos) << message;
+    EXPECT_NE(message.find("chain 'A' number 9"), std::string::npos) << message;
+  }
+}
+
+TEST(SelectLigand, AnAbsentLigandNamesTheFileAndTheResiduesPresent) {
+  const Molecule m = structure_with_copies();
+  try {
+    select_ligand(m, LigandSelector{"ATP", {}, {}});
+    ADD_FAILURE() << "no ATP, none thrown";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("copies.pdb"), std::string::npos) << message;
+    EXPECT_NE(message.find("'ATP'"), std::string::npos) << message;
+    EXPECT_NE(message.find("LIG, HOH, ZN"), std::string::npos) << message;
+  }
+}
+
+/// A PDB line of `a` (HETATM or ATOM) with serial `serial`.
+std::string pdb_line(const Atom& a, int serial) {
+  char line[90];
+  std::snprintf(line, sizeof line,
+                "%-6s%5d %-4s %3s %1s%4d    %8.3f%8.3f%8.3f  1.00  0.00          %2s",
+                a.hetero ? "HETATM" : "ATOM", serial, (" " + a.name).c_str(),
+                a.residue_name.c_str(), a.chain.c_str(), a.residue_number, a.position.x(),
+                a.position.y(), a.position.z(), a.element.c_str());
+  return line;
+}
+
+// read_molecule's `ligand` option takes the copy select_ligand takes, not the first in the file.
+TEST(SelectLigand, ReadMoleculeLigandOptionTakesTheSameCopy) {
+  const test::TempDir dir;
+  const auto path = dir / "two_copies.pdb";
+  Molecule written;
+  // An acetate-like copy in chain B first, one in chain A after it, far apart.
+  for (const auto& [chain, number, origin] :
+       {std::tuple<std::string, int, Eigen::Vector3d>{"B", 5, {0, 0, 0}},
+        std::tuple<std::string, int, Eigen::Vector3d>{"A", 7, {20, 0, 0}}}) {
+    const std::pair<const char*, Eigen::Vector3d> atoms[] = {
+        {"C", {0, 0, 0}}, {"C", {1.52, 0, 0}}, {"O", {2.15, 1.08, 0}}, {"O", {2.15, -1.08, 0}}};
+    int k = 0;
+    for (const auto& [element, offset] : atoms) {
+      written.atoms.push_back(atom(element, origin + offset, "ACT", number, chain, true));
+      written.atoms.back().name = element + std::to_string(++k);
+    }
+  }
+  {
+    std::ofstream out(path);
+    for (std::size_t i = 0; i < written.atoms.size(); ++i)
+      out << pdb_line(written.atoms[i], static_cast<int>(i) + 1) << "\n";
+    out << "END\n";
+  }
+  io::MoleculeReadOptions options;
+  options.ligand = "act";
+  const Molecule ligand = io::read_molecule(path, options);
+  ASSERT_EQ(ligand.atoms.size(), 4u);
+  for (const Atom& a : ligand.atoms) {
+    EXPECT_EQ(a.chain, "A");
+    EXPECT_EQ(a.residue_number, 7);
+  }
+  const Molecule whole = io::read_molecule(path);
+  const auto selected = select_ligand(whole, LigandSelector{"ACT", {}, {}});
+  ASSERT_EQ(selected.size(), ligand.atoms.size());
+  for (std::size_t k = 0; k < selected.size(); ++k)
+    EXPECT_EQ(ligand.atoms[k].position, whole.atoms[selected[k]].position) << k;
+}
+
+TEST(BindingSite, SpheresAreTheLigandCopysAtomsWithTheRadius) {
+  const Molecule m = structure_with_copies();
+  matching::BindingSiteOptions options;
+  options.sphere_radius = 3.5;
+  const auto site = matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options);
+  const std::vector<std::size_t> copy = {10, 11, 12};
+  ASSERT_EQ(site.spheres.size(), copy.size());
+  ASSERT_EQ(site.ligand.atoms.size(), copy.size());
+  for (std::size_t k = 0; k < copy.size(); ++k) {
+    EXPECT_EQ(site.spheres[k].center, m.atoms[copy[k]].position) << k;
+    EXPECT_EQ(site.spheres[k].radius, 3.5) << k;
+    EXPECT_EQ(site.ligand.atoms[k].position, m.atoms[copy[k]].position) << k;
+  }
+  EXPECT_EQ(site.ligand.source, m.source);
+}
+
+TEST(BindingSite, TheStructureLosesExactlyTheCopyAndTheWater) {
+  const Molecule m = structure_with_copies();
+  const auto site = matching::binding_site(m, LigandSelector{"LIG", {}, {}});
+  // Kept: the protein (with its LIG-named ATOM record), the copies B 5 and A 9, the ion; in order.
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < m.atoms.size(); ++i) {
+    const bool copy = i >= 10 && i <= 12;
+    if (!copy && m.atoms[i].residue_name != "HOH") kept.push_back(i);
+  }
+  ASSERT_EQ(site.structure.atoms.size(), kept.size());
+  EXPECT_EQ(site.structure.atoms.size(), m.atoms.size() - 3 - 2);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    EXPECT_EQ(site.structure.atoms[k].position, m.atoms[kept[k]].position) << k;
+    EXPECT_EQ(site.structure.atoms[k].residue_number, m.atoms[kept[k]].residue_number) << k;
+  }
+  EXPECT_EQ(site.structure.source, m.source);
+  // A copy chosen by chain and number leaves the others.
+  const auto b5 = matching::binding_site(m, LigandSelector{"LIG", std::string("B"), 5});
+  EXPECT_EQ(b5.structure.atoms.size(), m.atoms.size() - 3 - 2);
+  for (const Atom& a : b5.structure.atoms)
+    EXPECT_FALSE(a.residue_name == "LIG" && a.chain == "B") << a.residue_number;
+}
+
+TEST(BindingSite, ChainPruningKeepsOnlyTheChainsInContact) {
+  Molecule m;
+  m.source = "chains.pdb";
+  add_ligand(m, {0, 0, 0}, 1, "L");  // atoms at x = 0, 1.4, 2.8; its chain has nothing else
+  m.atoms.push_back(atom("C", {2.8, 4.9, 0}, "GLY", 1, "A", false));  // 4.9 A: in contact
+  m.atoms.push_back(atom("C", {2.8, 20, 0}, "GLY", 2, "A", false));   // same chain, far
+  m.atoms.push_back(atom("C", {0, -5.1, 0}, "GLY", 1, "B", false));   // 5.1 A: out
+  m.atoms.push_back(atom("C", {0, 0, -5.0}, "GLY", 1, "C", false));   // 5.0 A: in contact
+  m.atoms.push_back(atom("O", {0, 0, 4.0}, "HOH", 1, "D", true));     // water: never counts
+  m.atoms.push_back(atom("C", {0, 0, 8.0}, "GLY", 1, "D", false));    // 8 A: out
+  matching::BindingSiteOptions options;
+  const auto whole = matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options);
+  EXPECT_EQ(whole.structure.atoms.size(), 5u);  // every chain, water and ligand out
+  options.chain_contact_radius = 5.0;
+  const auto pruned = matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options);
+  std::vector<std::string> chains;
+  for (const Atom& a : pruned.structure.atoms) chains.push_back(a.chain);
+  EXPECT_EQ(chains, (std::vector<std::string>{"A", "A", "C"}));
+  // From spheres: the same rule about their centres.
+  const auto spheres = matching::binding_site(m, pruned.spheres, options);
+  EXPECT_EQ(spheres.structure.atoms.size(), 6u);  // the ligand is no copy here: it stays
+  EXPECT_TRUE(spheres.ligand.atoms.empty());
+  chains.clear();
+  for (const Atom& a : spheres.structure.atoms) chains.push_back(a.chain);
+  EXPECT_EQ(chains, (std::vector<std::string>{"L", "L", "L", "A", "A", "C"}));
+}
+
+TEST(BindingSite, BadSpheresAndOptionsAreRejected) {
+  const Molecule m = structure_with_copies();
+  EXPECT_THROW(matching::binding_site(m, std::vector<matching::SiteSphere>{}), InputError);
+  EXPECT_THROW(matching::binding_site(m, {matching::SiteSphere{{0, 0, 0}, 0.0}}), InputError);
+  EXPECT_THROW(matching::binding_site(m, {matching::SiteSphere{{0, std::nan(""), 0}, 1.0}}),
+               InputError);
+  matching::BindingSiteOptions options;
+  options.sphere_radius = 0.0;
+  EXPECT_THROW(matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
+  options = {};
+  options.chain_contact_radius = -1.0;
+  EXPECT_THROW(matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
+  EXPECT_THROW(matching::binding_site(m, LigandSelector{"ATP", {}, {}}), InputError);
+}
+
+TEST(BindingSite, TheMaskFlagsTheCriticalPointsInsideASphere) {
+  harmonic::SurfaceDescriptors d;
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(2.01, 0, 0),
+        Eigen::Vector3d(10.5, 0, 0), Eigen::Vector3d(0, 0, 5)}) {
+    harmonic::CriticalPointDescriptor c;
+    c.point.position = p;
+    d.critical_points.push_back(c);
+  }
+  const std::vector<matching::SiteSphere> spheres = {{{0, 0, 0}, 2.0}, {{10, 0, 0}, 1.0}};
+  EXPECT_EQ(matching::critical_points_in_site(d, spheres),
+            (std::vector<bool>{true, true, false, true, false}));
+  EXPECT_EQ(matching::critical_points_in_site(d, {}), std::vector<bool>(5, false));
+}
+
+// describe_site images the critical points its mask flags, exactly as describe_surface does,
+// and only those; the others keep their place, skipped.
+TEST(BindingSite, DescribeSiteImagesOnlyTheSiteCriticalPoints) {
+  SURFCOMP_SHARED_OR_SKIP(file, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  const Molecule molecule = io::read_molecule(file);
+  const mesh::Surface surface = mesh::build_molecular_surface(molecule);
+  const auto whole = harmonic::describe_surface(surface, molecule);
+  ASSERT_GT(whole.critical_points.size(), 4u);
+  const std::vector<matching::SiteSphere> spheres = {
+      {whole.critical_points.front().point.position, 4.0}};
+  const auto site = matching::describe_site(surface, molecule, spheres);
+  const std::vector<bool> in_site = matching::critical_points_in_site(site, spheres);
+  ASSERT_EQ(site.critical_points.size(), whole.critical_points.size());
+  EXPECT_EQ(site.atoms.size(), whole.atoms.size());
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < site.critical_points.size(); ++i) {
+    const auto& s = site.critical_points[i];
+    const auto& w = whole.critical_points[i];
+    EXPECT_EQ(s.point.vertex, w.point.vertex) << i;
+    if (in_site[i]) {
+      ++inside;
+      EXPECT_EQ(s.status, w.status) << i;
+      EXPECT_EQ(s.image.values, w.image.values) << i;
+    } else {
+      EXPECT_EQ(s.status, harmonic::PatchStatus::skipped) << i;
+    }
+  }
+  EXPECT_GE(inside, 1u);
+  EXPECT_LT(inside, site.critical_points.size());
+  const auto without_atoms = matching::describe_site(surface, spheres);
+  EXPECT_TRUE(without_atoms.atoms.empty());
+}
+
+}  // namespace
+}  // namespace surfcomp
