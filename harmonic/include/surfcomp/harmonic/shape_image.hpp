@@ -3,7 +3,8 @@
 // polar grid over the disk; two images are compared by the Pearson correlation of their values,
 // maximised over rotations. On a polar grid a rotation by one angular step is a cyclic shift of
 // every ring's samples, so all rotations are compared at once by circular cross-correlations
-// (FFTs of each ring) instead of resampling rotated grids as the seed did [choice].
+// (FFTs of each ring) instead of resampling rotated grids as the seed did [choice;
+// docs/decisions.md#image-comparison-on-a-polar-grid].
 #pragma once
 
 #include <Eigen/Core>
@@ -55,9 +56,9 @@ Eigen::Vector2d image_grid_point(const ImageOptions& options, int grid_index);
 /// neighbours is taken from there without asking the tree: the same answer for an embedding,
 /// where no other triangle contains such a point (if triangles overlap, uv is no embedding and
 /// that triangle wins). The value is the barycentric interpolation of the three vertex values,
-/// exact for values linear in (u, v). Triangles of zero area in uv are skipped. About 0.4 ms
-/// for a 169-vertex patch and the default grid (bench/shape_image_bench.cpp). Deterministic:
-/// the same input gives the same image bit for bit.
+/// exact for values linear in (u, v). Triangles of zero area in uv are skipped. Timing:
+/// bench/shape_image_bench.cpp. Deterministic: the same input gives the same image bit for
+/// bit.
 /// Throws OptionError for grid sizes below 1; InputError when uv and values differ in length,
 /// a face refers to a vertex outside [0, #V), or a coordinate or value is not finite.
 ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
@@ -102,8 +103,7 @@ struct RotationProfile {
 /// Reused state for comparing one image with many: per ring, the discrete Fourier spectra of
 /// the validity mask, of the masked values and of the masked squared values (values centred on
 /// the image's area-weighted mean first, which the correlation ignores but which keeps the
-/// sums well conditioned). Build it once per image (about 40 us for the default grid) and
-/// compare the prepared images; it holds
+/// sums well conditioned). Build it once per image and compare the prepared images; it holds
 /// 3 x radial_samples x (angular_samples / 2 + 1) complex numbers (70 KB for the default grid).
 /// Immutable after construction, so one prepared image may be used by many threads at once.
 class PreparedImage {
@@ -147,11 +147,9 @@ RotationProfile rotation_profile(const PreparedImage& a, const PreparedImage& b,
                                  int min_overlap = 16);
 
 /// The best rotation of rotation_profile(a, b, min_overlap): the largest correlation, ties
-/// (within 1e-12) broken by the smallest shift. Cost for the default grid
-/// (bench/shape_image_bench.cpp): about 5 us when every ring of both images is fully valid (one
-/// inverse FFT), 12 us for two sphere-cap images with two partial outer rings, 20 us when every
-/// ring is partial (seven inverse FFTs of 180 points, about 1.5 us each, dominate); a direct
-/// evaluation of all rotations takes 1.3 ms. Allocates nothing once warm (per-thread scratch).
+/// (within 1e-12) broken by the smallest shift. Cost: one inverse FFT of angular_samples points
+/// when every ring of both images is fully valid, up to seven when rings are partial; timing in
+/// bench/shape_image_bench.cpp. Allocates nothing once warm (per-thread scratch).
 ImageMatch compare_images(const PreparedImage& a, const PreparedImage& b, int min_overlap = 16);
 
 /// compare_images on images not prepared yet (prepares both: use PreparedImage when an image is

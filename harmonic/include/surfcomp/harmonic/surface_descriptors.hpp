@@ -20,9 +20,8 @@ namespace surfcomp::harmonic {
 struct DescriptorOptions {
   mesh::CriticalPointOptions critical_points;  ///< r_cp 2.5 A, property disc 1 A, Dijkstra
   /// Radius 5 A, margin 5 %, and fast-marching distances instead of the seed's Dijkstra:
-  /// Dijkstra's polygonal balls depend on the mesh, fast marching's round patches do not, which
-  /// raises the image correlation between two samplings of one surface (1THL ligand, densities
-  /// 2 and 4 vertices/A^2: median 0.88 -> 0.94 with the 2 A curvature neighbourhood).
+  /// Dijkstra's polygonal balls depend on the mesh, fast marching's round patches much less,
+  /// so two samplings of one surface give more alike images (docs/decisions.md#patch-distances).
   mesh::PatchOptions patch = [] {
     mesh::PatchOptions options;
     options.distance = mesh::GeodesicMethod::fast_marching;

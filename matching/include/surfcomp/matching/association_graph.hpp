@@ -31,20 +31,16 @@ struct PointPair {
   int image_shift = 0;  ///< the same rotation in angular grid steps (ImageMatch::shift)
 };
 
-/// The filter parameters (METHOD section 8 starting values [choice]).
+/// The filter parameters (METHOD section 8 starting values [choice], except F).
 struct GraphParameters {
-  /// Default 0.3. F: a pair is dropped when the fuzzy similarity of its autoscaled ESP or of
-  /// its LP is below F (a property missing on either surface is not filtered). In [0, 1].
-  /// With the fuzzy Jaccard similarity (fuzzy.hpp) F is roughly (1 - dz) / (1 + dz) for z-scores
-  /// dz apart: the METHOD's starting value 0.5 (dz <= 1/3) dropped 6 of the 11 true pairs of
-  /// 1THL vs 4TMN (points < 2 A apart in the common frame; their ESP similarities 0.21-0.88,
-  /// median 0.49) and kept 89 of 462 nodes; 0.3 keeps 160 (the thesis: 162 of 553) and 7 true
-  /// pairs to the end (tests/association_graph_test.cpp).
+  /// Default 0.3 (METHOD: 0.5). F: a pair is dropped when the fuzzy similarity of its
+  /// autoscaled ESP or of its LP is below F (a property missing on either surface is not
+  /// filtered). In [0, 1]. With the fuzzy Jaccard similarity (fuzzy.hpp) F is roughly
+  /// (1 - dz) / (1 + dz) for z-scores dz apart, so 0.5 allows dz <= 1/3 and 0.3 about
+  /// dz <= 0.54; 0.5 drops most true pairs (docs/decisions.md#fuzzy-threshold).
   double fuzzy_threshold = 0.3;
-  /// Default 0.5. R: a pair is dropped when its best image correlation is below R. Finite.
-  /// Measured on 1THL vs 4TMN: true pairs median 0.65 (10 % below 0.42), other same-type pairs
-  /// median 0.41 (90 % below 0.57); 0.5 keeps 6 of 8 true pairs (< 1.5 A) and 37 % of the
-  /// fuzzy filter's nodes (the thesis: 39 %).
+  /// Default 0.5 (METHOD). R: a pair is dropped when its best image correlation is below R.
+  /// Finite. See docs/decisions.md#image-threshold.
   double image_threshold = 0.5;
   /// Default 1.5 A. t: two pairs are joined when |d_A - d_B| <= t (eq. 3-3). Finite, >= 0.
   double distance_tolerance = 1.5;
@@ -159,8 +155,7 @@ std::vector<std::pair<int, int>> overlap_filter(const std::vector<PointPair>& no
 /// (restricted to the allowed points), fuzzy_filter, image_filter, distance_filter,
 /// overlap_filter, with a trace entry per stage. Nodes removed by a filter are gone; edges
 /// refer to the surviving nodes. Throws OptionError for parameters outside their domains, and
-/// what the stages throw. About 3-5 ms for two ligand surfaces of ~30 critical points (1THL vs
-/// 4TMN, 2 cores, TBB warm), nearly all of it image comparisons.
+/// what the stages throw. Nearly all of its time goes to the image comparisons.
 AssociationGraph build_association_graph(const harmonic::SurfaceDescriptors& a,
                                          const harmonic::SurfaceDescriptors& b,
                                          const GraphParameters& parameters = {},

@@ -2,9 +2,8 @@
 // shape and in chemistry, and a refinement of a transform that raises it. The critical-point
 // level (cliques of CP pairs, their fits) finds where two surfaces may correspond; this level
 // judges each candidate on every part of both surfaces, as Gaussian-overlay tools (ROCS,
-// Shape-it) judge theirs, and polishes it. [choice, beyond the seed: measured in
-// bench/overlay_bench, where ranking the refined candidates by this score instead of the seed's
-// consensus of CP-fit RMSD, point count and R_chem is what lifts the top-1 success.]
+// Shape-it) judge theirs, and polishes it. This stage is beyond the seed; why it exists and
+// how its defaults were chosen: docs/decisions.md#overlay-stage.
 //
 // A surface is sampled as area-weighted points: the vertices are pooled in cubic cells of edge
 // `spacing`, each cell giving one point (the area-weighted mean position, unit normal, ESP and
@@ -16,10 +15,8 @@
 //   c_ij = max(0, e_i e_j) + max(0, l_i l_j),   e = ESP / rms(ESP), l = LP / rms(LP)
 // (root mean squares over both samples, so the two properties count alike whatever their
 // units): like-signed ESP and like-signed LP add in proportion to their strength, as the colour
-// features of ROCS do, while neutral regions and opposite signs add nothing. [choice, measured
-// in bench/overlay_bench, seed 20261122: with a Gaussian of the property differences,
-// exp(-(dESP/sd)^2/2 - (dLP/sd)^2/2), which also rewards matching neutral regions, therm top-1
-// was 44 %; with this form and chem_weight 6, 53 %.]
+// features of ROCS do, while neutral regions and opposite signs add nothing
+// (docs/decisions.md#overlay-chemistry).
 // The scores are Tanimoto ratios against each surface's overlap with itself: shape = S_AB /
 // (S_AA + S_BB - S_AB) and chem = C_AB / (C_AA + C_BB - C_AB), 1 for a sample on itself and
 // near 0 without contact (two samplings of one surface can give slightly more than 1, as the
@@ -35,13 +32,7 @@
 // (shape + chem_weight chem + atom_weight atoms) / (1 + chem_weight + atom_weight). The
 // refinement climbs the surface part alone; the atom term decides between the refined poses,
 // and the best few are then polished on the whole score (refine with pull_atoms;
-// MatchOptions::polish_top).
-// [choice, beyond the seed: measured in bench/overlay_bench (seed 20261122, 24 principal-axes
-// starts), where the surface score ranks a wrong pose first in 48 of the 49 therm failures with
-// the true pose among the candidates. Re-ranked offline by the surface score plus a term over
-// atoms: same-element heteroatoms 76 % therm top-1 (O3A-MMFF 60 %), all heavy atoms by element
-// 51-60 %, MMFF atom types 42-47 %, donor/acceptor/aromatic features 28-33 %, a shape-it-like
-// heavy-atom volume with the chemistry 52-56 %.]
+// MatchOptions::polish_top). Why heteroatoms: docs/decisions.md#heteroatom-term.
 #pragma once
 
 #include "surfcomp/harmonic/surface_descriptors.hpp"
@@ -61,30 +52,20 @@ struct OverlayOptions {
   /// Default 1.0 A. Width of the Gaussian that pairs points of the two surfaces. Must be > 0.
   double sigma = 1.0;
   /// Default 1.5 A. Edge of the cells the vertices are pooled in (the 1THL ligand's surface,
-  /// 433 A^2, gives ~180 points). 1.0 A gave the same five-ligand success and one therm pair
-  /// less (bench/overlay_bench) at 2.5 times the match time. Must be > 0.
+  /// 433 A^2, gives ~180 points; docs/decisions.md#overlay-sampling-and-width). Must be > 0.
   double spacing = 1.5;
   /// Default 6. Weight of the chemistry Tanimoto against the shape Tanimoto in the score and in
-  /// the refinement's pull. Measured (bench/overlay_bench, seed 20261122): therm top-1 47 %,
-  /// 50 %, 53 %, 52 % at weights 1, 3, 6, 10; five ligands 90 % at each. Must be >= 0.
+  /// the refinement's pull (docs/decisions.md#overlay-chemistry). Must be >= 0.
   double chem_weight = 6.0;
   /// Default 14. Weight of the heteroatom Tanimoto (same-element heteroatoms, Gaussians of
   /// width sigma) in the score, where both sides have heteroatoms; it pulls only in the polish
-  /// (refine with pull_atoms; MatchOptions::polish_top). Measured (bench/overlay_bench, seed
-  /// 20261122, 24 axes starts; the refined candidates re-ranked offline): therm top-1 51 / 72 /
-  /// 76 / 76 / 78 % at weights 0 / 3.5 / 7 / 14 / 28, five ligands 90 % at 0 and 99 % from 3.5
-  /// up. In the match with these defaults, before the polish: five ligands 99 %, therm 74 %;
-  /// with seed 7 (other poses and therm pairs, not used in the choice) 100 % and 76 %, O3A-MMFF
-  /// 68 %. Must be >= 0.
+  /// (refine with pull_atoms; MatchOptions::polish_top). See docs/decisions.md#heteroatom-term.
+  /// Must be >= 0.
   double atom_weight = 14.0;
   /// Default 40. Most refinement steps per transform. Must be >= 0.
   int iterations = 40;
-  /// Default 0.1 A. Refinement stops when a step moves no sampled probe point by more than this.
-  /// Measured (bench/overlay_bench, seed 20261122, before the polish): 0.05 / 0.1 / 0.15 A give
-  /// five ligands 99 % top-1 each, therm 76 / 74 / 74 %. Match from descriptors, five ligands,
-  /// median: 71 / 59 ms at 0.05 / 0.15 A with the refinements run one after another; 44 / 42 ms
-  /// at 0.1 / 0.15 A run in parallel on 2 threads (later runs of the final defaults: 36-42 ms,
-  /// the spread between runs on this machine). Must be >= 0.
+  /// Default 0.1 A. Refinement stops when a step moves no sampled probe point by more than this
+  /// (docs/decisions.md#refinement-tolerance). Must be >= 0.
   double tolerance = 0.1;
 };
 
@@ -184,8 +165,7 @@ class SurfaceOverlay {
   /// Neighbour lists of a sample on a grid of cubic cells of edge sigma (larger where the box
   /// would need more than about 2^22 cells) over its bounding box grown by the cutoff: cell c lists
   /// the points within the cutoff of some place in c, so a query looks at one list instead of
-  /// 27 cells of 3 sigma. [choice: the same sums; match from descriptors, five ligands with 24
-  /// axes starts in bench/overlay_bench, 111 -> 86 ms median.]
+  /// 27 cells of 3 sigma: the same sums, fewer visits (docs/decisions.md#overlay-speed).
   struct Grid {
     Eigen::Vector3d origin = Eigen::Vector3d::Zero();
     double cell = 1.0;
@@ -230,8 +210,8 @@ class SurfaceOverlay {
   static double chemistry(const SurfaceSample& a, int i, const SurfaceSample& b, int j);
   /// g = exp(-d2 / (2 sigma^2)) for 0 <= d2 <= (3 sigma)^2, interpolated linearly in d2 from
   /// kGaussianSamples + 1 tabulated values (and one spare) (absolute error below 1e-6,
-  /// overlay_test). [choice: perf put std::exp at about a quarter of the overlap sums' time; the
-  /// refinement stage of `surfcomp match` 4TMN.hsi 3TMN.hsi, best of 8 runs, 62 -> 47 ms.]
+  /// overlay_test), which is cheaper than std::exp in the overlap sums
+  /// (docs/decisions.md#overlay-speed).
   double gaussian(double d2) const {
     const double x = d2 * gaussian_scale_;
     const std::size_t k = static_cast<std::size_t>(x);

@@ -16,9 +16,8 @@ enum class CriticalPointType { peak, valley };
 struct CriticalPointOptions {
   /// Default 2.5 A. The on-surface radius r_cp of the neighbourhood N(p, r_cp) in which a
   /// critical point must have the extreme curvature, on-surface (see `distance`). Must be
-  /// finite and > 0. Calibration (METHOD section 2): on the default molecular surfaces
-  /// (MolecularSurfaceOptions) of the 1THL and 4TMN crystal ligands it gives 26 and 30 critical
-  /// points, the thesis 27 and 29 (tests/descriptors_test.cpp).
+  /// finite and > 0. METHOD section 2's value; on the default molecular surfaces it gives
+  /// about the thesis' critical-point counts (docs/decisions.md#curvature-neighbourhood).
   double radius = 2.5;
   /// Default 1.0 A. Radius of the on-surface disc over which a critical point's shape index,
   /// esp and lp are averaged (weighted by vertex area, a third of the incident triangles'
@@ -54,7 +53,8 @@ struct CriticalPoint {
 /// from the properties of those names when present, else from cc1 and cc2 (Koenderink, with
 /// k = -cc). Throws InputError (naming the surface) when cc1 or cc2 is missing, OptionError
 /// for options outside their domain. Result sorted by type (peaks first), then by vertex.
-/// Deterministic; O(#V) plus one bounded Dijkstra run per vertex that beats its one-ring.
+/// Deterministic; O(#V) plus one bounded on-surface distance run (options.distance) per vertex
+/// that beats its one-ring.
 std::vector<CriticalPoint> detect_critical_points(const Surface& surface,
                                                   const CriticalPointOptions& options = {});
 

@@ -19,8 +19,8 @@ enum class CurvatureMethod {
   quadric,
   /// Height jet of degree `jet_degree` over the neighbourhood's PCA plane, CGAL
   /// Monge_via_jet_fitting (Cazals & Pouget 2005). A degree-2 jet overestimates |k| when the
-  /// neighbourhood is not small against the radius of curvature (+22 % on a sphere of
-  /// radius 1.7 A meshed at 2.5 vertices per A^2, 2-ring).
+  /// neighbourhood is not small against the radius of curvature, as on atom-sized spheres
+  /// (docs/decisions.md#curvature-estimator).
   jet,
 };
 

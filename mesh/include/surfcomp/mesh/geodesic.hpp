@@ -1,9 +1,9 @@
-// On-surface distances by Dijkstra's algorithm over the mesh edges, each edge weighted by its
-// Euclidean length (seed section 3.4, step 2; METHOD section 2). The edge path zig-zags, so
-// it is longer than the true geodesic except along straight chains of edges: measured +8 % on
-// average (at most +12 %) on a flat ring-triangulated disk, +8 % on average on icosphere
-// triangulations and +5.7 % between antipodes (tests/geodesic_test.cpp); refining the mesh
-// does not reduce it.
+// On-surface distances from a vertex, in Dijkstra order over the mesh edges, each edge weighted
+// by its Euclidean length (seed section 3.4, step 2; METHOD section 2), optionally with the
+// fast-marching triangle update. Edge paths zig-zag, so plain Dijkstra distances are longer
+// than the true geodesic except along straight chains of edges, and refining the mesh does not
+// remove that; the fast-marching update also reaches a vertex straight across a triangle
+// (docs/decisions.md#patch-distances).
 #pragma once
 
 #include "surfcomp/mesh/surface.hpp"
@@ -19,29 +19,29 @@ namespace surfcomp::mesh {
 /// How on-surface distances are computed.
 enum class GeodesicMethod {
   /// Dijkstra over the mesh edges, edge weight = Euclidean length (the seed's choice). Its
-  /// balls are polygons, not discs: a 5 A patch on a sphere of radius 5 A has 80-88 % of the
-  /// spherical cap's area.
+  /// balls are polygons, not discs, so a patch covers less than the geodesic disc.
   dijkstra,
   /// Dijkstra ordering with the fast-marching triangle update (Kimmel & Sethian 1998): a
   /// vertex is also reached straight across a triangle whose other two vertices are done,
   /// from the virtual source their distances define in the triangle's plane (when that ray
   /// crosses the opposite edge; obtuse triangles fall back to the edges). Exact on a plane,
-  /// within about 1-2 % of the great-circle distance on a sphere. METHOD section 2 allows it.
+  /// close to the great-circle distance on a sphere. METHOD section 2 allows it.
   fast_marching,
 };
 
-/// Dijkstra distances (A) from vertex `source` to every vertex of `surface` (#V values).
-/// Vertices farther than `max_distance` (A), or in another connected component, are +inf and
-/// are not expanded, so a bounded run only visits the vertices within the bound and their
-/// neighbours. Throws TopologyError for a surface without vertices, InputError when `source`
-/// is not a vertex index, OptionError when max_distance is negative or NaN (+inf is allowed).
-/// With method fast_marching the distances are those of the fast-marching update instead.
+/// On-surface distances (A) from vertex `source` to every vertex of `surface` (#V values), by
+/// `method` (default: Dijkstra over the edges). Vertices farther than `max_distance` (A), or in
+/// another connected component, are +inf and are not expanded, so a bounded run only visits the
+/// vertices within the bound and their neighbours. Throws TopologyError for a surface without
+/// vertices, InputError when `source` is not a vertex index, OptionError when max_distance is
+/// negative or NaN (+inf is allowed).
 Eigen::VectorXd edge_geodesic_distances(
     const Surface& surface, int source,
     double max_distance = std::numeric_limits<double>::infinity(),
     GeodesicMethod method = GeodesicMethod::dijkstra);
 
-/// Reusable state for many bounded Dijkstra runs on one surface: the per-vertex buffers are
+/// Reusable state for many bounded distance runs on one surface (Dijkstra order; edge updates,
+/// plus the fast-marching update when the method is fast_marching): the per-vertex buffers are
 /// allocated once and only the entries a run touched are reset, so a run costs time in
 /// proportion to the vertices it reaches, not to the surface. Ties in the priority queue are
 /// broken by vertex index, so results and visiting order are deterministic.
@@ -52,12 +52,12 @@ class GeodesicSolver {
   /// Throws TopologyError for a surface without vertices.
   explicit GeodesicSolver(const Surface& surface, GeodesicMethod method = GeodesicMethod::dijkstra);
 
-  /// The vertices whose Dijkstra distance from `source` is at most `max_distance` (A), as
-  /// (vertex, distance) pairs sorted by vertex; the source itself is included at distance 0.
-  /// When `allowed` is given (one entry per vertex), the paths only pass through vertices
-  /// whose entry is non-zero (the source is always allowed). Throws InputError when `source`
-  /// is not a vertex index or `allowed` has the wrong size, OptionError when max_distance is
-  /// negative or NaN.
+  /// The vertices whose distance (by the solver's method) from `source` is at most
+  /// `max_distance` (A), as (vertex, distance) pairs sorted by vertex; the source itself is
+  /// included at distance 0. When `allowed` is given (one entry per vertex), the paths only
+  /// pass through vertices whose entry is non-zero (the source is always allowed). Throws
+  /// InputError when `source` is not a vertex index or `allowed` has the wrong size,
+  /// OptionError when max_distance is negative or NaN.
   std::vector<std::pair<int, double>> within(int source, double max_distance,
                                              const std::vector<char>* allowed = nullptr);
 

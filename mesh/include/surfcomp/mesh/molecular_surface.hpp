@@ -14,10 +14,9 @@ struct MolecularSurfaceOptions {
   SesOptions ses;  ///< probe 1.4 A, about 2.5 vertices per A^2
   EspOptions esp;  ///< eps = 1, Coulomb
   LpOptions lp;    ///< Fauchere kernel exp(-d)
-  /// Curvature fitted over a 2 A geodesic-ball neighbourhood rather than CurvatureOptions'
-  /// 2-ring default: a fixed size in A makes the shape index, and so the harmonic shape images,
-  /// independent of the vertex density (1THL ligand, densities 2 and 4 vertices/A^2, patches
-  /// at the same centres: median image correlation 0.94 against 0.88 with 2 rings).
+  /// Curvature fitted over a 2 A neighbourhood rather than CurvatureOptions' 2-ring default: a
+  /// fixed size in A makes the shape index, and so the harmonic shape images, independent of
+  /// the vertex density (docs/decisions.md#curvature-neighbourhood).
   CurvatureOptions curvature = [] {
     CurvatureOptions options;
     options.radius = 2.0;

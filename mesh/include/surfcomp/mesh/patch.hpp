@@ -19,16 +19,17 @@
 namespace surfcomp::mesh {
 
 struct PatchOptions {
-  /// Default 5.0 A. The patch radius: on-surface (Dijkstra, geodesic.hpp) distance from the
-  /// centre. METHOD section 3 [choice]: about 5 A for ligands, larger for protein sites.
-  /// Finite and > 0.
+  /// Default 5.0 A. The patch radius: on-surface distance (by `distance`) from the centre.
+  /// METHOD section 3 [choice]: about 5 A for ligands, larger for protein sites. Finite and
+  /// > 0.
   double radius = 5.0;
   /// Default 0.05 (seed: 5 %). Vertices up to radius * (1 + margin) that share an edge with a
   /// vertex within the radius are selected too (step 3). Finite and >= 0.
   double margin = 0.05;
   /// Default dijkstra (seed 3.4 step 2). How the on-surface distances of steps 2-3 are
-  /// computed; fast_marching gives round patches (97-102 % of a sphere cap's area at 5 A, where
-  /// Dijkstra's polygonal balls give 80-88 %; tests/patch_test.cpp).
+  /// computed; fast_marching gives round patches where Dijkstra's balls are polygons.
+  /// describe_surface uses fast_marching by default (harmonic::DescriptorOptions::patch;
+  /// docs/decisions.md#patch-distances).
   GeodesicMethod distance = GeodesicMethod::dijkstra;
 };
 
@@ -43,7 +44,7 @@ struct Patch {
   std::vector<int> surface_vertex;  ///< step 7: surface vertex index of each patch vertex
   Eigen::MatrixX3d positions;       ///< #patch vertices by 3, A, copied from the surface
   Eigen::MatrixX3i faces;           ///< patch-local triangles, same orientation as on the surface
-  Eigen::VectorXd distance;         ///< on-surface (Dijkstra) distance from the centre, A
+  Eigen::VectorXd distance;         ///< on-surface distance from the centre, A
   /// The outer border: patch-local vertices joined by border edges, each once, starting at the
   /// lowest index and walked counter-clockwise seen from outside (the side the faces'
   /// counter-clockwise order points to), i.e. with the patch on the left: each step a -> b is a
@@ -58,12 +59,12 @@ struct Patch {
 };
 
 /// Step 1: the surface vertices within Euclidean distance `radius` (A) of `center_vertex`,
-/// sorted. No vertex outside it can have an on-surface distance <= radius, because an edge
-/// path of length L never leaves the ball of radius L. Throws InputError for a vertex out of
+/// sorted. No vertex outside it can have an on-surface distance <= radius, because a path on
+/// the surface of length L never leaves the ball of radius L. Throws InputError for a vertex out of
 /// range, OptionError for a radius that is not finite and >= 0.
 std::vector<int> preselect_euclidean(const Surface& surface, int center_vertex, double radius);
 
-/// Step 2: Dijkstra distances (A; or fast-marching ones, per `method`) from `center_vertex`
+/// Step 2: on-surface distances (A) by `method` (the seed: Dijkstra) from `center_vertex`
 /// over paths inside the `preselected` vertices (sorted, unique, containing the centre), up to
 /// `max_distance`, as (vertex, distance) pairs sorted by vertex. Throws InputError for indices out
 /// of range, unsorted or without the centre, OptionError for a max_distance that is not finite and
@@ -147,10 +148,11 @@ Patch assemble_patch(const Surface& surface, int center_vertex, const std::vecto
                      const std::vector<std::pair<int, double>>& distances);
 
 /// The patch of on-surface radius options.radius around `center_vertex` (seed 3.4): steps 1-4,
-/// refine_patch, assemble_patch. The Euclidean preselection and Dijkstra run to
-/// radius * (1 + margin). Throws TopologyError for a surface without vertices or faces, or when
-/// no triangle is left around the centre (radius shorter than its edges), InputError when
-/// center_vertex is out of range, OptionError for options outside their domain.
+/// refine_patch, assemble_patch. The Euclidean preselection and the on-surface distances
+/// (options.distance) run to radius * (1 + margin). Throws TopologyError for a surface without
+/// vertices or faces, or when no triangle is left around the centre (radius shorter than its
+/// edges), InputError when center_vertex is out of range, OptionError for options outside their
+/// domain.
 /// Deterministic, const on the surface, thread-safe.
 Patch extract_patch(const Surface& surface, int center_vertex, const PatchOptions& options = {});
 

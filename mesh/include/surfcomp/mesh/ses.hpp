@@ -20,8 +20,7 @@ struct SesOptions {
   /// Move each vertex along its normal by the mean gap between its flat triangles and the
   /// curved surface (H (a^2 + b^2 + c^2) / 24, H the exact mean curvature), so that area and
   /// volume are unbiased (default); false leaves every vertex exactly on the surface, whose
-  /// chord triangles then underestimate area and volume (by ~3 % for a 1.7 A sphere at
-  /// 2.5 vertices/A^2).
+  /// chord triangles then underestimate area and volume (docs/decisions.md#chord-compensation).
   bool compensate_chords = true;
   /// Keep the closed inward-facing components that line internal cavities (the probe fits in
   /// them but cannot reach them from outside). Default false: only outward-facing components
@@ -32,11 +31,10 @@ struct SesOptions {
   /// outward component the smallest atom's van der Waals ball (4/3 pi r_min^3), for a cavity
   /// (keep_cavities) the probe's ball. Every atom's ball lies inside the SES, so a smaller
   /// outward component holds no atom and bounds no part of the molecule: it is what the grid
-  /// keeps of a feature thinner than a voxel, typically one voxel of a neck of ~0.1 A radius
-  /// where the probe just fails to pass between two atoms (the grid loses the neck and leaves
-  /// an isolated 8-vertex cube, which remeshing shrinks to a tetrahedron of < 0.1 A^2; Kahraman
-  /// sites 1DV2, 1E8X, 1NAZ, 1PP9, 1QLA). The fraction leaves room for the grid's volume error
-  /// on a lone atom. The outward component of largest volume is always kept.
+  /// keeps of a feature thinner than a voxel, such as a neck where the probe just fails to pass
+  /// between two atoms (docs/decisions.md#small-ses-components). The fraction leaves room for
+  /// the grid's volume error on a lone atom. The outward component of largest volume is always
+  /// kept.
   double min_component_volume_fraction = 0.5;
 };
 
