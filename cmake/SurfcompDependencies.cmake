@@ -8,24 +8,14 @@ find_package(TBB REQUIRED CONFIG)
 find_package(nlohmann_json 3 REQUIRED CONFIG)
 find_package(Boost 1.74 REQUIRED COMPONENTS graph iostreams program_options)
 
-# OpenVDB's find module lives outside CMake's default search path.
-list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
+# OpenVDB's find module lives outside CMake's default search path; the installed
+# surfcompConfig.cmake looks there too.
+set(SURFCOMP_OPENVDB_MODULE_DIR /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
+list(APPEND CMAKE_MODULE_PATH ${SURFCOMP_OPENVDB_MODULE_DIR})
 find_package(OpenVDB REQUIRED)
 
-# Debian's RDKit ships no CMake config: an imported target over its libraries.
-find_path(RDKIT_INCLUDE_DIR GraphMol/ROMol.h PATH_SUFFIXES rdkit REQUIRED)
-set(_rdkit_components
-    FileParsers SmilesParse PartialCharges Descriptors ForceFieldHelpers ForceField
-    MolAlign O3AAlign MolTransforms SubstructMatch Subgraphs Depictor GraphMol
-    DataStructs RDGeometryLib EigenSolvers Alignment Optimizer Trajectory
-    Catalogs RDGeneral)
-add_library(surfcomp_rdkit INTERFACE)
-target_include_directories(surfcomp_rdkit SYSTEM INTERFACE ${RDKIT_INCLUDE_DIR})
-foreach(_c IN LISTS _rdkit_components)
-  find_library(RDKIT_${_c}_LIBRARY NAMES RDKit${_c} REQUIRED)
-  target_link_libraries(surfcomp_rdkit INTERFACE ${RDKIT_${_c}_LIBRARY})
-endforeach()
-add_library(RDKit::RDKit ALIAS surfcomp_rdkit)
+# Debian's RDKit ships no CMake config: cmake/FindRDKit.cmake makes the imported target RDKit::RDKit.
+find_package(RDKit REQUIRED)
 
 if(SURFCOMP_BUILD_TESTS)
   find_package(GTest REQUIRED)

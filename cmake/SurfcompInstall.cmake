@@ -1,0 +1,31 @@
+# Install rules and the CMake package a C++ user finds with find_package(surfcomp CONFIG):
+# the four static libraries as surfcomp::core, ::mesh, ::harmonic and ::matching, their public
+# headers, the surfcomp program, and lib/cmake/surfcomp/ with the config, its version file, the
+# exported targets and the find module for RDKit (cmake/FindRDKit.cmake).
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(SURFCOMP_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/surfcomp)
+
+# Gives library `target` of the current module its public include/ tree (the source tree in the
+# build, the installed include directory for a user), installs both, and exports the library
+# as surfcomp::<export_name>.
+function(surfcomp_install_library target export_name)
+  target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+                                              $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${export_name})
+  install(TARGETS ${target} EXPORT surfcompTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endfunction()
+
+install(EXPORT surfcompTargets NAMESPACE surfcomp:: DESTINATION ${SURFCOMP_INSTALL_CMAKEDIR})
+configure_package_config_file(
+  ${CMAKE_CURRENT_LIST_DIR}/surfcompConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/surfcompConfig.cmake
+  INSTALL_DESTINATION ${SURFCOMP_INSTALL_CMAKEDIR})
+# Before 1.0 a minor version may change the API: only the same major.minor is compatible.
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/surfcompConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/surfcompConfig.cmake
+              ${CMAKE_CURRENT_BINARY_DIR}/surfcompConfigVersion.cmake
+              ${CMAKE_CURRENT_LIST_DIR}/FindRDKit.cmake
+        DESTINATION ${SURFCOMP_INSTALL_CMAKEDIR})
