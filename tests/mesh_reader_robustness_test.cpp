@@ -9,7 +9,6 @@
 #include "surfcomp/mesh/surface.hpp"
 #include "test_data.hpp"
 
-#include <OpenMesh/Core/System/omstream.hh>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -37,11 +36,6 @@ unsigned base_seed() {
   }
   return 20240611u;
 }
-
-struct QuietOpenMesh {
-  QuietOpenMesh() { omerr().disable(); }
-};
-const QuietOpenMesh quiet_openmesh;
 
 using test::TempDir;
 

@@ -2,6 +2,8 @@
 
 #include "surfcomp/core/error.hpp"
 
+#include <OpenMesh/Core/System/omstream.hh>
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,7 +27,23 @@ std::size_t value_size(ValueType type) {
   return 8;
 }
 
+namespace {
+
+/// OpenMesh reports rejected faces on its own error stream; the module turns them into
+/// exceptions, so that stream (and its log) stay quiet. Runs once per program.
+void quiet_openmesh() {
+  static const bool quiet = [] {
+    omerr().disable();
+    omlog().disable();
+    return true;
+  }();
+  (void)quiet;
+}
+
+}  // namespace
+
 Surface::Surface() {
+  quiet_openmesh();
   mesh_.request_vertex_normals();
   mesh_.request_face_normals();
 }
