@@ -1,5 +1,6 @@
 #include "surfcomp/mesh/topology.hpp"
 
+#include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
 
 #include <algorithm>
@@ -23,7 +24,7 @@ TriMesh::VertexHandle checked_vertex(const Surface& surface, int vertex, const c
 // so the clockwise walk crosses the surface from one boundary neighbour to the other without
 // passing the gap; reversed, it is counter-clockwise.
 std::vector<int> one_ring_vertices(const Surface& surface, int vertex) {
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   std::vector<int> out;
   for (const auto w : mesh.vv_cw_range(checked_vertex(surface, vertex, "one_ring_vertices"))) {
     out.push_back(w.idx());
@@ -33,7 +34,7 @@ std::vector<int> one_ring_vertices(const Surface& surface, int vertex) {
 }
 
 std::vector<int> one_ring_faces(const Surface& surface, int vertex) {
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   std::vector<int> out;
   for (const auto f : mesh.vf_cw_range(checked_vertex(surface, vertex, "one_ring_faces"))) {
     out.push_back(f.idx());
@@ -43,7 +44,7 @@ std::vector<int> one_ring_faces(const Surface& surface, int vertex) {
 }
 
 SurfaceComponents connected_components(const Surface& surface) {
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   SurfaceComponents out;
   out.component.assign(mesh.n_vertices(), -1);
   std::vector<TriMesh::VertexHandle> stack;
