@@ -4,6 +4,7 @@
 #include "surfcomp/mesh/critical_points.hpp"
 #include "surfcomp/mesh/curvature.hpp"
 #include "surfcomp/mesh/geodesic.hpp"
+#include "surfcomp/mesh/topology.hpp"
 
 #include <gtest/gtest.h>
 
@@ -31,11 +32,10 @@ int count_type(const std::vector<CriticalPoint>& cps, CriticalPointType type) {
 
 /// The longest edge at `vertex`, A.
 double longest_edge_at(const Surface& surface, int vertex) {
-  const TriMesh& mesh = surface.mesh();
-  const auto v = TriMesh::VertexHandle(vertex);
+  const Eigen::MatrixX3d p = surface.positions();
   double longest = 0.0;
-  for (const auto w : mesh.vv_range(v)) {
-    longest = std::max(longest, (mesh.point(w) - mesh.point(v)).norm());
+  for (const int w : one_ring_vertices(surface, vertex)) {
+    longest = std::max(longest, (p.row(w) - p.row(vertex)).norm());
   }
   return longest;
 }

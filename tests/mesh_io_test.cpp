@@ -7,7 +7,6 @@
 #include "surfcomp/mesh/surface.hpp"
 #include "test_data.hpp"
 
-#include <OpenMesh/Core/System/omstream.hh>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -81,11 +80,6 @@ Surface tetrahedron() {
       1, 2, 3;
   return Surface::from_arrays(p, f, "tetrahedron");
 }
-
-struct QuietOpenMesh {
-  QuietOpenMesh() { omerr().disable(); }
-};
-const QuietOpenMesh quiet_openmesh;
 
 TEST(MeshIoPly, ReadsMasifAsciiWithItsProperties) {
   SURFCOMP_SHARED_OR_SKIP(path, "surfaces/masif/1EWY_A.ply");

@@ -325,9 +325,9 @@ TEST(PatchSteps, BowTieKeepsTheLargerFanAndComponentKeepsTheCentre) {
   // refine_patch ends at the hexagon around the centre whatever the tie-break did.
   PatchSelection selection;
   selection.faces = both;
+  const Eigen::MatrixX3i g_faces = g.faces();
   for (const int f : both) {
-    for (const auto v : g.mesh().fv_range(TriMesh::FaceHandle(f)))
-      selection.vertices.push_back(v.idx());
+    for (int k = 0; k < 3; ++k) selection.vertices.push_back(g_faces(f, k));
   }
   std::sort(selection.vertices.begin(), selection.vertices.end());
   selection.vertices.erase(std::unique(selection.vertices.begin(), selection.vertices.end()),

@@ -5,6 +5,7 @@
 #include "surfcomp/mesh/curvature.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/ses.hpp"
+#include "surfcomp/mesh/topology.hpp"
 
 #include "surface_components.hpp"
 #include "test_data.hpp"
@@ -241,21 +242,21 @@ Eigen::Vector3d closest_barycentric(const Eigen::Vector3d& p, const Eigen::Vecto
   return {1 - v - w, v, w};
 }
 
-/// A property of `surface` interpolated at the point of the triangles around `near_vertex`
-/// closest to `p`; also returns that point's distance to `p`.
+/// A property of `surface` (positions and faces as the surface gives them) interpolated at the
+/// point of the triangles around `near_vertex` closest to `p`; also returns that point's
+/// distance to `p`.
 std::pair<double, double> interpolate_near(const mesh::Surface& surface,
+                                           const Eigen::MatrixX3d& positions,
+                                           const Eigen::MatrixX3i& faces,
                                            const Eigen::VectorXd& values, int near_vertex,
                                            const Eigen::Vector3d& p) {
-  const mesh::TriMesh& m = surface.mesh();
   double best_distance = std::numeric_limits<double>::infinity(), best_value = 0.0;
-  for (auto f : m.vf_range(mesh::TriMesh::VertexHandle(near_vertex))) {
+  for (const int f : mesh::one_ring_faces(surface, near_vertex)) {
     std::array<int, 3> v{};
     std::array<Eigen::Vector3d, 3> x;
-    int k = 0;
-    for (auto vh : m.fv_range(f)) {
-      v[k] = vh.idx();
-      const auto& q = m.point(vh);
-      x[k++] = Eigen::Vector3d(q[0], q[1], q[2]);
+    for (int k = 0; k < 3; ++k) {
+      v[k] = faces(f, k);
+      x[k] = positions.row(v[k]).transpose();
     }
     const Eigen::Vector3d w = closest_barycentric(p, x[0], x[1], x[2]);
     const double distance = (w[0] * x[0] + w[1] * x[1] + w[2] * x[2] - p).norm();
@@ -299,6 +300,7 @@ TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
   };
   const Eigen::MatrixX3d pa = a.positions();
   const Eigen::MatrixX3d pb = b.positions();
+  const Eigen::MatrixX3i fa = a.faces();
   for (const Tolerance& tol :
        {Tolerance{mesh::property::esp, 0.01, 0.03}, Tolerance{mesh::property::lp, 0.01, 0.03},
         Tolerance{mesh::property::shape_index, 0.05, 0.25}}) {
@@ -311,7 +313,8 @@ TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
       const Eigen::Vector3d back = rotation.transpose() * (pb.row(i).transpose() - translation);
       Eigen::Index nearest = 0;
       (pa.rowwise() - back.transpose()).rowwise().squaredNorm().minCoeff(&nearest);
-      const auto [value, distance] = interpolate_near(a, va, static_cast<int>(nearest), back);
+      const auto [value, distance] =
+          interpolate_near(a, pa, fa, va, static_cast<int>(nearest), back);
       max_distance = std::max(max_distance, distance);
       errors.push_back(std::abs(vb(i) - value) / range);
     }

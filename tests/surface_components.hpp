@@ -3,6 +3,7 @@
 #pragma once
 
 #include "surfcomp/mesh/surface.hpp"
+#include "surfcomp/mesh/topology.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -19,26 +20,10 @@ struct SurfaceComponent {
 
 /// The components in order of their lowest vertex index.
 inline std::vector<SurfaceComponent> surface_components(const mesh::Surface& surface) {
-  const mesh::TriMesh& mesh = surface.mesh();
-  std::vector<int> label(mesh.n_vertices(), -1);
-  std::vector<SurfaceComponent> out;
-  for (const auto seed : mesh.vertices()) {
-    if (label[static_cast<std::size_t>(seed.idx())] >= 0) continue;
-    const int id = static_cast<int>(out.size());
-    out.emplace_back();
-    label[static_cast<std::size_t>(seed.idx())] = id;
-    std::vector<mesh::TriMesh::VertexHandle> stack{seed};
-    while (!stack.empty()) {
-      const auto v = stack.back();
-      stack.pop_back();
-      ++out.back().vertices;
-      for (const auto u : mesh.vv_range(v)) {
-        if (label[static_cast<std::size_t>(u.idx())] >= 0) continue;
-        label[static_cast<std::size_t>(u.idx())] = id;
-        stack.push_back(u);
-      }
-    }
-  }
+  const mesh::SurfaceComponents components = mesh::connected_components(surface);
+  const std::vector<int>& label = components.component;
+  std::vector<SurfaceComponent> out(static_cast<std::size_t>(components.count));
+  for (const int c : label) ++out[static_cast<std::size_t>(c)].vertices;
   const Eigen::MatrixX3d p = surface.positions();
   const Eigen::MatrixX3i f = surface.faces();
   for (Eigen::Index t = 0; t < f.rows(); ++t) {

@@ -3,7 +3,6 @@
 
 #include "surfcomp/core/error.hpp"
 
-#include <OpenMesh/Core/System/omstream.hh>
 #include <boost/program_options/errors.hpp>
 
 #include <array>
@@ -42,10 +41,6 @@ void print_usage(std::ostream& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // OpenMesh reports rejected faces on its own error stream; the library turns them into
-  // exceptions, so the tool keeps that stream quiet.
-  omerr().disable();
-  omlog().disable();
   if (argc < 2) {
     print_usage(std::cerr);
     return 2;

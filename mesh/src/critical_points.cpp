@@ -1,5 +1,6 @@
 #include "surfcomp/mesh/critical_points.hpp"
 
+#include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/mesh/geodesic.hpp"
 
@@ -43,7 +44,7 @@ Kind kind_of(double cc1, double cc2) {
 /// Unit normal at `v`: the stored one when the surface has normals, else the area-weighted
 /// normal of the incident triangles (zero for a vertex in no triangle of non-zero area).
 Eigen::Vector3d vertex_normal(const Surface& surface, TriMesh::VertexHandle v) {
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   OpenMesh::Vec3d n(0.0, 0.0, 0.0);
   if (surface.has_normals()) {
     n = mesh.normal(v);
@@ -85,7 +86,7 @@ std::vector<CriticalPoint> detect_critical_points(const Surface& surface,
     }
   }
   if (surface.n_vertices() == 0) return {};
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   const Eigen::VectorXd cc1 = surface.property(property::cc1);
   const Eigen::VectorXd cc2 = surface.property(property::cc2);
   const auto n = static_cast<std::size_t>(cc1.size());

@@ -1,5 +1,6 @@
 #include "surfcomp/mesh/curvature.hpp"
 
+#include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
 
 #include <CGAL/Eigen_svd.h>
@@ -92,7 +93,7 @@ Adjacency vertex_adjacency(const TriMesh& mesh) {
 
 /// Area-weighted vertex normals (#V by 3, unit or zero) of the surface's triangles.
 Eigen::MatrixX3d area_weighted_normals(const Surface& surface) {
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   Eigen::MatrixX3d normals =
       Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
   for (auto f : mesh.faces()) {
@@ -333,7 +334,7 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
 
 PrincipalCurvatures principal_curvatures(const Surface& surface, const CurvatureOptions& options) {
   check_options(options);
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   if (mesh.n_faces() == 0) {
     throw TopologyError(surface.source() +
                         ": principal_curvatures needs a surface with "
@@ -420,7 +421,7 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
 }
 
 Eigen::VectorXd angle_defects(const Surface& surface) {
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   if (mesh.n_faces() == 0) {
     throw TopologyError(surface.source() +
                         ": angle_defects needs a surface with triangles; "

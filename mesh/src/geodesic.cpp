@@ -1,5 +1,6 @@
 #include "surfcomp/mesh/geodesic.hpp"
 
+#include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
 
 #include <algorithm>
@@ -81,7 +82,7 @@ std::vector<std::pair<int, double>> GeodesicSolver::within(int source, double ma
                      std::to_string(allowed->size()) + " entries, expected one per vertex (" +
                      std::to_string(surface.n_vertices()) + ")");
   }
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   // Min-heap on (distance, vertex): equal distances pop the lower vertex index first.
   const auto later = std::greater<std::pair<double, int>>();
   std::vector<std::pair<int, double>> result;

@@ -1,5 +1,6 @@
 #include "surfcomp/mesh/patch.hpp"
 
+#include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/mesh/geodesic.hpp"
 
@@ -122,7 +123,7 @@ std::vector<int> preselect_euclidean(const Surface& surface, int center_vertex, 
   const char* caller = "preselect_euclidean";
   check_vertex(surface, center_vertex, caller);
   check_length(surface, radius, "radius", caller);
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   const TriMesh::Point c = mesh.point(VertexHandle(center_vertex));
   const double r2 = radius * radius;
   std::vector<int> out;
@@ -158,7 +159,7 @@ std::vector<int> select_within_radius(const Surface& surface,
   check_length(surface, radius, "radius", caller);
   check_length(surface, margin, "margin", caller);
   check_distance_list(surface, distances, caller);
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   std::vector<int> core;
   for (const auto& [v, d] : distances) {
     if (d <= radius) core.push_back(v);
@@ -183,7 +184,7 @@ std::vector<int> select_within_radius(const Surface& surface,
 std::vector<int> faces_with_three_selected(const Surface& surface,
                                            const std::vector<int>& selected) {
   check_index_list(surface, selected, surface.n_vertices(), "vertex", "faces_with_three_selected");
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   std::vector<int> out;
   for (const int v : selected) {
     for (const auto f : mesh.vf_range(VertexHandle(v))) {
@@ -199,7 +200,7 @@ std::vector<int> faces_with_three_selected(const Surface& surface,
 
 std::vector<int> remove_dangling_triangles(const Surface& surface, const std::vector<int>& faces) {
   check_index_list(surface, faces, surface.n_faces(), "face", "remove_dangling_triangles");
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   std::vector<int> out;
   for (const int f : faces) {
     int border = 0;
@@ -214,7 +215,7 @@ std::vector<int> remove_isolated_vertices(const Surface& surface, const std::vec
   const char* caller = "remove_isolated_vertices";
   check_index_list(surface, vertices, surface.n_vertices(), "vertex", caller);
   check_index_list(surface, faces, surface.n_faces(), "face", caller);
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   std::vector<int> out;
   for (const int v : vertices) {
     for (const auto f : mesh.vf_range(VertexHandle(v))) {
@@ -230,7 +231,7 @@ std::vector<int> remove_isolated_vertices(const Surface& surface, const std::vec
 std::vector<int> resolve_nonmanifold_vertices(const Surface& surface,
                                               const std::vector<int>& faces) {
   check_index_list(surface, faces, surface.n_faces(), "face", "resolve_nonmanifold_vertices");
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   std::vector<int> out = faces;
   std::vector<int> vertices;
   for (const int f : faces) {
@@ -269,7 +270,7 @@ std::vector<int> keep_component(const Surface& surface, const std::vector<int>& 
   const char* caller = "keep_component";
   check_vertex(surface, vertex, caller);
   check_index_list(surface, faces, surface.n_faces(), "face", caller);
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   int seed = -1;
   for (const auto f : mesh.vf_range(VertexHandle(vertex))) {
     if (contains(faces, f.idx()) && (seed < 0 || f.idx() < seed)) seed = f.idx();
@@ -314,7 +315,7 @@ PatchSelection refine_patch(const Surface& surface, PatchSelection selection, in
 BoundaryLoops boundary_loops(const Surface& surface, const std::vector<int>& faces) {
   const char* caller = "boundary_loops";
   check_index_list(surface, faces, surface.n_faces(), "face", caller);
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   const auto border = border_halfedges(mesh, faces);
   for (std::size_t i = 1; i < border.size(); ++i) {
     if (border[i].first == border[i - 1].first) {
@@ -371,7 +372,7 @@ Patch assemble_patch(const Surface& surface, int center_vertex, const std::vecto
   check_vertex(surface, center_vertex, caller);
   check_index_list(surface, faces, surface.n_faces(), "face", caller);
   check_distance_list(surface, distances, caller);
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   Patch patch;
   for (const int f : faces) {
     for (const auto v : mesh.fv_range(FaceHandle(f))) patch.surface_vertex.push_back(v.idx());

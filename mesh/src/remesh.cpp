@@ -2,6 +2,7 @@
 // translation unit (OpenVDB lives in ses.cpp).
 #include "surfcomp/mesh/remesh.hpp"
 
+#include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -19,7 +20,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using CgalMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 
 CgalMesh to_cgal(const Surface& surface) {
-  const TriMesh& in = surface.mesh();
+  const TriMesh& in = tri_mesh(surface);
   CgalMesh out;
   out.reserve(static_cast<CgalMesh::size_type>(in.n_vertices()),
               static_cast<CgalMesh::size_type>(in.n_edges()),

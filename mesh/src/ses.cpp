@@ -3,6 +3,7 @@
 // surface. OpenVDB stays in this translation unit.
 #include "surfcomp/mesh/ses.hpp"
 
+#include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/mesh/remesh.hpp"
 
@@ -882,7 +883,7 @@ void compensate_chord_gaps(Surface& surface, const Eigen::MatrixX3d& normals,
 /// that area and volume are unbiased instead of those of an inscribed polyhedron.
 template <class Project>
 void place_vertices(Surface& surface, const Project& project, bool compensate) {
-  TriMesh& mesh = surface.mesh();
+  TriMesh& mesh = tri_mesh(surface);
   const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
   Eigen::MatrixX3d positions = surface.positions();
   Eigen::MatrixX3d normals(n, 3);
@@ -917,7 +918,7 @@ void place_vertices(Surface& surface, const Project& project, bool compensate) {
 /// its triangles (see place_vertices).
 void compensate_chord_gaps(Surface& surface, const Eigen::MatrixX3d& normals,
                            const Eigen::VectorXd& curvature) {
-  TriMesh& mesh = surface.mesh();
+  TriMesh& mesh = tri_mesh(surface);
   const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
   Eigen::MatrixX3d positions = surface.positions();
   Eigen::VectorXd squared_edges = Eigen::VectorXd::Zero(n);
@@ -970,7 +971,7 @@ bool move_keeps_orientation(const TriMesh& mesh, TriMesh::VertexHandle v, const 
 /// their crease). Sequential after the parallel projection: deterministic.
 void place_sas_vertices(Surface& surface, const SasGeometry& sas, double reach, double edge_length,
                         bool compensate) {
-  TriMesh& mesh = surface.mesh();
+  TriMesh& mesh = tri_mesh(surface);
   const Spheres none{-1, -1, -1};
   OpenMesh::VPropHandleT<Spheres> label;
   mesh.add_property(label);

@@ -1,9 +1,14 @@
 #include "surfcomp/mesh/surface.hpp"
 
+#include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
 
+#include <OpenMesh/Core/System/omstream.hh>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 
 namespace surfcomp::mesh {
 
@@ -25,17 +30,60 @@ std::size_t value_size(ValueType type) {
   return 8;
 }
 
-Surface::Surface() {
-  mesh_.request_vertex_normals();
-  mesh_.request_face_normals();
+namespace {
+
+/// OpenMesh reports rejected faces on its own error stream; the module turns them into
+/// exceptions, so that stream (and its log) stay quiet. Runs once per program.
+void quiet_openmesh() {
+  static const bool quiet = [] {
+    omerr().disable();
+    omlog().disable();
+    return true;
+  }();
+  (void)quiet;
+}
+
+}  // namespace
+
+Surface::Impl::Impl() {
+  quiet_openmesh();
+  mesh.request_vertex_normals();
+  mesh.request_face_normals();
+}
+
+Surface::Surface() = default;
+
+Surface::Surface(const Surface& other)
+    : impl_(other.impl_ ? std::make_unique<Impl>(*other.impl_) : nullptr) {}
+
+Surface::Surface(Surface&& other) noexcept = default;
+
+Surface& Surface::operator=(const Surface& other) {
+  if (this != &other) impl_ = other.impl_ ? std::make_unique<Impl>(*other.impl_) : nullptr;
+  return *this;
+}
+
+Surface& Surface::operator=(Surface&& other) noexcept = default;
+
+Surface::~Surface() = default;
+
+const Surface::Impl& Surface::impl() const {
+  if (impl_) return *impl_;
+  static const Impl empty;
+  return empty;
+}
+
+Surface::Impl& Surface::impl() {
+  if (!impl_) impl_ = std::make_unique<Impl>();
+  return *impl_;
 }
 
 Surface Surface::from_arrays(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
                              const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                              const std::string& source) {
   Surface surface;
-  surface.source_ = source;
-  TriMesh& mesh = surface.mesh_;
+  surface.impl().source = source;
+  TriMesh& mesh = surface.impl().mesh;
   const Eigen::Index n = positions.rows();
   std::vector<TriMesh::VertexHandle> handles(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -66,125 +114,158 @@ Surface Surface::from_arrays(const Eigen::Ref<const Eigen::MatrixX3d>& positions
   return surface;
 }
 
+std::size_t Surface::n_vertices() const { return impl().mesh.n_vertices(); }
+
+std::size_t Surface::n_faces() const { return impl().mesh.n_faces(); }
+
 Eigen::MatrixX3d Surface::positions() const {
-  Eigen::MatrixX3d out(static_cast<Eigen::Index>(mesh_.n_vertices()), 3);
-  for (auto v : mesh_.vertices()) {
-    const auto& p = mesh_.point(v);
+  const TriMesh& mesh = impl().mesh;
+  Eigen::MatrixX3d out(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
     out.row(v.idx()) << p[0], p[1], p[2];
   }
   return out;
 }
 
 Eigen::MatrixX3i Surface::faces() const {
-  Eigen::MatrixX3i out(static_cast<Eigen::Index>(mesh_.n_faces()), 3);
-  for (auto f : mesh_.faces()) {
+  const TriMesh& mesh = impl().mesh;
+  Eigen::MatrixX3i out(static_cast<Eigen::Index>(mesh.n_faces()), 3);
+  for (auto f : mesh.faces()) {
     int k = 0;
-    for (auto v : mesh_.fv_range(f)) out(f.idx(), k++) = v.idx();
+    for (auto v : mesh.fv_range(f)) out(f.idx(), k++) = v.idx();
   }
   return out;
 }
 
 Eigen::MatrixX3d Surface::normals() const {
-  Eigen::MatrixX3d out(static_cast<Eigen::Index>(mesh_.n_vertices()), 3);
-  for (auto v : mesh_.vertices()) {
-    const auto& n = mesh_.normal(v);
+  const TriMesh& mesh = impl().mesh;
+  Eigen::MatrixX3d out(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
+  for (auto v : mesh.vertices()) {
+    const auto& n = mesh.normal(v);
     out.row(v.idx()) << n[0], n[1], n[2];
   }
   return out;
 }
 
 void Surface::set_normals(const Eigen::Ref<const Eigen::MatrixX3d>& normals) {
-  if (static_cast<std::size_t>(normals.rows()) != mesh_.n_vertices()) {
-    throw InputError(source_ + ": " + std::to_string(normals.rows()) + " normals for " +
-                     std::to_string(mesh_.n_vertices()) + " vertices");
+  Impl& d = impl();
+  TriMesh& mesh = d.mesh;
+  if (static_cast<std::size_t>(normals.rows()) != mesh.n_vertices()) {
+    throw InputError(d.source + ": " + std::to_string(normals.rows()) + " normals for " +
+                     std::to_string(mesh.n_vertices()) + " vertices");
   }
-  for (auto v : mesh_.vertices()) {
-    mesh_.set_normal(
-        v, TriMesh::Normal(normals(v.idx(), 0), normals(v.idx(), 1), normals(v.idx(), 2)));
+  for (auto v : mesh.vertices()) {
+    mesh.set_normal(v,
+                    TriMesh::Normal(normals(v.idx(), 0), normals(v.idx(), 1), normals(v.idx(), 2)));
   }
-  has_normals_ = true;
+  d.has_normals = true;
 }
+
+bool Surface::has_normals() const { return impl().has_normals; }
 
 void Surface::compute_normals() {
-  std::vector<OpenMesh::Vec3d> sums(mesh_.n_vertices(), OpenMesh::Vec3d(0, 0, 0));
-  for (auto f : mesh_.faces()) {
-    auto h = mesh_.halfedge_handle(f);
-    const auto& a = mesh_.point(mesh_.from_vertex_handle(h));
-    const auto& b = mesh_.point(mesh_.to_vertex_handle(h));
-    const auto& c = mesh_.point(mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h)));
+  Impl& d = impl();
+  TriMesh& mesh = d.mesh;
+  std::vector<OpenMesh::Vec3d> sums(mesh.n_vertices(), OpenMesh::Vec3d(0, 0, 0));
+  for (auto f : mesh.faces()) {
+    auto h = mesh.halfedge_handle(f);
+    const auto& a = mesh.point(mesh.from_vertex_handle(h));
+    const auto& b = mesh.point(mesh.to_vertex_handle(h));
+    const auto& c = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
     const OpenMesh::Vec3d area_normal = OpenMesh::cross(b - a, c - a);  // 2 * area * n
-    mesh_.set_normal(f, area_normal.norm() > 0 ? area_normal.normalized() : area_normal);
-    for (auto v : mesh_.fv_range(f)) sums[static_cast<std::size_t>(v.idx())] += area_normal;
+    mesh.set_normal(f, area_normal.norm() > 0 ? area_normal.normalized() : area_normal);
+    for (auto v : mesh.fv_range(f)) sums[static_cast<std::size_t>(v.idx())] += area_normal;
   }
-  for (auto v : mesh_.vertices()) {
+  for (auto v : mesh.vertices()) {
     const auto& s = sums[static_cast<std::size_t>(v.idx())];
-    mesh_.set_normal(v, s.norm() > 0 ? s.normalized() : s);
+    mesh.set_normal(v, s.norm() > 0 ? s.normalized() : s);
   }
-  has_normals_ = true;
+  d.has_normals = true;
 }
+
+const std::vector<std::string>& Surface::property_names() const { return impl().property_names; }
 
 bool Surface::has_property(const std::string& name) const {
-  return std::find(property_names_.begin(), property_names_.end(), name) != property_names_.end();
+  const std::vector<std::string>& names = impl().property_names;
+  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-OpenMesh::VPropHandleT<double> Surface::handle(const std::string& name) const {
+OpenMesh::VPropHandleT<double> Surface::Impl::handle(const std::string& name) const {
   OpenMesh::VPropHandleT<double> h;
-  if (!has_property(name) || !mesh_.get_property_handle(h, name)) {
-    throw InputError(source_ + ": the surface has no vertex property '" + name + "'");
+  if (std::find(property_names.begin(), property_names.end(), name) == property_names.end() ||
+      !mesh.get_property_handle(h, name)) {
+    throw InputError(source + ": the surface has no vertex property '" + name + "'");
   }
   return h;
 }
 
 Eigen::VectorXd Surface::property(const std::string& name) const {
-  const auto h = handle(name);
-  const std::vector<double>& data = mesh_.property(h).data_vector();
+  const Impl& d = impl();
+  const std::vector<double>& data = d.mesh.property(d.handle(name)).data_vector();
   return Eigen::Map<const Eigen::VectorXd>(data.data(), static_cast<Eigen::Index>(data.size()));
 }
 
 double Surface::property(const std::string& name, std::size_t vertex) const {
-  return mesh_.property(handle(name), TriMesh::VertexHandle(static_cast<int>(vertex)));
+  const Impl& d = impl();
+  return d.mesh.property(d.handle(name), TriMesh::VertexHandle(static_cast<int>(vertex)));
 }
 
 void Surface::set_property(const std::string& name, const Eigen::Ref<const Eigen::VectorXd>& values,
                            ValueType stored_as) {
-  if (static_cast<std::size_t>(values.size()) != mesh_.n_vertices()) {
-    throw InputError(source_ + ": property '" + name + "' has " + std::to_string(values.size()) +
-                     " values for " + std::to_string(mesh_.n_vertices()) + " vertices");
+  Impl& d = impl();
+  if (static_cast<std::size_t>(values.size()) != d.mesh.n_vertices()) {
+    throw InputError(d.source + ": property '" + name + "' has " + std::to_string(values.size()) +
+                     " values for " + std::to_string(d.mesh.n_vertices()) + " vertices");
   }
   OpenMesh::VPropHandleT<double> h;
   if (!has_property(name)) {
-    mesh_.add_property(h, name);
-    property_names_.push_back(name);
-    property_types_.push_back(stored_as);
+    d.mesh.add_property(h, name);
+    d.property_names.push_back(name);
+    d.property_types.push_back(stored_as);
   } else {
-    h = handle(name);
-    const auto it = std::find(property_names_.begin(), property_names_.end(), name);
-    property_types_[static_cast<std::size_t>(it - property_names_.begin())] = stored_as;
+    h = d.handle(name);
+    const auto it = std::find(d.property_names.begin(), d.property_names.end(), name);
+    d.property_types[static_cast<std::size_t>(it - d.property_names.begin())] = stored_as;
   }
-  std::vector<double>& data = mesh_.property(h).data_vector();
+  std::vector<double>& data = d.mesh.property(h).data_vector();
   data.assign(values.data(), values.data() + values.size());
 }
 
 void Surface::remove_property(const std::string& name) {
-  const auto it = std::find(property_names_.begin(), property_names_.end(), name);
-  if (it == property_names_.end()) return;
-  auto h = handle(name);
-  mesh_.remove_property(h);
-  property_types_.erase(property_types_.begin() + (it - property_names_.begin()));
-  property_names_.erase(it);
+  if (!has_property(name)) return;
+  Impl& d = impl();
+  const auto it = std::find(d.property_names.begin(), d.property_names.end(), name);
+  auto h = d.handle(name);
+  d.mesh.remove_property(h);
+  d.property_types.erase(d.property_types.begin() + (it - d.property_names.begin()));
+  d.property_names.erase(it);
 }
 
 ValueType Surface::property_type(const std::string& name) const {
-  const auto it = std::find(property_names_.begin(), property_names_.end(), name);
-  if (it == property_names_.end()) {
-    throw InputError(source_ + ": the surface has no vertex property '" + name + "'");
+  const Impl& d = impl();
+  const auto it = std::find(d.property_names.begin(), d.property_names.end(), name);
+  if (it == d.property_names.end()) {
+    throw InputError(d.source + ": the surface has no vertex property '" + name + "'");
   }
-  return property_types_[static_cast<std::size_t>(it - property_names_.begin())];
+  return d.property_types[static_cast<std::size_t>(it - d.property_names.begin())];
 }
+
+ValueType Surface::position_type() const { return impl().position_type; }
+
+ValueType Surface::normal_type() const { return impl().normal_type; }
+
+void Surface::set_position_type(ValueType type) { impl().position_type = type; }
+
+void Surface::set_normal_type(ValueType type) { impl().normal_type = type; }
+
+const std::string& Surface::source() const { return impl().source; }
+
+void Surface::set_source(std::string source) { impl().source = std::move(source); }
 
 void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
                        const Eigen::Vector3d& translation) {
-  TriMesh& mesh = surface.mesh();
+  TriMesh& mesh = tri_mesh(surface);
   for (auto v : mesh.vertices()) {
     const auto& p = mesh.point(v);
     const Eigen::Vector3d moved = rotation * Eigen::Vector3d(p[0], p[1], p[2]) + translation;
@@ -202,7 +283,7 @@ void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
 
 /// Barycentric vertex areas: a third of the area of every incident triangle, A^2.
 Eigen::VectorXd vertex_areas(const Surface& surface) {
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   Eigen::VectorXd area = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
   for (const auto f : mesh.faces()) {
     const auto h = mesh.halfedge_handle(f);
@@ -219,7 +300,7 @@ Eigen::VectorXd vertex_areas(const Surface& surface) {
 }
 
 SurfaceMeasures measure_surface(const Surface& surface) {
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   SurfaceMeasures m;
   for (auto f : mesh.faces()) {
     auto h = mesh.halfedge_handle(f);
@@ -238,7 +319,7 @@ SurfaceMeasures measure_surface(const Surface& surface) {
 }
 
 void require_closed_manifold(const Surface& surface, double min_area) {
-  const TriMesh& mesh = surface.mesh();
+  const TriMesh& mesh = tri_mesh(surface);
   const std::string& src = surface.source();
   if (mesh.n_faces() == 0) throw TopologyError(src + ": the surface has no triangles");
   for (auto e : mesh.edges()) {

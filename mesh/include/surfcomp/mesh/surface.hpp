@@ -1,27 +1,21 @@
-// mesh::Surface — a triangle surface on an OpenMesh half-edge mesh (double precision) with
-// per-vertex normals and named scalar vertex properties (esp, lp, cc1, cc2, shape_index, or
-// whatever a file brought: MaSIF's charge, hphob, hbond, iface).
+// mesh::Surface — a triangle surface with per-vertex normals and named scalar vertex properties
+// (esp, lp, cc1, cc2, shape_index, or whatever a file brought: MaSIF's charge, hphob, hbond,
+// iface).
 #pragma once
-
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace surfcomp::mesh {
 
-struct SurfaceTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-  VertexAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::Status);
-  FaceAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::Status);
-  EdgeAttributes(OpenMesh::Attributes::Status);
-  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge);
-};
-using TriMesh = OpenMesh::TriMesh_ArrayKernelT<SurfaceTraits>;
+namespace detail {
+struct SurfaceAccess;  // the mesh module's own way in; defined in its sources only
+}  // namespace detail
 
 /// Names of the properties the project computes (seed and METHOD section 0).
 namespace property {
@@ -40,11 +34,20 @@ enum class ValueType : std::uint8_t { int8, uint8, int16, uint16, int32, uint32,
 /// Size in bytes of one value of `type`.
 std::size_t value_size(ValueType type);
 
-/// A triangle surface with named per-vertex scalar properties.
-/// Invariants: every face is a triangle; property vectors have one value per vertex.
+/// A triangle surface with named per-vertex scalar properties, in double precision.
+/// Invariants: every face is a triangle of three distinct vertices; every edge borders one or
+/// two faces, which traverse it in opposite directions; property vectors have one value per
+/// vertex. A value type: copies are deep, moves are cheap and leave the source empty (as if
+/// default-constructed).
 class Surface {
  public:
+  /// An empty surface: no vertices, no faces, no properties.
   Surface();
+  Surface(const Surface& other);
+  Surface(Surface&& other) noexcept;
+  Surface& operator=(const Surface& other);
+  Surface& operator=(Surface&& other) noexcept;
+  ~Surface();
 
   /// Builds a surface from vertex positions (#V by 3, A) and triangles (#F by 3, 0-based,
   /// counter-clockwise seen from outside). Throws InputError for an index out of range or a
@@ -54,11 +57,8 @@ class Surface {
                              const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                              const std::string& source = "<arrays>");
 
-  TriMesh& mesh() { return mesh_; }
-  const TriMesh& mesh() const { return mesh_; }
-
-  std::size_t n_vertices() const { return mesh_.n_vertices(); }
-  std::size_t n_faces() const { return mesh_.n_faces(); }
+  std::size_t n_vertices() const;
+  std::size_t n_faces() const;
 
   /// Vertex positions, #V by 3, A.
   Eigen::MatrixX3d positions() const;
@@ -68,12 +68,12 @@ class Surface {
   Eigen::MatrixX3d normals() const;
   void set_normals(const Eigen::Ref<const Eigen::MatrixX3d>& normals);
   /// True when normals were read from a file or computed; false after from_arrays().
-  bool has_normals() const { return has_normals_; }
+  bool has_normals() const;
   /// Area-weighted face normals averaged at the vertices, normalised.
   void compute_normals();
 
   /// Named scalar properties, in the order they were added (files are written in this order).
-  const std::vector<std::string>& property_names() const { return property_names_; }
+  const std::vector<std::string>& property_names() const;
   bool has_property(const std::string& name) const;
   /// A copy of property `name`, one value per vertex. Throws InputError if absent.
   Eigen::VectorXd property(const std::string& name) const;
@@ -86,25 +86,22 @@ class Surface {
   ValueType property_type(const std::string& name) const;
 
   /// Storage types of positions and normals in the file this came from (float64 otherwise).
-  ValueType position_type() const { return position_type_; }
-  ValueType normal_type() const { return normal_type_; }
-  void set_position_type(ValueType type) { position_type_ = type; }
-  void set_normal_type(ValueType type) { normal_type_ = type; }
+  ValueType position_type() const;
+  ValueType normal_type() const;
+  void set_position_type(ValueType type);
+  void set_normal_type(ValueType type);
 
   /// Where the surface came from (a file name, or "<arrays>"), for messages.
-  const std::string& source() const { return source_; }
-  void set_source(std::string source) { source_ = std::move(source); }
+  const std::string& source() const;
+  void set_source(std::string source);
 
  private:
-  OpenMesh::VPropHandleT<double> handle(const std::string& name) const;
+  friend struct detail::SurfaceAccess;
+  struct Impl;
+  const Impl& impl() const;
+  Impl& impl();
 
-  TriMesh mesh_;
-  std::vector<std::string> property_names_;
-  std::vector<ValueType> property_types_;
-  ValueType position_type_ = ValueType::float64;
-  ValueType normal_type_ = ValueType::float64;
-  bool has_normals_ = false;
-  std::string source_ = "<arrays>";
+  std::unique_ptr<Impl> impl_;  ///< null for an empty surface (default-constructed or moved from)
 };
 
 /// Applies the rigid motion x -> rotation * x + translation to every vertex and turns the
