@@ -156,7 +156,7 @@ std::vector<Variant> variants() {
     v.options.graph.overlap_tolerance_degrees = overlap;
     out.push_back(v);
   };
-  const matching::GraphParameters defaults;
+  const matching::GraphOptions defaults;
   // The library's defaults for sites: the pocket linings (vertices within 2 A of the site CPs)
   // overlaid on shape alone from the cliques' and 24 principal-axes starts.
   make("default", defaults.fuzzy_threshold, defaults.image_threshold, defaults.distance_tolerance,

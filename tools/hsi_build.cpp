@@ -47,11 +47,9 @@ int hsi_build(const std::vector<std::string>& args) {
       "critical point radius r_cp (on-surface), A")(
       "patch-radius", po::value(&options.patch.radius)->default_value(options.patch.radius),
       "patch radius (on-surface), A; about 5 for ligands, larger for protein sites")(
-      "grid-rings",
-      po::value(&options.image.radial_samples)->default_value(options.image.radial_samples),
+      "grid-rings", po::value(&options.image.rings)->default_value(options.image.rings),
       "image grid: rings of the polar grid")(
-      "grid-sectors",
-      po::value(&options.image.angular_samples)->default_value(options.image.angular_samples),
+      "grid-sectors", po::value(&options.image.sectors)->default_value(options.image.sectors),
       "image grid: samples per ring (180 = 2-degree rotation steps)")(
       "weights", po::value(&weights)->default_value("inverse-length"),
       "harmonic map spring weights: inverse-length (seed) | uniform | cotangent | mean-value")(
@@ -64,8 +62,8 @@ int hsi_build(const std::vector<std::string>& args) {
   finish_surface_options(input);
   require_in_range("radius", options.critical_points.radius, 1e-3, 100.0);
   require_in_range("patch-radius", options.patch.radius, 0.1, 100.0);
-  require_in_range("grid-rings", options.image.radial_samples, 1, 1024);
-  require_in_range("grid-sectors", options.image.angular_samples, 1, 4096);
+  require_in_range("grid-rings", options.image.rings, 1, 1024);
+  require_in_range("grid-sectors", options.image.sectors, 1, 4096);
   require_in_range("threads", threads, 0, 1024);
   options.disk_map.weights = parse_weights(weights);
   if (std::filesystem::path(output).extension() != ".hsi") {

@@ -124,8 +124,8 @@ bool same_options(const harmonic::DescriptorOptions& x, const harmonic::Descript
          x.critical_points.distance == y.critical_points.distance &&
          x.patch.radius == y.patch.radius && x.patch.margin == y.patch.margin &&
          x.patch.distance == y.patch.distance && x.disk_map.weights == y.disk_map.weights &&
-         x.image.radial_samples == y.image.radial_samples &&
-         x.image.angular_samples == y.image.angular_samples && x.image_property == y.image_property;
+         x.image.rings == y.image.rings && x.image.sectors == y.image.sectors &&
+         x.image_property == y.image_property;
 }
 
 nlohmann::json to_json(const matching::MatchResult& result, const matching::MatchOptions& options,
@@ -193,8 +193,8 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
             {"site_principal_axes_starts", options.site.principal_axes_starts},
             {"critical_point_radius", ref.descriptors.options.critical_points.radius},
             {"patch_radius", ref.descriptors.options.patch.radius},
-            {"image_rings", ref.descriptors.options.image.radial_samples},
-            {"image_sectors", ref.descriptors.options.image.angular_samples}}}};
+            {"image_rings", ref.descriptors.options.image.rings},
+            {"image_sectors", ref.descriptors.options.image.sectors}}}};
 }
 
 void write_aligned(const Side& probe, const Eigen::Matrix4d& transform, const std::string& output) {
