@@ -9,10 +9,11 @@
 // ligands top-1 >= 90 % and top-5 100 %; therm pairs above Open3DAlign; <= 1 s per ligand pair
 // from molecules, <= 50 ms from prebuilt descriptors (.hsi).
 //
-// Usage: overlay_bench [--quick] [--seed N] [--axes-starts N] [--threads N]
+// Usage: overlay_bench [--quick] [--seed N] [--principal-axes-starts N] [--threads N]
 //   --quick          1 pose per five-ligand pair and 20 therm pairs instead of 5 and 100
 //   --seed N         seed of the std::mt19937 drawing poses and therm pairs (default 20261122)
-//   --axes-starts N  MatchOptions::principal_axes_starts for our match (0, 4 or 24; default 24)
+//   --principal-axes-starts N
+//                    MatchOptions::principal_axes_starts for our match (0, 4 or 24; default 24)
 //   --threads N      worker threads for our match and descriptions (default all cores)
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
@@ -516,10 +517,11 @@ int main(int argc, char** argv) {
       quick = true;
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
-    } else if (arg == "--axes-starts" && i + 1 < argc) {
+    } else if (arg == "--principal-axes-starts" && i + 1 < argc) {
       const std::optional<long> n = whole_number(argv[++i]);
       if (!n || !matching::is_axes_start_count(static_cast<int>(*n))) {
-        std::fprintf(stderr, "overlay_bench: --axes-starts must be 0, 4 or 24, got '%s'\n",
+        std::fprintf(stderr,
+                     "overlay_bench: --principal-axes-starts must be 0, 4 or 24, got '%s'\n",
                      argv[i]);
         return 2;
       }
@@ -535,7 +537,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "overlay_bench: unknown argument '%s' (expected --quick, --seed N, "
-                   "--axes-starts N or --threads N)\n",
+                   "--principal-axes-starts N or --threads N)\n",
                    arg.c_str());
       return 2;
     }
