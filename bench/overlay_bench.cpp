@@ -392,10 +392,10 @@ void print_failures(const std::string& set, const std::vector<Trial>& trials) {
     if (t.ours.rmsd < kSuccessRmsd) continue;
     ++n;
     std::printf(
-        "  %s <- %s pose %d: top-1 %.2f A, best of top 5 %.2f A (rank %d), best of all %zu "
-        "alignments "
-        "%.2f A (rank %d); overlay score top-1 %.3f, true pose refined %.3f; O3A-MMFF %.2f A, "
-        "O3A-Crippen %.2f A%s%s\n",
+        "  %s <- %s pose %d: top-1 %.2f A, best of top 5 %.2f A (rank %d), "
+        "best of all %zu alignments %.2f A (rank %d); "
+        "overlay score top-1 %.3f, true pose refined %.3f; "
+        "O3A-MMFF %.2f A, O3A-Crippen %.2f A%s%s\n",
         t.reference.c_str(), t.probe.c_str(), t.pose, t.ours.rmsd, t.ours.best_top5,
         t.ours.best_rank, t.ours.alignments, t.ours.best_any, t.ours.best_any_rank,
         t.ours.top_score, t.ours.truth_score, t.mmff.rmsd, t.crippen.rmsd,
@@ -408,8 +408,7 @@ void print_failures(const std::string& set, const std::vector<Trial>& trials) {
   if (n > 0) {
     std::printf(
         "  of these %zu, %zu score the refined true pose above our top-1 (no candidate led there); "
-        "in %zu the "
-        "overlay score prefers a wrong pose\n",
+        "in %zu the overlay score prefers a wrong pose\n",
         n, missed, n - missed);
   }
   for (const Trial& t : trials) {
@@ -431,10 +430,10 @@ std::string percent(std::size_t k, std::size_t n) {
 
 void print_summary(const std::vector<Row>& rows) {
   std::printf(
-      "\nSummary (success: heavy-atom RMSD to the true position < %.0f A; median RMSD over all "
-      "trials, "
-      "a trial without an answer counted as +inf;\n times per pair, median (max), ms: from "
-      "molecules in memory, and from prebuilt descriptors = match only)\n",
+      "\nSummary (success: heavy-atom RMSD to the true position < %.0f A; "
+      "median RMSD over all trials, a trial without an answer counted as +inf;\n"
+      " times per pair, median (max), ms: from molecules in memory, "
+      "and from prebuilt descriptors = match only)\n",
       kSuccessRmsd);
   std::printf("%-12s %-12s %-16s %-16s %10s %18s %16s %8s\n", "set", "method", "top-1 success",
               "top-5 success", "med. RMSD", "from molecules", "from descriptors", "not run");
@@ -557,9 +556,8 @@ int main(int argc, char** argv) {
   const int poses_per_pair = quick ? 1 : 5;
   const std::size_t therm_pairs = quick ? 20 : 100;
   std::printf(
-      "overlay_bench: seed %u, %s run (%d pose(s) per five-ligand pair, %zu therm pairs), %u "
-      "hardware threads, "
-      "%s, %d principal-axes starts\n",
+      "overlay_bench: seed %u, %s run (%d pose(s) per five-ligand pair, %zu therm pairs), "
+      "%u hardware threads, %s, %d principal-axes starts\n",
       seed, quick ? "quick" : "full", poses_per_pair, therm_pairs,
       std::thread::hardware_concurrency(),
       threads > 0 ? ("--threads " + std::to_string(threads)).c_str() : "all used",

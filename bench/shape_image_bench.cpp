@@ -250,8 +250,8 @@ int main(int argc, char** argv) {
     return found == reporter.times_us.end() ? std::nan("") : found->second;
   };
   std::printf(
-      "\npatch: %lld vertices, %lld faces; its image has %d of 2880 points valid, %d of 16 rings "
-      "full\n",
+      "\npatch: %lld vertices, %lld faces; "
+      "its image has %d of 2880 points valid, %d of 16 rings full\n",
       static_cast<long long>(patch().uv.rows()), static_cast<long long>(patch().faces.rows()),
       cap_valid, cap_full_rings);
   std::printf(
