@@ -12,7 +12,8 @@ struct Renamed {
   const char* new_name;
 };
 
-/// Every option renamed so far. A subcommand accepts the former names of the options it has.
+/// Every option renamed so far (each takes a value: the former name is registered as one). A
+/// subcommand accepts the former names of the options it has.
 constexpr Renamed kRenamed[] = {
     {"fuzzy", "fuzzy-threshold"},                        // match
     {"hsi-r", "image-threshold"},                        // match
