@@ -9,10 +9,11 @@
 // ligands top-1 >= 90 % and top-5 100 %; therm pairs above Open3DAlign; <= 1 s per ligand pair
 // from molecules, <= 50 ms from prebuilt descriptors (.hsi).
 //
-// Usage: overlay_bench [--quick] [--seed N] [--axes-starts N] [--threads N]
+// Usage: overlay_bench [--quick] [--seed N] [--principal-axes-starts N] [--threads N]
 //   --quick          1 pose per five-ligand pair and 20 therm pairs instead of 5 and 100
 //   --seed N         seed of the std::mt19937 drawing poses and therm pairs (default 20261122)
-//   --axes-starts N  MatchOptions::principal_axes_starts for our match (0, 4 or 24; default 24)
+//   --principal-axes-starts N
+//                    MatchOptions::principal_axes_starts for our match (0, 4 or 24; default 24)
 //   --threads N      worker threads for our match and descriptions (default all cores)
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
@@ -391,10 +392,10 @@ void print_failures(const std::string& set, const std::vector<Trial>& trials) {
     if (t.ours.rmsd < kSuccessRmsd) continue;
     ++n;
     std::printf(
-        "  %s <- %s pose %d: top-1 %.2f A, best of top 5 %.2f A (rank %d), best of all %zu "
-        "alignments "
-        "%.2f A (rank %d); overlay score top-1 %.3f, true pose refined %.3f; O3A-MMFF %.2f A, "
-        "O3A-Crippen %.2f A%s%s\n",
+        "  %s <- %s pose %d: top-1 %.2f A, best of top 5 %.2f A (rank %d), "
+        "best of all %zu alignments %.2f A (rank %d); "
+        "overlay score top-1 %.3f, true pose refined %.3f; "
+        "O3A-MMFF %.2f A, O3A-Crippen %.2f A%s%s\n",
         t.reference.c_str(), t.probe.c_str(), t.pose, t.ours.rmsd, t.ours.best_top5,
         t.ours.best_rank, t.ours.alignments, t.ours.best_any, t.ours.best_any_rank,
         t.ours.top_score, t.ours.truth_score, t.mmff.rmsd, t.crippen.rmsd,
@@ -407,8 +408,7 @@ void print_failures(const std::string& set, const std::vector<Trial>& trials) {
   if (n > 0) {
     std::printf(
         "  of these %zu, %zu score the refined true pose above our top-1 (no candidate led there); "
-        "in %zu the "
-        "overlay score prefers a wrong pose\n",
+        "in %zu the overlay score prefers a wrong pose\n",
         n, missed, n - missed);
   }
   for (const Trial& t : trials) {
@@ -430,10 +430,10 @@ std::string percent(std::size_t k, std::size_t n) {
 
 void print_summary(const std::vector<Row>& rows) {
   std::printf(
-      "\nSummary (success: heavy-atom RMSD to the true position < %.0f A; median RMSD over all "
-      "trials, "
-      "a trial without an answer counted as +inf;\n times per pair, median (max), ms: from "
-      "molecules in memory, and from prebuilt descriptors = match only)\n",
+      "\nSummary (success: heavy-atom RMSD to the true position < %.0f A; "
+      "median RMSD over all trials, a trial without an answer counted as +inf;\n"
+      " times per pair, median (max), ms: from molecules in memory, "
+      "and from prebuilt descriptors = match only)\n",
       kSuccessRmsd);
   std::printf("%-12s %-12s %-16s %-16s %10s %18s %16s %8s\n", "set", "method", "top-1 success",
               "top-5 success", "med. RMSD", "from molecules", "from descriptors", "not run");
@@ -516,10 +516,11 @@ int main(int argc, char** argv) {
       quick = true;
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = static_cast<unsigned>(std::strtoul(argv[++i], nullptr, 10));
-    } else if (arg == "--axes-starts" && i + 1 < argc) {
+    } else if (arg == "--principal-axes-starts" && i + 1 < argc) {
       const std::optional<long> n = whole_number(argv[++i]);
       if (!n || !matching::is_axes_start_count(static_cast<int>(*n))) {
-        std::fprintf(stderr, "overlay_bench: --axes-starts must be 0, 4 or 24, got '%s'\n",
+        std::fprintf(stderr,
+                     "overlay_bench: --principal-axes-starts must be 0, 4 or 24, got '%s'\n",
                      argv[i]);
         return 2;
       }
@@ -535,7 +536,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "overlay_bench: unknown argument '%s' (expected --quick, --seed N, "
-                   "--axes-starts N or --threads N)\n",
+                   "--principal-axes-starts N or --threads N)\n",
                    arg.c_str());
       return 2;
     }
@@ -555,9 +556,8 @@ int main(int argc, char** argv) {
   const int poses_per_pair = quick ? 1 : 5;
   const std::size_t therm_pairs = quick ? 20 : 100;
   std::printf(
-      "overlay_bench: seed %u, %s run (%d pose(s) per five-ligand pair, %zu therm pairs), %u "
-      "hardware threads, "
-      "%s, %d principal-axes starts\n",
+      "overlay_bench: seed %u, %s run (%d pose(s) per five-ligand pair, %zu therm pairs), "
+      "%u hardware threads, %s, %d principal-axes starts\n",
       seed, quick ? "quick" : "full", poses_per_pair, therm_pairs,
       std::thread::hardware_concurrency(),
       threads > 0 ? ("--threads " + std::to_string(threads)).c_str() : "all used",

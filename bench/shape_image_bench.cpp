@@ -86,8 +86,8 @@ ShapeImage random_masked_image(double density, unsigned seed) {
   std::mt19937 generator(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   ShapeImage image;
-  image.radial_samples = 16;
-  image.angular_samples = 180;
+  image.rings = 16;
+  image.sectors = 180;
   image.values = Eigen::VectorXd::Zero(2880);
   image.valid.assign(2880, 0);
   image.face = Eigen::VectorXi::Constant(2880, -1);
@@ -104,11 +104,11 @@ ShapeImage random_masked_image(double density, unsigned seed) {
 /// The correlations for all rotations evaluated directly (180 shifts x 2,880 points, one pass
 /// accumulating the six weighted sums): the reference the FFT comparison replaces.
 double direct_best_correlation(const ShapeImage& a, const ShapeImage& b) {
-  const int n = a.angular_samples;
+  const int n = a.sectors;
   double best = -1.0;
   for (int s = 0; s < n; ++s) {
     double w_sum = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-    for (int r = 0; r < a.radial_samples; ++r) {
+    for (int r = 0; r < a.rings; ++r) {
       const double w = r + 0.5;
       for (int j = 0; j < n; ++j) {
         const int ia = r * n + j, ib = r * n + (j + s) % n;
@@ -250,8 +250,8 @@ int main(int argc, char** argv) {
     return found == reporter.times_us.end() ? std::nan("") : found->second;
   };
   std::printf(
-      "\npatch: %lld vertices, %lld faces; its image has %d of 2880 points valid, %d of 16 rings "
-      "full\n",
+      "\npatch: %lld vertices, %lld faces; "
+      "its image has %d of 2880 points valid, %d of 16 rings full\n",
       static_cast<long long>(patch().uv.rows()), static_cast<long long>(patch().faces.rows()),
       cap_valid, cap_full_rings);
   std::printf(

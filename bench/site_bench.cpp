@@ -122,8 +122,8 @@ struct PairResult {
   std::size_t a = 0, b = 0;
   bool same = false;           ///< the same ligand type
   std::size_t alignments = 0;  ///< alignments found (cliques' and principal axes')
-  std::size_t pairs =
-      0;  ///< critical-point pairs of the top-1 alignment (0: none, or from the axes)
+  /// Critical-point pairs of the top-1 alignment (0: none, or from the axes).
+  std::size_t pairs = 0;
   std::size_t points = 0;          ///< its corresponding surface points
   double r_chem = 0;               ///< its ESP correlation at those points
   matching::OverlayScore overlay;  ///< its whole-site overlay scores (0 when not refined)
@@ -156,7 +156,7 @@ std::vector<Variant> variants() {
     v.options.graph.overlap_tolerance_degrees = overlap;
     out.push_back(v);
   };
-  const matching::GraphParameters defaults;
+  const matching::GraphOptions defaults;
   // The library's defaults for sites: the pocket linings (vertices within 2 A of the site CPs)
   // overlaid on shape alone from the cliques' and 24 principal-axes starts.
   make("default", defaults.fuzzy_threshold, defaults.image_threshold, defaults.distance_tolerance,
@@ -392,8 +392,8 @@ int main(int argc, char** argv) {
           results, sites.size(), [](const PairResult& r) { return r.overlay.shape; }, 20261122u,
           300);
       std::printf(
-          "AUC overlay_shape, 95 %% interval over 300 site resamples (seed 20261122): %.3f - "
-          "%.3f\n",
+          "AUC overlay_shape, 95 %% interval over 300 site resamples (seed 20261122): "
+          "%.3f - %.3f\n",
           low, high);
       std::printf("site build (read, surface, site descriptors): median %.0f ms, max %.0f ms\n",
                   median(build_ms), *std::max_element(build_ms.begin(), build_ms.end()));

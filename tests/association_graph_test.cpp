@@ -130,8 +130,8 @@ TEST(AssociationGraph, FuzzyFilterKeepsPairsSimilarInBothPropertiesAndSkipsMissi
 // A fully valid polar image whose value at ring r, sector s is f(r, angle of s).
 harmonic::ShapeImage polar_image(double (*f)(int ring, double radians), int shift_sectors = 0) {
   harmonic::ShapeImage image;
-  image.radial_samples = 16;
-  image.angular_samples = 180;
+  image.rings = 16;
+  image.sectors = 180;
   const int n = 16 * 180;
   image.values.resize(n);
   image.valid.assign(static_cast<std::size_t>(n), 1);
@@ -334,7 +334,7 @@ TEST(AssociationGraph, IdentityPairsOfAMovedCopySurviveEveryFilterAndFormOneCliq
   EXPECT_EQ(missing, 0u);
   EXPECT_GT(expected_edges, 100u);
   // With d_min 0 every two identity nodes are joined, and they form one maximal clique.
-  matching::GraphParameters no_min_distance;
+  matching::GraphOptions no_min_distance;
   no_min_distance.min_distance = 0.0;
   const auto close_graph = matching::build_association_graph(a, b, no_min_distance);
   std::vector<int> close_identity;
@@ -478,9 +478,9 @@ TEST(AssociationGraph, ThermolysinLigandsTraceBesideTheThesis) {
       true_r.size(), quantile(true_r, 0.1), quantile(true_r, 0.5), quantile(true_r, 0.9),
       other_r.size(), quantile(other_r, 0.1), quantile(other_r, 0.5), quantile(other_r, 0.9));
   std::size_t true_kept = 0;
-  for (const double r : true_r) true_kept += r >= matching::GraphParameters{}.image_threshold;
+  for (const double r : true_r) true_kept += r >= matching::GraphOptions{}.image_threshold;
   std::printf("[ image R  ] default R %.2f keeps %zu of %zu true pairs\n",
-              matching::GraphParameters{}.image_threshold, true_kept, true_r.size());
+              matching::GraphOptions{}.image_threshold, true_kept, true_r.size());
   EXPECT_GT(quantile(true_r, 0.5), quantile(other_r, 0.5));
 }
 

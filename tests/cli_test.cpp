@@ -1,6 +1,9 @@
 // The surfcomp program as a user runs it: the match output contract (result.json), the aligned
-// PROBE, and bad input giving a one-line error, a non-zero exit and no output file.
+// PROBE, bad input giving a one-line error, a non-zero exit and no output file, and the former
+// names of renamed options.
 #include "test_data.hpp"
+
+#include "surfcomp/harmonic/io/hsi_file.hpp"
 
 #include <Eigen/Dense>
 
@@ -26,7 +29,8 @@ struct ProgramRun {
 };
 
 ProgramRun run(const std::string& arguments) {
-  const fs::path err = fs::temp_directory_path() / "surfcomp_cli_stderr.txt";
+  const fs::path err =
+      fs::temp_directory_path() / ("surfcomp_cli_stderr_" + std::to_string(::getpid()) + ".txt");
   const std::string command = kProgram.string() + " " + arguments + " >/dev/null 2>" + err.string();
   const int raw = std::system(command.c_str());
   ProgramRun r;
@@ -183,10 +187,11 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
       {"match " + hsi_a.string() + " " + hsi_b.string(), "different parameters"},
       {"match " + ligand.string() + " " + ligand.string() + " --site-sphere 1,2", "x,y,z,r"},
       {"match " + ligand.string(), "REF and PROBE"},
-      {"surf-build " + ligand.string() + " --probe nan", "probe"},
-      {"match " + ligand.string() + " " + ligand.string() + " --axes-starts 5", "axes-starts"},
-      {"match " + ligand.string() + " " + ligand.string() + " --site-axes-starts 3",
-       "site-axes-starts"},
+      {"surf-build " + ligand.string() + " --probe-radius nan", "probe-radius"},
+      {"match " + ligand.string() + " " + ligand.string() + " --principal-axes-starts 5",
+       "principal-axes-starts"},
+      {"match " + ligand.string() + " " + ligand.string() + " --site-principal-axes-starts 3",
+       "site-principal-axes-starts"},
       {"match " + ligand.string() + " " + ligand.string() + " --site-overlay-radius 0",
        "site-overlay-radius"},
       {"match " + ligand.string() + " " + ligand.string() + " --site-chem-weight -1",
@@ -203,6 +208,141 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.arguments << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "not one line: " << r.err;
     EXPECT_FALSE(fs::exists(json)) << c.arguments;
+  }
+}
+
+/// What `surfcomp ARGUMENTS` prints on stdout.
+std::string program_output(const std::string& arguments) {
+  std::string text;
+  FILE* pipe = ::popen((kProgram.string() + " " + arguments + " 2>/dev/null").c_str(), "r");
+  if (pipe == nullptr) return text;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) text.append(buffer, n);
+  ::pclose(pipe);
+  return text;
+}
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+/// The renamed options and their former names (tools/options.cpp), as a subcommand takes them.
+struct Renamed {
+  const char* old_name;
+  const char* new_name;
+  const char* value;
+};
+
+// The options renamed so that a flag, its field and its JSON key say the same thing: the new
+// names work; each former name still works, sets the same option and prints one deprecation
+// note; giving both names is a syntax error; --help lists only the new names.
+TEST(Cli, RenamedOptionsKeepTheirFormerNamesAsDeprecatedAliases) {
+  SURFCOMP_SHARED_OR_SKIP(ligand, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  const test::TempDir dir;
+  const Renamed build_options[] = {{"grid-rings", "image-rings", "12"},
+                                   {"grid-sectors", "image-sectors", "90"},
+                                   {"radius", "critical-point-radius", "2.4"},
+                                   {"probe", "probe-radius", "1.3"}};
+  const Renamed match_options[] = {{"fuzzy", "fuzzy-threshold", "0.25"},
+                                   {"hsi-r", "image-threshold", "0.45"},
+                                   {"axes-starts", "principal-axes-starts", "4"},
+                                   {"site-axes-starts", "site-principal-axes-starts", "0"}};
+  const auto flags = [](const auto& options, bool former) {
+    std::string text;
+    for (const Renamed& o : options)
+      text += std::string(" --") + (former ? o.old_name : o.new_name) + " " + o.value;
+    return text;
+  };
+  const auto note = [](const Renamed& o) {
+    return std::string("note: --") + o.old_name + " is deprecated; use --" + o.new_name + "\n";
+  };
+
+  // hsi-build: the same .hsi file, byte for byte, under either names.
+  const fs::path new_hsi = dir / "new.hsi", old_hsi = dir / "old.hsi";
+  const ProgramRun build_new =
+      run("hsi-build " + ligand.string() + " -o " + new_hsi.string() + flags(build_options, false));
+  ASSERT_EQ(build_new.status, 0) << build_new.err;
+  EXPECT_EQ(build_new.err, "");
+  const ProgramRun build_old =
+      run("hsi-build " + ligand.string() + " -o " + old_hsi.string() + flags(build_options, true));
+  ASSERT_EQ(build_old.status, 0) << build_old.err;
+  std::string notes;
+  for (const Renamed& o : build_options) notes += note(o);
+  EXPECT_EQ(build_old.err, notes);
+  EXPECT_EQ(file_bytes(new_hsi), file_bytes(old_hsi));
+  const harmonic::SurfaceDescriptors built = harmonic::io::read_hsi(new_hsi);
+  EXPECT_EQ(built.options.image.rings, 12);
+  EXPECT_EQ(built.options.image.sectors, 90);
+  EXPECT_EQ(built.options.critical_points.radius, 2.4);
+
+  // match: the same parameters and alignments under either names.
+  const fs::path new_json = dir / "new.json", old_json = dir / "old.json";
+  const std::string inputs = new_hsi.string() + " " + new_hsi.string();
+  const ProgramRun match_new =
+      run("match " + inputs + " -o " + new_json.string() + flags(match_options, false));
+  ASSERT_EQ(match_new.status, 0) << match_new.err;
+  EXPECT_EQ(match_new.err, "");
+  const ProgramRun match_old =
+      run("match " + inputs + " -o " + old_json.string() + flags(match_options, true));
+  ASSERT_EQ(match_old.status, 0) << match_old.err;
+  notes.clear();
+  for (const Renamed& o : match_options) notes += note(o);
+  EXPECT_EQ(match_old.err, notes);
+  std::ifstream new_in(new_json), old_in(old_json);
+  const nlohmann::json by_new = nlohmann::json::parse(new_in),
+                       by_old = nlohmann::json::parse(old_in);
+  EXPECT_EQ(by_new["parameters"], by_old["parameters"]);
+  EXPECT_EQ(by_new["alignments"], by_old["alignments"]);
+  const nlohmann::json& parameters = by_new["parameters"];
+  EXPECT_EQ(parameters["fuzzy_threshold"], 0.25);
+  EXPECT_EQ(parameters["image_threshold"], 0.45);
+  EXPECT_EQ(parameters["principal_axes_starts"], 4);
+  EXPECT_EQ(parameters["site_principal_axes_starts"], 0);
+  EXPECT_EQ(parameters["image_rings"], 12);
+  EXPECT_EQ(parameters["image_sectors"], 90);
+  EXPECT_EQ(parameters["critical_point_radius"], 2.4);
+
+  // cp-detect and surf-build take their renamed options' former names too.
+  const ProgramRun detect = run("cp-detect " + ligand.string() + " -o " +
+                                (dir / "cps.json").string() + " --radius 2.4 --probe 1.3");
+  EXPECT_EQ(detect.status, 0) << detect.err;
+  EXPECT_EQ(detect.err, note(build_options[2]) + note(build_options[3]));
+
+  // Both names of one option: refused before any work, one line, exit 2, no output.
+  const auto expect_refused = [&](const std::string& command, const std::string& arguments,
+                                  const fs::path& output, const Renamed& o) {
+    const ProgramRun r = run(command + " " + arguments + " -o " + output.string() + " --" +
+                             o.old_name + " " + o.value + " --" + o.new_name + " " + o.value);
+    EXPECT_EQ(r.status, 2) << o.old_name << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "not one line: " << r.err;
+    const std::string expected =
+        std::string("--") + o.old_name + " is the former name of --" + o.new_name;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(output)) << o.old_name;
+  };
+  for (const Renamed& o : build_options) {
+    expect_refused("hsi-build", ligand.string(), dir / "refused.hsi", o);
+  }
+  for (const Renamed& o : match_options) {
+    expect_refused("match", inputs, dir / "refused.json", o);
+  }
+  expect_refused("cp-detect", ligand.string(), dir / "refused.json", build_options[2]);
+  expect_refused("surf-build", ligand.string(), dir / "refused.ply", build_options[3]);
+
+  // --help shows the new names only.
+  for (const auto& [command, options] :
+       {std::pair<const char*, const Renamed*>{"hsi-build", build_options},
+        std::pair<const char*, const Renamed*>{"match", match_options}}) {
+    const std::string help = program_output(std::string(command) + " --help");
+    ASSERT_NE(help.find("--help"), std::string::npos) << command;
+    for (int i = 0; i < 4; ++i) {
+      const Renamed& o = options[i];
+      EXPECT_NE(help.find(std::string("--") + o.new_name + " "), std::string::npos) << o.new_name;
+      EXPECT_EQ(help.find(std::string("--") + o.old_name + " "), std::string::npos) << o.old_name;
+    }
   }
 }
 

@@ -44,7 +44,7 @@ double longest_edge_at(const Surface& surface, int vertex) {
 void expect_separated(const Surface& surface, const std::vector<CriticalPoint>& cps,
                       double radius) {
   for (const auto& a : cps) {
-    const Eigen::VectorXd d = edge_geodesic_distances(surface, a.vertex, radius);
+    const Eigen::VectorXd d = geodesic_distances(surface, a.vertex, {radius});
     for (const auto& b : cps) {
       if (b.vertex != a.vertex && b.type == a.type) {
         EXPECT_FALSE(std::isfinite(d(b.vertex)))
@@ -135,7 +135,7 @@ TEST(DetectCriticalPoints, SphereWithEqualCurvatureFollowsTheLowerIndexRule) {
   // The greedy packing in index order, computed directly, is the same set.
   std::vector<int> greedy;
   for (int v = 0; v < static_cast<int>(n); ++v) {
-    const Eigen::VectorXd d = edge_geodesic_distances(sphere, v, options.radius);
+    const Eigen::VectorXd d = geodesic_distances(sphere, v, {options.radius});
     bool lowest = true;
     for (int u = 0; u < v && lowest; ++u) lowest = !std::isfinite(d(u));
     if (lowest) greedy.push_back(v);

@@ -22,10 +22,10 @@ int nearest_vertex(const Surface& surface, const Eigen::Vector3d& point) {
   return static_cast<int>(best);
 }
 
-TEST(EdgeGeodesicDistances, FlatDiskIsAFewPercentLongerThanEuclidean) {
+TEST(GeodesicDistances, FlatDiskIsAFewPercentLongerThanEuclidean) {
   const Surface disk = test::disk(5.0, 20);  // 1,261 vertices, edges about 0.25 A
   const Eigen::MatrixX3d p = disk.positions();
-  const Eigen::VectorXd d = edge_geodesic_distances(disk, 0);
+  const Eigen::VectorXd d = geodesic_distances(disk, 0);
   ASSERT_EQ(d.size(), p.rows());
   EXPECT_EQ(d(0), 0.0);
   double max_stretch = 0.0, mean_stretch = 0.0;
@@ -47,14 +47,14 @@ TEST(EdgeGeodesicDistances, FlatDiskIsAFewPercentLongerThanEuclidean) {
   EXPECT_NEAR(d(rim), 5.0, 1e-12);
 }
 
-TEST(EdgeGeodesicDistances, IcosphereAntipodeIsNearHalfTheGreatCircle) {
+TEST(GeodesicDistances, IcosphereAntipodeIsNearHalfTheGreatCircle) {
   for (const int frequency : {8, 16}) {
     const double r = 3.0;
     const Surface sphere = test::icosphere(r, frequency);
     const Eigen::Vector3d p0 = sphere.positions().row(0).transpose();
     const int antipode = nearest_vertex(sphere, -p0);
     ASSERT_LT((sphere.positions().row(antipode).transpose() + p0).norm(), 1e-9);
-    const Eigen::VectorXd d = edge_geodesic_distances(sphere, 0);
+    const Eigen::VectorXd d = geodesic_distances(sphere, 0);
     const double ratio = d(antipode) / (M_PI * r);
     std::cout << "icosphere r 3, frequency " << frequency << " (" << sphere.n_vertices()
               << " vertices): antipode distance / (pi r) = " << ratio << "\n";
@@ -82,11 +82,10 @@ TEST(EdgeGeodesicDistances, IcosphereAntipodeIsNearHalfTheGreatCircle) {
   }
 }
 
-TEST(EdgeGeodesicDistances, FastMarchingIsNearlyExactOnAPlaneAndASphere) {
+TEST(GeodesicDistances, FastMarchingIsNearlyExactOnAPlaneAndASphere) {
   const Surface disk = test::disk(5.0, 20);
   const Eigen::MatrixX3d p = disk.positions();
-  const Eigen::VectorXd d =
-      edge_geodesic_distances(disk, 0, infinity, GeodesicMethod::fast_marching);
+  const Eigen::VectorXd d = geodesic_distances(disk, 0, {infinity, GeodesicMethod::fast_marching});
   double max_error = 0.0;
   for (Eigen::Index v = 1; v < p.rows(); ++v) {
     max_error = std::max(max_error, std::abs(d(v) / p.row(v).norm() - 1.0));
@@ -98,7 +97,7 @@ TEST(EdgeGeodesicDistances, FastMarchingIsNearlyExactOnAPlaneAndASphere) {
   const Surface sphere = test::icosphere(r, 16);
   const Eigen::Vector3d p0 = sphere.positions().row(0).transpose();
   const Eigen::VectorXd s =
-      edge_geodesic_distances(sphere, 0, infinity, GeodesicMethod::fast_marching);
+      geodesic_distances(sphere, 0, {infinity, GeodesicMethod::fast_marching});
   double mean_error = 0.0, max_sphere_error = 0.0;
   int far = 0;
   for (Eigen::Index v = 0; v < s.size(); ++v) {
@@ -116,11 +115,11 @@ TEST(EdgeGeodesicDistances, FastMarchingIsNearlyExactOnAPlaneAndASphere) {
   EXPECT_LT(max_sphere_error, 0.04);
 }
 
-TEST(EdgeGeodesicDistances, BoundedRunsAgreeWithUnboundedWithinTheBound) {
+TEST(GeodesicDistances, BoundedRunsAgreeWithUnboundedWithinTheBound) {
   const Surface sphere = test::icosphere(4.0, 10);
-  const Eigen::VectorXd full = edge_geodesic_distances(sphere, 17);
+  const Eigen::VectorXd full = geodesic_distances(sphere, 17);
   for (const double bound : {0.0, 0.5, 2.5, 5.0, 30.0}) {
-    const Eigen::VectorXd bounded = edge_geodesic_distances(sphere, 17, bound);
+    const Eigen::VectorXd bounded = geodesic_distances(sphere, 17, {bound});
     int inside = 0;
     for (Eigen::Index v = 0; v < full.size(); ++v) {
       if (full(v) <= bound) {
@@ -145,10 +144,10 @@ TEST(GeodesicSolver, ReusedSolverMatchesTheFreeFunction) {
   GeodesicSolver marching(torus, GeodesicMethod::fast_marching);
   for (const int source : {0, 5, 400, 863, 5}) {
     for (const double bound : {1.0, 3.0, infinity}) {
-      const Eigen::VectorXd expected = edge_geodesic_distances(torus, source, bound);
+      const Eigen::VectorXd expected = geodesic_distances(torus, source, {bound});
       const auto got = solver.within(source, bound);
       const Eigen::VectorXd expected_fm =
-          edge_geodesic_distances(torus, source, bound, GeodesicMethod::fast_marching);
+          geodesic_distances(torus, source, {bound, GeodesicMethod::fast_marching});
       const auto got_fm = marching.within(source, bound);
       for (const auto& [v, d] : got_fm) {
         EXPECT_EQ(d, expected_fm(v));
@@ -175,7 +174,7 @@ TEST(GeodesicSolver, AllowedMaskConfinesThePaths) {
   std::vector<char> allowed(disk.n_vertices(), 0);
   for (Eigen::Index v = 0; v < p.rows(); ++v) allowed[static_cast<std::size_t>(v)] = p(v, 1) >= 0.0;
   GeodesicSolver solver(disk);
-  const Eigen::VectorXd free = edge_geodesic_distances(disk, 0);
+  const Eigen::VectorXd free = geodesic_distances(disk, 0);
   const auto confined = solver.within(0, infinity, &allowed);
   std::size_t allowed_count = 0;
   for (const char a : allowed) allowed_count += a != 0;
@@ -189,19 +188,19 @@ TEST(GeodesicSolver, AllowedMaskConfinesThePaths) {
   EXPECT_EQ(solver.within(0, infinity).size(), disk.n_vertices());
 }
 
-TEST(EdgeGeodesicDistances, RejectsBadInput) {
+TEST(GeodesicDistances, RejectsBadInput) {
   const Surface sphere = test::icosphere(1.0, 2);
-  EXPECT_THROW(edge_geodesic_distances(sphere, -1), InputError);
-  EXPECT_THROW(edge_geodesic_distances(sphere, static_cast<int>(sphere.n_vertices())), InputError);
-  EXPECT_THROW(edge_geodesic_distances(sphere, 0, -1.0), OptionError);
-  EXPECT_THROW(edge_geodesic_distances(sphere, 0, std::nan("")), OptionError);
-  EXPECT_THROW(edge_geodesic_distances(Surface(), 0), TopologyError);
+  EXPECT_THROW(geodesic_distances(sphere, -1), InputError);
+  EXPECT_THROW(geodesic_distances(sphere, static_cast<int>(sphere.n_vertices())), InputError);
+  EXPECT_THROW(geodesic_distances(sphere, 0, {-1.0}), OptionError);
+  EXPECT_THROW(geodesic_distances(sphere, 0, {std::nan("")}), OptionError);
+  EXPECT_THROW(geodesic_distances(Surface(), 0), TopologyError);
   EXPECT_THROW(GeodesicSolver{Surface()}, TopologyError);
   GeodesicSolver solver(sphere);
   const std::vector<char> short_mask(3, 1);
   EXPECT_THROW(solver.within(0, 1.0, &short_mask), InputError);
   try {
-    edge_geodesic_distances(sphere, 999);
+    geodesic_distances(sphere, 999);
     FAIL() << "no exception";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("icosphere"), std::string::npos) << e.what();

@@ -432,7 +432,7 @@ TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   expect_named(o, "site.principal_axes_starts");
 
   harmonic::SurfaceDescriptors a, b;
-  b.options.image.radial_samples = a.options.image.radial_samples + 1;
+  b.options.image.rings = a.options.image.rings + 1;
   EXPECT_THROW(matching::match_surfaces(a, b), InputError);
   matching::MatchOptions bad;
   bad.min_clique_size = 0;

@@ -71,8 +71,8 @@ Eigen::VectorXd field_values(const Eigen::MatrixX2d& uv, double (*f)(double, dou
 
 int valid_count(const ShapeImage& image, int ring) {
   int count = 0;
-  for (int j = 0; j < image.angular_samples; ++j)
-    count += image.valid[static_cast<std::size_t>(ring * image.angular_samples + j)];
+  for (int j = 0; j < image.sectors; ++j)
+    count += image.valid[static_cast<std::size_t>(ring * image.sectors + j)];
   return count;
 }
 
@@ -80,7 +80,7 @@ int valid_count(const ShapeImage& image, int ring) {
 /// correlation (weight k + 0.5 on ring k) of a_j and b_(j+s) over the points valid in both,
 /// two-pass (means first), -1 below min_overlap points, 0 for a constant image.
 RotationProfile naive_profile(const ShapeImage& a, const ShapeImage& b, int min_overlap) {
-  const int rings = a.radial_samples, n = a.angular_samples;
+  const int rings = a.rings, n = a.sectors;
   RotationProfile profile;
   profile.correlation.resize(n);
   profile.overlap.resize(n);
@@ -125,8 +125,8 @@ RotationProfile naive_profile(const ShapeImage& a, const ShapeImage& b, int min_
 ShapeImage random_image(int rings, int n, double density, std::mt19937& generator) {
   std::uniform_real_distribution<double> value(-1.0, 1.0), unit(0.0, 1.0);
   ShapeImage image;
-  image.radial_samples = rings;
-  image.angular_samples = n;
+  image.rings = rings;
+  image.sectors = n;
   image.values = Eigen::VectorXd::Zero(rings * n);
   image.valid.assign(static_cast<std::size_t>(rings * n), 0);
   image.face = Eigen::VectorXi::Constant(rings * n, -1);
@@ -149,8 +149,8 @@ ShapeImage random_image(int rings, int n, double density, std::mt19937& generato
 
 TEST(ShapeImage, GridPointsLieOnRingsAtTwoDegreeSteps) {
   const ImageOptions options;
-  EXPECT_EQ(options.radial_samples, 16);
-  EXPECT_EQ(options.angular_samples, 180);
+  EXPECT_EQ(options.rings, 16);
+  EXPECT_EQ(options.sectors, 180);
   // Grid point 5 * 180 + 45: ring 5 (radius 5.5 / 16), sector 45 (90 degrees).
   const Eigen::Vector2d p = image_grid_point(options, 5 * 180 + 45);
   EXPECT_NEAR(p.x(), 0.0, 1e-15);
@@ -410,8 +410,8 @@ TEST(ShapeImage, CorrelationIsAreaWeighted) {
   // both weighted variances are 16: R = 0.5 (unweighted it would be 0). Shift 1 flips both
   // rings: R = -0.5. Shift 2 ties with shift 0; the smallest shift wins.
   ShapeImage a;
-  a.radial_samples = 2;
-  a.angular_samples = 4;
+  a.rings = 2;
+  a.sectors = 4;
   a.values.resize(8);
   a.values << 1, -1, 1, -1, 1, -1, 1, -1;
   a.valid.assign(8, 1);
@@ -434,15 +434,15 @@ TEST(ShapeImage, TiesAndDegenerateImages) {
   const DiskPatch patch = unit_disk_patch(8);
   // An image constant on each ring (value ring^2) matches itself at every rotation: the sums
   // are equal for all shifts up to FFT round-off, and shift 0 wins the tie.
-  ShapeImage rings;
-  rings.radial_samples = 16;
-  rings.angular_samples = 180;
-  rings.values.resize(2880);
-  for (int i = 0; i < 2880; ++i) rings.values(i) = (i / 180) * (i / 180);
-  rings.valid.assign(2880, 1);
-  rings.face = Eigen::VectorXi::Constant(2880, -1);
-  rings.barycentric = Eigen::MatrixX3d::Zero(2880, 3);
-  const ImageMatch tie = compare_images(rings, rings);
+  ShapeImage by_ring;
+  by_ring.rings = 16;
+  by_ring.sectors = 180;
+  by_ring.values.resize(2880);
+  for (int i = 0; i < 2880; ++i) by_ring.values(i) = (i / 180) * (i / 180);
+  by_ring.valid.assign(2880, 1);
+  by_ring.face = Eigen::VectorXi::Constant(2880, -1);
+  by_ring.barycentric = Eigen::MatrixX3d::Zero(2880, 3);
+  const ImageMatch tie = compare_images(by_ring, by_ring);
   EXPECT_EQ(tie.shift, 0);
   EXPECT_NEAR(tie.correlation, 1.0, 1e-12);
   Eigen::VectorXd radial(patch.uv.rows());

@@ -90,21 +90,24 @@ int cp_detect(const std::vector<std::string>& args) {
   SurfaceInput input;
   mesh::CriticalPointOptions cp_options;
   po::options_description described("options");
-  described.add_options()("help,h", "print this help")("output,o", po::value(&output)->required(),
-                                                       "critical points as JSON")(
-      "points-out", po::value(&points_out), "also write the points for viewing: .pdb or .ply")(
-      "radius", po::value(&cp_options.radius)->default_value(cp_options.radius),
-      "on-surface radius r_cp, A")(
-      "disc-radius",
-      po::value(&cp_options.property_disc_radius)->default_value(cp_options.property_disc_radius),
-      "geodesic disc over which shape index, ESP and LP are averaged, A");
+  // clang-format off
+  described.add_options()
+      ("help,h", "print this help")
+      ("output,o", po::value(&output)->required(), "critical points as JSON")
+      ("points-out", po::value(&points_out), "also write the points for viewing: .pdb or .ply")
+      ("critical-point-radius", po::value(&cp_options.radius)->default_value(cp_options.radius),
+       "critical point radius r_cp (on-surface), A")
+      ("disc-radius",
+       po::value(&cp_options.property_disc_radius)->default_value(cp_options.property_disc_radius),
+       "geodesic disc over which shape index, ESP and LP are averaged, A");
+  // clang-format on
   add_surface_options(described, input);
   po::variables_map vm;
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   finish_surface_options(input);
-  require_in_range("radius", cp_options.radius, 1e-3, 100.0);
+  require_in_range("critical-point-radius", cp_options.radius, 1e-3, 100.0);
   require_in_range("disc-radius", cp_options.property_disc_radius, 0.0, 100.0);
   const std::string points_extension = std::filesystem::path(points_out).extension().string();
   if (!points_out.empty() && points_extension != ".pdb" && points_extension != ".ply") {

@@ -40,32 +40,33 @@ int hsi_build(const std::vector<std::string>& args) {
   SurfaceInput input;
   harmonic::DescriptorOptions options;
   po::options_description described("options");
-  described.add_options()("help,h", "print this help")("output,o", po::value(&output)->required(),
-                                                       "output .hsi file")(
-      "radius",
-      po::value(&options.critical_points.radius)->default_value(options.critical_points.radius),
-      "critical point radius r_cp (on-surface), A")(
-      "patch-radius", po::value(&options.patch.radius)->default_value(options.patch.radius),
-      "patch radius (on-surface), A; about 5 for ligands, larger for protein sites")(
-      "grid-rings",
-      po::value(&options.image.radial_samples)->default_value(options.image.radial_samples),
-      "image grid: rings of the polar grid")(
-      "grid-sectors",
-      po::value(&options.image.angular_samples)->default_value(options.image.angular_samples),
-      "image grid: samples per ring (180 = 2-degree rotation steps)")(
-      "weights", po::value(&weights)->default_value("inverse-length"),
-      "harmonic map spring weights: inverse-length (seed) | uniform | cotangent | mean-value")(
-      "threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
+  // clang-format off
+  described.add_options()
+      ("help,h", "print this help")
+      ("output,o", po::value(&output)->required(), "output .hsi file")
+      ("critical-point-radius",
+       po::value(&options.critical_points.radius)->default_value(options.critical_points.radius),
+       "critical point radius r_cp (on-surface), A")
+      ("patch-radius", po::value(&options.patch.radius)->default_value(options.patch.radius),
+       "patch radius (on-surface), A; about 5 for ligands, larger for protein sites")
+      ("image-rings", po::value(&options.image.rings)->default_value(options.image.rings),
+       "image grid: rings of the polar grid")
+      ("image-sectors", po::value(&options.image.sectors)->default_value(options.image.sectors),
+       "image grid: sectors (samples per ring; 180 = 2-degree rotation steps)")
+      ("weights", po::value(&weights)->default_value("inverse-length"),
+       "harmonic map spring weights: inverse-length (seed) | uniform | cotangent | mean-value")
+      ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
+  // clang-format on
   add_surface_options(described, input);
   po::variables_map vm;
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   finish_surface_options(input);
-  require_in_range("radius", options.critical_points.radius, 1e-3, 100.0);
+  require_in_range("critical-point-radius", options.critical_points.radius, 1e-3, 100.0);
   require_in_range("patch-radius", options.patch.radius, 0.1, 100.0);
-  require_in_range("grid-rings", options.image.radial_samples, 1, 1024);
-  require_in_range("grid-sectors", options.image.angular_samples, 1, 4096);
+  require_in_range("image-rings", options.image.rings, 1, 1024);
+  require_in_range("image-sectors", options.image.sectors, 1, 4096);
   require_in_range("threads", threads, 0, 1024);
   options.disk_map.weights = parse_weights(weights);
   if (std::filesystem::path(output).extension() != ".hsi") {

@@ -22,30 +22,30 @@ namespace surfcomp::tools {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: surfcomp match REF PROBE [-o result.json] [--aligned-out FILE.sdf|.pdb|.ply] "
-    "[options]\n\n"
-    "Finds where PROBE's surface looks and feels like REF's and returns ranked rigid alignments\n"
-    "that move PROBE into REF's frame: critical-point pairs filtered by ESP/LP (fuzzy), harmonic\n"
-    "shape images, distances and overlap; maximal cliques; least-squares fits on the images'\n"
-    "corresponding points; single-linkage merging; consensus ranking (METHOD sections 5-7); then\n"
-    "the first --refine-top alignments are refined on the whole surfaces (Gaussian overlay of "
-    "shape,\n"
-    "ESP and LP) and ranked by that overlay score (table column 'overlay', * = refined), together\n"
-    "with --axes-starts principal-axes superpositions refined the same way (column 'from': axes).\n"
-    "Where both inputs are molecules (or .hsi files built from molecules), a refined pose's score\n"
-    "also weighs the overlap of same-element heteroatoms (--overlay-atom-weight), and the first\n"
-    "--polish-top poses are refined again on that whole score.\n\n"
-    "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .pqr), a mesh (.ply .vert .off .obj) or a .hsi\n"
-    "            file from hsi-build (two .hsi files must have been built with the same "
-    "parameters)\n"
-    "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand build\n"
-    "the protein's surface without water and without one copy of that HETATM residue (the lowest\n"
-    "chain, then residue number) and keep the critical points within --site-radius of its atoms;\n"
-    "--site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds spheres.\n"
-    "A site match overlays the pocket linings (within --site-overlay-radius of the site's "
-    "critical\n"
-    "points) on shape alone (--site-chem-weight 0) from the cliques and 24 principal-axes starts;\n"
-    "the top-1 overlay score is then the sites' similarity (shape Tanimoto of the linings).";
+    "usage: surfcomp match REF PROBE [-o result.json] [--aligned-out FILE.sdf|.pdb|.ply]\n"
+    "                      [options]\n\n"
+    "Finds where PROBE's surface looks and feels like REF's and returns ranked rigid\n"
+    "alignments that move PROBE into REF's frame: critical-point pairs filtered by ESP/LP\n"
+    "(fuzzy), harmonic shape images, distances and overlap; maximal cliques; least-squares fits\n"
+    "on the images' corresponding points; single-linkage merging; consensus ranking (METHOD\n"
+    "sections 5-7); then the first --refine-top alignments are refined on the whole surfaces\n"
+    "(Gaussian overlay of shape, ESP and LP) and ranked by that overlay score (table column\n"
+    "'overlay', * = refined), together with --principal-axes-starts superpositions refined the\n"
+    "same way (column 'from': axes). Where both inputs are molecules (or .hsi files built from\n"
+    "molecules), a refined pose's score also weighs the overlap of same-element heteroatoms\n"
+    "(--overlay-atom-weight), and the first --polish-top poses are refined again on that whole\n"
+    "score.\n\n"
+    "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .pqr), a mesh (.ply .vert .off .obj) or a\n"
+    "            .hsi file from hsi-build (two .hsi files must have been built with the same\n"
+    "            parameters)\n"
+    "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand\n"
+    "build the protein's surface without water and without one copy of that HETATM residue (the\n"
+    "lowest chain, then residue number) and keep the critical points within --site-radius of\n"
+    "its atoms; --site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds\n"
+    "spheres. A site match overlays the pocket linings (within --site-overlay-radius of the\n"
+    "site's critical points) on shape alone (--site-chem-weight 0) from the cliques and 24\n"
+    "principal-axes starts; the top-1 overlay score is then the sites' similarity (shape\n"
+    "Tanimoto of the linings).";
 
 struct Side {
   std::filesystem::path path;
@@ -124,8 +124,8 @@ bool same_options(const harmonic::DescriptorOptions& x, const harmonic::Descript
          x.critical_points.distance == y.critical_points.distance &&
          x.patch.radius == y.patch.radius && x.patch.margin == y.patch.margin &&
          x.patch.distance == y.patch.distance && x.disk_map.weights == y.disk_map.weights &&
-         x.image.radial_samples == y.image.radial_samples &&
-         x.image.angular_samples == y.image.angular_samples && x.image_property == y.image_property;
+         x.image.rings == y.image.rings && x.image.sectors == y.image.sectors &&
+         x.image_property == y.image_property;
 }
 
 nlohmann::json to_json(const matching::MatchResult& result, const matching::MatchOptions& options,
@@ -193,8 +193,8 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
             {"site_principal_axes_starts", options.site.principal_axes_starts},
             {"critical_point_radius", ref.descriptors.options.critical_points.radius},
             {"patch_radius", ref.descriptors.options.patch.radius},
-            {"image_rings", ref.descriptors.options.image.radial_samples},
-            {"image_sectors", ref.descriptors.options.image.angular_samples}}}};
+            {"image_rings", ref.descriptors.options.image.rings},
+            {"image_sectors", ref.descriptors.options.image.sectors}}}};
 }
 
 void write_aligned(const Side& probe, const Eigen::Matrix4d& transform, const std::string& output) {
@@ -230,75 +230,79 @@ int match(const std::vector<std::string>& args) {
   harmonic::DescriptorOptions descriptor_options;
   po::options_description described("options");
   auto& g = options.graph;
-  described.add_options()("help,h", "print this help")(
-      "output,o", po::value(&output),
-      "write the result as JSON (alignments, trace, timing_ms, parameters)")(
-      "aligned-out", po::value(&aligned_out),
-      "write PROBE moved by the top alignment: .sdf (SDF/MOL/MOL2 PROBE), .pdb (molecule PROBE) or "
-      ".ply")("top", po::value(&top)->default_value(top), "alignments shown in the table")(
-      "trace", po::bool_switch(), "print the association graph's nodes and edges after each stage")(
-      "site-ligand", po::value(&site_ligand),
-      "binding site of both proteins: this ligand residue name")(
-      "ref-site-ligand", po::value(&ref_site_ligand), "binding site of REF only")(
-      "probe-site-ligand", po::value(&probe_site_ligand), "binding site of PROBE only")(
-      "site-radius", po::value(&site_radius)->default_value(site_radius),
-      "radius of the spheres around the site ligand's atoms, A")(
-      "site-sphere", po::value(&site_spheres)->composing(),
-      "site sphere x,y,z,r on both sides (A)")(
-      "ref-site-sphere", po::value(&ref_site_spheres)->composing(), "site sphere on REF only")(
-      "probe-site-sphere", po::value(&probe_site_spheres)->composing(),
-      "site sphere on PROBE only")("fuzzy",
-                                   po::value(&g.fuzzy_threshold)->default_value(g.fuzzy_threshold),
-                                   "fuzzy ESP/LP similarity threshold F")(
-      "hsi-r", po::value(&g.image_threshold)->default_value(g.image_threshold),
-      "harmonic shape image correlation threshold R")(
-      "distance-tolerance", po::value(&g.distance_tolerance)->default_value(g.distance_tolerance),
-      "distance filter tolerance t, A")("min-distance",
-                                        po::value(&g.min_distance)->default_value(g.min_distance),
-                                        "distance filter minimum d_min, A")(
-      "overlap-tolerance",
-      po::value(&g.overlap_tolerance_degrees)->default_value(g.overlap_tolerance_degrees),
-      "overlap filter tolerance j_tol, degrees")(
-      "rmsd-cut",
-      po::value(&options.clustering.rmsd_cut)->default_value(options.clustering.rmsd_cut),
-      "drop cliques whose fit RMSD exceeds this, A")(
-      "ranking", po::value(&ranking)->default_value("rank"),
-      "consensus: rank (rank-by-rank) | number (rank-by-number) | vote (rank-by-vote)")(
-      "refine-top", po::value(&options.refine_top)->default_value(options.refine_top),
-      "refine this many alignments on the whole surfaces and rank them by their overlay score "
-      "(0: the seed's consensus ranking alone)")(
-      "overlay-sigma", po::value(&options.overlay.sigma)->default_value(options.overlay.sigma),
-      "Gaussian width of the whole-surface overlay, A")(
-      "overlay-chem-weight",
-      po::value(&options.overlay.chem_weight)->default_value(options.overlay.chem_weight),
-      "weight of the ESP/LP Tanimoto against the shape Tanimoto in the overlay score")(
-      "overlay-atom-weight",
-      po::value(&options.overlay.atom_weight)->default_value(options.overlay.atom_weight),
-      "weight of the same-element heteroatom Tanimoto in the overlay score, where both inputs are "
-      "molecules (or .hsi files built from molecules); not for site matches")(
-      "polish-top", po::value(&options.polish_top)->default_value(options.polish_top),
-      "with the atom term, refine the first N alignments again on the whole score, heteroatoms "
-      "pulled too, and order them again (0: no polish)")(
-      "overlay-tolerance",
-      po::value(&options.overlay.tolerance)->default_value(options.overlay.tolerance),
-      "a refinement stops when a step moves no sampled probe point farther than this, A")(
-      "axes-starts",
-      po::value(&options.principal_axes_starts)->default_value(options.principal_axes_starts),
-      "also refine this many principal-axes superpositions of the whole surfaces: 0, 4 or 24 "
-      "(with --refine-top > 0; so do the --site-* overlay options)")(
-      "site-overlay-radius",
-      po::value(&options.site.overlay_radius)->default_value(options.site.overlay_radius),
-      "site matches: overlay the vertices within this distance of the site's critical points, A")(
-      "site-chem-weight",
-      po::value(&options.site.chem_weight)->default_value(options.site.chem_weight),
-      "site matches: --overlay-chem-weight for the pocket overlay")(
-      "site-axes-starts",
-      po::value(&options.site.principal_axes_starts)
-          ->default_value(options.site.principal_axes_starts),
-      "site matches: --axes-starts for the pocket overlay (0, 4 or 24)")(
-      "patch-radius",
-      po::value(&descriptor_options.patch.radius)->default_value(descriptor_options.patch.radius),
-      "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)");
+  // clang-format off
+  described.add_options()
+      ("help,h", "print this help")
+      ("output,o", po::value(&output),
+       "write the result as JSON (alignments, trace, timing_ms, parameters)")
+      ("aligned-out", po::value(&aligned_out),
+       "write PROBE moved by the top alignment: .sdf (SDF/MOL/MOL2 PROBE), .pdb (molecule PROBE) "
+       "or .ply")
+      ("top", po::value(&top)->default_value(top), "alignments shown in the table")
+      ("trace", po::bool_switch(), "print the association graph's nodes and edges after each stage")
+      ("site-ligand", po::value(&site_ligand),
+       "binding site of both proteins: this ligand residue name")
+      ("ref-site-ligand", po::value(&ref_site_ligand), "binding site of REF only")
+      ("probe-site-ligand", po::value(&probe_site_ligand), "binding site of PROBE only")
+      ("site-radius", po::value(&site_radius)->default_value(site_radius),
+       "radius of the spheres around the site ligand's atoms, A")
+      ("site-sphere", po::value(&site_spheres)->composing(),
+       "site sphere x,y,z,r on both sides (A)")
+      ("ref-site-sphere", po::value(&ref_site_spheres)->composing(), "site sphere on REF only")
+      ("probe-site-sphere", po::value(&probe_site_spheres)->composing(),
+       "site sphere on PROBE only")
+      ("fuzzy-threshold", po::value(&g.fuzzy_threshold)->default_value(g.fuzzy_threshold),
+       "fuzzy ESP/LP similarity threshold F")
+      ("image-threshold", po::value(&g.image_threshold)->default_value(g.image_threshold),
+       "harmonic shape image correlation threshold R")
+      ("distance-tolerance", po::value(&g.distance_tolerance)->default_value(g.distance_tolerance),
+       "distance filter tolerance t, A")
+      ("min-distance", po::value(&g.min_distance)->default_value(g.min_distance),
+       "distance filter minimum d_min, A")
+      ("overlap-tolerance",
+       po::value(&g.overlap_tolerance_degrees)->default_value(g.overlap_tolerance_degrees),
+       "overlap filter tolerance j_tol, degrees")
+      ("rmsd-cut",
+       po::value(&options.clustering.rmsd_cut)->default_value(options.clustering.rmsd_cut),
+       "drop cliques whose fit RMSD exceeds this, A")
+      ("ranking", po::value(&ranking)->default_value("rank"),
+       "consensus: rank (rank-by-rank) | number (rank-by-number) | vote (rank-by-vote)")
+      ("refine-top", po::value(&options.refine_top)->default_value(options.refine_top),
+       "refine this many alignments on the whole surfaces and rank them by their overlay score "
+       "(0: the seed's consensus ranking alone)")
+      ("overlay-sigma", po::value(&options.overlay.sigma)->default_value(options.overlay.sigma),
+       "Gaussian width of the whole-surface overlay, A")
+      ("overlay-chem-weight",
+       po::value(&options.overlay.chem_weight)->default_value(options.overlay.chem_weight),
+       "weight of the ESP/LP Tanimoto against the shape Tanimoto in the overlay score")
+      ("overlay-atom-weight",
+       po::value(&options.overlay.atom_weight)->default_value(options.overlay.atom_weight),
+       "weight of the same-element heteroatom Tanimoto in the overlay score, where both inputs "
+       "are molecules (or .hsi files built from molecules); not for site matches")
+      ("polish-top", po::value(&options.polish_top)->default_value(options.polish_top),
+       "with the atom term, refine the first N alignments again on the whole score, heteroatoms "
+       "pulled too, and order them again (0: no polish)")
+      ("overlay-tolerance",
+       po::value(&options.overlay.tolerance)->default_value(options.overlay.tolerance),
+       "a refinement stops when a step moves no sampled probe point farther than this, A")
+      ("principal-axes-starts",
+       po::value(&options.principal_axes_starts)->default_value(options.principal_axes_starts),
+       "also refine this many principal-axes superpositions of the whole surfaces: 0, 4 or 24 "
+       "(with --refine-top > 0; so do the --site-* overlay options)")
+      ("site-overlay-radius",
+       po::value(&options.site.overlay_radius)->default_value(options.site.overlay_radius),
+       "site matches: overlay the vertices within this distance of the site's critical points, A")
+      ("site-chem-weight",
+       po::value(&options.site.chem_weight)->default_value(options.site.chem_weight),
+       "site matches: --overlay-chem-weight for the pocket overlay")
+      ("site-principal-axes-starts",
+       po::value(&options.site.principal_axes_starts)
+           ->default_value(options.site.principal_axes_starts),
+       "site matches: --principal-axes-starts for the pocket overlay (0, 4 or 24)")
+      ("patch-radius",
+       po::value(&descriptor_options.patch.radius)->default_value(descriptor_options.patch.radius),
+       "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)");
+  // clang-format on
   add_surface_options(described, input);
   po::variables_map vm;
   if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
@@ -308,8 +312,8 @@ int match(const std::vector<std::string>& args) {
   finish_surface_options(input);
   require_in_range("top", top, 1, 1e9);
   require_in_range("site-radius", site_radius, 0.1, 100.0);
-  require_in_range("fuzzy", g.fuzzy_threshold, 0.0, 1.0);
-  require_in_range("hsi-r", g.image_threshold, -1.0, 1.0);
+  require_in_range("fuzzy-threshold", g.fuzzy_threshold, 0.0, 1.0);
+  require_in_range("image-threshold", g.image_threshold, -1.0, 1.0);
   require_in_range("distance-tolerance", g.distance_tolerance, 0.0, 100.0);
   require_in_range("min-distance", g.min_distance, 0.0, 100.0);
   require_in_range("overlap-tolerance", g.overlap_tolerance_degrees, 0.0, 180.0);
@@ -324,8 +328,9 @@ int match(const std::vector<std::string>& args) {
   require_in_range("site-overlay-radius", options.site.overlay_radius, 0.1, 100.0);
   require_in_range("site-chem-weight", options.site.chem_weight, 0.0, 100.0);
   for (const auto& [name, value] :
-       {std::pair<const char*, int>{"axes-starts", options.principal_axes_starts},
-        std::pair<const char*, int>{"site-axes-starts", options.site.principal_axes_starts}}) {
+       {std::pair<const char*, int>{"principal-axes-starts", options.principal_axes_starts},
+        std::pair<const char*, int>{"site-principal-axes-starts",
+                                    options.site.principal_axes_starts}}) {
     if (!matching::is_axes_start_count(value)) {
       throw OptionError(std::string("--") + name + " must be 0, 4 or 24, got " +
                         std::to_string(value));
@@ -373,7 +378,7 @@ int match(const std::vector<std::string>& args) {
     throw InputError(
         ref_path.string() + " and " + probe_path.string() +
         ": the .hsi files were built with different parameters (critical point radius, "
-        "patch radius, weights or image grid); rebuild one with the other's");
+        "patch radius, spring weights or image grid); rebuild one with the other's");
   }
   if (!aligned_out.empty() && aligned_extension != ".ply" && !probe.molecule) {
     throw OptionError("--aligned-out " + aligned_out + ": PROBE is not a molecule; use .ply");

@@ -4,6 +4,28 @@
 #include <sstream>
 
 namespace surfcomp::tools {
+namespace {
+
+/// A renamed option: its former name and its name now.
+struct Renamed {
+  const char* old_name;
+  const char* new_name;
+};
+
+/// Every option renamed so far (each takes a value: the former name is registered as one). A
+/// subcommand accepts the former names of the options it has.
+constexpr Renamed kRenamed[] = {
+    {"fuzzy", "fuzzy-threshold"},                        // match
+    {"hsi-r", "image-threshold"},                        // match
+    {"axes-starts", "principal-axes-starts"},            // match
+    {"site-axes-starts", "site-principal-axes-starts"},  // match
+    {"grid-rings", "image-rings"},                       // hsi-build
+    {"grid-sectors", "image-sectors"},                   // hsi-build
+    {"radius", "critical-point-radius"},                 // cp-detect, hsi-build
+    {"probe", "probe-radius"},                           // every subcommand that builds a surface
+};
+
+}  // namespace
 
 bool parse_command_line(const std::vector<std::string>& args,
                         const boost::program_options::options_description& options, int max_inputs,
@@ -12,14 +34,45 @@ bool parse_command_line(const std::vector<std::string>& args,
   po::options_description all;
   all.add(options);
   all.add_options()("input", po::value<std::vector<std::string>>(), "input files");
+  std::vector<Renamed> renamed;
+  for (const Renamed& r : kRenamed) {
+    if (options.find_nothrow(r.new_name, false) && !options.find_nothrow(r.old_name, false)) {
+      // The former name only has to take a value in the parser: its occurrences are renamed
+      // before store(), which converts the value as the new option's.
+      all.add_options()(r.old_name, po::value<std::string>(), "");
+      renamed.push_back(r);
+    }
+  }
   po::positional_options_description positional;
   positional.add("input", max_inputs);
-  po::store(po::command_line_parser(args).options(all).positional(positional).run(), vm);
+  po::parsed_options parsed =
+      po::command_line_parser(args).options(all).positional(positional).run();
+  std::vector<Renamed> used;
+  for (const Renamed& r : renamed) {
+    bool old_given = false, new_given = false;
+    for (auto& option : parsed.options) {
+      if (option.string_key == r.old_name) {
+        option.string_key = r.new_name;
+        old_given = true;
+      } else if (option.string_key == r.new_name) {
+        new_given = true;
+      }
+    }
+    if (old_given && new_given) {
+      throw po::error(std::string("--") + r.old_name + " is the former name of --" + r.new_name +
+                      "; give --" + r.new_name + " only");
+    }
+    if (old_given) used.push_back(r);
+  }
+  po::store(parsed, vm);
   if (vm.count("help")) {
     std::cout << usage << "\n" << options << "\n";
     return false;
   }
   po::notify(vm);
+  for (const Renamed& r : used) {
+    std::cerr << "note: --" << r.old_name << " is deprecated; use --" << r.new_name << "\n";
+  }
   return true;
 }
 

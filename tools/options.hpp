@@ -1,4 +1,5 @@
-// Small helpers shared by the subcommands: option parsing checks and the summary clock.
+// Small helpers shared by the subcommands: option parsing (which also accepts the former names of
+// renamed options), option checks and the summary clock.
 #pragma once
 
 #include "surfcomp/core/error.hpp"
@@ -13,7 +14,11 @@
 namespace surfcomp::tools {
 
 /// Parses `args` with `options` (plus one or more positional INPUT arguments under "input").
-/// Returns false when --help was asked (the help text is already printed).
+/// The former name of a renamed option (the table in options.cpp) still sets it, hidden from
+/// --help, with one line "note: --OLD is deprecated; use --NEW" on stderr. Returns false when
+/// --help was asked (the help text is already printed). Throws boost::program_options::error (a
+/// command-line syntax error) for an unknown option or a bad value, and for an option given
+/// under both its former and its new name.
 bool parse_command_line(const std::vector<std::string>& args,
                         const boost::program_options::options_description& options, int max_inputs,
                         const char* usage, boost::program_options::variables_map& vm);

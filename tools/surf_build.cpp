@@ -28,10 +28,13 @@ int surf_build(const std::vector<std::string>& args) {
   std::string output;
   SurfaceInput input;
   po::options_description described("options");
-  described.add_options()("help,h", "print this help")(
-      "output,o", po::value(&output)->required(),
-      "output surface: .ply (binary, all properties), .off or .obj (geometry only)")(
-      "ascii", po::bool_switch(), "write ASCII PLY instead of binary little-endian");
+  // clang-format off
+  described.add_options()
+      ("help,h", "print this help")
+      ("output,o", po::value(&output)->required(),
+       "output surface: .ply (binary, all properties), .off or .obj (geometry only)")
+      ("ascii", po::bool_switch(), "write ASCII PLY instead of binary little-endian");
+  // clang-format on
   add_surface_options(described, input);
   po::variables_map vm;
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;

@@ -10,31 +10,34 @@ void add_surface_options(boost::program_options::options_description& options,
                          SurfaceInput& input) {
   namespace po = boost::program_options;
   const mesh::MolecularSurfaceOptions defaults;
-  options.add_options()(
-      "probe", po::value(&input.surface.ses.probe_radius)->default_value(defaults.ses.probe_radius),
-      "probe radius, A (0 gives the van der Waals surface)")(
-      "density",
-      po::value(&input.surface.ses.vertex_density)->default_value(defaults.ses.vertex_density),
-      "target vertex density, vertices per A^2")(
-      "voxel", po::value(&input.surface.ses.voxel_size)->default_value(defaults.ses.voxel_size),
-      "level-set voxel size, A (0 = chosen from the density)")(
-      "charges", po::value(&input.charges)->default_value("file"),
-      "partial charges: file (the file's own; else residue charges for a protein PDB, "
-      "Gasteiger otherwise) | gasteiger | mmff")(
-      "eps", po::value(&input.surface.esp.dielectric)->default_value(defaults.esp.dielectric),
-      "dielectric constant for the ESP")(
-      "eps-distance-dependent", po::bool_switch(&input.surface.esp.distance_dependent),
-      "use eps * d (d in A) as the dielectric, e.g. --eps 4 for 4d")(
-      "lp-kernel", po::value(&input.lp_kernel)->default_value("fauchere"),
-      "lipophilic potential kernel: fauchere exp(-d) | dubost 1/(1+d)")(
-      "ligand", po::value(&input.read.ligand),
-      "PDB/PQR input: use this residue name only (default: the whole structure without water)")(
-      "molecule", po::value(&input.molecule_file),
-      "mesh INPUT only: molecule whose ESP and LP are mapped onto the mesh");
+  // clang-format off
+  options.add_options()
+      ("probe-radius",
+       po::value(&input.surface.ses.probe_radius)->default_value(defaults.ses.probe_radius),
+       "probe radius, A (0 gives the van der Waals surface)")
+      ("density",
+       po::value(&input.surface.ses.vertex_density)->default_value(defaults.ses.vertex_density),
+       "target vertex density, vertices per A^2")
+      ("voxel", po::value(&input.surface.ses.voxel_size)->default_value(defaults.ses.voxel_size),
+       "level-set voxel size, A (0 = chosen from the density)")
+      ("charges", po::value(&input.charges)->default_value("file"),
+       "partial charges: file (the file's own; else residue charges for a protein PDB, "
+       "Gasteiger otherwise) | gasteiger | mmff")
+      ("eps", po::value(&input.surface.esp.dielectric)->default_value(defaults.esp.dielectric),
+       "dielectric constant for the ESP")
+      ("eps-distance-dependent", po::bool_switch(&input.surface.esp.distance_dependent),
+       "use eps * d (d in A) as the dielectric, e.g. --eps 4 for 4d")
+      ("lp-kernel", po::value(&input.lp_kernel)->default_value("fauchere"),
+       "lipophilic potential kernel: fauchere exp(-d) | dubost 1/(1+d)")
+      ("ligand", po::value(&input.read.ligand),
+       "PDB/PQR input: use this residue name only (default: the whole structure without water)")
+      ("molecule", po::value(&input.molecule_file),
+       "mesh INPUT only: molecule whose ESP and LP are mapped onto the mesh");
+  // clang-format on
 }
 
 void finish_surface_options(SurfaceInput& input) {
-  require_in_range("probe", input.surface.ses.probe_radius, 0.0, 10.0);
+  require_in_range("probe-radius", input.surface.ses.probe_radius, 0.0, 10.0);
   require_in_range("density", input.surface.ses.vertex_density, 0.05, 100.0);
   require_in_range("voxel", input.surface.ses.voxel_size, 0.0, 2.0);
   require_in_range("eps", input.surface.esp.dielectric, 1e-3, 1e3);

@@ -22,7 +22,7 @@ struct SurfaceInput {
   std::string molecule_file;  ///< mesh INPUT: the molecule whose ESP and LP to map on it
 };
 
-/// Adds --probe --density --voxel --charges --eps --eps-distance-dependent --lp-kernel
+/// Adds --probe-radius --density --voxel --charges --eps --eps-distance-dependent --lp-kernel
 /// --ligand --molecule, bound to `input`.
 void add_surface_options(boost::program_options::options_description& options, SurfaceInput& input);
 

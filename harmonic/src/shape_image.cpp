@@ -35,12 +35,15 @@ constexpr double kConstantVariance = 1e-20;
 /// Correlations within this of the best count as ties (see compare_images).
 constexpr double kTie = 1e-12;
 
-void check_grid(int radial_samples, int angular_samples) {
-  if (radial_samples < 1 || angular_samples < 1) {
+std::string grid_name(int rings, int sectors) {
+  return std::to_string(rings) + " rings x " + std::to_string(sectors) + " sectors";
+}
+
+void check_grid(int rings, int sectors) {
+  if (rings < 1 || sectors < 1) {
     throw OptionError(
-        "shape image: the polar grid must have at least one ring and one sample per ring, got " +
-        std::to_string(radial_samples) + " rings of " + std::to_string(angular_samples) +
-        " samples");
+        "shape image: the polar grid must have at least one ring and one sector, got " +
+        grid_name(rings, sectors));
   }
 }
 
@@ -61,16 +64,16 @@ Eigen::FFT<double>& thread_fft() {
 }  // namespace
 
 Eigen::Vector2d image_grid_point(const ImageOptions& options, int grid_index) {
-  check_grid(options.radial_samples, options.angular_samples);
-  const long long size = static_cast<long long>(options.radial_samples) * options.angular_samples;
+  check_grid(options.rings, options.sectors);
+  const long long size = static_cast<long long>(options.rings) * options.sectors;
   if (grid_index < 0 || grid_index >= size) {
     throw InputError("shape image: grid point " + std::to_string(grid_index) +
                      " is outside the grid of " + std::to_string(size) + " points");
   }
-  const int ring = grid_index / options.angular_samples;
-  const int sector = grid_index % options.angular_samples;
-  const double radius = (ring + 0.5) / options.radial_samples;
-  const double angle = 2.0 * kPi * sector / options.angular_samples;
+  const int ring = grid_index / options.sectors;
+  const int sector = grid_index % options.sectors;
+  const double radius = (ring + 0.5) / options.rings;
+  const double angle = 2.0 * kPi * sector / options.sectors;
   return {radius * std::cos(angle), radius * std::sin(angle)};
 }
 
@@ -78,7 +81,7 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
                                 const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                 const Eigen::Ref<const Eigen::VectorXd>& values,
                                 const ImageOptions& options) {
-  check_grid(options.radial_samples, options.angular_samples);
+  check_grid(options.rings, options.sectors);
   const Eigen::Index vertex_count = uv.rows();
   if (values.size() != vertex_count) {
     throw InputError("shape image: " + std::to_string(values.size()) + " values for " +
@@ -132,10 +135,10 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
            CGAL::orientation(c[2], c[0], q) == side;
   };
 
-  const int size = options.radial_samples * options.angular_samples;
+  const int size = options.rings * options.sectors;
   ShapeImage image;
-  image.radial_samples = options.radial_samples;
-  image.angular_samples = options.angular_samples;
+  image.rings = options.rings;
+  image.sectors = options.sectors;
   image.values = Eigen::VectorXd::Zero(size);
   image.valid.assign(static_cast<std::size_t>(size), 0);
   image.face = Eigen::VectorXi::Constant(size, -1);
@@ -168,15 +171,15 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
   // is strictly inside it, where no other triangle of an embedding can contain it; otherwise
   // ask the tree.
   // The grid's directions, computed as in image_grid_point (so the points are bit-identical).
-  std::vector<Eigen::Vector2d> direction(static_cast<std::size_t>(options.angular_samples));
-  for (int j = 0; j < options.angular_samples; ++j) {
-    const double angle = 2.0 * kPi * j / options.angular_samples;
+  std::vector<Eigen::Vector2d> direction(static_cast<std::size_t>(options.sectors));
+  for (int j = 0; j < options.sectors; ++j) {
+    const double angle = 2.0 * kPi * j / options.sectors;
     direction[static_cast<std::size_t>(j)] = {std::cos(angle), std::sin(angle)};
   }
   std::size_t previous = triangles.size();
   for (int i = 0; i < size; ++i) {
-    const double radius = (i / options.angular_samples + 0.5) / options.radial_samples;
-    const Eigen::Vector2d& d = direction[static_cast<std::size_t>(i % options.angular_samples)];
+    const double radius = (i / options.sectors + 0.5) / options.rings;
+    const Eigen::Vector2d& d = direction[static_cast<std::size_t>(i % options.sectors)];
     const Eigen::Vector2d q(radius * d.x(), radius * d.y());
     const Kernel::Point_2 q2(q.x(), q.y());
     std::size_t found = triangles.size();
@@ -224,7 +227,7 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
 Eigen::Vector3d image_point_to_surface(const ShapeImage& image, int grid_index,
                                        const Eigen::Ref<const Eigen::MatrixX3d>& positions,
                                        const Eigen::Ref<const Eigen::MatrixX3i>& faces) {
-  const long long size = static_cast<long long>(image.radial_samples) * image.angular_samples;
+  const long long size = static_cast<long long>(image.rings) * image.sectors;
   if (grid_index < 0 || grid_index >= size || image.face.size() != size ||
       image.barycentric.rows() != size) {
     throw InputError("image_point_to_surface: grid point " + std::to_string(grid_index) +
@@ -254,20 +257,19 @@ Eigen::Vector3d image_point_to_surface(const ShapeImage& image, int grid_index,
 }
 
 PreparedImage::PreparedImage(const ShapeImage& image)
-    : radial_samples_(image.radial_samples), angular_samples_(image.angular_samples) {
-  check_grid(radial_samples_, angular_samples_);
-  const int n = angular_samples_;
-  const int size = radial_samples_ * n;
+    : rings_(image.rings), sectors_(image.sectors) {
+  check_grid(rings_, sectors_);
+  const int n = sectors_;
+  const int size = rings_ * n;
   if (image.values.size() != size || image.valid.size() != static_cast<std::size_t>(size)) {
     throw InputError("shape image: " + std::to_string(image.values.size()) + " values and " +
                      std::to_string(image.valid.size()) + " validity flags for a grid of " +
-                     std::to_string(radial_samples_) + " x " + std::to_string(n) + " points");
+                     grid_name(rings_, sectors_));
   }
   bins_ = n / 2 + 1;
-  ring_full_.assign(static_cast<std::size_t>(radial_samples_), 0);
-  ring_empty_.assign(static_cast<std::size_t>(radial_samples_), 0);
-  spectra_.assign(static_cast<std::size_t>(radial_samples_) * 6 * static_cast<std::size_t>(bins_),
-                  0.0);
+  ring_full_.assign(static_cast<std::size_t>(rings_), 0);
+  ring_empty_.assign(static_cast<std::size_t>(rings_), 0);
+  spectra_.assign(static_cast<std::size_t>(rings_) * 6 * static_cast<std::size_t>(bins_), 0.0);
 
   // Area-weighted mean over the valid points: subtracting it changes no correlation but keeps
   // the sums of squares small.
@@ -289,7 +291,7 @@ PreparedImage::PreparedImage(const ShapeImage& image)
   std::array<std::vector<double>, 3> signal;
   for (auto& s : signal) s.resize(static_cast<std::size_t>(n));
   std::vector<std::complex<double>> spectrum(static_cast<std::size_t>(bins_));
-  for (int r = 0; r < radial_samples_; ++r) {
+  for (int r = 0; r < rings_; ++r) {
     int valid_count = 0;
     for (int j = 0; j < n; ++j) {
       const int i = r * n + j;
@@ -321,17 +323,15 @@ PreparedImage::PreparedImage(const ShapeImage& image)
 void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* correlation,
                               int* overlap) const {
   const PreparedImage& a = *this;
-  if (a.radial_samples_ != b.radial_samples_ || a.angular_samples_ != b.angular_samples_) {
-    throw InputError("compare shape images: grids of " + std::to_string(a.radial_samples_) + " x " +
-                     std::to_string(a.angular_samples_) + " and " +
-                     std::to_string(b.radial_samples_) + " x " +
-                     std::to_string(b.angular_samples_) + " points; expected equal grids");
+  if (a.rings_ != b.rings_ || a.sectors_ != b.sectors_) {
+    throw InputError("compare shape images: grids of " + grid_name(a.rings_, a.sectors_) + " and " +
+                     grid_name(b.rings_, b.sectors_) + "; expected equal grids");
   }
   if (min_overlap < 1) {
     throw OptionError("compare shape images: min_overlap is " + std::to_string(min_overlap) +
                       "; expected at least 1");
   }
-  const int n = a.angular_samples_;
+  const int n = a.sectors_;
   const int bins = a.bins_;
   // Sums over the common valid points, for every shift s at once: sum_j x_j y_(j+s) over a
   // ring is the inverse DFT of conj(X_k) Y_k. With ma, mb the masks and a, b the masked centred
@@ -367,7 +367,7 @@ void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* c
     if (end > 1) varies[t] = true;
   };
 
-  for (int r = 0; r < a.radial_samples_; ++r) {
+  for (int r = 0; r < a.rings_; ++r) {
     const auto ru = static_cast<std::size_t>(r);
     if (a.ring_empty_[ru] || b.ring_empty_[ru]) continue;
     const double w = ring_weight(r);
@@ -432,8 +432,8 @@ void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* c
 
 RotationProfile rotation_profile(const PreparedImage& a, const PreparedImage& b, int min_overlap) {
   RotationProfile profile;
-  profile.correlation.resize(b.angular_samples_);
-  profile.overlap.resize(b.angular_samples_);
+  profile.correlation.resize(b.sectors_);
+  profile.overlap.resize(b.sectors_);
   a.correlate(b, min_overlap, profile.correlation.data(), profile.overlap.data());
   return profile;
 }
@@ -441,7 +441,7 @@ RotationProfile rotation_profile(const PreparedImage& a, const PreparedImage& b,
 ImageMatch compare_images(const PreparedImage& a, const PreparedImage& b, int min_overlap) {
   thread_local std::vector<double> correlation;
   thread_local std::vector<int> overlap;
-  const int n = b.angular_samples_;
+  const int n = b.sectors_;
   correlation.resize(static_cast<std::size_t>(n));
   overlap.resize(static_cast<std::size_t>(n));
   a.correlate(b, min_overlap, correlation.data(), overlap.data());

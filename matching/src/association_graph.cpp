@@ -299,10 +299,10 @@ std::vector<std::pair<int, int>> overlap_filter(const std::vector<PointPair>& no
 }
 
 AssociationGraph build_association_graph(const SurfaceDescriptors& a, const SurfaceDescriptors& b,
-                                         const GraphParameters& parameters,
+                                         const GraphOptions& options,
                                          const std::vector<bool>* a_allowed,
                                          const std::vector<bool>* b_allowed) {
-  const GraphParameters& p = parameters;
+  const GraphOptions& p = options;
   detail::check_graph_options(p, {"association graph", ""});
 
   AssociationGraph graph;

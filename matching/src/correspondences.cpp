@@ -60,23 +60,23 @@ Correspondences pair_correspondences(const harmonic::SurfaceDescriptors& a,
   const auto& pb = imaged_point(b, pair.b, "B");
   const harmonic::ShapeImage& ia = pa.image;
   const harmonic::ShapeImage& ib = pb.image;
-  if (ia.radial_samples != ib.radial_samples || ia.angular_samples != ib.angular_samples) {
-    throw InputError("pair_correspondences: image grids " + std::to_string(ia.radial_samples) +
-                     " x " + std::to_string(ia.angular_samples) + " (A, point " +
-                     std::to_string(pair.a) + ") and " + std::to_string(ib.radial_samples) + " x " +
-                     std::to_string(ib.angular_samples) + " (B, point " + std::to_string(pair.b) +
+  if (ia.rings != ib.rings || ia.sectors != ib.sectors) {
+    throw InputError("pair_correspondences: image grids of " + std::to_string(ia.rings) +
+                     " rings x " + std::to_string(ia.sectors) + " sectors (A, point " +
+                     std::to_string(pair.a) + ") and " + std::to_string(ib.rings) + " rings x " +
+                     std::to_string(ib.sectors) + " sectors (B, point " + std::to_string(pair.b) +
                      "); expected equal grids");
   }
   const Eigen::VectorXd property_a = surface_property(a, options.property, "A");
   const Eigen::VectorXd property_b = surface_property(b, options.property, "B");
-  const int angular = ia.angular_samples;
-  const int shift = ((pair.image_shift % angular) + angular) % angular;
+  const int sectors = ia.sectors;
+  const int shift = ((pair.image_shift % sectors) + sectors) % sectors;
 
   std::vector<std::pair<int, int>> grid_pairs;
-  for (int ring = 0; ring < ia.radial_samples; ring += options.ring_step) {
-    for (int sector = 0; sector < angular; sector += options.sector_step) {
-      const int i = ring * angular + sector;
-      const int j = ring * angular + (sector + shift) % angular;
+  for (int ring = 0; ring < ia.rings; ring += options.ring_step) {
+    for (int sector = 0; sector < sectors; sector += options.sector_step) {
+      const int i = ring * sectors + sector;
+      const int j = ring * sectors + (sector + shift) % sectors;
       if (ia.valid[static_cast<std::size_t>(i)] && ib.valid[static_cast<std::size_t>(j)]) {
         grid_pairs.emplace_back(i, j);
       }

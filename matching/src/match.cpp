@@ -296,12 +296,12 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
   validate(options);
   const auto& ga = reference.options.image;
   const auto& gb = probe.options.image;
-  if (ga.radial_samples != gb.radial_samples || ga.angular_samples != gb.angular_samples) {
-    throw InputError(
-        reference.surface.source() + " and " + probe.surface.source() +
-        ": the images were built on different grids (" + std::to_string(ga.radial_samples) + "x" +
-        std::to_string(ga.angular_samples) + " and " + std::to_string(gb.radial_samples) + "x" +
-        std::to_string(gb.angular_samples) + "); rebuild them with the same parameters");
+  if (ga.rings != gb.rings || ga.sectors != gb.sectors) {
+    throw InputError(reference.surface.source() + " and " + probe.surface.source() +
+                     ": the images were built on different grids (" + std::to_string(ga.rings) +
+                     " rings x " + std::to_string(ga.sectors) + " sectors and " +
+                     std::to_string(gb.rings) + " rings x " + std::to_string(gb.sectors) +
+                     " sectors); rebuild them with the same image grid");
   }
   MatchResult result;
   auto clock = std::chrono::steady_clock::now();

@@ -40,7 +40,7 @@ void check_overlap_tolerance(double tolerance_degrees, const OptionCheck& check)
                 "overlap_tolerance_degrees", tolerance_degrees, "a value in [0, 180] degrees");
 }
 
-void check_graph_options(const GraphParameters& options, const OptionCheck& check) {
+void check_graph_options(const GraphOptions& options, const OptionCheck& check) {
   check.require(options.fuzzy_threshold >= 0.0 && options.fuzzy_threshold <= 1.0, "fuzzy_threshold",
                 options.fuzzy_threshold, "a value in [0, 1]");
   check.require(std::isfinite(options.image_threshold), "image_threshold", options.image_threshold,

@@ -29,7 +29,7 @@ struct OptionCheck {
 
 void check_distance_filter(double tolerance, double min_distance, const OptionCheck& check);
 void check_overlap_tolerance(double tolerance_degrees, const OptionCheck& check);
-void check_graph_options(const GraphParameters& options, const OptionCheck& check);
+void check_graph_options(const GraphOptions& options, const OptionCheck& check);
 void check_min_clique_size(int min_size, const std::string& name, const OptionCheck& check);
 void check_clustering_options(const ClusteringOptions& options, const OptionCheck& check);
 void check_correspondence_options(const CorrespondenceOptions& options, const OptionCheck& check);

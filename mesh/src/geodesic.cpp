@@ -134,15 +134,15 @@ std::vector<std::pair<int, double>> GeodesicSolver::within(int source, double ma
   return result;
 }
 
-Eigen::VectorXd edge_geodesic_distances(const Surface& surface, int source, double max_distance,
-                                        GeodesicMethod method) {
-  check_not_empty(surface, "edge_geodesic_distances");
-  check_source(surface, source, "edge_geodesic_distances");
-  check_max_distance(surface, max_distance, "edge_geodesic_distances");
-  GeodesicSolver solver(surface, method);
+Eigen::VectorXd geodesic_distances(const Surface& surface, int source,
+                                   const GeodesicOptions& options) {
+  check_not_empty(surface, "geodesic_distances");
+  check_source(surface, source, "geodesic_distances");
+  check_max_distance(surface, options.max_distance, "geodesic_distances");
+  GeodesicSolver solver(surface, options.method);
   Eigen::VectorXd out =
       Eigen::VectorXd::Constant(static_cast<Eigen::Index>(surface.n_vertices()), infinity);
-  for (const auto& [v, d] : solver.within(source, max_distance)) out(v) = d;
+  for (const auto& [v, d] : solver.within(source, options.max_distance)) out(v) = d;
   return out;
 }
 

@@ -37,8 +37,8 @@ void put_options(BinaryWriter& w, const DescriptorOptions& o) {
   w.f64(o.patch.margin);
   w.u8(static_cast<std::uint8_t>(o.patch.distance));
   w.u8(static_cast<std::uint8_t>(o.disk_map.weights));
-  w.i32(o.image.radial_samples);
-  w.i32(o.image.angular_samples);
+  w.i32(o.image.rings);
+  w.i32(o.image.sectors);
   w.string(o.image_property);
 }
 
@@ -83,8 +83,8 @@ void put_patch(BinaryWriter& w, const mesh::Patch& p) {
 }
 
 void put_image(BinaryWriter& w, const ShapeImage& image) {
-  w.i32(image.radial_samples);
-  w.i32(image.angular_samples);
+  w.i32(image.rings);
+  w.i32(image.sectors);
   w.doubles(image.values);
   w.u64(image.valid.size());
   for (std::uint8_t v : image.valid) w.u8(v);
@@ -110,9 +110,9 @@ DescriptorOptions get_options(BinaryReader& r) {
   o.patch.margin = r.f64();
   o.patch.distance = get_enum<mesh::GeodesicMethod>(r, 1, "distance method");
   o.disk_map.weights = get_enum<SpringWeights>(r, 3, "spring weight kind");
-  o.image.radial_samples = r.i32();
-  o.image.angular_samples = r.i32();
-  if (o.image.radial_samples < 1 || o.image.angular_samples < 1) r.fail("image grid below 1");
+  o.image.rings = r.i32();
+  o.image.sectors = r.i32();
+  if (o.image.rings < 1 || o.image.sectors < 1) r.fail("image grid below 1 ring or 1 sector");
   o.image_property = r.string();
   return o;
 }
@@ -223,14 +223,13 @@ mesh::Patch get_patch(BinaryReader& r, std::size_t surface_vertices) {
 
 ShapeImage get_image(BinaryReader& r, std::size_t n_faces, const ImageOptions& grid) {
   ShapeImage image;
-  image.radial_samples = r.i32();
-  image.angular_samples = r.i32();
-  if (image.radial_samples != grid.radial_samples ||
-      image.angular_samples != grid.angular_samples) {
+  image.rings = r.i32();
+  image.sectors = r.i32();
+  if (image.rings != grid.rings || image.sectors != grid.sectors) {
     r.fail("an image grid differs from the file's parameters");
   }
-  const std::size_t n = static_cast<std::size_t>(grid.radial_samples) *
-                        static_cast<std::size_t>(grid.angular_samples);
+  const std::size_t n =
+      static_cast<std::size_t>(grid.rings) * static_cast<std::size_t>(grid.sectors);
   image.values = r.doubles();
   const std::uint64_t n_valid = r.u64();
   if (static_cast<std::size_t>(image.values.size()) != n || n_valid != n ||

@@ -16,20 +16,20 @@ namespace surfcomp::harmonic {
 
 /// The polar grid of a harmonic shape image.
 struct ImageOptions {
-  /// Rings of the grid; ring k (0-based) lies at radius (k + 0.5) / radial_samples. Must be >= 1.
-  int radial_samples = 16;
-  /// Samples per ring; sample j of every ring lies at angle j * 360 / angular_samples degrees,
-  /// counter-clockwise from the +u axis. The default, 180, gives 2-degree steps, so a rotation by
-  /// 2 degrees is a cyclic shift by one sample (seed: delta = 2 degrees). Must be >= 1.
-  int angular_samples = 180;
+  /// Rings of the grid; ring k (0-based) lies at radius (k + 0.5) / rings. Must be >= 1.
+  int rings = 16;
+  /// Sectors of the grid, i.e. samples per ring; sector j of every ring lies at angle
+  /// j * 360 / sectors degrees, counter-clockwise from the +u axis. The default, 180, gives
+  /// 2-degree steps, so a rotation by 2 degrees is a cyclic shift by one sector (seed: delta =
+  /// 2 degrees). Must be >= 1.
+  int sectors = 180;
 };
 
 /// A scalar field of a patch resampled onto the polar grid of ImageOptions. Grid point i
-/// (0 <= i < radial_samples * angular_samples) is ring i / angular_samples and sector
-/// i % angular_samples (ring-major order).
+/// (0 <= i < rings * sectors) is ring i / sectors and sector i % sectors (ring-major order).
 struct ShapeImage {
-  int radial_samples = 0;
-  int angular_samples = 0;
+  int rings = 0;    ///< as ImageOptions::rings
+  int sectors = 0;  ///< as ImageOptions::sectors
   /// The interpolated value at each grid point; 0 where the grid point is not valid.
   Eigen::VectorXd values;
   /// 1 where a triangle of the embedded patch lies under the grid point, 0 where none does
@@ -84,11 +84,10 @@ struct ImageMatch {
   /// The rotation, in degrees in [0, 360), that best carries image a onto image b: b at the
   /// point a(p) rotated counter-clockwise by angle_degrees about the disk centre matches a(p),
   /// i.e. b(R(angle) p) ~ a(p). If b was built from the patch of a with its uv rotated by
-  /// +theta, angle_degrees is theta (to the nearest grid step). angle = shift * 360 /
-  /// angular_samples.
+  /// +theta, angle_degrees is theta (to the nearest grid step). angle = shift * 360 / sectors.
   double angle_degrees = 0.0;
-  /// The same rotation in grid steps: sample j of a ring of a is compared with sample
-  /// (j + shift) mod angular_samples of the same ring of b.
+  /// The same rotation in grid steps: sector j of a ring of a is compared with sector
+  /// (j + shift) mod sectors of the same ring of b.
   int shift = 0;
   /// Grid points valid in both images at that rotation.
   int overlap = 0;
@@ -96,15 +95,15 @@ struct ImageMatch {
 
 /// The correlation of two images for every rotation (shift) of b; see compare_images.
 struct RotationProfile {
-  Eigen::VectorXd correlation;  ///< angular_samples values; -1 where overlap < min_overlap
-  Eigen::VectorXi overlap;      ///< angular_samples common valid grid point counts
+  Eigen::VectorXd correlation;  ///< one value per shift (sectors); -1 where overlap < min_overlap
+  Eigen::VectorXi overlap;      ///< per shift, the common valid grid points
 };
 
 /// Reused state for comparing one image with many: per ring, the discrete Fourier spectra of
 /// the validity mask, of the masked values and of the masked squared values (values centred on
 /// the image's area-weighted mean first, which the correlation ignores but which keeps the
 /// sums well conditioned). Build it once per image and compare the prepared images; it holds
-/// 3 x radial_samples x (angular_samples / 2 + 1) complex numbers (70 KB for the default grid).
+/// 3 x rings x (sectors / 2 + 1) complex numbers (70 KB for the default grid).
 /// Immutable after construction, so one prepared image may be used by many threads at once.
 class PreparedImage {
  public:
@@ -112,19 +111,19 @@ class PreparedImage {
   /// not finite.
   explicit PreparedImage(const ShapeImage& image);
 
-  int radial_samples() const { return radial_samples_; }
-  int angular_samples() const { return angular_samples_; }
+  int rings() const { return rings_; }
+  int sectors() const { return sectors_; }
 
  private:
   friend RotationProfile rotation_profile(const PreparedImage& a, const PreparedImage& b,
                                           int min_overlap);
   friend ImageMatch compare_images(const PreparedImage& a, const PreparedImage& b, int min_overlap);
-  /// The correlation and overlap of this image with `b` for every shift (angular_samples each),
+  /// The correlation and overlap of this image with `b` for every shift (sectors values each),
   /// written to the two arrays. Throws as rotation_profile.
   void correlate(const PreparedImage& b, int min_overlap, double* correlation, int* overlap) const;
-  int radial_samples_;
-  int angular_samples_;
-  int bins_;                              ///< angular_samples / 2 + 1 (real-signal half spectrum)
+  int rings_;
+  int sectors_;
+  int bins_;                              ///< sectors / 2 + 1 (real-signal half spectrum)
   std::vector<std::uint8_t> ring_full_;   ///< 1 where every sample of the ring is valid
   std::vector<std::uint8_t> ring_empty_;  ///< 1 where no sample of the ring is valid
   double mean_square_;                    ///< weighted mean of value^2 over the valid points
@@ -134,7 +133,7 @@ class PreparedImage {
   std::vector<double> spectra_;
 };
 
-/// The correlation of a with b rotated by every multiple of 360 / angular_samples degrees (b's
+/// The correlation of a with b rotated by every multiple of 360 / sectors degrees (b's
 /// sectors cyclically shifted, see ImageMatch::shift), over the grid points valid in both.
 /// The correlation is area-weighted [choice]: every ring has the same number of samples, so a
 /// sample of ring k stands for an area proportional to its radius (k + 0.5), and each sample
@@ -147,7 +146,7 @@ RotationProfile rotation_profile(const PreparedImage& a, const PreparedImage& b,
                                  int min_overlap = 16);
 
 /// The best rotation of rotation_profile(a, b, min_overlap): the largest correlation, ties
-/// (within 1e-12) broken by the smallest shift. Cost: one inverse FFT of angular_samples points
+/// (within 1e-12) broken by the smallest shift. Cost: one inverse FFT of `sectors` points
 /// when every ring of both images is fully valid, up to seven when rings are partial; timing in
 /// bench/shape_image_bench.cpp. Allocates nothing once warm (per-thread scratch).
 ImageMatch compare_images(const PreparedImage& a, const PreparedImage& b, int min_overlap = 16);

@@ -31,8 +31,8 @@ struct PointPair {
   int image_shift = 0;  ///< the same rotation in angular grid steps (ImageMatch::shift)
 };
 
-/// The filter parameters (METHOD section 8 starting values [choice], except F).
-struct GraphParameters {
+/// The filter options (METHOD section 8 starting values [choice], except F).
+struct GraphOptions {
   /// Default 0.3 (METHOD: 0.5). F: a pair is dropped when the fuzzy similarity of its
   /// autoscaled ESP or of its LP is below F (a property missing on either surface is not
   /// filtered). In [0, 1]. With the fuzzy Jaccard similarity (fuzzy.hpp) F is roughly
@@ -154,11 +154,11 @@ std::vector<std::pair<int, int>> overlap_filter(const std::vector<PointPair>& no
 /// The association graph of a and b after all filters, in the seed's order: initial_pairs
 /// (restricted to the allowed points), fuzzy_filter, image_filter, distance_filter,
 /// overlap_filter, with a trace entry per stage. Nodes removed by a filter are gone; edges
-/// refer to the surviving nodes. Throws OptionError for parameters outside their domains, and
+/// refer to the surviving nodes. Throws OptionError for options outside their domains, and
 /// what the stages throw. Nearly all of its time goes to the image comparisons.
 AssociationGraph build_association_graph(const harmonic::SurfaceDescriptors& a,
                                          const harmonic::SurfaceDescriptors& b,
-                                         const GraphParameters& parameters = {},
+                                         const GraphOptions& options = {},
                                          const std::vector<bool>* a_allowed = nullptr,
                                          const std::vector<bool>* b_allowed = nullptr);
 

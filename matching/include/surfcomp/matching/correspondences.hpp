@@ -15,8 +15,8 @@ namespace surfcomp::matching {
 
 /// One critical-point pair of a clique: a indexes a.critical_points (the reference surface), b
 /// indexes b.critical_points (the probe), image_shift is the best image rotation in grid steps
-/// as harmonic::compare_images(image of a, image of b) returns it: sample j of a ring of a's
-/// image matches sample (j + image_shift) mod angular_samples of the same ring of b's image.
+/// as harmonic::compare_images(image of a, image of b) returns it: sector j of a ring of a's
+/// image matches sector (j + image_shift) mod sectors of the same ring of b's image.
 struct MatchedPair {
   int a = -1;
   int b = -1;

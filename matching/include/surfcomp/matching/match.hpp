@@ -44,7 +44,7 @@ struct SiteMatchOptions {
 
 struct MatchOptions {
   MatchMode mode = MatchMode::whole_surfaces;  ///< whole surfaces or binding sites
-  GraphParameters graph;                       ///< filter thresholds F, R, t, d_min, j_tol
+  GraphOptions graph;                          ///< filter thresholds F, R, t, d_min, j_tol
   int min_clique_size = 2;                     ///< smaller cliques are not fitted; >= 1
   CorrespondenceOptions correspondences;       ///< image grid subsampling, R_chem property (esp)
   ClusteringOptions clustering;                ///< RMSD cut 4 A, merge cut 4 A

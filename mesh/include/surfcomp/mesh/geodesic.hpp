@@ -29,16 +29,21 @@ enum class GeodesicMethod {
   fast_marching,
 };
 
+struct GeodesicOptions {
+  /// Default +inf (no bound), A. Vertices farther than this are +inf and are not expanded, so a
+  /// bounded run only visits the vertices within the bound and their neighbours. Not NaN, >= 0.
+  double max_distance = std::numeric_limits<double>::infinity();
+  /// Default dijkstra (over the edges); fast_marching adds the triangle update.
+  GeodesicMethod method = GeodesicMethod::dijkstra;
+};
+
 /// On-surface distances (A) from vertex `source` to every vertex of `surface` (#V values), by
-/// `method` (default: Dijkstra over the edges). Vertices farther than `max_distance` (A), or in
-/// another connected component, are +inf and are not expanded, so a bounded run only visits the
-/// vertices within the bound and their neighbours. Throws TopologyError for a surface without
-/// vertices, InputError when `source` is not a vertex index, OptionError when max_distance is
-/// negative or NaN (+inf is allowed).
-Eigen::VectorXd edge_geodesic_distances(
-    const Surface& surface, int source,
-    double max_distance = std::numeric_limits<double>::infinity(),
-    GeodesicMethod method = GeodesicMethod::dijkstra);
+/// options.method, up to options.max_distance; vertices beyond the bound, or in another
+/// connected component, are +inf. One GeodesicSolver run: use a solver for many sources.
+/// Throws TopologyError for a surface without vertices, InputError when `source` is not a
+/// vertex index, OptionError when max_distance is negative or NaN.
+Eigen::VectorXd geodesic_distances(const Surface& surface, int source,
+                                   const GeodesicOptions& options = {});
 
 /// Reusable state for many bounded distance runs on one surface (Dijkstra order; edge updates,
 /// plus the fast-marching update when the method is fast_marching): the per-vertex buffers are
