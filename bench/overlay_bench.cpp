@@ -257,7 +257,7 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
       matching::RigidTransform truth_transform;  // the inverse of the pose
       truth_transform.rotation = pose.rotation.transpose();
       truth_transform.translation = -(pose.rotation.transpose() * pose.translation);
-      out.truth_score = overlay.score(overlay.refine(truth_transform)).score;
+      out.truth_score = overlay.refine(truth_transform).score.score;
       out.top_score = result.alignments[0].overlay.score;
     }
   } catch (const std::exception& e) {

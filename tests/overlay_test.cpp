@@ -128,7 +128,7 @@ TEST(Overlay, RefinementRecoversAKnownMotion) {
     RigidTransform start;  // the answer, then off by `error`
     start.rotation = error.rotation * answer.rotation;
     start.translation = error.rotation * answer.translation + error.translation;
-    const RigidTransform refined = overlay.refine(start);
+    const RigidTransform refined = overlay.refine(start).transform;
     const double angle =
         matching::rotation_angle_degrees(refined.rotation * answer.rotation.transpose());
     const double shift = ((refined.rotation * centre + refined.translation) -
@@ -143,6 +143,30 @@ TEST(Overlay, RefinementRecoversAKnownMotion) {
     EXPECT_LT(shift, 0.2);
     EXPECT_GT(overlay.score(refined).score, overlay.score(start).score);
   }
+}
+
+// refine's score is score() of its transform; `abandon` stops it after the first step taken,
+// which already raises the score, and marks the result.
+TEST(Overlay, RefinementReportsItsScoreAndStopsWhenAbandoned) {
+  const mesh::Surface reference = labelled_ellipsoid();
+  const matching::SurfaceSample sample = matching::sample_surface(reference, 1.0);
+  const matching::SurfaceOverlay overlay(sample, sample);
+  const RigidTransform start =
+      motion(10.0, Eigen::Vector3d(0.0, 1.0, 1.0), Eigen::Vector3d(0.5, 0.2, -0.3));
+  const matching::RefineResult full = overlay.refine(start);
+  EXPECT_FALSE(full.abandoned);
+  EXPECT_EQ(full.score.score, overlay.score(full.transform).score);
+  EXPECT_EQ(full.score.shape, overlay.score(full.transform).shape);
+
+  int calls = 0;
+  matching::RefineOptions stop_at_once;
+  stop_at_once.abandon = [&](const RigidTransform&) { return ++calls > 0; };
+  const matching::RefineResult stopped = overlay.refine(start, stop_at_once);
+  EXPECT_TRUE(stopped.abandoned);
+  EXPECT_EQ(calls, 1);
+  EXPECT_GT(stopped.score.score, overlay.score(start).score);
+  EXPECT_EQ(stopped.score.score, overlay.score(stopped.transform).score);
+  EXPECT_LE(stopped.score.score, full.score.score);
 }
 
 TEST(Overlay, PrincipalAxesStartsHoldTheMotionAndAreProperRotations) {
@@ -296,8 +320,8 @@ TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
       1e-12);
   EXPECT_GT(at_identity.score - turned.score, 0.5);
   // The refinement's final score carries the atom term too.
-  matching::OverlayScore refined;
-  overlay.refine(motion(3.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d(0.2, 0.0, 0.0)), &refined);
+  const matching::OverlayScore refined =
+      overlay.refine(motion(3.0, Eigen::Vector3d::UnitX(), Eigen::Vector3d(0.2, 0.0, 0.0))).score;
   EXPECT_GT(refined.atoms, 0.9);
   EXPECT_NEAR(
       refined.score,
@@ -310,9 +334,14 @@ TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
   // reference's.
   const RigidTransform off =
       motion(8.0, Eigen::Vector3d(1.0, 1.0, 0.0), Eigen::Vector3d(0.6, -0.3, 0.0));
-  matching::OverlayScore plain_score, pulled_score;
-  const RigidTransform surfaces_only = overlay.refine(off, &plain_score);
-  const RigidTransform pulled = *overlay.refine(surfaces_only, &pulled_score, {}, true);
+  matching::RefineOptions pull;
+  pull.pull_atoms = true;
+  const matching::RefineResult surfaces_result = overlay.refine(off);
+  const matching::RefineResult polished = overlay.refine(surfaces_result.transform, pull);
+  const RigidTransform& surfaces_only = surfaces_result.transform;
+  const RigidTransform& pulled = polished.transform;
+  const matching::OverlayScore& plain_score = surfaces_result.score;
+  const matching::OverlayScore& pulled_score = polished.score;
   std::printf(
       "[ polish   ] from 8 deg off: surfaces alone %.3f deg (score %.4f), atoms pulled too %.3f "
       "deg (score %.4f)\n",
@@ -325,9 +354,12 @@ TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
   const matching::SurfaceOverlay unpaired(shape, shape, options, atoms({{"O", {3.0, 0.0, 0.0}}}),
                                           atoms({{"N", {0.0, 1.5, 0.0}}}));
   ASSERT_TRUE(unpaired.uses_atoms());
-  matching::OverlayScore a, b;
-  const RigidTransform by_surfaces = unpaired.refine(off, &a);
-  const RigidTransform with_pull = *unpaired.refine(off, &b, {}, true);
+  const matching::RefineResult by_surfaces_result = unpaired.refine(off);
+  const matching::RefineResult with_pull_result = unpaired.refine(off, pull);
+  const RigidTransform& by_surfaces = by_surfaces_result.transform;
+  const RigidTransform& with_pull = with_pull_result.transform;
+  const matching::OverlayScore& a = by_surfaces_result.score;
+  const matching::OverlayScore& b = with_pull_result.score;
   EXPECT_LT((by_surfaces.matrix() - with_pull.matrix()).norm(), 1e-9);
   EXPECT_NEAR(a.score, b.score, 1e-12);
   EXPECT_EQ(b.atoms, 0.0);

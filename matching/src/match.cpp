@@ -146,7 +146,9 @@ void refine_consensus_head(std::vector<Placed>& placed, std::size_t n,
   }
   tbb::parallel_for(std::size_t{0}, to_refine.size(), [&](std::size_t i) {
     Placed& p = placed[to_refine[i]];
-    p.transform = overlay.refine(p.transform, &p.overlay);
+    const RefineResult refined = overlay.refine(p.transform);
+    p.transform = refined.transform;
+    p.overlay = refined.score;
     p.refined = true;
   });
 }
@@ -167,12 +169,15 @@ std::vector<Placed> refine_axes_starts(const std::vector<RigidTransform>& starts
              largest_move(overlay, c.transform, pose) <= kRepeatDistance;
     });
   };
+  RefineOptions refine_options;
+  refine_options.abandon = reached;
   std::vector<std::optional<Placed>> poses(starts.size());
   tbb::parallel_for(std::size_t{0}, starts.size(), [&](std::size_t i) {
+    const RefineResult refined = overlay.refine(starts[i], refine_options);
+    if (refined.abandoned) return;
     Placed p;  // no cluster
-    const std::optional<RigidTransform> refined = overlay.refine(starts[i], &p.overlay, reached);
-    if (!refined) return;
-    p.transform = *refined;
+    p.transform = refined.transform;
+    p.overlay = refined.score;
     p.refined = true;
     poses[i] = p;
   });
@@ -214,7 +219,7 @@ Ordered order_distinct_then_repeats(std::vector<Placed> all, const SurfaceOverla
 }
 
 /// The first `polish_top` distinct refined poses of `ordered` polished on the whole score,
-/// their heteroatoms pulled too (SurfaceOverlay::refine with pull_atoms), in parallel (TBB),
+/// their heteroatoms pulled too (RefineOptions::pull_atoms), in parallel (TBB),
 /// and the list ordered again (a polished pose that comes to repeat a better one goes after
 /// the distinct ones).
 Ordered polish(Ordered ordered, int polish_top, const SurfaceOverlay& overlay) {
@@ -223,9 +228,13 @@ Ordered polish(Ordered ordered, int polish_top, const SurfaceOverlay& overlay) {
        i < ordered.distinct && to_polish.size() < static_cast<std::size_t>(polish_top); ++i) {
     if (ordered.list[i].refined) to_polish.push_back(i);
   }
+  RefineOptions refine_options;
+  refine_options.pull_atoms = true;
   tbb::parallel_for(std::size_t{0}, to_polish.size(), [&](std::size_t k) {
     Placed& p = ordered.list[to_polish[k]];
-    p.transform = *overlay.refine(p.transform, &p.overlay, {}, true);
+    const RefineResult polished = overlay.refine(p.transform, refine_options);
+    p.transform = polished.transform;
+    p.overlay = polished.score;
   });
   return order_distinct_then_repeats(std::move(ordered.list), overlay);
 }

@@ -1,0 +1,51 @@
+// The points the whole-surface overlay (overlay.hpp) compares: a surface sampled as
+// area-weighted points, and a molecule's heteroatoms.
+//
+// The vertices are pooled in cubic cells of edge `spacing`, each cell giving one point (the
+// area-weighted mean position, unit normal, ESP and LP of its vertices) whose weight is the
+// cell's vertex area (A^2). Why this sampling and its default spacing:
+// docs/decisions.md#overlay-sampling-and-width.
+#pragma once
+
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/mesh/surface.hpp"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace surfcomp::matching {
+
+/// Area-weighted points of a surface (see the file comment). Columns of the matrices and
+/// entries of the vectors belong to one point.
+struct SurfaceSample {
+  Eigen::Matrix3Xd points;   ///< A
+  Eigen::Matrix3Xd normals;  ///< unit, outward
+  Eigen::VectorXd weights;   ///< A^2; they sum to the area of the sampled vertices
+  Eigen::VectorXd esp;       ///< the surface's "esp" property, 0 where it has none
+  Eigen::VectorXd lp;        ///< the surface's "lp" property, 0 where it has none
+
+  std::size_t size() const { return static_cast<std::size_t>(points.cols()); }
+};
+
+/// The heteroatoms (heavy atoms other than carbon) of a molecule, for the atom term.
+struct AtomSample {
+  Eigen::Matrix3Xd points;            ///< A
+  std::vector<std::string> elements;  ///< one per column of points
+
+  std::size_t size() const { return elements.size(); }
+};
+
+/// The heteroatoms among `atoms` (hydrogens and carbons dropped), in their order.
+AtomSample sample_atoms(const std::vector<harmonic::SurfaceAtom>& atoms);
+
+/// The sample of `surface`'s vertices whose flag in `vertex_mask` is set (all when null), pooled
+/// in cells of `spacing` A; cells are ordered by their integer coordinates (deterministic).
+/// Vertex normals are the surface's, or are computed when it has none. Throws InputError when
+/// the mask has the wrong size; OptionError when spacing <= 0 or is not finite.
+SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
+                             const std::vector<bool>* vertex_mask = nullptr);
+
+}  // namespace surfcomp::matching

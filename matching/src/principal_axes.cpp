@@ -1,0 +1,58 @@
+#include "surfcomp/matching/principal_axes.hpp"
+
+#include "surfcomp/core/error.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <utility>
+
+namespace surfcomp::matching {
+namespace {
+
+/// The weighted centroid and principal axes (columns, by increasing variance, right-handed)
+/// of a sample.
+std::pair<Eigen::Vector3d, Eigen::Matrix3d> principal_frame(const SurfaceSample& sample) {
+  const double total = sample.weights.sum();
+  const Eigen::Vector3d centroid = sample.points * sample.weights / total;
+  const Eigen::Matrix3Xd centred = sample.points.colwise() - centroid;
+  const Eigen::Matrix3d covariance =
+      centred * sample.weights.asDiagonal() * centred.transpose() / total;
+  Eigen::Matrix3d axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
+  if (axes.determinant() < 0.0) axes.col(0) = -axes.col(0);
+  return {centroid, axes};
+}
+
+}  // namespace
+
+std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference,
+                                                  const SurfaceSample& probe, bool all_orders) {
+  if (reference.size() == 0 || probe.size() == 0) {
+    throw InputError(std::string("principal axes: the ") +
+                     (reference.size() == 0 ? "reference" : "probe") + " sample has no points");
+  }
+  const auto [reference_centroid, reference_axes] = principal_frame(reference);
+  const auto [probe_centroid, probe_axes] = principal_frame(probe);
+  // Signed permutation matrices P with det +1: probe axis j goes onto reference axis perm[j].
+  std::array<int, 3> perm{0, 1, 2};
+  std::vector<RigidTransform> starts;
+  do {
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3d p = Eigen::Matrix3d::Zero();
+      for (int j = 0; j < 3; ++j)
+        p(perm[static_cast<std::size_t>(j)], j) = (signs >> j) & 1 ? -1.0 : 1.0;
+      if (p.determinant() < 0.0) continue;
+      RigidTransform t;
+      t.rotation = reference_axes * p * probe_axes.transpose();
+      t.translation = reference_centroid - t.rotation * probe_centroid;
+      starts.push_back(t);
+    }
+  } while (all_orders && std::next_permutation(perm.begin(), perm.end()));
+  return starts;
+}
+
+}  // namespace surfcomp::matching

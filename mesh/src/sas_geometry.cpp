@@ -1,0 +1,353 @@
+#include "sas_geometry.hpp"
+
+#include <cmath>
+#include <tuple>
+
+namespace surfcomp::mesh::detail {
+namespace {
+
+/// Projections of a vertex onto the exact surface (the nearest feature can change once).
+constexpr int projection_rounds = 3;
+/// A projection has converged when it moves a vertex less than this, A.
+constexpr double convergence = 1e-12;
+/// Marks "not a candidate" in the per-thread gap table.
+constexpr double limit_none = std::numeric_limits<double>::infinity();
+/// Tolerance for "a point on sphere i lies inside sphere j", A.
+constexpr double burial_tolerance = 1e-9;
+/// Cell size of the sphere and vertex grids, A.
+constexpr double sphere_cell = 1.5;
+
+/// `points` as the 3 by #P matrix SpatialGrid takes (a view, no copy).
+Eigen::Map<const Eigen::Matrix3Xd> columns(const std::vector<Vec3>& points) {
+  return {points.empty() ? nullptr : points.front().data(), 3,
+          static_cast<Eigen::Index>(points.size())};
+}
+
+}  // namespace
+
+SasGeometry::SasGeometry(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+                         const Eigen::Ref<const Eigen::VectorXd>& radii, double probe)
+    : probe_(probe) {
+  for (Eigen::Index i = 0; i < centers.rows(); ++i) {
+    centers_.emplace_back(centers.row(i).transpose());
+    big_.push_back(radii(i) + probe);
+    atom_.push_back(radii(i));
+  }
+  max_big_ = *std::max_element(big_.begin(), big_.end());
+  spheres_ = SpatialGrid(columns(centers_), sphere_cell);
+  find_neighbours();
+  find_circles();
+}
+
+double SasGeometry::union_value(const Vec3& x, double limit) const {
+  thread_local Candidates candidates;
+  gather(x, 0.0, limit, candidates);
+  return union_value(x, limit, candidates);
+}
+
+NearestPoint SasGeometry::nearest_boundary_point(const Vec3& x, double limit,
+                                                 const Candidates& candidates) const {
+  NearestPoint best;
+  best.distance = limit;
+  thread_local std::vector<std::pair<double, int>> near;
+  thread_local std::vector<double> gap_of;
+  near.clear();
+  if (gap_of.size() != centers_.size()) gap_of.assign(centers_.size(), limit_none);
+  for (const int i : candidates.spheres) {
+    const double gap = std::abs(radius(i) - (x - center(i)).norm());
+    if (gap < limit) near.emplace_back(gap, i);
+  }
+  std::sort(near.begin(), near.end());
+  for (const auto& [gap, i] : near) gap_of[static_cast<std::size_t>(i)] = gap;
+  for (const auto& [gap, i] : near) {
+    if (gap >= best.distance) break;
+    const Vec3 d = x - center(i);
+    const double length = d.norm();
+    if (length == 0.0 || !exposed_sphere_[static_cast<std::size_t>(i)]) continue;
+    const Vec3 p = center(i) + radius(i) / length * d;
+    if (!buried(p, neighbours_[static_cast<std::size_t>(i)], i)) {
+      best = NearestPoint{gap, p, Feature::sphere, i};
+      break;
+    }
+  }
+  for (const auto& [gap, i] : near) {
+    if (gap >= best.distance) break;
+    for (const int c : circles_of_[static_cast<std::size_t>(i)]) {
+      const Circle& circle = circles_[static_cast<std::size_t>(c)];
+      const int other = circle.i == i ? circle.j : circle.i;
+      const double other_gap = gap_of[static_cast<std::size_t>(other)];
+      // Visit each circle once, from the sphere with the smaller gap.
+      if (other_gap >= best.distance || other_gap < gap || (other_gap == gap && other < i))
+        continue;
+      const Vec3 v = x - circle.center;
+      const double along = v.dot(circle.normal);
+      const Vec3 radial = v - along * circle.normal;
+      const double r = radial.norm();
+      const double distance = std::hypot(along, r - circle.radius);
+      if (distance >= best.distance) continue;
+      double angle = r > 0.0 ? std::atan2(radial.dot(circle.w), radial.dot(circle.u)) : 0.0;
+      if (angle < 0.0) angle += 2.0 * M_PI;
+      if (circle.exposed_at(angle)) {
+        const Vec3 p = circle.center +
+                       circle.radius * (std::cos(angle) * circle.u + std::sin(angle) * circle.w);
+        best = NearestPoint{distance, p, Feature::circle, c};
+      }
+    }
+  }
+  for (const auto& entry : near) gap_of[static_cast<std::size_t>(entry.second)] = limit_none;
+  for (const int v : candidates.vertices) {
+    const double distance = (x - vertices_[static_cast<std::size_t>(v)]).norm();
+    if (distance < best.distance) {
+      best = NearestPoint{distance, vertices_[static_cast<std::size_t>(v)], Feature::vertex, v};
+    }
+  }
+  return best;
+}
+
+void SasGeometry::project_to_ses(Vec3& x, double reach, Vec3& normal,
+                                 double& mean_curvature) const {
+  const double limit = probe_ + reach;
+  thread_local Candidates candidates;
+  gather(x, reach, limit, candidates);
+  for (int round = 0; round < projection_rounds; ++round) {
+    if (union_value(x, limit, candidates) >= 0.0) {
+      // Outside U: on the surface itself only for a zero probe (the SES is then U's boundary).
+      if (probe_ == 0.0) project_to_sas(x, reach, normal, mean_curvature);
+      return;
+    }
+    const NearestPoint q = nearest_boundary_point(x, limit, candidates);
+    if (q.feature == Feature::none || q.distance == 0.0) return;
+    const Vec3 away = (q.point - x) / q.distance;  // outward normal of the SES
+    const Vec3 moved = q.point - probe_ * away;
+    normal = away;
+    mean_curvature = curvature_at(moved, normal, q);
+    // Moving towards q keeps q the nearest boundary point, so x is then exact; moving
+    // away from q (x was outside the SES) may not, and is checked by another round.
+    const bool done = q.distance >= probe_ || (moved - x).norm() < convergence;
+    x = moved;
+    if (done) return;
+  }
+}
+
+Spheres SasGeometry::nearest_sas_point(Vec3& x, double reach) const {
+  thread_local Candidates candidates;
+  gather(x, reach, reach, candidates);
+  int which = -1;
+  if (union_value(x, reach, candidates, &which) >= 0.0) {
+    if (which < 0) return Spheres{-1, -1, -1};
+    const Vec3 d = x - center(which);
+    if (d.norm() == 0.0) return Spheres{-1, -1, -1};
+    x = center(which) + radius(which) / d.norm() * d;
+    return sorted_spheres(which);
+  }
+  const NearestPoint q = nearest_boundary_point(x, reach, candidates);
+  switch (q.feature) {
+    case Feature::none:
+      return Spheres{-1, -1, -1};
+    case Feature::sphere:
+      x = q.point;
+      return sorted_spheres(q.index);
+    case Feature::circle: {
+      const Circle& c = circles_[static_cast<std::size_t>(q.index)];
+      x = q.point;
+      return sorted_spheres(c.i, c.j);
+    }
+    case Feature::vertex:
+      x = q.point;
+      return vertex_spheres_[static_cast<std::size_t>(q.index)];
+  }
+  return Spheres{-1, -1, -1};
+}
+
+bool SasGeometry::crease_point(int i, int j, const Vec3& near, Vec3& out) const {
+  for (const int c : circles_of_[static_cast<std::size_t>(i)]) {
+    const Circle& circle = circles_[static_cast<std::size_t>(c)];
+    if (circle.i != j && circle.j != j) continue;
+    const Vec3 v = near - circle.center;
+    const Vec3 radial = v - v.dot(circle.normal) * circle.normal;
+    if (radial.norm() == 0.0) return false;
+    double angle = std::atan2(radial.dot(circle.w), radial.dot(circle.u));
+    if (angle < 0.0) angle += 2.0 * M_PI;
+    if (!circle.exposed_at(angle)) return false;
+    out = circle.center + circle.radius / radial.norm() * radial;
+    return true;
+  }
+  return false;
+}
+
+bool SasGeometry::vertex_point(const Spheres& s, const Vec3& near, double limit, Vec3& out) const {
+  bool found = false;
+  vertex_index_.for_each_near(near, limit, [&](int v) {
+    const Vec3& p = vertices_[static_cast<std::size_t>(v)];
+    if (vertex_spheres_[static_cast<std::size_t>(v)] == s && (p - near).norm() < limit &&
+        (!found || (p - near).norm() < (out - near).norm())) {
+      out = p;
+      found = true;
+    }
+  });
+  return found;
+}
+
+void SasGeometry::project_to_sas(Vec3& x, double reach, Vec3& normal,
+                                 double& mean_curvature) const {
+  thread_local Candidates candidates;
+  gather(x, reach, reach, candidates);
+  for (int round = 0; round < projection_rounds; ++round) {
+    int which = -1;
+    union_value(x, reach, candidates, &which);
+    if (which < 0) return;
+    const Vec3 d = x - center(which);
+    if (d.norm() == 0.0) return;
+    normal = d.normalized();
+    const Vec3 moved = center(which) + radius(which) * normal;
+    mean_curvature = 1.0 / radius(which);
+    const bool done = (moved - x).norm() < convergence;
+    x = moved;
+    if (done) return;
+  }
+}
+
+bool SasGeometry::buried(const Vec3& p, const std::vector<int>& others, int a) const {
+  for (const int k : others) {
+    if (k == a) continue;
+    if ((p - center(k)).squaredNorm() <
+        (radius(k) - burial_tolerance) * (radius(k) - burial_tolerance)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+void SasGeometry::find_neighbours() {
+  neighbours_.resize(centers_.size());
+  for (std::size_t i = 0; i < centers_.size(); ++i) {
+    spheres_.for_each_near(centers_[i], 2.0 * max_big_, [&](int j) {
+      if (static_cast<std::size_t>(j) != i &&
+          (centers_[i] - center(j)).norm() < big_[i] + radius(j)) {
+        neighbours_[i].push_back(j);
+      }
+    });
+    std::sort(neighbours_[i].begin(), neighbours_[i].end());
+  }
+}
+
+void SasGeometry::find_circles() {
+  constexpr double two_pi = 2.0 * M_PI;
+  const std::size_t n = centers_.size();
+  circles_of_.resize(n);
+  std::vector<bool> contained(n, false);
+  std::vector<bool> has_circle(n, false);
+  std::vector<bool> has_exposed_circle(n, false);
+  for (std::size_t a = 0; a < n; ++a) {
+    const int i = static_cast<int>(a);
+    for (const int j : neighbours_[a]) {
+      const Vec3 axis = center(j) - center(i);
+      const double d = axis.norm();
+      if (d <= radius(j) - radius(i)) contained[a] = true;
+      if (j <= i || d <= std::abs(radius(i) - radius(j))) continue;
+      const double x0 = (d * d + radius(i) * radius(i) - radius(j) * radius(j)) / (2.0 * d);
+      const double rho2 = radius(i) * radius(i) - x0 * x0;
+      if (rho2 <= 0.0) continue;
+      has_circle[a] = has_circle[static_cast<std::size_t>(j)] = true;
+      Circle circle;
+      circle.center = center(i) + x0 / d * axis;
+      circle.normal = axis / d;
+      circle.u = circle.normal.unitOrthogonal();
+      circle.w = circle.normal.cross(circle.u);
+      circle.radius = std::sqrt(rho2);
+      circle.i = i;
+      circle.j = j;
+      // Sphere k buries the points where |p - c_k| < R_k: with a = (o - c_k).u,
+      // b = (o - c_k).w, that is a cos t + b sin t < (R_k^2 - |o - c_k|^2 - rho^2) / (2 rho).
+      std::vector<std::tuple<double, double, int>> buried_arcs;  ///< start, end, sphere
+      bool all_buried = false;
+      for (const int k : neighbours_[a]) {
+        if (k == j) continue;
+        const Vec3 offset = circle.center - center(k);
+        const double ca = offset.dot(circle.u);
+        const double cb = offset.dot(circle.w);
+        const double m = std::hypot(ca, cb);
+        const double t =
+            (radius(k) * radius(k) - offset.squaredNorm() - rho2) / (2.0 * circle.radius);
+        if (t <= -m) continue;
+        if (t >= m) {
+          all_buried = true;
+          break;
+        }
+        double middle = std::atan2(cb, ca) + M_PI;
+        if (middle >= two_pi) middle -= two_pi;
+        const double half_width = M_PI - std::acos(t / m);
+        const double start = middle - half_width;
+        const double end = middle + half_width;
+        if (start < 0.0) {
+          buried_arcs.emplace_back(start + two_pi, two_pi, k);
+          buried_arcs.emplace_back(0.0, end, k);
+        } else if (end > two_pi) {
+          buried_arcs.emplace_back(start, two_pi, k);
+          buried_arcs.emplace_back(0.0, end - two_pi, k);
+        } else {
+          buried_arcs.emplace_back(start, end, k);
+        }
+      }
+      if (all_buried) continue;
+      std::sort(buried_arcs.begin(), buried_arcs.end());
+      double covered = 0.0;  // [0, covered] is buried, by sphere `cover` at its end
+      int cover = -1;
+      for (const auto& [start, end, k] : buried_arcs) {
+        if (start > covered) {
+          circle.exposed.emplace_back(covered, start);
+          add_arc_end(circle, covered, cover);
+          add_arc_end(circle, start, k);
+        }
+        if (end > covered) {
+          covered = end;
+          cover = k;
+        }
+      }
+      if (covered < two_pi) {
+        circle.exposed.emplace_back(covered, two_pi);
+        add_arc_end(circle, covered, cover);
+      }
+      if (circle.exposed.empty()) continue;
+      has_exposed_circle[a] = has_exposed_circle[static_cast<std::size_t>(j)] = true;
+      circles_of_[a].push_back(static_cast<int>(circles_.size()));
+      circles_of_[static_cast<std::size_t>(j)].push_back(static_cast<int>(circles_.size()));
+      circles_.push_back(std::move(circle));
+    }
+  }
+  exposed_sphere_.resize(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    exposed_sphere_[a] = has_exposed_circle[a] || (!has_circle[a] && !contained[a]);
+  }
+  vertex_index_ = SpatialGrid(columns(vertices_), sphere_cell);
+}
+
+void SasGeometry::add_arc_end(const Circle& circle, double angle, int k) {
+  if (angle <= 0.0 || angle >= 2.0 * M_PI) return;
+  vertices_.push_back(circle.center +
+                      circle.radius * (std::cos(angle) * circle.u + std::sin(angle) * circle.w));
+  vertex_spheres_.push_back(sorted_spheres(circle.i, circle.j, k));
+}
+
+double SasGeometry::curvature_at(const Vec3& x, const Vec3& normal, const NearestPoint& q) const {
+  switch (q.feature) {
+    case Feature::sphere:
+      return 1.0 / atom_radius(q.index);
+    case Feature::vertex:
+      return -1.0 / probe_;
+    case Feature::circle: {
+      // Torus: -1/probe along the probe's arc; around the axis, the parallel circle of
+      // radius y has normal curvature (w . n) / y, w the unit vector away from the axis.
+      const Circle& circle = circles_[static_cast<std::size_t>(q.index)];
+      const Vec3 v = x - circle.center;
+      const Vec3 radial = v - v.dot(circle.normal) * circle.normal;
+      const double y = radial.norm();
+      const double parallel = y > 0.0 ? radial.dot(normal) / (y * y) : 0.0;
+      return 0.5 * (-1.0 / probe_ + std::min(parallel, 1.0 / probe_));
+    }
+    case Feature::none:
+      break;
+  }
+  return 0.0;
+}
+}  // namespace surfcomp::mesh::detail

@@ -1,0 +1,216 @@
+#include "ses_grid.hpp"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace surfcomp::mesh::detail {
+namespace {
+
+/// Grid values are exact within this many voxels of the surface and clamped beyond.
+constexpr double band_voxels = 1.5;
+/// Root boxes of the adaptive sampling, voxels per side (a power of two).
+constexpr int root_box = 32;
+/// Boxes up to this size are sampled voxel by voxel.
+constexpr int leaf_box = 2;
+
+/// The SES as a sampled field: value() is exact within `clamp` of the surface; upper_bound()
+/// is the cheap CSG bound probe + min_i (|x - c_i| - R_i) >= value, exact outside U.
+struct SesField {
+  const SasGeometry& sas;
+  void gather(const Vec3& centre, double radius, double clamp,
+              SasGeometry::Candidates& candidates) const {
+    sas.gather(centre, radius, sas.probe() + clamp, candidates);
+  }
+  double value(const Vec3& x, double clamp, const SasGeometry::Candidates& candidates) const {
+    return sas.ses_value(x, clamp, candidates);
+  }
+  double upper_bound(const Vec3& x, double clamp, bool& exact) const {
+    const double u = sas.union_value(x, clamp + sas.probe());
+    exact = u >= 0.0;
+    return sas.probe() + u;
+  }
+};
+
+/// The SAS as a sampled field: the CSG union min_i (|x - c_i| - R_i), 1-Lipschitz.
+struct SasField {
+  const SasGeometry& sas;
+  void gather(const Vec3& centre, double radius, double clamp,
+              SasGeometry::Candidates& candidates) const {
+    sas.gather(centre, radius, clamp, candidates);
+  }
+  double value(const Vec3& x, double clamp, const SasGeometry::Candidates& candidates) const {
+    return sas.sas_value(x, clamp, candidates);
+  }
+  double upper_bound(const Vec3& x, double clamp, bool& exact) const {
+    exact = true;
+    return sas.union_value(x, clamp);
+  }
+};
+
+/// Samples field.value(x, clamp) on the grid nodes ijk * voxel near its zero level set,
+/// refining boxes of nodes adaptively: a box whose centre value exceeds its half-diagonal plus
+/// the band in magnitude lies wholly outside (background) or inside (an inactive negative
+/// fill), since the field is 1-Lipschitz; the cheap upper bound decides large boxes. Only root
+/// boxes within `reach` of an atom are visited. They are processed in parallel into separate
+/// slots and written in a fixed order, so the grid does not depend on the thread count.
+template <class Field>
+openvdb::FloatGrid::Ptr sample_band(const Field& field,
+                                    const Eigen::Ref<const Eigen::MatrixX3d>& centers, double reach,
+                                    double voxel) {
+  const auto band = static_cast<float>(band_voxels * voxel);
+  auto grid = openvdb::FloatGrid::create(band);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
+  grid->setGridClass(openvdb::GRID_LEVEL_SET);
+
+  // Root boxes touching the ball of radius `reach` around some atom, in a sorted order.
+  const double root_size = root_box * voxel;
+  std::vector<std::array<int, 3>> roots;
+  for (Eigen::Index a = 0; a < centers.rows(); ++a) {
+    const Eigen::Vector3i lo =
+        ((centers.row(a).array() - reach) / root_size).floor().cast<int>().transpose();
+    const Eigen::Vector3i hi =
+        ((centers.row(a).array() + reach) / root_size).floor().cast<int>().transpose();
+    for (int i = lo.x(); i <= hi.x(); ++i) {
+      for (int j = lo.y(); j <= hi.y(); ++j) {
+        for (int k = lo.z(); k <= hi.z(); ++k) roots.push_back({i, j, k});
+      }
+    }
+  }
+  std::sort(roots.begin(), roots.end());
+  roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+  struct Samples {
+    std::vector<std::pair<openvdb::Coord, float>> values;
+    std::vector<std::pair<openvdb::Coord, int>> inside_boxes;  ///< origin, size
+  };
+  std::vector<Samples> slots(roots.size());
+  tbb::parallel_for(std::size_t{0}, roots.size(), [&](std::size_t r) {
+    Samples& out = slots[r];
+    SasGeometry::Candidates candidates;
+    const Eigen::Vector3i root(roots[r][0], roots[r][1], roots[r][2]);
+    std::vector<std::pair<Eigen::Vector3i, int>> stack{{root_box * root, root_box}};
+    while (!stack.empty()) {
+      const auto [origin, size] = stack.back();
+      stack.pop_back();
+      const double half_diagonal = std::sqrt(3.0) * 0.5 * (size - 1) * voxel;
+      const Vec3 centre = (origin.cast<double>() + Vec3::Constant(0.5 * (size - 1))) * voxel;
+      const double threshold = half_diagonal + band;
+      const openvdb::Coord corner(origin.x(), origin.y(), origin.z());
+      bool exact = false;
+      const double bound = field.upper_bound(centre, threshold + voxel, exact);
+      if (bound < -threshold) {
+        out.inside_boxes.emplace_back(corner, size);
+        continue;
+      }
+      if (exact && bound > threshold) continue;
+      if (size <= leaf_box) {
+        field.gather(centre, half_diagonal, threshold + voxel, candidates);
+        const double value = field.value(centre, threshold + voxel, candidates);
+        if (value > threshold) continue;
+        if (value < -threshold) {
+          out.inside_boxes.emplace_back(corner, size);
+          continue;
+        }
+        for (int i = 0; i < size; ++i) {
+          for (int j = 0; j < size; ++j) {
+            for (int k = 0; k < size; ++k) {
+              const Eigen::Vector3i c = origin + Eigen::Vector3i(i, j, k);
+              const double v =
+                  field.value(c.cast<double>() * voxel, static_cast<double>(band), candidates);
+              out.values.emplace_back(openvdb::Coord(c.x(), c.y(), c.z()), static_cast<float>(v));
+            }
+          }
+        }
+        continue;
+      }
+      const int child_size = size / 2;
+      for (int child = 7; child >= 0; --child) {
+        stack.emplace_back(
+            origin + child_size * Eigen::Vector3i(child & 1, (child >> 1) & 1, child >> 2),
+            child_size);
+      }
+    }
+  });
+  auto accessor = grid->getAccessor();
+  for (const Samples& s : slots) {
+    for (const auto& [origin, size] : s.inside_boxes) {
+      grid->tree().fill(openvdb::CoordBBox::createCube(origin, size), -band, false);
+    }
+  }
+  for (const Samples& s : slots) {
+    for (const auto& [coord, value] : s.values) accessor.setValue(coord, value);
+  }
+  return grid;
+}
+
+/// Meshes the zero isosurface of `grid` (dual contouring; each quad split along its shorter
+/// diagonal). Vertices are sorted by coordinates and faces by indices, so the arrays do not
+/// depend on the order in which OpenVDB's threads produced them.
+TriangleSoup extract_isosurface(const openvdb::FloatGrid& grid) {
+  std::vector<openvdb::Vec3s> points;
+  std::vector<openvdb::Vec4I> quads;
+  openvdb::tools::volumeToMesh(grid, points, quads, 0.0);
+
+  std::vector<std::uint32_t> order(points.size());
+  std::iota(order.begin(), order.end(), 0U);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const auto& p = points[a];
+    const auto& q = points[b];
+    if (p[0] != q[0]) return p[0] < q[0];
+    if (p[1] != q[1]) return p[1] < q[1];
+    if (p[2] != q[2]) return p[2] < q[2];
+    return a < b;
+  });
+  std::vector<int> rank(points.size());
+  TriangleSoup soup;
+  soup.positions.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    rank[order[i]] = static_cast<int>(i);
+    const auto& p = points[order[i]];
+    soup.positions.row(static_cast<Eigen::Index>(i)) << p[0], p[1], p[2];
+  }
+  // OpenVDB winds quads clockwise seen from the positive (outer) side: reverse them.
+  std::vector<std::array<int, 3>> triangles;
+  triangles.reserve(2 * quads.size());
+  for (const auto& q : quads) {
+    const int a = rank[q[3]], b = rank[q[2]], c = rank[q[1]], d = rank[q[0]];
+    const double ac = (soup.positions.row(a) - soup.positions.row(c)).squaredNorm();
+    const double bd = (soup.positions.row(b) - soup.positions.row(d)).squaredNorm();
+    if (ac <= bd) {
+      triangles.push_back({a, b, c});
+      triangles.push_back({a, c, d});
+    } else {
+      triangles.push_back({a, b, d});
+      triangles.push_back({b, c, d});
+    }
+  }
+  for (auto& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  std::sort(triangles.begin(), triangles.end());
+  soup.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    soup.faces.row(static_cast<Eigen::Index>(f)) << triangles[f][0], triangles[f][1],
+        triangles[f][2];
+  }
+  return soup;
+}
+
+}  // namespace
+
+TriangleSoup grid_mesh(const SasGeometry& sas, SurfaceKind kind,
+                       const Eigen::Ref<const Eigen::MatrixX3d>& centers, double reach,
+                       double voxel) {
+  const openvdb::FloatGrid::Ptr grid = kind == SurfaceKind::excluded
+                                           ? sample_band(SesField{sas}, centers, reach, voxel)
+                                           : sample_band(SasField{sas}, centers, reach, voxel);
+  return extract_isosurface(*grid);
+}
+
+}  // namespace surfcomp::mesh::detail
