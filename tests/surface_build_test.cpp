@@ -319,7 +319,7 @@ TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
       errors.push_back(std::abs(vb(i) - value) / range);
     }
     std::sort(errors.begin(), errors.end());
-    const double median = errors[errors.size() / 2];
+    const double median = test::median(errors);
     const double p95 = errors[errors.size() * 95 / 100];
     std::printf(
         "[ motion   ] %s: moved vertices within %.3f A of the original surface; "
