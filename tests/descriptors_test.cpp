@@ -184,7 +184,8 @@ TEST(HsiFile, RoundTripsExactly) {
     EXPECT_EQ(x.image.valid, y.image.valid);
     EXPECT_EQ(x.patch.outer_boundary, y.patch.outer_boundary);
   }
-  const auto path = std::filesystem::temp_directory_path() / "surfcomp_roundtrip.hsi";
+  const test::TempDir dir;
+  const auto path = dir / "roundtrip.hsi";
   harmonic::io::write_hsi(d, path);
   EXPECT_TRUE(encoded(harmonic::io::read_hsi(path)) == bytes);
 }
