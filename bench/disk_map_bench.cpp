@@ -5,7 +5,7 @@
 #include "surfcomp/harmonic/cgal_reference.hpp"
 #include "surfcomp/harmonic/disk_map.hpp"
 
-#include "../tests/disk_map_patches.hpp"
+#include "disk_map_patches.hpp"
 
 #include <benchmark/benchmark.h>
 

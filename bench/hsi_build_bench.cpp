@@ -5,6 +5,7 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
+#include "test_support.hpp"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
@@ -17,8 +18,7 @@ namespace {
 using namespace surfcomp;
 
 const std::filesystem::path kLigand =
-    std::filesystem::path(SURFCOMP_SOURCE_DIR).parent_path() /
-    "shared/datasets/thermolysin/ligands-common-frame/1THL_ligand.sdf";
+    test::shared_datasets_root() / "thermolysin/ligands-common-frame/1THL_ligand.sdf";
 
 const mesh::Surface& ligand_surface() {
   static const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(kLigand));

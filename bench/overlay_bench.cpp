@@ -17,9 +17,11 @@
 //   --threads N      worker threads for our match and descriptions (default all cores)
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
+#include "test_support.hpp"
 
 #include <Eigen/Geometry>
 #include <GraphMol/Descriptors/Crippen.h>
@@ -31,7 +33,6 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -50,18 +51,13 @@ namespace {
 
 using namespace surfcomp;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 constexpr double kSuccessRmsd = 2.0;       // A
 constexpr double kPoseTranslation = 10.0;  // A, length of the random translation
 constexpr std::size_t kTopN = 5;           // "best of the top 5"
 const double kInf = std::numeric_limits<double>::infinity();
 
-const fs::path kShared = fs::path(SURFCOMP_SOURCE_DIR).parent_path() / "shared/datasets";
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
+const fs::path kShared = test::shared_datasets_root();
 
 /// One molecule of a set, read twice from the same file: by our reader (for the surface) and by
 /// RDKit with hydrogens kept (for Open3DAlign). Atom i is the same atom in both. Either side
@@ -94,10 +90,10 @@ Entry load_entry(const std::string& name, const fs::path& path) {
                        std::to_string(entry.molecule->atoms.size()) + " atoms, RDKit " +
                        std::to_string(entry.rdkit->getNumAtoms()));
     }
-    const auto start = Clock::now();
+    const Stopwatch start;
     entry.descriptors =
         harmonic::describe_surface(mesh::build_molecular_surface(*entry.molecule), *entry.molecule);
-    entry.describe_ms = ms_since(start);
+    entry.describe_ms = start.elapsed_ms();
   } catch (const std::exception& e) {
     entry.molecule.reset();
     entry.our_error = e.what();
@@ -220,14 +216,14 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
   const std::vector<Eigen::Vector3d> truth = atom_positions(*probe.molecule);
   const std::vector<bool> heavy = heavy_atoms(*probe.molecule);
   try {
-    const auto start = Clock::now();
+    const Stopwatch start;
     const auto described = harmonic::describe_surface(mesh::build_molecular_surface(posed), posed);
-    const auto match_start = Clock::now();
+    const Stopwatch match_start;
     const auto result = matching::match_surfaces(*reference.descriptors, described, options);
-    out.match_ms = ms_since(match_start);
+    out.match_ms = match_start.elapsed_ms();
     // End to end for the pair: both molecules described, then matched. The reference's
     // description was timed once when it was built.
-    out.ms = ms_since(start) + reference.describe_ms;
+    out.ms = start.elapsed_ms() + reference.describe_ms;
     out.alignments = result.alignments.size();
     for (std::size_t k = 0; k < result.alignments.size(); ++k) {
       const Eigen::Matrix4d& t = result.alignments[k].transform;
@@ -284,7 +280,7 @@ Outcome run_o3a(const Entry& reference, const Entry& probe, const Pose& pose, O3
     conf.setAtomPos(i, RDGeom::Point3D(q.x(), q.y(), q.z()));
   }
   try {
-    const auto start = Clock::now();
+    const Stopwatch start;
     if (scheme == O3aScheme::mmff) {
       RDKit::MMFF::MMFFMolProperties prb_props(prb);
       RDKit::MMFF::MMFFMolProperties ref_props(ref);
@@ -304,7 +300,7 @@ Outcome run_o3a(const Entry& reference, const Entry& probe, const Pose& pose, O3
       RDKit::MolAlign::O3A o3a(prb, ref, &prb_logp, &ref_logp, RDKit::MolAlign::O3A::CRIPPEN);
       o3a.align();
     }
-    out.ms = ms_since(start);
+    out.ms = start.elapsed_ms();
     out.alignments = 1;
     out.rmsd = heavy_atom_rmsd(conformer_positions(prb), conformer_positions(*probe.rdkit),
                                heavy_atoms(prb));
@@ -321,13 +317,6 @@ struct Trial {
   int pose = 0;
   Outcome ours, mmff, crippen;
 };
-
-double median(std::vector<double> values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 /// One row of the summary: success rates over all trials (a trial the method could not run
 /// counts as a failure), median RMSD over all trials (no answer = +inf), median times over the
@@ -362,9 +351,9 @@ Row summarise(const std::string& set, const std::string& method, const std::vect
       match_ms.push_back(o.match_ms);
     }
   }
-  row.median_rmsd = median(rmsd);
-  row.median_ms = median(ms);
-  row.median_match_ms = median(match_ms);
+  row.median_rmsd = test::median(rmsd);
+  row.median_ms = test::median(ms);
+  row.median_match_ms = test::median(match_ms);
   row.max_ms = ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end());
   row.max_match_ms = match_ms.empty() ? 0.0 : *std::max_element(match_ms.begin(), match_ms.end());
   return row;

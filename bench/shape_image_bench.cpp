@@ -4,7 +4,7 @@
 // evaluation of the same correlations measured in the same run. Target: one comparison over
 // all rotations in at most 20 us. Prints Google Benchmark's table, then the figures (CPU time)
 // vs target.
-#include "../tests/analytic_meshes.hpp"
+#include "analytic_meshes.hpp"
 
 #include "surfcomp/harmonic/shape_image.hpp"
 

@@ -16,13 +16,14 @@
 // r_chem, overlay scores, imaged CPs, ms); VARIANTS, a comma-separated list, runs those only.
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
+#include "test_support.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -39,15 +40,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace surfcomp;
-using Clock = std::chrono::steady_clock;
 
 constexpr double kSiteRadius = 4.0;     // A, spheres around the ligand's atoms (the CLI's default)
 constexpr double kPatchRadius = 8.0;    // A, as in tests/site_match_test.cpp (thermolysin sites)
 constexpr double kContactRadius = 5.0;  // A, a chain with an atom this close to the ligand is kept
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 /// One line of entries.txt: `PDB ligand residue-number chain [altloc]`.
 struct Entry {
@@ -92,7 +88,7 @@ struct Site {
 /// do not touch the ligand are far from its site. Throws InputError when that copy is absent.
 Site build_site(const Entry& entry, const fs::path& pdb,
                 const harmonic::DescriptorOptions& options) {
-  const auto start = Clock::now();
+  const Stopwatch start;
   Site site;
   site.entry = entry;
   matching::BindingSiteOptions site_options;
@@ -113,7 +109,7 @@ Site build_site(const Entry& entry, const fs::path& pdb,
   site.site_cps =
       static_cast<std::size_t>(std::count(site.in_site.begin(), site.in_site.end(), true));
   site.imaged = harmonic::count_descriptors(site.descriptors).imaged;
-  site.build_ms = ms_since(start);
+  site.build_ms = start.elapsed_ms();
   return site;
 }
 
@@ -234,18 +230,11 @@ std::pair<double, double> site_bootstrap_auc(const std::vector<PairResult>& resu
                       : std::pair<double, double>{at(0.025), at(0.975)};
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  const fs::path entries_path = argc > 1 ? fs::path(argv[1])
-                                         : fs::path(SURFCOMP_SOURCE_DIR).parent_path() /
-                                               "shared/datasets/kahraman-dev/entries.txt";
+  const fs::path entries_path =
+      argc > 1 ? fs::path(argv[1]) : test::shared_datasets_root() / "kahraman-dev/entries.txt";
   if (!fs::exists(entries_path)) {
     std::printf("skipped: %s is absent\n", entries_path.c_str());
     return 0;
@@ -296,11 +285,11 @@ int main(int argc, char** argv) {
           r.a = a;
           r.b = b;
           r.same = sites[a].entry.ligand == sites[b].entry.ligand;
-          const auto start = Clock::now();
+          const Stopwatch start;
           const auto match =
               matching::match_surfaces(sites[a].descriptors, sites[b].descriptors, match_options,
                                        &sites[a].in_site, &sites[b].in_site);
-          r.match_ms = ms_since(start);
+          r.match_ms = start.elapsed_ms();
           r.alignments = match.alignments.size();
           if (!match.alignments.empty()) {
             const auto& top = match.alignments.front();
@@ -396,11 +385,11 @@ int main(int argc, char** argv) {
           "%.3f - %.3f\n",
           low, high);
       std::printf("site build (read, surface, site descriptors): median %.0f ms, max %.0f ms\n",
-                  median(build_ms), *std::max_element(build_ms.begin(), build_ms.end()));
+                  test::median(build_ms), *std::max_element(build_ms.begin(), build_ms.end()));
       std::printf("match per pair (descriptors built): median %.1f ms, max %.1f ms\n",
-                  median(match_ms), *std::max_element(match_ms.begin(), match_ms.end()));
+                  test::median(match_ms), *std::max_element(match_ms.begin(), match_ms.end()));
       std::printf("site pair from PDB files (both builds + match): median %.0f ms, max %.0f ms\n",
-                  median(pair_ms), *std::max_element(pair_ms.begin(), pair_ms.end()));
+                  test::median(pair_ms), *std::max_element(pair_ms.begin(), pair_ms.end()));
       std::fflush(stdout);
     }
   } catch (const Error& e) {

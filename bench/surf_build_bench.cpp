@@ -5,6 +5,7 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
+#include "test_support.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -22,7 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using namespace surfcomp;
 
-const fs::path kSource = SURFCOMP_SOURCE_DIR;
 const fs::path kWork = fs::temp_directory_path() / "surfcomp_bench";
 
 struct Input {
@@ -133,9 +133,9 @@ class RatioReporter : public benchmark::ConsoleReporter {
 
 int main(int argc, char** argv) {
   fs::create_directories(kWork);
-  const fs::path shared = kSource.parent_path() / "shared" / "datasets";
-  const fs::path ligand = shared / "thermolysin" / "ligands-common-frame" / "1THL_ligand.pdb";
-  const fs::path protein = kSource / "datasets" / "cache" / "edtsurf" / "4we2.pdb";
+  const fs::path ligand =
+      test::shared_datasets_root() / "thermolysin" / "ligands-common-frame" / "1THL_ligand.pdb";
+  const fs::path protein = test::source_dir() / "datasets" / "cache" / "edtsurf" / "4we2.pdb";
   if (fs::exists(ligand)) {
     inputs()["1THL_ligand"] = {"1THL_ligand", ligand.string(), atom_records_copy(ligand, "1THL"),
                                2};

@@ -28,28 +28,33 @@ struct ProgramRun {
   std::string err;
 };
 
-ProgramRun run(const std::string& arguments) {
-  const fs::path err =
-      fs::temp_directory_path() / ("surfcomp_cli_stderr_" + std::to_string(::getpid()) + ".txt");
-  const std::string command = kProgram.string() + " " + arguments + " >/dev/null 2>" + err.string();
-  const int raw = std::system(command.c_str());
-  ProgramRun r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  r.err = text.str();
-  return r;
-}
+/// Each test runs the program in a temporary directory of its own (its stderr and outputs),
+/// so that ctest -j runs the tests side by side.
+class Cli : public ::testing::Test {
+ protected:
+  /// Runs `surfcomp ARGUMENTS` with stdout discarded; returns its exit status and stderr.
+  ProgramRun run(const std::string& arguments) const {
+    const fs::path err = dir_ / "stderr.txt";
+    const std::string command =
+        kProgram.string() + " " + arguments + " >/dev/null 2>" + err.string();
+    const int raw = std::system(command.c_str());
+    ProgramRun r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    std::ifstream in(err);
+    std::stringstream text;
+    text << in.rdbuf();
+    r.err = text.str();
+    return r;
+  }
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "surfcomp_cli_test";
-  fs::create_directories(dir);
-  fs::remove(dir / name);
-  return dir / name;
-}
+  /// `name` in the test's directory.
+  fs::path scratch(const std::string& name) const { return dir_ / name; }
 
-TEST(Cli, MatchWritesTheResultContract) {
+ private:
+  const test::TempDir dir_;
+};
+
+TEST_F(Cli, MatchWritesTheResultContract) {
   SURFCOMP_SHARED_OR_SKIP(ref, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
   SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/4TMN_ligand.sdf");
   const fs::path json = scratch("result.json");
@@ -125,7 +130,7 @@ TEST(Cli, MatchWritesTheResultContract) {
 
 // A .hsi file built from a molecule keeps its heavy atoms: matching the .hsi files gives the
 // alignments that matching the molecules gives, atom term included.
-TEST(Cli, HsiFilesMatchAsTheirMoleculesDo) {
+TEST_F(Cli, HsiFilesMatchAsTheirMoleculesDo) {
   SURFCOMP_SHARED_OR_SKIP(ref, "thermolysin/ligands-common-frame/3TMN_ligand.sdf");
   SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/1TMN_ligand.sdf");
   const fs::path ref_hsi = scratch("3TMN.hsi");
@@ -166,7 +171,7 @@ TEST(Cli, HsiFilesMatchAsTheirMoleculesDo) {
   EXPECT_NE(with_mesh.err.find("1TMN.ply carries no atoms"), std::string::npos) << with_mesh.err;
 }
 
-TEST(Cli, BadInputGivesOneLineErrorAndNoOutput) {
+TEST_F(Cli, BadInputGivesOneLineErrorAndNoOutput) {
   SURFCOMP_SHARED_OR_SKIP(ligand, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
   SURFCOMP_SHARED_OR_SKIP(protein, "thermolysin/1THL.pdb");
   const fs::path json = scratch("bad.json");
@@ -239,9 +244,8 @@ struct Renamed {
 // The options renamed so that a flag, its field and its JSON key say the same thing: the new
 // names work; each former name still works, sets the same option and prints one deprecation
 // note; giving both names is a syntax error; --help lists only the new names.
-TEST(Cli, RenamedOptionsKeepTheirFormerNamesAsDeprecatedAliases) {
+TEST_F(Cli, RenamedOptionsKeepTheirFormerNamesAsDeprecatedAliases) {
   SURFCOMP_SHARED_OR_SKIP(ligand, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
-  const test::TempDir dir;
   const Renamed build_options[] = {{"grid-rings", "image-rings", "12"},
                                    {"grid-sectors", "image-sectors", "90"},
                                    {"radius", "critical-point-radius", "2.4"},
@@ -261,7 +265,7 @@ TEST(Cli, RenamedOptionsKeepTheirFormerNamesAsDeprecatedAliases) {
   };
 
   // hsi-build: the same .hsi file, byte for byte, under either names.
-  const fs::path new_hsi = dir / "new.hsi", old_hsi = dir / "old.hsi";
+  const fs::path new_hsi = scratch("new.hsi"), old_hsi = scratch("old.hsi");
   const ProgramRun build_new =
       run("hsi-build " + ligand.string() + " -o " + new_hsi.string() + flags(build_options, false));
   ASSERT_EQ(build_new.status, 0) << build_new.err;
@@ -279,7 +283,7 @@ TEST(Cli, RenamedOptionsKeepTheirFormerNamesAsDeprecatedAliases) {
   EXPECT_EQ(built.options.critical_points.radius, 2.4);
 
   // match: the same parameters and alignments under either names.
-  const fs::path new_json = dir / "new.json", old_json = dir / "old.json";
+  const fs::path new_json = scratch("new.json"), old_json = scratch("old.json");
   const std::string inputs = new_hsi.string() + " " + new_hsi.string();
   const ProgramRun match_new =
       run("match " + inputs + " -o " + new_json.string() + flags(match_options, false));
@@ -307,7 +311,7 @@ TEST(Cli, RenamedOptionsKeepTheirFormerNamesAsDeprecatedAliases) {
 
   // cp-detect and surf-build take their renamed options' former names too.
   const ProgramRun detect = run("cp-detect " + ligand.string() + " -o " +
-                                (dir / "cps.json").string() + " --radius 2.4 --probe 1.3");
+                                scratch("cps.json").string() + " --radius 2.4 --probe 1.3");
   EXPECT_EQ(detect.status, 0) << detect.err;
   EXPECT_EQ(detect.err, note(build_options[2]) + note(build_options[3]));
 
@@ -324,13 +328,13 @@ TEST(Cli, RenamedOptionsKeepTheirFormerNamesAsDeprecatedAliases) {
     EXPECT_FALSE(fs::exists(output)) << o.old_name;
   };
   for (const Renamed& o : build_options) {
-    expect_refused("hsi-build", ligand.string(), dir / "refused.hsi", o);
+    expect_refused("hsi-build", ligand.string(), scratch("refused.hsi"), o);
   }
   for (const Renamed& o : match_options) {
-    expect_refused("match", inputs, dir / "refused.json", o);
+    expect_refused("match", inputs, scratch("refused.json"), o);
   }
-  expect_refused("cp-detect", ligand.string(), dir / "refused.json", build_options[2]);
-  expect_refused("surf-build", ligand.string(), dir / "refused.ply", build_options[3]);
+  expect_refused("cp-detect", ligand.string(), scratch("refused.json"), build_options[2]);
+  expect_refused("surf-build", ligand.string(), scratch("refused.ply"), build_options[3]);
 
   // --help shows the new names only.
   for (const auto& [command, options] :

@@ -1,12 +1,13 @@
-// Maximal cliques (seed 3.9, METHOD 6) on small graphs with known answers, against brute force
-// on random graphs, and timed on graphs of the association graph's sizes.
+// Maximal cliques (seed 3.9, METHOD 6) on small graphs with known answers and against brute
+// force on random graphs (bench/cliques_bench.cpp times them at the association graph's sizes).
 #include "surfcomp/matching/cliques.hpp"
 #include "surfcomp/core/error.hpp"
 
+#include "random_graphs.hpp"
+
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <cstdio>
+#include <algorithm>
 #include <random>
 
 namespace surfcomp {
@@ -14,12 +15,8 @@ namespace {
 
 using Cliques = std::vector<std::vector<int>>;
 
-matching::AssociationGraph graph_of(int n, const std::vector<std::pair<int, int>>& edges) {
-  matching::AssociationGraph g;
-  g.nodes.resize(static_cast<std::size_t>(n));
-  g.edges = edges;
-  return g;
-}
+using test::graph_of;
+using test::random_edges;
 
 TEST(Cliques, SmallGraphsGiveTheirKnownMaximalCliques) {
   // Two triangles sharing vertex 2.
@@ -76,25 +73,6 @@ Cliques brute_force_maximal_cliques(int n, const std::vector<std::vector<bool>>&
   return out;
 }
 
-std::vector<std::pair<int, int>> random_edges(int n, double p, std::mt19937& rng,
-                                              std::vector<std::vector<bool>>* adjacent = nullptr) {
-  std::bernoulli_distribution coin(p);
-  std::vector<std::pair<int, int>> edges;
-  if (adjacent)
-    adjacent->assign(static_cast<std::size_t>(n),
-                     std::vector<bool>(static_cast<std::size_t>(n), false));
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) {
-      if (!coin(rng)) continue;
-      edges.emplace_back(i, j);
-      if (adjacent)
-        (*adjacent)[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] =
-            (*adjacent)[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] = true;
-    }
-  }
-  return edges;
-}
-
 TEST(Cliques, RandomGraphsAgreeWithBruteForce) {
   std::mt19937 rng(2024u);
   for (int trial = 0; trial < 30; ++trial) {
@@ -107,26 +85,6 @@ TEST(Cliques, RandomGraphsAgreeWithBruteForce) {
                 brute_force_maximal_cliques(n, adjacent, min_size))
           << "trial " << trial << " min_size " << min_size;
     }
-  }
-}
-
-// Timing on graphs larger than the ligand graphs (~60 nodes, ~100 edges after all filters).
-TEST(Cliques, TimingOnAssociationGraphSizes) {
-  std::mt19937 rng(7u);
-  for (const auto& [n, p] :
-       {std::pair{100, 0.05}, std::pair{400, 0.05}, std::pair{1000, 0.02}, std::pair{2000, 0.01}}) {
-    const auto g = graph_of(n, random_edges(n, p, rng));
-    const auto start = std::chrono::steady_clock::now();
-    const auto cliques = matching::maximal_cliques(g);
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::size_t largest = 0;
-    for (const auto& c : cliques) largest = std::max(largest, c.size());
-    std::printf(
-        "[ timing   ] %d nodes, %zu edges (seed 7): %zu maximal cliques, largest %zu, %.1f ms\n", n,
-        g.edges.size(), cliques.size(), largest, ms);
-    EXPECT_LT(ms, 5000.0);
-    EXPECT_FALSE(cliques.empty());
   }
 }
 

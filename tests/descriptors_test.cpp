@@ -99,10 +99,6 @@ TEST(Descriptors, ImagesDoNotDependOnTheSamplingDensity) {
   const mesh::Surface fine_surface = ligand_surface(file, 4.0);
   const auto fine = harmonic::describe_surface(fine_surface);
   const Eigen::MatrixX3d fine_positions = fine_surface.positions();
-  const auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
 
   std::vector<double> same_place;
   double farthest = 0.0;
@@ -136,17 +132,17 @@ TEST(Descriptors, ImagesDoNotDependOnTheSamplingDensity) {
   std::printf(
       "[ density  ] same place (nearest vertex within %.2f A), %zu points: min R %.3f, "
       "20th percentile %.3f, median %.3f\n",
-      farthest, sorted.size(), sorted.front(), sorted[sorted.size() / 5], median(sorted));
+      farthest, sorted.size(), sorted.front(), sorted[sorted.size() / 5], test::median(sorted));
   std::printf(
       "[ density  ] detected independently, %zu pairs: median R %.3f; unrelated (> 5 A "
       "apart), %zu pairs: median R %.3f, 90th percentile %.3f\n",
-      detected.size(), median(detected), unrelated.size(), median(unrelated), [&] {
+      detected.size(), test::median(detected), unrelated.size(), test::median(unrelated), [&] {
         auto u = unrelated;
         std::sort(u.begin(), u.end());
         return u[u.size() * 9 / 10];
       }());
   EXPECT_GE(sorted[sorted.size() / 5], 0.9) << "fewer than 80 % of the points reach R 0.9";
-  EXPECT_LE(median(unrelated), median(same_place) - 0.4);
+  EXPECT_LE(test::median(unrelated), test::median(same_place) - 0.4);
 }
 
 TEST(Descriptors, ResultDoesNotDependOnTheThreadCount) {
@@ -188,7 +184,8 @@ TEST(HsiFile, RoundTripsExactly) {
     EXPECT_EQ(x.image.valid, y.image.valid);
     EXPECT_EQ(x.patch.outer_boundary, y.patch.outer_boundary);
   }
-  const auto path = std::filesystem::temp_directory_path() / "surfcomp_roundtrip.hsi";
+  const test::TempDir dir;
+  const auto path = dir / "roundtrip.hsi";
   harmonic::io::write_hsi(d, path);
   EXPECT_TRUE(encoded(harmonic::io::read_hsi(path)) == bytes);
 }

@@ -10,8 +10,6 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -607,25 +605,7 @@ HETATM   22  O4 BSO4 A 101      12.850  11.150  11.150  0.30 10.00           O
 END
 )";
 
-// A scratch directory for files a test writes, removed with the fixture.
-class TempDir {
- public:
-  TempDir() : path_(fs::temp_directory_path() / ("surfcomp_molio_" + std::to_string(::getpid()))) {
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  fs::path write(const std::string& name, const std::string& content) const {
-    const fs::path file = path_ / name;
-    std::ofstream(file, std::ios::binary) << content;
-    return file;
-  }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 MoleculeReadOptions ligand_options(const std::string& ligand) {
   MoleculeReadOptions options;

@@ -4,6 +4,7 @@
 // the 1THL protein there too. The top alignment of the 1THL site onto the 4TMN site must agree
 // with that transform on the site residues' C-alphas.
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/rigid_fit.hpp"
@@ -15,7 +16,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -26,12 +26,6 @@
 
 namespace surfcomp {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 constexpr double kPatchRadius = 8.0;  // A, harmonic patches of the site's critical points
 
@@ -49,14 +43,14 @@ Site build_site(const std::filesystem::path& pdb, const std::string& ligand_name
   // The whole structure is read, so the ligand's charges are not typed (Gasteiger cannot type
   // 4TMN's phosphonamidate), and only its positions are needed.
   out.site = matching::binding_site(io::read_molecule(pdb), LigandSelector{ligand_name, {}, {}});
-  auto start = Clock::now();
+  Stopwatch start;
   mesh::Surface surface = mesh::build_molecular_surface(out.site.structure);
-  out.surface_ms = ms_since(start);
-  start = Clock::now();
+  out.surface_ms = start.elapsed_ms();
+  start.restart();
   out.descriptors =
       matching::describe_site(std::move(surface), out.site.structure, out.site.spheres, options);
   out.in_site = matching::critical_points_in_site(out.descriptors, out.site.spheres);
-  out.describe_ms = ms_since(start);
+  out.describe_ms = start.elapsed_ms();
   return out;
 }
 
@@ -128,12 +122,12 @@ TEST(SiteMatch, ThermolysinSitesAlignWithinHalfAnAngstrom) {
       probe.site.structure.atoms.size(), probe.descriptors.surface.n_vertices(),
       harmonic::count_descriptors(probe.descriptors).imaged, probe.surface_ms, probe.describe_ms);
 
-  const auto start = Clock::now();
+  const Stopwatch start;
   matching::MatchOptions match_options;
   match_options.mode = matching::MatchMode::binding_sites;
   const auto result = matching::match_surfaces(ref.descriptors, probe.descriptors, match_options,
                                                &ref.in_site, &probe.in_site);
-  const double match_ms = ms_since(start);
+  const double match_ms = start.elapsed_ms();
   ASSERT_FALSE(result.alignments.empty());
 
   const double site_radius = matching::BindingSiteOptions{}.sphere_radius;

@@ -45,7 +45,8 @@ void write_pdb_with_radii(const Molecule& molecule, const std::filesystem::path&
 /// nullopt when the freesasa program is not installed.
 std::optional<double> freesasa_area(const Molecule& molecule, const std::string& tag) {
   if (std::system("command -v freesasa >/dev/null 2>&1") != 0) return std::nullopt;
-  const auto pdb = std::filesystem::temp_directory_path() / ("surfcomp_sasa_" + tag + ".pdb");
+  const test::TempDir dir;
+  const auto pdb = dir / (tag + ".pdb");
   write_pdb_with_radii(molecule, pdb);
   const std::string command =
       "freesasa --lee-richards --resolution=100 --probe-radius=1.4 "
@@ -319,7 +320,7 @@ TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
       errors.push_back(std::abs(vb(i) - value) / range);
     }
     std::sort(errors.begin(), errors.end());
-    const double median = errors[errors.size() / 2];
+    const double median = test::median(errors);
     const double p95 = errors[errors.size() * 95 / 100];
     std::printf(
         "[ motion   ] %s: moved vertices within %.3f A of the original surface; "

@@ -1,37 +1,19 @@
-// Where tests find their data: ../shared/datasets beside the repository (never copied into it)
-// and datasets/cache, filled by datasets/fetch.sh from Debian packages.
+// GoogleTest's side of the test data: skipping a test whose data set is absent (the paths are
+// in support/test_support.hpp, shared with the benchmarks) and a temporary directory per test.
 #pragma once
+
+#include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <optional>
+#include <fstream>
 #include <string>
 #include <system_error>
 
 #include <unistd.h>
 
 namespace surfcomp::test {
-
-/// The repository's root (set by CMake).
-inline std::filesystem::path source_dir() { return SURFCOMP_SOURCE_DIR; }
-
-/// ../shared/datasets/<relative>, or $SURFCOMP_SHARED_DATASETS/<relative>; nullopt if absent.
-inline std::optional<std::filesystem::path> shared_dataset(const std::string& relative) {
-  std::filesystem::path root = source_dir().parent_path() / "shared" / "datasets";
-  if (const char* env = std::getenv("SURFCOMP_SHARED_DATASETS")) root = env;
-  const auto path = root / relative;
-  if (!std::filesystem::exists(path)) return std::nullopt;
-  return path;
-}
-
-/// datasets/cache/<relative> (run datasets/fetch.sh to fill it); nullopt if absent.
-inline std::optional<std::filesystem::path> fetched_dataset(const std::string& relative) {
-  const auto path = source_dir() / "datasets" / "cache" / relative;
-  if (!std::filesystem::exists(path)) return std::nullopt;
-  return path;
-}
 
 /// A fresh directory under the system temp dir, named after the running test, removed when the
 /// test ends.
@@ -52,6 +34,12 @@ class TempDir {
   TempDir(const TempDir&) = delete;
   TempDir& operator=(const TempDir&) = delete;
   std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+  /// Writes `content` to the file `name` in the directory; returns its path.
+  std::filesystem::path write(const std::string& name, const std::string& content) const {
+    const std::filesystem::path file = path_ / name;
+    std::ofstream(file, std::ios::binary) << content;
+    return file;
+  }
 
  private:
   std::filesystem::path path_;
@@ -59,15 +47,14 @@ class TempDir {
 
 }  // namespace surfcomp::test
 
-/// Binds `var` to ../shared/datasets/<relative> or skips the test, saying which file is missing.
-#define SURFCOMP_SHARED_OR_SKIP(var, relative)                                         \
-  const auto var##_opt = ::surfcomp::test::shared_dataset(relative);                   \
-  if (!var##_opt) GTEST_SKIP() << "../shared/datasets/" << (relative) << " is absent"; \
+/// Binds `var` to the shared data set <relative> or skips the test, saying which file is missing.
+#define SURFCOMP_SHARED_OR_SKIP(var, relative)                                       \
+  const auto var##_opt = ::surfcomp::test::shared_dataset(relative);                 \
+  if (!var##_opt) GTEST_SKIP() << ::surfcomp::test::shared_absent_message(relative); \
   const std::filesystem::path var = *var##_opt
 
 /// Binds `var` to datasets/cache/<relative> or skips, telling the user to run the fetch script.
-#define SURFCOMP_FETCHED_OR_SKIP(var, relative)                                             \
-  const auto var##_opt = ::surfcomp::test::fetched_dataset(relative);                       \
-  if (!var##_opt)                                                                           \
-    GTEST_SKIP() << "datasets/cache/" << (relative) << " is absent: run datasets/fetch.sh"; \
+#define SURFCOMP_FETCHED_OR_SKIP(var, relative)                                       \
+  const auto var##_opt = ::surfcomp::test::fetched_dataset(relative);                 \
+  if (!var##_opt) GTEST_SKIP() << ::surfcomp::test::fetched_absent_message(relative); \
   const std::filesystem::path var = *var##_opt

@@ -5,6 +5,7 @@
 #include "surface_input.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
 #include "surfcomp/mesh/io/ply.hpp"

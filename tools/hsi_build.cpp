@@ -4,6 +4,7 @@
 #include "options.hpp"
 #include "surface_input.hpp"
 
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 
 #include <tbb/global_control.h>

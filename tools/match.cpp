@@ -6,6 +6,7 @@
 
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/site.hpp"

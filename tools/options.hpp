@@ -6,7 +6,6 @@
 
 #include <boost/program_options.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -29,17 +28,5 @@ void require_in_range(const char* name, double value, double lo, double hi);
 /// Throws OptionError unless `value` is one of `allowed`.
 void require_one_of(const char* name, const std::string& value,
                     const std::vector<std::string>& allowed);
-
-/// Milliseconds since construction.
-class Stopwatch {
- public:
-  double elapsed_ms() const {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
-        .count();
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 }  // namespace surfcomp::tools

@@ -4,6 +4,7 @@
 #include "options.hpp"
 #include "surface_input.hpp"
 
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
 

@@ -2,10 +2,10 @@
 
 #include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/matching/cliques.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -15,11 +15,6 @@
 
 namespace surfcomp::matching {
 namespace {
-
-double since_ms(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 /// Largest move of a sampled probe point (A) below which two poses are the same pose.
 constexpr double kRepeatDistance = 0.5;
@@ -313,14 +308,14 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
                      " sectors); rebuild them with the same image grid");
   }
   MatchResult result;
-  auto clock = std::chrono::steady_clock::now();
+  Stopwatch clock;
   const AssociationGraph graph =
       build_association_graph(reference, probe, options.graph, reference_allowed, probe_allowed);
   result.trace = graph.trace;
   for (const TraceStage& stage : graph.trace)
     result.timing_ms.emplace_back("graph: " + stage.stage, stage.milliseconds);
 
-  clock = std::chrono::steady_clock::now();
+  clock.restart();
   const std::vector<std::vector<int>> cliques = maximal_cliques(graph, options.min_clique_size);
   result.cliques = cliques.size();
   std::vector<std::vector<MatchedPair>> pair_cliques;
@@ -333,18 +328,18 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
     }
     pair_cliques.push_back(std::move(pairs));
   }
-  result.timing_ms.emplace_back("cliques", since_ms(clock));
+  result.timing_ms.emplace_back("cliques", clock.elapsed_ms());
 
-  clock = std::chrono::steady_clock::now();
+  clock.restart();
   const std::vector<Cluster> clusters = cluster_alignments(
       pair_cliques, reference, probe, options.clustering, options.correspondences);
-  result.timing_ms.emplace_back("fits and merging", since_ms(clock));
+  result.timing_ms.emplace_back("fits and merging", clock.elapsed_ms());
 
-  clock = std::chrono::steady_clock::now();
+  clock.restart();
   const std::vector<RankedAlignment> ranking = rank_alignments(clusters, options.ranking);
-  result.timing_ms.emplace_back("ranking", since_ms(clock));
+  result.timing_ms.emplace_back("ranking", clock.elapsed_ms());
 
-  clock = std::chrono::steady_clock::now();
+  clock.restart();
   const std::vector<Placed> placed = refine_and_order(ranking, clusters, reference, probe, options,
                                                       reference_allowed, probe_allowed);
   std::vector<int> rank_of(clusters.size(), 0);
@@ -372,7 +367,7 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
     }
     result.alignments.push_back(std::move(a));
   }
-  result.timing_ms.emplace_back("overlay refinement", since_ms(clock));
+  result.timing_ms.emplace_back("overlay refinement", clock.elapsed_ms());
   return result;
 }
 

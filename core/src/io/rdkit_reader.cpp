@@ -1,6 +1,7 @@
 // SDF/MOL, MOL2 and PDB reading through RDKit; charges and Wildman-Crippen increments.
 #include "molecule_reader_detail.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/core/protein_charges.hpp"
@@ -539,8 +540,7 @@ namespace surfcomp::io {
 std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Matrix3d& rotation,
                             const Eigen::Vector3d& translation) {
   const std::string source = input.string();
-  std::string extension = input.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string extension = lowercase_extension(input);
   detail::RdkitFormat format;
   if (extension == ".sdf" || extension == ".mol") {
     format = detail::RdkitFormat::mdl;

@@ -3,26 +3,16 @@
 #include "molecule_reader_detail.hpp"
 #include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/pqr.hpp"
 #include "surfcomp/core/protein_lipophilicity.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <fstream>
 #include <iterator>
 #include <system_error>
 
 namespace surfcomp::io {
-namespace {
-
-std::string lowercase_extension(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
-}  // namespace
 
 namespace detail {
 

@@ -4,10 +4,10 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/binary_stream.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -376,10 +376,7 @@ SurfaceDescriptors read_hsi(const std::filesystem::path& path) {
 }
 
 bool is_hsi_file(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".hsi";
+  return surfcomp::io::lowercase_extension(path) == ".hsi";
 }
 
 }  // namespace surfcomp::harmonic::io

@@ -1,33 +1,21 @@
 #include "surfcomp/mesh/io/read_mesh.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/mesh/io/msms.hpp"
 #include "surfcomp/mesh/io/obj.hpp"
 #include "surfcomp/mesh/io/off.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 
-#include <algorithm>
-#include <cctype>
-
 namespace surfcomp::mesh::io {
-namespace {
-
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
-}  // namespace
 
 bool is_mesh_file(const std::filesystem::path& path) {
-  const std::string ext = lower_extension(path);
+  const std::string ext = surfcomp::io::lowercase_extension(path);
   return ext == ".ply" || ext == ".vert" || ext == ".face" || ext == ".off" || ext == ".obj";
 }
 
 Surface read_mesh(const std::filesystem::path& path) {
-  const std::string ext = lower_extension(path);
+  const std::string ext = surfcomp::io::lowercase_extension(path);
   if (ext == ".ply") return read_ply(path);
   if (ext == ".vert" || ext == ".face") return read_msms(path);
   if (ext == ".off") return read_off(path);
@@ -39,7 +27,7 @@ Surface read_mesh(const std::filesystem::path& path) {
 }
 
 void write_mesh(const Surface& s, const std::filesystem::path& path) {
-  const std::string ext = lower_extension(path);
+  const std::string ext = surfcomp::io::lowercase_extension(path);
   if (ext == ".ply") return write_ply(s, path, PlyFormat::binary_little_endian);
   if (ext == ".off") return write_off(s, path);
   if (ext == ".obj") return write_obj(s, path);
