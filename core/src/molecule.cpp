@@ -79,6 +79,7 @@ std::vector<std::size_t> select_ligand(const Molecule& molecule, const LigandSel
     if (selector.residue_number)
       asked_for += " numbered " + std::to_string(*selector.residue_number);
     std::vector<std::string> present;
+    present.reserve(copies.size());
     for (const auto& [chain, number] : copies)
       present.push_back("chain '" + chain + "' number " + std::to_string(number));
     throw InputError(molecule.source + ": no copy of HETATM residue '" + selector.residue_name +

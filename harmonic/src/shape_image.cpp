@@ -178,7 +178,8 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
   }
   std::size_t previous = triangles.size();
   for (int i = 0; i < size; ++i) {
-    const double radius = (i / options.sectors + 0.5) / options.rings;
+    const int ring = i / options.sectors;
+    const double radius = (ring + 0.5) / options.rings;
     const Eigen::Vector2d& d = direction[static_cast<std::size_t>(i % options.sectors)];
     const Eigen::Vector2d q(radius * d.x(), radius * d.y());
     const Kernel::Point_2 q2(q.x(), q.y());
@@ -342,7 +343,8 @@ void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* c
   // imaginary parts of each sum's spectrum (2 bins per sum), then each sum for every shift (n).
   thread_local std::vector<double> scratch;
   thread_local std::vector<std::complex<double>> spectrum;
-  const std::size_t spectra_size = static_cast<std::size_t>(kSums * 2 * bins);
+  const std::size_t spectra_size =
+      static_cast<std::size_t>(kSums) * 2 * static_cast<std::size_t>(bins);
   scratch.resize(spectra_size + static_cast<std::size_t>(kSums * n));
   std::fill(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(spectra_size), 0.0);
   spectrum.resize(static_cast<std::size_t>(bins));
@@ -367,16 +369,17 @@ void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* c
     if (end > 1) varies[t] = true;
   };
 
+  const std::ptrdiff_t part = 2 * static_cast<std::ptrdiff_t>(bins);  // one spectrum, re and im
   for (int r = 0; r < a.rings_; ++r) {
     const auto ru = static_cast<std::size_t>(r);
     if (a.ring_empty_[ru] || b.ring_empty_[ru]) continue;
     const double w = ring_weight(r);
     const double* ma = a.spectra_.data() + static_cast<std::size_t>(6 * r * bins);
-    const double* xa = ma + 2 * bins;
-    const double* sa = xa + 2 * bins;
+    const double* xa = ma + part;
+    const double* sa = xa + part;
     const double* mb = b.spectra_.data() + static_cast<std::size_t>(6 * r * bins);
-    const double* xb = mb + 2 * bins;
-    const double* sb = xb + 2 * bins;
+    const double* xb = mb + part;
+    const double* sb = xb + part;
     // A full ring's mask spectrum is zero beyond frequency 0, so its products need only k = 0.
     const int a_mask_end = a.ring_full_[ru] ? 1 : bins;
     const int b_mask_end = b.ring_full_[ru] ? 1 : bins;
@@ -410,7 +413,7 @@ void PreparedImage::correlate(const PreparedImage& b, int min_overlap, double* c
                *b_sum = sums(kB), *bb_sum = sums(kBB), *ab_sum = sums(kAB);
   for (int s = 0; s < n; ++s) {
     // Counts are integers; the FFT returns them to within far less than 0.5.
-    const int count = static_cast<int>(count_sum[s] + 0.5);
+    const int count = static_cast<int>(std::lround(count_sum[s]));
     overlap[s] = count;
     if (count < min_overlap) {
       correlation[s] = -1.0;

@@ -24,7 +24,7 @@ FuzzyMemberships fuzzy_memberships(double z) {
   const int lower = std::min(3, static_cast<int>(std::floor(shifted)));
   const double upper_weight = shifted - lower;
   m[static_cast<std::size_t>(lower)] = 1.0 - upper_weight;
-  m[static_cast<std::size_t>(lower + 1)] = upper_weight;
+  m[static_cast<std::size_t>(lower) + 1] = upper_weight;
   return m;
 }
 

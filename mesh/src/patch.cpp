@@ -426,6 +426,7 @@ Patch assemble_patch(const Surface& surface, int center_vertex, const std::vecto
   for (const int v : loops.outer) patch.outer_boundary.push_back(local(v));
   for (const auto& hole : loops.holes) {
     std::vector<int> walk;
+    walk.reserve(hole.size());
     for (const int v : hole) walk.push_back(local(v));
     patch.holes.push_back(std::move(walk));
   }

@@ -168,6 +168,7 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
   if (!options.ligand.empty()) {
     const auto selected = select_ligand(molecule, LigandSelector{options.ligand, {}, {}});
     std::vector<Atom> atoms;
+    atoms.reserve(selected.size());
     for (std::size_t i : selected) atoms.push_back(molecule.atoms[i]);
     molecule.atoms = std::move(atoms);
   }
