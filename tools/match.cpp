@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -47,6 +48,35 @@ constexpr const char* kUsage =
     "site's critical points) on shape alone (--site-chem-weight 0) from the cliques and 24\n"
     "principal-axes starts; the top-1 overlay score is then the sites' similarity (shape\n"
     "Tanimoto of the linings).";
+
+/// A notifier refusing a value <= 0 as a command-line error (like a value that is no integer).
+auto positive(const char* name) {
+  return [name](std::int64_t value) {
+    if (value <= 0) {
+      namespace po = boost::program_options;
+      po::validation_error error(po::validation_error::invalid_option_value, name,
+                                 std::to_string(value), po::command_line_style::allow_long);
+      error.set_substitute("value", std::to_string(value));
+      throw error;
+    }
+  };
+}
+
+/// What the match cut, one line each: the clique search's stop (MatchResult::cliques_complete).
+std::vector<std::string> match_warnings(const matching::MatchResult& result,
+                                        const matching::MatchOptions& options) {
+  std::vector<std::string> warnings;
+  if (!result.cliques_complete) {
+    warnings.push_back(result.cliques >= options.max_cliques
+                           ? "clique search stopped at " + std::to_string(result.cliques) +
+                                 " cliques (--max-cliques); alignments may be missing"
+                           : "clique search stopped after " + std::to_string(result.clique_work) +
+                                 " units of work (--max-clique-work " +
+                                 std::to_string(options.max_clique_work) +
+                                 "); alignments may be missing");
+  }
+  return warnings;
+}
 
 struct Side {
   std::filesystem::path path;
@@ -130,7 +160,8 @@ bool same_options(const harmonic::DescriptorOptions& x, const harmonic::Descript
 }
 
 nlohmann::json to_json(const matching::MatchResult& result, const matching::MatchOptions& options,
-                       const Side& ref, const Side& probe) {
+                       const Side& ref, const Side& probe,
+                       const std::vector<std::string>& warnings) {
   nlohmann::json alignments = nlohmann::json::array();
   for (const auto& a : result.alignments) {
     nlohmann::json transform = nlohmann::json::array();
@@ -172,6 +203,11 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
           {"alignments", alignments},
           {"trace", trace},
           {"timing_ms", timing},
+          {"cliques",
+           {{"count", result.cliques},
+            {"complete", result.cliques_complete},
+            {"work", result.clique_work}}},
+          {"warnings", warnings},
           {"parameters",
            {{"fuzzy_threshold", g.fuzzy_threshold},
             {"image_threshold", g.image_threshold},
@@ -181,6 +217,9 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
             {"rmsd_cut", options.clustering.rmsd_cut},
             {"merge_cut", options.clustering.merge_cut},
             {"min_clique_size", options.min_clique_size},
+            {"max_graph_nodes", g.max_nodes},
+            {"max_clique_work", options.max_clique_work},
+            {"max_cliques", options.max_cliques},
             {"refine_top", options.refine_top},
             {"overlay_sigma", options.overlay.sigma},
             {"overlay_spacing", options.overlay.spacing},
@@ -231,6 +270,10 @@ int match(const std::vector<std::string>& args) {
   harmonic::DescriptorOptions descriptor_options;
   po::options_description described("options");
   auto& g = options.graph;
+  // Read as signed integers, so that a negative value is refused rather than wrapped.
+  std::int64_t max_clique_work = options.max_clique_work;
+  auto max_cliques = static_cast<std::int64_t>(options.max_cliques);
+  auto max_graph_nodes = static_cast<std::int64_t>(g.max_nodes);
   // clang-format off
   described.add_options()
       ("help,h", "print this help")
@@ -263,6 +306,18 @@ int match(const std::vector<std::string>& args) {
       ("overlap-tolerance",
        po::value(&g.overlap_tolerance_degrees)->default_value(g.overlap_tolerance_degrees),
        "overlap filter tolerance j_tol, degrees")
+      ("max-graph-nodes", po::value(&max_graph_nodes)->default_value(max_graph_nodes)
+                              ->notifier(positive("max-graph-nodes")),
+       "refuse a match whose association graph keeps more critical-point pairs than this after "
+       "the image filter (a positive integer); its cost grows with the square of the count")
+      ("max-clique-work", po::value(&max_clique_work)->default_value(max_clique_work)
+                              ->notifier(positive("max-clique-work")),
+       "stop the clique search after this much work (a positive integer; a unit is one 64-node "
+       "word of a set operation, a few ns) and go on with the cliques found, saying so")
+      ("max-cliques", po::value(&max_cliques)->default_value(max_cliques)
+                          ->notifier(positive("max-cliques")),
+       "stop the clique search rather than report more cliques than this (a positive integer); "
+       "each is fitted and merged, in time quadratic in their number")
       ("rmsd-cut",
        po::value(&options.clustering.rmsd_cut)->default_value(options.clustering.rmsd_cut),
        "drop cliques whose fit RMSD exceeds this, A")
@@ -311,6 +366,9 @@ int match(const std::vector<std::string>& args) {
       vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
   if (inputs.size() != 2) throw OptionError("expected REF and PROBE (see --help)");
   finish_surface_options(input);
+  options.max_clique_work = max_clique_work;
+  options.max_cliques = static_cast<std::size_t>(max_cliques);
+  g.max_nodes = static_cast<std::size_t>(max_graph_nodes);
   require_in_range("top", top, 1, 1e9);
   require_in_range("site-radius", site_radius, 0.1, 100.0);
   require_in_range("fuzzy-threshold", g.fuzzy_threshold, 0.0, 1.0);
@@ -410,6 +468,9 @@ int match(const std::vector<std::string>& args) {
       ref.descriptors, probe.descriptors, options, ref_allowed.empty() ? nullptr : &ref_allowed,
       probe_allowed.empty() ? nullptr : &probe_allowed);
   const double total_ms = clock.elapsed_ms();
+  const std::vector<std::string> warnings = match_warnings(result, options);
+  for (const std::string& warning : warnings)
+    std::fprintf(stderr, "surfcomp match: warning: %s\n", warning.c_str());
 
   if (vm["trace"].as<bool>()) {
     std::printf("%-16s %8s %10s %10s\n", "stage", "nodes", "edges", "ms");
@@ -451,7 +512,7 @@ int match(const std::vector<std::string>& args) {
   }
   if (!output.empty()) {
     try {
-      const nlohmann::json document = to_json(result, options, ref, probe);
+      const nlohmann::json document = to_json(result, options, ref, probe, warnings);
       surfcomp::io::write_file_atomically(
           output, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
     } catch (...) {

@@ -325,6 +325,16 @@ AssociationGraph build_association_graph(const SurfaceDescriptors& a, const Surf
   graph.nodes = p.image_filter ? image_filter(std::move(graph.nodes), a, b, p.image_threshold)
                                : with_image_matches(std::move(graph.nodes), a, b);
   record("image", true);
+  if (graph.nodes.size() > p.max_nodes) {
+    throw InputError(a.surface.source() + " and " + b.surface.source() + ": " +
+                     std::to_string(graph.nodes.size()) +
+                     " critical-point pairs pass the fuzzy and image filters, more than "
+                     "max_nodes = " +
+                     std::to_string(p.max_nodes) +
+                     " (the distance filter and the clique search grow with the square of "
+                     "that count); match binding sites, raise the image threshold or raise "
+                     "the limit (surfcomp match --max-graph-nodes)");
+  }
   graph.edges = distance_filter(graph.nodes, a, b, p.distance_tolerance, p.min_distance);
   record("distance", false);
   if (p.overlap_filter) {

@@ -278,6 +278,8 @@ void validate(const MatchOptions& options) {
       static_cast<int>(options.mode), "whole_surfaces or binding_sites");
   detail::check_graph_options(options.graph, {caller, "graph."});
   detail::check_min_clique_size(options.min_clique_size, "min_clique_size", check);
+  detail::check_clique_work(options.max_clique_work, "max_clique_work", check);
+  detail::check_clique_count(options.max_cliques, "max_cliques", check);
   detail::check_correspondence_options(options.correspondences, {caller, "correspondences."});
   detail::check_clustering_options(options.clustering, {caller, "clustering."});
   detail::check_ranking_options(options.ranking, {caller, "ranking."});
@@ -316,8 +318,15 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
     result.timing_ms.emplace_back("graph: " + stage.stage, stage.milliseconds);
 
   clock.restart();
-  const std::vector<std::vector<int>> cliques = maximal_cliques(graph, options.min_clique_size);
+  CliqueOptions clique_options;
+  clique_options.min_size = options.min_clique_size;
+  clique_options.max_work = options.max_clique_work;
+  clique_options.max_cliques = options.max_cliques;
+  const CliqueResult found = maximal_cliques(graph, clique_options);
+  const std::vector<std::vector<int>>& cliques = found.cliques;
   result.cliques = cliques.size();
+  result.cliques_complete = found.complete;
+  result.clique_work = found.work;
   std::vector<std::vector<MatchedPair>> pair_cliques;
   pair_cliques.reserve(cliques.size());
   for (const auto& clique : cliques) {

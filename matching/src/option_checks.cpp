@@ -47,10 +47,26 @@ void check_graph_options(const GraphOptions& options, const OptionCheck& check) 
                 "a finite value");
   check_distance_filter(options.distance_tolerance, options.min_distance, check);
   check_overlap_tolerance(options.overlap_tolerance_degrees, check);
+  check.require(options.max_nodes > 0, "max_nodes", std::to_string(options.max_nodes), "> 0");
 }
 
 void check_min_clique_size(int min_size, const std::string& name, const OptionCheck& check) {
   check.require(min_size >= 1, name, min_size, ">= 1");
+}
+
+void check_clique_work(std::int64_t max_work, const std::string& name, const OptionCheck& check) {
+  check.require(max_work > 0, name, std::to_string(max_work), "> 0");
+}
+
+void check_clique_count(std::size_t max_cliques, const std::string& name,
+                        const OptionCheck& check) {
+  check.require(max_cliques > 0, name, std::to_string(max_cliques), "> 0");
+}
+
+void check_clique_options(const CliqueOptions& options, const OptionCheck& check) {
+  check_min_clique_size(options.min_size, "min_size", check);
+  check_clique_work(options.max_work, "max_work", check);
+  check_clique_count(options.max_cliques, "max_cliques", check);
 }
 
 void check_clustering_options(const ClusteringOptions& options, const OptionCheck& check) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "surfcomp/matching/association_graph.hpp"
+#include "surfcomp/matching/cliques.hpp"
 #include "surfcomp/matching/clustering.hpp"
 #include "surfcomp/matching/correspondences.hpp"
 #include "surfcomp/matching/overlay.hpp"
@@ -31,6 +32,9 @@ void check_distance_filter(double tolerance, double min_distance, const OptionCh
 void check_overlap_tolerance(double tolerance_degrees, const OptionCheck& check);
 void check_graph_options(const GraphOptions& options, const OptionCheck& check);
 void check_min_clique_size(int min_size, const std::string& name, const OptionCheck& check);
+void check_clique_work(std::int64_t max_work, const std::string& name, const OptionCheck& check);
+void check_clique_count(std::size_t max_cliques, const std::string& name, const OptionCheck& check);
+void check_clique_options(const CliqueOptions& options, const OptionCheck& check);
 void check_clustering_options(const ClusteringOptions& options, const OptionCheck& check);
 void check_correspondence_options(const CorrespondenceOptions& options, const OptionCheck& check);
 void check_ranking_options(const RankingOptions& options, const OptionCheck& check);

@@ -49,6 +49,11 @@ struct GraphOptions {
   /// Default 30 degrees. j_tol: an edge is dropped when neither heading difference (eq. 3-4)
   /// is within it. In [0, 180].
   double overlap_tolerance_degrees = 30.0;
+  /// Default 20000 (docs/decisions.md#clique-budget). The most nodes the graph may keep after
+  /// the image filter: the distance filter compares every pair of nodes, and the clique search
+  /// holds n^2 / 8 bytes of adjacency bitsets, so build_association_graph refuses a larger
+  /// graph (InputError) rather than run for minutes through gigabytes. > 0.
+  std::size_t max_nodes = 20000;
   /// Default true each: run the filter. A filter turned off keeps everything (its trace stage
   /// is still recorded, with unchanged counts); the image comparisons are made in any case,
   /// since the overlap filter and the alignments need the angles.
@@ -154,8 +159,9 @@ std::vector<std::pair<int, int>> overlap_filter(const std::vector<PointPair>& no
 /// The association graph of a and b after all filters, in the seed's order: initial_pairs
 /// (restricted to the allowed points), fuzzy_filter, image_filter, distance_filter,
 /// overlap_filter, with a trace entry per stage. Nodes removed by a filter are gone; edges
-/// refer to the surviving nodes. Throws OptionError for options outside their domains, and
-/// what the stages throw. Nearly all of its time goes to the image comparisons.
+/// refer to the surviving nodes. Throws OptionError for options outside their domains,
+/// InputError when more than options.max_nodes nodes pass the image filter, and what the
+/// stages throw. Nearly all of its time goes to the image comparisons.
 AssociationGraph build_association_graph(const harmonic::SurfaceDescriptors& a,
                                          const harmonic::SurfaceDescriptors& b,
                                          const GraphOptions& options = {},

@@ -5,6 +5,7 @@
 
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/association_graph.hpp"
+#include "surfcomp/matching/cliques.hpp"
 #include "surfcomp/matching/clustering.hpp"
 #include "surfcomp/matching/correspondences.hpp"
 #include "surfcomp/matching/overlay.hpp"
@@ -12,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,9 +48,16 @@ struct MatchOptions {
   MatchMode mode = MatchMode::whole_surfaces;  ///< whole surfaces or binding sites
   GraphOptions graph;                          ///< filter thresholds F, R, t, d_min, j_tol
   int min_clique_size = 2;                     ///< smaller cliques are not fitted; >= 1
-  CorrespondenceOptions correspondences;       ///< image grid subsampling, R_chem property (esp)
-  ClusteringOptions clustering;                ///< RMSD cut 4 A, merge cut 4 A
-  RankingOptions ranking;                      ///< rank-by-rank, weights 1
+  /// Default CliqueOptions::max_work. The clique search stops after this much work
+  /// (CliqueOptions, cliques.hpp), and the match goes on with the cliques found. > 0.
+  std::int64_t max_clique_work = CliqueOptions{}.max_work;
+  /// Default 1000 (docs/decisions.md#clique-budget). The clique search stops rather than
+  /// report more cliques than this: each clique is fitted, and the merging takes time
+  /// quadratic in their number. > 0.
+  std::size_t max_cliques = 1000;
+  CorrespondenceOptions correspondences;  ///< image grid subsampling, R_chem property (esp)
+  ClusteringOptions clustering;           ///< RMSD cut 4 A, merge cut 4 A
+  RankingOptions ranking;                 ///< rank-by-rank, weights 1
   /// Default 10. The first refine_top alignments of the consensus ranking are refined on the
   /// overlay (SurfaceOverlay::refine) and ranked by their overlay score ahead of the others,
   /// a pose that repeats a better one's (every sampled probe point within 0.5 A) after the
@@ -106,6 +115,10 @@ struct MatchResult {
                                       ///< principal-axes pose, best first
   std::vector<TraceStage> trace;      ///< nodes and edges after each graph stage
   std::size_t cliques = 0;            ///< maximal cliques of at least min_clique_size
+  /// False when the clique search stopped at max_clique_work or max_cliques: the alignments
+  /// come from the cliques found before it stopped, and some may be missing.
+  bool cliques_complete = true;
+  std::int64_t clique_work = 0;  ///< work the clique search spent (CliqueResult::work)
   std::vector<std::pair<std::string, double>> timing_ms;  ///< per stage, in order
 };
 
