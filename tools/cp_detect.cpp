@@ -1,10 +1,12 @@
 // surfcomp cp-detect: the shape critical points (peaks and valleys) of a surface, as JSON and,
 // for viewing, as PDB or PLY points.
 #include "command.hpp"
+#include "command_files.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
@@ -110,15 +112,16 @@ int cp_detect(const std::vector<std::string>& args) {
   finish_surface_options(input);
   require_in_range("critical-point-radius", cp_options.radius, 1e-3, 100.0);
   require_in_range("disc-radius", cp_options.property_disc_radius, 0.0, 100.0);
-  const std::string points_extension = std::filesystem::path(points_out).extension().string();
-  if (!points_out.empty() && points_extension != ".pdb" && points_extension != ".ply") {
-    throw OptionError("--points-out " + points_out + ": use .pdb or .ply");
-  }
+  const bool from_hsi = harmonic::io::is_hsi_file(path);
+  if (!from_hsi) check_surface_input(path, input);
+  check_command_files(
+      {{{"INPUT", path}, {"--molecule", input.molecule_file}},
+       {{"--output", output, {}, ""}, {"--points-out", points_out, {".pdb", ".ply"}, ""}}});
 
   Stopwatch clock;
   std::vector<mesh::CriticalPoint> points;
   std::size_t n_vertices = 0;
-  if (harmonic::io::is_hsi_file(path)) {
+  if (from_hsi) {
     const harmonic::SurfaceDescriptors stored = harmonic::io::read_hsi(path);
     for (const auto& cp : stored.critical_points) points.push_back(cp.point);
     cp_options = stored.options.critical_points;
@@ -143,7 +146,7 @@ int cp_detect(const std::vector<std::string>& args) {
   // The JSON goes last; if it cannot be written, the points file written before it is removed,
   // so a failure leaves no output at all.
   if (!points_out.empty()) {
-    if (points_extension == ".pdb") {
+    if (io::lowercase_extension(points_out) == ".pdb") {
       surfcomp::io::write_file_atomically(
           points_out, [&](std::ostream& out) { write_points_pdb(points, out); });
     } else {

@@ -1,6 +1,7 @@
 // surfcomp hsi-build: a surface's critical points, patches, harmonic maps and harmonic shape
 // images, stored in a .hsi file so that comparisons never rebuild them.
 #include "command.hpp"
+#include "command_files.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
@@ -70,9 +71,9 @@ int hsi_build(const std::vector<std::string>& args) {
   require_in_range("image-sectors", options.image.sectors, 1, 4096);
   require_in_range("threads", threads, 0, 1024);
   options.disk_map.weights = parse_weights(weights);
-  if (std::filesystem::path(output).extension() != ".hsi") {
-    throw OptionError("--output " + output + ": the file must end in .hsi");
-  }
+  check_surface_input(path, input);
+  check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
+                       {{"--output", output, {".hsi"}, ""}}});
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0) {
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,

@@ -61,6 +61,9 @@ int main(int argc, char** argv) {
     } catch (const boost::program_options::error& e) {
       std::cerr << "surfcomp " << name << ": " << e.what() << " (see --help)\n";
       return 2;
+    } catch (const surfcomp::OptionError& e) {  // a command line that cannot run as given
+      std::cerr << "surfcomp " << name << ": error: " << e.what() << "\n";
+      return 2;
     } catch (const surfcomp::Error& e) {
       std::cerr << "surfcomp " << name << ": error: " << e.what() << "\n";
       return 1;

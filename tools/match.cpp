@@ -1,11 +1,14 @@
 // surfcomp match: ranked rigid alignments of PROBE onto REF (METHOD sections 5-7), as a table on
 // stdout and a JSON file other tools read; optionally PROBE moved by the top alignment.
 #include "command.hpp"
+#include "command_files.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
+#include "surfcomp/core/molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match.hpp"
@@ -97,32 +100,58 @@ matching::SiteSphere parse_sphere(const std::string& text) {
   return s;
 }
 
-/// Reads or builds one side's description. With `site_ligand`, the surface is the binding
-/// site's structure (matching::binding_site: the structure without water and without the
-/// ligand copy); with a site (the ligand's spheres and `spheres`), only its critical points get
-/// patches, maps and images (matching::describe_site).
+/// Checks, before any work, that one side's input and site options fit together: a site ligand
+/// needs the structure (a molecule file) and is not a water (the readers drop waters), and
+/// --ligand cannot pick the structure's ligand at the same time (OptionError).
+void check_side(const char* name, const std::filesystem::path& path, const SurfaceInput& input,
+                const char* site_option, const std::string& site_ligand) {
+  if (!site_ligand.empty()) {
+    if (is_water_residue(site_ligand)) {
+      throw OptionError(std::string(site_option) + " " + site_ligand +
+                        ": waters (HOH, WAT, DOD) are dropped when a structure is read, so a "
+                        "water cannot be a site ligand; give --site-sphere x,y,z,r around it");
+    }
+    if (harmonic::io::is_hsi_file(path)) {
+      throw OptionError(std::string(name) + " " + path.string() +
+                        ": --site-ligand needs the structure, not a .hsi file; use --site-sphere");
+    }
+    if (!io::is_molecule_file(path)) {
+      throw OptionError(std::string(name) + " " + path.string() +
+                        ": --site-ligand needs a molecule file (the structure); use --site-sphere");
+    }
+    if (!input.read.ligand.empty())
+      throw OptionError("--ligand and --site-ligand cannot be combined");
+  }
+  if (!harmonic::io::is_hsi_file(path)) check_surface_input(path, input);
+}
+
+/// The formats --aligned-out can take for this PROBE: a molecule moves as PDB, an SDF, MOL or
+/// MOL2 file also as SDF (its bonds kept), any side as its surface (PLY).
+std::vector<std::string> aligned_formats(const std::filesystem::path& probe) {
+  if (!io::is_molecule_file(probe)) return {".ply"};
+  const std::string extension = io::lowercase_extension(probe);
+  if (extension == ".sdf" || extension == ".mol" || extension == ".mol2") {
+    return {".sdf", ".pdb", ".ply"};
+  }
+  return {".pdb", ".ply"};
+}
+
+/// Reads or builds one side's description (its options already passed check_side). With
+/// `site_ligand`, the surface is the binding site's structure (matching::binding_site: the
+/// structure without water and without the ligand copy); with a site (the ligand's spheres and
+/// `spheres`), only its critical points get patches, maps and images (matching::describe_site).
 Side load_side(const std::filesystem::path& path, const SurfaceInput& input,
                const std::string& site_ligand, std::vector<matching::SiteSphere> spheres,
                double site_radius, const harmonic::DescriptorOptions& options) {
   Side side;
   side.path = path;
   if (harmonic::io::is_hsi_file(path)) {
-    if (!site_ligand.empty()) {
-      throw OptionError(path.string() +
-                        ": --site-ligand needs the structure, not a .hsi file; use --site-sphere");
-    }
     side.descriptors = harmonic::io::read_hsi(path);
     side.site = std::move(spheres);
     return side;
   }
   LoadedSurface loaded;
   if (!site_ligand.empty()) {
-    if (!io::is_molecule_file(path)) {
-      throw OptionError(path.string() +
-                        ": --site-ligand needs a molecule file (the structure); use --site-sphere");
-    }
-    if (!input.read.ligand.empty())
-      throw OptionError("--ligand and --site-ligand cannot be combined");
     matching::BindingSiteOptions site_options;
     site_options.sphere_radius = site_radius;
     matching::BindingSite site = matching::binding_site(
@@ -240,7 +269,7 @@ nlohmann::json to_json(const matching::MatchResult& result, const matching::Matc
 void write_aligned(const Side& probe, const Eigen::Matrix4d& transform, const std::string& output) {
   const Eigen::Matrix3d rotation = transform.topLeftCorner<3, 3>();
   const Eigen::Vector3d translation = transform.topRightCorner<3, 1>();
-  const std::string extension = std::filesystem::path(output).extension().string();
+  const std::string extension = io::lowercase_extension(output);
   if (extension == ".ply") {
     mesh::Surface moved = probe.descriptors.surface;
     mesh::transform_surface(moved, rotation, translation);
@@ -376,7 +405,7 @@ int match(const std::vector<std::string>& args) {
   require_in_range("distance-tolerance", g.distance_tolerance, 0.0, 100.0);
   require_in_range("min-distance", g.min_distance, 0.0, 100.0);
   require_in_range("overlap-tolerance", g.overlap_tolerance_degrees, 0.0, 180.0);
-  require_in_range("rmsd-cut", options.clustering.rmsd_cut, 0.0, 100.0);
+  require_positive("rmsd-cut", options.clustering.rmsd_cut, 100.0);
   require_in_range("patch-radius", descriptor_options.patch.radius, 0.1, 100.0);
   require_in_range("refine-top", options.refine_top, 0, 1e6);
   require_in_range("overlay-sigma", options.overlay.sigma, 0.1, 10.0);
@@ -406,6 +435,9 @@ int match(const std::vector<std::string>& args) {
   }
   for (const auto& text : ref_site_spheres) ref_spheres.push_back(parse_sphere(text));
   for (const auto& text : probe_site_spheres) probe_spheres.push_back(parse_sphere(text));
+  const char* ref_site_option = ref_site_ligand.empty() ? "--site-ligand" : "--ref-site-ligand";
+  const char* probe_site_option =
+      probe_site_ligand.empty() ? "--site-ligand" : "--probe-site-ligand";
   if (!site_ligand.empty()) {
     if (ref_site_ligand.empty()) ref_site_ligand = site_ligand;
     if (probe_site_ligand.empty()) probe_site_ligand = site_ligand;
@@ -415,15 +447,20 @@ int match(const std::vector<std::string>& args) {
     options.mode = matching::MatchMode::binding_sites;
   }
   matching::validate(options);
-  const std::string aligned_extension = std::filesystem::path(aligned_out).extension().string();
-  if (!aligned_out.empty() && aligned_extension != ".sdf" && aligned_extension != ".pdb" &&
-      aligned_extension != ".ply") {
-    throw OptionError("--aligned-out " + aligned_out + ": use .sdf, .pdb or .ply");
-  }
+  const std::filesystem::path ref_path = inputs[0], probe_path = inputs[1];
+  check_side("REF", ref_path, input, ref_site_option, ref_site_ligand);
+  check_side("PROBE", probe_path, input, probe_site_option, probe_site_ligand);
+  const std::vector<std::string> aligned = aligned_formats(probe_path);
+  check_command_files(
+      {{{"REF", ref_path}, {"PROBE", probe_path}, {"--molecule", input.molecule_file}},
+       {{"--output", output, {}, ""},
+        {"--aligned-out", aligned_out, aligned,
+         aligned.size() == 1   ? "PROBE is not a molecule"
+         : aligned.size() == 2 ? "PROBE is not an SDF, MOL or MOL2 file"
+                               : ""}}});
 
   Stopwatch clock;
   // A .hsi side fixes the descriptor parameters the other side is built with.
-  const std::filesystem::path ref_path = inputs[0], probe_path = inputs[1];
   if (harmonic::io::is_hsi_file(ref_path) && !harmonic::io::is_hsi_file(probe_path)) {
     descriptor_options = harmonic::io::read_hsi(ref_path).options;
   } else if (harmonic::io::is_hsi_file(probe_path) && !harmonic::io::is_hsi_file(ref_path)) {
@@ -438,9 +475,6 @@ int match(const std::vector<std::string>& args) {
         ref_path.string() + " and " + probe_path.string() +
         ": the .hsi files were built with different parameters (critical point radius, "
         "patch radius, spring weights or image grid); rebuild one with the other's");
-  }
-  if (!aligned_out.empty() && aligned_extension != ".ply" && !probe.molecule) {
-    throw OptionError("--aligned-out " + aligned_out + ": PROBE is not a molecule; use .ply");
   }
   std::vector<bool> ref_allowed, probe_allowed;
   for (Side* side : {&ref, &probe}) {

@@ -1,9 +1,11 @@
 // surfcomp surf-build: a molecule (SES built here) or a mesh in; a surface with per-vertex
 // normals, ESP, LP and curvature out; one summary line on stdout.
 #include "command.hpp"
+#include "command_files.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
+#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
@@ -42,14 +44,14 @@ int surf_build(const std::vector<std::string>& args) {
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   finish_surface_options(input);
-  if (!mesh::io::is_mesh_file(output)) {
-    throw OptionError("--output " + output + ": unknown surface format (use .ply, .off or .obj)");
-  }
+  check_surface_input(path, input);
+  check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
+                       {{"--output", output, {".ply", ".off", ".obj"}, ""}}});
 
   Stopwatch clock;
   const LoadedSurface loaded = load_surface(path, input);
   const double elapsed = clock.elapsed_ms();
-  if (std::filesystem::path(output).extension() == ".ply") {
+  if (io::lowercase_extension(output) == ".ply") {
     mesh::io::write_ply(loaded.surface, output,
                         vm["ascii"].as<bool>() ? mesh::io::PlyFormat::ascii
                                                : mesh::io::PlyFormat::binary_little_endian);

@@ -34,8 +34,13 @@ struct LoadedSurface {
   std::optional<Molecule> molecule;  ///< the molecule read (INPUT or --molecule), if any
 };
 
+/// Checks, from the names alone and before any work, that `path` is a molecule or a mesh
+/// (InputError) and that the options given apply to it (OptionError: --ligand on a mesh,
+/// --molecule on a molecule).
+void check_surface_input(const std::filesystem::path& path, const SurfaceInput& input);
+
 /// Builds the SES of a molecule file, or reads a mesh file and assigns its properties.
-/// Throws InputError for an input that is neither, OptionError for options that do not apply.
+/// Throws as check_surface_input, and as the readers and the surface construction.
 LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceInput& input);
 
 /// Extensions accepted as INPUT, for messages.

@@ -129,6 +129,7 @@ mesh::Surface get_surface(BinaryReader& r) {
   }
   const Eigen::MatrixXi faces = r.int_matrix();
   if (faces.cols() != 3 && faces.rows() != 0) r.fail("faces are not triangles");
+  if (faces.rows() == 0) r.fail("the stored surface has no faces");
   mesh::Surface s;
   try {
     s = mesh::Surface::from_arrays(

@@ -144,7 +144,7 @@ Surface read_msms(const std::filesystem::path& path) {
   const Eigen::MatrixX3i faces = Eigen::Map<const RowMajor3i>(
       triangles.data(), static_cast<Eigen::Index>(triangles.size() / 3), 3);
   Surface surface = Surface::from_arrays(positions, faces, face.string());
-  surface.set_source(base.string());
+  surface.set_source(vert.string());
   surface.set_normals(Eigen::Map<const RowMajor3d>(vertices.normals.data(), n, 3));
   return surface;
 }
