@@ -86,6 +86,7 @@ struct Side {
   harmonic::SurfaceDescriptors descriptors;
   std::optional<Molecule> molecule;  // the molecule read, for --aligned-out and messages
   std::vector<matching::SiteSphere> site;
+  std::size_t record = 0;  // the molecule of the file read (MoleculeReadOptions::record)
 };
 
 matching::SiteSphere parse_sphere(const std::string& text) {
@@ -145,6 +146,7 @@ Side load_side(const std::filesystem::path& path, const SurfaceInput& input,
                double site_radius, const harmonic::DescriptorOptions& options) {
   Side side;
   side.path = path;
+  side.record = input.read.record;
   if (harmonic::io::is_hsi_file(path)) {
     side.descriptors = harmonic::io::read_hsi(path);
     side.site = std::move(spheres);
@@ -275,7 +277,7 @@ void write_aligned(const Side& probe, const Eigen::Matrix4d& transform, const st
     mesh::transform_surface(moved, rotation, translation);
     mesh::io::write_ply(moved, output);
   } else if (extension == ".sdf") {
-    const std::string block = io::moved_mol_block(probe.path, rotation, translation);
+    const std::string block = io::moved_mol_block(probe.path, rotation, translation, probe.record);
     surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << block; });
   } else {
     Molecule moved = *probe.molecule;

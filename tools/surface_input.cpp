@@ -31,6 +31,8 @@ void add_surface_options(boost::program_options::options_description& options,
        "lipophilic potential kernel: fauchere exp(-d) | dubost 1/(1+d)")
       ("ligand", po::value(&input.read.ligand),
        "PDB/PQR input: use this residue name only (default: the whole structure without water)")
+      ("record", po::value(&input.read.record),
+       "SDF/MOL2 input holding several molecules: read molecule N (1-based)")
       ("molecule", po::value(&input.molecule_file),
        "mesh INPUT only: molecule whose ESP and LP are mapped onto the mesh");
   // clang-format on

@@ -16,9 +16,13 @@ namespace surfcomp::io::detail {
 /// The formats read through RDKit.
 enum class RdkitFormat { mdl, mol2, pdb };
 
-/// The whole content of `path`. Throws FileError if it is missing, not a regular file or
-/// unreadable.
-std::string read_text_file(const std::filesystem::path& path);
+/// Throws InputError naming `source` when `record` (MoleculeReadOptions::record) asks for a
+/// molecule after the first of a file that holds one.
+void check_single_record(std::size_t record, const std::string& source);
+
+/// Checks every atom position of a molecule just read with check_read_position (finite, within
+/// max_coordinate_magnitude); FormatError naming molecule.source and the atom.
+void check_read_atoms(const Molecule& molecule);
 
 /// True when a whole-structure read drops this residue: water (if options.remove_water) or a
 /// name in options.exclude_residues (blanks ignored, case-insensitive).

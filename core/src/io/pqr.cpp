@@ -3,6 +3,7 @@
 #include "molecule_reader_detail.hpp"
 #include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -97,7 +98,8 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
                       ": a PQR file carries its own charges; only the 'file' charge "
                       "model applies");
   }
-  const std::string text = detail::read_text_file(path);
+  const std::string text = read_input_file(path);
+  detail::check_single_record(options.record, source);
   Molecule molecule;
   molecule.source = source;
   molecule.charge_source = ChargeSource::file;
@@ -141,6 +143,8 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
     atom.position = Eigen::Vector3d(parse_real(fields[k + 1], "x coordinate", source, line_number),
                                     parse_real(fields[k + 2], "y coordinate", source, line_number),
                                     parse_real(fields[k + 3], "z coordinate", source, line_number));
+    check_read_position(atom.position, source + ":" + std::to_string(line_number),
+                        "atom '" + atom.name + "'");
     atom.charge = parse_real(fields[k + 4], "charge", source, line_number);
     atom.radius = parse_real(fields[k + 5], "radius", source, line_number);
     atom.element = element_from_name(atom.name, atom.residue_name);

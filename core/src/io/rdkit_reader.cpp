@@ -2,6 +2,7 @@
 #include "molecule_reader_detail.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/core/protein_charges.hpp"
@@ -118,6 +119,91 @@ std::unique_ptr<RDKit::RWMol> parse(const std::string& text, RdkitFormat format,
     return std::unique_ptr<RDKit::RWMol>(
         RDKit::PDBBlockToMol(first_alternate_locations(text), false, false, 0, true));
   });
+}
+
+/// The [begin, end) byte ranges of the molecules in an SDF text (each ends after its "$$$$"
+/// line; a non-blank rest without one is a molecule too) or MOL2 text (each starts at its
+/// @<TRIPOS>MOLECULE line; the first from the start of the text, with the comments before it).
+std::vector<std::pair<std::size_t, std::size_t>> record_spans(const std::string& text,
+                                                              RdkitFormat format) {
+  std::vector<std::pair<std::size_t, std::size_t>> spans;
+  std::size_t record_begin = 0;
+  std::size_t begin = 0;
+  const auto has_content = [&](std::size_t from, std::size_t to) {
+    return !trimmed(text.substr(from, to - from)).empty();
+  };
+  while (begin < text.size()) {
+    const std::size_t newline = text.find('\n', begin);
+    const std::size_t end = newline == std::string::npos ? text.size() : newline + 1;
+    const std::string line = text.substr(begin, end - begin);
+    if (format == RdkitFormat::mdl && line.compare(0, 4, "$$$$") == 0) {
+      if (has_content(record_begin, begin)) spans.emplace_back(record_begin, end);
+      record_begin = end;
+    } else if (format == RdkitFormat::mol2 && trimmed(line) == "@<TRIPOS>MOLECULE") {
+      if (!spans.empty()) spans.back().second = begin;
+      spans.emplace_back(spans.empty() ? 0 : begin, text.size());
+    }
+    begin = end;
+  }
+  if (format == RdkitFormat::mdl && has_content(record_begin, text.size())) {
+    spans.emplace_back(record_begin, text.size());
+  }
+  return spans;
+}
+
+/// The text of molecule `record` (1-based) of an SDF or MOL2 text; see
+/// MoleculeReadOptions::record. A file with one molecule (or none, for the parser to refuse)
+/// is returned whole.
+std::string select_record(const std::string& text, RdkitFormat format, std::size_t record,
+                          const std::string& source) {
+  const auto spans = record_spans(text, format);
+  const std::size_t count = spans.size();
+  if (count <= 1) {
+    check_single_record(record, source);
+    return text;
+  }
+  if (record == 0) {
+    throw InputError(source + ": the file holds " + std::to_string(count) +
+                     " molecules; choose one with --record N (1 to " + std::to_string(count) + ")");
+  }
+  if (record > count) {
+    throw InputError(source + ": record " + std::to_string(record) + " asked for, the file holds " +
+                     std::to_string(count) + " molecules");
+  }
+  const auto& [begin, end] = spans[record - 1];
+  return text.substr(begin, end - begin);
+}
+
+/// Checks that every ATOM/HETATM record of the first model of a PDB text has three numbers in
+/// its coordinate columns (31-38, 39-46, 47-54): RDKit reads a line cut inside them, or blank
+/// columns, as zeros.
+void check_pdb_coordinates(const std::string& text, const std::string& source) {
+  std::size_t begin = 0;
+  std::size_t line_number = 0;
+  while (begin < text.size()) {
+    const std::size_t newline = text.find('\n', begin);
+    const std::size_t end = newline == std::string::npos ? text.size() : newline + 1;
+    std::string line = text.substr(begin, end - begin);
+    begin = end;
+    ++line_number;
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+    if (line.compare(0, 6, "ENDMDL") == 0) return;
+    if (line.compare(0, 6, "ATOM  ") != 0 && line.compare(0, 6, "HETATM") != 0) continue;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      const std::size_t column = 30 + 8 * axis;
+      const std::string field = line.size() > column ? trimmed(line.substr(column, 8)) : "";
+      char* parsed = nullptr;
+      if (!field.empty()) std::strtod(field.c_str(), &parsed);
+      if (field.empty() || parsed != field.c_str() + field.size()) {
+        throw FormatError(
+            source, line_number,
+            std::string(1, static_cast<char>('x' + axis)) + " coordinate (columns " +
+                std::to_string(column + 1) + "-" + std::to_string(column + 8) + ") is " +
+                (field.empty() ? std::string("missing") : "'" + field + "', not a number") +
+                " in this " + line.substr(0, 6) + " record");
+      }
+    }
+  }
 }
 
 // The charge type line of the first @<TRIPOS>MOLECULE section ("" when absent).
@@ -425,15 +511,28 @@ std::vector<double> tripos_charges(const RDKit::ROMol& mol, const std::string& s
   return charges;
 }
 
-Molecule read_unguarded(const std::filesystem::path& path, const std::string& text,
+Molecule read_unguarded(const std::filesystem::path& path, const std::string& whole_text,
                         RdkitFormat format, const MoleculeReadOptions& options) {
   const std::string source = path.string();
-  if (trimmed(text).empty()) throw InputError(source + ": the file is empty (no atoms)");
+  if (trimmed(whole_text).empty()) throw InputError(source + ": the file is empty (no atoms)");
+  if (format != RdkitFormat::pdb && !options.ligand.empty()) {
+    throw OptionError(source + ": ligand '" + options.ligand +
+                      "' selects a HETATM residue of a PDB or PQR file; an SDF, MOL or MOL2 "
+                      "file is the ligand itself (give no ligand)");
+  }
+  if (format == RdkitFormat::pdb) {
+    check_single_record(options.record, source);
+    check_pdb_coordinates(whole_text, source);
+  }
+  const std::string text = format == RdkitFormat::pdb
+                               ? whole_text
+                               : select_record(whole_text, format, options.record, source);
   if (format == RdkitFormat::mol2) check_mol2_structure(text, source);
   auto mol = parse(text, format, source);
   if (!mol) throw FormatError(source, "RDKit could not parse the file");
   if (mol->getNumAtoms() == 0) throw InputError(source + ": the file has no atoms");
   Molecule molecule = convert_atoms(*mol, source);
+  check_read_atoms(molecule);
 
   bool whole_structure = false;
   if (format == RdkitFormat::pdb) {
@@ -538,7 +637,7 @@ std::vector<double> crippen_contributions_of_pdb_block(const std::string& pdb_bl
 namespace surfcomp::io {
 
 std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Matrix3d& rotation,
-                            const Eigen::Vector3d& translation) {
+                            const Eigen::Vector3d& translation, std::size_t record) {
   const std::string source = input.string();
   const std::string extension = lowercase_extension(input);
   detail::RdkitFormat format;
@@ -551,7 +650,7 @@ std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Mat
                      ": a moved SDF copy needs an SDF, MOL or MOL2 input (write .pdb instead)");
   }
   const RDLog::LogStateSetter quiet;
-  const std::string text = detail::read_text_file(input);
+  const std::string text = detail::select_record(read_input_file(input), format, record, source);
   if (format == detail::RdkitFormat::mol2) detail::check_mol2_structure(text, source);
   auto mol = detail::parse(text, format, source);
   if (!mol || mol->getNumConformers() == 0)

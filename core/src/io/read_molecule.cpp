@@ -4,29 +4,27 @@
 #include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/io/pqr.hpp"
 #include "surfcomp/core/protein_lipophilicity.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <iterator>
-#include <system_error>
 
 namespace surfcomp::io {
 
 namespace detail {
 
-std::string read_text_file(const std::filesystem::path& path) {
-  std::error_code error;
-  if (!std::filesystem::exists(path, error)) throw FileError(path.string(), "no such file");
-  if (!std::filesystem::is_regular_file(path, error)) {
-    throw FileError(path.string(), "not a regular file");
+void check_single_record(std::size_t record, const std::string& source) {
+  if (record > 1) {
+    throw InputError(source + ": record " + std::to_string(record) +
+                     " asked for, the file holds 1 molecule");
   }
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw FileError(path.string(), "cannot open for reading");
-  std::string text((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
-  if (stream.bad()) throw FileError(path.string(), "read error");
-  return text;
+}
+
+void check_read_atoms(const Molecule& molecule) {
+  for (std::size_t i = 0; i < molecule.atoms.size(); ++i) {
+    check_read_position(molecule.atoms[i].position, molecule.source, describe_atom(molecule, i));
+  }
 }
 
 bool is_dropped_residue(std::string_view residue_name, const MoleculeReadOptions& options) {
@@ -84,7 +82,7 @@ Molecule read_molecule(const std::filesystem::path& path, const MoleculeReadOpti
     throw FormatError(path.string(), "unknown molecule file extension '" + extension +
                                          "' (expected .sdf .mol .mol2 .pdb .ent .pqr)");
   }
-  const std::string text = detail::read_text_file(path);
+  const std::string text = read_input_file(path);
   return detail::read_with_rdkit(path, text, format, options);
 }
 

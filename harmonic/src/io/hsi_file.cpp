@@ -5,12 +5,14 @@
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/binary_stream.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
+#include <sstream>
+#include <utility>
 
 namespace surfcomp::harmonic::io {
 namespace {
@@ -21,6 +23,9 @@ using surfcomp::io::BinaryWriter;
 constexpr std::array<char, 8> kMagic{'S', 'U', 'R', 'F', 'H', 'S', 'I', '\n'};
 constexpr std::uint32_t kByteOrderMark = 0x01020304u;
 constexpr std::size_t kHeaderSize = 8 + 4 + 4 + 8 + 8;
+/// Bytes of a critical point that has no patch: type, vertex, position, normal, six values,
+/// status. Bounds the count a file may claim.
+constexpr std::size_t kMinPointBytes = 1 + 4 + 24 + 24 + 48 + 1;
 
 /// A capitalised element symbol ("C", "Cl"), as SurfaceAtom holds it.
 bool is_element_symbol(const std::string& symbol) {
@@ -94,6 +99,23 @@ void put_image(BinaryWriter& w, const ShapeImage& image) {
 
 // ---- decoding -------------------------------------------------------------------------------
 
+/// A stored length parameter (A): finite and in [lo, hi].
+double get_length(BinaryReader& r, double lo, double hi, const char* what) {
+  const double value = r.f64();
+  if (!(std::isfinite(value) && value >= lo && value <= hi)) {
+    std::ostringstream text;
+    text << what << " " << value << " is not in [" << lo << ", " << hi << "]";
+    r.fail(text.str());
+  }
+  return value;
+}
+
+/// A stored vector: every component finite.
+void check_finite(BinaryReader& r, const Eigen::Ref<const Eigen::MatrixXd>& values,
+                  const std::string& what) {
+  if (!values.allFinite()) r.fail(what + " holds a non-finite value");
+}
+
 template <typename Enum>
 Enum get_enum(BinaryReader& r, std::uint8_t last, const char* what) {
   const std::uint8_t value = r.u8();
@@ -103,17 +125,25 @@ Enum get_enum(BinaryReader& r, std::uint8_t last, const char* what) {
 
 DescriptorOptions get_options(BinaryReader& r) {
   DescriptorOptions o;
-  o.critical_points.radius = r.f64();
-  o.critical_points.property_disc_radius = r.f64();
+  o.critical_points.radius =
+      get_length(r, max_stored_length * 1e-6, max_stored_length, "critical point radius r_cp");
+  o.critical_points.property_disc_radius =
+      get_length(r, 0.0, max_stored_length, "property disc radius");
   o.critical_points.distance = get_enum<mesh::GeodesicMethod>(r, 1, "distance method");
-  o.patch.radius = r.f64();
-  o.patch.margin = r.f64();
+  o.patch.radius = get_length(r, max_stored_length * 1e-6, max_stored_length, "patch radius");
+  o.patch.margin = get_length(r, 0.0, 1.0, "patch margin");
   o.patch.distance = get_enum<mesh::GeodesicMethod>(r, 1, "distance method");
   o.disk_map.weights = get_enum<SpringWeights>(r, 3, "spring weight kind");
   o.image.rings = r.i32();
   o.image.sectors = r.i32();
-  if (o.image.rings < 1 || o.image.sectors < 1) r.fail("image grid below 1 ring or 1 sector");
+  if (o.image.rings < 1 || o.image.rings > max_stored_rings || o.image.sectors < 1 ||
+      o.image.sectors > max_stored_sectors) {
+    r.fail("image grid of " + std::to_string(o.image.rings) + " rings x " +
+           std::to_string(o.image.sectors) + " sectors is outside 1.." +
+           std::to_string(max_stored_rings) + " x 1.." + std::to_string(max_stored_sectors));
+  }
   o.image_property = r.string();
+  if (o.image_property.empty()) r.fail("the image property has no name");
   return o;
 }
 
@@ -121,11 +151,16 @@ mesh::Surface get_surface(BinaryReader& r) {
   const std::string source = r.string();
   const Eigen::MatrixXd positions = r.double_matrix();
   if (positions.cols() != 3) r.fail("vertex positions are not 3 columns");
+  for (Eigen::Index i = 0; i < positions.rows(); ++i) {
+    surfcomp::io::check_read_position(positions.row(i).transpose(), r.source(),
+                                      "stored vertex " + std::to_string(i));
+  }
   const bool has_normals = r.u8() != 0;
   Eigen::MatrixXd normals;
   if (has_normals) {
     normals = r.double_matrix();
     if (normals.cols() != 3 || normals.rows() != positions.rows()) r.fail("bad normals");
+    check_finite(r, normals, "the vertex normals");
   }
   const Eigen::MatrixXi faces = r.int_matrix();
   if (faces.cols() != 3 && faces.rows() != 0) r.fail("faces are not triangles");
@@ -150,6 +185,10 @@ mesh::Surface get_surface(BinaryReader& r) {
     if (static_cast<std::size_t>(values.size()) != s.n_vertices()) {
       r.fail("property '" + name + "' has the wrong number of values");
     }
+    for (Eigen::Index i = 0; i < values.size(); ++i) {
+      surfcomp::io::check_read_value(values(i), r.source(), "stored vertex " + std::to_string(i),
+                                     "property '" + name + "'");
+    }
     s.set_property(name, values, type);
   }
   return s;
@@ -161,7 +200,10 @@ Eigen::Vector3d get_vector3(BinaryReader& r) {
   return v;
 }
 
-mesh::CriticalPoint get_point(BinaryReader& r, std::size_t n_vertices) {
+/// A critical point; its esp and lp are NaN where the surface has no such property (as
+/// detect_critical_points gives them), finite otherwise.
+mesh::CriticalPoint get_point(BinaryReader& r, const mesh::Surface& surface) {
+  const std::size_t n_vertices = surface.n_vertices();
   mesh::CriticalPoint p;
   p.type = get_enum<mesh::CriticalPointType>(r, 1, "critical point type");
   p.vertex = r.i32();
@@ -169,9 +211,21 @@ mesh::CriticalPoint get_point(BinaryReader& r, std::size_t n_vertices) {
     r.fail("critical point vertex " + std::to_string(p.vertex) + " outside the surface");
   }
   p.position = get_vector3(r);
+  surfcomp::io::check_read_position(p.position, r.source(),
+                                    "critical point at vertex " + std::to_string(p.vertex));
   p.normal = get_vector3(r);
+  check_finite(r, p.normal, "a critical point normal");
   for (double* value : {&p.cc1, &p.cc2, &p.shape_index, &p.curvedness, &p.esp, &p.lp}) {
     *value = r.f64();
+  }
+  check_finite(r, Eigen::Vector4d(p.cc1, p.cc2, p.shape_index, p.curvedness),
+               "a critical point's curvatures");
+  for (const auto& [value, name] : {std::pair<double, const char*>{p.esp, mesh::property::esp},
+                                    std::pair<double, const char*>{p.lp, mesh::property::lp}}) {
+    const bool absent = !surface.has_property(name) && std::isnan(value);
+    if (!absent && !std::isfinite(value)) {
+      r.fail(std::string("a critical point's ") + name + " is not finite");
+    }
   }
   return p;
 }
@@ -199,6 +253,7 @@ mesh::Patch get_patch(BinaryReader& r, std::size_t surface_vertices) {
   if (static_cast<std::size_t>(positions.rows()) != n || positions.cols() != 3) {
     r.fail("patch positions do not match its vertices");
   }
+  check_finite(r, positions, "patch positions");
   p.positions = positions;
   const Eigen::MatrixXi faces = r.int_matrix();
   if (faces.cols() != 3) r.fail("patch faces are not triangles");
@@ -209,13 +264,13 @@ mesh::Patch get_patch(BinaryReader& r, std::size_t surface_vertices) {
   p.faces = faces;
   p.distance = r.doubles();
   if (static_cast<std::size_t>(p.distance.size()) != n) r.fail("patch distances do not match");
+  check_finite(r, p.distance, "patch distances");
   p.outer_boundary = r.ints();
   check_indices(r, p.outer_boundary, n, "patch border");
   const std::uint64_t n_holes = r.u64();
   if (n_holes > r.remaining() / 8) r.fail("implausible hole count");
-  p.holes.resize(n_holes);
-  for (auto& hole : p.holes) {
-    hole = r.ints();
+  for (std::uint64_t k = 0; k < n_holes; ++k) {
+    std::vector<int>& hole = p.holes.emplace_back(r.ints());
     check_indices(r, hole, n, "patch hole");
   }
   p.genus = r.i32();
@@ -232,13 +287,17 @@ ShapeImage get_image(BinaryReader& r, std::size_t n_faces, const ImageOptions& g
   const std::size_t n =
       static_cast<std::size_t>(grid.rings) * static_cast<std::size_t>(grid.sectors);
   image.values = r.doubles();
+  check_finite(r, image.values, "image values");
   const std::uint64_t n_valid = r.u64();
   if (static_cast<std::size_t>(image.values.size()) != n || n_valid != n ||
       n_valid > r.remaining()) {
     r.fail("image sizes do not match its grid");
   }
   image.valid.resize(n);
-  for (auto& v : image.valid) v = r.u8();
+  for (auto& v : image.valid) {
+    v = r.u8();
+    if (v > 1) r.fail("image validity flag " + std::to_string(v) + " is not 0 or 1");
+  }
   const std::vector<int> faces = r.ints();
   if (faces.size() != n) r.fail("image face list does not match its grid");
   for (int f : faces) {
@@ -250,6 +309,7 @@ ShapeImage get_image(BinaryReader& r, std::size_t n_faces, const ImageOptions& g
   if (static_cast<std::size_t>(barycentric.rows()) != n || barycentric.cols() != 3) {
     r.fail("image barycentric coordinates do not match its grid");
   }
+  check_finite(r, barycentric, "image barycentric coordinates");
   image.barycentric = barycentric;
   return image;
 }
@@ -293,10 +353,15 @@ std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& d) {
 }
 
 SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std::string& source) {
-  if (bytes.size() < kHeaderSize || std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0) {
+  return decode_hsi(bytes.data(), bytes.size(), source);
+}
+
+SurfaceDescriptors decode_hsi(const std::uint8_t* data, std::size_t n_bytes,
+                              const std::string& source) {
+  if (n_bytes < kHeaderSize || std::memcmp(data, kMagic.data(), kMagic.size()) != 0) {
     throw FormatError(source, "not a .hsi file (no SURFHSI header)");
   }
-  BinaryReader header(bytes.data() + kMagic.size(), kHeaderSize - kMagic.size(), source);
+  BinaryReader header(data + kMagic.size(), kHeaderSize - kMagic.size(), source);
   const std::uint32_t version = header.u32();
   const std::uint32_t mark = header.u32();
   if (mark != kByteOrderMark) {
@@ -311,12 +376,12 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
   }
   const std::uint64_t size = header.u64();
   const std::uint64_t checksum = header.u64();
-  if (size != bytes.size() - kHeaderSize) {
-    throw FormatError(source, "the payload has " + std::to_string(bytes.size() - kHeaderSize) +
+  if (size != n_bytes - kHeaderSize) {
+    throw FormatError(source, "the payload has " + std::to_string(n_bytes - kHeaderSize) +
                                   " bytes, the header says " + std::to_string(size) +
                                   " (truncated?)");
   }
-  const std::uint8_t* payload = bytes.data() + kHeaderSize;
+  const std::uint8_t* payload = data + kHeaderSize;
   if (surfcomp::io::fnv1a64(payload, size) != checksum) {
     throw FormatError(source, "checksum mismatch: the file is corrupt");
   }
@@ -325,10 +390,14 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
   d.options = get_options(r);
   d.surface = get_surface(r);
   const std::uint64_t n_points = r.u64();
-  if (n_points > r.remaining()) r.fail("implausible critical point count");
-  d.critical_points.resize(n_points);
-  for (auto& cp : d.critical_points) {
-    cp.point = get_point(r, d.surface.n_vertices());
+  if (n_points > r.remaining() / kMinPointBytes) {
+    r.fail("a count of " + std::to_string(n_points) + " critical points cannot fit in the " +
+           std::to_string(r.remaining()) + " bytes left");
+  }
+  // Grown as points are read, not sized by the count: memory follows the bytes actually present.
+  for (std::uint64_t k = 0; k < n_points; ++k) {
+    CriticalPointDescriptor& cp = d.critical_points.emplace_back();
+    cp.point = get_point(r, d.surface);
     cp.status = get_enum<PatchStatus>(r, 4, "patch status");
     if (cp.status != PatchStatus::ok) continue;
     cp.patch = get_patch(r, d.surface.n_vertices());
@@ -336,13 +405,16 @@ SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std:
     if (static_cast<std::size_t>(uv.rows()) != cp.patch.surface_vertex.size() || uv.cols() != 2) {
       r.fail("harmonic map does not match its patch");
     }
+    check_finite(r, uv, "a harmonic map");
     cp.map.uv = uv;
     cp.image = get_image(r, static_cast<std::size_t>(cp.patch.faces.rows()), d.options.image);
   }
   if (version >= 2) {
     const std::uint64_t n_atoms = r.u64();
-    if (n_atoms > r.remaining() / 29)
-      r.fail("implausible atom count");  // 4 + 1 + 24 bytes at least
+    if (n_atoms > r.remaining() / 29) {  // 4 + 1 + 24 bytes at least
+      r.fail("a count of " + std::to_string(n_atoms) + " atoms cannot fit in the " +
+             std::to_string(r.remaining()) + " bytes left");
+    }
     d.atoms.resize(n_atoms);
     for (SurfaceAtom& atom : d.atoms) {
       atom.element = r.string();
@@ -368,12 +440,9 @@ void write_hsi(const SurfaceDescriptors& descriptors, const std::filesystem::pat
 }
 
 SurfaceDescriptors read_hsi(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path.string(), "cannot open for reading");
-  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
-  if (in.bad()) throw FileError(path.string(), "read error");
-  return decode_hsi(bytes, path.string());
+  const std::string bytes = surfcomp::io::read_input_file(path);
+  return decode_hsi(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
+                    path.string());
 }
 
 bool is_hsi_file(const std::filesystem::path& path) {

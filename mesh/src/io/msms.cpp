@@ -1,6 +1,8 @@
 #include "surfcomp/mesh/io/msms.hpp"
 
+#include "surface_checks.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 #include "text_parsing.hpp"
 
 #include <limits>
@@ -65,7 +67,7 @@ struct MsmsVertices {
 
 MsmsVertices read_vert(const std::filesystem::path& path) {
   const std::string name = path.string();
-  const std::string data = detail::read_whole_file(path);
+  const std::string data = surfcomp::io::read_input_file(path);
   detail::LineCursor lines(data);
   const MsmsLines header = skip_header(lines, name);
   MsmsVertices out;
@@ -99,7 +101,7 @@ MsmsVertices read_vert(const std::filesystem::path& path) {
 
 std::vector<int> read_face(const std::filesystem::path& path, std::size_t n_vertices) {
   const std::string name = path.string();
-  const std::string data = detail::read_whole_file(path);
+  const std::string data = surfcomp::io::read_input_file(path);
   detail::LineCursor lines(data);
   const MsmsLines header = skip_header(lines, name);
   std::vector<int> triangles;
@@ -146,6 +148,7 @@ Surface read_msms(const std::filesystem::path& path) {
   Surface surface = Surface::from_arrays(positions, faces, face.string());
   surface.set_source(vert.string());
   surface.set_normals(Eigen::Map<const RowMajor3d>(vertices.normals.data(), n, 3));
+  detail::check_read_surface(surface, vert.string());
   return surface;
 }
 

@@ -1,7 +1,9 @@
 #include "surfcomp/mesh/io/obj.hpp"
 
+#include "surface_checks.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 #include "text_parsing.hpp"
 
 #include <limits>
@@ -29,7 +31,7 @@ int corner_vertex(std::string_view corner, std::size_t n_vertices, const Locatio
 
 Surface read_obj(const std::filesystem::path& path) {
   const std::string name = path.string();
-  const std::string data = detail::read_whole_file(path);
+  const std::string data = surfcomp::io::read_input_file(path);
   detail::LineCursor lines(data);
   std::vector<double> positions;  // 3 per vertex
   std::vector<int> triangles;     // 3 per triangle
@@ -73,7 +75,9 @@ Surface read_obj(const std::filesystem::path& path) {
   const Eigen::MatrixX3i faces =
       Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(
           triangles.data(), static_cast<Eigen::Index>(triangles.size() / 3), 3);
-  return Surface::from_arrays(vertex_positions, faces, name);
+  Surface surface = Surface::from_arrays(vertex_positions, faces, name);
+  detail::check_read_surface(surface, name);
+  return surface;
 }
 
 void write_obj(const Surface& s, const std::filesystem::path& path) {

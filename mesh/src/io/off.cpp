@@ -1,7 +1,9 @@
 #include "surfcomp/mesh/io/off.hpp"
 
+#include "surface_checks.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 #include "text_parsing.hpp"
 
 #include <limits>
@@ -32,7 +34,7 @@ bool next_content(detail::LineCursor& lines, std::vector<std::string_view>& toke
 
 Surface read_off(const std::filesystem::path& path) {
   const std::string name = path.string();
-  const std::string data = detail::read_whole_file(path);
+  const std::string data = surfcomp::io::read_input_file(path);
   detail::LineCursor lines(data);
   std::vector<std::string_view> tokens;
   if (!next_content(lines, tokens)) end_of_file(lines, name, "'OFF'");
@@ -105,7 +107,9 @@ Surface read_off(const std::filesystem::path& path) {
   const Eigen::MatrixX3i faces =
       Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(
           triangles.data(), static_cast<Eigen::Index>(triangles.size() / 3), 3);
-  return Surface::from_arrays(positions, faces, name);
+  Surface surface = Surface::from_arrays(positions, faces, name);
+  detail::check_read_surface(surface, name);
+  return surface;
 }
 
 void write_off(const Surface& s, const std::filesystem::path& path) {

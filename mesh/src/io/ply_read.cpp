@@ -1,5 +1,7 @@
 #include "ply_format.hpp"
+#include "surface_checks.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "text_parsing.hpp"
 
@@ -402,13 +404,14 @@ Surface read_ply_data(std::string_view data, const std::string& name) {
     surface.set_property(p.name, Eigen::Map<const Eigen::VectorXd>(ply.vertex_columns[k].data(), n),
                          p.type);
   }
+  detail::check_read_surface(surface, name);
   return surface;
 }
 
 }  // namespace
 
 Surface read_ply(const std::filesystem::path& path) {
-  return read_ply_data(detail::read_whole_file(path), path.string());
+  return read_ply_data(surfcomp::io::read_input_file(path), path.string());
 }
 
 Surface read_ply(std::istream& in, const std::string& name) {

@@ -1,29 +1,23 @@
 #include "text_parsing.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <system_error>
 
 namespace surfcomp::mesh::io::detail {
-
-std::string read_whole_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw FileError(path.string(), "is a directory, expected a mesh file");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path.string(), "cannot open for reading");
-  return read_whole_stream(in, path.string());
-}
 
 std::string read_whole_stream(std::istream& in, const std::string& name) {
   std::string data;
   constexpr std::size_t chunk = std::size_t{1} << 20;
   std::size_t used = 0;
   while (in) {
+    if (used > surfcomp::io::max_input_file_bytes) {
+      throw FileError(name, "more than the limit of " +
+                                std::to_string(surfcomp::io::max_input_file_bytes) +
+                                " bytes (4 GiB) an input may have");
+    }
     data.resize(used + chunk);
     in.read(data.data() + used, static_cast<std::streamsize>(chunk));
     used += static_cast<std::size_t>(in.gcount());

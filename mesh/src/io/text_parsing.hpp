@@ -13,11 +13,8 @@
 
 namespace surfcomp::mesh::io::detail {
 
-/// The whole content of `path`, bytes as they are. Throws FileError if it cannot be opened or
-/// read (or is a directory).
-std::string read_whole_file(const std::filesystem::path& path);
-
-/// Everything left in `in`. Throws FileError naming `name` if the stream fails.
+/// Everything left in `in`, at most surfcomp::io::max_input_file_bytes. Throws FileError naming
+/// `name` if the stream fails or holds more. (Files are read with surfcomp::io::read_input_file.)
 std::string read_whole_stream(std::istream& in, const std::string& name);
 
 /// `token` made safe for a one-line message: at most 40 characters, non-printable bytes as '?',

@@ -4,6 +4,7 @@
 
 #include "surfcomp/core/molecule.hpp"
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -25,9 +26,13 @@ struct MoleculeReadOptions {
   /// Charge model; default ChargeModel::file. PQR files accept only ChargeModel::file.
   ChargeModel charges = ChargeModel::file;
   /// PDB/PQR: read only one copy of the HETATM residue with this name, the one select_ligand
-  /// takes (the lowest chain, then residue number); default "" = the whole structure. Ignored
-  /// for SDF/MOL/MOL2.
+  /// takes (the lowest chain, then residue number); default "" = the whole structure. Refused
+  /// (OptionError) for SDF/MOL/MOL2, whose molecule is the ligand itself.
   std::string ligand;
+  /// SDF/MOL/MOL2: which molecule of the file to read, 1-based; default 0 = the file's only
+  /// molecule, and a file holding several is refused (InputError naming their count). PDB/PQR
+  /// files hold one structure: a record above 1 is refused.
+  std::size_t record = 0;
   /// Whole-structure PDB/PQR: drop water residues (HOH, WAT, DOD); default true.
   bool remove_water = true;
   /// Whole-structure PDB/PQR: also drop the residues with these names (case-insensitive), e.g.
@@ -44,8 +49,9 @@ struct MoleculeReadOptions {
 bool is_molecule_file(const std::filesystem::path& path);
 
 /// Reads the molecule in `path`, chosen by extension (see is_molecule_file):
-/// - SDF/MOL: the first record; MOL2: the first molecule; PDB: every model-1 atom (RDKit's
-///   reader with proximity bonding); PQR: read_pqr(). Hydrogens present in the file are kept.
+/// - SDF/MOL/MOL2: the molecule options.record (records end at "$$$$" lines, MOL2 molecules
+///   start at @<TRIPOS>MOLECULE); PDB: every model-1 atom (RDKit's reader with proximity
+///   bonding); PQR: read_pqr(). Hydrogens present in the file are kept.
 /// - PDB alternate locations: one per atom. An atom without one is read; of an atom's
 ///   alternate locations the first in the file is read (usually 'A'), so an atom or residue
 ///   present only as 'B' is read too (the ATP of 1RDQ). An atom is its chain, residue number,
@@ -73,10 +79,16 @@ bool is_molecule_file(const std::filesystem::path& path);
 ///   RDKit sees them (RDKit 2022.09 crashes on an atom id outside the molecule).
 /// Molecule::source is `path`, Molecule::title the file's title (molecule name, PDB HEADER
 /// or the file stem).
-/// Throws FileError (missing/unreadable file), FormatError (unknown extension, RDKit parse or
-/// sanitisation failure, with RDKit's reason), InputError (no atoms, unknown element, non-
-/// finite coordinates, ligand absent — listing the HETATM residue names present —, NaN
-/// Gasteiger charge, failed MMFF typing), OptionError (a computed charge model on PQR).
+/// - The file is read with read_input_file (a regular file of at most max_input_file_bytes);
+///   every atom position must be finite and within max_coordinate_magnitude (input_file.hpp).
+///   A PDB ATOM/HETATM record of model 1 needs numbers in its three coordinate columns.
+/// Throws FileError (missing, unreadable or not a regular file, too large), FormatError
+/// (unknown extension, RDKit parse or sanitisation failure, with RDKit's reason, a PDB record
+/// without its coordinates, a coordinate beyond the limit), InputError (no atoms, unknown
+/// element, non-finite coordinates, ligand absent — listing the HETATM residue names present
+/// —, NaN Gasteiger charge, failed MMFF typing, a multi-molecule file without options.record,
+/// a record beyond the file's count), OptionError (a computed charge model on PQR, a ligand
+/// on SDF/MOL/MOL2).
 Molecule read_molecule(const std::filesystem::path& path, const MoleculeReadOptions& options = {});
 
 }  // namespace surfcomp::io

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <filesystem>
 #include <ostream>
 #include <string>
@@ -16,10 +17,11 @@ namespace surfcomp::io {
 /// column's place is not written: occupancy 1.00, B-factor 0.00; then END.
 void write_pdb(const Molecule& molecule, std::ostream& out);
 
-/// The first molecule of an SDF/MOL/MOL2 file, every atom moved by x -> rotation x + translation,
-/// as an MDL mol block (SDF record with $$$$). Bonds and atom order are the file's. Throws
-/// FileError, FormatError as read_molecule, and InputError for another format.
+/// Molecule `record` of an SDF/MOL/MOL2 file (as MoleculeReadOptions::record: 1-based, 0 = the
+/// file's only molecule), every atom moved by x -> rotation x + translation, as an MDL mol
+/// block (SDF record with $$$$). Bonds and atom order are the file's. Throws FileError,
+/// FormatError, InputError as read_molecule, and InputError for another format.
 std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Matrix3d& rotation,
-                            const Eigen::Vector3d& translation);
+                            const Eigen::Vector3d& translation, std::size_t record = 0);
 
 }  // namespace surfcomp::io

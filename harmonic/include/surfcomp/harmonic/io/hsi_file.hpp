@@ -27,15 +27,30 @@ inline constexpr std::uint32_t hsi_format_version = 2;
 /// Encodes `descriptors` as the bytes of a .hsi file.
 std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& descriptors);
 
+/// Largest stored length parameter (critical point, disc and patch radii), A; radii must be
+/// positive (at least 1e-6 of this), the disc radius may be 0, the patch margin is in [0, 1].
+inline constexpr double max_stored_length = 1000.0;
+/// Largest stored image grid: the ranges surfcomp hsi-build accepts.
+inline constexpr int max_stored_rings = 1024;
+inline constexpr int max_stored_sectors = 4096;
+
 /// Decodes the bytes of a .hsi file (version 1 or 2). Throws FormatError naming `source` for a
 /// wrong magic, a byte-swapped or unknown-version file, a size or checksum mismatch (truncated or
-/// corrupt), or any inconsistent count or index inside.
+/// corrupt), any count that cannot fit in the bytes left (checked before allocating), any index
+/// outside its array, a parameter out of range (see the limits above), a non-finite stored
+/// value (a critical point's esp and lp may be NaN where the surface lacks that property), or
+/// a vertex or critical point position beyond surfcomp::io::max_coordinate_magnitude.
 SurfaceDescriptors decode_hsi(const std::vector<std::uint8_t>& bytes, const std::string& source);
+/// As above, on `n_bytes` bytes at `data`.
+SurfaceDescriptors decode_hsi(const std::uint8_t* data, std::size_t n_bytes,
+                              const std::string& source);
 
 /// Writes `descriptors` to `path` atomically (no partial file on failure).
 void write_hsi(const SurfaceDescriptors& descriptors, const std::filesystem::path& path);
 
-/// Reads a .hsi file. Throws FileError when it cannot be read, FormatError as decode_hsi.
+/// Reads a .hsi file with surfcomp::io::read_input_file. Throws FileError when it cannot be
+/// read (missing, not a regular file, larger than surfcomp::io::max_input_file_bytes),
+/// FormatError as decode_hsi.
 SurfaceDescriptors read_hsi(const std::filesystem::path& path);
 
 /// True for the extension .hsi (case-insensitive).

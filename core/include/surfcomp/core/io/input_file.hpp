@@ -1,0 +1,42 @@
+// Opening an input file for reading, and the limits every reader applies to what it reads:
+// the one home of "is this a file we may read" and "is this value a plausible coordinate".
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace surfcomp::io {
+
+/// Largest input file a reader accepts: 4 GiB. A molecule, mesh or .hsi file this large would
+/// need several times its size in memory once parsed.
+inline constexpr std::uint64_t max_input_file_bytes = std::uint64_t{4} << 30;
+
+/// Largest magnitude of a coordinate read from a file, A. A molecule or a surface spanning
+/// more than 2 km is a corrupt file (a PDB's coordinate columns hold at most 1e4 A), and the
+/// grids built over it would not fit in memory.
+inline constexpr double max_coordinate_magnitude = 1e6;
+
+/// The whole content of `path`, read with one bounded read of at most its size. Refuses,
+/// with FileError "PATH: reason", a path that does not exist, is not a regular file (a
+/// directory, FIFO, socket or device such as /dev/zero: "not a regular file"), cannot be
+/// opened or read, or is larger than max_input_file_bytes. A FIFO is refused without waiting
+/// for a writer. Every reader (molecules, meshes, .hsi) reads its input through this.
+std::string read_input_file(const std::filesystem::path& path);
+
+/// Checks a position read from `file`: every coordinate finite and of magnitude at most
+/// max_coordinate_magnitude. `item` names what the position belongs to ("vertex 12",
+/// "atom 3 (C C1)"). Throws FormatError "FILE: ITEM has a non-finite coordinate" or
+/// "FILE: ITEM has coordinate z = 1e+30 A, beyond the accepted magnitude 1e+06 A".
+void check_read_position(const Eigen::Vector3d& position, const std::string& file,
+                         const std::string& item);
+
+/// Checks a per-item value read from `file` (a vertex property, an atom charge) is finite.
+/// `name` says what the value is ("property 'charge'"). Throws FormatError
+/// "FILE: ITEM has a non-finite NAME (nan)".
+void check_read_value(double value, const std::string& file, const std::string& item,
+                      const std::string& name);
+
+}  // namespace surfcomp::io

@@ -1,0 +1,102 @@
+#include "surfcomp/core/io/input_file.hpp"
+
+#include "surfcomp/core/error.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace surfcomp::io {
+namespace {
+
+/// Closes a POSIX file descriptor when it goes out of scope.
+class Descriptor {
+ public:
+  explicit Descriptor(int fd) : fd_(fd) {}
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  ~Descriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
+std::string describe_errno(int error) { return std::strerror(error); }
+
+std::string number(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+}  // namespace
+
+std::string read_input_file(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused below anyway.
+  const Descriptor file(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+  if (file.get() < 0) {
+    const int error = errno;
+    if (error == ENOENT) throw FileError(name, "no such file");
+    throw FileError(name, "cannot open for reading (" + describe_errno(error) + ")");
+  }
+  // The checks are made on the opened file, so the path cannot change between them and the read.
+  struct stat status {};
+  if (::fstat(file.get(), &status) != 0) {
+    throw FileError(name, "cannot read its status (" + describe_errno(errno) + ")");
+  }
+  if (!S_ISREG(status.st_mode)) throw FileError(name, "not a regular file");
+  const auto size = static_cast<std::uint64_t>(status.st_size);
+  if (size > max_input_file_bytes) {
+    throw FileError(name,
+                    "the file has " + std::to_string(size) + " bytes, more than the limit of " +
+                        std::to_string(max_input_file_bytes) + " bytes (4 GiB) an input may have");
+  }
+  std::string data(static_cast<std::size_t>(size), '\0');
+  std::size_t used = 0;
+  while (used < data.size()) {
+    const ssize_t got = ::read(file.get(), data.data() + used, data.size() - used);
+    if (got < 0) {
+      if (errno == EINTR || errno == EAGAIN) continue;
+      throw FileError(name, "read error (" + describe_errno(errno) + ")");
+    }
+    if (got == 0) break;  // the file shrank while being read: keep what it holds now
+    used += static_cast<std::size_t>(got);
+  }
+  data.resize(used);
+  return data;
+}
+
+void check_read_position(const Eigen::Vector3d& position, const std::string& file,
+                         const std::string& item) {
+  for (int k = 0; k < 3; ++k) {
+    const double value = position(k);
+    const char axis = static_cast<char>('x' + k);
+    if (!std::isfinite(value)) {
+      throw FormatError(file,
+                        item + " has a non-finite coordinate " + axis + " = " + number(value));
+    }
+    if (std::fabs(value) > max_coordinate_magnitude) {
+      throw FormatError(file, item + " has coordinate " + axis + " = " + number(value) +
+                                  " A, beyond the accepted magnitude " +
+                                  number(max_coordinate_magnitude) + " A");
+    }
+  }
+}
+
+void check_read_value(double value, const std::string& file, const std::string& item,
+                      const std::string& name) {
+  if (!std::isfinite(value)) {
+    throw FormatError(file, item + " has a non-finite " + name + " (" + number(value) + ")");
+  }
+}
+
+}  // namespace surfcomp::io
