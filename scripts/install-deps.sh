@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs the Debian bookworm packages surfcomp builds, tests and benchmarks with.
+# Installs the Debian bookworm packages surfcomp builds, tests, fuzzes and benchmarks with.
 # Idempotent: does nothing when every package is already installed. Needs root (or sudo).
 set -euo pipefail
 
@@ -11,6 +11,7 @@ packages=(
   libtbb-dev libopenvdb-dev librdkit-dev
   nlohmann-json3-dev
   freesasa edtsurf
+  clang libfuzzer-14-dev
 )
 
 missing=()

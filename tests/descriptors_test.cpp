@@ -286,6 +286,25 @@ TEST(HsiFile, VersionOneFilesReadWithoutAtomsAndBadAtomsAreRefused) {
   EXPECT_THROW(encoded(d), InputError);
 }
 
+// A stored matrix with no columns holds no element whatever its row count: it reads at once (a
+// crafted .hsi whose patch faces claim 2^62 rows of 0 columns), and a dimension beyond Eigen's
+// signed index is refused.
+TEST(BinaryReader, EmptyMatricesOfHugeShapeReadAtOnceAndUnaddressableShapesAreRefused) {
+  io::BinaryWriter w;
+  for (int k = 0; k < 2; ++k) {
+    w.u64(std::uint64_t{1} << 62);  // rows
+    w.u64(0);                       // columns
+  }
+  w.u64(0);
+  w.u64(~std::uint64_t{0});
+  io::BinaryReader r(w.bytes().data(), w.bytes().size(), "shapes.bin");
+  const auto ints = r.int_matrix();
+  EXPECT_EQ(ints.rows(), Eigen::Index{1} << 62);
+  EXPECT_EQ(ints.size(), 0);
+  EXPECT_EQ(r.double_matrix().size(), 0);
+  EXPECT_THROW(r.int_matrix(), FormatError);
+}
+
 // The atoms a description keeps: the heavy ones, in the molecule's order.
 TEST(SurfaceAtoms, KeepTheHeavyAtomsInOrder) {
   Molecule m;

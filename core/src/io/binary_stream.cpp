@@ -3,8 +3,22 @@
 #include "surfcomp/core/error.hpp"
 
 #include <cstring>
+#include <limits>
 
 namespace surfcomp::io {
+namespace {
+
+/// Throws unless both dimensions of a stored matrix fit Eigen's signed index (an empty matrix
+/// may have any such shape; the caller checks the element count against the bytes left).
+void check_dimensions(const BinaryReader& reader, std::uint64_t rows, std::uint64_t cols) {
+  constexpr auto max_index = static_cast<std::uint64_t>(std::numeric_limits<Eigen::Index>::max());
+  if (rows > max_index || cols > max_index) {
+    reader.fail("matrix dimensions " + std::to_string(rows) + " x " + std::to_string(cols) +
+                " beyond the addressable range");
+  }
+}
+
+}  // namespace
 
 std::uint64_t fnv1a64(const std::uint8_t* data, std::size_t size) {
   std::uint64_t hash = 14695981039346656037ull;
@@ -139,23 +153,22 @@ Eigen::VectorXd BinaryReader::doubles() {
 Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic> BinaryReader::int_matrix() {
   const std::uint64_t rows = u64();
   const std::uint64_t cols = u64();
+  check_dimensions(*this, rows, cols);
   if (cols != 0 && rows > remaining() / 4 / cols) fail("an integer matrix larger than the file");
   Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic> m(static_cast<Eigen::Index>(rows),
                                                        static_cast<Eigen::Index>(cols));
-  for (Eigen::Index r = 0; r < m.rows(); ++r) {
-    for (Eigen::Index c = 0; c < m.cols(); ++c) m(r, c) = i32();
-  }
+  // Element by element in row-major order: an empty matrix of many rows costs nothing.
+  for (Eigen::Index i = 0; i < m.size(); ++i) m(i / m.cols(), i % m.cols()) = i32();
   return m;
 }
 
 Eigen::MatrixXd BinaryReader::double_matrix() {
   const std::uint64_t rows = u64();
   const std::uint64_t cols = u64();
+  check_dimensions(*this, rows, cols);
   if (cols != 0 && rows > remaining() / 8 / cols) fail("a matrix larger than the file");
   Eigen::MatrixXd m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
-  for (Eigen::Index r = 0; r < m.rows(); ++r) {
-    for (Eigen::Index c = 0; c < m.cols(); ++c) m(r, c) = f64();
-  }
+  for (Eigen::Index i = 0; i < m.size(); ++i) m(i / m.cols(), i % m.cols()) = f64();
   return m;
 }
 

@@ -3,27 +3,27 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 
 namespace surfcomp::mesh::io::detail {
 
 std::string read_whole_stream(std::istream& in, const std::string& name) {
+  // Through a fixed buffer, appending only what was read: a small file costs a small string
+  // (growing the string by a large chunk before each read would zero-fill the whole chunk).
   std::string data;
-  constexpr std::size_t chunk = std::size_t{1} << 20;
-  std::size_t used = 0;
+  std::array<char, std::size_t{1} << 16> buffer;
   while (in) {
-    if (used > surfcomp::io::max_input_file_bytes) {
+    if (data.size() > surfcomp::io::max_input_file_bytes) {
       throw FileError(name, "more than the limit of " +
                                 std::to_string(surfcomp::io::max_input_file_bytes) +
                                 " bytes (4 GiB) an input may have");
     }
-    data.resize(used + chunk);
-    in.read(data.data() + used, static_cast<std::streamsize>(chunk));
-    used += static_cast<std::size_t>(in.gcount());
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    data.append(buffer.data(), static_cast<std::size_t>(in.gcount()));
   }
   if (in.bad()) throw FileError(name, "read failed");
-  data.resize(used);
   return data;
 }
 

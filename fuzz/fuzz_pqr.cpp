@@ -1,0 +1,7 @@
+// libFuzzer harness: the PQR reader (read_molecule of a .pqr file).
+#include "fuzz_molecule.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  surfcomp::fuzz::fuzz_molecule_reader(data, size, ".pqr", true);
+  return 0;
+}
