@@ -57,7 +57,10 @@ int hsi_build(const std::vector<std::string>& args) {
        "image grid: sectors (samples per ring; 180 = 2-degree rotation steps)")
       ("weights", po::value(&weights)->default_value("inverse-length"),
        "harmonic map spring weights: inverse-length (seed) | uniform | cotangent | mean-value")
-      ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
+      ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)")
+      ("max-image-bytes",
+       po::value(&options.max_image_bytes)->default_value(options.max_image_bytes),
+       "limit: memory of the shape images, bytes");
   // clang-format on
   add_surface_options(described, input);
   po::variables_map vm;

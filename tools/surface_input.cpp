@@ -4,7 +4,32 @@
 
 #include "surfcomp/mesh/io/read_mesh.hpp"
 
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+
 namespace surfcomp::tools {
+namespace {
+
+/// A progress line on stderr ("ESP 42% of N points"), shown once the sum has run for a second
+/// and cleared at the end.
+mesh::PotentialProgress terminal_progress(const char* what) {
+  return [what, start = std::chrono::steady_clock::time_point{}, calls = 0, shown = false](
+             std::int64_t done, std::int64_t total) mutable {
+    const auto now = std::chrono::steady_clock::now();
+    if (calls++ == 0) start = now;
+    if (!shown && now - start < std::chrono::seconds(1)) return;
+    shown = true;
+    std::fprintf(stderr, "\r%s %3d%% of %lld points", what, static_cast<int>(100 * done / total),
+                 static_cast<long long>(total));
+    if (done == total) std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+  };
+}
+
+}  // namespace
 
 void add_surface_options(boost::program_options::options_description& options,
                          SurfaceInput& input) {
@@ -34,7 +59,15 @@ void add_surface_options(boost::program_options::options_description& options,
       ("record", po::value(&input.read.record),
        "SDF/MOL2 input holding several molecules: read molecule N (1-based)")
       ("molecule", po::value(&input.molecule_file),
-       "mesh INPUT only: molecule whose ESP and LP are mapped onto the mesh");
+       "mesh INPUT only: molecule whose ESP and LP are mapped onto the mesh")
+      ("max-atoms", po::value(&input.surface.ses.max_atoms)->default_value(defaults.ses.max_atoms),
+       "limit: atoms of a molecule INPUT")
+      ("max-grid-cells",
+       po::value(&input.surface.ses.max_grid_cells)->default_value(defaults.ses.max_grid_cells),
+       "limit: cells of the surface grid (the atoms' extent in voxels, cubed)")
+      ("max-vertices",
+       po::value(&input.surface.ses.max_vertices)->default_value(defaults.ses.max_vertices),
+       "limit: vertices of the surface built");
   // clang-format on
 }
 
@@ -50,6 +83,10 @@ void finish_surface_options(SurfaceInput& input) {
   require_one_of("lp-kernel", input.lp_kernel, {"fauchere", "dubost"});
   input.surface.lp.kernel = input.lp_kernel == "dubost" ? mesh::LipophilicKernel::dubost
                                                         : mesh::LipophilicKernel::fauchere;
+  if (isatty(STDERR_FILENO) != 0) {
+    input.surface.esp.progress = terminal_progress("ESP");
+    input.surface.lp.progress = terminal_progress("LP");
+  }
 }
 
 void check_surface_input(const std::filesystem::path& path, const SurfaceInput& input) {

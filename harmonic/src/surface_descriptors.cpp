@@ -4,6 +4,11 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <vector>
+
 namespace surfcomp::harmonic {
 namespace {
 
@@ -53,15 +58,35 @@ CriticalPointDescriptor describe_point(const mesh::Surface& surface,
 SurfaceDescriptors describe_surface(
     mesh::Surface surface, const DescriptorOptions& options,
     const std::function<bool(const mesh::CriticalPoint&)>& describe_if) {
+  if (options.max_image_bytes < 1) {
+    throw OptionError("describe_surface: max_image_bytes " +
+                      std::to_string(options.max_image_bytes) + "; expected a limit >= 1");
+  }
   SurfaceDescriptors result;
   result.options = options;
   const std::vector<mesh::CriticalPoint> points =
       mesh::detect_critical_points(surface, options.critical_points);
   const Eigen::VectorXd image_values = surface.property(options.image_property);
+  std::vector<bool> wanted(points.size(), true);
+  std::int64_t count = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (describe_if) wanted[i] = describe_if(points[i]);
+    count += wanted[i] ? 1 : 0;
+  }
+  const double bytes = image_bytes(options.image, count);
+  if (bytes > static_cast<double>(options.max_image_bytes)) {
+    std::ostringstream message;
+    message << surface.source() << ": " << count << " shape images of " << options.image.rings
+            << " rings x " << options.image.sectors << " sectors would take about " << bytes
+            << " bytes; the limit is " << options.max_image_bytes
+            << " (raise it with --max-image-bytes (DescriptorOptions::max_image_bytes), or use a "
+               "smaller grid)";
+    throw InputError(message.str());
+  }
   result.critical_points.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) result.critical_points[i].point = points[i];
   tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
-    if (describe_if && !describe_if(points[i])) {
+    if (!wanted[i]) {
       result.critical_points[i].status = PatchStatus::skipped;
       return;
     }
@@ -69,6 +94,12 @@ SurfaceDescriptors describe_surface(
   });
   result.surface = std::move(surface);
   return result;
+}
+
+double image_bytes(const ImageOptions& image, std::int64_t count) {
+  constexpr double per_point =
+      sizeof(double) + sizeof(std::uint8_t) + sizeof(int) + 3 * sizeof(double);
+  return static_cast<double>(count) * image.rings * image.sectors * per_point;
 }
 
 std::vector<SurfaceAtom> surface_atoms(const Molecule& molecule) {

@@ -6,7 +6,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -67,11 +69,38 @@ Sources collect_sources(const Molecule& molecule, double Atom::*weight, const ch
 }
 
 /// values(p) = sum over atoms in index order of weight_i * kernel(d_i); points in parallel.
+/// Calls `progress` (when set) as points are finished, about once per percent, serialised.
+class ProgressReporter {
+ public:
+  ProgressReporter(const PotentialProgress& progress, std::int64_t total)
+      : progress_(progress), total_(total), step_(std::max<std::int64_t>(1, total / 100)) {}
+  void add(std::int64_t finished) {
+    if (!progress_) return;
+    const std::int64_t before = done_.fetch_add(finished);
+    const std::int64_t after = before + finished;
+    if (after / step_ == before / step_ && after != total_) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (after <= reported_) return;
+    reported_ = after;
+    progress_(after, total_);
+  }
+
+ private:
+  const PotentialProgress& progress_;
+  std::int64_t total_;
+  std::int64_t step_;
+  std::atomic<std::int64_t> done_{0};
+  std::mutex mutex_;
+  std::int64_t reported_ = 0;
+};
+
 template <class Kernel>
 Eigen::VectorXd sum_over_atoms(const Eigen::Ref<const Eigen::MatrixX3d>& points,
-                               const Sources& sources, Kernel kernel) {
+                               const Sources& sources, Kernel kernel,
+                               const PotentialProgress& progress) {
   Eigen::VectorXd values(points.rows());
   const Eigen::Index n_atoms = sources.positions.rows();
+  ProgressReporter reporter(progress, points.rows());
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, points.rows(), 256),
                     [&](const tbb::blocked_range<Eigen::Index>& range) {
                       for (Eigen::Index p = range.begin(); p != range.end(); ++p) {
@@ -83,6 +112,7 @@ Eigen::VectorXd sum_over_atoms(const Eigen::Ref<const Eigen::MatrixX3d>& points,
                         }
                         values(p) = sum;
                       }
+                      reporter.add(range.end() - range.begin());
                     });
   return values;
 }
@@ -105,13 +135,17 @@ Eigen::VectorXd electrostatic_potential(const Eigen::Ref<const Eigen::MatrixX3d>
   const double scale = coulomb_constant / options.dielectric;
   const double min_distance = options.min_distance;
   if (options.distance_dependent) {
-    return sum_over_atoms(points, sources, [=](double d) {
-      const double r = std::max(d, min_distance);
-      return scale / (r * r);
-    });
+    return sum_over_atoms(
+        points, sources,
+        [=](double d) {
+          const double r = std::max(d, min_distance);
+          return scale / (r * r);
+        },
+        options.progress);
   }
-  return sum_over_atoms(points, sources,
-                        [=](double d) { return scale / std::max(d, min_distance); });
+  return sum_over_atoms(
+      points, sources, [=](double d) { return scale / std::max(d, min_distance); },
+      options.progress);
 }
 
 Eigen::VectorXd lipophilic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& points,
@@ -125,10 +159,12 @@ Eigen::VectorXd lipophilic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& p
   const Sources sources = collect_sources(molecule, &Atom::lipophilicity, "lipophilicity", caller);
   const double cutoff = options.cutoff > 0.0 ? options.cutoff : HUGE_VAL;
   if (options.kernel == LipophilicKernel::dubost) {
-    return sum_over_atoms(points, sources,
-                          [=](double d) { return d > cutoff ? 0.0 : 1.0 / (1.0 + d); });
+    return sum_over_atoms(
+        points, sources, [=](double d) { return d > cutoff ? 0.0 : 1.0 / (1.0 + d); },
+        options.progress);
   }
-  return sum_over_atoms(points, sources, [=](double d) { return d > cutoff ? 0.0 : std::exp(-d); });
+  return sum_over_atoms(
+      points, sources, [=](double d) { return d > cutoff ? 0.0 : std::exp(-d); }, options.progress);
 }
 
 }  // namespace surfcomp::mesh

@@ -330,6 +330,10 @@ void SasGeometry::add_arc_end(const Circle& circle, double angle, int k) {
 }
 
 double SasGeometry::curvature_at(const Vec3& x, const Vec3& normal, const NearestPoint& q) const {
+  // With a zero probe the re-entrant patches shrink to the creases and corners of the van der
+  // Waals surface, where the curvature is concentrated (unbounded): like the SAS's crease
+  // vertices, they get 0 and so no chord compensation.
+  if (probe_ == 0.0 && q.feature != Feature::sphere) return 0.0;
   switch (q.feature) {
     case Feature::sphere:
       return 1.0 / atom_radius(q.index);

@@ -12,7 +12,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <sstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 namespace surfcomp::mesh {
 namespace {
@@ -27,6 +32,32 @@ constexpr double min_atom_voxels = 2.0;
 constexpr double reach_voxels = 3.0;
 /// Rounds of isotropic remeshing: the grid mesh is already close to the target.
 constexpr int remesh_iterations = 2;
+/// Grid coordinates (centre +- reach, in voxels) must stay below this in magnitude: OpenVDB
+/// indexes nodes with 32-bit integers, and the sampler multiplies box indices by its box size.
+constexpr double max_grid_coordinate = 1073741824.0;  // 2^30
+
+/// `value` in the shortest form that reads back, for messages.
+std::string number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+void require_limit(const std::string& what, const char* name, double value) {
+  if (!(value >= 1.0)) {
+    throw OptionError(what + ": " + name + " " + number(value) + "; expected a limit >= 1");
+  }
+}
+
+/// Throws InputError "<what>: <description>; the limit is L (raise it with OPTION)" when
+/// `estimate` exceeds `limit`; `description` states the estimate.
+void require_within(const std::string& what, const std::string& description, double estimate,
+                    double limit, const char* option) {
+  if (estimate > limit) {
+    throw InputError(what + ": " + description + "; the limit is " + number(limit) +
+                     " (raise it with " + option + ")");
+  }
+}
 
 void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
               const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options,
@@ -36,6 +67,12 @@ void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
     throw InputError(what + ": " + std::to_string(centers.rows()) + " centres but " +
                      std::to_string(radii.size()) + " radii; expected one radius per centre");
   }
+  require_limit(what, "max_atoms", static_cast<double>(options.max_atoms));
+  require_limit(what, "max_grid_cells", options.max_grid_cells);
+  require_limit(what, "max_vertices", static_cast<double>(options.max_vertices));
+  require_within(what, std::to_string(centers.rows()) + " atoms",
+                 static_cast<double>(centers.rows()), static_cast<double>(options.max_atoms),
+                 "--max-atoms (SesOptions::max_atoms)");
   for (Eigen::Index i = 0; i < centers.rows(); ++i) {
     if (!centers.row(i).allFinite()) {
       throw InputError(what + ": atom " + std::to_string(i) +
@@ -56,17 +93,27 @@ void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                       std::to_string(options.min_component_volume_fraction) +
                       "; expected a value in [0, 1]");
   }
-  if (!std::isfinite(options.voxel_size) || options.voxel_size < 0.0) {
-    throw OptionError(what + ": voxel size " + std::to_string(options.voxel_size) +
-                      " A; expected a finite value > 0, or 0 for automatic");
+  if (!std::isfinite(options.voxel_size) || options.voxel_size < 0.0 ||
+      (options.voxel_size > 0.0 && options.voxel_size < min_voxel_size)) {
+    throw OptionError(what + ": voxel size " + number(options.voxel_size) +
+                      " A; expected a finite value >= " + number(min_voxel_size) +
+                      " A, or 0 for automatic");
   }
 }
 
 /// options.voxel_size, or the automatic choice documented in SesOptions.
 double choose_voxel_size(const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options,
                          double edge_length, const std::string& what) {
-  const double smallest = radii.minCoeff();
+  Eigen::Index which = 0;
+  const double smallest = radii.minCoeff(&which);
   if (options.voxel_size == 0.0) {
+    if (smallest < min_atom_voxels * min_voxel_size) {
+      throw InputError(what + ": atom " + std::to_string(which) + " has radius " +
+                       number(smallest) + " A; expected at least " +
+                       number(min_atom_voxels * min_voxel_size) +
+                       " A (the grid needs 2 voxels per radius, voxels of at least " +
+                       number(min_voxel_size) + " A)");
+    }
     return std::min(auto_voxel_per_edge * edge_length, smallest / min_atom_voxels);
   }
   if (smallest < min_atom_voxels * options.voxel_size) {
@@ -77,19 +124,90 @@ double choose_voxel_size(const Eigen::Ref<const Eigen::VectorXd>& radii, const S
   return options.voxel_size;
 }
 
+/// The rows of (centers, radii) that are not an exact copy of an earlier row, in order.
+std::vector<Eigen::Index> distinct_atoms(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+                                         const Eigen::Ref<const Eigen::VectorXd>& radii) {
+  const auto key = [&](Eigen::Index i) {
+    return std::make_tuple(centers(i, 0), centers(i, 1), centers(i, 2), radii(i), i);
+  };
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(centers.rows()));
+  std::iota(order.begin(), order.end(), Eigen::Index{0});
+  std::sort(order.begin(), order.end(),
+            [&](Eigen::Index a, Eigen::Index b) { return key(a) < key(b); });
+  std::vector<bool> copy(order.size(), false);
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    const Eigen::Index a = order[k - 1], b = order[k];
+    copy[static_cast<std::size_t>(b)] = centers.row(a) == centers.row(b) && radii(a) == radii(b);
+  }
+  std::vector<Eigen::Index> kept;
+  for (std::size_t i = 0; i < copy.size(); ++i) {
+    if (!copy[i]) kept.push_back(static_cast<Eigen::Index>(i));
+  }
+  return kept;
+}
+
+/// Refuses atoms beyond the grid's index range and a sampling region over the cell limit. The
+/// sampler visits the grid nodes within `reach` of some atom: at most the nodes of the bounding
+/// box of those balls and at most the sum of their bounding cubes.
+void check_grid_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers, double reach, double voxel,
+                     double max_cells, const std::string& what) {
+  for (Eigen::Index i = 0; i < centers.rows(); ++i) {
+    if (centers.row(i).cwiseAbs().maxCoeff() + reach > max_grid_coordinate * voxel) {
+      throw InputError(what + ": atom " + std::to_string(i) + " lies " +
+                       number(centers.row(i).cwiseAbs().maxCoeff()) +
+                       " A from the origin; at voxel size " + number(voxel) +
+                       " A the grid reaches " + number(max_grid_coordinate * voxel - reach) + " A");
+    }
+  }
+  const Eigen::Array3d extent =
+      (centers.colwise().maxCoeff() - centers.colwise().minCoeff()).transpose().array() +
+      2.0 * reach;
+  const double box = ((extent / voxel).floor() + 1.0).prod();
+  const double cube = std::pow(std::floor(2.0 * reach / voxel) + 1.0, 3);
+  const double cells = std::min(box, cube * static_cast<double>(centers.rows()));
+  require_within(
+      what,
+      "the surface grid would span about " + number(cells) + " cells of " + number(voxel) + " A",
+      cells, max_cells, "--max-grid-cells (SesOptions::max_grid_cells)");
+}
+
+/// The vertex count the surface will have: the grid mesh's, or after remeshing its area times
+/// the target density.
+double expected_vertices(const detail::TriangleSoup& soup, const SesOptions& options) {
+  if (!options.remesh) return static_cast<double>(soup.positions.rows());
+  double area = 0.0;
+  for (Eigen::Index f = 0; f < soup.faces.rows(); ++f) {
+    const Eigen::Vector3d a = soup.positions.row(soup.faces(f, 0));
+    const Eigen::Vector3d b = soup.positions.row(soup.faces(f, 1));
+    const Eigen::Vector3d c = soup.positions.row(soup.faces(f, 2));
+    area += 0.5 * (b - a).cross(c - a).norm();
+  }
+  return area * options.vertex_density;
+}
+
 Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                       const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options,
                       bool excluded, const std::string& what) {
   validate(centers, radii, options, what);
   const double edge_length = edge_length_for_density(options.vertex_density);
   const double voxel = choose_voxel_size(radii, options, edge_length, what);
-  const detail::SasGeometry sas(centers, radii, options.probe_radius);
-
   // Both surfaces lie inside the spheres R_i (SAS on them), the band a little beyond.
   const double reach = radii.maxCoeff() + options.probe_radius + 2.0 * voxel;
+  check_grid_size(centers, reach, voxel, options.max_grid_cells, what);
+
+  // An exact copy of an atom leaves the union unchanged but would make each copy bury the
+  // other's sphere; the geometry sees each distinct atom once.
+  const std::vector<Eigen::Index> kept = distinct_atoms(centers, radii);
+  Eigen::MatrixX3d distinct_centers(static_cast<Eigen::Index>(kept.size()), 3);
+  Eigen::VectorXd distinct_radii(static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    distinct_centers.row(static_cast<Eigen::Index>(k)) = centers.row(kept[k]);
+    distinct_radii(static_cast<Eigen::Index>(k)) = radii(kept[k]);
+  }
+  const detail::SasGeometry sas(distinct_centers, distinct_radii, options.probe_radius);
   detail::TriangleSoup soup = detail::grid_mesh(
-      sas, excluded ? detail::SurfaceKind::excluded : detail::SurfaceKind::accessible, centers,
-      reach, voxel);
+      sas, excluded ? detail::SurfaceKind::excluded : detail::SurfaceKind::accessible,
+      distinct_centers, reach, voxel);
   // A component holding an atom holds its whole van der Waals ball, and a cavity the probe's.
   const double fraction = options.min_component_volume_fraction;
   detail::ComponentVolumes limits;
@@ -101,6 +219,10 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
     throw TopologyError(what + ": the isosurface is empty at voxel size " + std::to_string(voxel) +
                         " A");
   }
+  const double vertices = expected_vertices(soup, options);
+  require_within(what, "the surface would have about " + number(vertices) + " vertices", vertices,
+                 static_cast<double>(options.max_vertices),
+                 "--max-vertices (SesOptions::max_vertices)");
   Surface surface = Surface::from_arrays(soup.positions, soup.faces, what);
   if (options.remesh) surface = isotropic_remesh(surface, edge_length, remesh_iterations, false);
   // Grid and remeshed vertices lie within a voxel of the surface; search a little wider.

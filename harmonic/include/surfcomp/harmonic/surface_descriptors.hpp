@@ -31,7 +31,16 @@ struct DescriptorOptions {
   ImageOptions image;       ///< 16 rings x 180 sectors (2-degree steps)
   /// The vertex property resampled into the images; default the shape index (METHOD 0).
   std::string image_property = mesh::property::shape_index;
+  /// Default 1 GiB (CLI --max-image-bytes); must be >= 1. describe_surface refuses, before
+  /// building any image, a description whose images would take more memory than this:
+  /// image_bytes(image, n) for the n critical points to be imaged
+  /// (docs/decisions.md#resource-limits).
+  std::int64_t max_image_bytes = std::int64_t{1} << 30;
 };
+
+/// The memory of `count` shape images on the grid of `image`, bytes: per grid point a value,
+/// a validity flag, a face index and three barycentric coordinates.
+double image_bytes(const ImageOptions& image, std::int64_t count);
 
 /// Why a critical point has no image. Such points stay in the list (their indices are stable)
 /// but take no part in image comparisons.
@@ -83,7 +92,8 @@ SurfaceDescriptors describe_surface(
 /// options.image_property). Patches, maps and images are built in parallel with TBB, each into
 /// its own slot: the result does not depend on the thread count.
 /// Requires the properties cc1, cc2 and options.image_property (InputError naming the surface
-/// otherwise); option errors as the stages' own (OptionError).
+/// otherwise); option errors as the stages' own (OptionError); InputError when the images would
+/// exceed options.max_image_bytes.
 /// `describe_if`, when given, selects the critical points that get a patch, map and image (a
 /// binding site's, say); the others keep status skipped.
 SurfaceDescriptors describe_surface(

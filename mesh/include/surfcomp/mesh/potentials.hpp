@@ -6,10 +6,18 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
+#include <functional>
+
 namespace surfcomp::mesh {
 
 /// Coulomb's constant in kcal*A/(mol*e^2): 332.06 * q1 * q2 / d is an energy in kcal/mol.
 inline constexpr double coulomb_constant = 332.06;
+
+/// Reports the progress of a long sum over atoms and points: called with the points done so far
+/// and the total, at most about 100 times per call, increasing, the last time with done ==
+/// total; never concurrently (calls are serialised), but from any thread. Empty by default.
+using PotentialProgress = std::function<void(std::int64_t done, std::int64_t total)>;
 
 /// How the ESP screens charges.
 struct EspOptions {
@@ -21,6 +29,8 @@ struct EspOptions {
   /// Default 0.5 A; distances below are clamped to it, guarding a point on an atom centre.
   /// Must be > 0.
   double min_distance = 0.5;
+  /// Default empty; see PotentialProgress. The sum costs #points x #atoms distance evaluations.
+  PotentialProgress progress;
 };
 
 /// Coulomb ESP 332.06 * sum_i q_i / (eps * d_i) in kcal/(mol*e) at each point.
@@ -44,6 +54,8 @@ struct LpOptions {
   /// Default 0 (none). When > 0, atoms farther than `cutoff` A from a point contribute nothing
   /// to it. Must be >= 0.
   double cutoff = 0.0;
+  /// Default empty; see PotentialProgress.
+  PotentialProgress progress;
 };
 
 /// Lipophilic potential LP = sum_i f_i * g(d_i) (logP units) at each point, f_i =

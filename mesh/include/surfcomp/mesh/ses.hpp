@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
+
 namespace surfcomp::mesh {
 
 struct SesOptions {
@@ -36,7 +38,26 @@ struct SesOptions {
   /// the grid's volume error on a lone atom. The outward component of largest volume is always
   /// kept.
   double min_component_volume_fraction = 0.5;
+
+  // Resource limits, checked before the memory they bound is allocated; an input over a limit
+  // is refused with InputError giving the estimate, the limit and the option that raises it
+  // (docs/decisions.md#resource-limits). Each must be >= 1.
+  /// Default 2,000,000 atoms (CLI --max-atoms).
+  std::int64_t max_atoms = 2'000'000;
+  /// Default 2e8 (CLI --max-grid-cells). The grid nodes within reach (largest radius + probe +
+  /// 2 voxels) of some atom, estimated before sampling as the smaller of the bounding box of
+  /// those balls and the sum of their cubes, in voxels. The sampled band, and so the memory,
+  /// is a fraction of it; the limit stops a huge radius or a tiny voxel.
+  double max_grid_cells = 2e8;
+  /// Default 20,000,000 (CLI --max-vertices). The vertices of the result, estimated from the
+  /// grid mesh before remeshing (its area times vertex_density; its vertex count without
+  /// remeshing). Every later stage (ESP, LP, curvature, patches) is at least linear in it.
+  std::int64_t max_vertices = 20'000'000;
 };
+
+/// The smallest voxel build_ses and build_sas accept, A: an automatic voxel (r_min / 2) below it
+/// comes from an atom radius below 2 * min_voxel_size, refused as input.
+inline constexpr double min_voxel_size = 1e-3;
 
 /// The solvent-excluded surface (Richards 1977; Connolly 1983): the boundary of the region a
 /// probe sphere of radius `probe_radius` cannot enter while rolling over the atoms.
@@ -55,9 +76,13 @@ struct SesOptions {
 /// Returns a closed, 2-manifold, outward-oriented surface (positive volume) with exact unit
 /// outward vertex normals; source() is "<ses>". Deterministic: the same input gives the same
 /// arrays whatever the thread count.
-/// Throws InputError for no atoms, a size mismatch, a non-finite centre or radius or a radius
-/// <= 0; OptionError for a probe < 0, a density <= 0, a voxel_size < 0 or > r_min / 2, a
-/// min_component_volume_fraction outside [0, 1];
+/// Atoms with the same centre and radius as an earlier atom are skipped: they add nothing to the
+/// union of spheres.
+/// Throws InputError for no atoms, a size mismatch, a non-finite centre or radius, a radius
+/// <= 0 or < 2 * min_voxel_size (with an automatic voxel), a centre farther than 2^30 voxels
+/// from the origin, more atoms, grid cells or vertices than the limits; OptionError for a
+/// probe < 0, a density <= 0, a voxel_size < 0, in (0, min_voxel_size) or > r_min / 2, a
+/// min_component_volume_fraction outside [0, 1], a limit < 1;
 /// TopologyError if the mesh is not a closed manifold (a bug, reported rather than returned).
 Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                   const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options = {});
