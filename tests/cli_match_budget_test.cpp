@@ -1,7 +1,8 @@
 // surfcomp match's resource limits as a user meets them: a clique search cut by
 // --max-clique-work or --max-cliques says so on stderr and in result.json and still answers; a
-// limit that is no positive integer is a command-line error; a graph above --max-graph-nodes is
-// refused in one line.
+// limit that is no positive integer is a command-line error; a graph above --max-graph-nodes, or
+// shape images above --max-image-bytes, are refused in one line, as is a mesh without the ESP
+// and LP the match compares.
 #include "test_data.hpp"
 
 #include <gtest/gtest.h>
@@ -118,6 +119,40 @@ TEST(MatchBudgetCli, AGraphAboveTheNodeLimitIsRefusedInOneLine) {
   EXPECT_NE(r.err.find("more than max_nodes = 3"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--max-graph-nodes"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(MatchBudgetCli, ImagesAboveTheByteLimitAreRefusedInOneLine) {
+  SURFCOMP_SHARED_OR_SKIP(ref, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/4TMN_ligand.sdf");
+  const test::TempDir dir;
+  const fs::path out = dir / "result.json";
+  // One default image (16 x 180 samples of 37 bytes) is 106,560 bytes: a ligand needs several.
+  const ProgramRun r = run("match " + ref.string() + " " + probe.string() +
+                               " --max-image-bytes 106560 -o " + out.string(),
+                           dir / "err.txt");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("1THL_ligand.sdf"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--max-image-bytes"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// MaSIF's meshes carry 'charge', 'hbond' and 'hphob' but no 'esp' or 'lp': refused when read,
+// before either side's descriptors are computed, not after the graph.
+TEST(MatchBudgetCli, AMeshWithoutEspIsRefusedBeforeItIsDescribed) {
+  SURFCOMP_SHARED_OR_SKIP(mesh, "surfaces/masif/1EWY_A.ply");
+  SURFCOMP_SHARED_OR_SKIP(ligand, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  const test::TempDir dir;
+  const fs::path out = dir / "result.json";
+  for (const std::string& pair :
+       {ligand.string() + " " + mesh.string(), mesh.string() + " " + ligand.string()}) {
+    const ProgramRun r = run("match " + pair + " -o " + out.string(), dir / "err.txt");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("1EWY_A.ply: the surface has no vertex property 'esp'"), std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
 }
 
 }  // namespace

@@ -77,6 +77,25 @@ TEST(Match, SurfaceAgainstItselfGivesTheIdentity) {
   EXPECT_LT(result.alignments[0].rmsd, 1e-6);
 }
 
+// The fuzzy filter and R_chem compare ESP and LP: a surface without one is refused by name
+// before the graph is built, not matched on whatever the missing values default to.
+TEST(Match, ASurfaceWithoutEspOrLpIsRefusedNamingItsSource) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
+  const auto d = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(file)));
+  for (const char* name : {mesh::property::esp, mesh::property::lp}) {
+    harmonic::SurfaceDescriptors bare = d;
+    bare.surface.remove_property(name);
+    try {
+      matching::match_surfaces(d, bare);
+      ADD_FAILURE() << "a surface without '" << name << "' was matched";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind(d.surface.source() + ": ", 0), 0u) << message;
+      EXPECT_NE(message.find(std::string("'") + name + "'"), std::string::npos) << message;
+    }
+  }
+}
+
 TEST(Match, MovedCopyOfASurfaceRecoversTheMotion) {
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "4TMN_ligand.sdf");
   const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));

@@ -83,6 +83,7 @@ std::vector<std::string> match_warnings(const matching::MatchResult& result,
 
 struct Side {
   std::filesystem::path path;
+  std::optional<mesh::Surface> surface;  // read or built, until describe_side takes it
   harmonic::SurfaceDescriptors descriptors;
   std::optional<Molecule> molecule;  // the molecule read, for --aligned-out and messages
   std::vector<matching::SiteSphere> site;
@@ -137,13 +138,13 @@ std::vector<std::string> aligned_formats(const std::filesystem::path& probe) {
   return {".pdb", ".ply"};
 }
 
-/// Reads or builds one side's description (its options already passed check_side). With
-/// `site_ligand`, the surface is the binding site's structure (matching::binding_site: the
-/// structure without water and without the ligand copy); with a site (the ligand's spheres and
-/// `spheres`), only its critical points get patches, maps and images (matching::describe_site).
+/// Reads one side, or builds its surface (its options already passed check_side): a .hsi file
+/// gives the description itself; otherwise the surface waits in Side::surface for describe_side.
+/// With `site_ligand`, the surface is the binding site's structure (matching::binding_site: the
+/// structure without water and without the ligand copy).
 Side load_side(const std::filesystem::path& path, const SurfaceInput& input,
                const std::string& site_ligand, std::vector<matching::SiteSphere> spheres,
-               double site_radius, const harmonic::DescriptorOptions& options) {
+               double site_radius) {
   Side side;
   side.path = path;
   side.record = input.read.record;
@@ -166,18 +167,28 @@ Side load_side(const std::filesystem::path& path, const SurfaceInput& input,
   }
   side.site.insert(side.site.end(), spheres.begin(), spheres.end());
   side.molecule = std::move(loaded.molecule);
+  matching::require_match_properties(loaded.surface);
+  side.surface = std::move(loaded.surface);
+  return side;
+}
+
+/// Describes a side that load_side left a surface in: with a site (the ligand's spheres and
+/// --site-sphere), only its critical points get patches, maps and images
+/// (matching::describe_site).
+void describe_side(Side& side, const harmonic::DescriptorOptions& options) {
+  if (!side.surface) return;  // read from a .hsi file
+  mesh::Surface surface = std::move(*side.surface);
+  side.surface.reset();
   if (side.site.empty()) {
-    side.descriptors =
-        side.molecule
-            ? harmonic::describe_surface(std::move(loaded.surface), *side.molecule, options)
-            : harmonic::describe_surface(std::move(loaded.surface), options);
+    side.descriptors = side.molecule
+                           ? harmonic::describe_surface(std::move(surface), *side.molecule, options)
+                           : harmonic::describe_surface(std::move(surface), options);
   } else {
     side.descriptors =
         side.molecule
-            ? matching::describe_site(std::move(loaded.surface), *side.molecule, side.site, options)
-            : matching::describe_site(std::move(loaded.surface), side.site, options);
+            ? matching::describe_site(std::move(surface), *side.molecule, side.site, options)
+            : matching::describe_site(std::move(surface), side.site, options);
   }
-  return side;
 }
 
 bool same_options(const harmonic::DescriptorOptions& x, const harmonic::DescriptorOptions& y) {
@@ -388,7 +399,11 @@ int match(const std::vector<std::string>& args) {
        "site matches: --principal-axes-starts for the pocket overlay (0, 4 or 24)")
       ("patch-radius",
        po::value(&descriptor_options.patch.radius)->default_value(descriptor_options.patch.radius),
-       "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)");
+       "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)")
+      ("max-image-bytes",
+       po::value(&descriptor_options.max_image_bytes)
+           ->default_value(descriptor_options.max_image_bytes),
+       "limit: memory of the shape images of a molecule/mesh input, bytes");
   // clang-format on
   add_surface_options(described, input);
   po::variables_map vm;
@@ -462,16 +477,22 @@ int match(const std::vector<std::string>& args) {
                                : ""}}});
 
   Stopwatch clock;
-  // A .hsi side fixes the descriptor parameters the other side is built with.
+  // A .hsi side fixes the descriptor parameters the other side is built with; the limit stays
+  // the command line's.
+  const std::int64_t max_image_bytes = descriptor_options.max_image_bytes;
   if (harmonic::io::is_hsi_file(ref_path) && !harmonic::io::is_hsi_file(probe_path)) {
     descriptor_options = harmonic::io::read_hsi(ref_path).options;
   } else if (harmonic::io::is_hsi_file(probe_path) && !harmonic::io::is_hsi_file(ref_path)) {
     descriptor_options = harmonic::io::read_hsi(probe_path).options;
   }
-  Side ref = load_side(ref_path, input, ref_site_ligand, std::move(ref_spheres), site_radius,
-                       descriptor_options);
-  Side probe = load_side(probe_path, input, probe_site_ligand, std::move(probe_spheres),
-                         site_radius, descriptor_options);
+  descriptor_options.max_image_bytes = max_image_bytes;
+  // Both inputs are read (and their surfaces built) before either is described, so that a
+  // probe that cannot be matched is refused before the reference's descriptors are computed.
+  Side ref = load_side(ref_path, input, ref_site_ligand, std::move(ref_spheres), site_radius);
+  Side probe =
+      load_side(probe_path, input, probe_site_ligand, std::move(probe_spheres), site_radius);
+  describe_side(ref, descriptor_options);
+  describe_side(probe, descriptor_options);
   if (!same_options(ref.descriptors.options, probe.descriptors.options)) {
     throw InputError(
         ref_path.string() + " and " + probe_path.string() +

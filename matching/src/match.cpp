@@ -295,6 +295,15 @@ void validate(const MatchOptions& options) {
   detail::check_axes_start_count(site.principal_axes_starts, "site.principal_axes_starts", check);
 }
 
+void require_match_properties(const mesh::Surface& surface) {
+  for (const char* name : {mesh::property::esp, mesh::property::lp}) {
+    if (surface.has_property(name)) continue;
+    throw InputError(surface.source() + ": the surface has no vertex property '" + name +
+                     "', which the match compares (give the mesh's molecule with --molecule, "
+                     "or a mesh file with 'esp' and 'lp' vertex properties)");
+  }
+}
+
 MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
                            const harmonic::SurfaceDescriptors& probe, const MatchOptions& options,
                            const std::vector<bool>* reference_allowed,
@@ -309,6 +318,8 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
                      std::to_string(gb.rings) + " rings x " + std::to_string(gb.sectors) +
                      " sectors); rebuild them with the same image grid");
   }
+  require_match_properties(reference.surface);
+  require_match_properties(probe.surface);
   MatchResult result;
   Stopwatch clock;
   const AssociationGraph graph =

@@ -122,14 +122,20 @@ struct MatchResult {
   std::vector<std::pair<std::string, double>> timing_ms;  ///< per stage, in order
 };
 
+/// Throws InputError naming the surface's source when it lacks a vertex property the match
+/// needs: "esp" and "lp" (the fuzzy filter and the chemical correlation R_chem compare them).
+/// A surface built from a molecule has both; a mesh gets them from its file or from the
+/// molecule it is mapped from.
+void require_match_properties(const mesh::Surface& surface);
+
 /// Aligns `probe` onto `reference`. `reference_allowed` / `probe_allowed` (one flag per
 /// critical point, or null for all) restrict the association graph to the flagged critical
 /// points, a binding site's say (critical_points_in_site, site.hpp); options.mode says whether
 /// the overlay then compares the whole surfaces or the sites' pocket linings (MatchMode).
 /// Throws OptionError for options outside their domain (validate, before any work);
-/// InputError when the two descriptions were built with different image grids (their images
-/// cannot be compared), a mask has the wrong size, or a site's pocket lining holds no vertex
-/// while alignments need scoring.
+/// InputError when a surface lacks "esp" or "lp" (require_match_properties), the two
+/// descriptions were built with different image grids (their images cannot be compared), a mask has
+/// the wrong size, or a site's pocket lining holds no vertex while alignments need scoring.
 MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
                            const harmonic::SurfaceDescriptors& probe,
                            const MatchOptions& options = {},
