@@ -232,6 +232,64 @@ std::pair<double, double> site_bootstrap_auc(const std::vector<PairResult>& resu
 
 }  // namespace
 
+/// |imaged critical points of x - those of y|: the size baseline's distance.
+double size_gap(const Site& x, const Site& y) {
+  return std::abs(static_cast<double>(x.imaged) - static_cast<double>(y.imaged));
+}
+
+/// Size alone separates the ligand types of this set well; over the pairs whose critical-point
+/// counts differ by at most kSizeMatched, size says nothing, and what a score separates there is
+/// its own.
+constexpr double kSizeMatched = 2.0;
+
+void print_size_matched(const std::vector<PairResult>& results, const std::vector<Site>& sites,
+                        const std::vector<Score>& scores) {
+  std::vector<const PairResult*> matched;
+  for (const auto& r : results) {
+    if (size_gap(sites[r.a], sites[r.b]) <= kSizeMatched) matched.push_back(&r);
+  }
+  std::vector<bool> positive;
+  for (const PairResult* r : matched) positive.push_back(r->same);
+  const auto same = std::count(positive.begin(), positive.end(), true);
+  std::printf("size-matched pairs (|imaged_a - imaged_b| <= %.0f): %zu (%td same, %td different)\n",
+              kSizeMatched, matched.size(), same,
+              static_cast<std::ptrdiff_t>(matched.size()) - same);
+  for (const Score& score : scores) {
+    std::vector<double> values;
+    for (const PairResult* r : matched) {
+      values.push_back(score.value(*r, sites[r->a], sites[r->b]));
+    }
+    std::printf("  size-matched AUC %-14s %.3f\n", score.name, roc_auc(values, positive));
+  }
+}
+
+/// Pocket search, leave one out: each site queried against the other sites, ranked by
+/// overlay_shape (ties by entry order); how often the first, or one of the first three, binds the
+/// same ligand type.
+void print_pocket_search(const std::vector<PairResult>& results, const std::vector<Site>& sites) {
+  std::vector<std::vector<std::pair<double, std::size_t>>> ranked(sites.size());
+  for (const auto& r : results) {
+    ranked[r.a].emplace_back(r.overlay.shape, r.b);
+    ranked[r.b].emplace_back(r.overlay.shape, r.a);
+  }
+  std::size_t top1 = 0, top3 = 0;
+  for (std::size_t query = 0; query < sites.size(); ++query) {
+    auto& hits = ranked[query];
+    std::sort(hits.begin(), hits.end(), [](const auto& x, const auto& y) {
+      return x.first != y.first ? x.first > y.first : x.second < y.second;
+    });
+    const auto same = [&](std::size_t k) {
+      return k < hits.size() && sites[hits[k].second].entry.ligand == sites[query].entry.ligand;
+    };
+    top1 += same(0) ? 1 : 0;
+    top3 += (same(0) || same(1) || same(2)) ? 1 : 0;
+  }
+  std::printf(
+      "pocket search, leave one out by overlay_shape: top-1 same ligand type %zu/%zu, top-3 "
+      "%zu/%zu\n",
+      top1, sites.size(), top3, sites.size());
+}
+
 int main(int argc, char** argv) {
   const fs::path entries_path =
       argc > 1 ? fs::path(argv[1]) : test::shared_datasets_root() / "kahraman-dev/entries.txt";
@@ -337,6 +395,8 @@ int main(int argc, char** argv) {
              return smaller > 0 ? static_cast<double>(r.points) / smaller * (1.0 + r.r_chem) / 2.0
                                 : 0.0;
            }},
+          {"size", "baseline: -|imaged_a - imaged_b|, the sites' critical-point counts",
+           [](const PairResult&, const Site& x, const Site& y) { return -size_gap(x, y); }},
       };
       if (argc > 2 && std::string(argv[2]) != "-") {
         std::ofstream csv(std::string(argv[2]) + "." + variant.name + ".csv");
@@ -377,6 +437,8 @@ int main(int argc, char** argv) {
         std::printf("AUC %-14s %.3f   (%s)\n", score.name, roc_auc(values, positive),
                     score.definition);
       }
+      print_size_matched(results, sites, scores);
+      print_pocket_search(results, sites);
       const auto [low, high] = site_bootstrap_auc(
           results, sites.size(), [](const PairResult& r) { return r.overlay.shape; }, 20261122u,
           300);
