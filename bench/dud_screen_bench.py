@@ -225,8 +225,16 @@ def read_exported_library(path):
 
 
 def read_hits(path):
-    """Reads a surfcomp hits.csv into {name: row dict}; score and fast_score become floats."""
+    """Reads a surfcomp hits.csv into {name: row dict}, in the file's order (best first).
+
+    score and fast_score become floats; each row also gets `order_score`, minus the index of
+    its group of consecutive rows with equal (stage, score). It follows the file's order, which
+    puts the full-match rows (stage 2) before the fast-scored ones (stage 1) whatever their
+    score columns, and keeps rows of equal stage and score tied.
+    """
     hits = {}
+    group = -1
+    previous = None
     with open(path, newline="") as stream:
         for row in csv.DictReader(stream):
             for key in ("score", "fast_score"):
@@ -234,8 +242,15 @@ def read_hits(path):
                     row[key] = float(row[key])
                 except (KeyError, TypeError, ValueError):
                     row[key] = float("nan")
+            if row.get("name") is None:
+                raise ValueError(f"{path}: no name column")
             if row["name"] in hits:
                 raise ValueError(f"{path}: name {row['name']} appears twice")
+            key = (row.get("stage"), row["score"])
+            if key != previous:
+                group += 1
+                previous = key
+            row["order_score"] = -float(group)
             hits[row["name"]] = row
     return hits
 
@@ -382,8 +397,8 @@ def surfcomp_screen(args, target_dir, library_records, queries, query_paths):
     """Builds, exports and screens the surfcomp library of one target.
 
     Returns (library, scores, details): the exported conformers by name, scores[q][name] from
-    hits.csv (and the first stage's fast_score under details["fast_scores"]), and the times and
-    counts of the run.
+    the order of hits.csv (see `read_hits`; the first stage's fast_score alone under
+    details["fast_scores"]), and the times, counts and build log lines of the run.
     """
     library_input = target_dir / "library.dat.gz"
     write_library_input(library_records, library_input)
@@ -394,6 +409,8 @@ def surfcomp_screen(args, target_dir, library_records, queries, query_paths):
                            "--conformers", args.conformers, "--seed", args.seed, "--threads", args.threads])
     export_s = run_command([args.surfcomp, "library", "export", library_path, "-o", export_path])
     library = read_exported_library(export_path)
+    build_log_path = Path(f"{library_path}.log")
+    build_log = build_log_path.read_text().splitlines() if build_log_path.is_file() else []
     scores, fast_scores, screen_s, stages = [], [], [], []
     for q, query_path in enumerate(query_paths):
         hits_path = target_dir / f"hits_{q}.csv"
@@ -404,7 +421,7 @@ def surfcomp_screen(args, target_dir, library_records, queries, query_paths):
         missing = sorted(set(library) - set(hits))
         if missing:
             log(f"  warning: {hits_path} lacks {len(missing)} library molecules (ranked last)")
-        scores.append({name: row["score"] for name, row in hits.items()})
+        scores.append({name: row["order_score"] for name, row in hits.items()})
         fast_scores.append({name: row["fast_score"] for name, row in hits.items()
                             if math.isfinite(row["fast_score"])})
         stage_counts = {}
@@ -412,7 +429,7 @@ def surfcomp_screen(args, target_dir, library_records, queries, query_paths):
             stage_counts[row.get("stage", "")] = stage_counts.get(row.get("stage", ""), 0) + 1
         stages.append({"missing": missing, "stages": stage_counts})
     details = {"build_s": build_s, "export_s": export_s, "screen_s": screen_s, "hits": stages,
-               "fast_scores": fast_scores}
+               "fast_scores": fast_scores, "build_log": build_log}
     return library, scores, details
 
 
@@ -455,6 +472,7 @@ def run_target(args, target, work):
     library_actives = seeded_subset([r for r in actives if r["id"] not in query_ids], args.max_actives, rng)
     library_decoys = seeded_subset(decoys, args.max_decoys, rng)
     library_records = library_actives + library_decoys
+    rng.shuffle(library_records)
     active_ids = {r["id"] for r in library_actives}
 
     target_dir = work / target
@@ -478,6 +496,7 @@ def run_target(args, target, work):
         result["conformer_source"] = "surfcomp library export"
         result["timing"]["surfcomp"] = {k: details[k] for k in ("build_s", "export_s", "screen_s")}
         result["surfcomp_hits"] = details["hits"]
+        result["surfcomp_build_log"] = details["build_log"]
         if all(details["fast_scores"]):
             scores["surfcomp_fast"] = details["fast_scores"]
 
