@@ -5,9 +5,10 @@ Per target (../shared/datasets/dud/cmp_list_DUD_<target>_{actives,decoys}.dat.gz
 - the queries are actives picked with random.Random(seed); each gets one conformer (AddHs,
   ETKDGv3 with randomSeed=seed, MMFF94 optimisation) written to its own SDF;
 - the library is every other active and the decoys (optionally subsampled with the same
-  generator), built once by `surfcomp library build --conformers N --seed S` and screened by
-  every query; `surfcomp library export` gives the library's conformers, so that the baselines
-  score exactly the conformers surfcomp stores;
+  generator), written in an order the generator shuffles, built once by `surfcomp library
+  build --conformers N --seed S` and screened by every query; surfcomp's ranking is the order
+  of hits.csv (see `read_hits`); `surfcomp library export` gives the library's conformers, so
+  that the baselines score exactly the conformers surfcomp stores;
 - the baselines run in the same process on those conformers: USRCAT (GetUSRCAT on heavy atoms,
   GetUSRScore) and Open3DAlign (GetO3A with MMFF94 onto the query, then 1 - ShapeTanimotoDist);
   for every method a molecule's score is its best conformer's;
