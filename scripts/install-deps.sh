@@ -12,6 +12,7 @@ packages=(
   nlohmann-json3-dev
   freesasa edtsurf
   clang libfuzzer-14-dev
+  python3-rdkit python3-numpy
 )
 
 missing=()
