@@ -117,16 +117,17 @@ int screen(const std::vector<std::string>& args) {
   const screening::ScreenQuery query = screening::make_screen_query(std::move(descriptors), options);
   const double query_s = clock.elapsed_s();
 
-  std::vector<screening::Hit> hits;
+  screening::ScreenResult result;
   int ranks = 1;
   if (launched_by_mpi()) {
-    DistributedScreen result = screen_distributed(query, library, options);
-    if (!result.root) return 0;
-    hits = std::move(result.hits);
-    ranks = result.ranks;
+    DistributedScreen distributed = screen_distributed(query, library, options);
+    if (!distributed.root) return 0;
+    result = std::move(distributed.result);
+    ranks = distributed.ranks;
   } else {
-    hits = screening::screen(query, library, options);
+    result = screening::screen(query, library, options);
   }
+  const std::vector<screening::Hit>& hits = result.hits;
   const double total_s = clock.elapsed_s();
   if (!aligned_out.empty()) write_aligned(aligned_out, library, hits, static_cast<std::size_t>(aligned_top));
   try {
@@ -136,9 +137,14 @@ int screen(const std::vector<std::string>& args) {
     if (!aligned_out.empty()) std::filesystem::remove(aligned_out);
     throw;
   }
-  std::printf("%s vs %s: %zu entries, %zu hits; query %.1f s, screen %.1f s (%d process%s)\n",
-              query_path.string().c_str(), library_path.string().c_str(), library.size(),
-              hits.size(), query_s, total_s - query_s, ranks, ranks == 1 ? "" : "es");
+  std::printf(
+      "%s vs %s: %zu entries, %zu hits; query %.2f s, stage 1 %.2f s (%.0f entries/s), stage 2 "
+      "%.2f s (%zu candidates), total %.2f s (%d process%s)\n",
+      query_path.string().c_str(), library_path.string().c_str(), library.size(), hits.size(),
+      query_s, result.stage1_seconds,
+      result.stage1_seconds > 0 ? static_cast<double>(library.size()) / result.stage1_seconds : 0.0,
+      result.stage2_seconds, std::min(options.candidates, hits.size()), total_s, ranks,
+      ranks == 1 ? "" : "es");
   return 0;
 }
 

@@ -2,6 +2,8 @@
 // rank 0 ranks exactly the numbers one process would have computed.
 #include "screen_mpi.hpp"
 
+#include "surfcomp/core/stopwatch.hpp"
+
 #include <mpi.h>
 #include <tbb/parallel_for.h>
 
@@ -58,6 +60,7 @@ std::vector<double> gather(const std::vector<double>& local, const std::vector<i
 DistributedScreen run(const screening::ScreenQuery& query, const screening::Library& library,
                       const screening::ScreenOptions& options, int rank, int ranks) {
   matching::validate(options.match);
+  const Stopwatch clock;
   const std::size_t n = library.size();
   const auto slice_begin = [&](int r) {
     return n * static_cast<std::size_t>(r) / static_cast<std::size_t>(ranks);
@@ -81,6 +84,7 @@ DistributedScreen run(const screening::ScreenQuery& query, const screening::Libr
     best = screening::best_entry_per_molecule(library, fast);
     for (std::size_t i = 0; i < best.size() && i < options.candidates; ++i) chosen.push_back(best[i]);
   }
+  const double stage1_seconds = clock.elapsed_s();
   std::uint64_t k = chosen.size();
   MPI_Bcast(&k, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
   chosen.resize(k);
@@ -108,6 +112,8 @@ DistributedScreen run(const screening::ScreenQuery& query, const screening::Libr
   DistributedScreen result;
   result.root = rank == 0;
   result.ranks = ranks;
+  result.result.stage1_seconds = stage1_seconds;
+  result.result.stage2_seconds = clock.elapsed_s() - stage1_seconds;
   if (rank == 0) {
     std::vector<screening::HitScore> full(k);
     std::size_t at = 0;
@@ -115,7 +121,7 @@ DistributedScreen run(const screening::ScreenQuery& query, const screening::Libr
       for (std::size_t i = static_cast<std::size_t>(r); i < k; i += static_cast<std::size_t>(ranks))
         full[i] = unpack(&full_all[kDoubles * at++]);
     }
-    result.hits = screening::rank_hits(best, fast, full, options.top);
+    result.result.hits = screening::rank_hits(best, fast, full, options.top);
   }
   return result;
 }

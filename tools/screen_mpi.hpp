@@ -16,7 +16,7 @@ bool launched_by_mpi();
 struct DistributedScreen {
   bool root = true;  ///< rank 0: the one that writes the outputs
   int ranks = 1;
-  std::vector<screening::Hit> hits;  ///< on rank 0 only
+  screening::ScreenResult result;  ///< hits on rank 0 only; stage times as rank 0 saw them
 };
 
 /// screening::screen over the ranks of MPI_COMM_WORLD: each rank scores a contiguous slice of

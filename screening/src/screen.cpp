@@ -2,6 +2,7 @@
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/matching/principal_axes.hpp"
 
@@ -47,6 +48,12 @@ std::string fixed(double value) {
   return s;
 }
 
+bool same_overlay_options(const matching::OverlayOptions& x, const matching::OverlayOptions& y) {
+  return x.sigma == y.sigma && x.spacing == y.spacing && x.chem_weight == y.chem_weight &&
+         x.atom_weight == y.atom_weight && x.iterations == y.iterations &&
+         x.tolerance == y.tolerance;
+}
+
 }  // namespace
 
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
@@ -56,6 +63,8 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
   if (query.sample.size() == 0)
     throw InputError(descriptors.surface.source() + ": the query's surface has no vertex");
   query.atoms = matching::sample_atoms(descriptors.atoms);
+  query.overlay = std::make_shared<const matching::SurfaceOverlay>(
+      query.sample, query.sample, options.match.overlay, query.atoms, query.atoms);
   query.descriptors = std::move(descriptors);
   return query;
 }
@@ -63,8 +72,11 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
 HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options) {
   if (entry.sample.size() == 0) return {};
-  const matching::SurfaceOverlay overlay(query.sample, entry.sample, options.match.overlay,
-                                         query.atoms, entry.atoms);
+  const matching::SurfaceOverlay overlay =
+      query.overlay && same_overlay_options(query.overlay->options(), options.match.overlay)
+          ? matching::SurfaceOverlay(*query.overlay, entry.sample, entry.atoms)
+          : matching::SurfaceOverlay(query.sample, entry.sample, options.match.overlay,
+                                     query.atoms, entry.atoms);
   HitScore best;
   bool first = true;
   for (const matching::RigidTransform& start :
@@ -141,16 +153,21 @@ std::vector<Hit> rank_hits(const std::vector<std::size_t>& best,
   return hits;
 }
 
-std::vector<Hit> screen(const ScreenQuery& query, const Library& library,
-                        const ScreenOptions& options) {
+ScreenResult screen(const ScreenQuery& query, const Library& library,
+                    const ScreenOptions& options) {
   matching::validate(options.match);
+  ScreenResult result;
+  const Stopwatch clock;
   const std::vector<HitScore> fast = fast_scores(query, library, 0, library.size(), options);
   const std::vector<std::size_t> best = best_entry_per_molecule(library, fast);
+  result.stage1_seconds = clock.elapsed_s();
   std::vector<HitScore> full(std::min(options.candidates, best.size()));
   tbb::parallel_for(std::size_t{0}, full.size(), [&](std::size_t i) {
     full[i] = full_score(query, library.entry(best[i]), options);
   });
-  return rank_hits(best, fast, full, options.top);
+  result.stage2_seconds = clock.elapsed_s() - result.stage1_seconds;
+  result.hits = rank_hits(best, fast, full, options.top);
+  return result;
 }
 
 void write_hits_csv(std::ostream& out, const Library& library, const std::vector<Hit>& hits) {

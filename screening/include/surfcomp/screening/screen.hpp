@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <memory>
 #include <ostream>
 #include <vector>
 
@@ -43,6 +44,9 @@ struct ScreenQuery {
   harmonic::SurfaceDescriptors descriptors;
   matching::SurfaceSample sample;  ///< sample_surface(descriptors.surface, overlay spacing)
   matching::AtomSample atoms;      ///< sample_atoms(descriptors.atoms)
+  /// The query's sample indexed once for stage 1 (an overlay of the query on itself, from
+  /// which each entry's overlay is made without indexing the query again).
+  std::shared_ptr<const matching::SurfaceOverlay> overlay;
 };
 
 /// The query of a screen from its descriptors (describe_surface of its molecule's surface, or
@@ -98,10 +102,17 @@ std::vector<Hit> rank_hits(const std::vector<std::size_t>& best,
                            const std::vector<HitScore>& fast, const std::vector<HitScore>& full,
                            std::size_t top);
 
+/// A screen's rows and its time.
+struct ScreenResult {
+  std::vector<Hit> hits;
+  double stage1_seconds = 0.0;  ///< wall-clock time of the fast scores
+  double stage2_seconds = 0.0;  ///< wall-clock time of the full matches
+};
+
 /// The whole screen in this process: fast_scores of every entry, best_entry_per_molecule, the
 /// first options.candidates of them through full_score (in parallel), rank_hits.
-std::vector<Hit> screen(const ScreenQuery& query, const Library& library,
-                        const ScreenOptions& options = {});
+ScreenResult screen(const ScreenQuery& query, const Library& library,
+                    const ScreenOptions& options = {});
 
 /// The hits as CSV: a header row, then one row per hit with the columns rank, entry (1-based),
 /// name, source, record, conformer, score, stage, shape, chem, atoms, fast_score and the 16
