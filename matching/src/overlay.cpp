@@ -173,7 +173,9 @@ SurfaceOverlay::Impl::Impl(const Impl& other, SurfaceSample probe_sample,
       reference_atoms(other.reference_atoms),
       probe_atoms(std::move(probe_atom_sample)),
       shared(other.shared) {
-  finish(kCutoffSigmas * options.sigma);
+  // Cells of four cutoffs: a ligand's sample falls in one or a few, so listing it costs less
+  // than the sums it serves (docs/decisions.md#screen-stage-one).
+  finish(4.0 * kCutoffSigmas * options.sigma);
 }
 
 void SurfaceOverlay::Impl::finish(double probe_cell) {
