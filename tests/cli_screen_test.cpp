@@ -59,7 +59,8 @@ class CliScreen : public ::testing::Test {
                                        "C1CC unclosed_ring\n"
                                        "OC(=O)c1ccccc1O salicylic_acid\n"
                                        "CC(C)Cc1ccc(cc1)C(C)C(=O)O ibuprofen\n";
-    const ProgramRun built = run("library build set.smi -o lib.sclib --conformers 2 --seed 3 --threads 2");
+    const ProgramRun built =
+        run("library build set.smi -o lib.sclib --conformers 2 --seed 3 --threads 2");
     ASSERT_EQ(built.status, 0) << built.err;
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
@@ -67,8 +68,8 @@ class CliScreen : public ::testing::Test {
   /// Runs `PREFIX surfcomp ARGUMENTS` in the suite's directory, stdout discarded.
   static ProgramRun run(const std::string& arguments, const std::string& prefix = "") {
     const fs::path err = dir_ / "stderr.txt";
-    const std::string command = "cd " + dir_.string() + " && " + prefix + kProgram.string() +
-                                " " + arguments + " >/dev/null 2>" + err.string();
+    const std::string command = "cd " + dir_.string() + " && " + prefix + kProgram.string() + " " +
+                                arguments + " >/dev/null 2>" + err.string();
     const int raw = std::system(command.c_str());
     ProgramRun r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -82,7 +83,8 @@ class CliScreen : public ::testing::Test {
 fs::path CliScreen::dir_;
 
 TEST_F(CliScreen, LibraryIsTheSameWithOneThreadAndTheBadRecordIsLogged) {
-  const ProgramRun built = run("library build set.smi -o one.sclib --conformers 2 --seed 3 --threads 1");
+  const ProgramRun built =
+      run("library build set.smi -o one.sclib --conformers 2 --seed 3 --threads 1");
   ASSERT_EQ(built.status, 0) << built.err;
   EXPECT_EQ(file_bytes(dir_ / "one.sclib"), file_bytes(dir_ / "lib.sclib"));
   const std::string log = file_bytes(dir_ / "lib.sclib.log");
@@ -97,9 +99,9 @@ TEST_F(CliScreen, HitsAreTheSameWithOneAndTwoThreadsAndTheQueryFindsItselfFirst)
   EXPECT_NE(all.find(">  <surfcomp_name>\nibuprofen\n"), std::string::npos);
   // The query: entry 3, the first conformer of salicylic acid.
   for (const char* threads : {"1", "2"}) {
-    const ProgramRun r = run(std::string("screen all.sdf lib.sclib --record 3 --candidates 2 --top 0 ") +
-                      "--aligned-out hits" + threads + ".sdf -o hits" + threads +
-                      ".csv --threads " + threads);
+    const ProgramRun r = run(
+        std::string("screen all.sdf lib.sclib --record 3 --candidates 2 --top 0 ") +
+        "--aligned-out hits" + threads + ".sdf -o hits" + threads + ".csv --threads " + threads);
     ASSERT_EQ(r.status, 0) << r.err;
   }
   const std::string hits = file_bytes(dir_ / "hits1.csv");
@@ -134,10 +136,10 @@ TEST_F(CliScreen, HitsAreTheSameUnderMpiWithOneAndTwoProcesses) {
   ASSERT_EQ(run("screen mpi.sdf lib.sclib --record 1 --candidates 2 --top 0 -o serial.csv").status,
             0);
   for (const char* ranks : {"1", "2"}) {
-    const ProgramRun r = run("screen mpi.sdf lib.sclib --record 1 --candidates 2 --top 0 -o mpi" +
-                          std::string(ranks) + ".csv --threads 1",
-                      std::string(SURFCOMP_MPIEXEC) +
-                          " --allow-run-as-root --oversubscribe -np " + ranks + " ");
+    const ProgramRun r = run(
+        "screen mpi.sdf lib.sclib --record 1 --candidates 2 --top 0 -o mpi" + std::string(ranks) +
+            ".csv --threads 1",
+        std::string(SURFCOMP_MPIEXEC) + " --allow-run-as-root --oversubscribe -np " + ranks + " ");
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(file_bytes(dir_ / ("mpi" + std::string(ranks) + ".csv")),
               file_bytes(dir_ / "serial.csv"))

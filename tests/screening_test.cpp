@@ -74,7 +74,8 @@ TEST(Conformers, SameSeedSameConformersAndCountAsked) {
   EXPECT_EQ(a, b);
   EXPECT_NE(a[0], a[1]);
   // Hydrogens are explicit: C8H9NO2 has 20 atoms.
-  const Molecule molecule = io::read_record_molecule({record.source, 1, "p", io::RecordFormat::mdl, a[0]});
+  const Molecule molecule =
+      io::read_record_molecule({record.source, 1, "p", io::RecordFormat::mdl, a[0]});
   EXPECT_EQ(molecule.atoms.size(), 20u);
   EXPECT_THROW(generate_conformers(smiles_record("C1CC", "broken", 2), two_conformers()),
                InputError);
@@ -99,7 +100,8 @@ TEST(Library, RoundTripKeepsEveryFieldAndFindsByName) {
   options.conformers = two_conformers();
   std::vector<screening::LibraryEntry> entries =
       screening::build_entries(smiles_record("CC(=O)Nc1ccc(O)cc1", "paracetamol", 1), options);
-  for (auto& e : screening::build_entries(smiles_record("OC(=O)c1ccccc1O", "salicylic", 2), options))
+  for (auto& e :
+       screening::build_entries(smiles_record("OC(=O)c1ccccc1O", "salicylic", 2), options))
     entries.push_back(std::move(e));
   ASSERT_EQ(entries.size(), 4u);
   const fs::path path = dir / "round.sclib";

@@ -103,9 +103,10 @@ int build(const std::vector<std::string>& args) {
       if (p.records_done < p.records && p.seconds - last < 0.5) return;
       last = p.seconds;
       const double rate = p.seconds > 0 ? static_cast<double>(p.entries) / p.seconds : 0.0;
-      const double left = p.records_done > 0 ? p.seconds * static_cast<double>(p.records - p.records_done) /
-                                                   static_cast<double>(p.records_done)
-                                             : 0.0;
+      const double left = p.records_done > 0
+                              ? p.seconds * static_cast<double>(p.records - p.records_done) /
+                                    static_cast<double>(p.records_done)
+                              : 0.0;
       std::fprintf(stderr, "\r\033[Klibrary: %zu/%zu records, %zu entries, %.1f entries/s, %s left",
                    p.records_done, p.records, p.entries, rate, duration(left).c_str());
       if (p.records_done == p.records) std::fprintf(stderr, "\r\033[K");
@@ -147,12 +148,14 @@ int info(const std::vector<std::string>& args) {
   }
   const double mean =
       library.size() > 0 ? static_cast<double>(library.file_bytes()) / library.size() : 0.0;
-  std::printf("%s: format version %u, %zu entries, %zu molecules, %.2f MB (%.1f KB per entry, "
-              "largest %.1f KB)\n",
-              library.path().string().c_str(), library.version(), library.size(),
-              molecules.size(), static_cast<double>(library.file_bytes()) / 1e6, mean / 1e3,
-              static_cast<double>(largest) / 1e3);
-  for (const auto& [source, count] : per_source) std::printf("  %s: %zu entries\n", source.c_str(), count);
+  std::printf(
+      "%s: format version %u, %zu entries, %zu molecules, %.2f MB (%.1f KB per entry, "
+      "largest %.1f KB)\n",
+      library.path().string().c_str(), library.version(), library.size(), molecules.size(),
+      static_cast<double>(library.file_bytes()) / 1e6, mean / 1e3,
+      static_cast<double>(largest) / 1e3);
+  for (const auto& [source, count] : per_source)
+    std::printf("  %s: %zu entries\n", source.c_str(), count);
   std::printf("settings:\n%s", library.settings().c_str());
   return 0;
 }
@@ -161,8 +164,8 @@ int export_sdf(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output;
   po::options_description described("options");
-  described.add_options()("help,h", "print this help")(
-      "output,o", po::value(&output)->required(), "output SDF file");
+  described.add_options()("help,h", "print this help")("output,o", po::value(&output)->required(),
+                                                       "output SDF file");
   po::variables_map vm;
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing LIB (see --help)");
@@ -174,9 +177,12 @@ int export_sdf(const std::vector<std::string>& args) {
       const screening::LibraryEntry entry = library.entry(e);
       out << io::moved_record_block(entry.molecule, Eigen::Matrix3d::Identity(),
                                     Eigen::Vector3d::Zero())
-          << ">  <surfcomp_entry>\n" << e + 1 << "\n\n"
-          << ">  <surfcomp_name>\n" << entry.info.name << "\n\n"
-          << ">  <surfcomp_conformer>\n" << entry.info.conformer << "\n\n$$$$\n";
+          << ">  <surfcomp_entry>\n"
+          << e + 1 << "\n\n"
+          << ">  <surfcomp_name>\n"
+          << entry.info.name << "\n\n"
+          << ">  <surfcomp_conformer>\n"
+          << entry.info.conformer << "\n\n$$$$\n";
     }
   });
   std::printf("%s: %zu entries -> %s\n", path.string().c_str(), library.size(), output.c_str());

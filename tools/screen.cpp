@@ -47,12 +47,16 @@ void write_aligned(const std::filesystem::path& path, const screening::Library& 
       const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
       char score[32];
       std::snprintf(score, sizeof score, "%.6f", hit.score.score);
-      out << io::moved_record_block(entry.molecule, rotation, translation)
-          << ">  <surfcomp_rank>\n" << i + 1 << "\n\n"
-          << ">  <surfcomp_entry>\n" << hit.entry + 1 << "\n\n"
-          << ">  <surfcomp_name>\n" << entry.info.name << "\n\n"
-          << ">  <surfcomp_conformer>\n" << entry.info.conformer << "\n\n"
-          << ">  <surfcomp_score>\n" << score << "\n\n$$$$\n";
+      out << io::moved_record_block(entry.molecule, rotation, translation) << ">  <surfcomp_rank>\n"
+          << i + 1 << "\n\n"
+          << ">  <surfcomp_entry>\n"
+          << hit.entry + 1 << "\n\n"
+          << ">  <surfcomp_name>\n"
+          << entry.info.name << "\n\n"
+          << ">  <surfcomp_conformer>\n"
+          << entry.info.conformer << "\n\n"
+          << ">  <surfcomp_score>\n"
+          << score << "\n\n$$$$\n";
     }
   });
 }
@@ -114,7 +118,8 @@ int screen(const std::vector<std::string>& args) {
     LoadedSurface loaded = load_surface(query_path, input);
     descriptors = harmonic::describe_surface(std::move(loaded.surface), *loaded.molecule);
   }
-  const screening::ScreenQuery query = screening::make_screen_query(std::move(descriptors), options);
+  const screening::ScreenQuery query =
+      screening::make_screen_query(std::move(descriptors), options);
   const double query_s = clock.elapsed_s();
 
   screening::ScreenResult result;
@@ -129,10 +134,11 @@ int screen(const std::vector<std::string>& args) {
   }
   const std::vector<screening::Hit>& hits = result.hits;
   const double total_s = clock.elapsed_s();
-  if (!aligned_out.empty()) write_aligned(aligned_out, library, hits, static_cast<std::size_t>(aligned_top));
+  if (!aligned_out.empty())
+    write_aligned(aligned_out, library, hits, static_cast<std::size_t>(aligned_top));
   try {
-    io::write_file_atomically(output,
-                              [&](std::ostream& out) { screening::write_hits_csv(out, library, hits); });
+    io::write_file_atomically(
+        output, [&](std::ostream& out) { screening::write_hits_csv(out, library, hits); });
   } catch (...) {
     if (!aligned_out.empty()) std::filesystem::remove(aligned_out);
     throw;

@@ -82,7 +82,8 @@ DistributedScreen run(const screening::ScreenQuery& query, const screening::Libr
   if (rank == 0) {
     for (std::size_t e = 0; e < n; ++e) fast.push_back(unpack(&all[e * kDoubles]));
     best = screening::best_entry_per_molecule(library, fast);
-    for (std::size_t i = 0; i < best.size() && i < options.candidates; ++i) chosen.push_back(best[i]);
+    for (std::size_t i = 0; i < best.size() && i < options.candidates; ++i)
+      chosen.push_back(best[i]);
   }
   const double stage1_seconds = clock.elapsed_s();
   std::uint64_t k = chosen.size();

@@ -20,8 +20,8 @@ namespace surfcomp {
 namespace {
 
 std::string describe(const io::MoleculeRecord& record) {
-  return record.source.string() + ": record " + std::to_string(record.record) + " (" +
-         record.name + ")";
+  return record.source.string() + ": record " + std::to_string(record.record) + " (" + record.name +
+         ")";
 }
 
 std::unique_ptr<RDKit::RWMol> parse(const io::MoleculeRecord& record) {
@@ -50,8 +50,7 @@ std::vector<std::string> embed(const io::MoleculeRecord& record, const Conformer
   params.numThreads = 1;
   params.clearConfs = true;
   std::vector<int> ids;
-  RDKit::DGeomHelpers::EmbedMultipleConfs(*mol, ids, static_cast<unsigned>(options.count),
-                                          params);
+  RDKit::DGeomHelpers::EmbedMultipleConfs(*mol, ids, static_cast<unsigned>(options.count), params);
   if (ids.empty()) throw InputError(describe(record) + ": ETKDG could not embed the molecule");
   if (options.mmff_iterations > 0) {
     RDKit::MMFF::MMFFMolProperties properties(*mol);

@@ -71,7 +71,8 @@ std::vector<std::uint8_t> encode(const LibraryEntry& entry) {
 }
 
 void write_bytes(std::ostream& out, const std::vector<std::uint8_t>& bytes) {
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
 }
 
 Eigen::Matrix3Xd three_rows(io::BinaryReader& r, Eigen::Index columns, const char* what) {
@@ -224,7 +225,8 @@ void Library::Impl::map() {
 }
 
 void Library::Impl::read_index() {
-  if (std::memcmp(data, kMagic, kMagicBytes) != 0) fail("not a surfcomp library (no SURFCLIB magic)");
+  if (std::memcmp(data, kMagic, kMagicBytes) != 0)
+    fail("not a surfcomp library (no SURFCLIB magic)");
   io::BinaryReader header(data + kMagicBytes, kHeaderBytes - kMagicBytes, path.string());
   version = header.u32();
   if (version != library_format_version) {

@@ -75,8 +75,8 @@ HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
   const matching::SurfaceOverlay overlay =
       query.overlay && same_overlay_options(query.overlay->options(), options.match.overlay)
           ? matching::SurfaceOverlay(*query.overlay, entry.sample, entry.atoms)
-          : matching::SurfaceOverlay(query.sample, entry.sample, options.match.overlay,
-                                     query.atoms, entry.atoms);
+          : matching::SurfaceOverlay(query.sample, entry.sample, options.match.overlay, query.atoms,
+                                     entry.atoms);
   HitScore best;
   bool first = true;
   for (const matching::RigidTransform& start :
@@ -110,7 +110,8 @@ std::vector<std::size_t> best_entry_per_molecule(const Library& library,
   std::map<std::tuple<std::string, std::uint32_t, std::string>, std::size_t> best;
   for (std::size_t e = 0; e < library.size(); ++e) {
     const LibraryEntryInfo& info = library.info(e);
-    const auto [it, inserted] = best.emplace(std::make_tuple(info.source, info.record, info.name), e);
+    const auto [it, inserted] =
+        best.emplace(std::make_tuple(info.source, info.record, info.name), e);
     if (!inserted && fast[e].score > fast[it->second].score) it->second = e;
   }
   std::vector<std::size_t> entries;
@@ -136,12 +137,12 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
   return from_overlay(top.overlay, top.transform);
 }
 
-std::vector<Hit> rank_hits(const std::vector<std::size_t>& best,
-                           const std::vector<HitScore>& fast, const std::vector<HitScore>& full,
-                           std::size_t top) {
+std::vector<Hit> rank_hits(const std::vector<std::size_t>& best, const std::vector<HitScore>& fast,
+                           const std::vector<HitScore>& full, std::size_t top) {
   const std::size_t k = std::min(full.size(), best.size());
   std::vector<Hit> candidates;
-  for (std::size_t i = 0; i < k; ++i) candidates.push_back({best[i], 2, full[i], fast[best[i]].score});
+  for (std::size_t i = 0; i < k; ++i)
+    candidates.push_back({best[i], 2, full[i], fast[best[i]].score});
   std::sort(candidates.begin(), candidates.end(), [](const Hit& x, const Hit& y) {
     if (x.score.score != y.score.score) return x.score.score > y.score.score;
     return x.entry < y.entry;

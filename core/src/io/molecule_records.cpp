@@ -124,8 +124,8 @@ std::vector<MoleculeRecord> dat_records(const std::filesystem::path& path,
     const std::vector<std::string> fields = split(lines[l], '\t');
     if (fields.size() < header.size()) {
       throw FormatError(source, l + 1,
-                        "expected " + std::to_string(header.size()) + " tab-separated fields, got " +
-                            std::to_string(fields.size()));
+                        "expected " + std::to_string(header.size()) +
+                            " tab-separated fields, got " + std::to_string(fields.size()));
     }
     MoleculeRecord record;
     record.source = path;
@@ -210,8 +210,8 @@ Molecule read_record_molecule(const MoleculeRecord& record, const MoleculeReadOp
       if (record.text.empty()) return read_molecule(record.source, single);
       return detail::read_with_rdkit(record.source, record.text, detail::RdkitFormat::pdb, single);
     case RecordFormat::smiles:
-      throw InputError(record.source.string() + ": record " + std::to_string(record.record) +
-                       " (" + record.name + ") is a SMILES string without coordinates");
+      throw InputError(record.source.string() + ": record " + std::to_string(record.record) + " (" +
+                       record.name + ") is a SMILES string without coordinates");
     case RecordFormat::mol2:
       return detail::read_with_rdkit(record.source, record.text, detail::RdkitFormat::mol2, single);
     case RecordFormat::mdl:

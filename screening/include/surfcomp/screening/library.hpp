@@ -29,11 +29,11 @@ inline constexpr std::uint32_t library_format_version = 1;
 
 /// What the index says of an entry (it is read without decoding the entry).
 struct LibraryEntryInfo {
-  std::string name;              ///< the molecule's name (io::MoleculeRecord::name)
-  std::string source;            ///< the input file it came from
-  std::uint32_t record = 0;      ///< 1-based record of that file
-  std::uint32_t conformer = 0;   ///< 1-based generated conformer; 0 = the record's coordinates
-  std::uint32_t heavy_atoms = 0; ///< atoms other than hydrogen
+  std::string name;               ///< the molecule's name (io::MoleculeRecord::name)
+  std::string source;             ///< the input file it came from
+  std::uint32_t record = 0;       ///< 1-based record of that file
+  std::uint32_t conformer = 0;    ///< 1-based generated conformer; 0 = the record's coordinates
+  std::uint32_t heavy_atoms = 0;  ///< atoms other than hydrogen
 };
 
 /// One library entry: a molecule in one conformation, and its samples for the overlay.

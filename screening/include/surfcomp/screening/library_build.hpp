@@ -66,7 +66,8 @@ struct LibraryBuildResult {
 /// The records of `inputs` in order: each file's records (io::read_molecule_records); a
 /// directory stands for the record files (io::is_record_file) directly inside it, in name order.
 /// Throws as read_molecule_records, and InputError for a path that is neither.
-std::vector<io::MoleculeRecord> read_library_inputs(const std::vector<std::filesystem::path>& inputs);
+std::vector<io::MoleculeRecord> read_library_inputs(
+    const std::vector<std::filesystem::path>& inputs);
 
 /// The entries of one record: its own coordinates, or its conformers, each with its surface
 /// sample and heteroatoms. Throws what reading the record, generating its conformers or

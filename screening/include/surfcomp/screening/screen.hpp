@@ -98,9 +98,8 @@ struct Hit {
 /// The result rows: first the `full.size()` candidates (the first entries of `best`, their
 /// stage-2 scores in `full`) by their stage-2 score, then the other molecules of `best` in
 /// their stage-1 order; at most `top` rows (0: all). Ties go to the lower entry index.
-std::vector<Hit> rank_hits(const std::vector<std::size_t>& best,
-                           const std::vector<HitScore>& fast, const std::vector<HitScore>& full,
-                           std::size_t top);
+std::vector<Hit> rank_hits(const std::vector<std::size_t>& best, const std::vector<HitScore>& fast,
+                           const std::vector<HitScore>& full, std::size_t top);
 
 /// A screen's rows and its time.
 struct ScreenResult {
