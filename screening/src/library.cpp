@@ -86,7 +86,7 @@ Eigen::Matrix3Xd three_rows(io::BinaryReader& r, Eigen::Index columns, const cha
 }
 
 Eigen::VectorXd vector_of(io::BinaryReader& r, Eigen::Index size, const char* what) {
-  const Eigen::VectorXd v = r.doubles();
+  Eigen::VectorXd v = r.doubles();
   if (v.size() != size) {
     r.fail(std::string(what) + " holds " + std::to_string(v.size()) + " values, expected " +
            std::to_string(size));
