@@ -4,7 +4,8 @@
 # the static surfcomp::core needs RDKit at the consumer's link.
 # Sets RDKit_FOUND and RDKIT_INCLUDE_DIR.
 set(_rdkit_components
-    FileParsers SmilesParse PartialCharges Descriptors ForceFieldHelpers ForceField
+    FileParsers SmilesParse PartialCharges Descriptors DistGeomHelpers DistGeometry
+    ForceFieldHelpers ForceField
     MolAlign O3AAlign MolTransforms SubstructMatch Subgraphs Depictor GraphMol
     DataStructs RDGeometryLib EigenSolvers Alignment Optimizer Trajectory
     Catalogs RDGeneral)

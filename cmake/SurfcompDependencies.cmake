@@ -17,6 +17,10 @@ find_package(OpenVDB REQUIRED)
 # Debian's RDKit ships no CMake config: cmake/FindRDKit.cmake makes the imported target RDKit::RDKit.
 find_package(RDKit REQUIRED)
 
+# Optional: Open MPI (Debian openmpi-bin, libopenmpi-dev) gives `surfcomp screen` its
+# multi-process path (tools/screen_mpi.cpp); without it the program runs in one process.
+find_package(MPI COMPONENTS CXX)
+
 if(SURFCOMP_BUILD_TESTS)
   find_package(GTest REQUIRED)
   include(GoogleTest)

@@ -1,7 +1,7 @@
 # Install rules and the CMake package a C++ user finds with find_package(surfcomp CONFIG):
-# the four static libraries as surfcomp::core, ::mesh, ::harmonic and ::matching, their public
-# headers, the surfcomp program, and lib/cmake/surfcomp/ with the config, its version file, the
-# exported targets and the find module for RDKit (cmake/FindRDKit.cmake).
+# the five static libraries as surfcomp::core, ::mesh, ::harmonic, ::matching and ::screening,
+# their public headers, the surfcomp program, and lib/cmake/surfcomp/ with the config, its
+# version file, the exported targets and the find module for RDKit (cmake/FindRDKit.cmake).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 

@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev
   libboost-graph-dev libboost-iostreams-dev libboost-program-options-dev
   libtbb-dev libopenvdb-dev librdkit-dev
+  openmpi-bin libopenmpi-dev
   nlohmann-json3-dev
   freesasa edtsurf
   clang libfuzzer-14-dev

@@ -25,6 +25,10 @@ constexpr std::array kCommands{
             &surfcomp::tools::hsi_build},
     Command{"match", "REF PROBE -> ranked rigid alignments of PROBE onto REF (JSON)",
             &surfcomp::tools::match},
+    Command{"library", "build | info | export: screening libraries of conformers (.sclib)",
+            &surfcomp::tools::library},
+    Command{"screen", "QUERY LIB -> the library's molecules ranked by similarity (CSV)",
+            &surfcomp::tools::screen},
 };
 
 void print_usage(std::ostream& out) {

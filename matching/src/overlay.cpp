@@ -82,6 +82,17 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
   return out;
 }
 
+/// What an overlay keeps of its reference before the pair's ESP/LP scaling, with the table and
+/// index built from it: shared by the overlays of one reference with many probes.
+struct SharedReference {
+  SurfaceSample sample;  ///< as given, ESP and LP not scaled
+  GaussianTable gaussian;
+  /// The reference points within 3 sigma of each cell (cells of edge sigma, or coarser for a
+  /// very large box): a query reads one list instead of the 27 cells of 3 sigma around it, the
+  /// same sums for fewer visits (docs/decisions.md#overlay-speed).
+  mesh::SpatialGrid grid;
+};
+
 }  // namespace
 
 /// The samples (ESP and LP over their root mean squares), the reference sample's grid, the
@@ -90,6 +101,12 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
 struct SurfaceOverlay::Impl {
   Impl(SurfaceSample reference, SurfaceSample probe, const OverlayOptions& options,
        AtomSample reference_atoms, AtomSample probe_atoms);
+  /// `other`'s reference (its shared part) with a new probe.
+  Impl(const Impl& other, SurfaceSample probe, AtomSample probe_atoms);
+  /// Checks the probe's side, scales ESP and LP and sums the self-overlaps, the probe's over a
+  /// grid of cells of edge `probe_cell` (any edge gives the same sums: a listed query visits
+  /// a cell's points by increasing index, and those beyond the cutoff add nothing).
+  void finish(double probe_cell);
 
   /// Sums over the pairs (i of a, j of b moved by `transform`) within 3 sigma (see overlay.hpp),
   /// with `grid` listing a's points within 3 sigma of each of its cells; each j visits its
@@ -122,11 +139,7 @@ struct SurfaceOverlay::Impl {
   OverlayOptions options;
   AtomSample reference_atoms;
   AtomSample probe_atoms;
-  GaussianTable gaussian;
-  /// The reference points within 3 sigma of each cell (cells of edge sigma, or coarser for a
-  /// very large box): a query reads one list instead of the 27 cells of 3 sigma around it, the
-  /// same sums for fewer visits (docs/decisions.md#overlay-speed).
-  mesh::SpatialGrid reference_grid;
+  std::shared_ptr<const SharedReference> shared;
   double chem_weight = 0.0;  ///< options.chem_weight, 0 when neither sample has ESP or LP
   Sums self;                 ///< S_AA + S_BB and C_AA + C_BB
   double atom_self = 0.0;    ///< H_AA + H_BB, 0 when a side has no heteroatoms
@@ -141,10 +154,33 @@ SurfaceOverlay::Impl::Impl(SurfaceSample reference_sample, SurfaceSample probe_s
       reference_atoms(std::move(reference_atom_sample)),
       probe_atoms(std::move(probe_atom_sample)) {
   detail::check_overlay_options(options, {"overlay", ""});
-  if (reference.size() == 0 || probe.size() == 0) {
-    throw InputError(std::string("overlay: the ") +
-                     (reference.size() == 0 ? "reference" : "probe") +
-                     " sample has no points (an empty surface or site region)");
+  if (reference.size() == 0) {
+    throw InputError(
+        "overlay: the reference sample has no points (an empty surface or site region)");
+  }
+  const double cutoff = kCutoffSigmas * options.sigma;
+  shared = std::make_shared<const SharedReference>(
+      SharedReference{reference, GaussianTable(options.sigma, cutoff),
+                      mesh::SpatialGrid(reference.points, options.sigma, cutoff)});
+  finish(options.sigma);
+}
+
+SurfaceOverlay::Impl::Impl(const Impl& other, SurfaceSample probe_sample,
+                           AtomSample probe_atom_sample)
+    : reference(other.shared->sample),
+      probe(std::move(probe_sample)),
+      options(other.options),
+      reference_atoms(other.reference_atoms),
+      probe_atoms(std::move(probe_atom_sample)),
+      shared(other.shared) {
+  // Cells of four cutoffs: a ligand's sample falls in one or a few, so listing it costs less
+  // than the sums it serves (docs/decisions.md#screen-stage-one).
+  finish(4.0 * kCutoffSigmas * options.sigma);
+}
+
+void SurfaceOverlay::Impl::finish(double probe_cell) {
+  if (probe.size() == 0) {
+    throw InputError("overlay: the probe sample has no points (an empty surface or site region)");
   }
   for (const AtomSample* atoms : {&reference_atoms, &probe_atoms}) {
     if (static_cast<std::size_t>(atoms->points.cols()) != atoms->size() ||
@@ -165,11 +201,9 @@ SurfaceOverlay::Impl::Impl(SurfaceSample reference_sample, SurfaceSample probe_s
     sample->lp /= lp_rms;
   }
   const double cutoff = kCutoffSigmas * options.sigma;
-  gaussian = GaussianTable(options.sigma, cutoff);
-  reference_grid = mesh::SpatialGrid(reference.points, options.sigma, cutoff);
-  const mesh::SpatialGrid probe_grid(probe.points, options.sigma, cutoff);
+  const mesh::SpatialGrid probe_grid(probe.points, probe_cell, cutoff);
   const RigidTransform identity;
-  const Sums reference_self = overlap(reference, reference_grid, reference, identity);
+  const Sums reference_self = overlap(reference, shared->grid, reference, identity);
   const Sums probe_self = overlap(probe, probe_grid, probe, identity);
   self.shape = reference_self.shape + probe_self.shape;
   self.chem = reference_self.chem + probe_self.chem;
@@ -196,7 +230,7 @@ Sums SurfaceOverlay::Impl::overlap(const SurfaceSample& a, const mesh::SpatialGr
       if (!(d2 <= cutoff2)) return;
       const double facing = a.normals.col(i).dot(m);
       if (facing <= 0.0) return;
-      const double k = a.weights(i) * gaussian(d2) * facing;
+      const double k = a.weights(i) * shared->gaussian(d2) * facing;
       const double c = chemistry(a, i, b, j);
       sums.shape += b.weights(j) * k;
       sums.chem += b.weights(j) * k * c;
@@ -268,7 +302,7 @@ OverlayScore SurfaceOverlay::Impl::with_atom_overlap(OverlayScore s, double h) c
 }
 
 OverlayScore SurfaceOverlay::Impl::score(const RigidTransform& transform) const {
-  return with_atoms(tanimoto(overlap(reference, reference_grid, probe, transform)), transform);
+  return with_atoms(tanimoto(overlap(reference, shared->grid, probe, transform)), transform);
 }
 
 RefineResult SurfaceOverlay::Impl::refine(const RigidTransform& start,
@@ -295,7 +329,7 @@ RefineResult SurfaceOverlay::Impl::refine(const RigidTransform& start,
   // The scores at `t` (the atom term's too when pulling atoms) and the EM targets and weights
   // there, the heteroatoms' after the surface points'.
   const auto step = [&](const RigidTransform& t, Eigen::Matrix3Xd& tg, Eigen::VectorXd& w) {
-    const OverlayScore score = tanimoto(overlap(reference, reference_grid, probe, t, &tg, &w));
+    const OverlayScore score = tanimoto(overlap(reference, shared->grid, probe, t, &tg, &w));
     if (!pull_atoms) return score;
     const double h = atom_overlap(reference_atoms, probe_atoms, t, &atom_targets, &atom_totals);
     tg.rightCols(m) = atom_targets;
@@ -343,6 +377,10 @@ SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe,
                                AtomSample probe_atoms)
     : impl_(std::make_unique<const Impl>(std::move(reference), std::move(probe), options,
                                          std::move(reference_atoms), std::move(probe_atoms))) {}
+
+SurfaceOverlay::SurfaceOverlay(const SurfaceOverlay& other, SurfaceSample probe,
+                               AtomSample probe_atoms)
+    : impl_(std::make_unique<const Impl>(*other.impl_, std::move(probe), std::move(probe_atoms))) {}
 
 SurfaceOverlay::SurfaceOverlay(SurfaceOverlay&&) noexcept = default;
 SurfaceOverlay& SurfaceOverlay::operator=(SurfaceOverlay&&) noexcept = default;

@@ -130,6 +130,14 @@ std::string select_record(const std::string& text, RdkitFormat format, std::size
   return text.substr(begin, end - begin);
 }
 
+std::vector<std::string> split_records(const std::string& text, RdkitFormat format) {
+  std::vector<std::string> records;
+  for (const auto& [begin, end] : record_spans(text, format)) {
+    records.push_back(text.substr(begin, end - begin));
+  }
+  return records;
+}
+
 /// Checks that every ATOM/HETATM record of the first model of a PDB text has three numbers in
 /// its coordinate columns (31-38, 39-46, 47-54): RDKit reads a line cut inside them, or blank
 /// columns, as zeros.

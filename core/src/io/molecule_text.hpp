@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace surfcomp::io::detail {
 
@@ -26,6 +27,10 @@ std::string first_alternate_locations(const std::string& text);
 /// is returned whole.
 std::string select_record(const std::string& text, RdkitFormat format, std::size_t record,
                           const std::string& source);
+
+/// The text of every molecule of an SDF or MOL2 text, in order (the records select_record
+/// picks from).
+std::vector<std::string> split_records(const std::string& text, RdkitFormat format);
 
 /// Checks that every ATOM/HETATM record of the first model of a PDB text has three numbers in
 /// its coordinate columns (31-38, 39-46, 47-54): RDKit reads a line cut inside them, or blank

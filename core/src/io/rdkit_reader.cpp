@@ -4,6 +4,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/core/protein_charges.hpp"
@@ -412,6 +413,28 @@ std::vector<double> crippen_contributions_of_pdb_block(const std::string& pdb_bl
 
 namespace surfcomp::io {
 
+namespace {
+
+std::string moved_block(const std::string& text, detail::RdkitFormat format,
+                        const std::string& source, const Eigen::Matrix3d& rotation,
+                        const Eigen::Vector3d& translation) {
+  const RDLog::LogStateSetter quiet;
+  if (format == detail::RdkitFormat::mol2) detail::check_mol2_structure(text, source);
+  auto mol = detail::parse(text, format, source);
+  if (!mol || mol->getNumConformers() == 0)
+    throw FormatError(source, "RDKit could not read the molecule");
+  RDKit::Conformer& conformer = mol->getConformer();
+  for (unsigned i = 0; i < mol->getNumAtoms(); ++i) {
+    const RDGeom::Point3D& p = conformer.getAtomPos(i);
+    const Eigen::Vector3d moved = rotation * Eigen::Vector3d(p.x, p.y, p.z) + translation;
+    conformer.setAtomPos(i, RDGeom::Point3D(moved.x(), moved.y(), moved.z()));
+  }
+  return detail::rdkit_call(source, "write the molecule",
+                            [&]() { return RDKit::MolToMolBlock(*mol, true, -1, false); });
+}
+
+}  // namespace
+
 std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Matrix3d& rotation,
                             const Eigen::Vector3d& translation, std::size_t record) {
   const std::string source = input.string();
@@ -425,21 +448,28 @@ std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Mat
     throw InputError(source +
                      ": a moved SDF copy needs an SDF, MOL or MOL2 input (write .pdb instead)");
   }
-  const RDLog::LogStateSetter quiet;
   const std::string text = detail::select_record(read_input_file(input), format, record, source);
-  if (format == detail::RdkitFormat::mol2) detail::check_mol2_structure(text, source);
-  auto mol = detail::parse(text, format, source);
-  if (!mol || mol->getNumConformers() == 0)
-    throw FormatError(source, "RDKit could not read the molecule");
-  RDKit::Conformer& conformer = mol->getConformer();
-  for (unsigned i = 0; i < mol->getNumAtoms(); ++i) {
-    const RDGeom::Point3D& p = conformer.getAtomPos(i);
-    const Eigen::Vector3d moved = rotation * Eigen::Vector3d(p.x, p.y, p.z) + translation;
-    conformer.setAtomPos(i, RDGeom::Point3D(moved.x(), moved.y(), moved.z()));
+  return moved_block(text, format, source, rotation, translation) + "$$$$\n";
+}
+
+std::string moved_record_block(const MoleculeRecord& record, const Eigen::Matrix3d& rotation,
+                               const Eigen::Vector3d& translation) {
+  const std::string source = record.source.string();
+  switch (record.format) {
+    case RecordFormat::mdl:
+      return moved_block(record.text, detail::RdkitFormat::mdl, source, rotation, translation);
+    case RecordFormat::mol2:
+      return moved_block(record.text, detail::RdkitFormat::mol2, source, rotation, translation);
+    case RecordFormat::structure:
+      if (!record.text.empty()) {
+        return moved_block(record.text, detail::RdkitFormat::pdb, source, rotation, translation);
+      }
+      throw InputError(source + ": a PQR structure cannot be written as a mol block");
+    case RecordFormat::smiles:
+      break;
   }
-  return detail::rdkit_call(source, "write the molecule", [&]() {
-    return RDKit::MolToMolBlock(*mol, true, -1, false) + "$$$$\n";
-  });
+  throw InputError(source + ": record " + std::to_string(record.record) +
+                   " is a SMILES string without coordinates");
 }
 
 }  // namespace surfcomp::io

@@ -107,6 +107,12 @@ class SurfaceOverlay {
   /// term then takes no part.
   SurfaceOverlay(SurfaceSample reference, SurfaceSample probe, const OverlayOptions& options = {},
                  AtomSample reference_atoms = {}, AtomSample probe_atoms = {});
+  /// The overlay of `probe` on the reference of `other`: the same numbers as
+  /// SurfaceOverlay(reference, probe, other.options(), reference_atoms, probe_atoms) with
+  /// `other`'s reference and reference atoms, without indexing the reference again; for one
+  /// reference against many probes (a screen's first stage). Throws InputError when the probe
+  /// sample is empty or its atoms are malformed.
+  SurfaceOverlay(const SurfaceOverlay& other, SurfaceSample probe, AtomSample probe_atoms = {});
   SurfaceOverlay(SurfaceOverlay&&) noexcept;
   SurfaceOverlay& operator=(SurfaceOverlay&&) noexcept;
   ~SurfaceOverlay();

@@ -1,0 +1,223 @@
+#include "surfcomp/core/io/molecule_records.hpp"
+
+#include "molecule_reader_detail.hpp"
+#include "molecule_text.hpp"
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/core/io/input_file.hpp"
+
+#include <boost/iostreams/copy.hpp>
+#include <boost/iostreams/device/array.hpp>
+#include <boost/iostreams/filter/gzip.hpp>
+#include <boost/iostreams/filtering_stream.hpp>
+
+#include <algorithm>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace surfcomp::io {
+namespace {
+
+/// Whether the file name ends with ".dat.gz" (case-insensitive).
+bool is_gzipped_list(const std::filesystem::path& path) {
+  const std::string name = path.filename().string();
+  if (name.size() < 7) return false;
+  std::string tail = name.substr(name.size() - 7);
+  std::transform(tail.begin(), tail.end(), tail.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return tail == ".dat.gz";
+}
+
+/// The decompressed content of a gzip file, at most max_input_file_bytes.
+std::string read_gzip_file(const std::filesystem::path& path) {
+  const std::string compressed = read_input_file(path);
+  namespace bio = boost::iostreams;
+  std::string text;
+  try {
+    bio::filtering_istream in;
+    in.push(bio::gzip_decompressor());
+    in.push(bio::array_source(compressed.data(), compressed.size()));
+    char buffer[1 << 16];
+    while (in) {
+      in.read(buffer, sizeof buffer);
+      text.append(buffer, static_cast<std::size_t>(in.gcount()));
+      if (text.size() > max_input_file_bytes) {
+        throw FileError(path.string(), "decompresses to more than the limit of " +
+                                           std::to_string(max_input_file_bytes) + " bytes");
+      }
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw FileError(path.string(), std::string("cannot decompress (gzip): ") + e.what());
+  }
+  return text;
+}
+
+std::vector<std::string> split(const std::string& line, char separator) {
+  std::vector<std::string> fields;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t end = line.find(separator, begin);
+    fields.push_back(detail::trimmed(line.substr(begin, end - begin)));
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  return fields;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+std::string fallback_name(const std::filesystem::path& path, std::size_t record) {
+  return path.stem().string() + ":" + std::to_string(record);
+}
+
+std::vector<MoleculeRecord> smi_records(const std::filesystem::path& path,
+                                        const std::string& text) {
+  std::vector<MoleculeRecord> records;
+  for (const std::string& line : lines_of(text)) {
+    const std::string content = detail::trimmed(line);
+    if (content.empty() || content.front() == '#') continue;
+    std::istringstream fields(content);
+    MoleculeRecord record;
+    record.source = path;
+    record.record = records.size() + 1;
+    record.format = RecordFormat::smiles;
+    fields >> record.text >> record.name;
+    if (record.name.empty()) record.name = fallback_name(path, record.record);
+    records.push_back(std::move(record));
+  }
+  return records;
+}
+
+std::vector<MoleculeRecord> dat_records(const std::filesystem::path& path,
+                                        const std::string& text) {
+  const std::string source = path.string();
+  const std::vector<std::string> lines = lines_of(text);
+  if (lines.empty() || detail::trimmed(lines.front()).empty() ||
+      detail::trimmed(lines.front()).front() != '#') {
+    throw FormatError(source, 1, "expected a header line such as '# Mol_Title<TAB>ID<TAB>SMILES'");
+  }
+  const std::vector<std::string> header = split(detail::trimmed(lines.front()).substr(1), '\t');
+  const auto column = [&](const char* name) {
+    const auto found = std::find(header.begin(), header.end(), name);
+    return found == header.end() ? std::string::npos
+                                 : static_cast<std::size_t>(found - header.begin());
+  };
+  const std::size_t smiles_column = column("SMILES");
+  if (smiles_column == std::string::npos)
+    throw FormatError(source, 1, "the header names no SMILES column");
+  std::size_t name_column = column("ID");
+  if (name_column == std::string::npos) name_column = column("Mol_Title");
+  std::vector<MoleculeRecord> records;
+  for (std::size_t l = 1; l < lines.size(); ++l) {
+    if (detail::trimmed(lines[l]).empty()) continue;
+    const std::vector<std::string> fields = split(lines[l], '\t');
+    if (fields.size() < header.size()) {
+      throw FormatError(source, l + 1,
+                        "expected " + std::to_string(header.size()) +
+                            " tab-separated fields, got " + std::to_string(fields.size()));
+    }
+    MoleculeRecord record;
+    record.source = path;
+    record.record = records.size() + 1;
+    record.format = RecordFormat::smiles;
+    record.text = fields[smiles_column];
+    record.name = name_column == std::string::npos || fields[name_column].empty()
+                      ? fallback_name(path, record.record)
+                      : fields[name_column];
+    records.push_back(std::move(record));
+  }
+  return records;
+}
+
+/// The first line of a mol block or the line after @<TRIPOS>MOLECULE.
+std::string title_of(const std::string& text, RecordFormat format) {
+  const std::vector<std::string> lines = lines_of(text);
+  if (format == RecordFormat::mdl) return lines.empty() ? "" : detail::trimmed(lines.front());
+  for (std::size_t l = 0; l + 1 < lines.size(); ++l) {
+    if (detail::trimmed(lines[l]) == "@<TRIPOS>MOLECULE") return detail::trimmed(lines[l + 1]);
+  }
+  return "";
+}
+
+}  // namespace
+
+bool is_smiles_file(const std::filesystem::path& path) {
+  const std::string extension = lowercase_extension(path);
+  return extension == ".smi" || extension == ".dat" || is_gzipped_list(path);
+}
+
+bool is_record_file(const std::filesystem::path& path) {
+  return is_molecule_file(path) || is_smiles_file(path);
+}
+
+std::vector<MoleculeRecord> read_molecule_records(const std::filesystem::path& path) {
+  const std::string extension = lowercase_extension(path);
+  if (is_gzipped_list(path)) return dat_records(path, read_gzip_file(path));
+  if (extension == ".dat") return dat_records(path, read_input_file(path));
+  if (extension == ".smi") return smi_records(path, read_input_file(path));
+  if (extension == ".pdb" || extension == ".ent" || extension == ".pqr") {
+    MoleculeRecord record;
+    record.source = path;
+    record.name = path.stem().string();
+    record.format = RecordFormat::structure;
+    const std::string text = read_input_file(path);  // readable now, not when the record is read
+    if (extension != ".pqr") record.text = text;
+    return {record};
+  }
+  detail::RdkitFormat format;
+  RecordFormat record_format;
+  if (extension == ".sdf" || extension == ".mol") {
+    format = detail::RdkitFormat::mdl;
+    record_format = RecordFormat::mdl;
+  } else if (extension == ".mol2") {
+    format = detail::RdkitFormat::mol2;
+    record_format = RecordFormat::mol2;
+  } else {
+    throw FormatError(path.string(),
+                      "unknown molecule list extension '" + extension +
+                          "' (expected .sdf .mol .mol2 .pdb .ent .pqr .smi .dat .dat.gz)");
+  }
+  std::vector<MoleculeRecord> records;
+  for (std::string& text : detail::split_records(read_input_file(path), format)) {
+    MoleculeRecord record;
+    record.source = path;
+    record.record = records.size() + 1;
+    record.format = record_format;
+    record.name = title_of(text, record_format);
+    if (record.name.empty()) record.name = fallback_name(path, record.record);
+    record.text = std::move(text);
+    records.push_back(std::move(record));
+  }
+  return records;
+}
+
+Molecule read_record_molecule(const MoleculeRecord& record, const MoleculeReadOptions& options) {
+  MoleculeReadOptions single = options;
+  single.record = 0;
+  switch (record.format) {
+    case RecordFormat::structure:
+      if (record.text.empty()) return read_molecule(record.source, single);
+      return detail::read_with_rdkit(record.source, record.text, detail::RdkitFormat::pdb, single);
+    case RecordFormat::smiles:
+      throw InputError(record.source.string() + ": record " + std::to_string(record.record) + " (" +
+                       record.name + ") is a SMILES string without coordinates");
+    case RecordFormat::mol2:
+      return detail::read_with_rdkit(record.source, record.text, detail::RdkitFormat::mol2, single);
+    case RecordFormat::mdl:
+      break;
+  }
+  return detail::read_with_rdkit(record.source, record.text, detail::RdkitFormat::mdl, single);
+}
+
+}  // namespace surfcomp::io

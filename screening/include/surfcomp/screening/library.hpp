@@ -1,0 +1,115 @@
+// Screening libraries (.sclib): many molecules' conformers in one file, each entry holding what
+// the first stage of a screen reads (the overlay's surface and heteroatom samples) and the
+// molecule itself, from which the second stage rebuilds the surface of a finalist.
+//
+// Layout (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
+//   header   "SURFCLIB", u32 format version, u32 0
+//   entries  one after the other, each checksummed (FNV-1a 64) in the index
+//   index    u64 count; per entry u64 offset, u64 size, u64 checksum, string name,
+//            string source, u32 record, u32 conformer, u32 heavy atoms; string settings
+//   trailer  u64 index offset, u64 index size, u64 index checksum, "SCLIBEND"
+// The file is memory-mapped and entries are decoded on demand, by index or by name.
+#pragma once
+
+#include "surfcomp/core/io/molecule_records.hpp"
+#include "surfcomp/matching/overlay_sample.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace surfcomp::screening {
+
+/// The format version write_library writes and Library reads.
+inline constexpr std::uint32_t library_format_version = 1;
+
+/// What the index says of an entry (it is read without decoding the entry).
+struct LibraryEntryInfo {
+  std::string name;               ///< the molecule's name (io::MoleculeRecord::name)
+  std::string source;             ///< the input file it came from
+  std::uint32_t record = 0;       ///< 1-based record of that file
+  std::uint32_t conformer = 0;    ///< 1-based generated conformer; 0 = the record's coordinates
+  std::uint32_t heavy_atoms = 0;  ///< atoms other than hydrogen
+};
+
+/// One library entry: a molecule in one conformation, and its samples for the overlay.
+struct LibraryEntry {
+  LibraryEntryInfo info;
+  /// The molecule with this conformer's coordinates: an MDL mol block (SDF records and
+  /// generated conformers, hydrogens explicit for the latter), a MOL2 section or a PDB text.
+  /// molecule.source, record and name repeat info.
+  io::MoleculeRecord molecule;
+  /// The surface sample (matching::sample_surface of the molecule's surface, built as
+  /// `surfcomp match` builds it) and the heteroatoms (matching::sample_atoms).
+  matching::SurfaceSample sample;
+  matching::AtomSample atoms;
+};
+
+/// Appends entries to a library being written to `out`; finish() writes the index. Entries
+/// keep the order they are added in.
+class LibraryWriter {
+ public:
+  /// Writes the header. `settings` is free text stored in the index (how the library was
+  /// built), shown by `surfcomp library info`.
+  LibraryWriter(std::ostream& out, std::string settings);
+  LibraryWriter(const LibraryWriter&) = delete;
+  LibraryWriter& operator=(const LibraryWriter&) = delete;
+  ~LibraryWriter();
+
+  /// Encodes and writes `entry`. Throws InputError for an entry whose sample's arrays differ
+  /// in size or whose text does not fit the format's 32-bit lengths.
+  void add(const LibraryEntry& entry);
+  /// Writes the index and the trailer; no entry may be added after it.
+  void finish();
+  /// Entries added so far.
+  std::size_t size() const;
+  /// Bytes written so far.
+  std::uint64_t bytes() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Writes `entries` as a library at `path`, atomically (io::write_file_atomically).
+void write_library(const std::filesystem::path& path, const std::vector<LibraryEntry>& entries,
+                   const std::string& settings = "");
+
+/// A library file opened for reading: memory-mapped, its header, index and trailer checked on
+/// opening; entries are decoded (and their checksums verified) when asked for. Thread-safe for
+/// reading.
+class Library {
+ public:
+  /// Opens and checks `path`. Throws FileError (missing, unreadable, not a regular file) and
+  /// FormatError naming the file for anything that is not a library of this version: a wrong
+  /// magic, version, size or checksum, an index entry outside the entries' region.
+  explicit Library(const std::filesystem::path& path);
+  Library(Library&&) noexcept;
+  Library& operator=(Library&&) noexcept;
+  ~Library();
+
+  std::size_t size() const;  ///< entries
+  const LibraryEntryInfo& info(std::size_t index) const;
+  /// Entry `index`, decoded. Throws FormatError naming the file and the entry when its bytes
+  /// do not match their checksum or do not decode; std::out_of_range for an index >= size().
+  LibraryEntry entry(std::size_t index) const;
+  /// The encoded size of entry `index`, bytes.
+  std::uint64_t entry_bytes(std::size_t index) const;
+  /// The indices of the entries named `name`, in library order (empty when none is).
+  std::vector<std::size_t> find(const std::string& name) const;
+
+  std::uint32_t version() const;
+  const std::string& settings() const;
+  std::uint64_t file_bytes() const;
+  const std::filesystem::path& path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace surfcomp::screening

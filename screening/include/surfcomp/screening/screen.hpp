@@ -1,0 +1,122 @@
+// One query against a library, in two stages (docs/screening.md):
+//  1. a fast score of every entry: the whole-surface overlay score (matching::SurfaceOverlay)
+//     of the entry's stored samples at the four principal-axes superpositions onto the query,
+//     without refinement, the best of the four kept; a molecule counts by its best conformer;
+//  2. the full match (matching::match_surfaces, as `surfcomp match` runs it) of the query with
+//     the best conformer of the `candidates` best molecules, its surface and descriptors
+//     rebuilt from the stored molecule.
+// Every entry is scored independently into its own slot (TBB): the hits do not depend on the
+// thread count, and a caller may split the entries over processes (fast_scores on a range).
+#pragma once
+
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/matching/match.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/screening/library.hpp"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <memory>
+#include <ostream>
+#include <vector>
+
+namespace surfcomp::screening {
+
+struct ScreenOptions {
+  /// Default 50. The molecules, best fast score first, whose best conformer gets the full match
+  /// (stage 2). 0: stage 1 alone.
+  std::size_t candidates = 50;
+  /// Default 100. Hits returned, best first; 0: every molecule of the library.
+  std::size_t top = 100;
+  /// The full match of stage 2, whose overlay options (sigma, spacing, chemistry and atom
+  /// weights) stage 1 scores with too; default as `surfcomp match`.
+  matching::MatchOptions match;
+  /// How a candidate's stored molecule is read and its surface rebuilt in stage 2; default as
+  /// `surfcomp match` (its descriptors are built with the query's DescriptorOptions).
+  io::MoleculeReadOptions read;
+  mesh::MolecularSurfaceOptions surface;
+};
+
+/// The query, described once: its descriptors (stage 2) and its overlay samples (stage 1).
+struct ScreenQuery {
+  harmonic::SurfaceDescriptors descriptors;
+  matching::SurfaceSample sample;  ///< sample_surface(descriptors.surface, overlay spacing)
+  matching::AtomSample atoms;      ///< sample_atoms(descriptors.atoms)
+  /// The query's sample indexed once for stage 1 (an overlay of the query on itself, from
+  /// which each entry's overlay is made without indexing the query again).
+  std::shared_ptr<const matching::SurfaceOverlay> overlay;
+};
+
+/// The query of a screen from its descriptors (describe_surface of its molecule's surface, or
+/// a .hsi file). Throws InputError when its surface has no vertex.
+ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
+                              const ScreenOptions& options = {});
+
+/// A score of one entry against the query.
+struct HitScore {
+  double score = 0.0;  ///< the overlay score (OverlayScore::score)
+  double shape = 0.0;  ///< its terms
+  double chem = 0.0;
+  double atoms = 0.0;
+  /// Moves the entry's coordinates into the query's frame (homogeneous, row-major in CSV).
+  Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
+};
+
+/// Stage 1 of one entry (see the file comment).
+HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
+                    const ScreenOptions& options = {});
+
+/// Stage 1 of the entries [begin, end) of `library`, in parallel (TBB), in entry order.
+/// Throws FormatError for a damaged entry (Library::entry).
+std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& library,
+                                  std::size_t begin, std::size_t end,
+                                  const ScreenOptions& options = {});
+
+/// Each molecule's best entry by its stage-1 score (a molecule: the entries sharing name,
+/// source and record), the molecules ordered by that score, best first; ties go to the lower
+/// entry index. `fast` holds one score per library entry.
+std::vector<std::size_t> best_entry_per_molecule(const Library& library,
+                                                 const std::vector<HitScore>& fast);
+
+/// Stage 2 of one entry: the full match of the query with the entry's molecule, rebuilt (see
+/// ScreenOptions::read, surface); the top alignment's overlay score and transform. An entry
+/// without any alignment scores 0 with the identity. Throws what reading the molecule,
+/// building its surface or matching throws.
+HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
+                    const ScreenOptions& options = {});
+
+/// One row of a screen's result.
+struct Hit {
+  std::size_t entry = 0;  ///< 0-based library index of the molecule's best conformer
+  int stage = 1;          ///< the stage whose score `score` is: 2 for the candidates
+  HitScore score;
+  double fast_score = 0.0;  ///< its stage-1 score
+};
+
+/// The result rows: first the `full.size()` candidates (the first entries of `best`, their
+/// stage-2 scores in `full`) by their stage-2 score, then the other molecules of `best` in
+/// their stage-1 order; at most `top` rows (0: all). Ties go to the lower entry index.
+std::vector<Hit> rank_hits(const std::vector<std::size_t>& best, const std::vector<HitScore>& fast,
+                           const std::vector<HitScore>& full, std::size_t top);
+
+/// A screen's rows and its time.
+struct ScreenResult {
+  std::vector<Hit> hits;
+  double stage1_seconds = 0.0;  ///< wall-clock time of the fast scores
+  double stage2_seconds = 0.0;  ///< wall-clock time of the full matches
+};
+
+/// The whole screen in this process: fast_scores of every entry, best_entry_per_molecule, the
+/// first options.candidates of them through full_score (in parallel), rank_hits.
+ScreenResult screen(const ScreenQuery& query, const Library& library,
+                    const ScreenOptions& options = {});
+
+/// The hits as CSV: a header row, then one row per hit with the columns rank, entry (1-based),
+/// name, source, record, conformer, score, stage, shape, chem, atoms, fast_score and the 16
+/// numbers t00..t33 of the transform, row-major. Names and sources are quoted when they hold a
+/// comma or a quote.
+void write_hits_csv(std::ostream& out, const Library& library, const std::vector<Hit>& hits);
+
+}  // namespace surfcomp::screening

@@ -1,0 +1,194 @@
+#include "surfcomp/screening/screen.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/molecule_records.hpp"
+#include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/matching/overlay.hpp"
+#include "surfcomp/matching/principal_axes.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <numeric>
+#include <tuple>
+#include <utility>
+
+namespace surfcomp::screening {
+namespace {
+
+HitScore from_overlay(const matching::OverlayScore& s, const Eigen::Matrix4d& transform) {
+  HitScore hit;
+  hit.score = s.score;
+  hit.shape = s.shape;
+  hit.chem = s.chem;
+  hit.atoms = s.atoms;
+  hit.transform = transform;
+  return hit;
+}
+
+/// A CSV field: quoted (inner quotes doubled) when it holds a comma, quote or line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+/// %.6f of a value, with -0.000000 written as 0.000000 so that equal results give equal bytes.
+std::string fixed(double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.6f", value);
+  std::string s = text;
+  if (s == "-0.000000") s = "0.000000";
+  return s;
+}
+
+bool same_overlay_options(const matching::OverlayOptions& x, const matching::OverlayOptions& y) {
+  return x.sigma == y.sigma && x.spacing == y.spacing && x.chem_weight == y.chem_weight &&
+         x.atom_weight == y.atom_weight && x.iterations == y.iterations &&
+         x.tolerance == y.tolerance;
+}
+
+}  // namespace
+
+ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
+                              const ScreenOptions& options) {
+  ScreenQuery query;
+  query.sample = matching::sample_surface(descriptors.surface, options.match.overlay.spacing);
+  if (query.sample.size() == 0)
+    throw InputError(descriptors.surface.source() + ": the query's surface has no vertex");
+  query.atoms = matching::sample_atoms(descriptors.atoms);
+  query.overlay = std::make_shared<const matching::SurfaceOverlay>(
+      query.sample, query.sample, options.match.overlay, query.atoms, query.atoms);
+  query.descriptors = std::move(descriptors);
+  return query;
+}
+
+HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
+                    const ScreenOptions& options) {
+  if (entry.sample.size() == 0) return {};
+  const matching::SurfaceOverlay overlay =
+      query.overlay && same_overlay_options(query.overlay->options(), options.match.overlay)
+          ? matching::SurfaceOverlay(*query.overlay, entry.sample, entry.atoms)
+          : matching::SurfaceOverlay(query.sample, entry.sample, options.match.overlay, query.atoms,
+                                     entry.atoms);
+  HitScore best;
+  bool first = true;
+  for (const matching::RigidTransform& start :
+       matching::principal_axes_starts(query.sample, entry.sample, false)) {
+    const matching::OverlayScore s = overlay.score(start);
+    if (first || s.score > best.score) best = from_overlay(s, start.matrix());
+    first = false;
+  }
+  return best;
+}
+
+std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& library,
+                                  std::size_t begin, std::size_t end,
+                                  const ScreenOptions& options) {
+  end = std::min(end, library.size());
+  begin = std::min(begin, end);
+  std::vector<HitScore> scores(end - begin);
+  tbb::parallel_for(begin, end, [&](std::size_t e) {
+    scores[e - begin] = fast_score(query, library.entry(e), options);
+  });
+  return scores;
+}
+
+std::vector<std::size_t> best_entry_per_molecule(const Library& library,
+                                                 const std::vector<HitScore>& fast) {
+  if (fast.size() != library.size()) {
+    throw InputError("best_entry_per_molecule: " + std::to_string(fast.size()) +
+                     " scores for a library of " + std::to_string(library.size()) + " entries");
+  }
+  // A molecule is (source, record, name); its entries need not be adjacent.
+  std::map<std::tuple<std::string, std::uint32_t, std::string>, std::size_t> best;
+  for (std::size_t e = 0; e < library.size(); ++e) {
+    const LibraryEntryInfo& info = library.info(e);
+    const auto [it, inserted] =
+        best.emplace(std::make_tuple(info.source, info.record, info.name), e);
+    if (!inserted && fast[e].score > fast[it->second].score) it->second = e;
+  }
+  std::vector<std::size_t> entries;
+  entries.reserve(best.size());
+  for (const auto& item : best) entries.push_back(item.second);
+  std::sort(entries.begin(), entries.end(), [&](std::size_t x, std::size_t y) {
+    if (fast[x].score != fast[y].score) return fast[x].score > fast[y].score;
+    return x < y;
+  });
+  return entries;
+}
+
+HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
+                    const ScreenOptions& options) {
+  const Molecule molecule = io::read_record_molecule(entry.molecule, options.read);
+  harmonic::SurfaceDescriptors described =
+      harmonic::describe_surface(mesh::build_molecular_surface(molecule, options.surface), molecule,
+                                 query.descriptors.options);
+  const matching::MatchResult result =
+      matching::match_surfaces(query.descriptors, described, options.match);
+  if (result.alignments.empty()) return {};
+  const matching::Alignment& top = result.alignments.front();
+  return from_overlay(top.overlay, top.transform);
+}
+
+std::vector<Hit> rank_hits(const std::vector<std::size_t>& best, const std::vector<HitScore>& fast,
+                           const std::vector<HitScore>& full, std::size_t top) {
+  const std::size_t k = std::min(full.size(), best.size());
+  std::vector<Hit> candidates;
+  for (std::size_t i = 0; i < k; ++i)
+    candidates.push_back({best[i], 2, full[i], fast[best[i]].score});
+  std::sort(candidates.begin(), candidates.end(), [](const Hit& x, const Hit& y) {
+    if (x.score.score != y.score.score) return x.score.score > y.score.score;
+    return x.entry < y.entry;
+  });
+  std::vector<Hit> hits = std::move(candidates);
+  for (std::size_t i = k; i < best.size(); ++i)
+    hits.push_back({best[i], 1, fast[best[i]], fast[best[i]].score});
+  if (top > 0 && hits.size() > top) hits.resize(top);
+  return hits;
+}
+
+ScreenResult screen(const ScreenQuery& query, const Library& library,
+                    const ScreenOptions& options) {
+  matching::validate(options.match);
+  ScreenResult result;
+  const Stopwatch clock;
+  const std::vector<HitScore> fast = fast_scores(query, library, 0, library.size(), options);
+  const std::vector<std::size_t> best = best_entry_per_molecule(library, fast);
+  result.stage1_seconds = clock.elapsed_s();
+  std::vector<HitScore> full(std::min(options.candidates, best.size()));
+  tbb::parallel_for(std::size_t{0}, full.size(), [&](std::size_t i) {
+    full[i] = full_score(query, library.entry(best[i]), options);
+  });
+  result.stage2_seconds = clock.elapsed_s() - result.stage1_seconds;
+  result.hits = rank_hits(best, fast, full, options.top);
+  return result;
+}
+
+void write_hits_csv(std::ostream& out, const Library& library, const std::vector<Hit>& hits) {
+  out << "rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,fast_score";
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) out << ",t" << r << c;
+  }
+  out << "\n";
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const Hit& hit = hits[i];
+    const LibraryEntryInfo& info = library.info(hit.entry);
+    out << i + 1 << ',' << hit.entry + 1 << ',' << csv_field(info.name) << ','
+        << csv_field(info.source) << ',' << info.record << ',' << info.conformer << ','
+        << fixed(hit.score.score) << ',' << hit.stage << ',' << fixed(hit.score.shape) << ','
+        << fixed(hit.score.chem) << ',' << fixed(hit.score.atoms) << ',' << fixed(hit.fast_score);
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) out << ',' << fixed(hit.score.transform(r, c));
+    }
+    out << "\n";
+  }
+}
+
+}  // namespace surfcomp::screening

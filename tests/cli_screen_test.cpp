@@ -1,0 +1,179 @@
+// `surfcomp library` and `surfcomp screen` as a user runs them: the library and the hits do not
+// depend on --threads or on the number of MPI processes, a query taken from the library finds
+// itself first, a damaged library and a SMILES list without conformers are refused with one
+// line, and a bad record is skipped and logged.
+#include "test_data.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace surfcomp {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kProgram = fs::path(SURFCOMP_BINARY_DIR) / "tools" / "surfcomp";
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> fields_of(const std::string& row) {
+  std::vector<std::string> fields;
+  std::istringstream in(row);
+  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+  return fields;
+}
+
+struct ProgramRun {
+  int status = -1;
+  std::string err;
+};
+
+/// One library of three molecules, two conformers each, shared by the tests of the suite.
+class CliScreen : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("surfcomp_cli_screen_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "set.smi") << "# three molecules and a bad line\n"
+                                       "CC(=O)Nc1ccc(O)cc1 paracetamol\n"
+                                       "C1CC unclosed_ring\n"
+                                       "OC(=O)c1ccccc1O salicylic_acid\n"
+                                       "CC(C)Cc1ccc(cc1)C(C)C(=O)O ibuprofen\n";
+    const ProgramRun built =
+        run("library build set.smi -o lib.sclib --conformers 2 --seed 3 --threads 2");
+    ASSERT_EQ(built.status, 0) << built.err;
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+  /// Runs `PREFIX surfcomp ARGUMENTS` in the suite's directory, stdout discarded.
+  static ProgramRun run(const std::string& arguments, const std::string& prefix = "") {
+    const fs::path err = dir_ / "stderr.txt";
+    const std::string command = "cd " + dir_.string() + " && " + prefix + kProgram.string() + " " +
+                                arguments + " >/dev/null 2>" + err.string();
+    const int raw = std::system(command.c_str());
+    ProgramRun r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.err = file_bytes(err);
+    return r;
+  }
+
+  static fs::path dir_;
+};
+
+fs::path CliScreen::dir_;
+
+TEST_F(CliScreen, LibraryIsTheSameWithOneThreadAndTheBadRecordIsLogged) {
+  const ProgramRun built =
+      run("library build set.smi -o one.sclib --conformers 2 --seed 3 --threads 1");
+  ASSERT_EQ(built.status, 0) << built.err;
+  EXPECT_EQ(file_bytes(dir_ / "one.sclib"), file_bytes(dir_ / "lib.sclib"));
+  const std::string log = file_bytes(dir_ / "lib.sclib.log");
+  EXPECT_NE(log.find("set.smi\t2\tunclosed_ring\t"), std::string::npos) << log;
+  EXPECT_EQ(lines_of(log).size(), 3u) << log;  // two comment lines, one skipped record
+}
+
+TEST_F(CliScreen, HitsAreTheSameWithOneAndTwoThreadsAndTheQueryFindsItselfFirst) {
+  ASSERT_EQ(run("library export lib.sclib -o all.sdf").status, 0);
+  const std::string all = file_bytes(dir_ / "all.sdf");
+  EXPECT_NE(all.find(">  <surfcomp_conformer>\n2\n"), std::string::npos);
+  EXPECT_NE(all.find(">  <surfcomp_name>\nibuprofen\n"), std::string::npos);
+  // The query: entry 3, the first conformer of salicylic acid.
+  for (const char* threads : {"1", "2"}) {
+    const ProgramRun r = run(
+        std::string("screen all.sdf lib.sclib --record 3 --candidates 2 --top 0 ") +
+        "--aligned-out hits" + threads + ".sdf -o hits" + threads + ".csv --threads " + threads);
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  const std::string hits = file_bytes(dir_ / "hits1.csv");
+  EXPECT_EQ(hits, file_bytes(dir_ / "hits2.csv"));
+  EXPECT_EQ(file_bytes(dir_ / "hits1.sdf"), file_bytes(dir_ / "hits2.sdf"));
+  const std::vector<std::string> rows = lines_of(hits);
+  ASSERT_EQ(rows.size(), 4u);  // header and the three molecules
+  EXPECT_EQ(rows[0].rfind("rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,"
+                          "fast_score,t00,t01,t02,t03,t10",
+                          0),
+            0u);
+  EXPECT_EQ(rows[1].rfind("1,3,salicylic_acid,set.smi,3,1,", 0), 0u) << rows[1];
+  // Columns 8 (stage): the two candidates come from the full match, the third molecule from
+  // the fast score.
+  EXPECT_EQ(fields_of(rows[1])[7], "2");
+  EXPECT_EQ(fields_of(rows[2])[7], "2");
+  EXPECT_EQ(fields_of(rows[3])[7], "1");
+  EXPECT_EQ(fields_of(rows[1]).size(), 28u);
+  const std::string aligned = file_bytes(dir_ / "hits1.sdf");
+  std::size_t records = 0;
+  for (std::size_t at = aligned.find("$$$$"); at != std::string::npos;
+       at = aligned.find("$$$$", at + 4))
+    ++records;
+  EXPECT_EQ(records, 3u);
+}
+
+TEST_F(CliScreen, HitsAreTheSameUnderMpiWithOneAndTwoProcesses) {
+#ifndef SURFCOMP_MPIEXEC
+  GTEST_SKIP() << "surfcomp was built without MPI";
+#else
+  ASSERT_EQ(run("library export lib.sclib -o mpi.sdf").status, 0);
+  ASSERT_EQ(run("screen mpi.sdf lib.sclib --record 1 --candidates 2 --top 0 -o serial.csv").status,
+            0);
+  for (const char* ranks : {"1", "2"}) {
+    const ProgramRun r = run(
+        "screen mpi.sdf lib.sclib --record 1 --candidates 2 --top 0 -o mpi" + std::string(ranks) +
+            ".csv --threads 1",
+        std::string(SURFCOMP_MPIEXEC) + " --allow-run-as-root --oversubscribe -np " + ranks + " ");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(file_bytes(dir_ / ("mpi" + std::string(ranks) + ".csv")),
+              file_bytes(dir_ / "serial.csv"))
+        << ranks << " processes";
+  }
+#endif
+}
+
+TEST_F(CliScreen, DamagedOrCutLibraryIsRefusedWithOneLine) {
+  ASSERT_EQ(run("library export lib.sclib -o query.sdf").status, 0);
+  const std::string good = file_bytes(dir_ / "lib.sclib");
+  std::string damaged = good;
+  damaged[damaged.size() - 40] = static_cast<char>(damaged[damaged.size() - 40] ^ 0x21);
+  std::ofstream(dir_ / "damaged.sclib", std::ios::binary) << damaged;
+  std::ofstream(dir_ / "cut.sclib", std::ios::binary) << good.substr(0, good.size() - 100);
+  for (const char* name : {"damaged.sclib", "cut.sclib"}) {
+    for (const std::string& command :
+         {std::string("library info ") + name,
+          std::string("screen query.sdf ") + name + " --record 1 -o never.csv"}) {
+      const ProgramRun r = run(command);
+      EXPECT_NE(r.status, 0) << command;
+      EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err;
+      EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "never.csv"));
+}
+
+TEST_F(CliScreen, SmilesWithoutConformersAreRefusedBeforeAnyWork) {
+  const ProgramRun r = run("library build set.smi -o nothing.sclib");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--conformers"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "nothing.sclib"));
+}
+
+}  // namespace
+}  // namespace surfcomp

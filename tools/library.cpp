@@ -1,0 +1,207 @@
+// surfcomp library: build a screening library (.sclib) from molecule files, describe one, or
+// export its conformers as SDF.
+#include "command.hpp"
+#include "command_files.hpp"
+#include "options.hpp"
+
+#include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/screening/library.hpp"
+#include "surfcomp/screening/library_build.hpp"
+
+#include <tbb/global_control.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <set>
+#include <tuple>
+
+namespace surfcomp::tools {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: surfcomp library build INPUT... -o LIB.sclib [--conformers N] [--seed S]\n"
+    "                              [--threads T]\n"
+    "       surfcomp library info LIB.sclib\n"
+    "       surfcomp library export LIB.sclib -o OUT.sdf\n\n"
+    "build   reads every molecule of the INPUTs (SDF/MOL/MOL2 files of one or many records,\n"
+    "        PDB files, SMILES lists .smi and tab-separated .dat/.dat.gz with a header line\n"
+    "        '# Mol_Title ID SMILES', directories of these), generates --conformers N ETKDG +\n"
+    "        MMFF conformers of each (seeded by --seed; without --conformers a record's own\n"
+    "        coordinates are used, and SMILES lists are refused), builds each conformer's surface\n"
+    "        as `surfcomp match` does and stores the molecule and its overlay samples. Records\n"
+    "        that cannot be read, embedded or surfaced are skipped and listed in LIB.sclib.log.\n"
+    "        Entries keep the input order; the file does not depend on --threads.\n"
+    "info    prints the library's version, entries, molecules, sizes and build settings.\n"
+    "export  writes every entry's molecule in its conformation, with the SD tags\n"
+    "        surfcomp_entry (1-based), surfcomp_name and surfcomp_conformer.";
+
+std::unique_ptr<tbb::global_control> limit_threads(int threads) {
+  require_in_range("threads", threads, 0, 1024);
+  if (threads == 0) return nullptr;
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                               static_cast<std::size_t>(threads));
+}
+
+std::string duration(double seconds) {
+  const long s = std::lround(seconds);
+  char text[32];
+  std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  return text;
+}
+
+int build(const std::vector<std::string>& args) {
+  namespace po = boost::program_options;
+  std::string output;
+  int conformers = 0, seed = ConformerOptions{}.seed, threads = 0;
+  po::options_description described("options");
+  // clang-format off
+  described.add_options()
+      ("help,h", "print this help")
+      ("output,o", po::value(&output)->required(), "output library (.sclib)")
+      ("conformers", po::value(&conformers)->default_value(0),
+       "conformers per molecule from ETKDG + MMFF (0: the records' own coordinates)")
+      ("seed", po::value(&seed)->default_value(seed), "ETKDG random seed (>= 0)")
+      ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
+  // clang-format on
+  po::variables_map vm;
+  if (!parse_command_line(args, described, -1, kUsage, vm)) return 0;
+  if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
+  std::vector<std::filesystem::path> inputs;
+  for (const auto& input : vm["input"].as<std::vector<std::string>>()) inputs.emplace_back(input);
+  require_in_range("conformers", conformers, 0, 10000);
+  require_in_range("seed", seed, 0, 2147483647.0);
+  const auto limit = limit_threads(threads);
+  const std::filesystem::path library = output;
+  const std::filesystem::path log = output + ".log";
+  CommandFiles files;
+  for (const auto& input : inputs) files.inputs.push_back({"INPUT", input});
+  files.outputs.push_back({"--output", library, {".sclib"}, ""});
+  files.outputs.push_back({"the log", log, {}, ""});
+  check_command_files(files);
+  screening::LibraryBuildOptions options;
+  if (conformers > 0) {
+    options.conformers = ConformerOptions{};
+    options.conformers->count = conformers;
+    options.conformers->seed = seed;
+  }
+
+  const std::vector<io::MoleculeRecord> records = screening::read_library_inputs(inputs);
+  if (!options.conformers) {
+    for (const io::MoleculeRecord& record : records) {
+      if (record.format == io::RecordFormat::smiles) {
+        throw OptionError(record.source.string() +
+                          ": SMILES records have no coordinates; give --conformers N");
+      }
+    }
+  }
+  if (isatty(STDERR_FILENO) != 0) {
+    options.progress = [last = -1.0](const screening::BuildProgress& p) mutable {
+      if (p.records_done < p.records && p.seconds - last < 0.5) return;
+      last = p.seconds;
+      const double rate = p.seconds > 0 ? static_cast<double>(p.entries) / p.seconds : 0.0;
+      const double left = p.records_done > 0
+                              ? p.seconds * static_cast<double>(p.records - p.records_done) /
+                                    static_cast<double>(p.records_done)
+                              : 0.0;
+      std::fprintf(stderr, "\r\033[Klibrary: %zu/%zu records, %zu entries, %.1f entries/s, %s left",
+                   p.records_done, p.records, p.entries, rate, duration(left).c_str());
+      if (p.records_done == p.records) std::fprintf(stderr, "\r\033[K");
+      std::fflush(stderr);
+    };
+  }
+  const screening::LibraryBuildResult result = screening::build_library(records, library, options);
+  io::write_file_atomically(log, [&](std::ostream& out) {
+    out << "# surfcomp library build -> " << library.string() << ": " << result.records
+        << " records, " << result.entries << " entries, " << result.skipped.size()
+        << " skipped\n# source\trecord\tname\treason\n";
+    for (const auto& s : result.skipped)
+      out << s.source << '\t' << s.record << '\t' << s.name << '\t' << s.reason << '\n';
+  });
+  std::printf(
+      "%s: %zu records -> %zu entries, %zu skipped (see %s), %.1f MB, %.1f s (%.1f entries/s)\n",
+      library.string().c_str(), result.records, result.entries, result.skipped.size(),
+      log.string().c_str(), static_cast<double>(result.bytes) / 1e6, result.seconds,
+      result.seconds > 0 ? static_cast<double>(result.entries) / result.seconds : 0.0);
+  return 0;
+}
+
+int info(const std::vector<std::string>& args) {
+  namespace po = boost::program_options;
+  po::options_description described("options");
+  described.add_options()("help,h", "print this help");
+  po::variables_map vm;
+  if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
+  if (!vm.count("input")) throw OptionError("missing LIB (see --help)");
+  const screening::Library library(vm["input"].as<std::vector<std::string>>().front());
+  std::set<std::tuple<std::string, std::uint32_t, std::string>> molecules;
+  std::map<std::string, std::size_t> per_source;
+  std::uint64_t largest = 0;
+  for (std::size_t e = 0; e < library.size(); ++e) {
+    const auto& i = library.info(e);
+    molecules.emplace(i.source, i.record, i.name);
+    ++per_source[i.source];
+    largest = std::max(largest, library.entry_bytes(e));
+  }
+  const double mean =
+      library.size() > 0 ? static_cast<double>(library.file_bytes()) / library.size() : 0.0;
+  std::printf(
+      "%s: format version %u, %zu entries, %zu molecules, %.2f MB (%.1f KB per entry, "
+      "largest %.1f KB)\n",
+      library.path().string().c_str(), library.version(), library.size(), molecules.size(),
+      static_cast<double>(library.file_bytes()) / 1e6, mean / 1e3,
+      static_cast<double>(largest) / 1e3);
+  for (const auto& [source, count] : per_source)
+    std::printf("  %s: %zu entries\n", source.c_str(), count);
+  std::printf("settings:\n%s", library.settings().c_str());
+  return 0;
+}
+
+int export_sdf(const std::vector<std::string>& args) {
+  namespace po = boost::program_options;
+  std::string output;
+  po::options_description described("options");
+  described.add_options()("help,h", "print this help")("output,o", po::value(&output)->required(),
+                                                       "output SDF file");
+  po::variables_map vm;
+  if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
+  if (!vm.count("input")) throw OptionError("missing LIB (see --help)");
+  const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
+  check_command_files({{{"LIB", path}}, {{"--output", output, {".sdf"}, ""}}});
+  const screening::Library library(path);
+  io::write_file_atomically(output, [&](std::ostream& out) {
+    for (std::size_t e = 0; e < library.size(); ++e) {
+      const screening::LibraryEntry entry = library.entry(e);
+      out << io::moved_record_block(entry.molecule, Eigen::Matrix3d::Identity(),
+                                    Eigen::Vector3d::Zero())
+          << ">  <surfcomp_entry>\n"
+          << e + 1 << "\n\n"
+          << ">  <surfcomp_name>\n"
+          << entry.info.name << "\n\n"
+          << ">  <surfcomp_conformer>\n"
+          << entry.info.conformer << "\n\n$$$$\n";
+    }
+  });
+  std::printf("%s: %zu entries -> %s\n", path.string().c_str(), library.size(), output.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int library(const std::vector<std::string>& args) {
+  if (args.empty() || args.front() == "--help" || args.front() == "-h") {
+    (args.empty() ? std::cerr : std::cout) << kUsage << "\n";
+    return args.empty() ? 2 : 0;
+  }
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (args.front() == "build") return build(rest);
+  if (args.front() == "info") return info(rest);
+  if (args.front() == "export") return export_sdf(rest);
+  throw OptionError("unknown library action '" + args.front() + "' (build, info or export)");
+}
+
+}  // namespace surfcomp::tools

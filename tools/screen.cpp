@@ -1,0 +1,157 @@
+// surfcomp screen: one query against a screening library (.sclib), best molecules first, as a
+// CSV table; optionally the best hits moved onto the query (SDF).
+#include "command.hpp"
+#include "command_files.hpp"
+#include "options.hpp"
+#include "screen_mpi.hpp"
+#include "surface_input.hpp"
+
+#include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/harmonic/io/hsi_file.hpp"
+#include "surfcomp/screening/library.hpp"
+#include "surfcomp/screening/screen.hpp"
+
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <memory>
+
+namespace surfcomp::tools {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: surfcomp screen QUERY LIB.sclib -o hits.csv [--top N] [--candidates K]\n"
+    "                       [--aligned-out hits.sdf] [--threads T]\n"
+    "       mpirun -np R surfcomp screen ...   (the library split over R processes)\n\n"
+    "Ranks the molecules of a library (surfcomp library build) by how well their surfaces\n"
+    "overlay QUERY's, in two stages: every conformer gets a fast score (the overlay score of\n"
+    "its stored surface sample at the four principal-axes superpositions onto the query, no\n"
+    "refinement) and a molecule counts by its best conformer; the --candidates best molecules'\n"
+    "best conformers then get the full match of `surfcomp match` (cliques, refinement), their\n"
+    "surfaces rebuilt. hits.csv has one row per molecule, best first: the candidates by their\n"
+    "full-match score (stage 2), then the others by their fast score (stage 1); the columns\n"
+    "rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,fast_score and\n"
+    "t00..t33, the transform moving the hit into QUERY's frame (row-major). The rows do not\n"
+    "depend on --threads or on the number of MPI processes.\n\n"
+    "QUERY  a molecule (.sdf .mol .mol2 .pdb; --record N of a multi-molecule file) or a .hsi\n"
+    "       file built from one";
+
+void write_aligned(const std::filesystem::path& path, const screening::Library& library,
+                   const std::vector<screening::Hit>& hits, std::size_t count) {
+  io::write_file_atomically(path, [&](std::ostream& out) {
+    for (std::size_t i = 0; i < hits.size() && i < count; ++i) {
+      const screening::Hit& hit = hits[i];
+      const screening::LibraryEntry entry = library.entry(hit.entry);
+      const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();
+      const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
+      char score[32];
+      std::snprintf(score, sizeof score, "%.6f", hit.score.score);
+      out << io::moved_record_block(entry.molecule, rotation, translation) << ">  <surfcomp_rank>\n"
+          << i + 1 << "\n\n"
+          << ">  <surfcomp_entry>\n"
+          << hit.entry + 1 << "\n\n"
+          << ">  <surfcomp_name>\n"
+          << entry.info.name << "\n\n"
+          << ">  <surfcomp_conformer>\n"
+          << entry.info.conformer << "\n\n"
+          << ">  <surfcomp_score>\n"
+          << score << "\n\n$$$$\n";
+    }
+  });
+}
+
+}  // namespace
+
+int screen(const std::vector<std::string>& args) {
+  namespace po = boost::program_options;
+  std::string output, aligned_out;
+  std::size_t record = 0;
+  int threads = 0;
+  double top = 100, candidates = 50, aligned_top = 10;
+  po::options_description described("options");
+  // clang-format off
+  described.add_options()
+      ("help,h", "print this help")
+      ("output,o", po::value(&output)->required(), "output table (.csv)")
+      ("top", po::value(&top)->default_value(top), "rows of the table (0: every molecule)")
+      ("candidates", po::value(&candidates)->default_value(candidates),
+       "molecules given the full match (stage 2), best fast score first")
+      ("aligned-out", po::value(&aligned_out),
+       "write the first --aligned-top hits moved onto QUERY (.sdf, bonds kept)")
+      ("aligned-top", po::value(&aligned_top)->default_value(aligned_top),
+       "hits written to --aligned-out")
+      ("record", po::value(&record), "QUERY holding several molecules: read molecule N (1-based)")
+      ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
+  // clang-format on
+  po::variables_map vm;
+  if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
+  const auto inputs =
+      vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  if (inputs.size() != 2) throw OptionError("expected QUERY and LIB (see --help)");
+  require_in_range("top", top, 0, 1e9);
+  require_in_range("candidates", candidates, 0, 1e6);
+  require_in_range("aligned-top", aligned_top, 1, 1e6);
+  require_in_range("threads", threads, 0, 1024);
+  const std::filesystem::path query_path = inputs[0], library_path = inputs[1];
+  SurfaceInput input;
+  input.read.record = record;
+  if (!harmonic::io::is_hsi_file(query_path)) check_surface_input(query_path, input);
+  check_command_files({{{"QUERY", query_path}, {"LIB", library_path}},
+                       {{"--output", output, {".csv"}, ""},
+                        {"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"}}});
+  std::unique_ptr<tbb::global_control> limit;
+  if (threads > 0) {
+    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  static_cast<std::size_t>(threads));
+  }
+  screening::ScreenOptions options;
+  options.top = static_cast<std::size_t>(top);
+  options.candidates = static_cast<std::size_t>(candidates);
+
+  const Stopwatch clock;
+  const screening::Library library(library_path);
+  harmonic::SurfaceDescriptors descriptors;
+  if (harmonic::io::is_hsi_file(query_path)) {
+    descriptors = harmonic::io::read_hsi(query_path);
+  } else {
+    LoadedSurface loaded = load_surface(query_path, input);
+    descriptors = harmonic::describe_surface(std::move(loaded.surface), *loaded.molecule);
+  }
+  const screening::ScreenQuery query =
+      screening::make_screen_query(std::move(descriptors), options);
+  const double query_s = clock.elapsed_s();
+
+  screening::ScreenResult result;
+  int ranks = 1;
+  if (launched_by_mpi()) {
+    DistributedScreen distributed = screen_distributed(query, library, options);
+    if (!distributed.root) return 0;
+    result = std::move(distributed.result);
+    ranks = distributed.ranks;
+  } else {
+    result = screening::screen(query, library, options);
+  }
+  const std::vector<screening::Hit>& hits = result.hits;
+  const double total_s = clock.elapsed_s();
+  if (!aligned_out.empty())
+    write_aligned(aligned_out, library, hits, static_cast<std::size_t>(aligned_top));
+  try {
+    io::write_file_atomically(
+        output, [&](std::ostream& out) { screening::write_hits_csv(out, library, hits); });
+  } catch (...) {
+    if (!aligned_out.empty()) std::filesystem::remove(aligned_out);
+    throw;
+  }
+  std::printf(
+      "%s vs %s: %zu entries, %zu hits; query %.2f s, stage 1 %.2f s (%.0f entries/s), stage 2 "
+      "%.2f s (%zu candidates), total %.2f s (%d process%s)\n",
+      query_path.string().c_str(), library_path.string().c_str(), library.size(), hits.size(),
+      query_s, result.stage1_seconds,
+      result.stage1_seconds > 0 ? static_cast<double>(library.size()) / result.stage1_seconds : 0.0,
+      result.stage2_seconds, std::min(options.candidates, hits.size()), total_s, ranks,
+      ranks == 1 ? "" : "es");
+  return 0;
+}
+
+}  // namespace surfcomp::tools

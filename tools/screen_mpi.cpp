@@ -1,0 +1,158 @@
+// The screen over the ranks of an MPI job (see screen_mpi.hpp). Scores travel as doubles, so
+// rank 0 ranks exactly the numbers one process would have computed.
+#include "screen_mpi.hpp"
+
+#include "surfcomp/core/stopwatch.hpp"
+
+#include <mpi.h>
+#include <tbb/parallel_for.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <vector>
+
+namespace surfcomp::tools {
+namespace {
+
+constexpr int kDoubles = 20;  // score, shape, chem, atoms, then the 16 transform numbers
+
+void pack(const screening::HitScore& s, double* out) {
+  out[0] = s.score;
+  out[1] = s.shape;
+  out[2] = s.chem;
+  out[3] = s.atoms;
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) out[4 + 4 * r + c] = s.transform(r, c);
+  }
+}
+
+screening::HitScore unpack(const double* in) {
+  screening::HitScore s;
+  s.score = in[0];
+  s.shape = in[1];
+  s.chem = in[2];
+  s.atoms = in[3];
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) s.transform(r, c) = in[4 + 4 * r + c];
+  }
+  return s;
+}
+
+/// Gathers every rank's packed scores on rank 0, in rank order; `counts` (scores per rank) is
+/// known to every rank.
+std::vector<double> gather(const std::vector<double>& local, const std::vector<int>& counts,
+                           int rank) {
+  std::vector<int> sizes(counts.size()), displacements(counts.size());
+  int total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    sizes[r] = counts[r] * kDoubles;
+    displacements[r] = total;
+    total += sizes[r];
+  }
+  std::vector<double> all(rank == 0 ? static_cast<std::size_t>(total) : 0);
+  MPI_Gatherv(local.data(), static_cast<int>(local.size()), MPI_DOUBLE, all.data(), sizes.data(),
+              displacements.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  return all;
+}
+
+DistributedScreen run(const screening::ScreenQuery& query, const screening::Library& library,
+                      const screening::ScreenOptions& options, int rank, int ranks) {
+  matching::validate(options.match);
+  const Stopwatch clock;
+  const std::size_t n = library.size();
+  const auto slice_begin = [&](int r) {
+    return n * static_cast<std::size_t>(r) / static_cast<std::size_t>(ranks);
+  };
+  // Stage 1: a contiguous slice per rank.
+  const std::vector<screening::HitScore> mine =
+      screening::fast_scores(query, library, slice_begin(rank), slice_begin(rank + 1), options);
+  std::vector<double> packed(mine.size() * kDoubles);
+  for (std::size_t i = 0; i < mine.size(); ++i) pack(mine[i], &packed[i * kDoubles]);
+  std::vector<int> counts(static_cast<std::size_t>(ranks));
+  for (int r = 0; r < ranks; ++r)
+    counts[static_cast<std::size_t>(r)] = static_cast<int>(slice_begin(r + 1) - slice_begin(r));
+  const std::vector<double> all = gather(packed, counts, rank);
+
+  // Rank 0 picks the candidates and tells the others.
+  std::vector<screening::HitScore> fast;
+  std::vector<std::size_t> best;
+  std::vector<std::uint64_t> chosen;
+  if (rank == 0) {
+    for (std::size_t e = 0; e < n; ++e) fast.push_back(unpack(&all[e * kDoubles]));
+    best = screening::best_entry_per_molecule(library, fast);
+    for (std::size_t i = 0; i < best.size() && i < options.candidates; ++i)
+      chosen.push_back(best[i]);
+  }
+  const double stage1_seconds = clock.elapsed_s();
+  std::uint64_t k = chosen.size();
+  MPI_Bcast(&k, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  chosen.resize(k);
+  MPI_Bcast(chosen.data(), static_cast<int>(k), MPI_UINT64_T, 0, MPI_COMM_WORLD);
+
+  // Stage 2: candidate i on rank i mod ranks.
+  std::vector<std::size_t> my_candidates;
+  for (std::size_t i = static_cast<std::size_t>(rank); i < k; i += static_cast<std::size_t>(ranks))
+    my_candidates.push_back(i);
+  std::vector<double> full_packed(my_candidates.size() * kDoubles);
+  tbb::parallel_for(std::size_t{0}, my_candidates.size(), [&](std::size_t j) {
+    const screening::LibraryEntry entry = library.entry(chosen[my_candidates[j]]);
+    pack(screening::full_score(query, entry, options), &full_packed[j * kDoubles]);
+  });
+  std::vector<int> full_counts(static_cast<std::size_t>(ranks));
+  for (int r = 0; r < ranks; ++r) {
+    const auto first = static_cast<std::uint64_t>(r);
+    full_counts[static_cast<std::size_t>(r)] =
+        first < k ? static_cast<int>((k - first + static_cast<std::uint64_t>(ranks) - 1) /
+                                     static_cast<std::uint64_t>(ranks))
+                  : 0;
+  }
+  const std::vector<double> full_all = gather(full_packed, full_counts, rank);
+
+  DistributedScreen result;
+  result.root = rank == 0;
+  result.ranks = ranks;
+  result.result.stage1_seconds = stage1_seconds;
+  result.result.stage2_seconds = clock.elapsed_s() - stage1_seconds;
+  if (rank == 0) {
+    std::vector<screening::HitScore> full(k);
+    std::size_t at = 0;
+    for (int r = 0; r < ranks; ++r) {
+      for (std::size_t i = static_cast<std::size_t>(r); i < k; i += static_cast<std::size_t>(ranks))
+        full[i] = unpack(&full_all[kDoubles * at++]);
+    }
+    result.result.hits = screening::rank_hits(best, fast, full, options.top);
+  }
+  return result;
+}
+
+}  // namespace
+
+bool launched_by_mpi() {
+  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK"}) {
+    if (std::getenv(variable) != nullptr) return true;
+  }
+  return false;
+}
+
+DistributedScreen screen_distributed(const screening::ScreenQuery& query,
+                                     const screening::Library& library,
+                                     const screening::ScreenOptions& options) {
+  int provided = 0;
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  DistributedScreen result;
+  try {
+    result = run(query, library, options, rank, ranks);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "surfcomp screen: rank %d: error: %s\n", rank, e.what());
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  MPI_Finalize();
+  return result;
+}
+
+}  // namespace surfcomp::tools

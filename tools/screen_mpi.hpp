@@ -1,0 +1,31 @@
+// The screen split over the ranks of an MPI job (tools/screen_mpi.cpp, built when MPI is found):
+// the one place of the program that sees MPI.
+#pragma once
+
+#include "surfcomp/screening/screen.hpp"
+
+#include <vector>
+
+namespace surfcomp::tools {
+
+/// Whether this build has the MPI path and this process was started by an MPI launcher
+/// (mpirun/mpiexec of Open MPI, or any PMI/PMIx launch).
+bool launched_by_mpi();
+
+/// The result of a screen split over the ranks.
+struct DistributedScreen {
+  bool root = true;  ///< rank 0: the one that writes the outputs
+  int ranks = 1;
+  screening::ScreenResult result;  ///< hits on rank 0 only; stage times as rank 0 saw them
+};
+
+/// screening::screen over the ranks of MPI_COMM_WORLD: each rank scores a contiguous slice of
+/// the entries (stage 1), rank 0 gathers the scores and picks the candidates, the candidates'
+/// full matches are dealt out round-robin and gathered again, and rank 0 ranks the hits: the
+/// same hits as one process. Initialises and finalises MPI; an error on one rank aborts the job
+/// after printing it. Every rank must give the same query, library and options.
+DistributedScreen screen_distributed(const screening::ScreenQuery& query,
+                                     const screening::Library& library,
+                                     const screening::ScreenOptions& options);
+
+}  // namespace surfcomp::tools

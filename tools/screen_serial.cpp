@@ -1,0 +1,16 @@
+// The program's MPI entry points when it is built without MPI: never launched by MPI.
+#include "screen_mpi.hpp"
+
+#include "surfcomp/core/error.hpp"
+
+namespace surfcomp::tools {
+
+bool launched_by_mpi() { return false; }
+
+DistributedScreen screen_distributed(const screening::ScreenQuery& /*query*/,
+                                     const screening::Library& /*library*/,
+                                     const screening::ScreenOptions& /*options*/) {
+  throw InputError("this surfcomp was built without MPI");
+}
+
+}  // namespace surfcomp::tools
