@@ -5,7 +5,10 @@
 #     vertex -> out/3m11_AKI.ply;
 #  2. the surface match of ligand 1C9 from PDB 4i24 onto the same ligand from PDB 4i23: the
 #     ranked alignments -> out/1C9_match.json, and 4i24's ligand moved by the top alignment ->
-#     out/4i24_1C9_aligned.pdb (the crystal overlay says it should land on its own position).
+#     out/4i24_1C9_aligned.pdb (the crystal overlay says it should land on its own position);
+#  3. a screen: the benzodiazepine-receptor ligands of rdkit-data (bzr.sdf, 163 molecules) made a
+#     library -> out/bzr.sclib, and its first molecule (adinazolam) screened against it ->
+#     out/bzr_hits.csv and the top hits moved onto it -> out/bzr_hits.sdf (it finds itself first).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/install-deps.sh
@@ -17,4 +20,9 @@ data=datasets/cache/rdkit-data
 build/release/tools/surfcomp surf-build "$data/3m11_AKI.pdb" -o out/3m11_AKI.ply
 build/release/tools/surfcomp match "$data/4i23_1C9.pdb" "$data/4i24_1C9.pdb" --top 5 \
   -o out/1C9_match.json --aligned-out out/4i24_1C9_aligned.pdb
-echo "wrote out/3m11_AKI.ply, out/1C9_match.json, out/4i24_1C9_aligned.pdb"
+build/release/tools/surfcomp library build "$data/bzr.sdf" -o out/bzr.sclib
+build/release/tools/surfcomp screen "$data/bzr.sdf" --record 1 out/bzr.sclib --top 20 \
+  -o out/bzr_hits.csv --aligned-out out/bzr_hits.sdf
+head -n 4 out/bzr_hits.csv | cut -d, -f1-9
+echo "wrote out/3m11_AKI.ply, out/1C9_match.json, out/4i24_1C9_aligned.pdb, out/bzr.sclib," \
+  "out/bzr_hits.csv, out/bzr_hits.sdf"
