@@ -1,6 +1,6 @@
 // The surfcomp program as a user runs it: the match output contract (result.json), the aligned
-// PROBE, bad input giving a one-line error, a non-zero exit and no output file, and the former
-// names of renamed options.
+// PROBE, bad input giving a one-line error, a non-zero exit and no output file, the former
+// names of renamed options, and --help's defaults.
 #include "test_data.hpp"
 
 #include "surfcomp/harmonic/io/hsi_file.hpp"
@@ -347,6 +347,23 @@ TEST_F(Cli, RenamedOptionsKeepTheirFormerNamesAsDeprecatedAliases) {
       EXPECT_NE(help.find(std::string("--") + o.new_name + " "), std::string::npos) << o.new_name;
       EXPECT_EQ(help.find(std::string("--") + o.old_name + " "), std::string::npos) << o.old_name;
     }
+  }
+}
+
+// --help shows each default as a user would write it: the shortest decimal that reads back as
+// the default (1.4, not 1.3999999999999999).
+TEST_F(Cli, HelpShowsDefaultsInTheirShortestForm) {
+  for (const std::string command : {"surf-build", "match", "hsi-build"}) {
+    const fs::path out = scratch(command + "-help.txt");
+    const std::string line = kProgram.string() + " " + command + " --help >" + out.string();
+    ASSERT_EQ(std::system(line.c_str()), 0) << command;
+    std::ifstream in(out);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string help = text.str();
+    EXPECT_EQ(help.find("99999"), std::string::npos) << command << "\n" << help;
+    EXPECT_EQ(help.find("00000001"), std::string::npos) << command << "\n" << help;
+    EXPECT_NE(help.find("--probe-radius arg (=1.4)"), std::string::npos) << command << "\n" << help;
   }
 }
 

@@ -98,10 +98,10 @@ int cp_detect(const std::vector<std::string>& args) {
       ("help,h", "print this help")
       ("output,o", po::value(&output)->required(), "critical points as JSON")
       ("points-out", po::value(&points_out), "also write the points for viewing: .pdb or .ply")
-      ("critical-point-radius", po::value(&cp_options.radius)->default_value(cp_options.radius),
+      ("critical-point-radius", defaulted(&cp_options.radius),
        "critical point radius r_cp (on-surface), A")
       ("disc-radius",
-       po::value(&cp_options.property_disc_radius)->default_value(cp_options.property_disc_radius),
+       defaulted(&cp_options.property_disc_radius),
        "geodesic disc over which shape index, ESP and LP are averaged, A");
   // clang-format on
   add_surface_options(described, input);

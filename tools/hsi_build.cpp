@@ -47,19 +47,19 @@ int hsi_build(const std::vector<std::string>& args) {
       ("help,h", "print this help")
       ("output,o", po::value(&output)->required(), "output .hsi file")
       ("critical-point-radius",
-       po::value(&options.critical_points.radius)->default_value(options.critical_points.radius),
+       defaulted(&options.critical_points.radius),
        "critical point radius r_cp (on-surface), A")
-      ("patch-radius", po::value(&options.patch.radius)->default_value(options.patch.radius),
+      ("patch-radius", defaulted(&options.patch.radius),
        "patch radius (on-surface), A; about 5 for ligands, larger for protein sites")
-      ("image-rings", po::value(&options.image.rings)->default_value(options.image.rings),
+      ("image-rings", defaulted(&options.image.rings),
        "image grid: rings of the polar grid")
-      ("image-sectors", po::value(&options.image.sectors)->default_value(options.image.sectors),
+      ("image-sectors", defaulted(&options.image.sectors),
        "image grid: sectors (samples per ring; 180 = 2-degree rotation steps)")
       ("weights", po::value(&weights)->default_value("inverse-length"),
        "harmonic map spring weights: inverse-length (seed) | uniform | cotangent | mean-value")
       ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)")
       ("max-image-bytes",
-       po::value(&options.max_image_bytes)->default_value(options.max_image_bytes),
+       defaulted(&options.max_image_bytes),
        "limit: memory of the shape images, bytes");
   // clang-format on
   add_surface_options(described, input);

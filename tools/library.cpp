@@ -65,7 +65,7 @@ int build(const std::vector<std::string>& args) {
       ("output,o", po::value(&output)->required(), "output library (.sclib)")
       ("conformers", po::value(&conformers)->default_value(0),
        "conformers per molecule from ETKDG + MMFF (0: the records' own coordinates)")
-      ("seed", po::value(&seed)->default_value(seed), "ETKDG random seed (>= 0)")
+      ("seed", defaulted(&seed), "ETKDG random seed (>= 0)")
       ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
   // clang-format on
   po::variables_map vm;

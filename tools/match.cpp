@@ -324,85 +324,83 @@ int match(const std::vector<std::string>& args) {
       ("aligned-out", po::value(&aligned_out),
        "write PROBE moved by the top alignment: .sdf (SDF/MOL/MOL2 PROBE), .pdb (molecule PROBE) "
        "or .ply")
-      ("top", po::value(&top)->default_value(top), "alignments shown in the table")
+      ("top", defaulted(&top), "alignments shown in the table")
       ("trace", po::bool_switch(), "print the association graph's nodes and edges after each stage")
       ("site-ligand", po::value(&site_ligand),
        "binding site of both proteins: this ligand residue name")
       ("ref-site-ligand", po::value(&ref_site_ligand), "binding site of REF only")
       ("probe-site-ligand", po::value(&probe_site_ligand), "binding site of PROBE only")
-      ("site-radius", po::value(&site_radius)->default_value(site_radius),
+      ("site-radius", defaulted(&site_radius),
        "radius of the spheres around the site ligand's atoms, A")
       ("site-sphere", po::value(&site_spheres)->composing(),
        "site sphere x,y,z,r on both sides (A)")
       ("ref-site-sphere", po::value(&ref_site_spheres)->composing(), "site sphere on REF only")
       ("probe-site-sphere", po::value(&probe_site_spheres)->composing(),
        "site sphere on PROBE only")
-      ("fuzzy-threshold", po::value(&g.fuzzy_threshold)->default_value(g.fuzzy_threshold),
+      ("fuzzy-threshold", defaulted(&g.fuzzy_threshold),
        "fuzzy ESP/LP similarity threshold F")
-      ("image-threshold", po::value(&g.image_threshold)->default_value(g.image_threshold),
+      ("image-threshold", defaulted(&g.image_threshold),
        "harmonic shape image correlation threshold R")
-      ("distance-tolerance", po::value(&g.distance_tolerance)->default_value(g.distance_tolerance),
+      ("distance-tolerance", defaulted(&g.distance_tolerance),
        "distance filter tolerance t, A")
-      ("min-distance", po::value(&g.min_distance)->default_value(g.min_distance),
+      ("min-distance", defaulted(&g.min_distance),
        "distance filter minimum d_min, A")
       ("overlap-tolerance",
-       po::value(&g.overlap_tolerance_degrees)->default_value(g.overlap_tolerance_degrees),
+       defaulted(&g.overlap_tolerance_degrees),
        "overlap filter tolerance j_tol, degrees")
-      ("max-graph-nodes", po::value(&max_graph_nodes)->default_value(max_graph_nodes)
+      ("max-graph-nodes", defaulted(&max_graph_nodes)
                               ->notifier(positive("max-graph-nodes")),
        "refuse a match whose association graph keeps more critical-point pairs than this after "
        "the image filter (a positive integer); its cost grows with the square of the count")
-      ("max-clique-work", po::value(&max_clique_work)->default_value(max_clique_work)
+      ("max-clique-work", defaulted(&max_clique_work)
                               ->notifier(positive("max-clique-work")),
        "stop the clique search after this much work (a positive integer; a unit is one 64-node "
        "word of a set operation, a few ns) and go on with the cliques found, saying so")
-      ("max-cliques", po::value(&max_cliques)->default_value(max_cliques)
+      ("max-cliques", defaulted(&max_cliques)
                           ->notifier(positive("max-cliques")),
        "stop the clique search rather than report more cliques than this (a positive integer); "
        "each is fitted and merged, in time quadratic in their number")
       ("rmsd-cut",
-       po::value(&options.clustering.rmsd_cut)->default_value(options.clustering.rmsd_cut),
+       defaulted(&options.clustering.rmsd_cut),
        "drop cliques whose fit RMSD exceeds this, A")
       ("ranking", po::value(&ranking)->default_value("rank"),
        "consensus: rank (rank-by-rank) | number (rank-by-number) | vote (rank-by-vote)")
-      ("refine-top", po::value(&options.refine_top)->default_value(options.refine_top),
+      ("refine-top", defaulted(&options.refine_top),
        "refine this many alignments on the whole surfaces and rank them by their overlay score "
        "(0: the seed's consensus ranking alone)")
-      ("overlay-sigma", po::value(&options.overlay.sigma)->default_value(options.overlay.sigma),
+      ("overlay-sigma", defaulted(&options.overlay.sigma),
        "Gaussian width of the whole-surface overlay, A")
       ("overlay-chem-weight",
-       po::value(&options.overlay.chem_weight)->default_value(options.overlay.chem_weight),
+       defaulted(&options.overlay.chem_weight),
        "weight of the ESP/LP Tanimoto against the shape Tanimoto in the overlay score")
       ("overlay-atom-weight",
-       po::value(&options.overlay.atom_weight)->default_value(options.overlay.atom_weight),
+       defaulted(&options.overlay.atom_weight),
        "weight of the same-element heteroatom Tanimoto in the overlay score, where both inputs "
        "are molecules (or .hsi files built from molecules); not for site matches")
-      ("polish-top", po::value(&options.polish_top)->default_value(options.polish_top),
+      ("polish-top", defaulted(&options.polish_top),
        "with the atom term, refine the first N alignments again on the whole score, heteroatoms "
        "pulled too, and order them again (0: no polish)")
       ("overlay-tolerance",
-       po::value(&options.overlay.tolerance)->default_value(options.overlay.tolerance),
+       defaulted(&options.overlay.tolerance),
        "a refinement stops when a step moves no sampled probe point farther than this, A")
       ("principal-axes-starts",
-       po::value(&options.principal_axes_starts)->default_value(options.principal_axes_starts),
+       defaulted(&options.principal_axes_starts),
        "also refine this many principal-axes superpositions of the whole surfaces: 0, 4 or 24 "
        "(with --refine-top > 0; so do the --site-* overlay options)")
       ("site-overlay-radius",
-       po::value(&options.site.overlay_radius)->default_value(options.site.overlay_radius),
+       defaulted(&options.site.overlay_radius),
        "site matches: overlay the vertices within this distance of the site's critical points, A")
       ("site-chem-weight",
-       po::value(&options.site.chem_weight)->default_value(options.site.chem_weight),
+       defaulted(&options.site.chem_weight),
        "site matches: --overlay-chem-weight for the pocket overlay")
       ("site-principal-axes-starts",
-       po::value(&options.site.principal_axes_starts)
-           ->default_value(options.site.principal_axes_starts),
+       defaulted(&options.site.principal_axes_starts),
        "site matches: --principal-axes-starts for the pocket overlay (0, 4 or 24)")
       ("patch-radius",
-       po::value(&descriptor_options.patch.radius)->default_value(descriptor_options.patch.radius),
+       defaulted(&descriptor_options.patch.radius),
        "patch radius for molecule/mesh inputs, A (about 5 for ligands, larger for sites)")
       ("max-image-bytes",
-       po::value(&descriptor_options.max_image_bytes)
-           ->default_value(descriptor_options.max_image_bytes),
+       defaulted(&descriptor_options.max_image_bytes),
        "limit: memory of the shape images of a molecule/mesh input, bytes");
   // clang-format on
   add_surface_options(described, input);

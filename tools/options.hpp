@@ -6,8 +6,10 @@
 
 #include <boost/program_options.hpp>
 
+#include <charconv>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace surfcomp::tools {
@@ -21,6 +23,26 @@ namespace surfcomp::tools {
 bool parse_command_line(const std::vector<std::string>& args,
                         const boost::program_options::options_description& options, int max_inputs,
                         const char* usage, boost::program_options::variables_map& vm);
+
+/// An option value stored in `*target`, with default `fallback`. --help shows a floating-point
+/// default in its shortest exact form (1.4, not 1.3999999999999999).
+template <class T>
+boost::program_options::typed_value<T>* defaulted(T* target, const T& fallback) {
+  auto* value = boost::program_options::value(target);
+  if constexpr (std::is_floating_point_v<T>) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, fallback).ptr;
+    return value->default_value(fallback, std::string(text, end));
+  } else {
+    return value->default_value(fallback);
+  }
+}
+
+/// defaulted(target, *target): the value `*target` holds is the default.
+template <class T>
+boost::program_options::typed_value<T>* defaulted(T* target) {
+  return defaulted(target, *target);
+}
 
 /// Throws OptionError "--name: value V is outside [lo, hi]" unless lo <= value <= hi and finite.
 void require_in_range(const char* name, double value, double lo, double hi);

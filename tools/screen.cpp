@@ -74,12 +74,12 @@ int screen(const std::vector<std::string>& args) {
   described.add_options()
       ("help,h", "print this help")
       ("output,o", po::value(&output)->required(), "output table (.csv)")
-      ("top", po::value(&top)->default_value(top), "rows of the table (0: every molecule)")
-      ("candidates", po::value(&candidates)->default_value(candidates),
+      ("top", defaulted(&top), "rows of the table (0: every molecule)")
+      ("candidates", defaulted(&candidates),
        "molecules given the full match (stage 2), best fast score first")
       ("aligned-out", po::value(&aligned_out),
        "write the first --aligned-top hits moved onto QUERY (.sdf, bonds kept)")
-      ("aligned-top", po::value(&aligned_top)->default_value(aligned_top),
+      ("aligned-top", defaulted(&aligned_top),
        "hits written to --aligned-out")
       ("record", po::value(&record), "QUERY holding several molecules: read molecule N (1-based)")
       ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");

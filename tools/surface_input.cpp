@@ -38,17 +38,17 @@ void add_surface_options(boost::program_options::options_description& options,
   // clang-format off
   options.add_options()
       ("probe-radius",
-       po::value(&input.surface.ses.probe_radius)->default_value(defaults.ses.probe_radius),
+       defaulted(&input.surface.ses.probe_radius, defaults.ses.probe_radius),
        "probe radius, A (0 gives the van der Waals surface)")
       ("density",
-       po::value(&input.surface.ses.vertex_density)->default_value(defaults.ses.vertex_density),
+       defaulted(&input.surface.ses.vertex_density, defaults.ses.vertex_density),
        "target vertex density, vertices per A^2")
-      ("voxel", po::value(&input.surface.ses.voxel_size)->default_value(defaults.ses.voxel_size),
+      ("voxel", defaulted(&input.surface.ses.voxel_size, defaults.ses.voxel_size),
        "level-set voxel size, A (0 = chosen from the density)")
       ("charges", po::value(&input.charges)->default_value("file"),
        "partial charges: file (the file's own; else residue charges for a protein PDB, "
        "Gasteiger otherwise) | gasteiger | mmff")
-      ("eps", po::value(&input.surface.esp.dielectric)->default_value(defaults.esp.dielectric),
+      ("eps", defaulted(&input.surface.esp.dielectric, defaults.esp.dielectric),
        "dielectric constant for the ESP")
       ("eps-distance-dependent", po::bool_switch(&input.surface.esp.distance_dependent),
        "use eps * d (d in A) as the dielectric, e.g. --eps 4 for 4d")
@@ -60,13 +60,13 @@ void add_surface_options(boost::program_options::options_description& options,
        "SDF/MOL2 input holding several molecules: read molecule N (1-based)")
       ("molecule", po::value(&input.molecule_file),
        "mesh INPUT only: molecule whose ESP and LP are mapped onto the mesh")
-      ("max-atoms", po::value(&input.surface.ses.max_atoms)->default_value(defaults.ses.max_atoms),
+      ("max-atoms", defaulted(&input.surface.ses.max_atoms, defaults.ses.max_atoms),
        "limit: atoms of a molecule INPUT")
       ("max-grid-cells",
-       po::value(&input.surface.ses.max_grid_cells)->default_value(defaults.ses.max_grid_cells),
+       defaulted(&input.surface.ses.max_grid_cells, defaults.ses.max_grid_cells),
        "limit: cells of the surface grid (the atoms' extent in voxels, cubed)")
       ("max-vertices",
-       po::value(&input.surface.ses.max_vertices)->default_value(defaults.ses.max_vertices),
+       defaulted(&input.surface.ses.max_vertices, defaults.ses.max_vertices),
        "limit: vertices of the surface built");
   // clang-format on
 }
