@@ -5,8 +5,9 @@
 # The two crystal ligands overlay with a known pose: their 22 shared atoms (same names) superpose
 # to 0.16 A RMSD after a 13-degree rotation, and lie 1.07 A apart as the files give them. The top
 # transform must move PROBE's shared atoms onto REF's to within 0.5 A RMSD.
-# Usage: scripts/check-install.sh [BUILD_DIR]   (default build/ci, built already; a build with
-# SURFCOMP_SANITIZE links the example with the sanitizer runtimes, leak checks off as in its tests)
+# Usage: scripts/check-install.sh [BUILD_DIR]   (default build/ci, built already). A build with
+# SURFCOMP_SANITIZE is a different ABI (Eigen, for one, allocates otherwise under ASan): the
+# example is then compiled and linked with the same sanitizers, leak checks off as in the tests.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 build_dir=${1:-build/ci}
@@ -25,15 +26,16 @@ quietly() {
     exit 1
   fi
 }
-link_flags=""
+sanitize=""
 if grep -q '^SURFCOMP_SANITIZE:BOOL=ON$' "$build_dir/CMakeCache.txt"; then
-  link_flags="-fsanitize=address,undefined"
+  sanitize="-fsanitize=address,undefined"
   export ASAN_OPTIONS=detect_leaks=0
 fi
 quietly cmake --install "$build_dir" --prefix "$work/prefix"
 quietly "$work/prefix/bin/surfcomp" --version
 quietly cmake -S examples -B "$work/examples" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_EXE_LINKER_FLAGS="$link_flags"
+  -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_FLAGS="$sanitize" \
+  -DCMAKE_EXE_LINKER_FLAGS="$sanitize"
 quietly cmake --build "$work/examples"
 "$work/examples/align_two_ligands" "$ref" "$probe" | tee "$work/align.txt"
 
