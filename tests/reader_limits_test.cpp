@@ -215,7 +215,7 @@ TEST(ReadRecords, MultiRecordSdfNeedsARecordAndReadsTheOneAsked) {
   expect_error<InputError>([&] { io::read_molecule(two, options); },
                            {two.string(), "record 3", "holds 2"});
 
-  // A single-record file reads as before, with or without record 1.
+  // A single-record file reads the same with or without record 1.
   const fs::path one = dir.write("one.sdf", methanol_sdf("only", 0.0));
   EXPECT_EQ(io::read_molecule(one).title, "only");
   options.record = 1;

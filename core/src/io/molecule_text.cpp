@@ -12,6 +12,16 @@
 namespace surfcomp::io::detail {
 namespace {
 
+/// Where the line of `text` starting at `begin` ends: after its newline, or at the text's end.
+std::size_t line_end(const std::string& text, std::size_t begin) {
+  const std::size_t newline = text.find('\n', begin);
+  return newline == std::string::npos ? text.size() : newline + 1;
+}
+
+bool is_atom_record(const std::string& line) {
+  return line.compare(0, 6, "ATOM  ") == 0 || line.compare(0, 6, "HETATM") == 0;
+}
+
 /// The [begin, end) byte ranges of the molecules in an SDF text (each ends after its "$$$$"
 /// line; a non-blank rest without one is a molecule too) or MOL2 text (each starts at its
 /// @<TRIPOS>MOLECULE line; the first from the start of the text, with the comments before it).
@@ -24,8 +34,7 @@ std::vector<std::pair<std::size_t, std::size_t>> record_spans(const std::string&
     return !trimmed(text.substr(from, to - from)).empty();
   };
   while (begin < text.size()) {
-    const std::size_t newline = text.find('\n', begin);
-    const std::size_t end = newline == std::string::npos ? text.size() : newline + 1;
+    const std::size_t end = line_end(text, begin);
     const std::string line = text.substr(begin, end - begin);
     if (format == RdkitFormat::mdl && line.compare(0, 4, "$$$$") == 0) {
       if (has_content(record_begin, begin)) spans.emplace_back(record_begin, end);
@@ -79,15 +88,14 @@ std::string first_alternate_locations(const std::string& text) {
   std::map<std::string, char> location_of;             // atom -> its first alternate location
   std::size_t begin = 0;
   while (begin < text.size()) {
-    const std::size_t newline = text.find('\n', begin);
-    const std::size_t end = newline == std::string::npos ? text.size() : newline + 1;
+    const std::size_t end = line_end(text, begin);
     std::string line = text.substr(begin, end - begin);
     begin = end;
     if (line.compare(0, 6, "MODEL ") == 0) {
       residue_name_at.clear();
       location_of.clear();
     }
-    const bool atom_record = line.compare(0, 6, "ATOM  ") == 0 || line.compare(0, 6, "HETATM") == 0;
+    const bool atom_record = is_atom_record(line);
     // Columns 13-16 atom name, 17 alternate location, 18-20 residue name, 22-27 chain, residue
     // number and insertion code.
     if (!atom_record || line.size() < 27 || line[16] == ' ') {
@@ -145,14 +153,13 @@ void check_pdb_coordinates(const std::string& text, const std::string& source) {
   std::size_t begin = 0;
   std::size_t line_number = 0;
   while (begin < text.size()) {
-    const std::size_t newline = text.find('\n', begin);
-    const std::size_t end = newline == std::string::npos ? text.size() : newline + 1;
+    const std::size_t end = line_end(text, begin);
     std::string line = text.substr(begin, end - begin);
     begin = end;
     ++line_number;
     while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
     if (line.compare(0, 6, "ENDMDL") == 0) return;
-    if (line.compare(0, 6, "ATOM  ") != 0 && line.compare(0, 6, "HETATM") != 0) continue;
+    if (!is_atom_record(line)) continue;
     for (std::size_t axis = 0; axis < 3; ++axis) {
       const std::size_t column = 30 + 8 * axis;
       const std::string field = line.size() > column ? trimmed(line.substr(column, 8)) : "";
