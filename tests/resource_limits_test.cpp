@@ -1,6 +1,7 @@
 // Resource limits: inputs and options whose cost would be unbounded are refused up front, with
 // a message giving the estimate, the limit and the option that raises it; the progress of the
 // potentials is reported without changing their values.
+#include "atom_balls.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
@@ -17,10 +18,7 @@
 namespace surfcomp {
 namespace {
 
-struct Atoms {
-  Eigen::MatrixX3d centers;
-  Eigen::VectorXd radii;
-};
+using test::Atoms;
 
 /// Three overlapping atoms, the last of radius `last_radius`.
 Atoms three_atoms(double last_radius = 1.6) {

@@ -1,5 +1,6 @@
 // Degenerate but valid SES inputs: a zero probe (the van der Waals surface, whose re-entrant
 // patches shrink to creases and corners) and atoms repeated at one position.
+#include "atom_balls.hpp"
 #include "surfcomp/mesh/ses.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
@@ -12,45 +13,8 @@
 namespace surfcomp::mesh {
 namespace {
 
-struct Atoms {
-  Eigen::MatrixX3d centers;
-  Eigen::VectorXd radii;
-};
-
-Atoms make_atoms(const std::vector<Eigen::Vector3d>& centers, const std::vector<double>& radii) {
-  Atoms atoms;
-  atoms.centers.resize(static_cast<Eigen::Index>(centers.size()), 3);
-  atoms.radii.resize(static_cast<Eigen::Index>(radii.size()));
-  for (std::size_t i = 0; i < centers.size(); ++i) {
-    atoms.centers.row(static_cast<Eigen::Index>(i)) = centers[i].transpose();
-    atoms.radii(static_cast<Eigen::Index>(i)) = radii[i];
-  }
-  return atoms;
-}
-
-/// Area of the union of balls by Shrake-Rupley: 4 pi r_i^2 times the fraction of `points`
-/// Fibonacci points of sphere i outside every other ball (error about points^-3/4).
-double union_area(const Atoms& atoms, int points) {
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  double area = 0.0;
-  for (Eigen::Index i = 0; i < atoms.centers.rows(); ++i) {
-    int outside = 0;
-    for (int k = 0; k < points; ++k) {
-      const double z = 1.0 - (2.0 * k + 1.0) / points;
-      const double rho = std::sqrt(1.0 - z * z);
-      const Eigen::Vector3d p = atoms.centers.row(i).transpose() +
-                                atoms.radii(i) * Eigen::Vector3d(rho * std::cos(golden * k),
-                                                                 rho * std::sin(golden * k), z);
-      bool buried = false;
-      for (Eigen::Index j = 0; j < atoms.centers.rows() && !buried; ++j) {
-        buried = j != i && (p - atoms.centers.row(j).transpose()).norm() < atoms.radii(j);
-      }
-      outside += buried ? 0 : 1;
-    }
-    area += 4.0 * M_PI * atoms.radii(i) * atoms.radii(i) * outside / points;
-  }
-  return area;
-}
+using test::Atoms;
+using test::make_atoms;
 
 SesOptions zero_probe() {
   SesOptions options;
@@ -83,7 +47,7 @@ TEST(SesZeroProbe, ClustersHaveFiniteVerticesAndTheUnionArea) {
     const Surface ses = build_ses(atoms.centers, atoms.radii, zero_probe());
     ASSERT_TRUE(ses.positions().allFinite());
     const SurfaceMeasures m = measure_surface(ses);
-    const double exact = union_area(atoms, 200000);
+    const double exact = test::union_area(atoms, 0.0, 200000);
     std::cout << atoms.centers.rows() << " atoms, zero probe: area " << m.area << " (union "
               << exact << ")\n";
     EXPECT_EQ(m.euler_characteristic, 2);

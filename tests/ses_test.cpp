@@ -1,4 +1,5 @@
 #include "surfcomp/mesh/ses.hpp"
+#include "atom_balls.hpp"
 #include "surface_components.hpp"
 #include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/error.hpp"
@@ -24,21 +25,9 @@
 namespace surfcomp::mesh {
 namespace {
 
-struct Atoms {
-  Eigen::MatrixX3d centers;
-  Eigen::VectorXd radii;
-};
-
-Atoms make_atoms(const std::vector<Eigen::Vector3d>& centers, const std::vector<double>& radii) {
-  Atoms atoms;
-  atoms.centers.resize(static_cast<Eigen::Index>(centers.size()), 3);
-  atoms.radii.resize(static_cast<Eigen::Index>(radii.size()));
-  for (std::size_t i = 0; i < centers.size(); ++i) {
-    atoms.centers.row(static_cast<Eigen::Index>(i)) = centers[i].transpose();
-    atoms.radii(static_cast<Eigen::Index>(i)) = radii[i];
-  }
-  return atoms;
-}
+using test::Atoms;
+using test::make_atoms;
+using test::union_area;
 
 /// Heavy atoms of a PDB file (ATOM/HETATM, no water, alternate location ' ' or 'A'), with
 /// Bondi radii from the element in columns 77-78.
@@ -189,33 +178,6 @@ TEST(Sas, TwoAtomsAreTwoSphereCaps) {
   std::cout << "SAS two atoms: area " << m.area << " (exact " << area << ")\n";
   EXPECT_NEAR(m.area, area, 0.01 * area);
   EXPECT_EQ(m.euler_characteristic, 2);
-}
-
-/// Area of the union of spheres (centres, radii R_i) by Shrake-Rupley with `points` Fibonacci
-/// points per sphere: 4 pi R_i^2 times the fraction of sphere i's points outside every other
-/// sphere. Converges like points^-3/4 (about 1e-5 relative here), far below the test tolerances.
-double union_area(const Atoms& atoms, double grow, int points) {
-  double area = 0.0;
-  const Eigen::Index n = atoms.centers.rows();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double big = atoms.radii(i) + grow;
-    int exposed = 0;
-    for (int k = 0; k < points; ++k) {
-      const double z = 1.0 - (2.0 * k + 1.0) / points;
-      const double phi = M_PI * (3.0 - std::sqrt(5.0)) * k;
-      const double s = std::sqrt(1.0 - z * z);
-      const Eigen::Vector3d p = atoms.centers.row(i).transpose() +
-                                big * Eigen::Vector3d(s * std::cos(phi), s * std::sin(phi), z);
-      bool buried = false;
-      for (Eigen::Index j = 0; j < n && !buried; ++j) {
-        const double other = atoms.radii(j) + grow;
-        buried = j != i && (p - atoms.centers.row(j).transpose()).squaredNorm() < other * other;
-      }
-      if (!buried) ++exposed;
-    }
-    area += 4.0 * M_PI * big * big * exposed / points;
-  }
-  return area;
 }
 
 TEST(Sas, CreasedClusterMatchesShrakeRupley) {
