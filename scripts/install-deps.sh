@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  cmake ninja-build g++ pkg-config ca-certificates clang-format clang-tidy
+  cmake ninja-build g++ pkg-config ca-certificates clang-format clang-tidy dpkg-dev xz-utils
   libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev
   libboost-graph-dev libboost-iostreams-dev libboost-program-options-dev

@@ -2,12 +2,13 @@
 # Sets everything up on a fresh Debian bookworm machine and runs the test suite, in stages:
 #   1. everything built with AddressSanitizer + UndefinedBehaviorSanitizer (`asan` preset:
 #      optimised, warnings as errors, benchmarks compiled) and the whole suite run on it;
-#   2. clang-format and clang-tidy over the sources (scripts/lint.sh);
-#   3. that build installed into a temporary prefix with examples/ built against it
+#   2. the suites labelled `threaded` under ThreadSanitizer, against a oneTBB built with it
+#      (scripts/tsan.sh);
+#   3. clang-format and clang-tidy over the sources (scripts/lint.sh);
+#   4. the asan build installed into a temporary prefix with examples/ built against it
 #      (scripts/check-install.sh).
-# Each stage prints its wall time. The `ci` preset is the same build without the sanitizers. The
-# threaded suites under ThreadSanitizer (`tsan` preset) and fuzzing (scripts/fuzz.sh) run
-# separately: CONTRIBUTING.md says why and how.
+# Each stage prints its wall time. The `ci` preset is the same build without the sanitizers.
+# Fuzzing (scripts/fuzz.sh) runs separately: CONTRIBUTING.md says how.
 # Tests that need ../shared/datasets skip, saying so, when it is absent.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -22,6 +23,8 @@ cmake --preset asan >/dev/null
 cmake --build --preset asan -j "$jobs"
 ctest --preset asan -j "$jobs"
 stage_done "ASan + UBSan build and suite"
+scripts/tsan.sh
+stage_done "ThreadSanitizer build and threaded suites"
 scripts/lint.sh build/asan
 stage_done "lint"
 scripts/check-install.sh build/asan
