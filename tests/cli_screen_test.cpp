@@ -1,7 +1,10 @@
 // `surfcomp library` and `surfcomp screen` as a user runs them: the library and the hits do not
 // depend on --threads or on the number of MPI processes, a query taken from the library finds
 // itself first, a damaged library and a SMILES list without conformers are refused with one
-// line, and a bad record is skipped and logged.
+// line, and a bad record is skipped and logged. Pocket libraries: a site query finds its own
+// pocket first and writes the hits' structures as PDB models; queries and libraries of the other
+// kind, and --sites with INPUTs, are refused with one line.
+#include "pocket_cut.hpp"
 #include "test_data.hpp"
 
 #include <gtest/gtest.h>
@@ -9,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <sys/wait.h>
@@ -173,6 +177,47 @@ TEST_F(CliScreen, SmilesWithoutConformersAreRefusedBeforeAnyWork) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--conformers"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "nothing.sclib"));
+}
+
+TEST_F(CliScreen, SiteQueryFindsItsOwnPocketInAPocketLibrary) {
+  SURFCOMP_SHARED_OR_SKIP(pdb_4tmn, "thermolysin/4TMN.pdb");
+  SURFCOMP_SHARED_OR_SKIP(pdb_1thl, "thermolysin/1THL.pdb");
+  test::write_pocket(pdb_4tmn, "0PK", 9.0, dir_ / "4TMN_pocket.pdb");
+  test::write_pocket(pdb_1thl, "0DB", 9.0, dir_ / "1THL_pocket.pdb");
+  std::ofstream(dir_ / "sites.txt") << "# two thermolysin pockets\n"
+                                       "1THL_pocket.pdb 0DB\n"
+                                       "4TMN_pocket.pdb 0PK\n";
+  const ProgramRun built = run("library build --sites sites.txt -o pockets.sclib --threads 2");
+  ASSERT_EQ(built.status, 0) << built.err;
+  const ProgramRun screened =
+      run("screen 4TMN_pocket.pdb pockets.sclib --site-ligand 0PK -o sites.csv --aligned-out "
+          "sites_hits.pdb");
+  ASSERT_EQ(screened.status, 0) << screened.err;
+  const std::vector<std::string> rows = lines_of(file_bytes(dir_ / "sites.csv"));
+  ASSERT_EQ(rows.size(), 3u);
+  const std::vector<std::string> first = fields_of(rows[1]);
+  EXPECT_EQ(first[2], "4TMN_pocket:0PK");
+  EXPECT_NEAR(std::stod(first[6]), 1.0, 1e-3);  // score: the pocket overlays itself
+  const std::string models = file_bytes(dir_ / "sites_hits.pdb");
+  std::size_t count = 0;
+  for (const std::string& line : lines_of(models)) count += line.rfind("MODEL", 0) == 0 ? 1 : 0;
+  EXPECT_EQ(count, 2u);
+
+  // The other kind of query or library, and --sites with INPUTs: one line, no output.
+  for (const auto& [arguments, status, words] :
+       std::vector<std::tuple<std::string, int, std::string>>{
+           {"screen 4TMN_pocket.pdb lib.sclib --site-ligand 0PK -o x.csv", 1, "pocket library"},
+           {"screen 4TMN_pocket.pdb pockets.sclib -o x.csv", 1, "site query"},
+           {"screen 4TMN_pocket.pdb pockets.sclib --site-ligand 0PK -o x.csv --aligned-out x.sdf",
+            2, "PDB"},
+           {"library build set.smi --sites sites.txt -o x.sclib", 2, "no INPUT"}}) {
+    const ProgramRun r = run(arguments);
+    EXPECT_EQ(r.status, status) << arguments << "\n" << r.err;
+    EXPECT_EQ(lines_of(r.err).size(), 1u) << arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << arguments << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.csv")) << arguments;
+    EXPECT_FALSE(fs::exists(dir_ / "x.sclib")) << arguments;
+  }
 }
 
 }  // namespace

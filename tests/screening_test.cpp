@@ -1,13 +1,18 @@
 // Screening libraries and the two-stage screen: a library reads back what was written, field
 // for field; a damaged or cut library is refused naming the file; a bad record is skipped and
 // listed while the others build; a query that is in the library finds itself first with the
-// self-overlay's score and the identity.
+// self-overlay's score and the identity. Pocket libraries: a site list is read line by line; a
+// site entry keeps its spheres; a site query finds its own pocket first, and a library of the
+// other kind is refused.
+#include "pocket_cut.hpp"
 #include "test_data.hpp"
 
 #include "surfcomp/core/conformers.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
+#include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/library_build.hpp"
@@ -60,6 +65,18 @@ std::string three_molecule_sdf() {
 std::string read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// The query is library entry `entry`: it comes first from the full match with the
+/// self-overlay's scores, every Tanimoto 1 (within the sampling's rounding), at the identity.
+void expect_found_itself_first(const std::vector<screening::Hit>& hits, std::size_t entry) {
+  ASSERT_FALSE(hits.empty());
+  EXPECT_EQ(hits[0].entry, entry);
+  EXPECT_EQ(hits[0].stage, 2);
+  EXPECT_NEAR(hits[0].fast_score, 1.0, 1e-9);
+  EXPECT_NEAR(hits[0].score.score, 1.0, 1e-3);
+  EXPECT_NEAR(hits[0].score.shape, 1.0, 1e-3);
+  EXPECT_LT((hits[0].score.transform - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff(), 1e-2);
 }
 
 void write_bytes(const fs::path& path, const std::string& bytes) {
@@ -232,16 +249,124 @@ TEST(Screen, QueryInTheLibraryFindsItselfFirstWithTheIdentity) {
       harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options);
   const std::vector<screening::Hit> hits = screening::screen(query, library, options).hits;
   ASSERT_EQ(hits.size(), 3u);
-  EXPECT_EQ(hits[0].entry, 1u);
-  EXPECT_EQ(hits[0].stage, 2);
-  // The self-overlay: every Tanimoto 1 (within the sampling's rounding), the identity pose.
-  EXPECT_NEAR(hits[0].fast_score, 1.0, 1e-9);
-  EXPECT_NEAR(hits[0].score.score, 1.0, 1e-3);
-  EXPECT_NEAR(hits[0].score.shape, 1.0, 1e-3);
-  EXPECT_LT((hits[0].score.transform - Eigen::Matrix4d::Identity()).cwiseAbs().maxCoeff(), 1e-2);
+  expect_found_itself_first(hits, 1);
   for (std::size_t i = 1; i < hits.size(); ++i) EXPECT_LT(hits[i].score.score, hits[0].score.score);
   EXPECT_EQ(hits[1].stage, 2);
   EXPECT_EQ(hits[2].stage, 1);
+}
+
+TEST(SiteList, LinesGiveLigandsOrSpheresAndABadLineIsNamed) {
+  const test::TempDir dir;
+  const fs::path list = dir.write("sites.txt",
+                                  "# pockets\n"
+                                  "\n"
+                                  "a.pdb ATP\n"
+                                  "b.pdb HEM B\n"
+                                  "/abs/c.pdb 1,2,3,4 -1,0.5,2,3.5\n");
+  const std::vector<screening::SiteRequest> sites = screening::read_site_list(list);
+  ASSERT_EQ(sites.size(), 3u);
+  EXPECT_EQ(sites[0].structure, dir / "a.pdb");  // relative to the list's folder
+  EXPECT_EQ(sites[0].line, 3u);
+  ASSERT_TRUE(sites[0].ligand);
+  EXPECT_EQ(sites[0].ligand->residue_name, "ATP");
+  EXPECT_FALSE(sites[0].ligand->chain);
+  EXPECT_EQ(sites[0].name, "a:ATP");
+  ASSERT_TRUE(sites[1].ligand && sites[1].ligand->chain);
+  EXPECT_EQ(*sites[1].ligand->chain, "B");
+  EXPECT_EQ(sites[1].name, "b:HEM:B");
+  EXPECT_EQ(sites[2].structure, fs::path("/abs/c.pdb"));
+  EXPECT_FALSE(sites[2].ligand);
+  ASSERT_EQ(sites[2].spheres.size(), 2u);
+  EXPECT_EQ(sites[2].spheres[1].center, Eigen::Vector3d(-1, 0.5, 2));
+  EXPECT_EQ(sites[2].spheres[1].radius, 3.5);
+  EXPECT_EQ(sites[2].name, "c:spheres5");
+
+  for (const char* bad :
+       {"a.pdb\n", "a.pdb 1,2,3,0\n", "a.pdb 1,2,3,4 ATP\n", "a.pdb ATP A extra\n"}) {
+    const fs::path bad_list = dir.write("bad.txt", std::string("# x\n") + bad);
+    try {
+      screening::read_site_list(bad_list);
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad_list.string() + ":2: "), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(Library, SiteEntriesKeepTheirSpheres) {
+  const test::TempDir dir;
+  screening::LibraryEntry entry;
+  entry.info = {"pocket", "p.pdb", 3, 0, 120, 2};
+  entry.molecule.format = io::RecordFormat::structure;
+  entry.molecule.text =
+      "ATOM      1  CA  ALA A   1       0.000   0.000   0.000  1.00  0.00           C\nEND\n";
+  entry.sample.points = Eigen::Matrix3Xd::Random(3, 4);
+  entry.sample.normals = Eigen::Matrix3Xd::Random(3, 4);
+  entry.sample.weights = Eigen::VectorXd::Ones(4);
+  entry.sample.esp = Eigen::VectorXd::Zero(4);
+  entry.sample.lp = Eigen::VectorXd::Zero(4);
+  entry.atoms.points.resize(3, 0);
+  entry.site = {{Eigen::Vector3d(1, 2, 3), 4.0}, {Eigen::Vector3d(-1, 0, 2.5), 3.0}};
+  const fs::path path = dir / "sites.sclib";
+  screening::write_library(path, {entry});
+  const screening::Library library(path);
+  EXPECT_EQ(library.version(), 2u);
+  EXPECT_EQ(library.info(0).site_spheres, 2u);
+  const screening::LibraryEntry read = library.entry(0);
+  ASSERT_EQ(read.site.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(read.site[k].center, entry.site[k].center);
+    EXPECT_EQ(read.site[k].radius, entry.site[k].radius);
+  }
+  EXPECT_EQ(read.molecule.text, entry.molecule.text);
+}
+
+TEST(Screen, SiteQueryFindsItsOwnPocketFirstAndKindsDoNotMix) {
+  SURFCOMP_SHARED_OR_SKIP(pdb_4tmn, "thermolysin/4TMN.pdb");
+  SURFCOMP_SHARED_OR_SKIP(pdb_1thl, "thermolysin/1THL.pdb");
+  const test::TempDir dir;
+  const fs::path pocket_4tmn = dir / "4TMN_pocket.pdb";
+  const fs::path pocket_1thl = dir / "1THL_pocket.pdb";
+  test::write_pocket(pdb_4tmn, "0PK", 9.0, pocket_4tmn);
+  test::write_pocket(pdb_1thl, "0DB", 9.0, pocket_1thl);
+  const fs::path list =
+      dir.write("sites.txt", pocket_1thl.filename().string() + " 0DB\n" +
+                                 pocket_4tmn.filename().string() + " 0PK\n" + "missing.pdb 0PK\n");
+  const fs::path path = dir / "pockets.sclib";
+  const screening::LibraryBuildResult built =
+      screening::build_site_library(screening::read_site_list(list), path);
+  EXPECT_EQ(built.entries, 2u);
+  ASSERT_EQ(built.skipped.size(), 1u);
+  EXPECT_EQ(built.skipped[0].record, 3u);
+  const screening::Library library(path);
+
+  // The query: 4TMN's site built as `screen --site-ligand 0PK` builds it.
+  const matching::BindingSite site =
+      matching::binding_site(io::read_molecule(pocket_4tmn), LigandSelector{"0PK", {}, {}});
+  EXPECT_EQ(library.entry(1).site.size(), site.spheres.size());
+  screening::ScreenOptions options;
+  options.top = 0;
+  const screening::ScreenQuery query = screening::make_screen_query(
+      matching::describe_site(mesh::build_molecular_surface(site.structure), site.structure,
+                              site.spheres),
+      options, site.spheres);
+  const std::vector<screening::Hit> hits = screening::screen(query, library, options).hits;
+  ASSERT_EQ(hits.size(), 2u);
+  // The stored pocket is the query's own (its structure written and read back as PDB).
+  expect_found_itself_first(hits, 1);
+  EXPECT_LT(hits[1].score.score, hits[0].score.score);
+
+  // A molecule query against a pocket library, and a site query against a molecule library.
+  const fs::path sdf = dir.write("three.sdf", three_molecule_sdf());
+  const std::vector<io::MoleculeRecord> records = screening::read_library_inputs({sdf});
+  const Molecule ligand = io::read_record_molecule(records[0]);
+  const screening::ScreenQuery molecule_query = screening::make_screen_query(
+      harmonic::describe_surface(mesh::build_molecular_surface(ligand), ligand), options);
+  EXPECT_THROW(screening::screen(molecule_query, library, options), InputError);
+  const fs::path molecules = dir / "three.sclib";
+  screening::build_library(records, molecules);
+  EXPECT_THROW(screening::screen(query, screening::Library(molecules), options), InputError);
 }
 
 }  // namespace

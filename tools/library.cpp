@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -26,6 +27,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: surfcomp library build INPUT... -o LIB.sclib [--conformers N] [--seed S]\n"
     "                              [--threads T]\n"
+    "       surfcomp library build --sites LIST -o POCKETS.sclib [--site-radius R] [--threads T]\n"
     "       surfcomp library info LIB.sclib\n"
     "       surfcomp library export LIB.sclib -o OUT.sdf\n\n"
     "build   reads every molecule of the INPUTs (SDF/MOL/MOL2 files of one or many records,\n"
@@ -54,10 +56,67 @@ std::string duration(double seconds) {
   return text;
 }
 
+/// A progress line on stderr when it is a terminal (entries done, rate, time left), else none.
+std::function<void(const screening::BuildProgress&)> progress_line() {
+  if (isatty(STDERR_FILENO) == 0) return {};
+  return [last = -1.0](const screening::BuildProgress& p) mutable {
+    if (p.records_done < p.records && p.seconds - last < 0.5) return;
+    last = p.seconds;
+    const double rate = p.seconds > 0 ? static_cast<double>(p.entries) / p.seconds : 0.0;
+    const double left = p.records_done > 0
+                            ? p.seconds * static_cast<double>(p.records - p.records_done) /
+                                  static_cast<double>(p.records_done)
+                            : 0.0;
+    std::fprintf(stderr, "\r\033[Klibrary: %zu/%zu records, %zu entries, %.1f entries/s, %s left",
+                 p.records_done, p.records, p.entries, rate, duration(left).c_str());
+    if (p.records_done == p.records) std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+  };
+}
+
+/// Writes LIB.sclib.log (the skipped records and why) and prints the build's summary line.
+void write_log_and_summary(const std::filesystem::path& library, const std::filesystem::path& log,
+                           const screening::LibraryBuildResult& result) {
+  io::write_file_atomically(log, [&](std::ostream& out) {
+    out << "# surfcomp library build -> " << library.string() << ": " << result.records
+        << " records, " << result.entries << " entries, " << result.skipped.size()
+        << " skipped\n# source\trecord\tname\treason\n";
+    for (const auto& s : result.skipped)
+      out << s.source << '\t' << s.record << '\t' << s.name << '\t' << s.reason << '\n';
+  });
+  std::printf(
+      "%s: %zu records -> %zu entries, %zu skipped (see %s), %.1f MB, %.1f s (%.1f entries/s)\n",
+      library.string().c_str(), result.records, result.entries, result.skipped.size(),
+      log.string().c_str(), static_cast<double>(result.bytes) / 1e6, result.seconds,
+      result.seconds > 0 ? static_cast<double>(result.entries) / result.seconds : 0.0);
+}
+
+/// `library build --sites LIST`: a pocket library.
+int build_sites(const boost::program_options::variables_map& vm, const std::string& list,
+                const std::string& output, double site_radius, int conformers, int threads) {
+  if (vm.count("input")) throw OptionError("--sites takes no INPUT: the sites are in its list");
+  if (conformers != 0) throw OptionError("--conformers does not apply to --sites");
+  require_in_range("site-radius", site_radius, 0.1, 100);
+  const auto limit = limit_threads(threads);
+  const std::filesystem::path library = output;
+  const std::filesystem::path log = output + ".log";
+  check_command_files(
+      {{{"--sites", list}}, {{"--output", library, {".sclib"}, ""}, {"the log", log, {}, ""}}});
+  screening::LibraryBuildOptions options;
+  options.site.sphere_radius = site_radius;
+  options.progress = progress_line();
+  const std::vector<screening::SiteRequest> sites = screening::read_site_list(list);
+  const screening::LibraryBuildResult result =
+      screening::build_site_library(sites, library, options);
+  write_log_and_summary(library, log, result);
+  return 0;
+}
+
 int build(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
-  std::string output;
+  std::string output, sites;
   int conformers = 0, seed = ConformerOptions{}.seed, threads = 0;
+  double site_radius = matching::BindingSiteOptions{}.sphere_radius;
   po::options_description described("options");
   // clang-format off
   described.add_options()
@@ -66,10 +125,14 @@ int build(const std::vector<std::string>& args) {
       ("conformers", po::value(&conformers)->default_value(0),
        "conformers per molecule from ETKDG + MMFF (0: the records' own coordinates)")
       ("seed", defaulted(&seed), "ETKDG random seed (>= 0)")
+      ("sites", po::value(&sites), "build a pocket library from this site list (no INPUT)")
+      ("site-radius", defaulted(&site_radius),
+       "with --sites: radius of the spheres around a site ligand's atoms, A")
       ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
   // clang-format on
   po::variables_map vm;
   if (!parse_command_line(args, described, -1, kUsage, vm)) return 0;
+  if (!sites.empty()) return build_sites(vm, sites, output, site_radius, conformers, threads);
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   std::vector<std::filesystem::path> inputs;
   for (const auto& input : vm["input"].as<std::vector<std::string>>()) inputs.emplace_back(input);
@@ -99,34 +162,9 @@ int build(const std::vector<std::string>& args) {
       }
     }
   }
-  if (isatty(STDERR_FILENO) != 0) {
-    options.progress = [last = -1.0](const screening::BuildProgress& p) mutable {
-      if (p.records_done < p.records && p.seconds - last < 0.5) return;
-      last = p.seconds;
-      const double rate = p.seconds > 0 ? static_cast<double>(p.entries) / p.seconds : 0.0;
-      const double left = p.records_done > 0
-                              ? p.seconds * static_cast<double>(p.records - p.records_done) /
-                                    static_cast<double>(p.records_done)
-                              : 0.0;
-      std::fprintf(stderr, "\r\033[Klibrary: %zu/%zu records, %zu entries, %.1f entries/s, %s left",
-                   p.records_done, p.records, p.entries, rate, duration(left).c_str());
-      if (p.records_done == p.records) std::fprintf(stderr, "\r\033[K");
-      std::fflush(stderr);
-    };
-  }
+  options.progress = progress_line();
   const screening::LibraryBuildResult result = screening::build_library(records, library, options);
-  io::write_file_atomically(log, [&](std::ostream& out) {
-    out << "# surfcomp library build -> " << library.string() << ": " << result.records
-        << " records, " << result.entries << " entries, " << result.skipped.size()
-        << " skipped\n# source\trecord\tname\treason\n";
-    for (const auto& s : result.skipped)
-      out << s.source << '\t' << s.record << '\t' << s.name << '\t' << s.reason << '\n';
-  });
-  std::printf(
-      "%s: %zu records -> %zu entries, %zu skipped (see %s), %.1f MB, %.1f s (%.1f entries/s)\n",
-      library.string().c_str(), result.records, result.entries, result.skipped.size(),
-      log.string().c_str(), static_cast<double>(result.bytes) / 1e6, result.seconds,
-      result.seconds > 0 ? static_cast<double>(result.entries) / result.seconds : 0.0);
+  write_log_and_summary(library, log, result);
   return 0;
 }
 

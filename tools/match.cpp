@@ -91,15 +91,9 @@ struct Side {
 };
 
 matching::SiteSphere parse_sphere(const std::string& text) {
-  std::stringstream in(text);
-  matching::SiteSphere s;
-  char c1 = 0, c2 = 0, c3 = 0;
-  if (!(in >> s.center.x() >> c1 >> s.center.y() >> c2 >> s.center.z() >> c3 >> s.radius) ||
-      c1 != ',' || c2 != ',' || c3 != ',' || !(in >> std::ws).eof() || !s.center.allFinite() ||
-      !(s.radius > 0 && std::isfinite(s.radius))) {
-    throw OptionError("--site-sphere '" + text + "': expected x,y,z,r with r > 0 (A)");
-  }
-  return s;
+  const std::optional<matching::SiteSphere> sphere = matching::parse_site_sphere(text);
+  if (!sphere) throw OptionError("--site-sphere '" + text + "': expected x,y,z,r with r > 0 (A)");
+  return *sphere;
 }
 
 /// Checks, before any work, that one side's input and site options fit together: a site ligand

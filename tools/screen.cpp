@@ -7,15 +7,20 @@
 #include "surface_input.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
+#include "surfcomp/matching/site.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/screen.hpp"
 
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <memory>
+#include <sstream>
 
 namespace surfcomp::tools {
 namespace {
@@ -23,6 +28,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: surfcomp screen QUERY LIB.sclib -o hits.csv [--top N] [--candidates K]\n"
     "                       [--aligned-out hits.sdf] [--threads T]\n"
+    "       surfcomp screen STRUCTURE.pdb POCKETS.sclib --site-ligand RES | --site-sphere x,y,z,r\n"
+    "                       -o hits.csv [--aligned-out hits.pdb] ...\n"
     "       mpirun -np R surfcomp screen ...   (the library split over R processes)\n\n"
     "Ranks the molecules of a library (surfcomp library build) by how well their surfaces\n"
     "overlay QUERY's, in two stages: every conformer gets a fast score (the overlay score of\n"
@@ -35,7 +42,11 @@ constexpr const char* kUsage =
     "t00..t33, the transform moving the hit into QUERY's frame (row-major). The rows do not\n"
     "depend on --threads or on the number of MPI processes.\n\n"
     "QUERY  a molecule (.sdf .mol .mol2 .pdb; --record N of a multi-molecule file) or a .hsi\n"
-    "       file built from one";
+    "       file built from one; with --site-ligand or --site-sphere, a binding site on a\n"
+    "       structure, screened against a pocket library (library build --sites): the overlays\n"
+    "       then compare pocket linings on shape, as `match` does for sites (all 24 axes orders\n"
+    "       in stage 1), and --aligned-out writes the hits' structures moved onto QUERY (.pdb,\n"
+    "       one MODEL per hit).";
 
 void write_aligned(const std::filesystem::path& path, const screening::Library& library,
                    const std::vector<screening::Hit>& hits, std::size_t count) {
@@ -61,14 +72,50 @@ void write_aligned(const std::filesystem::path& path, const screening::Library& 
   });
 }
 
+/// The structures of the first `count` hits of a pocket library moved onto the query, one PDB
+/// MODEL each.
+void write_aligned_sites(const std::filesystem::path& path, const screening::Library& library,
+                         const std::vector<screening::Hit>& hits, std::size_t count,
+                         const io::MoleculeReadOptions& read) {
+  io::write_file_atomically(path, [&](std::ostream& out) {
+    for (std::size_t i = 0; i < hits.size() && i < count; ++i) {
+      const screening::Hit& hit = hits[i];
+      const screening::LibraryEntry entry = library.entry(hit.entry);
+      Molecule structure = io::read_record_molecule(entry.molecule, read);
+      const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();
+      const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
+      for (Atom& atom : structure.atoms) atom.position = rotation * atom.position + translation;
+      std::ostringstream pdb;
+      io::write_pdb(structure, pdb);
+      std::string text = pdb.str();
+      if (text.size() >= 4 && text.compare(text.size() - 4, 4, "END\n") == 0)
+        text.resize(text.size() - 4);
+      char score[32];
+      std::snprintf(score, sizeof score, "%.6f", hit.score.score);
+      out << "MODEL     " << std::setw(4) << i + 1 << "\nREMARK   1 surfcomp rank " << i + 1
+          << " entry " << hit.entry + 1 << " " << entry.info.name << " score " << score << "\n"
+          << text << "ENDMDL\n";
+    }
+    out << "END\n";
+  });
+}
+
+matching::SiteSphere parse_sphere(const std::string& text) {
+  const std::optional<matching::SiteSphere> sphere = matching::parse_site_sphere(text);
+  if (!sphere) throw OptionError("--site-sphere '" + text + "': expected x,y,z,r with r > 0 (A)");
+  return *sphere;
+}
+
 }  // namespace
 
 int screen(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
-  std::string output, aligned_out;
+  std::string output, aligned_out, site_ligand;
+  std::vector<std::string> site_spheres;
   std::size_t record = 0;
   int threads = 0;
   double top = 100, candidates = 50, aligned_top = 10;
+  double site_radius = matching::BindingSiteOptions{}.sphere_radius;
   po::options_description described("options");
   // clang-format off
   described.add_options()
@@ -82,6 +129,12 @@ int screen(const std::vector<std::string>& args) {
       ("aligned-top", defaulted(&aligned_top),
        "hits written to --aligned-out")
       ("record", po::value(&record), "QUERY holding several molecules: read molecule N (1-based)")
+      ("site-ligand", po::value(&site_ligand),
+       "a site query: the binding site of this ligand residue on the QUERY structure")
+      ("site-sphere", po::value(&site_spheres)->composing(),
+       "a site query: site sphere x,y,z,r on QUERY (A; repeatable)")
+      ("site-radius", defaulted(&site_radius),
+       "radius of the spheres around the site ligand's atoms, A")
       ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
   // clang-format on
   po::variables_map vm;
@@ -93,13 +146,30 @@ int screen(const std::vector<std::string>& args) {
   require_in_range("candidates", candidates, 0, 1e6);
   require_in_range("aligned-top", aligned_top, 1, 1e6);
   require_in_range("threads", threads, 0, 1024);
+  require_in_range("site-radius", site_radius, 0.1, 100);
   const std::filesystem::path query_path = inputs[0], library_path = inputs[1];
+  std::vector<matching::SiteSphere> spheres;
+  spheres.reserve(site_spheres.size());
+  for (const std::string& text : site_spheres) spheres.push_back(parse_sphere(text));
+  const bool site_query = !site_ligand.empty() || !spheres.empty();
   SurfaceInput input;
   input.read.record = record;
+  if (site_query) {
+    if (harmonic::io::is_hsi_file(query_path) || !io::is_molecule_file(query_path))
+      throw OptionError(query_path.string() +
+                        ": a site query needs a molecule file (the structure), not a .hsi or mesh");
+    if (is_water_residue(site_ligand)) {
+      throw OptionError("--site-ligand " + site_ligand +
+                        ": water cannot be a site ligand; give --site-sphere x,y,z,r around it");
+    }
+  }
   if (!harmonic::io::is_hsi_file(query_path)) check_surface_input(query_path, input);
-  check_command_files({{{"QUERY", query_path}, {"LIB", library_path}},
-                       {{"--output", output, {".csv"}, ""},
-                        {"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"}}});
+  check_command_files(
+      {{{"QUERY", query_path}, {"LIB", library_path}},
+       {{"--output", output, {".csv"}, ""},
+        site_query
+            ? OutputFile{"--aligned-out", aligned_out, {".pdb"}, "site hits are written as PDB"}
+            : OutputFile{"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"}}});
   std::unique_ptr<tbb::global_control> limit;
   if (threads > 0) {
     limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -112,14 +182,27 @@ int screen(const std::vector<std::string>& args) {
   const Stopwatch clock;
   const screening::Library library(library_path);
   harmonic::SurfaceDescriptors descriptors;
-  if (harmonic::io::is_hsi_file(query_path)) {
+  if (site_query) {
+    const Molecule structure = io::read_molecule(query_path, input.read);
+    matching::BindingSiteOptions site_options;
+    site_options.sphere_radius = site_radius;
+    matching::BindingSite site =
+        site_ligand.empty()
+            ? matching::binding_site(structure, spheres, site_options)
+            : matching::binding_site(structure, LigandSelector{site_ligand, {}, {}}, site_options);
+    if (!site_ligand.empty())  // --site-sphere adds to the ligand's spheres, as in `match`
+      site.spheres.insert(site.spheres.end(), spheres.begin(), spheres.end());
+    spheres = site.spheres;
+    descriptors = matching::describe_site(
+        mesh::build_molecular_surface(site.structure, input.surface), site.structure, spheres);
+  } else if (harmonic::io::is_hsi_file(query_path)) {
     descriptors = harmonic::io::read_hsi(query_path);
   } else {
     LoadedSurface loaded = load_surface(query_path, input);
     descriptors = harmonic::describe_surface(std::move(loaded.surface), *loaded.molecule);
   }
   const screening::ScreenQuery query =
-      screening::make_screen_query(std::move(descriptors), options);
+      screening::make_screen_query(std::move(descriptors), options, spheres);
   const double query_s = clock.elapsed_s();
 
   screening::ScreenResult result;
@@ -134,8 +217,12 @@ int screen(const std::vector<std::string>& args) {
   }
   const std::vector<screening::Hit>& hits = result.hits;
   const double total_s = clock.elapsed_s();
-  if (!aligned_out.empty())
+  if (!aligned_out.empty() && site_query) {
+    write_aligned_sites(aligned_out, library, hits, static_cast<std::size_t>(aligned_top),
+                        options.read);
+  } else if (!aligned_out.empty()) {
     write_aligned(aligned_out, library, hits, static_cast<std::size_t>(aligned_top));
+  }
   try {
     io::write_file_atomically(
         output, [&](std::ostream& out) { screening::write_hits_csv(out, library, hits); });

@@ -4,6 +4,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/matching/cliques.hpp"
+#include "surfcomp/matching/site.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -42,25 +43,6 @@ std::vector<Placed> consensus_order(const std::vector<RankedAlignment>& ranking,
   return placed;
 }
 
-/// A site's pocket lining: the vertices within `radius` of a critical point that takes part,
-/// allowed by `allowed` (all when null) and described (not PatchStatus::skipped).
-std::vector<bool> pocket_lining(const harmonic::SurfaceDescriptors& descriptors,
-                                const std::vector<bool>* allowed, double radius) {
-  const auto& cps = descriptors.critical_points;
-  const Eigen::MatrixX3d positions = descriptors.surface.positions();
-  std::vector<bool> inside(static_cast<std::size_t>(positions.rows()), false);
-  for (std::size_t c = 0; c < cps.size(); ++c) {
-    if ((allowed != nullptr && !(*allowed)[c]) || cps[c].status == harmonic::PatchStatus::skipped)
-      continue;
-    const Eigen::Vector3d centre = cps[c].point.position;
-    for (Eigen::Index v = 0; v < positions.rows(); ++v) {
-      if ((Eigen::Vector3d(positions.row(v)) - centre).squaredNorm() <= radius * radius)
-        inside[static_cast<std::size_t>(v)] = true;
-    }
-  }
-  return inside;
-}
-
 /// The overlay the poses are refined and scored on, and the principal-axes starts refined
 /// with them.
 struct Refinement {
@@ -79,11 +61,7 @@ std::optional<Refinement> prepare_refinement(const harmonic::SurfaceDescriptors&
                                              const std::vector<bool>* probe_allowed,
                                              bool have_alignments) {
   const bool site = options.mode == MatchMode::binding_sites;
-  OverlayOptions overlay_options = options.overlay;
-  if (site) {
-    overlay_options.chem_weight = options.site.chem_weight;
-    overlay_options.atom_weight = 0.0;  // pockets are compared on their linings' shape
-  }
+  const OverlayOptions overlay_options = mode_overlay_options(options);
   const int n_axes_starts =
       site ? options.site.principal_axes_starts : options.principal_axes_starts;
   if (!have_alignments && n_axes_starts == 0) return std::nullopt;
@@ -269,6 +247,15 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
 }
 
 }  // namespace
+
+OverlayOptions mode_overlay_options(const MatchOptions& options) {
+  OverlayOptions overlay = options.overlay;
+  if (options.mode == MatchMode::binding_sites) {
+    overlay.chem_weight = options.site.chem_weight;
+    overlay.atom_weight = 0.0;  // pockets are compared on their linings' shape
+  }
+  return overlay;
+}
 
 void validate(const MatchOptions& options) {
   const std::string caller = "match options";

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -100,6 +101,34 @@ BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> sphe
   site.structure = site_structure(structure, std::vector<bool>(structure.atoms.size(), false),
                                   site.spheres, options);
   return site;
+}
+
+std::optional<SiteSphere> parse_site_sphere(const std::string& text) {
+  std::istringstream in(text);
+  SiteSphere s;
+  char c1 = 0, c2 = 0, c3 = 0;
+  if (!(in >> s.center.x() >> c1 >> s.center.y() >> c2 >> s.center.z() >> c3 >> s.radius) ||
+      c1 != ',' || c2 != ',' || c3 != ',' || !(in >> std::ws).eof() || !s.center.allFinite() ||
+      !(s.radius > 0 && std::isfinite(s.radius)))
+    return std::nullopt;
+  return s;
+}
+
+std::vector<bool> pocket_lining(const harmonic::SurfaceDescriptors& descriptors,
+                                const std::vector<bool>* allowed, double radius) {
+  const auto& cps = descriptors.critical_points;
+  const Eigen::MatrixX3d positions = descriptors.surface.positions();
+  std::vector<bool> inside(static_cast<std::size_t>(positions.rows()), false);
+  for (std::size_t c = 0; c < cps.size(); ++c) {
+    if ((allowed != nullptr && !(*allowed)[c]) || cps[c].status == harmonic::PatchStatus::skipped)
+      continue;
+    const Eigen::Vector3d centre = cps[c].point.position;
+    for (Eigen::Index v = 0; v < positions.rows(); ++v) {
+      if ((Eigen::Vector3d(positions.row(v)) - centre).squaredNorm() <= radius * radius)
+        inside[static_cast<std::size_t>(v)] = true;
+    }
+  }
+  return inside;
 }
 
 std::vector<bool> critical_points_in_site(const harmonic::SurfaceDescriptors& descriptors,

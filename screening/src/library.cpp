@@ -6,6 +6,7 @@
 #include "surfcomp/core/io/input_file.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -66,6 +67,11 @@ std::vector<std::uint8_t> encode(const LibraryEntry& entry) {
   for (std::size_t a = 0; a < entry.atoms.size(); ++a) {
     w.string(entry.atoms.elements[a]);
     for (int k = 0; k < 3; ++k) w.f64(entry.atoms.points(k, static_cast<Eigen::Index>(a)));
+  }
+  w.u64(entry.site.size());
+  for (const matching::SiteSphere& sphere : entry.site) {
+    for (int k = 0; k < 3; ++k) w.f64(sphere.center(k));
+    w.f64(sphere.radius);
   }
   return w.bytes();
 }
@@ -135,6 +141,7 @@ void LibraryWriter::add(const LibraryEntry& entry) {
   x.u32(entry.info.record);
   x.u32(entry.info.conformer);
   x.u32(entry.info.heavy_atoms);
+  x.u32(narrow32(entry.site.size(), "site sphere count"));
   impl_->offset += bytes.size();
   ++impl_->count;
 }
@@ -229,9 +236,9 @@ void Library::Impl::read_index() {
     fail("not a surfcomp library (no SURFCLIB magic)");
   io::BinaryReader header(data + kMagicBytes, kHeaderBytes - kMagicBytes, path.string());
   version = header.u32();
-  if (version != library_format_version) {
-    fail("library format version " + std::to_string(version) + ", this program reads version " +
-         std::to_string(library_format_version));
+  if (version != 1 && version != library_format_version) {
+    fail("library format version " + std::to_string(version) +
+         ", this program reads versions 1 to " + std::to_string(library_format_version));
   }
   const std::uint8_t* trailer_data = data + size - kTrailerBytes;
   if (std::memcmp(trailer_data + kTrailerBytes - kMagicBytes, kEndMagic, kMagicBytes) != 0)
@@ -264,6 +271,7 @@ void Library::Impl::read_index() {
     info.record = r.u32();
     info.conformer = r.u32();
     info.heavy_atoms = r.u32();
+    if (version >= 2) info.site_spheres = r.u32();
     if (offset != previous_end || bytes > index_offset - offset) {
       fail("entry " + std::to_string(e + 1) + " (" + info.name + "): offset " +
            std::to_string(offset) + " and size " + std::to_string(bytes) +
@@ -338,6 +346,21 @@ LibraryEntry Library::entry(std::size_t index) const {
     for (int k = 0; k < 3; ++k) position(k) = r.f64();
     io::check_read_position(position, where, "heteroatom " + std::to_string(a + 1));
     entry.atoms.points.col(static_cast<Eigen::Index>(a)) = position;
+  }
+  if (impl_->version >= 2) {
+    const std::uint64_t spheres = r.u64();
+    if (spheres != info.site_spheres) {
+      r.fail(std::to_string(spheres) + " site spheres, the index says " +
+             std::to_string(info.site_spheres));
+    }
+    for (std::uint64_t k = 0; k < spheres; ++k) {
+      matching::SiteSphere sphere;
+      for (int d = 0; d < 3; ++d) sphere.center(d) = r.f64();
+      sphere.radius = r.f64();
+      if (!sphere.center.allFinite() || !std::isfinite(sphere.radius) || !(sphere.radius > 0.0))
+        r.fail("site sphere " + std::to_string(k + 1) + " is not a finite centre and radius > 0");
+      entry.site.push_back(sphere);
+    }
   }
   if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes after the entry");
   return entry;

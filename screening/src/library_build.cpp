@@ -2,6 +2,8 @@
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
@@ -22,6 +24,12 @@ void check_options(const LibraryBuildOptions& options) {
     throw OptionError("library spacing must be finite and > 0, got " +
                       std::to_string(options.spacing));
   if (options.batch < 1) throw OptionError("library build batch must be at least 1");
+  if (!(options.lining_radius > 0.0) || !std::isfinite(options.lining_radius))
+    throw OptionError("--site-overlay-radius must be finite and > 0, got " +
+                      std::to_string(options.lining_radius));
+  if (!(options.site.sphere_radius > 0.0) || !std::isfinite(options.site.sphere_radius))
+    throw OptionError("--site-radius must be finite and > 0, got " +
+                      std::to_string(options.site.sphere_radius));
   if (options.conformers) {
     const ConformerOptions& c = *options.conformers;
     if (c.count < 1)
@@ -108,9 +116,13 @@ std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
   return entries;
 }
 
-std::string build_settings(const LibraryBuildOptions& options) {
+std::string build_settings(const LibraryBuildOptions& options, bool sites) {
   std::ostringstream text;
-  if (options.conformers) {
+  if (sites) {
+    text << "sites (site_radius " << options.site.sphere_radius << ", chain_contact_radius "
+         << options.site.chain_contact_radius << ", lining_radius " << options.lining_radius
+         << ")\n";
+  } else if (options.conformers) {
     text << "conformers " << options.conformers->count << " (ETKDGv3 seed "
          << options.conformers->seed << ", MMFF94 " << options.conformers->mmff_iterations
          << " iterations)\n";
@@ -123,14 +135,25 @@ std::string build_settings(const LibraryBuildOptions& options) {
   return text.str();
 }
 
-LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
-                                 const std::filesystem::path& output,
-                                 const LibraryBuildOptions& options) {
-  check_options(options);
+namespace {
+
+/// Where item `index` of a build comes from, for the list of skipped items.
+struct ItemOrigin {
+  std::string source;
+  std::size_t record = 0;
+  std::string name;
+};
+
+/// Builds the entries of `count` items with `build_item(index)` in parallel and writes them in
+/// item order to `output` atomically; an item whose build throws is skipped and listed.
+LibraryBuildResult build_in_order(
+    std::size_t count, const std::function<std::vector<LibraryEntry>(std::size_t)>& build_item,
+    const std::function<ItemOrigin(std::size_t)>& origin, const std::filesystem::path& output,
+    const std::string& settings, const LibraryBuildOptions& options) {
   const Stopwatch clock;
   LibraryBuildResult result;
-  result.records = records.size();
-  // A pipeline: records go out in order, are built in parallel and are written in order, at
+  result.records = count;
+  // A pipeline: items go out in order, are built in parallel and are written in order, at
   // most options.batch of them in flight.
   struct Built {
     std::size_t index = 0;
@@ -138,13 +161,13 @@ LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
     std::string error;
   };
   io::write_file_atomically(output, [&](std::ostream& out) {
-    LibraryWriter writer(out, build_settings(options));
+    LibraryWriter writer(out, settings);
     std::size_t next = 0;
     tbb::parallel_pipeline(
         options.batch,
         tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
                                             [&](tbb::flow_control& control) -> std::size_t {
-                                              if (next == records.size()) {
+                                              if (next == count) {
                                                 control.stop();
                                                 return 0;
                                               }
@@ -156,7 +179,7 @@ LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
                   auto built = std::make_shared<Built>();
                   built->index = index;
                   try {
-                    built->entries = build_entries(records[index], options);
+                    built->entries = build_item(index);
                   } catch (const std::bad_alloc&) {
                     built->error = "out of memory";
                   } catch (const std::exception& e) {
@@ -167,16 +190,16 @@ LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
                 }) &
             tbb::make_filter<std::shared_ptr<Built>, void>(
                 tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<Built>& built) {
-                  const io::MoleculeRecord& record = records[built->index];
                   if (!built->error.empty()) {
+                    ItemOrigin o = origin(built->index);
                     result.skipped.push_back(
-                        {record.source.string(), record.record, record.name, built->error});
+                        {std::move(o.source), o.record, std::move(o.name), built->error});
                   } else {
                     for (const LibraryEntry& entry : built->entries) writer.add(entry);
                   }
                   if (options.progress) {
-                    options.progress({built->index + 1, records.size(), writer.size(),
-                                      result.skipped.size(), clock.elapsed_s()});
+                    options.progress({built->index + 1, count, writer.size(), result.skipped.size(),
+                                      clock.elapsed_s()});
                   }
                 }));
     writer.finish();
@@ -185,6 +208,111 @@ LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
   });
   result.seconds = clock.elapsed_s();
   return result;
+}
+
+}  // namespace
+
+LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
+                                 const std::filesystem::path& output,
+                                 const LibraryBuildOptions& options) {
+  check_options(options);
+  return build_in_order(
+      records.size(), [&](std::size_t i) { return build_entries(records[i], options); },
+      [&](std::size_t i) {
+        return ItemOrigin{records[i].source.string(), records[i].record, records[i].name};
+      },
+      output, build_settings(options), options);
+}
+
+std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {
+  const std::string text = io::read_input_file(list);
+  std::vector<SiteRequest> sites;
+  std::istringstream lines(text);
+  std::string line;
+  for (std::size_t number = 1; std::getline(lines, line); ++number) {
+    std::istringstream fields(line);
+    std::vector<std::string> words;
+    for (std::string word; fields >> word;) words.push_back(word);
+    if (words.empty() || words.front().front() == '#') continue;
+    const std::string where = list.string() + ":" + std::to_string(number) + ": ";
+    if (words.size() < 2) {
+      throw InputError(where +
+                       "expected 'STRUCTURE LIGAND [CHAIN]' or 'STRUCTURE x,y,z,r [x,y,z,r ...]'");
+    }
+    SiteRequest site;
+    site.list = list;
+    site.line = number;
+    site.structure = words[0];
+    if (site.structure.is_relative()) site.structure = list.parent_path() / site.structure;
+    const std::string stem = std::filesystem::path(words[0]).stem().string();
+    if (words[1].find(',') != std::string::npos) {
+      for (std::size_t w = 1; w < words.size(); ++w) {
+        const std::optional<matching::SiteSphere> sphere = matching::parse_site_sphere(words[w]);
+        if (!sphere) {
+          throw InputError(where + "'" + words[w] + "' is not a sphere x,y,z,r with r > 0 (A)");
+        }
+        site.spheres.push_back(*sphere);
+      }
+      site.name = stem + ":spheres" + std::to_string(number);
+    } else {
+      if (words.size() > 3) {
+        throw InputError(where + "expected 'STRUCTURE LIGAND [CHAIN]', got " +
+                         std::to_string(words.size()) + " fields");
+      }
+      site.ligand = LigandSelector{words[1], {}, {}};
+      site.name = stem + ":" + words[1];
+      if (words.size() == 3) {
+        site.ligand->chain = words[2];
+        site.name += ":" + words[2];
+      }
+    }
+    sites.push_back(std::move(site));
+  }
+  return sites;
+}
+
+LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOptions& options) {
+  const Molecule structure = io::read_molecule(request.structure, options.read);
+  matching::BindingSite site =
+      request.ligand ? matching::binding_site(structure, *request.ligand, options.site)
+                     : matching::binding_site(structure, request.spheres, options.site);
+  const harmonic::SurfaceDescriptors described = matching::describe_site(
+      mesh::build_molecular_surface(site.structure, options.surface), site.structure, site.spheres);
+  const std::vector<bool> in_site = matching::critical_points_in_site(described, site.spheres);
+  const std::vector<bool> lining =
+      matching::pocket_lining(described, &in_site, options.lining_radius);
+  LibraryEntry entry;
+  entry.info.name = request.name;
+  entry.info.source = request.structure.string();
+  entry.info.record = static_cast<std::uint32_t>(request.line);
+  entry.info.heavy_atoms = heavy_atom_count(site.structure);
+  entry.info.site_spheres = static_cast<std::uint32_t>(site.spheres.size());
+  std::ostringstream pdb;
+  io::write_pdb(site.structure, pdb);
+  entry.molecule.source = request.structure;
+  entry.molecule.record = request.line;
+  entry.molecule.name = request.name;
+  entry.molecule.format = io::RecordFormat::structure;
+  entry.molecule.text = pdb.str();
+  entry.sample = matching::sample_surface(described.surface, options.spacing, &lining);
+  if (entry.sample.size() == 0)
+    throw InputError(request.name + ": the site's pocket lining has no vertex");
+  entry.site = std::move(site.spheres);
+  return entry;
+}
+
+LibraryBuildResult build_site_library(const std::vector<SiteRequest>& sites,
+                                      const std::filesystem::path& output,
+                                      const LibraryBuildOptions& options) {
+  check_options(options);
+  if (options.conformers) throw OptionError("--conformers does not apply to sites (--sites)");
+  return build_in_order(
+      sites.size(),
+      [&](std::size_t i) { return std::vector<LibraryEntry>{build_site_entry(sites[i], options)}; },
+      [&](std::size_t i) {
+        return ItemOrigin{sites[i].structure.string(), sites[i].line, sites[i].name};
+      },
+      output, build_settings(options, true), options);
 }
 
 }  // namespace surfcomp::screening

@@ -5,6 +5,7 @@
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/matching/principal_axes.hpp"
+#include "surfcomp/matching/site.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -56,15 +57,37 @@ bool same_overlay_options(const matching::OverlayOptions& x, const matching::Ove
 
 }  // namespace
 
+matching::MatchOptions query_match_options(const ScreenQuery& query, const ScreenOptions& options) {
+  matching::MatchOptions match = options.match;
+  match.mode =
+      query.site.empty() ? matching::MatchMode::whole_surfaces : matching::MatchMode::binding_sites;
+  return match;
+}
+
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
-                              const ScreenOptions& options) {
+                              const ScreenOptions& options,
+                              std::vector<matching::SiteSphere> site) {
   ScreenQuery query;
-  query.sample = matching::sample_surface(descriptors.surface, options.match.overlay.spacing);
-  if (query.sample.size() == 0)
-    throw InputError(descriptors.surface.source() + ": the query's surface has no vertex");
-  query.atoms = matching::sample_atoms(descriptors.atoms);
+  query.site = std::move(site);
+  const matching::OverlayOptions overlay =
+      matching::mode_overlay_options(query_match_options(query, options));
+  if (query.site.empty()) {
+    query.sample = matching::sample_surface(descriptors.surface, overlay.spacing);
+    query.atoms = matching::sample_atoms(descriptors.atoms);
+  } else {
+    query.site_points = matching::critical_points_in_site(descriptors, query.site);
+    const std::vector<bool> lining =
+        matching::pocket_lining(descriptors, &query.site_points, options.match.site.overlay_radius);
+    query.sample = matching::sample_surface(descriptors.surface, overlay.spacing, &lining);
+  }
+  if (query.sample.size() == 0) {
+    throw InputError(descriptors.surface.source() + (query.site.empty()
+                                                         ? ": the query's surface has no vertex"
+                                                         : ": the query site's pocket lining has "
+                                                           "no vertex"));
+  }
   query.overlay = std::make_shared<const matching::SurfaceOverlay>(
-      query.sample, query.sample, options.match.overlay, query.atoms, query.atoms);
+      query.sample, query.sample, overlay, query.atoms, query.atoms);
   query.descriptors = std::move(descriptors);
   return query;
 }
@@ -72,15 +95,19 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
 HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options) {
   if (entry.sample.size() == 0) return {};
+  const matching::OverlayOptions overlay_options =
+      matching::mode_overlay_options(query_match_options(query, options));
   const matching::SurfaceOverlay overlay =
-      query.overlay && same_overlay_options(query.overlay->options(), options.match.overlay)
+      query.overlay && same_overlay_options(query.overlay->options(), overlay_options)
           ? matching::SurfaceOverlay(*query.overlay, entry.sample, entry.atoms)
-          : matching::SurfaceOverlay(query.sample, entry.sample, options.match.overlay, query.atoms,
+          : matching::SurfaceOverlay(query.sample, entry.sample, overlay_options, query.atoms,
                                      entry.atoms);
+  // Sites are few and their linings' axes less telling: all 24 axes orders for them.
+  const bool all_orders = !query.site.empty();
   HitScore best;
   bool first = true;
   for (const matching::RigidTransform& start :
-       matching::principal_axes_starts(query.sample, entry.sample, false)) {
+       matching::principal_axes_starts(query.sample, entry.sample, all_orders)) {
     const matching::OverlayScore s = overlay.score(start);
     if (first || s.score > best.score) best = from_overlay(s, start.matrix());
     first = false;
@@ -93,6 +120,15 @@ std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& libra
                                   const ScreenOptions& options) {
   end = std::min(end, library.size());
   begin = std::min(begin, end);
+  for (std::size_t e = begin; e < end; ++e) {
+    const bool site_entry = library.info(e).site_spheres > 0;
+    if (site_entry != !query.site.empty()) {
+      throw InputError(library.path().string() + ": entry " + std::to_string(e + 1) + " (" +
+                       library.info(e).name + ") is " +
+                       (site_entry ? "a binding site: a pocket library needs a site query"
+                                   : "a molecule: a site query needs a pocket library"));
+    }
+  }
   std::vector<HitScore> scores(end - begin);
   tbb::parallel_for(begin, end, [&](std::size_t e) {
     scores[e - begin] = fast_score(query, library.entry(e), options);
@@ -127,11 +163,21 @@ std::vector<std::size_t> best_entry_per_molecule(const Library& library,
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options) {
   const Molecule molecule = io::read_record_molecule(entry.molecule, options.read);
-  harmonic::SurfaceDescriptors described =
-      harmonic::describe_surface(mesh::build_molecular_surface(molecule, options.surface), molecule,
-                                 query.descriptors.options);
-  const matching::MatchResult result =
-      matching::match_surfaces(query.descriptors, described, options.match);
+  const matching::MatchOptions match = query_match_options(query, options);
+  matching::MatchResult result;
+  if (entry.site.empty()) {
+    const harmonic::SurfaceDescriptors described =
+        harmonic::describe_surface(mesh::build_molecular_surface(molecule, options.surface),
+                                   molecule, query.descriptors.options);
+    result = matching::match_surfaces(query.descriptors, described, match);
+  } else {
+    const harmonic::SurfaceDescriptors described =
+        matching::describe_site(mesh::build_molecular_surface(molecule, options.surface), molecule,
+                                entry.site, query.descriptors.options);
+    const std::vector<bool> in_site = matching::critical_points_in_site(described, entry.site);
+    result =
+        matching::match_surfaces(query.descriptors, described, match, &query.site_points, &in_site);
+  }
   if (result.alignments.empty()) return {};
   const matching::Alignment& top = result.alignments.front();
   return from_overlay(top.overlay, top.transform);
@@ -156,7 +202,7 @@ std::vector<Hit> rank_hits(const std::vector<std::size_t>& best, const std::vect
 
 ScreenResult screen(const ScreenQuery& query, const Library& library,
                     const ScreenOptions& options) {
-  matching::validate(options.match);
+  matching::validate(query_match_options(query, options));
   ScreenResult result;
   const Stopwatch clock;
   const std::vector<HitScore> fast = fast_scores(query, library, 0, library.size(), options);

@@ -122,6 +122,10 @@ struct MatchResult {
   std::vector<std::pair<std::string, double>> timing_ms;  ///< per stage, in order
 };
 
+/// The overlay options a match in options.mode scores and refines with: options.overlay, or for
+/// binding sites the same with options.site.chem_weight and no atom term.
+OverlayOptions mode_overlay_options(const MatchOptions& options);
+
 /// Throws InputError naming the surface's source when it lacks a vertex property the match
 /// needs: "esp" and "lp" (the fuzzy filter and the chemical correlation R_chem compare them).
 /// A surface built from a molecule has both; a mesh gets them from its file or from the

@@ -10,6 +10,8 @@
 
 #include <Eigen/Core>
 
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace surfcomp::matching {
@@ -19,6 +21,10 @@ struct SiteSphere {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = 0.0;
 };
+
+/// The sphere written "x,y,z,r" (A; what `--site-sphere` and a site list take), or none when
+/// `text` is not four comma-separated numbers with a finite centre and a finite radius > 0.
+std::optional<SiteSphere> parse_site_sphere(const std::string& text);
 
 struct BindingSiteOptions {
   /// Default 4 A. Radius of the sphere around each atom of the ligand copy. Finite, > 0.
@@ -60,6 +66,13 @@ BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> sphe
 /// of `spheres` (distance to the centre <= radius).
 std::vector<bool> critical_points_in_site(const harmonic::SurfaceDescriptors& descriptors,
                                           const std::vector<SiteSphere>& spheres);
+
+/// A site's pocket lining: one flag per vertex of descriptors.surface, set when the vertex lies
+/// within `radius` (A) of a critical point that takes part: allowed by `allowed` (one flag per
+/// critical point; all when null) and described (not PatchStatus::skipped). The binding-site
+/// overlay (MatchMode::binding_sites) compares these vertices.
+std::vector<bool> pocket_lining(const harmonic::SurfaceDescriptors& descriptors,
+                                const std::vector<bool>* allowed, double radius);
 
 /// harmonic::describe_surface with patches, maps and images only at the critical points inside
 /// `spheres` (as critical_points_in_site flags them); the others keep PatchStatus::skipped, so

@@ -1,6 +1,7 @@
-// Screening libraries (.sclib): many molecules' conformers in one file, each entry holding what
-// the first stage of a screen reads (the overlay's surface and heteroatom samples) and the
-// molecule itself, from which the second stage rebuilds the surface of a finalist.
+// Screening libraries (.sclib): many molecules' conformers (or many binding sites) in one file,
+// each entry holding what the first stage of a screen reads (the overlay's surface and heteroatom
+// samples) and the molecule itself, from which the second stage rebuilds the surface of a
+// finalist; a site entry also holds its spheres.
 //
 // Layout (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
 //   header   "SURFCLIB", u32 format version, u32 0
@@ -13,6 +14,7 @@
 
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
+#include "surfcomp/matching/site.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -24,19 +26,21 @@
 
 namespace surfcomp::screening {
 
-/// The format version write_library writes and Library reads.
-inline constexpr std::uint32_t library_format_version = 1;
+/// The format version write_library writes; Library reads it and version 1 (no sites).
+inline constexpr std::uint32_t library_format_version = 2;
 
 /// What the index says of an entry (it is read without decoding the entry).
 struct LibraryEntryInfo {
-  std::string name;               ///< the molecule's name (io::MoleculeRecord::name)
-  std::string source;             ///< the input file it came from
-  std::uint32_t record = 0;       ///< 1-based record of that file
-  std::uint32_t conformer = 0;    ///< 1-based generated conformer; 0 = the record's coordinates
-  std::uint32_t heavy_atoms = 0;  ///< atoms other than hydrogen
+  std::string name;                ///< the molecule's name (io::MoleculeRecord::name)
+  std::string source;              ///< the input file it came from
+  std::uint32_t record = 0;        ///< 1-based record of that file
+  std::uint32_t conformer = 0;     ///< 1-based generated conformer; 0 = the record's coordinates
+  std::uint32_t heavy_atoms = 0;   ///< atoms other than hydrogen (a site: of its structure)
+  std::uint32_t site_spheres = 0;  ///< a binding site's spheres; 0 for a molecule
 };
 
-/// One library entry: a molecule in one conformation, and its samples for the overlay.
+/// One library entry: a molecule in one conformation, or a binding site on a structure, and its
+/// samples for the overlay.
 struct LibraryEntry {
   LibraryEntryInfo info;
   /// The molecule with this conformer's coordinates: an MDL mol block (SDF records and
@@ -44,9 +48,13 @@ struct LibraryEntry {
   /// molecule.source, record and name repeat info.
   io::MoleculeRecord molecule;
   /// The surface sample (matching::sample_surface of the molecule's surface, built as
-  /// `surfcomp match` builds it) and the heteroatoms (matching::sample_atoms).
+  /// `surfcomp match` builds it; for a site, of its pocket lining, matching::pocket_lining) and
+  /// the heteroatoms (matching::sample_atoms; none for a site).
   matching::SurfaceSample sample;
   matching::AtomSample atoms;
+  /// A binding site's spheres (matching::BindingSite::spheres); empty for a molecule. The
+  /// molecule is then the site's structure (PDB text).
+  std::vector<matching::SiteSphere> site;
 };
 
 /// Appends entries to a library being written to `out`; finish() writes the index. Entries

@@ -1,12 +1,16 @@
 // Building a screening library from molecule files: each record read (or its conformers
 // generated), its surface built and sampled as `surfcomp match` does, in parallel (TBB), the
-// entries written in input order whatever the thread count.
+// entries written in input order whatever the thread count. A pocket library is built the same
+// way from a site list: each site's structure surfaced and its pocket lining sampled as a
+// binding-site match does.
 #pragma once
 
 #include "surfcomp/core/conformers.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/overlay.hpp"
+#include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/screening/library.hpp"
 
@@ -40,6 +44,12 @@ struct LibraryBuildOptions {
   /// Default OverlayOptions::spacing. Cell edge of the surface sample, A; a screen refuses a
   /// library sampled otherwise than its overlay. > 0.
   double spacing = matching::OverlayOptions{}.spacing;
+  /// Sites (build_site_library): the spheres around a site ligand's atoms (sphere_radius,
+  /// default 4 A, as `surfcomp match --site-radius`) and the chains kept.
+  matching::BindingSiteOptions site;
+  /// Sites: the pocket lining sampled is the vertices within this distance of the site's
+  /// critical points (default as `surfcomp match --site-overlay-radius`). Finite, > 0.
+  double lining_radius = matching::SiteMatchOptions{}.overlay_radius;
   /// Default 64. Most records in flight (being built or waiting for their turn to be written):
   /// bounds the memory a build holds. >= 1.
   std::size_t batch = 64;
@@ -75,8 +85,41 @@ std::vector<io::MoleculeRecord> read_library_inputs(
 std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
                                         const LibraryBuildOptions& options = {});
 
+/// One line of a site list: a structure and a binding site on it.
+struct SiteRequest {
+  std::filesystem::path list;       ///< the site list the line is in
+  std::size_t line = 0;             ///< 1-based line number
+  std::filesystem::path structure;  ///< PDB/PQR file; relative paths are the list's folder's
+  /// The site ligand (residue name, chain if given), or none when the site is `spheres`.
+  std::optional<LigandSelector> ligand;
+  std::vector<matching::SiteSphere> spheres;
+  std::string name;  ///< "<structure's stem>:<ligand>[:<chain>]" or "<stem>:spheres<line>"
+};
+
+/// The sites of a site list: one per line, `STRUCTURE LIGAND [CHAIN]` or
+/// `STRUCTURE x,y,z,r [x,y,z,r ...]` (whitespace-separated; blank lines and lines starting with
+/// '#' are skipped). Throws FileError when the list cannot be read and InputError naming the
+/// list and line for a line of neither form or with a sphere whose radius is not > 0; the
+/// structures are read only when their entries are built.
+std::vector<SiteRequest> read_site_list(const std::filesystem::path& list);
+
+/// The entry of one site: its structure read (`options.read`), the site built
+/// (matching::binding_site with options.site), the site's structure surfaced
+/// (options.surface) and described at the site's critical points (matching::describe_site),
+/// and its pocket lining (matching::pocket_lining, options.lining_radius) sampled. The entry's
+/// molecule is the site's structure as PDB text (water and the site ligand's copy removed), its
+/// spheres the site's. Throws what those steps throw (surfcomp::Error).
+LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOptions& options = {});
+
+/// build_library for a pocket library: one entry per site, in list order; a site whose entry
+/// cannot be built is skipped and listed (SkippedRecord::source the structure, record the
+/// list's line, name the site's name).
+LibraryBuildResult build_site_library(const std::vector<SiteRequest>& sites,
+                                      const std::filesystem::path& output,
+                                      const LibraryBuildOptions& options = {});
+
 /// The `settings` text a build with `options` stores in its library.
-std::string build_settings(const LibraryBuildOptions& options);
+std::string build_settings(const LibraryBuildOptions& options, bool sites = false);
 
 /// Builds the entries of every record (in parallel, TBB) and writes them, in record order then
 /// conformer order, to `output` atomically: an interrupted or failed build leaves no file

@@ -1,4 +1,6 @@
-// One query against a library, in two stages (docs/screening.md):
+// One query against a library, in two stages (docs/screening.md). The query is a molecule
+// against a library of molecules, or a binding site against a pocket library (sites: the
+// overlays then compare pocket linings, as MatchMode::binding_sites does):
 //  1. a fast score of every entry: the whole-surface overlay score (matching::SurfaceOverlay)
 //     of the entry's stored samples at the four principal-axes superpositions onto the query,
 //     without refinement, the best of the four kept; a molecule counts by its best conformer;
@@ -42,17 +44,29 @@ struct ScreenOptions {
 /// The query, described once: its descriptors (stage 2) and its overlay samples (stage 1).
 struct ScreenQuery {
   harmonic::SurfaceDescriptors descriptors;
-  matching::SurfaceSample sample;  ///< sample_surface(descriptors.surface, overlay spacing)
-  matching::AtomSample atoms;      ///< sample_atoms(descriptors.atoms)
+  /// sample_surface(descriptors.surface, overlay spacing); of the pocket lining for a site
+  matching::SurfaceSample sample;
+  matching::AtomSample atoms;  ///< sample_atoms(descriptors.atoms); none for a site
+  /// A binding-site query: its spheres and critical_points_in_site of its descriptors. Empty
+  /// for a molecule.
+  std::vector<matching::SiteSphere> site;
+  std::vector<bool> site_points;
   /// The query's sample indexed once for stage 1 (an overlay of the query on itself, from
   /// which each entry's overlay is made without indexing the query again).
   std::shared_ptr<const matching::SurfaceOverlay> overlay;
 };
 
 /// The query of a screen from its descriptors (describe_surface of its molecule's surface, or
-/// a .hsi file). Throws InputError when its surface has no vertex.
+/// a .hsi file); with `site` spheres, a binding-site query (descriptors from
+/// matching::describe_site) whose sample is its pocket lining (matching::pocket_lining,
+/// options.match.site.overlay_radius). Throws InputError when its surface (or lining) has no
+/// vertex.
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
-                              const ScreenOptions& options = {});
+                              const ScreenOptions& options = {},
+                              std::vector<matching::SiteSphere> site = {});
+
+/// options.match with the mode the query asks for: MatchMode::binding_sites for a site query.
+matching::MatchOptions query_match_options(const ScreenQuery& query, const ScreenOptions& options);
 
 /// A score of one entry against the query.
 struct HitScore {
@@ -69,7 +83,8 @@ HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options = {});
 
 /// Stage 1 of the entries [begin, end) of `library`, in parallel (TBB), in entry order.
-/// Throws FormatError for a damaged entry (Library::entry).
+/// Throws FormatError for a damaged entry (Library::entry), InputError when an entry is a site
+/// and the query a molecule or the other way round.
 std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& library,
                                   std::size_t begin, std::size_t end,
                                   const ScreenOptions& options = {});
@@ -81,7 +96,8 @@ std::vector<std::size_t> best_entry_per_molecule(const Library& library,
                                                  const std::vector<HitScore>& fast);
 
 /// Stage 2 of one entry: the full match of the query with the entry's molecule, rebuilt (see
-/// ScreenOptions::read, surface); the top alignment's overlay score and transform. An entry
+/// ScreenOptions::read, surface; a site's structure described at its site, matched as binding
+/// sites); the top alignment's overlay score and transform. An entry
 /// without any alignment scores 0 with the identity. Throws what reading the molecule,
 /// building its surface or matching throws.
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
