@@ -181,6 +181,7 @@ int screen(const std::vector<std::string>& args) {
 
   const Stopwatch clock;
   const screening::Library library(library_path);
+  screening::check_library_kind(library, site_query);  // before the query's surface is built
   harmonic::SurfaceDescriptors descriptors;
   if (site_query) {
     const Molecule structure = io::read_molecule(query_path, input.read);

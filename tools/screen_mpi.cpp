@@ -59,7 +59,9 @@ std::vector<double> gather(const std::vector<double>& local, const std::vector<i
 
 DistributedScreen run(const screening::ScreenQuery& query, const screening::Library& library,
                       const screening::ScreenOptions& options, int rank, int ranks) {
-  matching::validate(options.match);
+  matching::validate(screening::query_match_options(query, options));
+  screening::check_library_kind(library,
+                                !query.site.empty());  // on every rank, before any collective
   const Stopwatch clock;
   const std::size_t n = library.size();
   const auto slice_begin = [&](int r) {

@@ -57,6 +57,20 @@ bool same_overlay_options(const matching::OverlayOptions& x, const matching::Ove
 
 }  // namespace
 
+void check_library_kind(const Library& library, bool site_query) {
+  for (std::size_t e = 0; e < library.size(); ++e) {
+    const bool site_entry = library.info(e).site_spheres > 0;
+    if (site_entry != site_query) {
+      throw InputError(library.path().string() + ": entry " + std::to_string(e + 1) + " (" +
+                       library.info(e).name + ") is " +
+                       (site_entry ? "a binding site: a pocket library needs a site query "
+                                     "(--site-ligand or --site-sphere)"
+                                   : "a molecule: a site query needs a pocket library "
+                                     "(library build --sites)"));
+    }
+  }
+}
+
 matching::MatchOptions query_match_options(const ScreenQuery& query, const ScreenOptions& options) {
   matching::MatchOptions match = options.match;
   match.mode =
@@ -118,17 +132,9 @@ HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
 std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& library,
                                   std::size_t begin, std::size_t end,
                                   const ScreenOptions& options) {
+  check_library_kind(library, !query.site.empty());
   end = std::min(end, library.size());
   begin = std::min(begin, end);
-  for (std::size_t e = begin; e < end; ++e) {
-    const bool site_entry = library.info(e).site_spheres > 0;
-    if (site_entry != !query.site.empty()) {
-      throw InputError(library.path().string() + ": entry " + std::to_string(e + 1) + " (" +
-                       library.info(e).name + ") is " +
-                       (site_entry ? "a binding site: a pocket library needs a site query"
-                                   : "a molecule: a site query needs a pocket library"));
-    }
-  }
   std::vector<HitScore> scores(end - begin);
   tbb::parallel_for(begin, end, [&](std::size_t e) {
     scores[e - begin] = fast_score(query, library.entry(e), options);

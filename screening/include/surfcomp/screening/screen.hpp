@@ -65,6 +65,11 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               const ScreenOptions& options = {},
                               std::vector<matching::SiteSphere> site = {});
 
+/// Throws InputError naming the library and its first entry of the other kind unless every
+/// entry of `library` is a binding site when `site_query` (a pocket library) and a molecule
+/// otherwise. Reads only the index.
+void check_library_kind(const Library& library, bool site_query);
+
 /// options.match with the mode the query asks for: MatchMode::binding_sites for a site query.
 matching::MatchOptions query_match_options(const ScreenQuery& query, const ScreenOptions& options);
 
@@ -83,8 +88,8 @@ HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options = {});
 
 /// Stage 1 of the entries [begin, end) of `library`, in parallel (TBB), in entry order.
-/// Throws FormatError for a damaged entry (Library::entry), InputError when an entry is a site
-/// and the query a molecule or the other way round.
+/// Throws FormatError for a damaged entry (Library::entry), InputError when the library is not
+/// of the query's kind (check_library_kind).
 std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& library,
                                   std::size_t begin, std::size_t end,
                                   const ScreenOptions& options = {});
