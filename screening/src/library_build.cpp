@@ -240,7 +240,6 @@ std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {
                        "expected 'STRUCTURE LIGAND [CHAIN]' or 'STRUCTURE x,y,z,r [x,y,z,r ...]'");
     }
     SiteRequest site;
-    site.list = list;
     site.line = number;
     site.structure = words[0];
     if (site.structure.is_relative()) site.structure = list.parent_path() / site.structure;

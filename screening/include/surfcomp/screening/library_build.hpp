@@ -87,7 +87,6 @@ std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
 
 /// One line of a site list: a structure and a binding site on it.
 struct SiteRequest {
-  std::filesystem::path list;       ///< the site list the line is in
   std::size_t line = 0;             ///< 1-based line number
   std::filesystem::path structure;  ///< PDB/PQR file; relative paths are the list's folder's
   /// The site ligand (residue name, chain if given), or none when the site is `spheres`.
