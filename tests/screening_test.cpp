@@ -3,7 +3,7 @@
 // listed while the others build; a query that is in the library finds itself first with the
 // self-overlay's score and the identity. Pocket libraries: a site list is read line by line; a
 // site entry keeps its spheres; a site query finds its own pocket first, and a library of the
-// other kind is refused.
+// other kind is refused. A .hsi file becomes an entry keeping its surface and heavy atoms.
 #include "pocket_cut.hpp"
 #include "test_data.hpp"
 
@@ -11,6 +11,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
@@ -255,6 +256,64 @@ TEST(Screen, QueryInTheLibraryFindsItselfFirstWithTheIdentity) {
   EXPECT_EQ(hits[2].stage, 1);
 }
 
+TEST(LibraryBuild, HsiFilesBecomeEntriesThatKeepTheirSurfaceAndFindThemselves) {
+  const test::TempDir dir;
+  const std::vector<io::MoleculeRecord> records =
+      screening::read_library_inputs({dir.write("three.sdf", three_molecule_sdf())});
+  ASSERT_EQ(records.size(), 3u);
+  fs::create_directory(dir / "hsi");
+  std::vector<harmonic::SurfaceDescriptors> described;
+  for (const io::MoleculeRecord& record : records) {
+    const Molecule molecule = io::read_record_molecule(record);
+    described.push_back(
+        harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule));
+    harmonic::io::write_hsi(described.back(), dir / "hsi" / (record.name + ".hsi"));
+  }
+  dir.write("hsi/notes.txt", "not an input: a directory stands for its inputs only\n");
+  const std::vector<io::MoleculeRecord> inputs = screening::read_library_inputs({dir / "hsi"});
+  ASSERT_EQ(inputs.size(), 3u);  // in name order: ibuprofen, paracetamol, salicylic_acid
+  EXPECT_EQ(inputs[2].name, "salicylic_acid");
+  EXPECT_EQ(inputs[2].format, io::RecordFormat::descriptors);
+  const fs::path path = dir / "hsi.sclib";
+  EXPECT_EQ(screening::build_library(inputs, path).entries, 3u);
+  const screening::Library library(path);
+
+  // Salicylic acid's entry keeps its file's surface, bit for bit, and heavy atoms (C7 O3), at
+  // under a tenth of the file's size (images and patches are rebuilt by the screen).
+  const screening::LibraryEntry entry = library.entry(2);
+  const harmonic::SurfaceDescriptors& original = described[1];
+  const harmonic::SurfaceDescriptors stored = harmonic::io::decode_hsi(entry.surface, "entry");
+  EXPECT_TRUE(stored.critical_points.empty());
+  EXPECT_TRUE(stored.surface.positions() == original.surface.positions());
+  EXPECT_TRUE(stored.surface.property(mesh::property::esp) ==
+              original.surface.property(mesh::property::esp));
+  EXPECT_EQ(entry.info.heavy_atoms, 10u);
+  EXPECT_LT(library.entry_bytes(2) * 10, fs::file_size(dir / "hsi" / "salicylic_acid.hsi"));
+  const Molecule atoms = io::read_record_molecule(entry.molecule);
+  ASSERT_EQ(atoms.atoms.size(), original.atoms.size());
+  for (std::size_t a = 0; a < atoms.atoms.size(); ++a) {
+    EXPECT_EQ(atoms.atoms[a].element, original.atoms[a].element);
+    EXPECT_LT((atoms.atoms[a].position - original.atoms[a].position).norm(), 1e-4);
+  }
+
+  // The molecule as a query finds the entry made from its .hsi first, at the identity.
+  const Molecule molecule = io::read_record_molecule(records[1]);
+  screening::ScreenOptions options;
+  options.top = 0;
+  const screening::ScreenQuery query = screening::make_screen_query(
+      harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options);
+  expect_found_itself_first(screening::screen(query, library, options).hits, 2);
+
+  // A .hsi has fixed coordinates: asked for conformers, it is skipped with the reason.
+  screening::LibraryBuildOptions conformers;
+  conformers.conformers = two_conformers();
+  const screening::LibraryBuildResult refused =
+      screening::build_library({inputs[0]}, dir / "conformers.sclib", conformers);
+  ASSERT_EQ(refused.skipped.size(), 1u);
+  EXPECT_NE(refused.skipped[0].reason.find("--conformers does not apply"), std::string::npos)
+      << refused.skipped[0].reason;
+}
+
 TEST(SiteList, LinesGiveLigandsOrSpheresAndABadLineIsNamed) {
   const test::TempDir dir;
   const fs::path list = dir.write("sites.txt",
@@ -311,7 +370,7 @@ TEST(Library, SiteEntriesKeepTheirSpheres) {
   const fs::path path = dir / "sites.sclib";
   screening::write_library(path, {entry});
   const screening::Library library(path);
-  EXPECT_EQ(library.version(), 2u);
+  EXPECT_EQ(library.version(), screening::library_format_version);
   EXPECT_EQ(library.info(0).site_spheres, 2u);
   const screening::LibraryEntry read = library.entry(0);
   ASSERT_EQ(read.site.size(), 2u);

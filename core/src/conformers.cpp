@@ -33,11 +33,12 @@ std::unique_ptr<RDKit::RWMol> parse(const io::MoleculeRecord& record) {
     case io::RecordFormat::mol2:
       return std::unique_ptr<RDKit::RWMol>(RDKit::Mol2BlockToMol(record.text, true, false));
     case io::RecordFormat::structure:
+    case io::RecordFormat::descriptors:
       break;
   }
   throw InputError(describe(record) +
                    ": conformers are generated from SMILES, SDF or MOL2 records, not from a "
-                   "PDB/PQR structure");
+                   "PDB/PQR structure or a .hsi file");
 }
 
 std::vector<std::string> embed(const io::MoleculeRecord& record, const ConformerOptions& options) {

@@ -35,6 +35,8 @@ std::uint8_t format_code(io::RecordFormat format) {
       return 1;
     case io::RecordFormat::structure:
       return 2;
+    case io::RecordFormat::descriptors:
+      throw InputError("a library entry from a .hsi file stores its atoms as an MDL block");
     case io::RecordFormat::smiles:
       break;
   }
@@ -73,6 +75,7 @@ std::vector<std::uint8_t> encode(const LibraryEntry& entry) {
     for (int k = 0; k < 3; ++k) w.f64(sphere.center(k));
     w.f64(sphere.radius);
   }
+  w.blob(entry.surface);
   return w.bytes();
 }
 
@@ -236,7 +239,7 @@ void Library::Impl::read_index() {
     fail("not a surfcomp library (no SURFCLIB magic)");
   io::BinaryReader header(data + kMagicBytes, kHeaderBytes - kMagicBytes, path.string());
   version = header.u32();
-  if (version != 1 && version != library_format_version) {
+  if (version < 1 || version > library_format_version) {
     fail("library format version " + std::to_string(version) +
          ", this program reads versions 1 to " + std::to_string(library_format_version));
   }
@@ -362,6 +365,7 @@ LibraryEntry Library::entry(std::size_t index) const {
       entry.site.push_back(sphere);
     }
   }
+  if (impl_->version >= 3) entry.surface = r.blob();
   if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes after the entry");
   return entry;
 }

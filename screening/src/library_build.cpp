@@ -5,6 +5,7 @@
 #include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
 
@@ -52,12 +53,50 @@ std::uint32_t heavy_atom_count(const Molecule& molecule) {
                     [](const Atom& atom) { return atom.element != "H"; }));
 }
 
+bool is_library_input(const std::filesystem::path& path) {
+  return io::is_record_file(path) || harmonic::io::is_hsi_file(path);
+}
+
+/// The entry of a .hsi file: its surface's samples, its heavy atoms as an MDL block, and its
+/// surface without critical points for the second stage.
+LibraryEntry hsi_entry(const io::MoleculeRecord& record, const LibraryBuildOptions& options) {
+  harmonic::SurfaceDescriptors described = harmonic::io::read_hsi(record.source);
+  Molecule atoms;
+  for (const harmonic::SurfaceAtom& atom : described.atoms) {
+    Atom a;
+    a.element = atom.element;
+    a.position = atom.position;
+    atoms.atoms.push_back(std::move(a));
+  }
+  LibraryEntry entry;
+  entry.info.name = record.name;
+  entry.info.source = record.source.string();
+  entry.info.record = static_cast<std::uint32_t>(record.record);
+  entry.info.heavy_atoms = static_cast<std::uint32_t>(described.atoms.size());
+  entry.molecule = record;
+  entry.molecule.format = io::RecordFormat::mdl;
+  entry.molecule.text = io::atoms_mol_block(atoms, record.name) + "$$$$\n";
+  entry.sample = matching::sample_surface(described.surface, options.spacing);
+  entry.atoms = matching::sample_atoms(described.atoms);
+  described.critical_points.clear();
+  entry.surface = harmonic::io::encode_hsi(described);
+  return entry;
+}
+
 }  // namespace
 
 std::vector<io::MoleculeRecord> read_library_inputs(
     const std::vector<std::filesystem::path>& inputs) {
   std::vector<io::MoleculeRecord> records;
   const auto append = [&](const std::filesystem::path& file) {
+    if (harmonic::io::is_hsi_file(file)) {
+      io::MoleculeRecord record;
+      record.source = file;
+      record.name = file.stem().string();
+      record.format = io::RecordFormat::descriptors;
+      records.push_back(std::move(record));
+      return;
+    }
     std::vector<io::MoleculeRecord> read = io::read_molecule_records(file);
     records.insert(records.end(), std::make_move_iterator(read.begin()),
                    std::make_move_iterator(read.end()));
@@ -66,16 +105,16 @@ std::vector<io::MoleculeRecord> read_library_inputs(
     if (std::filesystem::is_directory(input)) {
       std::vector<std::filesystem::path> files;
       for (const auto& item : std::filesystem::directory_iterator(input)) {
-        if (item.is_regular_file() && io::is_record_file(item.path())) files.push_back(item.path());
+        if (item.is_regular_file() && is_library_input(item.path())) files.push_back(item.path());
       }
       std::sort(files.begin(), files.end());
       for (const auto& file : files) append(file);
-    } else if (io::is_record_file(input)) {
+    } else if (is_library_input(input)) {
       append(input);
     } else {
       throw InputError(input.string() +
                        ": not a molecule file or list (.sdf .mol .mol2 .pdb .ent .pqr .smi .dat "
-                       ".dat.gz) nor a directory");
+                       ".dat.gz), a .hsi file nor a directory");
     }
   }
   return records;
@@ -83,6 +122,11 @@ std::vector<io::MoleculeRecord> read_library_inputs(
 
 std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
                                         const LibraryBuildOptions& options) {
+  if (record.format == io::RecordFormat::descriptors) {
+    if (options.conformers)
+      throw InputError("a .hsi file has fixed coordinates: --conformers does not apply to it");
+    return {hsi_entry(record, options)};
+  }
   std::vector<io::MoleculeRecord> conformations;
   if (options.conformers) {
     for (std::string& block : generate_conformers(record, *options.conformers)) {

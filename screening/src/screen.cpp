@@ -3,6 +3,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/matching/principal_axes.hpp"
 #include "surfcomp/matching/site.hpp"
@@ -168,15 +169,23 @@ std::vector<std::size_t> best_entry_per_molecule(const Library& library,
 
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options) {
-  const Molecule molecule = io::read_record_molecule(entry.molecule, options.read);
   const matching::MatchOptions match = query_match_options(query, options);
   matching::MatchResult result;
-  if (entry.site.empty()) {
+  if (!entry.surface.empty()) {  // from a .hsi file: describe its stored surface
+    harmonic::SurfaceDescriptors stored =
+        harmonic::io::decode_hsi(entry.surface, entry.info.source + " (library entry)");
+    harmonic::SurfaceDescriptors described =
+        harmonic::describe_surface(std::move(stored.surface), query.descriptors.options);
+    described.atoms = std::move(stored.atoms);
+    result = matching::match_surfaces(query.descriptors, described, match);
+  } else if (entry.site.empty()) {
+    const Molecule molecule = io::read_record_molecule(entry.molecule, options.read);
     const harmonic::SurfaceDescriptors described =
         harmonic::describe_surface(mesh::build_molecular_surface(molecule, options.surface),
                                    molecule, query.descriptors.options);
     result = matching::match_surfaces(query.descriptors, described, match);
   } else {
+    const Molecule molecule = io::read_record_molecule(entry.molecule, options.read);
     const harmonic::SurfaceDescriptors described =
         matching::describe_site(mesh::build_molecular_surface(molecule, options.surface), molecule,
                                 entry.site, query.descriptors.options);

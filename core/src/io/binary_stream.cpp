@@ -50,6 +50,11 @@ void BinaryWriter::string(const std::string& value) {
   bytes_.insert(bytes_.end(), value.begin(), value.end());
 }
 
+void BinaryWriter::blob(const std::vector<std::uint8_t>& value) {
+  u64(value.size());
+  bytes_.insert(bytes_.end(), value.begin(), value.end());
+}
+
 void BinaryWriter::ints(const std::vector<int>& values) {
   u64(values.size());
   for (int v : values) i32(v);
@@ -132,6 +137,13 @@ std::string BinaryReader::string() {
   const std::uint32_t n = u32();
   need(n, "a string");
   std::string value(reinterpret_cast<const char*>(data_ + offset_), n);
+  offset_ += n;
+  return value;
+}
+
+std::vector<std::uint8_t> BinaryReader::blob() {
+  const std::uint64_t n = count(1, "bytes");
+  std::vector<std::uint8_t> value(data_ + offset_, data_ + offset_ + n);
   offset_ += n;
   return value;
 }

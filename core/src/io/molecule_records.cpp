@@ -212,6 +212,9 @@ Molecule read_record_molecule(const MoleculeRecord& record, const MoleculeReadOp
     case RecordFormat::smiles:
       throw InputError(record.source.string() + ": record " + std::to_string(record.record) + " (" +
                        record.name + ") is a SMILES string without coordinates");
+    case RecordFormat::descriptors:
+      throw InputError(record.source.string() +
+                       ": a .hsi file keeps a surface and heavy atoms, not a molecule to read");
     case RecordFormat::mol2:
       return detail::read_with_rdkit(record.source, record.text, detail::RdkitFormat::mol2, single);
     case RecordFormat::mdl:

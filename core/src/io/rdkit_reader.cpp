@@ -465,6 +465,8 @@ std::string moved_record_block(const MoleculeRecord& record, const Eigen::Matrix
         return moved_block(record.text, detail::RdkitFormat::pdb, source, rotation, translation);
       }
       throw InputError(source + ": a PQR structure cannot be written as a mol block");
+    case RecordFormat::descriptors:
+      throw InputError(source + ": a .hsi file has no molecule to write as a mol block");
     case RecordFormat::smiles:
       break;
   }

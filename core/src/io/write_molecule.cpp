@@ -1,5 +1,7 @@
 #include "surfcomp/core/io/write_molecule.hpp"
 
+#include "surfcomp/core/error.hpp"
+
 #include <cstdio>
 
 namespace surfcomp::io {
@@ -19,6 +21,28 @@ void write_pdb(const Molecule& molecule, std::ostream& out) {
     out << line;
   }
   out << "END\n";
+}
+
+std::string atoms_mol_block(const Molecule& molecule, const std::string& title) {
+  const std::size_t n = molecule.atoms.size();
+  if (n > 999) {
+    throw InputError(title + ": " + std::to_string(n) +
+                     " atoms do not fit an MDL V2000 block (at most 999)");
+  }
+  std::string block = title.substr(0, title.find_first_of("\r\n")) + "\n  surfcomp\n\n";
+  char line[96];
+  std::snprintf(line, sizeof line, "%3zu  0  0  0  0  0  0  0  0  0999 V2000\n", n);
+  block += line;
+  for (const Atom& atom : molecule.atoms) {
+    if (!(atom.position.cwiseAbs().maxCoeff() < 1e5)) {
+      throw InputError(title + ": atom position beyond the MDL format's columns (|x| >= 1e5 A)");
+    }
+    std::snprintf(line, sizeof line,
+                  "%10.4f%10.4f%10.4f %-3.3s 0  0  0  0  0  0  0  0  0  0  0  0\n",
+                  atom.position.x(), atom.position.y(), atom.position.z(), atom.element.c_str());
+    block += line;
+  }
+  return block + "M  END\n";
 }
 
 }  // namespace surfcomp::io

@@ -1,7 +1,7 @@
 // Screening libraries (.sclib): many molecules' conformers (or many binding sites) in one file,
 // each entry holding what the first stage of a screen reads (the overlay's surface and heteroatom
 // samples) and the molecule itself, from which the second stage rebuilds the surface of a
-// finalist; a site entry also holds its spheres.
+// finalist; a site entry also holds its spheres, an entry made from a .hsi file its surface.
 //
 // Layout (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
 //   header   "SURFCLIB", u32 format version, u32 0
@@ -26,8 +26,9 @@
 
 namespace surfcomp::screening {
 
-/// The format version write_library writes; Library reads it and version 1 (no sites).
-inline constexpr std::uint32_t library_format_version = 2;
+/// The format version write_library writes; Library reads it, version 2 (no described
+/// surfaces) and version 1 (no sites either).
+inline constexpr std::uint32_t library_format_version = 3;
 
 /// What the index says of an entry (it is read without decoding the entry).
 struct LibraryEntryInfo {
@@ -55,6 +56,11 @@ struct LibraryEntry {
   /// A binding site's spheres (matching::BindingSite::spheres); empty for a molecule. The
   /// molecule is then the site's structure (PDB text).
   std::vector<matching::SiteSphere> site;
+  /// An entry made from a .hsi file: its surface and heavy atoms, encoded as a .hsi file
+  /// without critical points (harmonic::io::encode_hsi), from which the second stage describes
+  /// the entry instead of rebuilding a surface; `molecule` then holds only the heavy atoms (an
+  /// MDL block without bonds, io::atoms_mol_block). Empty for every other entry.
+  std::vector<std::uint8_t> surface;
 };
 
 /// Appends entries to a library being written to `out`; finish() writes the index. Entries

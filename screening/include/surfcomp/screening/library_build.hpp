@@ -73,15 +73,17 @@ struct LibraryBuildResult {
   double seconds = 0.0;
 };
 
-/// The records of `inputs` in order: each file's records (io::read_molecule_records); a
-/// directory stands for the record files (io::is_record_file) directly inside it, in name order.
-/// Throws as read_molecule_records, and InputError for a path that is neither.
+/// The records of `inputs` in order: each file's records (io::read_molecule_records), and for a
+/// .hsi file one io::RecordFormat::descriptors record (read when its entry is built); a
+/// directory stands for those files (io::is_record_file, .hsi) directly inside it, in name
+/// order. Throws as read_molecule_records, and InputError for a path that is none of these.
 std::vector<io::MoleculeRecord> read_library_inputs(
     const std::vector<std::filesystem::path>& inputs);
 
 /// The entries of one record: its own coordinates, or its conformers, each with its surface
-/// sample and heteroatoms. Throws what reading the record, generating its conformers or
-/// building a surface throws (surfcomp::Error).
+/// sample and heteroatoms; for a .hsi file, one entry with the file's surface (read_hsi) and
+/// heavy atoms (LibraryEntry::surface). Throws what reading the record, generating its conformers
+/// or building a surface throws (surfcomp::Error).
 std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
                                         const LibraryBuildOptions& options = {});
 

@@ -23,6 +23,7 @@ class BinaryWriter {
   void i32(std::int32_t value) { u32(static_cast<std::uint32_t>(value)); }
   void f64(double value);
   void string(const std::string& value);                          ///< u32 length, then the bytes
+  void blob(const std::vector<std::uint8_t>& value);              ///< u64 length, then the bytes
   void ints(const std::vector<int>& values);                      ///< u64 count, then i32 each
   void doubles(const Eigen::Ref<const Eigen::VectorXd>& values);  ///< u64 count, then f64 each
   void int_matrix(const Eigen::Ref<const Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic>>& m);
@@ -47,6 +48,7 @@ class BinaryReader {
   std::int32_t i32() { return static_cast<std::int32_t>(u32()); }
   double f64();
   std::string string();
+  std::vector<std::uint8_t> blob();
   std::vector<int> ints();
   Eigen::VectorXd doubles();
   Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic> int_matrix();

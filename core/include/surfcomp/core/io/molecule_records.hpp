@@ -21,6 +21,9 @@ enum class RecordFormat {
   mol2,       ///< one @<TRIPOS>MOLECULE section
   structure,  ///< a whole PDB file (its text), or a PQR file (text empty: read from source)
   smiles,     ///< a SMILES string (no coordinates)
+  /// a .hsi file (text empty: read from source): a surface description and its heavy atoms,
+  /// no molecule to read
+  descriptors,
 };
 
 /// One molecule of an input file.
