@@ -1,14 +1,23 @@
 // ESP and LP (seed 3.2) on a protein-sized case, 30,252 surface points (an icosphere of radius
 // 30 A) and 2,000 atoms on a grid inside it, beside a serial double loop computing the same
-// Coulomb sum, measured in the same run. Prints Google Benchmark's table, then the ratio.
+// Coulomb sum, measured in the same run. Then the LP over 4we2's surface (1,949 atoms,
+// datasets/cache from datasets/fetch.sh; skipped when absent): the exact sum against
+// LpOptions::cutoff of 8, 10 and 12 A, with each cutoff's error over the vertices (RMS and max,
+// relative to the exact LP's range) and its bound exp(-cutoff) * sum |f_i|. Prints Google
+// Benchmark's table, then the ratios and errors.
 #include "analytic_meshes.hpp"
+#include "test_support.hpp"
 
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/potentials.hpp"
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,9 +55,12 @@ void BM_Esp(benchmark::State& state) {
   state.counters["atoms"] = static_cast<double>(grid_molecule().atoms.size());
 }
 
+/// The exact LP (every atom; the grid's atoms lie beyond the default cutoff of every point).
 void BM_Lp(benchmark::State& state) {
+  mesh::LpOptions every_atom;
+  every_atom.cutoff = 0.0;
   for (auto _ : state)
-    benchmark::DoNotOptimize(mesh::lipophilic_potential(points(), grid_molecule()));
+    benchmark::DoNotOptimize(mesh::lipophilic_potential(points(), grid_molecule(), every_atom));
 }
 
 /// The reference: the Coulomb sum of EspOptions' defaults (dielectric 1, no distance dependence) as
@@ -65,6 +77,58 @@ void BM_EspSerialLoop(benchmark::State& state) {
       esp(i) = sum;
     }
     benchmark::DoNotOptimize(esp.data());
+  }
+}
+
+/// 4we2 and its surface's vertices, when datasets/cache has it.
+struct Protein {
+  Molecule molecule;
+  Eigen::MatrixX3d vertices;
+};
+const Protein* protein() {
+  static const std::optional<Protein> p = []() -> std::optional<Protein> {
+    const auto path = test::fetched_dataset("edtsurf/4we2.pdb");
+    if (!path) return std::nullopt;
+    Protein out;
+    out.molecule = io::read_molecule(*path);
+    out.vertices = mesh::build_molecular_surface(out.molecule).positions();
+    return out;
+  }();
+  return p ? &*p : nullptr;
+}
+
+mesh::LpOptions cutoff_of(double cutoff) {
+  mesh::LpOptions options;
+  options.cutoff = cutoff;
+  return options;
+}
+
+void BM_LpProtein(benchmark::State& state, double cutoff) {
+  const Protein& p = *protein();
+  for (auto _ : state)
+    benchmark::DoNotOptimize(mesh::lipophilic_potential(p.vertices, p.molecule, cutoff_of(cutoff)));
+  state.counters["vertices"] = static_cast<double>(p.vertices.rows());
+}
+
+/// Each cutoff's error against the exact LP over 4we2's vertices.
+void print_cutoff_errors(const std::vector<double>& cutoffs) {
+  const Protein& p = *protein();
+  const Eigen::VectorXd exact = mesh::lipophilic_potential(p.vertices, p.molecule, cutoff_of(0.0));
+  const double range = exact.maxCoeff() - exact.minCoeff();
+  double sum_abs_f = 0.0;
+  for (const Atom& atom : p.molecule.atoms) sum_abs_f += std::abs(atom.lipophilicity);
+  std::printf("\n4we2 LP: %lld vertices, %zu atoms, exact LP range %.4f (%.4f to %.4f)\n",
+              static_cast<long long>(p.vertices.rows()), p.molecule.atoms.size(), range,
+              exact.minCoeff(), exact.maxCoeff());
+  for (const double cutoff : cutoffs) {
+    const Eigen::VectorXd cut =
+        mesh::lipophilic_potential(p.vertices, p.molecule, cutoff_of(cutoff));
+    const Eigen::VectorXd error = cut - exact;
+    const double rms = std::sqrt(error.squaredNorm() / static_cast<double>(error.size()));
+    std::printf(
+        "cutoff %4.1f A: max |error| %.3g (%.3g of the range), RMS %.3g (%.3g), bound %.3g\n",
+        cutoff, error.cwiseAbs().maxCoeff(), error.cwiseAbs().maxCoeff() / range, rms, rms / range,
+        std::exp(-cutoff) * sum_abs_f);
   }
 }
 
@@ -88,6 +152,20 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("esp_serial_loop", BM_EspSerialLoop)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
+  const std::vector<double> cutoffs{8.0, 10.0, 12.0};
+  if (protein() != nullptr) {
+    benchmark::RegisterBenchmark("lp_4we2/exact", BM_LpProtein, 0.0)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    for (const double cutoff : cutoffs) {
+      benchmark::RegisterBenchmark(("lp_4we2/cutoff_" + std::to_string(int(cutoff))).c_str(),
+                                   BM_LpProtein, cutoff)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
+  } else {
+    std::printf("skipping 4we2: datasets/cache/edtsurf/4we2.pdb is absent (datasets/fetch.sh)\n");
+  }
   benchmark::Initialize(&argc, argv);
   RatioReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
@@ -95,6 +173,15 @@ int main(int argc, char** argv) {
   if (t.count("esp") && t.count("esp_serial_loop"))
     std::printf("\nesp / serial loop (same run, wall time) = %.2f\n",
                 t.at("esp") / t.at("esp_serial_loop"));
+  if (protein() != nullptr && t.count("lp_4we2/exact")) {
+    for (const double cutoff : cutoffs) {
+      const std::string name = "lp_4we2/cutoff_" + std::to_string(int(cutoff));
+      if (t.count(name))
+        std::printf("%s / exact (same run, wall time) = %.3f\n", name.c_str(),
+                    t.at(name) / t.at("lp_4we2/exact"));
+    }
+    print_cutoff_errors(cutoffs);
+  }
   benchmark::Shutdown();
   return 0;
 }

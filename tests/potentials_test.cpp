@@ -166,6 +166,67 @@ TEST(Potentials, RejectInvalidInput) {
 
 // A protein-sized case, 30,252 surface points and 2,000 atoms on a grid inside them (the size
 // bench/potentials_bench.cpp times): the parallel sum agrees with a serial one.
+TEST(LipophilicPotential, CutoffSumsExactlyTheNearAtomsWithinItsBound) {
+  // Points on spheres of radius 5 to 25 A around a 20 x 10 x 10 grid of 2,000 atoms 1 A apart:
+  // some points inside the grid's cutoff, some with every atom beyond it.
+  Molecule m;
+  m.source = "grid";
+  double sum_abs_f = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    const double f = 0.1 * (i % 7) - 0.3;
+    m.atoms.push_back(
+        atom_at(Eigen::Vector3d(i % 20 - 9.5, (i / 20) % 10 - 4.5, i / 200 - 4.5), 0.0, f));
+    sum_abs_f += std::abs(f);
+  }
+  std::vector<Eigen::MatrixX3d> shells;
+  Eigen::Index n = 0;
+  for (const double radius : {5.0, 9.0, 14.0, 25.0}) {
+    shells.push_back(test::icosphere(radius, 6).positions());
+    n += shells.back().rows();
+  }
+  Eigen::MatrixX3d points(n, 3);
+  Eigen::Index row = 0;
+  for (const Eigen::MatrixX3d& shell : shells) {
+    points.middleRows(row, shell.rows()) = shell;
+    row += shell.rows();
+  }
+  LpOptions every_atom;
+  every_atom.cutoff = 0.0;
+  const Eigen::VectorXd exact = lipophilic_potential(points, m, every_atom);
+  for (const LipophilicKernel kernel : {LipophilicKernel::fauchere, LipophilicKernel::dubost}) {
+    for (const double cutoff : {3.0, 6.0, 10.0}) {
+      LpOptions options;
+      options.kernel = kernel;
+      options.cutoff = cutoff;
+      const Eigen::VectorXd cut = lipophilic_potential(points, m, options);
+      for (Eigen::Index p = 0; p < n; ++p) {
+        double expected = 0.0;  // the atoms within the cutoff, summed in index order
+        for (const Atom& a : m.atoms) {
+          const double d = (points.row(p) - a.position.transpose()).norm();
+          if (d > cutoff) continue;
+          expected += a.lipophilicity *
+                      (kernel == LipophilicKernel::dubost ? 1.0 / (1.0 + d) : std::exp(-d));
+        }
+        ASSERT_NEAR(cut(p), expected, 1e-12) << "cutoff " << cutoff << ", point " << p;
+        // What the cutoff leaves out: at most exp(-cutoff) per unit |f| (Fauchere's kernel).
+        if (kernel == LipophilicKernel::fauchere) {
+          ASSERT_LE(std::abs(cut(p) - exact(p)), std::exp(-cutoff) * sum_abs_f) << "point " << p;
+        }
+      }
+    }
+  }
+  // Unset, the cutoff is default_fauchere_cutoff for Fauchere's kernel and none for Dubost's.
+  LpOptions twelve;
+  twelve.cutoff = default_fauchere_cutoff;
+  EXPECT_TRUE(lipophilic_potential(points, m) == lipophilic_potential(points, m, twelve));
+  LpOptions dubost;
+  dubost.kernel = LipophilicKernel::dubost;
+  LpOptions dubost_every_atom = dubost;
+  dubost_every_atom.cutoff = 0.0;
+  EXPECT_TRUE(lipophilic_potential(points, m, dubost) ==
+              lipophilic_potential(points, m, dubost_every_atom));
+}
+
 TEST(Potentials, ProteinSizedCaseAgreesWithASerialSum) {
   const Eigen::MatrixX3d points = test::icosphere(30.0, 55).positions();
   Molecule m;

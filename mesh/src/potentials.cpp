@@ -1,6 +1,7 @@
 #include "surfcomp/mesh/potentials.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/mesh/spatial_grid.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -117,6 +118,36 @@ Eigen::VectorXd sum_over_atoms(const Eigen::Ref<const Eigen::MatrixX3d>& points,
   return values;
 }
 
+/// sum_over_atoms restricted to the atoms within `cutoff` (A, > 0) of each point: the atoms
+/// are binned in a SpatialGrid of cells of cutoff / 2, and each point sums over the cells its
+/// cutoff cube touches, in the grid's order (fixed, whatever the thread count), skipping atoms
+/// farther than `cutoff`.
+template <class Kernel>
+Eigen::VectorXd sum_over_near_atoms(const Eigen::Ref<const Eigen::MatrixX3d>& points,
+                                    const Sources& sources, double cutoff, Kernel kernel,
+                                    const PotentialProgress& progress) {
+  const SpatialGrid grid(sources.positions.transpose(), cutoff / 2.0);
+  const double cutoff2 = cutoff * cutoff;
+  Eigen::VectorXd values(points.rows());
+  ProgressReporter reporter(progress, points.rows());
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, points.rows(), 256),
+                    [&](const tbb::blocked_range<Eigen::Index>& range) {
+                      for (Eigen::Index p = range.begin(); p != range.end(); ++p) {
+                        const Eigen::Vector3d x = points.row(p).transpose();
+                        double sum = 0.0;
+                        grid.for_each_near(x, cutoff, [&](std::size_t a) {
+                          const auto atom = static_cast<Eigen::Index>(a);
+                          const double d2 =
+                              (x - sources.positions.row(atom).transpose()).squaredNorm();
+                          if (d2 <= cutoff2) sum += sources.weights(atom) * kernel(std::sqrt(d2));
+                        });
+                        values(p) = sum;
+                      }
+                      reporter.add(range.end() - range.begin());
+                    });
+  return values;
+}
+
 }  // namespace
 
 Eigen::VectorXd electrostatic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& points,
@@ -151,20 +182,22 @@ Eigen::VectorXd electrostatic_potential(const Eigen::Ref<const Eigen::MatrixX3d>
 Eigen::VectorXd lipophilic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& points,
                                      const Molecule& molecule, const LpOptions& options) {
   constexpr const char* caller = "lipophilic_potential";
-  if (!(options.cutoff >= 0.0) || !std::isfinite(options.cutoff)) {
-    throw OptionError(std::string(caller) + ": cutoff is " + format_number(options.cutoff) +
+  const bool is_dubost = options.kernel == LipophilicKernel::dubost;
+  const double cutoff = options.cutoff.value_or(is_dubost ? 0.0 : default_fauchere_cutoff);
+  if (!(cutoff >= 0.0) || !std::isfinite(cutoff)) {
+    throw OptionError(std::string(caller) + ": cutoff is " + format_number(cutoff) +
                       " A; expected a finite value >= 0 (0 = no cutoff)");
   }
   require_finite_points(points, caller);
   const Sources sources = collect_sources(molecule, &Atom::lipophilicity, "lipophilicity", caller);
-  const double cutoff = options.cutoff > 0.0 ? options.cutoff : HUGE_VAL;
-  if (options.kernel == LipophilicKernel::dubost) {
-    return sum_over_atoms(
-        points, sources, [=](double d) { return d > cutoff ? 0.0 : 1.0 / (1.0 + d); },
-        options.progress);
+  const auto dubost = [](double d) { return 1.0 / (1.0 + d); };
+  const auto fauchere = [](double d) { return std::exp(-d); };
+  if (cutoff > 0.0) {
+    return is_dubost ? sum_over_near_atoms(points, sources, cutoff, dubost, options.progress)
+                     : sum_over_near_atoms(points, sources, cutoff, fauchere, options.progress);
   }
-  return sum_over_atoms(
-      points, sources, [=](double d) { return d > cutoff ? 0.0 : std::exp(-d); }, options.progress);
+  return is_dubost ? sum_over_atoms(points, sources, dubost, options.progress)
+                   : sum_over_atoms(points, sources, fauchere, options.progress);
 }
 
 }  // namespace surfcomp::mesh

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 namespace surfcomp::mesh {
 
@@ -47,13 +48,21 @@ enum class LipophilicKernel {
   dubost,    ///< g(d) = 1 / (1 + d), Dubost 1975
 };
 
+/// The cutoff of Fauchere's kernel unless LpOptions says otherwise, A. The atoms beyond it
+/// change a point's LP by at most exp(-12) = 6.1e-6 times the sum of their |f_i|; measured over
+/// 4we2's vertices, at most 1.1e-4 of the LP's range (docs/benchmarks.md#potentials_bench).
+inline constexpr double default_fauchere_cutoff = 12.0;
+
 /// How the LP weighs atoms.
 struct LpOptions {
   /// Default fauchere (exp(-d)).
   LipophilicKernel kernel = LipophilicKernel::fauchere;
-  /// Default 0 (none). When > 0, atoms farther than `cutoff` A from a point contribute nothing
-  /// to it. Must be >= 0.
-  double cutoff = 0.0;
+  /// Atoms farther than this from a point (A) contribute nothing to it; 0 = every atom counts.
+  /// Must be >= 0. Unset (default): default_fauchere_cutoff for Fauchere's kernel, none for
+  /// Dubost's, whose 1 / (1 + d) decays too slowly for a cutoff to be harmless. The atoms
+  /// within the cutoff are found from a grid of cells, so a protein's LP costs #points x the
+  /// atoms near each point instead of #points x #atoms.
+  std::optional<double> cutoff;
   /// Default empty; see PotentialProgress.
   PotentialProgress progress;
 };
