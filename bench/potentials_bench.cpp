@@ -3,8 +3,9 @@
 // Coulomb sum, measured in the same run. Then the LP over 4we2's surface (1,949 atoms,
 // datasets/cache from datasets/fetch.sh; skipped when absent): the exact sum against
 // LpOptions::cutoff of 8, 10 and 12 A, with each cutoff's error over the vertices (RMS and max,
-// relative to the exact LP's range) and its bound exp(-cutoff) * sum |f_i|. Prints Google
-// Benchmark's table, then the ratios and errors.
+// relative to the exact LP's range) and its bound exp(-cutoff) * sum |f_i|; and the ESP over
+// the same vertices, exact against the treecode at tolerances 1e-4, 1e-3 and 1e-2 kcal/(mol e)
+// per box, with its errors. Prints Google Benchmark's table, then the ratios and errors.
 #include "analytic_meshes.hpp"
 #include "test_support.hpp"
 
@@ -48,9 +49,12 @@ const Molecule& grid_molecule() {
   return m;
 }
 
+/// The exact ESP (the treecode has its rows on 4we2), for the ratio to the serial loop.
 void BM_Esp(benchmark::State& state) {
+  mesh::EspOptions exact;
+  exact.treecode_tolerance = 0.0;
   for (auto _ : state)
-    benchmark::DoNotOptimize(mesh::electrostatic_potential(points(), grid_molecule()));
+    benchmark::DoNotOptimize(mesh::electrostatic_potential(points(), grid_molecule(), exact));
   state.counters["points"] = static_cast<double>(points().rows());
   state.counters["atoms"] = static_cast<double>(grid_molecule().atoms.size());
 }
@@ -110,6 +114,45 @@ void BM_LpProtein(benchmark::State& state, double cutoff) {
   state.counters["vertices"] = static_cast<double>(p.vertices.rows());
 }
 
+std::string tolerance_name(double tolerance) {
+  char name[16];
+  std::snprintf(name, sizeof name, "%.0e", tolerance);
+  return name;
+}
+
+mesh::EspOptions theta_of(double theta) {
+  mesh::EspOptions options;
+  options.treecode_tolerance = theta;
+  return options;
+}
+
+void BM_EspProtein(benchmark::State& state, double theta) {
+  const Protein& p = *protein();
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        mesh::electrostatic_potential(p.vertices, p.molecule, theta_of(theta)));
+  }
+  state.counters["vertices"] = static_cast<double>(p.vertices.rows());
+}
+
+/// Each opening angle's error against the exact ESP over 4we2's vertices.
+void print_treecode_errors(const std::vector<double>& thetas) {
+  const Protein& p = *protein();
+  const Eigen::VectorXd exact =
+      mesh::electrostatic_potential(p.vertices, p.molecule, theta_of(0.0));
+  const double range = exact.maxCoeff() - exact.minCoeff();
+  std::printf("\n4we2 ESP: exact range %.4g (%.4g to %.4g) kcal/(mol e)\n", range, exact.minCoeff(),
+              exact.maxCoeff());
+  for (const double theta : thetas) {
+    const Eigen::VectorXd error =
+        mesh::electrostatic_potential(p.vertices, p.molecule, theta_of(theta)) - exact;
+    const double max_error = error.cwiseAbs().maxCoeff();
+    const double rms = std::sqrt(error.squaredNorm() / static_cast<double>(error.size()));
+    std::printf("tolerance %.0e: max |error| %.3g (%.3g of the range), RMS %.3g (%.3g)\n", theta,
+                max_error, max_error / range, rms, rms / range);
+  }
+}
+
 /// Each cutoff's error against the exact LP over 4we2's vertices.
 void print_cutoff_errors(const std::vector<double>& cutoffs) {
   const Protein& p = *protein();
@@ -153,7 +196,17 @@ int main(int argc, char** argv) {
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
   const std::vector<double> cutoffs{8.0, 10.0, 12.0};
+  const std::vector<double> thetas{1e-4, 1e-3, 1e-2};
   if (protein() != nullptr) {
+    benchmark::RegisterBenchmark("esp_4we2/exact", BM_EspProtein, 0.0)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    for (const double theta : thetas) {
+      benchmark::RegisterBenchmark(("esp_4we2/tolerance_" + tolerance_name(theta)).c_str(),
+                                   BM_EspProtein, theta)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
     benchmark::RegisterBenchmark("lp_4we2/exact", BM_LpProtein, 0.0)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
@@ -181,6 +234,15 @@ int main(int argc, char** argv) {
                     t.at(name) / t.at("lp_4we2/exact"));
     }
     print_cutoff_errors(cutoffs);
+  }
+  if (protein() != nullptr && t.count("esp_4we2/exact")) {
+    for (const double theta : thetas) {
+      const std::string name = "esp_4we2/tolerance_" + tolerance_name(theta);
+      if (t.count(name))
+        std::printf("%s / exact (same run, wall time) = %.3f\n", name.c_str(),
+                    t.at(name) / t.at("esp_4we2/exact"));
+    }
+    print_treecode_errors(thetas);
   }
   benchmark::Shutdown();
   return 0;

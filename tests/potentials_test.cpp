@@ -227,6 +227,52 @@ TEST(LipophilicPotential, CutoffSumsExactlyTheNearAtomsWithinItsBound) {
               lipophilic_potential(points, m, dubost_every_atom));
 }
 
+TEST(ElectrostaticPotential, TreecodeStaysNearItsToleranceAndLigandsStayExact) {
+  // 2,000 atoms 1 A apart with varied charges (more than treecode_min_atoms), and points on
+  // spheres of radius 6 to 25 A around them, some among the outer atoms' boxes.
+  Molecule m;
+  m.source = "grid";
+  for (int i = 0; i < 2000; ++i) {
+    m.atoms.push_back(atom_at(Eigen::Vector3d(i % 20 - 9.5, (i / 20) % 10 - 4.5, i / 200 - 4.5),
+                              0.05 * (i % 11) - 0.25, 0.0));
+  }
+  ASSERT_GT(m.atoms.size(), treecode_min_atoms);
+  std::vector<Eigen::MatrixX3d> shells;
+  Eigen::Index n = 0;
+  for (const double radius : {6.0, 9.0, 14.0, 25.0}) {
+    shells.push_back(test::icosphere(radius, 8).positions());
+    n += shells.back().rows();
+  }
+  Eigen::MatrixX3d points(n, 3);
+  Eigen::Index row = 0;
+  for (const Eigen::MatrixX3d& shell : shells) {
+    points.middleRows(row, shell.rows()) = shell;
+    row += shell.rows();
+  }
+  EspOptions exact_options;
+  exact_options.treecode_tolerance = 0.0;
+  const Eigen::VectorXd exact = electrostatic_potential(points, m, exact_options);
+  double previous = HUGE_VAL;
+  for (const double tolerance : {1e-1, 1e-2, 1e-3, 1e-4}) {
+    EspOptions options;
+    options.treecode_tolerance = tolerance;
+    const double error =
+        (electrostatic_potential(points, m, options) - exact).cwiseAbs().maxCoeff();
+    // Measured on 4we2: 1.3 to 1.9 times the tolerance per box.
+    EXPECT_LT(error, 20.0 * tolerance) << "tolerance " << tolerance;
+    EXPECT_LT(error, previous) << "tolerance " << tolerance;
+    previous = error;
+  }
+  // The default is the treecode at default_treecode_tolerance; a ligand-sized molecule (at most
+  // treecode_min_atoms atoms) gets the exact sum bit for bit.
+  EspOptions by_default;
+  by_default.treecode_tolerance = default_treecode_tolerance;
+  EXPECT_TRUE(electrostatic_potential(points, m) == electrostatic_potential(points, m, by_default));
+  m.atoms.resize(treecode_min_atoms);
+  EXPECT_TRUE(electrostatic_potential(points, m) ==
+              electrostatic_potential(points, m, exact_options));
+}
+
 TEST(Potentials, ProteinSizedCaseAgreesWithASerialSum) {
   const Eigen::MatrixX3d points = test::icosphere(30.0, 55).positions();
   Molecule m;
@@ -235,7 +281,9 @@ TEST(Potentials, ProteinSizedCaseAgreesWithASerialSum) {
     m.atoms.push_back(atom_at(Eigen::Vector3d(i % 20 - 9.5, (i / 20) % 10 - 4.5, i / 200 - 4.5),
                               i % 2 ? 0.1 : -0.1, 0.01 * (i % 7)));
   }
-  const Eigen::VectorXd esp = electrostatic_potential(points, m);
+  EspOptions exact;  // the treecode has its own test
+  exact.treecode_tolerance = 0.0;
+  const Eigen::VectorXd esp = electrostatic_potential(points, m, exact);
   const Eigen::VectorXd lp = lipophilic_potential(points, m);
   ASSERT_EQ(esp.size(), points.rows());
   EXPECT_EQ(lp.size(), points.rows());

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -20,6 +21,12 @@ inline constexpr double coulomb_constant = 332.06;
 /// total; never concurrently (calls are serialised), but from any thread. Empty by default.
 using PotentialProgress = std::function<void(std::int64_t done, std::int64_t total)>;
 
+/// The ESP treecode's default tolerance per box, kcal/(mol*e), and the atom count above which
+/// it replaces the exact sum (a ligand's ESP stays exact). Measured over 4we2's vertices:
+/// docs/benchmarks.md#potentials_bench.
+inline constexpr double default_treecode_tolerance = 1e-3;
+inline constexpr std::size_t treecode_min_atoms = 512;
+
 /// How the ESP screens charges.
 struct EspOptions {
   /// Relative permittivity eps (default 1, vacuum); must be > 0.
@@ -30,7 +37,17 @@ struct EspOptions {
   /// Default 0.5 A; distances below are clamped to it, guarding a point on an atom centre.
   /// Must be > 0.
   double min_distance = 0.5;
-  /// Default empty; see PotentialProgress. The sum costs #points x #atoms distance evaluations.
+  /// The treecode that sums the Coulomb ESP of molecules of more than treecode_min_atoms
+  /// atoms: the atoms are boxed in an octree, and a box of radius a (about its centre) at
+  /// distance R from a point counts through the multipole expansion of its charges to the
+  /// quadrupole when R - a >= min_distance and the expansion's error bound,
+  /// 332.06 / eps * sum|q| a^3 / (R^3 (R - a)), is at most this tolerance (kcal/(mol*e));
+  /// other boxes are opened, down to exact sums over their atoms. A point's error is at most
+  /// the tolerance times the boxes so counted. 0 = the exact sum always. Must be finite and
+  /// >= 0. Not used with distance_dependent (always exact).
+  double treecode_tolerance = default_treecode_tolerance;
+  /// Default empty; see PotentialProgress. The exact sum costs #points x #atoms distance
+  /// evaluations; the treecode about #points x log(#atoms).
   PotentialProgress progress;
 };
 
@@ -38,7 +55,8 @@ struct EspOptions {
 /// `points` is #P by 3 in A; q_i = Atom::charge (e); d_i = max(|p - x_i|, min_distance).
 /// Returns #P values. Each point is computed independently (in parallel), so the result does not
 /// depend on the thread count. Throws InputError for an empty molecule or a non-finite point,
-/// atom position or charge, OptionError for dielectric or min_distance <= 0 or non-finite.
+/// atom position or charge, OptionError for dielectric or min_distance <= 0 or non-finite, or
+/// a negative or non-finite treecode_tolerance.
 Eigen::VectorXd electrostatic_potential(const Eigen::Ref<const Eigen::MatrixX3d>& points,
                                         const Molecule& molecule, const EspOptions& options = {});
 
