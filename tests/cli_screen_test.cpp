@@ -132,6 +132,40 @@ TEST_F(CliScreen, HitsAreTheSameWithOneAndTwoThreadsAndTheQueryFindsItselfFirst)
   EXPECT_EQ(records, 3u);
 }
 
+TEST_F(CliScreen, HsiFilesMakeALibraryThatTheirMoleculesFind) {
+  ASSERT_EQ(run("library export lib.sclib -o hsi_set.sdf").status, 0);
+  fs::create_directories(dir_ / "hsi");
+  for (const char* record : {"1", "3"}) {  // paracetamol's and salicylic acid's first conformers
+    const ProgramRun r = run(std::string("hsi-build hsi_set.sdf --record ") + record +
+                             " -o hsi/entry" + record + ".hsi");
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  const ProgramRun built = run("library build hsi -o hsi.sclib");
+  ASSERT_EQ(built.status, 0) << built.err;
+  const ProgramRun screened =
+      run("screen hsi_set.sdf hsi.sclib --record 3 --top 0 -o hsi.csv --aligned-out hsi.sdf");
+  ASSERT_EQ(screened.status, 0) << screened.err;
+  const std::vector<std::string> rows = lines_of(file_bytes(dir_ / "hsi.csv"));
+  ASSERT_EQ(rows.size(), 3u);  // header and the two entries
+  EXPECT_EQ(rows[1].rfind("1,2,entry3,hsi/entry3.hsi,1,0,", 0), 0u) << rows[1];
+  EXPECT_NEAR(std::stod(fields_of(rows[1])[6]), 1.0, 1e-3) << rows[1];  // score
+  EXPECT_EQ(fields_of(rows[1])[7], "2");                                // from the full match
+  // The hit's heavy atoms, without bonds: salicylic acid's 10.
+  const std::string aligned = file_bytes(dir_ / "hsi.sdf");
+  EXPECT_NE(aligned.find(" 10  0  0  0  0  0  0  0  0  0999 V2000"), std::string::npos) << aligned;
+  // A .hsi has fixed coordinates: asked for conformers, it is skipped and logged; with every
+  // record skipped, the build fails with one line and leaves no library.
+  const ProgramRun conformers = run("library build hsi -o conformers.sclib --conformers 2");
+  EXPECT_EQ(conformers.status, 1);
+  EXPECT_NE(conformers.err.find("conformers.sclib: no entry was built; all 2 records were skipped"),
+            std::string::npos)
+      << conformers.err;
+  EXPECT_EQ(lines_of(conformers.err).size(), 1u) << conformers.err;
+  EXPECT_FALSE(fs::exists(dir_ / "conformers.sclib"));
+  EXPECT_NE(file_bytes(dir_ / "conformers.sclib.log").find("--conformers does not apply"),
+            std::string::npos);
+}
+
 TEST_F(CliScreen, HitsAreTheSameUnderMpiWithOneAndTwoProcesses) {
 #ifndef SURFCOMP_MPIEXEC
   GTEST_SKIP() << "surfcomp was built without MPI";

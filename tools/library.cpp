@@ -37,7 +37,8 @@ constexpr const char* kUsage =
     "        MMFF conformers of each (seeded by --seed; without --conformers a record's own\n"
     "        coordinates are used, and SMILES lists are refused), builds each conformer's surface\n"
     "        as `surfcomp match` does and stores the molecule and its overlay samples. Records\n"
-    "        that cannot be read, embedded or surfaced are skipped and listed in LIB.sclib.log.\n"
+    "        that cannot be read, embedded or surfaced are skipped and listed in LIB.sclib.log\n"
+    "        (when all are, the build fails and leaves only the log).\n"
     "        A .hsi INPUT (surfcomp hsi-build) becomes one entry keeping its surface and heavy\n"
     "        atoms (no bonds, no --conformers); screen describes that surface again.\n"
     "        Entries keep the input order; the file does not depend on --threads.\n"
@@ -87,6 +88,12 @@ void write_log_and_summary(const std::filesystem::path& library, const std::file
     for (const auto& s : result.skipped)
       out << s.source << '\t' << s.record << '\t' << s.name << '\t' << s.reason << '\n';
   });
+  if (result.entries == 0) {  // an empty library would only fail later, further from the cause
+    std::filesystem::remove(library);
+    throw InputError(library.string() + ": no entry was built; all " +
+                     std::to_string(result.records) + " records were skipped (reasons in " +
+                     log.string() + ")");
+  }
   std::printf(
       "%s: %zu records -> %zu entries, %zu skipped (see %s), %.1f MB, %.1f s (%.1f entries/s)\n",
       library.string().c_str(), result.records, result.entries, result.skipped.size(),
