@@ -130,15 +130,22 @@ for h in "${harnesses[@]}"; do
     $(extra_flags_of "$h") \
     -artifact_prefix="$work/artifacts/$h/" >"$work/$h.log" 2>&1 || status=$?
   executions[$h]=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$h.log" | tail -n 1)
+  if [ -z "${executions[$h]}" ]; then  # a run that stopped prints no final stats: its last count
+    executions[$h]=$(grep -oE '^#[0-9]+' "$work/$h.log" | tail -n 1 | tr -d '#')
+  fi
   rate[$h]=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$h.log" | tail -n 1)
-  # A slow-unit artifact is an input that once took longer than -report_slow_units (10 s) while
-  # the harness kept going: on a loaded machine a fuzzer starved of CPU writes one for any input.
-  # It counts as a finding only if it is slow again alone (rerun with -timeout).
-  for artifact in "$work/artifacts/$h"/slow-unit-*; do
+  # A slow-unit or timeout artifact is an input that once took longer than 10 s; on a loaded
+  # machine a fuzzer starved of CPU writes one for any input (a timeout also ends the run, exit
+  # 70). Each counts as a finding only if it is slow again alone (rerun with -timeout).
+  for artifact in "$work/artifacts/$h"/slow-unit-* "$work/artifacts/$h"/timeout-*; do
     [ -f "$artifact" ] || continue
     if "$binary" -rss_limit_mb="$rss_limit" -timeout="$timeout" "$artifact" >"$work/slow.log" 2>&1; then
       echo "fuzz_$h: $(basename "$artifact") reran in $(sed -n 's/^Executed .* in //p' "$work/slow.log"): slow only under load, not a finding"
       rm "$artifact"
+      if [ "$status" -eq 70 ] && [ -z "$(ls -A "$work/artifacts/$h")" ]; then
+        echo "fuzz_$h: the run stopped early at that input"
+        status=0
+      fi
     fi
   done
   if [ "$status" -ne 0 ] || [ -n "$(ls -A "$work/artifacts/$h")" ]; then

@@ -969,6 +969,14 @@ TEST(MoleculeIo, BadInputRaisesTheRightErrorNamingTheFile) {
   const fs::path short_pqr =
       dir.write("short.pqr", "ATOM      1  N   LYS     1       3.294  10.164 -0.3200 1.5000\n");
   EXPECT_THROW(read_pqr(short_pqr), FormatError);
+  // RDKit reads a repeated BOND section too, past the checks of the first: a second one naming
+  // atom 0 crashed it (fuzz_mol2). One section of each kind per molecule.
+  const fs::path repeated = dir.write("repeated.mol2",
+                                      "@<TRIPOS>MOLECULE\nt\n 3 1\n\n@<TRIPOS>ATOM\n"
+                                      "1 C1 0 0 0 C.3\n2 C2 1.5 0 0 C.3\n3 O3 2.2 1.1 0 O.3\n"
+                                      "@<TRIPOS>BOND\n1 2 1 1\n@<TRIPOS>BOND\n1 1 0 1\n");
+  EXPECT_THROW(read_molecule(repeated), FormatError);
+  expect_error_naming([&] { read_molecule(repeated); }, "repeated.mol2:11");
 
   SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/1THL.pdb");
   try {

@@ -192,8 +192,9 @@ std::string mol2_charge_type(const std::string& text) {
 
 // RDKit's Mol2 reader indexes atoms by the bond records' atom ids without checking them and
 // crashes on an id outside the molecule (found by the robustness test). Checks the first
-// molecule's counts line, that its ATOM section holds that many records and that each of
-// its bond records names two atom ids in [1, atom count].
+// molecule's counts line, that it has one ATOM and at most one BOND section, that its ATOM
+// section holds that many records and that each of its bond records names two atom ids in
+// [1, atom count].
 void check_mol2_structure(const std::string& text, const std::string& source) {
   const std::vector<std::string> lines = [&]() {
     std::vector<std::string> out;
@@ -237,6 +238,17 @@ void check_mol2_structure(const std::string& text, const std::string& source) {
     }
     return records;
   };
+  // RDKit reads every ATOM and BOND section of a molecule, also a repeated one, whose records
+  // the checks below would not see (a second BOND section naming atom 0 crashed it: fuzz_mol2).
+  const std::size_t next_molecule = section("@<TRIPOS>MOLECULE", molecule + 1);
+  for (const char* name : {"@<TRIPOS>ATOM", "@<TRIPOS>BOND"}) {
+    const std::size_t first = section(name, molecule);
+    const std::size_t second = first < next_molecule ? section(name, first + 1) : lines.size();
+    if (second < next_molecule) {
+      throw FormatError(source, second + 1,
+                        std::string("a second ") + name + " section in one molecule");
+    }
+  }
   const std::size_t atoms = section("@<TRIPOS>ATOM", molecule);
   records_after(atoms, *atom_count, 6, "ATOM");
   if (*bond_count == 0) return;
