@@ -131,7 +131,7 @@ for h in "${harnesses[@]}"; do
     -artifact_prefix="$work/artifacts/$h/" >"$work/$h.log" 2>&1 || status=$?
   executions[$h]=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/$h.log" | tail -n 1)
   if [ -z "${executions[$h]}" ]; then  # a run that stopped prints no final stats: its last count
-    executions[$h]=$(grep -oE '^#[0-9]+' "$work/$h.log" | tail -n 1 | tr -d '#')
+    executions[$h]=$(sed -n 's/^#\([0-9][0-9]*\).*/\1/p' "$work/$h.log" | tail -n 1)
   fi
   rate[$h]=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/$h.log" | tail -n 1)
   # A slow-unit or timeout artifact is an input that once took longer than 10 s; on a loaded

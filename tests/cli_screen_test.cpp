@@ -154,7 +154,11 @@ TEST_F(CliScreen, HsiFilesMakeALibraryThatTheirMoleculesFind) {
   const std::string aligned = file_bytes(dir_ / "hsi.sdf");
   EXPECT_NE(aligned.find(" 10  0  0  0  0  0  0  0  0  0999 V2000"), std::string::npos) << aligned;
   // A .hsi has fixed coordinates: asked for conformers, it is skipped and logged; with every
-  // record skipped, the build fails with one line and leaves no library.
+  // record skipped, the build fails with one line and writes no library (nor replaces one).
+  ASSERT_EQ(run("library build hsi -o kept.sclib").status, 0);
+  const std::string kept = file_bytes(dir_ / "kept.sclib");
+  EXPECT_EQ(run("library build hsi -o kept.sclib --conformers 2").status, 1);
+  EXPECT_EQ(file_bytes(dir_ / "kept.sclib"), kept);
   const ProgramRun conformers = run("library build hsi -o conformers.sclib --conformers 2");
   EXPECT_EQ(conformers.status, 1);
   EXPECT_NE(conformers.err.find("conformers.sclib: no entry was built; all 2 records were skipped"),

@@ -977,6 +977,12 @@ TEST(MoleculeIo, BadInputRaisesTheRightErrorNamingTheFile) {
                                       "@<TRIPOS>BOND\n1 2 1 1\n@<TRIPOS>BOND\n1 1 0 1\n");
   EXPECT_THROW(read_molecule(repeated), FormatError);
   expect_error_naming([&] { read_molecule(repeated); }, "repeated.mol2:11");
+  // RDKit takes a line whose first field is the name for a header, words after it too.
+  const fs::path worded = dir.write("worded.mol2",
+                                    "@<TRIPOS>MOLECULE\nt\n 3 1\n\n@<TRIPOS>ATOM\n"
+                                    "1 C1 0 0 0 C.3\n2 C2 1.5 0 0 C.3\n3 O3 2.2 1.1 0 O.3\n"
+                                    "@<TRIPOS>BOND\n1 2 1 1\n@<TRIPOS>BOND again\n1 1 0 1\n");
+  expect_error_naming([&] { read_molecule(worded); }, "worded.mol2:11");
 
   SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/1THL.pdb");
   try {

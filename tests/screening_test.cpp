@@ -4,6 +4,7 @@
 // self-overlay's score and the identity. Pocket libraries: a site list is read line by line; a
 // site entry keeps its spheres; a site query finds its own pocket first, and a library of the
 // other kind is refused. A .hsi file becomes an entry keeping its surface and heavy atoms.
+#include "analytic_meshes.hpp"
 #include "pocket_cut.hpp"
 #include "test_data.hpp"
 
@@ -303,6 +304,17 @@ TEST(LibraryBuild, HsiFilesBecomeEntriesThatKeepTheirSurfaceAndFindThemselves) {
   const screening::ScreenQuery query = screening::make_screen_query(
       harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options);
   expect_found_itself_first(screening::screen(query, library, options).hits, 2);
+
+  // A .hsi made from a mesh (no atoms, no ESP or LP) is skipped with the reason.
+  mesh::Surface ball = test::icosphere(5.0, 12);
+  mesh::assign_surface_properties(ball, nullptr);
+  harmonic::io::write_hsi(harmonic::describe_surface(std::move(ball)), dir / "ball.hsi");
+  const screening::LibraryBuildResult ball_build = screening::build_library(
+      screening::read_library_inputs({dir / "ball.hsi"}), dir / "ball.sclib");
+  ASSERT_EQ(ball_build.skipped.size(), 1u);
+  EXPECT_NE(ball_build.skipped[0].reason.find("keeps no atoms"), std::string::npos)
+      << ball_build.skipped[0].reason;
+  EXPECT_FALSE(fs::exists(dir / "ball.sclib"));
 
   // A .hsi has fixed coordinates: asked for conformers, it is skipped with the reason.
   screening::LibraryBuildOptions conformers;

@@ -32,15 +32,15 @@ constexpr const char* kUsage =
     "       surfcomp library export LIB.sclib -o OUT.sdf\n\n"
     "build   reads every molecule of the INPUTs (SDF/MOL/MOL2 files of one or many records,\n"
     "        PDB files, SMILES lists .smi and tab-separated .dat/.dat.gz with a header line\n"
-    "        '# Mol_Title ID SMILES', .hsi files, directories of these), generates --conformers N "
-    "ETKDG +\n"
-    "        MMFF conformers of each (seeded by --seed; without --conformers a record's own\n"
-    "        coordinates are used, and SMILES lists are refused), builds each conformer's surface\n"
-    "        as `surfcomp match` does and stores the molecule and its overlay samples. Records\n"
-    "        that cannot be read, embedded or surfaced are skipped and listed in LIB.sclib.log\n"
-    "        (when all are, the build fails and leaves only the log).\n"
-    "        A .hsi INPUT (surfcomp hsi-build) becomes one entry keeping its surface and heavy\n"
-    "        atoms (no bonds, no --conformers); screen describes that surface again.\n"
+    "        '# Mol_Title ID SMILES', .hsi files, directories of these), generates\n"
+    "        --conformers N ETKDG + MMFF conformers of each (seeded by --seed; without\n"
+    "        --conformers a record's own coordinates are used, and SMILES lists are refused),\n"
+    "        builds each conformer's surface as `surfcomp match` does and stores the molecule\n"
+    "        and its overlay samples. Records that cannot be read, embedded or surfaced are\n"
+    "        skipped and listed in LIB.sclib.log (when all are, the build fails and leaves only\n"
+    "        the log). A .hsi INPUT (surfcomp hsi-build from a molecule) becomes one entry\n"
+    "        keeping its surface and heavy atoms (no bonds; no --conformers; at most 999 heavy\n"
+    "        atoms); screen describes that surface again.\n"
     "        Entries keep the input order; the file does not depend on --threads.\n"
     "info    prints the library's version, entries, molecules, sizes and build settings.\n"
     "export  writes every entry's molecule in its conformation, with the SD tags\n"
@@ -88,8 +88,8 @@ void write_log_and_summary(const std::filesystem::path& library, const std::file
     for (const auto& s : result.skipped)
       out << s.source << '\t' << s.record << '\t' << s.name << '\t' << s.reason << '\n';
   });
+  if (result.records == 0) throw InputError(library.string() + ": the inputs hold no record");
   if (result.entries == 0) {  // an empty library would only fail later, further from the cause
-    std::filesystem::remove(library);
     throw InputError(library.string() + ": no entry was built; all " +
                      std::to_string(result.records) + " records were skipped (reasons in " +
                      log.string() + ")");

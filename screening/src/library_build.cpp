@@ -61,6 +61,13 @@ bool is_library_input(const std::filesystem::path& path) {
 /// surface without critical points for the second stage.
 LibraryEntry hsi_entry(const io::MoleculeRecord& record, const LibraryBuildOptions& options) {
   harmonic::SurfaceDescriptors described = harmonic::io::read_hsi(record.source);
+  // A .hsi made from a mesh has neither: the entry would be scored without chemistry.
+  if (described.atoms.empty())
+    throw InputError(record.source.string() + ": the .hsi keeps no atoms (made from a mesh?)");
+  for (const char* property : {mesh::property::esp, mesh::property::lp}) {
+    if (!described.surface.has_property(property))
+      throw InputError(record.source.string() + ": the .hsi surface has no " + property);
+  }
   Molecule atoms;
   for (const harmonic::SurfaceAtom& atom : described.atoms) {
     Atom a;
@@ -204,52 +211,57 @@ LibraryBuildResult build_in_order(
     std::vector<LibraryEntry> entries;
     std::string error;
   };
-  io::write_file_atomically(output, [&](std::ostream& out) {
-    LibraryWriter writer(out, settings);
-    std::size_t next = 0;
-    tbb::parallel_pipeline(
-        options.batch,
-        tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
-                                            [&](tbb::flow_control& control) -> std::size_t {
-                                              if (next == count) {
-                                                control.stop();
-                                                return 0;
-                                              }
-                                              return next++;
-                                            }) &
-            tbb::make_filter<std::size_t, std::shared_ptr<Built>>(
-                tbb::filter_mode::parallel,
-                [&](std::size_t index) {
-                  auto built = std::make_shared<Built>();
-                  built->index = index;
-                  try {
-                    built->entries = build_item(index);
-                  } catch (const std::bad_alloc&) {
-                    built->error = "out of memory";
-                  } catch (const std::exception& e) {
-                    built->error = one_line(e.what());
-                    if (built->error.empty()) built->error = "unknown error";
-                  }
-                  return built;
-                }) &
-            tbb::make_filter<std::shared_ptr<Built>, void>(
-                tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<Built>& built) {
-                  if (!built->error.empty()) {
-                    ItemOrigin o = origin(built->index);
-                    result.skipped.push_back(
-                        {std::move(o.source), o.record, std::move(o.name), built->error});
-                  } else {
-                    for (const LibraryEntry& entry : built->entries) writer.add(entry);
-                  }
-                  if (options.progress) {
-                    options.progress({built->index + 1, count, writer.size(), result.skipped.size(),
-                                      clock.elapsed_s()});
-                  }
-                }));
-    writer.finish();
-    result.entries = writer.size();
-    result.bytes = writer.bytes();
-  });
+  struct NothingBuilt {};  // abandons the output: no library of nothing, an old file kept
+  try {
+    io::write_file_atomically(output, [&](std::ostream& out) {
+      LibraryWriter writer(out, settings);
+      std::size_t next = 0;
+      tbb::parallel_pipeline(
+          options.batch,
+          tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
+                                              [&](tbb::flow_control& control) -> std::size_t {
+                                                if (next == count) {
+                                                  control.stop();
+                                                  return 0;
+                                                }
+                                                return next++;
+                                              }) &
+              tbb::make_filter<std::size_t, std::shared_ptr<Built>>(
+                  tbb::filter_mode::parallel,
+                  [&](std::size_t index) {
+                    auto built = std::make_shared<Built>();
+                    built->index = index;
+                    try {
+                      built->entries = build_item(index);
+                    } catch (const std::bad_alloc&) {
+                      built->error = "out of memory";
+                    } catch (const std::exception& e) {
+                      built->error = one_line(e.what());
+                      if (built->error.empty()) built->error = "unknown error";
+                    }
+                    return built;
+                  }) &
+              tbb::make_filter<std::shared_ptr<Built>, void>(
+                  tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<Built>& built) {
+                    if (!built->error.empty()) {
+                      ItemOrigin o = origin(built->index);
+                      result.skipped.push_back(
+                          {std::move(o.source), o.record, std::move(o.name), built->error});
+                    } else {
+                      for (const LibraryEntry& entry : built->entries) writer.add(entry);
+                    }
+                    if (options.progress) {
+                      options.progress({built->index + 1, count, writer.size(),
+                                        result.skipped.size(), clock.elapsed_s()});
+                    }
+                  }));
+      if (writer.size() == 0) throw NothingBuilt{};
+      writer.finish();
+      result.entries = writer.size();
+      result.bytes = writer.bytes();
+    });
+  } catch (const NothingBuilt&) {
+  }
   result.seconds = clock.elapsed_s();
   return result;
 }

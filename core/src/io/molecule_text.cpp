@@ -202,9 +202,11 @@ void check_mol2_structure(const std::string& text, const std::string& source) {
     for (std::string line; std::getline(stream, line);) out.push_back(line);
     return out;
   }();
+  // A header as RDKit sees one: its first field is the section's name ("@<TRIPOS>BOND x" too).
   auto section = [&](const std::string& name, std::size_t from) {
     for (std::size_t i = from; i < lines.size(); ++i) {
-      if (trimmed(lines[i]) == name) return i;
+      const std::vector<std::string> fields = fields_of(lines[i]);
+      if (!fields.empty() && fields[0] == name) return i;
     }
     return lines.size();
   };
@@ -238,8 +240,8 @@ void check_mol2_structure(const std::string& text, const std::string& source) {
     }
     return records;
   };
-  // RDKit reads every ATOM and BOND section of a molecule, also a repeated one, whose records
-  // the checks below would not see (a second BOND section naming atom 0 crashed it: fuzz_mol2).
+  // RDKit reads the records of the last ATOM and BOND sections of a molecule; the checks below
+  // read the first (a second BOND section naming atom 0 crashed it: fuzz_mol2). One of each.
   const std::size_t next_molecule = section("@<TRIPOS>MOLECULE", molecule + 1);
   for (const char* name : {"@<TRIPOS>ATOM", "@<TRIPOS>BOND"}) {
     const std::size_t first = section(name, molecule);

@@ -34,8 +34,10 @@ std::string atoms_mol_block(const Molecule& molecule, const std::string& title) 
   std::snprintf(line, sizeof line, "%3zu  0  0  0  0  0  0  0  0  0999 V2000\n", n);
   block += line;
   for (const Atom& atom : molecule.atoms) {
-    if (!(atom.position.cwiseAbs().maxCoeff() < 1e5)) {
-      throw InputError(title + ": atom position beyond the MDL format's columns (|x| >= 1e5 A)");
+    // %10.4f holds -9999.9999 to 99999.9999; the bounds keep the rounding inside them.
+    if (!(atom.position.minCoeff() > -9999.99995 && atom.position.maxCoeff() < 99999.99995)) {
+      throw InputError(title + ": atom position outside the MDL format's columns (-9999.9999 to " +
+                       "99999.9999 A)");
     }
     std::snprintf(line, sizeof line,
                   "%10.4f%10.4f%10.4f %-3.3s 0  0  0  0  0  0  0  0  0  0  0  0\n",

@@ -5,9 +5,12 @@
 //
 // Layout (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
 //   header   "SURFCLIB", u32 format version, u32 0
-//   entries  one after the other, each checksummed (FNV-1a 64) in the index
+//   entries  one after the other, each checksummed (FNV-1a 64) in the index; each: the
+//            molecule (format, text), the samples, the heteroatoms, from version 2 the site
+//            spheres, from version 3 the bytes of a described surface (LibraryEntry::surface)
 //   index    u64 count; per entry u64 offset, u64 size, u64 checksum, string name,
-//            string source, u32 record, u32 conformer, u32 heavy atoms; string settings
+//            string source, u32 record, u32 conformer, u32 heavy atoms, from version 2 u32
+//            site spheres; string settings
 //   trailer  u64 index offset, u64 index size, u64 index checksum, "SCLIBEND"
 // The file is memory-mapped and entries are decoded on demand, by index or by name.
 #pragma once

@@ -125,8 +125,10 @@ std::string build_settings(const LibraryBuildOptions& options, bool sites = fals
 /// Builds the entries of every record (in parallel, TBB) and writes them, in record order then
 /// conformer order, to `output` atomically: an interrupted or failed build leaves no file
 /// there. A record whose entries cannot be built is skipped and listed in the result; the build
-/// goes on. The file's bytes do not depend on the thread count. Throws OptionError for options
-/// outside their domain (before any work), FileError when `output` cannot be written.
+/// goes on. When no entry is built (result.entries 0), nothing is written: a file already at
+/// `output` is left as it was. The file's bytes do not depend on the thread count. Throws
+/// OptionError for options outside their domain (before any work), FileError when `output` cannot
+/// be written.
 LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
                                  const std::filesystem::path& output,
                                  const LibraryBuildOptions& options = {});

@@ -20,7 +20,8 @@ void write_pdb(const Molecule& molecule, std::ostream& out);
 /// An MDL V2000 mol block ending at "M  END" (no "$$$$" line) of the molecule's atoms, elements
 /// and positions only: no bonds, no charges (a molecule known only by its atoms, such as the
 /// heavy atoms a .hsi file keeps). `title` is the block's first line. Throws InputError when a
-/// coordinate does not fit the format's columns (|x| >= 1e5 A) or there are more than 999 atoms.
+/// coordinate does not fit the format's columns (-9999.9999 to 99999.9999 A) or there are more
+/// than 999 atoms.
 std::string atoms_mol_block(const Molecule& molecule, const std::string& title);
 
 /// Molecule `record` of an SDF/MOL/MOL2 file (as MoleculeReadOptions::record: 1-based, 0 = the
