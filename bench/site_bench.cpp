@@ -10,10 +10,12 @@
 //
 // The match runs with each parameter set of variants(); the sites are built once.
 //
-//   ./build/r/bench/site_bench [entries.txt [PREFIX [VARIANTS]]]
+//   ./build/r/bench/site_bench [entries.txt [PREFIX [VARIANTS [MARGIN]]]]
 // entries.txt defaults to ../shared/datasets/kahraman-dev/entries.txt; PREFIX, when given and not
 // "-", makes PREFIX.<variant>.csv with one row per pair (sites, same type, top-1 pairs, points,
-// r_chem, overlay scores, imaged CPs, ms); VARIANTS, a comma-separated list, runs those only.
+// r_chem, overlay scores, imaged CPs, ms); VARIANTS, a comma-separated list (or "-" for all),
+// runs those only; MARGIN (A) is the site surface's margin (BindingSiteOptions::surface_margin;
+// 0 = the surface of the whole structure).
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
@@ -86,7 +88,7 @@ struct Site {
 /// name, number and chain) on the structure reduced to the chains in contact with it. Whole
 /// structures are not used: the surface's ESP and LP cost #vertices x #atoms, and chains that
 /// do not touch the ligand are far from its site. Throws InputError when that copy is absent.
-Site build_site(const Entry& entry, const fs::path& pdb,
+Site build_site(const Entry& entry, const fs::path& pdb, double margin,
                 const harmonic::DescriptorOptions& options) {
   const Stopwatch start;
   Site site;
@@ -94,6 +96,7 @@ Site build_site(const Entry& entry, const fs::path& pdb,
   matching::BindingSiteOptions site_options;
   site_options.sphere_radius = kSiteRadius;
   site_options.chain_contact_radius = kContactRadius;
+  site_options.surface_margin = margin;
   const matching::BindingSite binding_site = matching::binding_site(
       io::read_molecule(pdb), LigandSelector{entry.ligand, entry.chain, entry.residue_number},
       site_options);
@@ -103,7 +106,7 @@ Site build_site(const Entry& entry, const fs::path& pdb,
   for (const auto& chain : chains) site.chains += chain;
   site.atoms = binding_site.structure.atoms.size();
   site.ligand_atoms = binding_site.ligand.atoms.size();
-  site.descriptors = matching::describe_site(mesh::build_molecular_surface(binding_site.structure),
+  site.descriptors = matching::describe_site(matching::build_site_surface(binding_site),
                                              binding_site.structure, binding_site.spheres, options);
   site.in_site = matching::critical_points_in_site(site.descriptors, binding_site.spheres);
   site.site_cps =
@@ -301,8 +304,12 @@ int main(int argc, char** argv) {
     const std::vector<Entry> entries = read_entries(entries_path);
     harmonic::DescriptorOptions options;
     options.patch.radius = kPatchRadius;
-    std::printf("site radius %.1f A, patch radius %.1f A, chains within %.1f A of the ligand\n\n",
-                kSiteRadius, kPatchRadius, kContactRadius);
+    const double margin =
+        argc > 4 ? std::stod(argv[4]) : matching::BindingSiteOptions{}.surface_margin;
+    std::printf(
+        "site radius %.1f A, patch radius %.1f A, chains within %.1f A of the ligand, surface "
+        "margin %.1f A\n\n",
+        kSiteRadius, kPatchRadius, kContactRadius, margin);
     std::printf("%-5s %-4s %6s %-2s %-6s %7s %6s %9s %6s %7s %9s\n", "pdb", "lig", "resnum", "ch",
                 "kept", "atoms", "ligat", "vertices", "cps", "imaged", "build_ms");
     std::vector<Site> sites;
@@ -311,7 +318,7 @@ int main(int argc, char** argv) {
       // A site whose surface a stage rejects is reported and left out of the pairs.
       try {
         sites.push_back(
-            build_site(e, entries_path.parent_path() / "pdb" / (e.pdb + ".pdb"), options));
+            build_site(e, entries_path.parent_path() / "pdb" / (e.pdb + ".pdb"), margin, options));
       } catch (const Error& error) {
         std::printf("%-5s %-4s skipped: %s\n", e.pdb.c_str(), e.ligand.c_str(), error.what());
         skipped.push_back(e.pdb);
@@ -326,7 +333,7 @@ int main(int argc, char** argv) {
     }
 
     for (const Variant& variant : variants()) {
-      if (argc > 3 &&
+      if (argc > 3 && std::string(argv[3]) != "-" &&
           ("," + std::string(argv[3]) + ",").find("," + std::string(variant.name) + ",") ==
               std::string::npos)
         continue;

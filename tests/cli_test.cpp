@@ -188,6 +188,9 @@ TEST_F(Cli, BadInputGivesOneLineErrorAndNoOutput) {
       {"match /nonexistent/a.sdf " + ligand.string(), "a.sdf"},
       {"match " + protein.string() + " " + protein.string() + " --site-ligand XYZ", "XYZ"},
       {"match " + protein.string() + " " + protein.string() + " --site-sphere 0,0,0,1",
+       "no atom lies within"},
+      {"match " + protein.string() + " " + protein.string() +
+           " --site-sphere 8.335,52.235,-0.041,0.5",
        "no critical point"},
       {"match " + hsi_a.string() + " " + hsi_b.string(), "different parameters"},
       {"match " + ligand.string() + " " + ligand.string() + " --site-sphere 1,2", "x,y,z,r"},

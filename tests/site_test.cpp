@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -242,6 +243,11 @@ TEST(BindingSite, BadSpheresAndOptionsAreRejected) {
   options = {};
   options.chain_contact_radius = -1.0;
   EXPECT_THROW(matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
+  options = {};
+  for (double margin : {-1.0, std::nan(""), HUGE_VAL}) {
+    options.surface_margin = margin;
+    EXPECT_THROW(matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
+  }
   EXPECT_THROW(matching::binding_site(m, LigandSelector{"ATP", {}, {}}), InputError);
 }
 
@@ -291,6 +297,92 @@ TEST(BindingSite, DescribeSiteImagesOnlyTheSiteCriticalPoints) {
   EXPECT_LT(inside, site.critical_points.size());
   const auto without_atoms = matching::describe_site(surface, spheres);
   EXPECT_TRUE(without_atoms.atoms.empty());
+}
+
+// The site's surface, built from the atoms within the margin, is the whole structure's surface
+// wherever the site's descriptors look (the site's spheres and 8 A patches around them): the
+// same vertices, ESP and LP (from every atom), critical points and shape images.
+TEST(SiteSurface, IsTheWholeSurfaceWhereTheSiteLooks) {
+  SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/4TMN.pdb");
+  const Molecule structure = io::read_molecule(pdb);
+  matching::BindingSiteOptions whole_options;
+  whole_options.surface_margin = 0.0;
+  const matching::BindingSite whole_site =
+      matching::binding_site(structure, LigandSelector{"0PK", {}, {}}, whole_options);
+  const matching::BindingSite site =
+      matching::binding_site(structure, LigandSelector{"0PK", {}, {}});
+  ASSERT_EQ(site.surface_margin, 16.0);
+  harmonic::DescriptorOptions options;
+  options.patch.radius = 8.0;
+  const auto whole = matching::describe_site(matching::build_site_surface(whole_site),
+                                             whole_site.structure, whole_site.spheres, options);
+  const auto local = matching::describe_site(matching::build_site_surface(site), site.structure,
+                                             site.spheres, options);
+  EXPECT_LT(local.surface.n_vertices(), 4 * whole.surface.n_vertices() / 5);
+  EXPECT_EQ(local.surface.source(), pdb.string());
+
+  const Eigen::MatrixX3d whole_positions = whole.surface.positions();
+  const Eigen::MatrixX3d local_positions = local.surface.positions();
+  const Eigen::VectorXd whole_esp = whole.surface.property(mesh::property::esp);
+  const Eigen::VectorXd local_esp = local.surface.property(mesh::property::esp);
+  const Eigen::VectorXd whole_lp = whole.surface.property(mesh::property::lp);
+  const Eigen::VectorXd local_lp = local.surface.property(mesh::property::lp);
+  std::size_t compared = 0;
+  double worst_position = 0.0, worst_esp = 0.0, worst_lp = 0.0;
+  for (Eigen::Index v = 0; v < whole_positions.rows(); ++v) {
+    const Eigen::Vector3d x = whole_positions.row(v).transpose();
+    const bool seen = std::any_of(site.spheres.begin(), site.spheres.end(), [&](const auto& s) {
+      return (x - s.center).norm() <= s.radius + options.patch.radius;
+    });
+    if (!seen) continue;
+    ++compared;
+    Eigen::Index nearest = 0;
+    worst_position =
+        std::max(worst_position,
+                 (local_positions.rowwise() - x.transpose()).rowwise().norm().minCoeff(&nearest));
+    worst_esp = std::max(worst_esp, std::abs(whole_esp(v) - local_esp(nearest)));
+    worst_lp = std::max(worst_lp, std::abs(whole_lp(v) - local_lp(nearest)));
+  }
+  EXPECT_GT(compared, 5000u);
+  EXPECT_LT(worst_position, 1e-9);
+  EXPECT_LT(worst_esp, 1e-6);
+  EXPECT_LT(worst_lp, 1e-9);
+
+  const std::vector<bool> whole_in = matching::critical_points_in_site(whole, site.spheres);
+  const std::vector<bool> local_in = matching::critical_points_in_site(local, site.spheres);
+  std::vector<std::size_t> whole_cps, local_cps;
+  for (std::size_t i = 0; i < whole_in.size(); ++i)
+    if (whole_in[i]) whole_cps.push_back(i);
+  for (std::size_t i = 0; i < local_in.size(); ++i)
+    if (local_in[i]) local_cps.push_back(i);
+  ASSERT_EQ(local_cps.size(), whole_cps.size());
+  ASSERT_GT(whole_cps.size(), 20u);
+  for (std::size_t k = 0; k < whole_cps.size(); ++k) {
+    const auto& w = whole.critical_points[whole_cps[k]];
+    const auto& l = local.critical_points[local_cps[k]];
+    EXPECT_LT((w.point.position - l.point.position).norm(), 1e-9) << k;
+    EXPECT_EQ(w.status, l.status) << k;
+    ASSERT_EQ(w.image.values.size(), l.image.values.size()) << k;
+    if (w.image.values.size() > 0) {
+      EXPECT_LT((w.image.values - l.image.values).cwiseAbs().maxCoeff(), 1e-9) << k;
+    }
+  }
+}
+
+// A site whose spheres reach no atom within the margin is refused, naming the file.
+TEST(SiteSurface, ASiteFarFromEveryAtomIsRefused) {
+  Molecule m = structure_with_copies();
+  matching::BindingSiteOptions options;
+  options.surface_margin = 2.0;
+  const matching::BindingSite site =
+      matching::binding_site(m, {{Eigen::Vector3d(500, 500, 500), 4.0}}, options);
+  try {
+    (void)matching::build_site_surface(site);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("copies.pdb: no atom lies within 2 A"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -113,7 +113,7 @@ int cp_detect(const std::vector<std::string>& args) {
   require_in_range("critical-point-radius", cp_options.radius, 1e-3, 100.0);
   require_in_range("disc-radius", cp_options.property_disc_radius, 0.0, 100.0);
   const bool from_hsi = harmonic::io::is_hsi_file(path);
-  if (!from_hsi) check_surface_input(path, input);
+  if (!from_hsi) mesh::check_surface_input(path, input);
   check_command_files(
       {{{"INPUT", path}, {"--molecule", input.molecule_file}},
        {{"--output", output, {}, ""}, {"--points-out", points_out, {".pdb", ".ply"}, ""}}});
@@ -127,7 +127,7 @@ int cp_detect(const std::vector<std::string>& args) {
     cp_options = stored.options.critical_points;
     n_vertices = stored.surface.n_vertices();
   } else {
-    const LoadedSurface loaded = load_surface(path, input);
+    const mesh::LoadedSurface loaded = mesh::load_surface(path, input);
     points = mesh::detect_critical_points(loaded.surface, cp_options);
     n_vertices = loaded.surface.n_vertices();
   }

@@ -74,7 +74,7 @@ int hsi_build(const std::vector<std::string>& args) {
   require_in_range("image-sectors", options.image.sectors, 1, 4096);
   require_in_range("threads", threads, 0, 1024);
   options.disk_map.weights = parse_weights(weights);
-  check_surface_input(path, input);
+  mesh::check_surface_input(path, input);
   check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
                        {{"--output", output, {".hsi"}, ""}}});
   std::unique_ptr<tbb::global_control> limit;
@@ -84,7 +84,7 @@ int hsi_build(const std::vector<std::string>& args) {
   }
 
   Stopwatch clock;
-  LoadedSurface loaded = load_surface(path, input);
+  mesh::LoadedSurface loaded = mesh::load_surface(path, input);
   const double surface_ms = clock.elapsed_ms();
   const harmonic::SurfaceDescriptors descriptors =
       loaded.molecule

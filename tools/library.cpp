@@ -103,17 +103,20 @@ void write_log_and_summary(const std::filesystem::path& library, const std::file
 
 /// `library build --sites LIST`: a pocket library.
 int build_sites(const boost::program_options::variables_map& vm, const std::string& list,
-                const std::string& output, double site_radius, int conformers, int threads) {
+                const std::string& output, const matching::BindingSiteOptions& site, int conformers,
+                int threads) {
   if (vm.count("input")) throw OptionError("--sites takes no INPUT: the sites are in its list");
   if (conformers != 0) throw OptionError("--conformers does not apply to --sites");
-  require_in_range("site-radius", site_radius, 0.1, 100);
+  require_in_range("site-radius", site.sphere_radius, 0.1, 100);
+  require_in_range("site-margin", site.surface_margin, 0.0, 1000.0);
   const auto limit = limit_threads(threads);
   const std::filesystem::path library = output;
   const std::filesystem::path log = output + ".log";
   check_command_files(
       {{{"--sites", list}}, {{"--output", library, {".sclib"}, ""}, {"the log", log, {}, ""}}});
   screening::LibraryBuildOptions options;
-  options.site.sphere_radius = site_radius;
+  options.site.sphere_radius = site.sphere_radius;
+  options.site.surface_margin = site.surface_margin;
   options.progress = progress_line();
   const std::vector<screening::SiteRequest> sites = screening::read_site_list(list);
   const screening::LibraryBuildResult result =
@@ -126,7 +129,7 @@ int build(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output, sites;
   int conformers = 0, seed = ConformerOptions{}.seed, threads = 0;
-  double site_radius = matching::BindingSiteOptions{}.sphere_radius;
+  matching::BindingSiteOptions site;
   po::options_description described("options");
   // clang-format off
   described.add_options()
@@ -136,13 +139,15 @@ int build(const std::vector<std::string>& args) {
        "conformers per molecule from ETKDG + MMFF (0: the records' own coordinates)")
       ("seed", defaulted(&seed), "ETKDG random seed (>= 0)")
       ("sites", po::value(&sites), "build a pocket library from this site list (no INPUT)")
-      ("site-radius", defaulted(&site_radius),
+      ("site-radius", defaulted(&site.sphere_radius),
        "with --sites: radius of the spheres around a site ligand's atoms, A")
+      ("site-margin", defaulted(&site.surface_margin),
+       (std::string("with --sites: ") + kSiteMarginHelp).c_str())
       ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
   // clang-format on
   po::variables_map vm;
   if (!parse_command_line(args, described, -1, kUsage, vm)) return 0;
-  if (!sites.empty()) return build_sites(vm, sites, output, site_radius, conformers, threads);
+  if (!sites.empty()) return build_sites(vm, sites, output, site, conformers, threads);
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   std::vector<std::filesystem::path> inputs;
   for (const auto& input : vm["input"].as<std::vector<std::string>>()) inputs.emplace_back(input);

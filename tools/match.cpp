@@ -47,7 +47,9 @@ constexpr const char* kUsage =
     "build the protein's surface without water and without one copy of that HETATM residue (the\n"
     "lowest chain, then residue number) and keep the critical points within --site-radius of\n"
     "its atoms; --site-sphere x,y,z,r (repeatable; also --ref-/--probe-site-sphere) adds\n"
-    "spheres. A site match overlays the pocket linings (within --site-overlay-radius of the\n"
+    "spheres. A site's surface is that of the atoms within --site-margin of its spheres (the\n"
+    "whole structure's surface wherever patches of up to 8 A reach; ESP and LP from every\n"
+    "atom). A site match overlays the pocket linings (within --site-overlay-radius of the\n"
     "site's critical points) on shape alone (--site-chem-weight 0) from the cliques and 24\n"
     "principal-axes starts; the top-1 overlay score is then the sites' similarity (shape\n"
     "Tanimoto of the linings).";
@@ -118,7 +120,7 @@ void check_side(const char* name, const std::filesystem::path& path, const Surfa
     if (!input.read.ligand.empty())
       throw OptionError("--ligand and --site-ligand cannot be combined");
   }
-  if (!harmonic::io::is_hsi_file(path)) check_surface_input(path, input);
+  if (!harmonic::io::is_hsi_file(path)) mesh::check_surface_input(path, input);
 }
 
 /// The formats --aligned-out can take for this PROBE: a molecule moves as PDB, an SDF, MOL or
@@ -134,11 +136,11 @@ std::vector<std::string> aligned_formats(const std::filesystem::path& probe) {
 
 /// Reads one side, or builds its surface (its options already passed check_side): a .hsi file
 /// gives the description itself; otherwise the surface waits in Side::surface for describe_side.
-/// With `site_ligand`, the surface is the binding site's structure (matching::binding_site: the
-/// structure without water and without the ligand copy).
+/// A molecule with a site (`site_ligand`, `spheres` or both) gets the binding site's surface
+/// (matching::binding_site without the ligand copy, matching::build_site_surface around it).
 Side load_side(const std::filesystem::path& path, const SurfaceInput& input,
                const std::string& site_ligand, std::vector<matching::SiteSphere> spheres,
-               double site_radius) {
+               const matching::BindingSiteOptions& site_options) {
   Side side;
   side.path = path;
   side.record = input.read.record;
@@ -147,19 +149,22 @@ Side load_side(const std::filesystem::path& path, const SurfaceInput& input,
     side.site = std::move(spheres);
     return side;
   }
-  LoadedSurface loaded;
-  if (!site_ligand.empty()) {
-    matching::BindingSiteOptions site_options;
-    site_options.sphere_radius = site_radius;
-    matching::BindingSite site = matching::binding_site(
-        io::read_molecule(path, input.read), LigandSelector{site_ligand, {}, {}}, site_options);
-    side.site = std::move(site.spheres);
-    loaded.surface = mesh::build_molecular_surface(site.structure, input.surface);
+  mesh::LoadedSurface loaded;
+  if (io::is_molecule_file(path) && (!site_ligand.empty() || !spheres.empty())) {
+    const Molecule structure = io::read_molecule(path, input.read);
+    matching::BindingSite site =
+        site_ligand.empty()
+            ? matching::binding_site(structure, spheres, site_options)
+            : matching::binding_site(structure, LigandSelector{site_ligand, {}, {}}, site_options);
+    if (!site_ligand.empty())
+      site.spheres.insert(site.spheres.end(), spheres.begin(), spheres.end());
+    loaded.surface = matching::build_site_surface(site, input.surface);
     loaded.molecule = std::move(site.structure);
+    side.site = std::move(site.spheres);
   } else {
-    loaded = load_surface(path, input);
+    loaded = mesh::load_surface(path, input);
+    side.site = std::move(spheres);
   }
-  side.site.insert(side.site.end(), spheres.begin(), spheres.end());
   side.molecule = std::move(loaded.molecule);
   matching::require_match_properties(loaded.surface);
   side.surface = std::move(loaded.surface);
@@ -299,7 +304,7 @@ int match(const std::vector<std::string>& args) {
   std::string output, aligned_out, ranking;
   std::string site_ligand, ref_site_ligand, probe_site_ligand;
   std::vector<std::string> site_spheres, ref_site_spheres, probe_site_spheres;
-  double site_radius = 4.0;
+  matching::BindingSiteOptions site_options;
   int top = 10;
   SurfaceInput input;
   matching::MatchOptions options;
@@ -324,10 +329,12 @@ int match(const std::vector<std::string>& args) {
        "binding site of both proteins: this ligand residue name")
       ("ref-site-ligand", po::value(&ref_site_ligand), "binding site of REF only")
       ("probe-site-ligand", po::value(&probe_site_ligand), "binding site of PROBE only")
-      ("site-radius", defaulted(&site_radius),
+      ("site-radius", defaulted(&site_options.sphere_radius),
        "radius of the spheres around the site ligand's atoms, A")
       ("site-sphere", po::value(&site_spheres)->composing(),
        "site sphere x,y,z,r on both sides (A)")
+      ("site-margin", defaulted(&site_options.surface_margin),
+       (std::string(kSiteMarginHelp) + "; by default at least --patch-radius + 8").c_str())
       ("ref-site-sphere", po::value(&ref_site_spheres)->composing(), "site sphere on REF only")
       ("probe-site-sphere", po::value(&probe_site_spheres)->composing(),
        "site sphere on PROBE only")
@@ -408,7 +415,8 @@ int match(const std::vector<std::string>& args) {
   options.max_cliques = static_cast<std::size_t>(max_cliques);
   g.max_nodes = static_cast<std::size_t>(max_graph_nodes);
   require_in_range("top", top, 1, 1e9);
-  require_in_range("site-radius", site_radius, 0.1, 100.0);
+  require_in_range("site-radius", site_options.sphere_radius, 0.1, 100.0);
+  require_in_range("site-margin", site_options.surface_margin, 0.0, 1000.0);
   require_in_range("fuzzy-threshold", g.fuzzy_threshold, 0.0, 1.0);
   require_in_range("image-threshold", g.image_threshold, -1.0, 1.0);
   require_in_range("distance-tolerance", g.distance_tolerance, 0.0, 100.0);
@@ -416,6 +424,12 @@ int match(const std::vector<std::string>& args) {
   require_in_range("overlap-tolerance", g.overlap_tolerance_degrees, 0.0, 180.0);
   require_positive("rmsd-cut", options.clustering.rmsd_cut, 100.0);
   require_in_range("patch-radius", descriptor_options.patch.radius, 0.1, 100.0);
+  // The margin's default covers patches of 8 A; larger patches reach farther.
+  if (vm["site-margin"].defaulted()) {
+    site_options.surface_margin =
+        std::max(site_options.surface_margin,
+                 descriptor_options.patch.radius + matching::surface_margin_beyond_patch);
+  }
   require_in_range("refine-top", options.refine_top, 0, 1e6);
   require_in_range("overlay-sigma", options.overlay.sigma, 0.1, 10.0);
   require_in_range("overlay-chem-weight", options.overlay.chem_weight, 0.0, 100.0);
@@ -480,9 +494,9 @@ int match(const std::vector<std::string>& args) {
   descriptor_options.max_image_bytes = max_image_bytes;
   // Both inputs are read (and their surfaces built) before either is described, so that a
   // probe that cannot be matched is refused before the reference's descriptors are computed.
-  Side ref = load_side(ref_path, input, ref_site_ligand, std::move(ref_spheres), site_radius);
+  Side ref = load_side(ref_path, input, ref_site_ligand, std::move(ref_spheres), site_options);
   Side probe =
-      load_side(probe_path, input, probe_site_ligand, std::move(probe_spheres), site_radius);
+      load_side(probe_path, input, probe_site_ligand, std::move(probe_spheres), site_options);
   describe_side(ref, descriptor_options);
   describe_side(probe, descriptor_options);
   if (!same_options(ref.descriptors.options, probe.descriptors.options)) {

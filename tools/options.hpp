@@ -54,4 +54,9 @@ void require_positive(const char* name, double value, double hi);
 void require_one_of(const char* name, const std::string& value,
                     const std::vector<std::string>& allowed);
 
+/// --help text of --site-margin (match, screen, library build).
+inline constexpr const char* kSiteMarginHelp =
+    "a site's surface is built from the atoms within a site sphere's radius plus this margin, A "
+    "(0: from every atom); ESP and LP come from every atom";
+
 }  // namespace surfcomp::tools

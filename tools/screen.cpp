@@ -115,7 +115,7 @@ int screen(const std::vector<std::string>& args) {
   std::size_t record = 0;
   int threads = 0;
   double top = 100, candidates = 50, aligned_top = 10;
-  double site_radius = matching::BindingSiteOptions{}.sphere_radius;
+  matching::BindingSiteOptions site_options;
   po::options_description described("options");
   // clang-format off
   described.add_options()
@@ -133,8 +133,9 @@ int screen(const std::vector<std::string>& args) {
        "a site query: the binding site of this ligand residue on the QUERY structure")
       ("site-sphere", po::value(&site_spheres)->composing(),
        "a site query: site sphere x,y,z,r on QUERY (A; repeatable)")
-      ("site-radius", defaulted(&site_radius),
+      ("site-radius", defaulted(&site_options.sphere_radius),
        "radius of the spheres around the site ligand's atoms, A")
+      ("site-margin", defaulted(&site_options.surface_margin), kSiteMarginHelp)
       ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
   // clang-format on
   po::variables_map vm;
@@ -146,7 +147,8 @@ int screen(const std::vector<std::string>& args) {
   require_in_range("candidates", candidates, 0, 1e6);
   require_in_range("aligned-top", aligned_top, 1, 1e6);
   require_in_range("threads", threads, 0, 1024);
-  require_in_range("site-radius", site_radius, 0.1, 100);
+  require_in_range("site-radius", site_options.sphere_radius, 0.1, 100);
+  require_in_range("site-margin", site_options.surface_margin, 0.0, 1000.0);
   const std::filesystem::path query_path = inputs[0], library_path = inputs[1];
   std::vector<matching::SiteSphere> spheres;
   spheres.reserve(site_spheres.size());
@@ -163,7 +165,7 @@ int screen(const std::vector<std::string>& args) {
                         ": water cannot be a site ligand; give --site-sphere x,y,z,r around it");
     }
   }
-  if (!harmonic::io::is_hsi_file(query_path)) check_surface_input(query_path, input);
+  if (!harmonic::io::is_hsi_file(query_path)) mesh::check_surface_input(query_path, input);
   check_command_files(
       {{{"QUERY", query_path}, {"LIB", library_path}},
        {{"--output", output, {".csv"}, ""},
@@ -185,8 +187,6 @@ int screen(const std::vector<std::string>& args) {
   harmonic::SurfaceDescriptors descriptors;
   if (site_query) {
     const Molecule structure = io::read_molecule(query_path, input.read);
-    matching::BindingSiteOptions site_options;
-    site_options.sphere_radius = site_radius;
     matching::BindingSite site =
         site_ligand.empty()
             ? matching::binding_site(structure, spheres, site_options)
@@ -194,12 +194,12 @@ int screen(const std::vector<std::string>& args) {
     if (!site_ligand.empty())  // --site-sphere adds to the ligand's spheres, as in `match`
       site.spheres.insert(site.spheres.end(), spheres.begin(), spheres.end());
     spheres = site.spheres;
-    descriptors = matching::describe_site(
-        mesh::build_molecular_surface(site.structure, input.surface), site.structure, spheres);
+    descriptors = matching::describe_site(matching::build_site_surface(site, input.surface),
+                                          site.structure, spheres);
   } else if (harmonic::io::is_hsi_file(query_path)) {
     descriptors = harmonic::io::read_hsi(query_path);
   } else {
-    LoadedSurface loaded = load_surface(query_path, input);
+    mesh::LoadedSurface loaded = mesh::load_surface(query_path, input);
     descriptors = harmonic::describe_surface(std::move(loaded.surface), *loaded.molecule);
   }
   const screening::ScreenQuery query =

@@ -44,12 +44,12 @@ int surf_build(const std::vector<std::string>& args) {
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   finish_surface_options(input);
-  check_surface_input(path, input);
+  mesh::check_surface_input(path, input);
   check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
                        {{"--output", output, {".ply", ".off", ".obj"}, ""}}});
 
   Stopwatch clock;
-  const LoadedSurface loaded = load_surface(path, input);
+  const mesh::LoadedSurface loaded = mesh::load_surface(path, input);
   const double elapsed = clock.elapsed_ms();
   if (io::lowercase_extension(output) == ".ply") {
     mesh::io::write_ply(loaded.surface, output,

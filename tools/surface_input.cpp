@@ -2,8 +2,6 @@
 
 #include "options.hpp"
 
-#include "surfcomp/mesh/io/read_mesh.hpp"
-
 #include <unistd.h>
 
 #include <chrono>
@@ -87,33 +85,6 @@ void finish_surface_options(SurfaceInput& input) {
     input.surface.esp.progress = terminal_progress("ESP");
     input.surface.lp.progress = terminal_progress("LP");
   }
-}
-
-void check_surface_input(const std::filesystem::path& path, const SurfaceInput& input) {
-  if (mesh::io::is_mesh_file(path)) {
-    if (!input.read.ligand.empty())
-      throw OptionError("--ligand applies to a molecule INPUT, not a mesh");
-  } else if (io::is_molecule_file(path)) {
-    if (!input.molecule_file.empty()) throw OptionError("--molecule applies to a mesh INPUT");
-  } else {
-    throw InputError(path.string() + ": unknown input format (" + kInputFormats + ")");
-  }
-}
-
-LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceInput& input) {
-  check_surface_input(path, input);
-  LoadedSurface loaded;
-  if (mesh::io::is_mesh_file(path)) {
-    loaded.surface = mesh::io::read_mesh(path);
-    if (!input.molecule_file.empty())
-      loaded.molecule = io::read_molecule(input.molecule_file, input.read);
-    mesh::assign_surface_properties(loaded.surface, loaded.molecule ? &*loaded.molecule : nullptr,
-                                    input.surface);
-  } else {
-    loaded.molecule = io::read_molecule(path, input.read);
-    loaded.surface = mesh::build_molecular_surface(*loaded.molecule, input.surface);
-  }
-  return loaded;
 }
 
 }  // namespace surfcomp::tools

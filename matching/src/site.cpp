@@ -27,6 +27,10 @@ void check_options(const BindingSiteOptions& options) {
         "binding site: chain_contact_radius = " + std::to_string(options.chain_contact_radius) +
         " A, expected a finite number >= 0");
   }
+  if (!(options.surface_margin >= 0.0) || !std::isfinite(options.surface_margin)) {
+    throw OptionError("binding site: surface_margin = " + std::to_string(options.surface_margin) +
+                      " A, expected a finite number >= 0");
+  }
 }
 
 /// `structure` without water, without the atoms flagged in `removed` and, with
@@ -79,6 +83,7 @@ BindingSite binding_site(const Molecule& structure, const LigandSelector& ligand
     removed[i] = true;
   }
   site.structure = site_structure(structure, removed, site.spheres, options);
+  site.surface_margin = options.surface_margin;
   return site;
 }
 
@@ -100,7 +105,46 @@ BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> sphe
   site.spheres = std::move(spheres);
   site.structure = site_structure(structure, std::vector<bool>(structure.atoms.size(), false),
                                   site.spheres, options);
+  site.surface_margin = options.surface_margin;
   return site;
+}
+
+mesh::Surface build_site_surface(const BindingSite& site,
+                                 const mesh::MolecularSurfaceOptions& options) {
+  const Molecule& structure = site.structure;
+  validate_molecule(structure);
+  const auto n = static_cast<Eigen::Index>(structure.atoms.size());
+  Eigen::MatrixX3d centers(n, 3);
+  Eigen::VectorXd radii(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Atom& atom = structure.atoms[static_cast<std::size_t>(i)];
+    centers.row(i) = atom.position.transpose();
+    radii(i) = atom.radius;
+  }
+  mesh::SesOptions ses = options.ses;
+  ses.voxel_size = mesh::ses_voxel_size(centers, radii, ses);
+  std::vector<Eigen::Index> near;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector3d position = centers.row(i).transpose();
+    const bool kept =
+        site.surface_margin == 0.0 ||
+        std::any_of(site.spheres.begin(), site.spheres.end(), [&](const SiteSphere& s) {
+          return (position - s.center).norm() <= s.radius + site.surface_margin;
+        });
+    if (kept) near.push_back(i);
+  }
+  if (near.empty()) {
+    std::ostringstream message;
+    message << structure.source << ": no atom lies within " << site.surface_margin
+            << " A (the site's surface margin) of the site's spheres";
+    throw InputError(message.str());
+  }
+  mesh::Surface surface =
+      mesh::spatially_ordered(mesh::build_ses(centers(near, Eigen::all), radii(near), ses));
+  surface.set_source(structure.source);
+  mesh::require_closed_manifold(surface);
+  mesh::assign_surface_properties(surface, &structure, options);
+  return surface;
 }
 
 std::optional<SiteSphere> parse_site_sphere(const std::string& text) {

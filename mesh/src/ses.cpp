@@ -239,6 +239,13 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
 
 }  // namespace
 
+double ses_voxel_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+                      const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options) {
+  validate(centers, radii, options, "<ses>");
+  return choose_voxel_size(radii, options, edge_length_for_density(options.vertex_density),
+                           "<ses>");
+}
+
 Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                   const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options) {
   return build_surface(centers, radii, options, true, "<ses>");

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 namespace surfcomp::mesh {
@@ -262,6 +263,54 @@ void Surface::set_normal_type(ValueType type) { impl().normal_type = type; }
 const std::string& Surface::source() const { return impl().source; }
 
 void Surface::set_source(std::string source) { impl().source = std::move(source); }
+
+Surface spatially_ordered(const Surface& surface) {
+  const Eigen::MatrixX3d positions = surface.positions();
+  const Eigen::MatrixX3i faces = surface.faces();
+  const auto n = static_cast<std::size_t>(positions.rows());
+  std::vector<int> order(n);  // order[new index] = old index
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<int>(i);
+  const auto key = [&](int v) {
+    return std::array<double, 3>{positions(v, 0), positions(v, 1), positions(v, 2)};
+  };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  std::vector<int> renamed(n);  // renamed[old index] = new index
+  for (std::size_t i = 0; i < n; ++i)
+    renamed[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+
+  Eigen::MatrixX3d sorted_positions(positions.rows(), 3);
+  for (std::size_t i = 0; i < n; ++i)
+    sorted_positions.row(static_cast<Eigen::Index>(i)) = positions.row(order[i]);
+  std::vector<std::array<int, 3>> triangles(static_cast<std::size_t>(faces.rows()));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    std::array<int, 3> t{renamed[static_cast<std::size_t>(faces(f, 0))],
+                         renamed[static_cast<std::size_t>(faces(f, 1))],
+                         renamed[static_cast<std::size_t>(faces(f, 2))]};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    triangles[static_cast<std::size_t>(f)] = t;
+  }
+  std::sort(triangles.begin(), triangles.end());
+  Eigen::MatrixX3i sorted_faces(faces.rows(), 3);
+  for (std::size_t f = 0; f < triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      sorted_faces(static_cast<Eigen::Index>(f), k) = triangles[f][static_cast<std::size_t>(k)];
+
+  const auto permuted = [&](const auto& values) {
+    std::decay_t<decltype(values)> out(values.rows(), values.cols());
+    for (std::size_t i = 0; i < n; ++i)
+      out.row(static_cast<Eigen::Index>(i)) = values.row(order[i]);
+    return out;
+  };
+  Surface out = Surface::from_arrays(sorted_positions, sorted_faces, surface.source());
+  out.set_position_type(surface.position_type());
+  if (surface.has_normals()) {
+    out.set_normals(permuted(surface.normals()));
+    out.set_normal_type(surface.normal_type());
+  }
+  for (const std::string& name : surface.property_names())
+    out.set_property(name, permuted(surface.property(name)), surface.property_type(name));
+  return out;
+}
 
 void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
                        const Eigen::Vector3d& translation) {

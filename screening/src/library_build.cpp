@@ -31,6 +31,9 @@ void check_options(const LibraryBuildOptions& options) {
   if (!(options.site.sphere_radius > 0.0) || !std::isfinite(options.site.sphere_radius))
     throw OptionError("--site-radius must be finite and > 0, got " +
                       std::to_string(options.site.sphere_radius));
+  if (!(options.site.surface_margin >= 0.0) || !std::isfinite(options.site.surface_margin))
+    throw OptionError("--site-margin must be finite and >= 0, got " +
+                      std::to_string(options.site.surface_margin));
   if (options.conformers) {
     const ConformerOptions& c = *options.conformers;
     if (c.count < 1)
@@ -171,8 +174,8 @@ std::string build_settings(const LibraryBuildOptions& options, bool sites) {
   std::ostringstream text;
   if (sites) {
     text << "sites (site_radius " << options.site.sphere_radius << ", chain_contact_radius "
-         << options.site.chain_contact_radius << ", lining_radius " << options.lining_radius
-         << ")\n";
+         << options.site.chain_contact_radius << ", surface_margin " << options.site.surface_margin
+         << ", lining_radius " << options.lining_radius << ")\n";
   } else if (options.conformers) {
     text << "conformers " << options.conformers->count << " (ETKDGv3 seed "
          << options.conformers->seed << ", MMFF94 " << options.conformers->mmff_iterations
@@ -332,7 +335,7 @@ LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOpti
       request.ligand ? matching::binding_site(structure, *request.ligand, options.site)
                      : matching::binding_site(structure, request.spheres, options.site);
   const harmonic::SurfaceDescriptors described = matching::describe_site(
-      mesh::build_molecular_surface(site.structure, options.surface), site.structure, site.spheres);
+      matching::build_site_surface(site, options.surface), site.structure, site.spheres);
   const std::vector<bool> in_site = matching::critical_points_in_site(described, site.spheres);
   const std::vector<bool> lining =
       matching::pocket_lining(described, &in_site, options.lining_radius);

@@ -6,6 +6,7 @@
 
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
 #include <Eigen/Core>
@@ -26,6 +27,12 @@ struct SiteSphere {
 /// `text` is not four comma-separated numbers with a finite centre and a finite radius > 0.
 std::optional<SiteSphere> parse_site_sphere(const std::string& text);
 
+/// A site's surface (build_site_surface) is the whole structure's wherever the site's patches
+/// reach when its margin is at least the patch radius plus this, A: the SES of a point depends
+/// on atoms up to a probe diameter and an atom radius away, its curvature on 2 A around it, and
+/// the remeshing moves the mesh a few edges (docs/decisions.md#site-surfaces).
+inline constexpr double surface_margin_beyond_patch = 8.0;
+
 struct BindingSiteOptions {
   /// Default 4 A. Radius of the sphere around each atom of the ligand copy. Finite, > 0.
   double sphere_radius = 4.0;
@@ -34,6 +41,10 @@ struct BindingSiteOptions {
   /// chain among them), so that the surface, whose ESP and LP cost #vertices x #atoms, leaves
   /// out chains far from the site. Finite, >= 0.
   double chain_contact_radius = 0.0;
+  /// Default 16 A (patches of up to 8 A; see surface_margin_beyond_patch). build_site_surface
+  /// builds the SES of the structure's atoms within a sphere's radius plus this margin of its
+  /// centre, not of the whole structure. 0: every atom. Finite, >= 0.
+  double surface_margin = 16.0;
 };
 
 /// A binding site and the structure whose surface it lies on.
@@ -46,6 +57,7 @@ struct BindingSite {
   /// ligand, ions and cofactors stay) and, with chain_contact_radius > 0, without the chains
   /// out of contact; the atoms keep their order and properties.
   Molecule structure;
+  double surface_margin = 0.0;  ///< BindingSiteOptions::surface_margin, A
 };
 
 /// The site of the ligand copy select_ligand(structure, ligand) takes: a sphere of
@@ -61,6 +73,14 @@ BindingSite binding_site(const Molecule& structure, const LigandSelector& ligand
 /// outside their domain.
 BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> spheres,
                          const BindingSiteOptions& options = {});
+
+/// The site's surface: the SES (options.ses) of the structure's atoms within a sphere's radius
+/// plus site.surface_margin of its centre (every atom when the margin is 0), sampled on the grid
+/// of the whole structure (mesh::ses_voxel_size), with ESP and LP from every atom of the
+/// structure and curvature (options.esp, lp, curvature); its source is the structure's. Throws
+/// InputError when no atom lies within the margin, and as build_molecular_surface.
+mesh::Surface build_site_surface(const BindingSite& site,
+                                 const mesh::MolecularSurfaceOptions& options = {});
 
 /// One flag per critical point of `descriptors`, in order: its position lies in at least one
 /// of `spheres` (distance to the centre <= radius).

@@ -59,6 +59,13 @@ struct SesOptions {
 /// comes from an atom radius below 2 * min_voxel_size, refused as input.
 inline constexpr double min_voxel_size = 1e-3;
 
+/// The grid spacing build_ses and build_sas take for atoms of these radii: options.voxel_size,
+/// or the automatic choice documented in SesOptions. A surface built from a subset of the atoms
+/// (a binding site's neighbourhood) passes the whole structure's spacing, so that it samples the
+/// same grid. Throws as build_ses for the atoms and the options.
+double ses_voxel_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+                      const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options);
+
 /// The solvent-excluded surface (Richards 1977; Connolly 1983): the boundary of the region a
 /// probe sphere of radius `probe_radius` cannot enter while rolling over the atoms.
 /// Method: U is the union of spheres R_i = r_i + probe (the SAS region); a point belongs to the

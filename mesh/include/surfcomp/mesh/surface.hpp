@@ -109,6 +109,14 @@ class Surface {
 void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
                        const Eigen::Vector3d& translation);
 
+/// The same surface (positions, normals, properties, value types, source) with its vertices in
+/// lexicographic order of position (x, then y, then z) and its faces in lexicographic order of
+/// their vertex indices, each face starting at its smallest index (orientation kept). What
+/// follows vertex and face order (patch borders, the phase of a shape image) then depends only
+/// on the geometry around it: where two surfaces share a piece of geometry, that piece gets
+/// the same relative order in both, whatever else each surface holds.
+Surface spatially_ordered(const Surface& surface);
+
 /// Barycentric vertex areas: a third of the area of every incident triangle, A^2.
 Eigen::VectorXd vertex_areas(const Surface& surface);
 
