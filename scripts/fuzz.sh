@@ -8,7 +8,7 @@
 #
 # Usage: scripts/fuzz.sh [SECONDS_PER_HARNESS] [HARNESS...]
 #   SECONDS_PER_HARNESS  default 60
-#   HARNESS              sdf mol2 pdb pqr ply msms off obj hsi options (default: all)
+#   HARNESS              sdf mol2 pdb pqr ply msms off obj hsi sclib options (default: all)
 # Environment: FUZZ_RSS_LIMIT_MB (default 2048), FUZZ_TIMEOUT (seconds per input, default 10),
 #   FUZZ_CORPUS_DIR (keep the grown corpora there between runs; default a temporary directory).
 #
@@ -17,7 +17,7 @@
 # ../shared/datasets when present (nothing from ../shared is copied into the repository).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-all_harnesses=(sdf mol2 pdb pqr ply msms off obj hsi options)
+all_harnesses=(sdf mol2 pdb pqr ply msms off obj hsi sclib options)
 seconds=${1:-60}
 if [ $# -gt 0 ]; then shift; fi
 harnesses=("$@")
@@ -36,6 +36,7 @@ cmake --preset fuzz "${launcher[@]}" >/dev/null
 targets=()
 for h in "${harnesses[@]}"; do targets+=("fuzz_$h"); done
 [[ " ${harnesses[*]} " == *" hsi "* ]] && targets+=(make_hsi_seed)
+[[ " ${harnesses[*]} " == *" sclib "* ]] && targets+=(make_sclib_seed)
 cmake --build --preset fuzz -j "$(nproc)" --target "${targets[@]}"
 
 work=$(mktemp -d)
@@ -83,6 +84,8 @@ make_seeds() {
       done < <(data_files '*.ply' 4) ;;
     hsi)
       "$build/fuzz/make_hsi_seed" fuzz/seeds/off/bumpy_sphere.off "$dir/bumpy_sphere.hsi" >/dev/null ;;
+    sclib)
+      "$build/fuzz/make_sclib_seed" fuzz/seeds/off/bumpy_sphere.off "$dir/three_kinds.sclib" >/dev/null ;;
   esac
 }
 
@@ -99,7 +102,7 @@ extra_flags_of() {
 max_len_of() {
   case $1 in
     sdf|mol2|pdb|pqr) echo 16384 ;;
-    hsi) echo 65536 ;;
+    hsi|sclib) echo 65536 ;;
     options) echo 1024 ;;
     *) echo 8192 ;;
   esac
