@@ -17,6 +17,12 @@ struct Command {
   CommandFunction run;
 };
 
+/// Runs the subcommand named by args[0] with the rest of `args` (the program's own name not
+/// included), or prints the usage for --help and the version for --version. Turns a
+/// surfcomp::Error into one line on stderr: returns 0 on success, 1 for bad input, 2 for a
+/// command line that cannot run as given, 3 for an internal error.
+int run_command_line(const std::vector<std::string>& args);
+
 int surf_build(const std::vector<std::string>& args);
 int cp_detect(const std::vector<std::string>& args);
 int hsi_build(const std::vector<std::string>& args);

@@ -1,84 +1,9 @@
-// surfcomp: compare molecular surfaces. One program, one subcommand per pipeline stage.
+// surfcomp: compare molecular surfaces. One program, one subcommand per job (tools/cli.cpp).
 #include "command.hpp"
 
-#include "surfcomp/core/error.hpp"
-
-#include <boost/program_options/errors.hpp>
-
-#include <array>
-#include <cstring>
-#include <exception>
-#include <iostream>
 #include <string>
 #include <vector>
 
-namespace {
-
-using surfcomp::tools::Command;
-
-constexpr std::array kCommands{
-    Command{"surf-build", "molecule or mesh -> SES with ESP, LP and curvature (PLY)",
-            &surfcomp::tools::surf_build},
-    Command{"cp-detect", "surface -> shape critical points (JSON; PDB/PLY for viewing)",
-            &surfcomp::tools::cp_detect},
-    Command{"hsi-build", "surface -> critical points, patches, harmonic maps and images (.hsi)",
-            &surfcomp::tools::hsi_build},
-    Command{"match", "REF PROBE -> ranked rigid alignments of PROBE onto REF (JSON)",
-            &surfcomp::tools::match},
-    Command{"library", "build | info | export: screening libraries of conformers (.sclib)",
-            &surfcomp::tools::library},
-    Command{"screen", "QUERY LIB -> the library's molecules ranked by similarity (CSV)",
-            &surfcomp::tools::screen},
-};
-
-void print_usage(std::ostream& out) {
-  out << "usage: surfcomp COMMAND [options]   (surfcomp COMMAND --help for its options)\n\n"
-         "Compares molecular surfaces by critical points, harmonic shape images and cliques.\n\n"
-         "commands:\n";
-  for (const auto& command : kCommands) {
-    out << "  " << command.name << std::string(14 - std::strlen(command.name), ' ')
-        << command.summary << "\n";
-  }
-  out << "\n  --version     print the version\n";
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    print_usage(std::cerr);
-    return 2;
-  }
-  const std::string name = argv[1];
-  if (name == "--help" || name == "-h" || name == "help") {
-    print_usage(std::cout);
-    return 0;
-  }
-  if (name == "--version") {
-    std::cout << "surfcomp " << SURFCOMP_VERSION << "\n";
-    return 0;
-  }
-  for (const auto& command : kCommands) {
-    if (name != command.name) continue;
-    try {
-      return command.run(std::vector<std::string>(argv + 2, argv + argc));
-    } catch (const boost::program_options::error& e) {
-      std::cerr << "surfcomp " << name << ": " << e.what() << " (see --help)\n";
-      return 2;
-    } catch (const surfcomp::OptionError& e) {  // a command line that cannot run as given
-      std::cerr << "surfcomp " << name << ": error: " << e.what() << "\n";
-      return 2;
-    } catch (const surfcomp::Error& e) {
-      std::cerr << "surfcomp " << name << ": error: " << e.what() << "\n";
-      return 1;
-    } catch (const std::bad_alloc&) {
-      std::cerr << "surfcomp " << name << ": error: out of memory\n";
-      return 1;
-    } catch (const std::exception& e) {
-      std::cerr << "surfcomp " << name << ": internal error: " << e.what() << "\n";
-      return 3;
-    }
-  }
-  std::cerr << "surfcomp: unknown command '" << name << "' (see surfcomp --help)\n";
-  return 2;
+  return surfcomp::tools::run_command_line(std::vector<std::string>(argv + 1, argv + argc));
 }

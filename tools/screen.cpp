@@ -2,6 +2,7 @@
 // CSV table; optionally the best hits moved onto the query (SDF).
 #include "command.hpp"
 #include "command_files.hpp"
+#include "match_settings.hpp"
 #include "options.hpp"
 #include "screen_mpi.hpp"
 #include "surface_input.hpp"
@@ -10,6 +11,7 @@
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
+#include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/screen.hpp"
@@ -100,12 +102,6 @@ void write_aligned_sites(const std::filesystem::path& path, const screening::Lib
   });
 }
 
-matching::SiteSphere parse_sphere(const std::string& text) {
-  const std::optional<matching::SiteSphere> sphere = matching::parse_site_sphere(text);
-  if (!sphere) throw OptionError("--site-sphere '" + text + "': expected x,y,z,r with r > 0 (A)");
-  return *sphere;
-}
-
 }  // namespace
 
 int screen(const std::vector<std::string>& args) {
@@ -152,7 +148,7 @@ int screen(const std::vector<std::string>& args) {
   const std::filesystem::path query_path = inputs[0], library_path = inputs[1];
   std::vector<matching::SiteSphere> spheres;
   spheres.reserve(site_spheres.size());
-  for (const std::string& text : site_spheres) spheres.push_back(parse_sphere(text));
+  for (const std::string& text : site_spheres) spheres.push_back(parse_sphere_option(text));
   const bool site_query = !site_ligand.empty() || !spheres.empty();
   SurfaceInput input;
   input.read.record = record;
@@ -184,26 +180,16 @@ int screen(const std::vector<std::string>& args) {
   const Stopwatch clock;
   const screening::Library library(library_path);
   screening::check_library_kind(library, site_query);  // before the query's surface is built
-  harmonic::SurfaceDescriptors descriptors;
-  if (site_query) {
-    const Molecule structure = io::read_molecule(query_path, input.read);
-    matching::BindingSite site =
-        site_ligand.empty()
-            ? matching::binding_site(structure, spheres, site_options)
-            : matching::binding_site(structure, LigandSelector{site_ligand, {}, {}}, site_options);
-    if (!site_ligand.empty())  // --site-sphere adds to the ligand's spheres, as in `match`
-      site.spheres.insert(site.spheres.end(), spheres.begin(), spheres.end());
-    spheres = site.spheres;
-    descriptors = matching::describe_site(matching::build_site_surface(site, input.surface),
-                                          site.structure, spheres);
-  } else if (harmonic::io::is_hsi_file(query_path)) {
-    descriptors = harmonic::io::read_hsi(query_path);
-  } else {
-    mesh::LoadedSurface loaded = mesh::load_surface(query_path, input);
-    descriptors = harmonic::describe_surface(std::move(loaded.surface), *loaded.molecule);
-  }
+  matching::MatchInput query_input;
+  query_input.path = query_path;
+  query_input.site_ligand = site_ligand;
+  query_input.site_spheres = spheres;
+  matching::MatchInputOptions query_options;
+  query_options.input = input;
+  query_options.site = site_options;
+  matching::PreparedInput prepared = matching::prepare_input(query_input, query_options);
   const screening::ScreenQuery query =
-      screening::make_screen_query(std::move(descriptors), options, spheres);
+      screening::make_screen_query(std::move(prepared.descriptors), options, prepared.site);
   const double query_s = clock.elapsed_s();
 
   screening::ScreenResult result;

@@ -1,0 +1,102 @@
+// The whole comparison `surfcomp match` makes, for every caller that starts from files or from
+// what a program holds (the CLI, the Python module, the report, a screen's query): each side
+// read or built (a molecule's SES, a mesh with its properties, a .hsi file's stored
+// description, a molecule, surface or description in memory), its binding site set up,
+// described with common parameters, and the two matched (match_surfaces).
+#pragma once
+
+#include "surfcomp/core/molecule.hpp"
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/matching/match.hpp"
+#include "surfcomp/matching/site.hpp"
+#include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/mesh/surface.hpp"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace surfcomp::matching {
+
+/// One side of a comparison: a file, or what a program holds. Exactly one of `path`,
+/// `descriptors`, `surface`, `molecule` is the input; `molecule` may also come with `surface`
+/// as the molecule the surface was built from (its heavy atoms are kept with the description).
+struct MatchInput {
+  /// A molecule (.sdf .mol .mol2 .pdb .ent .pqr), a mesh (.ply .vert .off .obj) or a .hsi file.
+  std::filesystem::path path;
+  std::optional<harmonic::SurfaceDescriptors> descriptors;  ///< a description in memory
+  std::optional<mesh::Surface> surface;  ///< a surface in memory, with its esp and lp
+  std::optional<Molecule> molecule;      ///< a molecule in memory (its SES is built)
+  /// A binding site around one copy of this ligand residue (MatchInputOptions::site): the
+  /// structure's surface is built without water and without that copy. A molecule input only.
+  std::string site_ligand;
+  /// Spheres of a binding site (with site_ligand: more spheres), any input.
+  std::vector<SiteSphere> site_spheres;
+
+  /// The side's name in messages: the path, the molecule's or surface's source, or the
+  /// description's surface source.
+  std::string name() const;
+};
+
+struct MatchInputOptions {
+  mesh::SurfaceInputOptions input;  ///< how files and molecules become surfaces
+  /// How a side that is not a description already is described. When the other side is a
+  /// stored description (a .hsi file or descriptors in memory), its parameters are used instead
+  /// (all but max_image_bytes), so that the two sides' images compare.
+  harmonic::DescriptorOptions descriptors;
+  BindingSiteOptions site;  ///< spheres of 4 A around a site ligand, surface margin 16 A
+  /// The match; its mode is set to MatchMode::binding_sites when either side has a site.
+  MatchOptions match;
+};
+
+/// A side ready to be matched.
+struct PreparedInput {
+  std::string name;
+  harmonic::SurfaceDescriptors descriptors;
+  /// The molecule the surface was built from, or the mesh's --molecule; for a site with a
+  /// ligand, the structure without water and without the ligand copy.
+  std::optional<Molecule> molecule;
+  std::vector<SiteSphere> site;   ///< the site's spheres; empty for a whole surface
+  std::vector<bool> site_points;  ///< critical_points_in_site; empty without a site
+};
+
+/// Checks from names and options alone, before any work, that `input` can be read as asked:
+/// exactly one input; a site ligand only on a molecule (a file or in memory), never a water
+/// (readers drop waters) and not with options.input.read.ligand; a file's extension and the
+/// surface options that apply to it (mesh::check_surface_input). `role` ("REF", "PROBE",
+/// "QUERY") names the side and `site_option` the site ligand's option in messages. Throws
+/// OptionError or InputError.
+void check_match_input(const MatchInput& input, const MatchInputOptions& options, const char* role,
+                       const char* site_option = "--site-ligand");
+
+/// One side read or built and described as match_inputs does it (a site side: described at
+/// its site's critical points only, matching::describe_site). Throws as check_match_input,
+/// the readers, the surface construction and the description; InputError when a site holds no
+/// critical point.
+PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& options);
+
+/// The comparison of two inputs and what it took.
+struct InputMatch {
+  PreparedInput reference, probe;
+  MatchResult result;
+  /// What the match cut, one line each (the clique search stopped early: alignments may be
+  /// missing); empty when nothing was.
+  std::vector<std::string> warnings;
+  /// What a reader may want to know, one line each (a side carries no atoms, so poses are
+  /// judged on the surfaces alone).
+  std::vector<std::string> notes;
+  double prepare_ms = 0.0;  ///< reading, surfaces and descriptions
+  double match_ms = 0.0;    ///< match_surfaces
+};
+
+/// Aligns `probe` onto `reference` as `surfcomp match` does: both sides checked
+/// (check_match_input), both read or built before either is described (a probe that cannot be
+/// matched is refused before the reference's descriptors are computed), described with common
+/// parameters, their sites' critical points flagged, then match_surfaces. Throws OptionError
+/// for options outside their domain (before any work), InputError when two stored descriptions
+/// were built with different parameters, and what prepare_input and match_surfaces throw.
+InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
+                        const MatchInputOptions& options = {});
+
+}  // namespace surfcomp::matching

@@ -1,0 +1,237 @@
+#include "surfcomp/matching/match_inputs.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/harmonic/io/hsi_file.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace surfcomp::matching {
+namespace {
+
+bool is_stored_description(const MatchInput& input) {
+  return input.descriptors || (!input.path.empty() && harmonic::io::is_hsi_file(input.path));
+}
+
+/// A side read or built, not yet described.
+struct LoadedInput {
+  std::string name;
+  std::optional<harmonic::SurfaceDescriptors> descriptors;  // a stored description
+  std::optional<mesh::Surface> surface;
+  std::optional<Molecule> molecule;
+  std::vector<SiteSphere> site;
+};
+
+/// The surface of a molecule with a site: the site's structure (binding_site) surfaced around
+/// the site (build_site_surface).
+void load_site(LoadedInput& side, const Molecule& structure, const MatchInput& input,
+               const MatchInputOptions& options) {
+  BindingSite site =
+      input.site_ligand.empty()
+          ? binding_site(structure, input.site_spheres, options.site)
+          : binding_site(structure, LigandSelector{input.site_ligand, {}, {}}, options.site);
+  if (!input.site_ligand.empty()) {  // spheres add to the ligand's
+    site.spheres.insert(site.spheres.end(), input.site_spheres.begin(), input.site_spheres.end());
+  }
+  side.surface = build_site_surface(site, options.input.surface);
+  side.molecule = std::move(site.structure);
+  side.site = std::move(site.spheres);
+}
+
+LoadedInput load(const MatchInput& input, const MatchInputOptions& options) {
+  LoadedInput side;
+  side.name = input.name();
+  side.site = input.site_spheres;
+  if (input.descriptors) {
+    side.descriptors = *input.descriptors;
+    return side;
+  }
+  if (!input.path.empty() && harmonic::io::is_hsi_file(input.path)) {
+    side.descriptors = harmonic::io::read_hsi(input.path);
+    return side;
+  }
+  const bool has_site = !input.site_ligand.empty() || !input.site_spheres.empty();
+  std::optional<Molecule> molecule;  // a molecule whose surface is built here
+  if (input.molecule && !input.surface) {
+    molecule = *input.molecule;
+  } else if (!input.path.empty() && io::is_molecule_file(input.path)) {
+    molecule = io::read_molecule(input.path, options.input.read);
+  }
+  if (molecule && has_site) {
+    load_site(side, *molecule, input, options);
+  } else if (molecule) {
+    side.surface = mesh::build_molecular_surface(*molecule, options.input.surface);
+    side.molecule = std::move(molecule);
+  } else if (input.surface) {
+    side.surface = *input.surface;
+    side.molecule = input.molecule;
+  } else {
+    mesh::LoadedSurface loaded = mesh::load_surface(input.path, options.input);
+    side.surface = std::move(loaded.surface);
+    side.molecule = std::move(loaded.molecule);
+  }
+  require_match_properties(*side.surface);
+  return side;
+}
+
+PreparedInput describe(LoadedInput side, const harmonic::DescriptorOptions& options) {
+  PreparedInput prepared;
+  prepared.name = std::move(side.name);
+  prepared.site = std::move(side.site);
+  prepared.molecule = std::move(side.molecule);
+  if (side.descriptors) {
+    prepared.descriptors = std::move(*side.descriptors);
+  } else {
+    mesh::Surface surface = std::move(*side.surface);
+    const Molecule* molecule = prepared.molecule ? &*prepared.molecule : nullptr;
+    if (prepared.site.empty()) {
+      prepared.descriptors =
+          molecule ? harmonic::describe_surface(std::move(surface), *molecule, options)
+                   : harmonic::describe_surface(std::move(surface), options);
+    } else {
+      prepared.descriptors =
+          molecule ? describe_site(std::move(surface), *molecule, prepared.site, options)
+                   : describe_site(std::move(surface), prepared.site, options);
+    }
+  }
+  if (!prepared.site.empty()) {
+    prepared.site_points = critical_points_in_site(prepared.descriptors, prepared.site);
+    if (std::find(prepared.site_points.begin(), prepared.site_points.end(), true) ==
+        prepared.site_points.end()) {
+      throw InputError(prepared.name + ": the binding site holds no critical point (" +
+                       std::to_string(prepared.site.size()) + " spheres, " +
+                       std::to_string(prepared.descriptors.critical_points.size()) +
+                       " critical points)");
+    }
+  }
+  return prepared;
+}
+
+bool same_parameters(const harmonic::DescriptorOptions& x, const harmonic::DescriptorOptions& y) {
+  return x.critical_points.radius == y.critical_points.radius &&
+         x.critical_points.property_disc_radius == y.critical_points.property_disc_radius &&
+         x.critical_points.distance == y.critical_points.distance &&
+         x.patch.radius == y.patch.radius && x.patch.margin == y.patch.margin &&
+         x.patch.distance == y.patch.distance && x.disk_map.weights == y.disk_map.weights &&
+         x.image.rings == y.image.rings && x.image.sectors == y.image.sectors &&
+         x.image_property == y.image_property;
+}
+
+bool has_site(const MatchInput& input) {
+  return !input.site_ligand.empty() || !input.site_spheres.empty();
+}
+
+std::vector<std::string> match_warnings(const MatchResult& result, const MatchOptions& options) {
+  std::vector<std::string> warnings;
+  if (!result.cliques_complete) {
+    warnings.push_back(result.cliques >= options.max_cliques
+                           ? "clique search stopped at " + std::to_string(result.cliques) +
+                                 " cliques (--max-cliques); alignments may be missing"
+                           : "clique search stopped after " + std::to_string(result.clique_work) +
+                                 " units of work (--max-clique-work " +
+                                 std::to_string(options.max_clique_work) +
+                                 "); alignments may be missing");
+  }
+  return warnings;
+}
+
+}  // namespace
+
+std::string MatchInput::name() const {
+  if (!path.empty()) return path.string();
+  if (descriptors) return descriptors->surface.source();
+  if (surface) return surface->source();
+  if (molecule) return molecule->source;
+  return "<no input>";
+}
+
+void check_match_input(const MatchInput& input, const MatchInputOptions& options, const char* role,
+                       const char* site_option) {
+  const int given = static_cast<int>(!input.path.empty()) +
+                    static_cast<int>(input.descriptors.has_value()) +
+                    static_cast<int>(input.surface.has_value()) +
+                    static_cast<int>(input.molecule.has_value() && !input.surface.has_value());
+  if (given != 1) {
+    throw InputError(std::string(role) +
+                     ": expected one input (a file, a molecule, a surface or a description), "
+                     "got " +
+                     std::to_string(given));
+  }
+  const std::string name = std::string(role) + " " + input.name();
+  if (!input.site_ligand.empty()) {
+    if (is_water_residue(input.site_ligand)) {
+      throw OptionError(std::string(site_option) + " " + input.site_ligand +
+                        ": waters (HOH, WAT, DOD) are dropped when a structure is read, so a "
+                        "water cannot be a site ligand; give --site-sphere x,y,z,r around it");
+    }
+    if (is_stored_description(input)) {
+      throw OptionError(name + ": " + site_option +
+                        " needs the structure, not a .hsi file; use --site-sphere");
+    }
+    if (input.surface) {
+      throw OptionError(name + ": " + site_option +
+                        " needs the structure, not a surface; use --site-sphere");
+    }
+    if (!input.path.empty() && !io::is_molecule_file(input.path)) {
+      throw OptionError(name + ": " + site_option +
+                        " needs a molecule file (the structure); use --site-sphere");
+    }
+    if (!options.input.read.ligand.empty())
+      throw OptionError("--ligand and --site-ligand cannot be combined");
+  }
+  if (!input.path.empty() && !harmonic::io::is_hsi_file(input.path))
+    mesh::check_surface_input(input.path, options.input);
+}
+
+PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& options) {
+  check_match_input(input, options, "input");
+  return describe(load(input, options), options.descriptors);
+}
+
+InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
+                        const MatchInputOptions& options) {
+  MatchOptions match = options.match;
+  if (has_site(reference) || has_site(probe)) match.mode = MatchMode::binding_sites;
+  validate(match);
+  check_match_input(reference, options, "REF");
+  check_match_input(probe, options, "PROBE");
+
+  InputMatch out;
+  const Stopwatch clock;
+  LoadedInput ref = load(reference, options);
+  LoadedInput prb = load(probe, options);
+  // A stored description fixes the parameters the other side is described with; the image
+  // memory limit stays the caller's.
+  harmonic::DescriptorOptions descriptors = options.descriptors;
+  if (ref.descriptors && !prb.descriptors) descriptors = ref.descriptors->options;
+  if (prb.descriptors && !ref.descriptors) descriptors = prb.descriptors->options;
+  descriptors.max_image_bytes = options.descriptors.max_image_bytes;
+  out.reference = describe(std::move(ref), descriptors);
+  out.probe = describe(std::move(prb), descriptors);
+  if (!same_parameters(out.reference.descriptors.options, out.probe.descriptors.options)) {
+    throw InputError(out.reference.name + " and " + out.probe.name +
+                     ": the .hsi files were built with different parameters (critical point "
+                     "radius, patch radius, spring weights or image grid); rebuild one with the "
+                     "other's");
+  }
+  if (out.reference.site.empty() && out.probe.site.empty() && match.overlay.atom_weight > 0.0 &&
+      out.reference.descriptors.atoms.empty() != out.probe.descriptors.atoms.empty()) {
+    const PreparedInput& without =
+        out.reference.descriptors.atoms.empty() ? out.reference : out.probe;
+    out.notes.push_back(without.name +
+                        " carries no atoms (a mesh, or a .hsi file of format version 1): poses "
+                        "are judged on the surfaces alone");
+  }
+  out.prepare_ms = clock.elapsed_ms();
+  out.result =
+      match_surfaces(out.reference.descriptors, out.probe.descriptors, match,
+                     out.reference.site_points.empty() ? nullptr : &out.reference.site_points,
+                     out.probe.site_points.empty() ? nullptr : &out.probe.site_points);
+  out.match_ms = clock.elapsed_ms() - out.prepare_ms;
+  out.warnings = match_warnings(out.result, match);
+  return out;
+}
+
+}  // namespace surfcomp::matching
