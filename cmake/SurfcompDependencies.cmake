@@ -21,6 +21,15 @@ find_package(RDKit REQUIRED)
 # multi-process path (tools/screen_mpi.cpp); without it the program runs in one process.
 find_package(MPI COMPONENTS CXX)
 
+# The system's Python 3 (Debian python3-dev, pybind11-dev): the `surfcomp` Python module and the
+# Python tests. A python3 earlier on PATH (pyenv, a virtual environment) lacks Debian's rdkit and
+# numpy, so /usr/bin/python3 is preferred unless Python3_EXECUTABLE is given.
+if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+  set(Python3_EXECUTABLE /usr/bin/python3)
+endif()
+find_package(Python3 COMPONENTS Interpreter Development.Module)
+find_package(pybind11 CONFIG)
+
 if(SURFCOMP_BUILD_TESTS)
   find_package(GTest REQUIRED)
   include(GoogleTest)

@@ -1,5 +1,6 @@
 # Install rules and the CMake package a C++ user finds with find_package(surfcomp CONFIG):
-# the five static libraries as surfcomp::core, ::mesh, ::harmonic, ::matching and ::screening,
+# the six static libraries as surfcomp::core, ::mesh, ::harmonic, ::matching, ::screening and
+# ::report (with the 3Dmol.js viewer the report inlines, in share/surfcomp, when it was found),
 # their public headers, the surfcomp program, and lib/cmake/surfcomp/ with the config, its
 # version file, the exported targets and the find module for RDKit (cmake/FindRDKit.cmake).
 include(GNUInstallDirs)

@@ -5,7 +5,8 @@
 #     vertex -> out/3m11_AKI.ply;
 #  2. the surface match of ligand 1C9 from PDB 4i24 onto the same ligand from PDB 4i23: the
 #     ranked alignments -> out/1C9_match.json, and 4i24's ligand moved by the top alignment ->
-#     out/4i24_1C9_aligned.pdb (the crystal overlay says it should land on its own position);
+#     out/4i24_1C9_aligned.pdb (the crystal overlay says it should land on its own position), and
+#     the match as an HTML page to open in a browser -> out/1C9_report.html;
 #  3. a screen: the benzodiazepine-receptor ligands of rdkit-data (bzr.sdf, 163 molecules) made a
 #     library -> out/bzr.sclib, and its first molecule (adinazolam) screened against it ->
 #     out/bzr_hits.csv and the top hits moved onto it -> out/bzr_hits.sdf (it finds itself first).
@@ -19,10 +20,10 @@ mkdir -p out
 data=datasets/cache/rdkit-data
 build/release/tools/surfcomp surf-build "$data/3m11_AKI.pdb" -o out/3m11_AKI.ply
 build/release/tools/surfcomp match "$data/4i23_1C9.pdb" "$data/4i24_1C9.pdb" --top 5 \
-  -o out/1C9_match.json --aligned-out out/4i24_1C9_aligned.pdb
+  -o out/1C9_match.json --aligned-out out/4i24_1C9_aligned.pdb --report out/1C9_report.html
 build/release/tools/surfcomp library build "$data/bzr.sdf" -o out/bzr.sclib
 build/release/tools/surfcomp screen "$data/bzr.sdf" --record 1 out/bzr.sclib --top 20 \
   -o out/bzr_hits.csv --aligned-out out/bzr_hits.sdf
 head -n 4 out/bzr_hits.csv | cut -d, -f1-9
-echo "wrote out/3m11_AKI.ply, out/1C9_match.json, out/4i24_1C9_aligned.pdb, out/bzr.sclib," \
-  "out/bzr_hits.csv, out/bzr_hits.sdf"
+echo "wrote out/3m11_AKI.ply, out/1C9_match.json, out/4i24_1C9_aligned.pdb," \
+  "out/1C9_report.html, out/bzr.sclib, out/bzr_hits.csv, out/bzr_hits.sdf"

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs the Debian bookworm packages surfcomp builds, tests, fuzzes and benchmarks with.
-# Idempotent: does nothing when every package is already installed. Needs root (or sudo).
+# Installs the Debian bookworm packages surfcomp builds, tests, fuzzes and benchmarks with, and
+# the npm package of the report's viewer (3Dmol.js, pinned in report/package-lock.json) into
+# report/node_modules. Idempotent: does nothing when everything is already installed. Needs
+# root (or sudo) for the Debian packages.
 set -euo pipefail
 
 packages=(
@@ -13,8 +15,12 @@ packages=(
   nlohmann-json3-dev
   freesasa edtsurf
   clang libfuzzer-14-dev
-  python3-rdkit python3-numpy
+  python3-rdkit python3-numpy python3-dev pybind11-dev python3-pytest python3-pil
+  libcairo2-dev
+  chromium
 )
+# Node.js and npm fetch the viewer; a machine that has them from elsewhere keeps its own.
+if ! command -v npm >/dev/null; then packages+=(nodejs npm); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -22,12 +28,20 @@ for p in "${packages[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  echo "install-deps: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -q
+  $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-echo "install-deps: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -q
-$sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+# The report's viewer, at the version the lock file pins; reinstalled when the lock changes.
+report=$(cd "$(dirname "${BASH_SOURCE[0]}")/../report" && pwd)
+stamp=$report/node_modules/.surfcomp-lock
+if [ ! -f "$report/node_modules/3dmol/build/3Dmol-min.js" ] || ! cmp -s "$report/package-lock.json" "$stamp"; then
+  echo "install-deps: npm ci in $report (3Dmol.js for the HTML report)"
+  npm ci --prefix "$report" --no-audit --no-fund --loglevel=error
+  cp "$report/package-lock.json" "$stamp"
+fi

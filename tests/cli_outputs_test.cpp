@@ -146,6 +146,7 @@ TEST_F(CliOutputs, TwoOutputsAreNeverOneFile) {
                  {"--output cps.pdb", "--points-out cps.pdb", own_name});
   expect_refused("cp-detect r.sdf -o cps.pdb --points-out ./sub/../cps.pdb", 2,
                  {"--output cps.pdb", "--points-out ./sub/../cps.pdb", own_name});
+  expect_refused("match r.sdf p.sdf -o out.html --report ./out.html", 2, {"--report ./out.html"});
   expect_refused("match r.sdf p.sdf -o out.sdf --aligned-out ./out.sdf", 2,
                  {"--output out.sdf", "--aligned-out ./out.sdf", own_name});
   // An existing output file is the same file under both names too, and stays as it was.
@@ -175,6 +176,9 @@ TEST_F(CliOutputs, OptionsAndOutputsAreCheckedBeforeAnyWork) {
   expect_refused("surf-build l.sdf -o l.vert", 2, {"--output l.vert", "use .ply, .off or .obj"});
   expect_refused("surf-build l.sdf -o missing/l.ply", 1, {"the folder missing does not exist"});
   expect_refused("hsi-build l.sdf -o l.hsx", 2, {"--output l.hsx", "use .hsi"});
+  expect_refused("match r.sdf p.sdf --report r.htm", 2, {"--report r.htm", "use .html"});
+  expect_refused("report r.sdf p.sdf -o r.json", 2, {"--output r.json", "use .html"});
+  expect_refused("report r.sdf p.sdf", 2, {"--output"});
   expect_refused("cp-detect l.sdf -o cps.json --points-out cps.xyz", 2,
                  {"--points-out cps.xyz", "use .pdb or .ply"});
   expect_refused("cp-detect l.sdf -o missing/cps.json", 1, {"the folder missing does not exist"});
@@ -211,6 +215,9 @@ TEST_F(CliOutputs, NumericOptionsAreRangeCheckedByName) {
       {"match r.sdf p.sdf", "--overlay-sigma 0"},
       {"match r.sdf p.sdf", "--overlay-chem-weight -1"},
       {"match r.sdf p.sdf", "--patch-radius 0"},
+      {"report r.sdf p.sdf -o r.html", "--top -1"},
+      {"report r.sdf p.sdf -o r.html", "--max-display-vertices 3"},
+      {"report r.sdf p.sdf -o r.html", "--overlay-sigma 0"},
   };
   for (const auto& [command, option] : cases) {
     const std::string name = option.substr(0, option.find(' '));

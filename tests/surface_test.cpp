@@ -1,6 +1,7 @@
 #include "analytic_meshes.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/mesh/decimate.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
 #include <gtest/gtest.h>
@@ -126,6 +127,41 @@ TEST(SurfaceFromArrays, RejectedFacesThrowWithoutWritingToStderr) {
   }
   std::cerr.rdbuf(saved);
   EXPECT_EQ(captured.str(), "");
+}
+
+// Decimation for display keeps a closed sphere within its vertex budget, every kept vertex one of
+// the input's with its position and properties, and the area close to the sphere's.
+TEST(Decimate, ASphereKeepsItsShapeAndItsVerticesProperties) {
+  Surface sphere = test::icosphere(10.0, 24);
+  const auto n = static_cast<Eigen::Index>(sphere.n_vertices());
+  const Eigen::MatrixX3d positions = sphere.positions();
+  sphere.set_property("height", positions.col(2), ValueType::float32);
+  sphere.compute_normals();
+  const DecimatedSurface small = decimate(sphere, 500);
+  EXPECT_LE(small.surface.n_vertices(), 500u);
+  EXPECT_GE(small.surface.n_vertices(), 450u);
+  ASSERT_EQ(small.original.size(), small.surface.n_vertices());
+  const SurfaceMeasures before = measure_surface(sphere);
+  const SurfaceMeasures after = measure_surface(small.surface);
+  EXPECT_EQ(after.euler_characteristic, 2);
+  EXPECT_EQ(after.boundary_edges, 0u);
+  EXPECT_NEAR(after.area / before.area, 1.0, 0.03);
+  EXPECT_EQ(small.surface.property_type("height"), ValueType::float32);
+  EXPECT_TRUE(small.surface.has_normals());
+  const Eigen::MatrixX3d kept = small.surface.positions();
+  const Eigen::VectorXd height = small.surface.property("height");
+  for (std::size_t v = 0; v < small.original.size(); ++v) {
+    const int o = small.original[v];
+    ASSERT_GE(o, 0);
+    ASSERT_LT(o, n);
+    EXPECT_EQ(kept.row(static_cast<Eigen::Index>(v)), positions.row(o));
+    EXPECT_EQ(height(static_cast<Eigen::Index>(v)), positions(o, 2));
+  }
+  // Within the budget already: unchanged, identity map.
+  const DecimatedSurface same = decimate(small.surface, 500);
+  EXPECT_EQ(same.surface.positions(), small.surface.positions());
+  EXPECT_EQ(same.original[7], 7);
+  EXPECT_THROW(decimate(sphere, 3), OptionError);
 }
 
 }  // namespace

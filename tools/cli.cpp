@@ -30,6 +30,8 @@ constexpr std::array kCommands{
             &surfcomp::tools::library},
     Command{"screen", "QUERY LIB -> the library's molecules ranked by similarity (CSV)",
             &surfcomp::tools::screen},
+    Command{"report", "REF PROBE -> a match as an HTML page to look at (3D viewer, tables)",
+            &surfcomp::tools::report},
 };
 
 void print_usage(std::ostream& out) {

@@ -29,5 +29,6 @@ int hsi_build(const std::vector<std::string>& args);
 int match(const std::vector<std::string>& args);
 int library(const std::vector<std::string>& args);
 int screen(const std::vector<std::string>& args);
+int report(const std::vector<std::string>& args);
 
 }  // namespace surfcomp::tools

@@ -2,6 +2,7 @@
 // export its conformers as SDF.
 #include "command.hpp"
 #include "command_files.hpp"
+#include "describe_settings.hpp"
 #include "options.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
@@ -45,13 +46,6 @@ constexpr const char* kUsage =
     "info    prints the library's version, entries, molecules, sizes and build settings.\n"
     "export  writes every entry's molecule in its conformation, with the SD tags\n"
     "        surfcomp_entry (1-based), surfcomp_name and surfcomp_conformer.";
-
-std::unique_ptr<tbb::global_control> limit_threads(int threads) {
-  require_in_range("threads", threads, 0, 1024);
-  if (threads == 0) return nullptr;
-  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                               static_cast<std::size_t>(threads));
-}
 
 std::string duration(double seconds) {
   const long s = std::lround(seconds);

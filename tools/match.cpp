@@ -14,8 +14,8 @@
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
-
-#include <nlohmann/json.hpp>
+#include "surfcomp/report/html_report.hpp"
+#include "surfcomp/report/match_json.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -65,85 +65,6 @@ std::vector<std::string> aligned_formats(const std::filesystem::path& probe) {
   return {".pdb", ".ply"};
 }
 
-nlohmann::json to_json(const matching::InputMatch& compared,
-                       const matching::MatchOptions& options) {
-  const matching::MatchResult& result = compared.result;
-  const matching::PreparedInput& ref = compared.reference;
-  nlohmann::json alignments = nlohmann::json::array();
-  for (const auto& a : result.alignments) {
-    nlohmann::json transform = nlohmann::json::array();
-    for (int r = 0; r < 4; ++r) {
-      transform.push_back(
-          {a.transform(r, 0), a.transform(r, 1), a.transform(r, 2), a.transform(r, 3)});
-    }
-    nlohmann::json pairs = nlohmann::json::array();
-    for (const auto& [x, y] : a.cp_pairs) pairs.push_back({x, y});
-    const char* source =
-        a.source == matching::AlignmentSource::cliques ? "cliques" : "principal_axes";
-    alignments.push_back(
-        {{"rank", a.rank},
-         {"source", source},
-         {"transform", transform},
-         {"rmsd", a.rmsd},
-         {"n_points", a.n_points},
-         {"r_chem", a.r_chem},
-         {"consensus", a.consensus},
-         {"refined", a.refined},
-         {"overlay",
-          {{"score", a.overlay.score},
-           {"shape", a.overlay.shape},
-           {"chem", a.overlay.chem},
-           {"atoms", a.overlay.atoms}}},
-         {"cp_pairs", pairs},
-         {"parent", a.parent > 0 ? nlohmann::json(a.parent) : nlohmann::json(nullptr)},
-         {"children", a.children}});
-  }
-  nlohmann::json trace = nlohmann::json::array();
-  for (const auto& stage : result.trace) {
-    trace.push_back({{"stage", stage.stage}, {"nodes", stage.nodes}, {"edges", stage.edges}});
-  }
-  nlohmann::json timing = nlohmann::json::object();
-  for (const auto& [stage, ms] : result.timing_ms) timing[stage] = ms;
-  const auto& g = options.graph;
-  return {{"reference", ref.name},
-          {"probe", compared.probe.name},
-          {"alignments", alignments},
-          {"trace", trace},
-          {"timing_ms", timing},
-          {"cliques",
-           {{"count", result.cliques},
-            {"complete", result.cliques_complete},
-            {"work", result.clique_work}}},
-          {"warnings", compared.warnings},
-          {"parameters",
-           {{"fuzzy_threshold", g.fuzzy_threshold},
-            {"image_threshold", g.image_threshold},
-            {"distance_tolerance", g.distance_tolerance},
-            {"min_distance", g.min_distance},
-            {"overlap_tolerance_degrees", g.overlap_tolerance_degrees},
-            {"rmsd_cut", options.clustering.rmsd_cut},
-            {"merge_cut", options.clustering.merge_cut},
-            {"min_clique_size", options.min_clique_size},
-            {"max_graph_nodes", g.max_nodes},
-            {"max_clique_work", options.max_clique_work},
-            {"max_cliques", options.max_cliques},
-            {"refine_top", options.refine_top},
-            {"overlay_sigma", options.overlay.sigma},
-            {"overlay_spacing", options.overlay.spacing},
-            {"overlay_chem_weight", options.overlay.chem_weight},
-            {"overlay_atom_weight", options.overlay.atom_weight},
-            {"polish_top", options.polish_top},
-            {"overlay_tolerance", options.overlay.tolerance},
-            {"principal_axes_starts", options.principal_axes_starts},
-            {"site_overlay_radius", options.site.overlay_radius},
-            {"site_chem_weight", options.site.chem_weight},
-            {"site_principal_axes_starts", options.site.principal_axes_starts},
-            {"critical_point_radius", ref.descriptors.options.critical_points.radius},
-            {"patch_radius", ref.descriptors.options.patch.radius},
-            {"image_rings", ref.descriptors.options.image.rings},
-            {"image_sectors", ref.descriptors.options.image.sectors}}}};
-}
-
 void write_aligned(const std::filesystem::path& probe_path, std::size_t record,
                    const matching::PreparedInput& probe, const Eigen::Matrix4d& transform,
                    const std::string& output) {
@@ -169,7 +90,7 @@ void write_aligned(const std::filesystem::path& probe_path, std::size_t record,
 
 int match(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
-  std::string output, aligned_out;
+  std::string output, aligned_out, report_out;
   int top = 10;
   MatchSettings settings;
   po::options_description described("options");
@@ -181,6 +102,8 @@ int match(const std::vector<std::string>& args) {
       ("aligned-out", po::value(&aligned_out),
        "write PROBE moved by the top alignment: .sdf (SDF/MOL/MOL2 PROBE), .pdb (molecule PROBE) "
        "or .ply")
+      ("report", po::value(&report_out),
+       "also write the HTML report (.html) of the match, as `surfcomp report` does")
       ("top", defaulted(&top), "alignments shown in the table")
       ("trace", po::bool_switch(), "print the association graph's nodes and edges after each stage");
   // clang-format on
@@ -193,14 +116,7 @@ int match(const std::vector<std::string>& args) {
   require_in_range("top", top, 1, 1e9);
   finish_match_options(settings, vm);
   const std::filesystem::path ref_path = inputs[0], probe_path = inputs[1];
-  const matching::MatchInputOptions options = match_input_options(settings);
-  matching::MatchInput reference, probe;
-  reference.path = ref_path;
-  probe.path = probe_path;
-  reference = with_site(std::move(reference), settings, true);
-  probe = with_site(std::move(probe), settings, false);
-  matching::check_match_input(reference, options, "REF", settings.ref_site_option);
-  matching::check_match_input(probe, options, "PROBE", settings.probe_site_option);
+  const PairInputs pair = pair_inputs(ref_path, probe_path, settings);
   const std::vector<std::string> aligned = aligned_formats(probe_path);
   check_command_files(
       {{{"REF", ref_path}, {"PROBE", probe_path}, {"--molecule", settings.input.molecule_file}},
@@ -208,9 +124,11 @@ int match(const std::vector<std::string>& args) {
         {"--aligned-out", aligned_out, aligned,
          aligned.size() == 1   ? "PROBE is not a molecule"
          : aligned.size() == 2 ? "PROBE is not an SDF, MOL or MOL2 file"
-                               : ""}}});
+                               : ""},
+        {"--report", report_out, {".html"}, ""}}});
 
-  const matching::InputMatch compared = matching::match_inputs(reference, probe, options);
+  const matching::InputMatch compared =
+      matching::match_inputs(pair.reference, pair.probe, match_input_options(settings));
   const matching::MatchResult& result = compared.result;
   for (const std::string& note : compared.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
   for (const std::string& warning : compared.warnings)
@@ -248,22 +166,25 @@ int match(const std::vector<std::string>& args) {
                   angle, a.transform(0, 3), a.transform(1, 3), a.transform(2, 3));
     }
   }
-  // Outputs last, each atomic; a failure of the second removes the first.
-  if (!aligned_out.empty()) {
-    if (result.alignments.empty())
-      throw InputError("no alignment found: nothing to write to " + aligned_out);
-    write_aligned(probe_path, settings.input.read.record, compared.probe,
-                  result.alignments.front().transform, aligned_out);
-  }
-  if (!output.empty()) {
-    try {
-      const nlohmann::json document = to_json(compared, settings.match);
-      surfcomp::io::write_file_atomically(
-          output, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
-    } catch (...) {
-      if (!aligned_out.empty()) std::filesystem::remove(aligned_out);
-      throw;
+  // Outputs last, each atomic; a failure of a later one removes the earlier ones.
+  std::vector<std::filesystem::path> written;
+  try {
+    if (!aligned_out.empty()) {
+      if (result.alignments.empty())
+        throw InputError("no alignment found: nothing to write to " + aligned_out);
+      write_aligned(probe_path, settings.input.read.record, compared.probe,
+                    result.alignments.front().transform, aligned_out);
+      written.emplace_back(aligned_out);
     }
+    if (!output.empty()) {
+      const std::string document = report::match_json(compared, settings.match);
+      surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << document; });
+      written.emplace_back(output);
+    }
+    if (!report_out.empty()) report::write_html_report(report_out, compared, settings.match);
+  } catch (...) {
+    for (const auto& path : written) std::filesystem::remove(path);
+    throw;
   }
   return 0;
 }

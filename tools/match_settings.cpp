@@ -193,4 +193,17 @@ matching::MatchInput with_site(matching::MatchInput input, const MatchSettings& 
   return input;
 }
 
+PairInputs pair_inputs(const std::filesystem::path& reference, const std::filesystem::path& probe,
+                       const MatchSettings& settings) {
+  PairInputs inputs;
+  inputs.reference.path = reference;
+  inputs.probe.path = probe;
+  inputs.reference = with_site(std::move(inputs.reference), settings, true);
+  inputs.probe = with_site(std::move(inputs.probe), settings, false);
+  const matching::MatchInputOptions options = match_input_options(settings);
+  matching::check_match_input(inputs.reference, options, "REF", settings.ref_site_option);
+  matching::check_match_input(inputs.probe, options, "PROBE", settings.probe_site_option);
+  return inputs;
+}
+
 }  // namespace surfcomp::tools

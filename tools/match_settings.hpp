@@ -52,6 +52,16 @@ matching::MatchInputOptions match_input_options(const MatchSettings& settings);
 matching::MatchInput with_site(matching::MatchInput input, const MatchSettings& settings,
                                bool reference);
 
+/// REF and PROBE as files.
+struct PairInputs {
+  matching::MatchInput reference, probe;
+};
+
+/// REF and PROBE read from these files with their sites (with_site), checked before any work
+/// (matching::check_match_input, naming the site options as they were given).
+PairInputs pair_inputs(const std::filesystem::path& reference, const std::filesystem::path& probe,
+                       const MatchSettings& settings);
+
 /// The site sphere of a --site-sphere value; OptionError for anything but x,y,z,r with r > 0.
 matching::SiteSphere parse_sphere_option(const std::string& text);
 

@@ -2,10 +2,10 @@
 // CSV table; optionally the best hits moved onto the query (SDF).
 #include "command.hpp"
 #include "command_files.hpp"
-#include "match_settings.hpp"
+#include "describe_settings.hpp"
 #include "options.hpp"
 #include "screen_mpi.hpp"
-#include "surface_input.hpp"
+#include "screen_settings.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
@@ -15,8 +15,6 @@
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/screen.hpp"
-
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <cstdio>
@@ -106,87 +104,50 @@ void write_aligned_sites(const std::filesystem::path& path, const screening::Lib
 
 int screen(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
-  std::string output, aligned_out, site_ligand;
-  std::vector<std::string> site_spheres;
-  std::size_t record = 0;
-  int threads = 0;
-  double top = 100, candidates = 50, aligned_top = 10;
-  matching::BindingSiteOptions site_options;
+  std::string output, aligned_out;
+  double aligned_top = 10;
+  ScreenSettings settings;
   po::options_description described("options");
   // clang-format off
   described.add_options()
       ("help,h", "print this help")
       ("output,o", po::value(&output)->required(), "output table (.csv)")
-      ("top", defaulted(&top), "rows of the table (0: every molecule)")
-      ("candidates", defaulted(&candidates),
-       "molecules given the full match (stage 2), best fast score first")
       ("aligned-out", po::value(&aligned_out),
        "write the first --aligned-top hits moved onto QUERY (.sdf, bonds kept)")
       ("aligned-top", defaulted(&aligned_top),
-       "hits written to --aligned-out")
-      ("record", po::value(&record), "QUERY holding several molecules: read molecule N (1-based)")
-      ("site-ligand", po::value(&site_ligand),
-       "a site query: the binding site of this ligand residue on the QUERY structure")
-      ("site-sphere", po::value(&site_spheres)->composing(),
-       "a site query: site sphere x,y,z,r on QUERY (A; repeatable)")
-      ("site-radius", defaulted(&site_options.sphere_radius),
-       "radius of the spheres around the site ligand's atoms, A")
-      ("site-margin", defaulted(&site_options.surface_margin), kSiteMarginHelp)
-      ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
+       "hits written to --aligned-out");
   // clang-format on
+  add_screen_options(described, settings);
   po::variables_map vm;
   if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
   const auto inputs =
       vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
   if (inputs.size() != 2) throw OptionError("expected QUERY and LIB (see --help)");
-  require_in_range("top", top, 0, 1e9);
-  require_in_range("candidates", candidates, 0, 1e6);
   require_in_range("aligned-top", aligned_top, 1, 1e6);
-  require_in_range("threads", threads, 0, 1024);
-  require_in_range("site-radius", site_options.sphere_radius, 0.1, 100);
-  require_in_range("site-margin", site_options.surface_margin, 0.0, 1000.0);
+  finish_screen_options(settings);
   const std::filesystem::path query_path = inputs[0], library_path = inputs[1];
-  std::vector<matching::SiteSphere> spheres;
-  spheres.reserve(site_spheres.size());
-  for (const std::string& text : site_spheres) spheres.push_back(parse_sphere_option(text));
-  const bool site_query = !site_ligand.empty() || !spheres.empty();
-  SurfaceInput input;
-  input.read.record = record;
-  if (site_query) {
-    if (harmonic::io::is_hsi_file(query_path) || !io::is_molecule_file(query_path))
-      throw OptionError(query_path.string() +
-                        ": a site query needs a molecule file (the structure), not a .hsi or mesh");
-    if (is_water_residue(site_ligand)) {
-      throw OptionError("--site-ligand " + site_ligand +
-                        ": water cannot be a site ligand; give --site-sphere x,y,z,r around it");
-    }
+  const bool site_query = is_site_query(settings);
+  if (site_query && (harmonic::io::is_hsi_file(query_path) || !io::is_molecule_file(query_path))) {
+    throw OptionError(query_path.string() +
+                      ": a site query needs a molecule file (the structure), not a .hsi or mesh");
   }
-  if (!harmonic::io::is_hsi_file(query_path)) mesh::check_surface_input(query_path, input);
+  matching::MatchInput query_input;
+  query_input.path = query_path;
+  query_input = screen_query_input(std::move(query_input), settings);
+  const matching::MatchInputOptions query_options = screen_query_options(settings);
+  matching::check_match_input(query_input, query_options, "QUERY");
   check_command_files(
       {{{"QUERY", query_path}, {"LIB", library_path}},
        {{"--output", output, {".csv"}, ""},
         site_query
             ? OutputFile{"--aligned-out", aligned_out, {".pdb"}, "site hits are written as PDB"}
             : OutputFile{"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"}}});
-  std::unique_ptr<tbb::global_control> limit;
-  if (threads > 0) {
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                  static_cast<std::size_t>(threads));
-  }
-  screening::ScreenOptions options;
-  options.top = static_cast<std::size_t>(top);
-  options.candidates = static_cast<std::size_t>(candidates);
+  const auto limit = limit_threads(settings.threads);
+  const screening::ScreenOptions& options = settings.options;
 
   const Stopwatch clock;
   const screening::Library library(library_path);
   screening::check_library_kind(library, site_query);  // before the query's surface is built
-  matching::MatchInput query_input;
-  query_input.path = query_path;
-  query_input.site_ligand = site_ligand;
-  query_input.site_spheres = spheres;
-  matching::MatchInputOptions query_options;
-  query_options.input = input;
-  query_options.site = site_options;
   matching::PreparedInput prepared = matching::prepare_input(query_input, query_options);
   const screening::ScreenQuery query =
       screening::make_screen_query(std::move(prepared.descriptors), options, prepared.site);

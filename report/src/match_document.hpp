@@ -1,0 +1,16 @@
+// Internal to the report module: the result document of a match as a JSON object, which
+// match_json writes and the HTML report embeds.
+#pragma once
+
+#include "surfcomp/matching/match_inputs.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace surfcomp::report::detail {
+
+/// The fields of the README's result-file table: reference, probe, alignments, trace,
+/// timing_ms, cliques, warnings, parameters.
+nlohmann::json match_document(const matching::InputMatch& compared,
+                              const matching::MatchOptions& options);
+
+}  // namespace surfcomp::report::detail
