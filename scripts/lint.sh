@@ -15,7 +15,8 @@ echo "lint: clang-format clean"
 
 # GCC's warning flags in the compile commands are unknown to clang; -Wno-unknown-warning-option
 # keeps them from failing the run.
-git ls-files 'core/*.cpp' 'mesh/*.cpp' 'harmonic/*.cpp' 'matching/*.cpp' 'tools/*.cpp' |
+git ls-files 'core/*.cpp' 'mesh/*.cpp' 'harmonic/*.cpp' 'matching/*.cpp' 'screening/*.cpp' \
+    'report/*.cpp' 'tools/*.cpp' 'python/*.cpp' |
   xargs -P "$(nproc)" -n 4 clang-tidy -p "$build" --quiet \
     --extra-arg=-Wno-unknown-warning-option 2>/dev/null
 echo "lint: clang-tidy clean"

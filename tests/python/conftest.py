@@ -16,6 +16,9 @@ SOURCE_DIR = pathlib.Path(os.environ.get("SURFCOMP_SOURCE_DIR",
                                          pathlib.Path(__file__).resolve().parents[2]))
 if os.environ.get("SURFCOMP_PYTHON_DIR"):
     sys.path.insert(0, os.environ["SURFCOMP_PYTHON_DIR"])
+    # Programs the tests start (python3 -m surfcomp, the example) import it too.
+    os.environ["PYTHONPATH"] = os.pathsep.join(
+        p for p in (os.environ["SURFCOMP_PYTHON_DIR"], os.environ.get("PYTHONPATH")) if p)
 
 
 def _shared_dir():

@@ -1,0 +1,599 @@
+// The C++ side of `import surfcomp` (the Python package in python/surfcomp/ wraps it). It parses
+// keyword options with the command line's own option sets (tools/*_settings.hpp), so that names,
+// defaults and messages are the CLI's, converts inputs (paths, RDKit molecules as MDL blocks,
+// surfaces, descriptions) to matching::MatchInput, runs the library with the GIL released, and
+// returns NumPy arrays and plain Python values.
+#include "command.hpp"
+#include "describe_settings.hpp"
+#include "match_settings.hpp"
+#include "options.hpp"
+#include "screen_settings.hpp"
+#include "surface_input.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/molecule_records.hpp"
+#include "surfcomp/harmonic/io/hsi_file.hpp"
+#include "surfcomp/matching/match_inputs.hpp"
+#include "surfcomp/mesh/io/ply.hpp"
+#include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/mesh/topology.hpp"
+#include "surfcomp/report/html_report.hpp"
+#include "surfcomp/screening/library.hpp"
+#include "surfcomp/screening/screen.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace py = pybind11;
+
+namespace surfcomp::python {
+namespace {
+
+/// An RDKit molecule handed over by the Python package: its MDL block (hydrogens as the molecule
+/// has them, the conformer's coordinates), its name, and its partial charges when it carries some.
+struct MoleculeBlock {
+  std::string text;
+  std::string name;
+  std::optional<std::vector<double>> charges;
+};
+
+/// A surface with the molecule it was built from, if any (its heavy atoms go with a description).
+struct PySurface {
+  mesh::Surface surface;
+  std::optional<Molecule> molecule;
+};
+
+struct PyDescriptors {
+  harmonic::SurfaceDescriptors descriptors;
+};
+
+// --- arrays -------------------------------------------------------------------------------------
+
+/// A C-ordered NumPy array that owns the values of `matrix` (moved in when `matrix` is row-major
+/// or a vector; else copied once into row-major order, which C and NumPy code expect).
+template <class Matrix>
+py::array owned_array(Matrix&& matrix) {
+  using Plain = std::decay_t<Matrix>;
+  using Scalar = typename Plain::Scalar;
+  if constexpr (Plain::ColsAtCompileTime == 1) {
+    auto* owned = new Plain(std::forward<Matrix>(matrix));
+    py::capsule free(owned, [](void* p) { delete static_cast<Plain*>(p); });
+    return py::array_t<Scalar>({static_cast<py::ssize_t>(owned->rows())}, owned->data(), free);
+  } else {
+    using RowMajor =
+        Eigen::Matrix<Scalar, Plain::RowsAtCompileTime, Plain::ColsAtCompileTime,
+                      Plain::ColsAtCompileTime == 1 ? Eigen::ColMajor : Eigen::RowMajor>;
+    auto* owned = new RowMajor(std::forward<Matrix>(matrix));
+    py::capsule free(owned, [](void* p) { delete static_cast<RowMajor*>(p); });
+    return py::array_t<Scalar>(
+        {static_cast<py::ssize_t>(owned->rows()), static_cast<py::ssize_t>(owned->cols())},
+        owned->data(), free);
+  }
+}
+
+// --- options ------------------------------------------------------------------------------------
+
+/// Parses `args` (the keyword options as command-line words) with an option set; throws
+/// ValueError (through the translator) for unknown options and bad values, as the CLI refuses
+/// them.
+void parse_options(const std::vector<std::string>& args,
+                   const boost::program_options::options_description& options,
+                   boost::program_options::variables_map& vm) {
+  tools::parse_command_line(args, options, 0, "", vm);
+}
+
+/// The default of every option of `options`, as text ("" for options without one): the
+/// .pyi stubs are checked against these.
+py::dict defaults_of(const boost::program_options::options_description& options) {
+  py::dict out;
+  for (const auto& option : options.options()) {
+    const std::string parameter = option->format_parameter();
+    const auto at = parameter.find("(=");
+    std::string value;
+    if (at != std::string::npos) value = parameter.substr(at + 2, parameter.size() - at - 3);
+    out[py::str(option->long_name())] = value;
+  }
+  return out;
+}
+
+// --- inputs -------------------------------------------------------------------------------------
+
+Molecule molecule_of(const MoleculeBlock& block, const io::MoleculeReadOptions& read) {
+  io::MoleculeRecord record;
+  record.source = block.name;
+  record.name = block.name;
+  record.format = io::RecordFormat::mdl;
+  record.text = block.text;
+  Molecule molecule = io::read_record_molecule(record, read);
+  if (block.charges && read.charges == io::ChargeModel::file) {
+    const std::vector<double>& charges = *block.charges;
+    if (charges.size() != molecule.atoms.size()) {
+      throw InputError(block.name + ": " + std::to_string(charges.size()) +
+                       " partial charges for " + std::to_string(molecule.atoms.size()) + " atoms");
+    }
+    for (std::size_t i = 0; i < charges.size(); ++i) {
+      if (!std::isfinite(charges[i])) {
+        throw InputError(block.name + ": the partial charge of atom " + std::to_string(i + 1) +
+                         " is not finite");
+      }
+      molecule.atoms[i].charge = charges[i];
+    }
+    molecule.charge_source = ChargeSource::file;
+  }
+  return molecule;
+}
+
+/// A Python input (a path, a MoleculeBlock, a Surface, a Descriptors) as the library's.
+matching::MatchInput input_of(const py::handle& object, const io::MoleculeReadOptions& read) {
+  matching::MatchInput input;
+  if (py::isinstance<py::str>(object)) {
+    input.path = object.cast<std::string>();
+  } else if (py::isinstance<MoleculeBlock>(object)) {
+    input.molecule = molecule_of(object.cast<const MoleculeBlock&>(), read);
+  } else if (py::isinstance<PySurface>(object)) {
+    const auto& surface = object.cast<const PySurface&>();
+    input.surface = surface.surface;
+    input.molecule = surface.molecule;
+  } else if (py::isinstance<PyDescriptors>(object)) {
+    input.descriptors = object.cast<const PyDescriptors&>().descriptors;
+  } else {
+    throw py::type_error("expected a path, an RDKit molecule, a Surface or a Descriptors, got " +
+                         py::str(py::type::of(object)).cast<std::string>());
+  }
+  return input;
+}
+
+// --- results ------------------------------------------------------------------------------------
+
+py::dict alignment_dict(const matching::Alignment& a) {
+  Eigen::Matrix<double, 4, 4, Eigen::RowMajor> transform = a.transform;
+  Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor> pairs(
+      static_cast<Eigen::Index>(a.cp_pairs.size()), 2);
+  for (std::size_t k = 0; k < a.cp_pairs.size(); ++k) {
+    pairs(static_cast<Eigen::Index>(k), 0) = a.cp_pairs[k].first;
+    pairs(static_cast<Eigen::Index>(k), 1) = a.cp_pairs[k].second;
+  }
+  py::dict d;
+  d["rank"] = a.rank;
+  d["source"] = a.source == matching::AlignmentSource::cliques ? "cliques" : "principal_axes";
+  d["transform"] = owned_array(std::move(transform));
+  d["rmsd"] = a.rmsd;
+  d["n_points"] = a.n_points;
+  d["r_chem"] = a.r_chem;
+  d["consensus"] = a.consensus;
+  d["refined"] = a.refined;
+  d["overlay"] = py::dict(py::arg("score") = a.overlay.score, py::arg("shape") = a.overlay.shape,
+                          py::arg("chem") = a.overlay.chem, py::arg("atoms") = a.overlay.atoms);
+  d["cp_pairs"] = owned_array(std::move(pairs));
+  d["parent"] = a.parent > 0 ? py::object(py::int_(a.parent)) : py::object(py::none());
+  d["children"] = a.children;
+  return d;
+}
+
+py::dict match_dict(const matching::InputMatch& compared) {
+  py::list alignments;
+  for (const auto& a : compared.result.alignments) alignments.append(alignment_dict(a));
+  py::list trace;
+  for (const auto& stage : compared.result.trace) {
+    trace.append(py::dict(py::arg("stage") = stage.stage, py::arg("nodes") = stage.nodes,
+                          py::arg("edges") = stage.edges, py::arg("ms") = stage.milliseconds));
+  }
+  py::dict timing;
+  for (const auto& [stage, ms] : compared.result.timing_ms) timing[py::str(stage)] = ms;
+  py::dict d;
+  d["alignments"] = alignments;
+  d["trace"] = trace;
+  d["timing_ms"] = timing;
+  d["warnings"] = compared.warnings;
+  d["notes"] = compared.notes;
+  d["cliques"] = compared.result.cliques;
+  d["cliques_complete"] = compared.result.cliques_complete;
+  d["prepare_ms"] = compared.prepare_ms;
+  d["match_ms"] = compared.match_ms;
+  return d;
+}
+
+py::dict descriptor_options_dict(const harmonic::DescriptorOptions& o) {
+  py::dict d;
+  d["critical_point_radius"] = o.critical_points.radius;
+  d["patch_radius"] = o.patch.radius;
+  d["image_rings"] = o.image.rings;
+  d["image_sectors"] = o.image.sectors;
+  std::string weights = harmonic::to_string(o.disk_map.weights);  // as the option names them
+  for (char& c : weights) c = c == '_' ? '-' : c;
+  d["weights"] = weights;
+  d["image_property"] = o.image_property;
+  return d;
+}
+
+const char* status_name(harmonic::PatchStatus status) {
+  switch (status) {
+    case harmonic::PatchStatus::ok:
+      return "ok";
+    case harmonic::PatchStatus::empty:
+      return "empty";
+    case harmonic::PatchStatus::not_a_disk:
+      return "not_a_disk";
+    case harmonic::PatchStatus::map_failed:
+      return "map_failed";
+    case harmonic::PatchStatus::skipped:
+      return "skipped";
+  }
+  return "unknown";
+}
+
+/// The critical points of a description as arrays, one row per point.
+py::dict critical_points_dict(const harmonic::SurfaceDescriptors& d) {
+  const auto n = static_cast<Eigen::Index>(d.critical_points.size());
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> positions(n, 3), normals(n, 3);
+  Eigen::VectorXd cc1(n), cc2(n), shape_index(n), curvedness(n), esp(n), lp(n);
+  Eigen::VectorXi vertex(n);
+  py::list types, status;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto& cp = d.critical_points[static_cast<std::size_t>(i)];
+    positions.row(i) = cp.point.position.transpose();
+    normals.row(i) = cp.point.normal.transpose();
+    cc1(i) = cp.point.cc1;
+    cc2(i) = cp.point.cc2;
+    shape_index(i) = cp.point.shape_index;
+    curvedness(i) = cp.point.curvedness;
+    esp(i) = cp.point.esp;
+    lp(i) = cp.point.lp;
+    vertex(i) = cp.point.vertex;
+    types.append(cp.point.type == mesh::CriticalPointType::peak ? "peak" : "valley");
+    status.append(status_name(cp.status));
+  }
+  py::dict out;
+  out["position"] = owned_array(std::move(positions));
+  out["normal"] = owned_array(std::move(normals));
+  out["vertex"] = owned_array(std::move(vertex));
+  out["type"] = py::array(types);
+  out["status"] = py::array(status);
+  out["cc1"] = owned_array(std::move(cc1));
+  out["cc2"] = owned_array(std::move(cc2));
+  out["shape_index"] = owned_array(std::move(shape_index));
+  out["curvedness"] = owned_array(std::move(curvedness));
+  out["esp"] = owned_array(std::move(esp));
+  out["lp"] = owned_array(std::move(lp));
+  return out;
+}
+
+/// The images as one array (n_cp, rings, sectors); NaN where a grid point is not valid or a
+/// point has no image.
+py::array images_array(const harmonic::SurfaceDescriptors& d) {
+  const int rings = d.options.image.rings, sectors = d.options.image.sectors;
+  const auto n = static_cast<py::ssize_t>(d.critical_points.size());
+  py::array_t<double> out({n, static_cast<py::ssize_t>(rings), static_cast<py::ssize_t>(sectors)});
+  auto view = out.mutable_unchecked<3>();
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const harmonic::ShapeImage& image = d.critical_points[static_cast<std::size_t>(i)].image;
+    const bool has = image.values.size() == static_cast<Eigen::Index>(rings) * sectors;
+    for (int r = 0; r < rings; ++r) {
+      for (int s = 0; s < sectors; ++s) {
+        const std::size_t g = static_cast<std::size_t>(r) * static_cast<std::size_t>(sectors) +
+                              static_cast<std::size_t>(s);
+        view(i, r, s) =
+            has && image.valid[g] != 0 ? image.values(static_cast<Eigen::Index>(g)) : std::nan("");
+      }
+    }
+  }
+  return out;
+}
+
+py::dict properties_dict(const mesh::Surface& surface) {
+  py::dict out;
+  for (const std::string& name : surface.property_names())
+    out[py::str(name)] = owned_array(surface.property(name));
+  return out;
+}
+
+void save_surface(const mesh::Surface& surface, const std::filesystem::path& p, bool ascii) {
+  std::string extension = p.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".ply") {
+    mesh::io::write_ply(
+        surface, p, ascii ? mesh::io::PlyFormat::ascii : mesh::io::PlyFormat::binary_little_endian);
+  } else {
+    mesh::io::write_mesh(surface, p);
+  }
+}
+
+// --- the functions
+// --------------------------------------------------------------------------------
+
+PySurface build_surface(const py::object& input, const std::vector<std::string>& args) {
+  tools::SurfaceInput settings;
+  boost::program_options::options_description options;
+  tools::add_surface_options(options, settings);
+  boost::program_options::variables_map vm;
+  parse_options(args, options, vm);
+  tools::finish_surface_options(settings);
+  settings.surface.esp.progress = {};  // quiet: no progress line from Python
+  settings.surface.lp.progress = {};
+  matching::MatchInput in = input_of(input, settings.read);
+  py::gil_scoped_release release;
+  PySurface out;
+  if (in.molecule) {
+    out.surface = mesh::build_molecular_surface(*in.molecule, settings.surface);
+    out.molecule = std::move(in.molecule);
+  } else if (!in.path.empty()) {
+    mesh::LoadedSurface loaded = mesh::load_surface(in.path, settings);
+    out.surface = std::move(loaded.surface);
+    out.molecule = std::move(loaded.molecule);
+  } else {
+    throw InputError("build_surface: expected a molecule (a path or an RDKit molecule) or a mesh");
+  }
+  return out;
+}
+
+PyDescriptors describe(const py::object& input, const std::vector<std::string>& args) {
+  tools::DescribeSettings settings;
+  boost::program_options::options_description options;
+  tools::add_describe_options(options, settings);
+  boost::program_options::variables_map vm;
+  parse_options(args, options, vm);
+  tools::finish_describe_options(settings);
+  settings.input.surface.esp.progress = {};
+  settings.input.surface.lp.progress = {};
+  matching::MatchInputOptions match_options;
+  match_options.input = settings.input;
+  match_options.descriptors = settings.descriptors;
+  const matching::MatchInput in = input_of(input, settings.input.read);
+  py::gil_scoped_release release;
+  const auto limit = tools::limit_threads(settings.threads);
+  PyDescriptors out;
+  out.descriptors = matching::prepare_input(in, match_options).descriptors;
+  return out;
+}
+
+/// match()'s options: the CLI's match options, and --threads.
+void add_python_match_options(boost::program_options::options_description& options,
+                              tools::MatchSettings& settings, int& threads) {
+  tools::add_match_options(options, settings);
+  options.add_options()("threads", boost::program_options::value(&threads)->default_value(0),
+                        "worker threads (0 = all cores)");
+}
+
+py::dict match(const py::object& reference, const py::object& probe,
+               const std::vector<std::string>& args, const std::string& report_path) {
+  tools::MatchSettings settings;
+  int threads = 0;
+  boost::program_options::options_description options;
+  add_python_match_options(options, settings, threads);
+  boost::program_options::variables_map vm;
+  parse_options(args, options, vm);
+  tools::finish_match_options(settings, vm);
+  settings.input.surface.esp.progress = {};
+  settings.input.surface.lp.progress = {};
+  const matching::MatchInputOptions match_options = tools::match_input_options(settings);
+  const matching::MatchInput ref =
+      tools::with_site(input_of(reference, settings.input.read), settings, true);
+  const matching::MatchInput prb =
+      tools::with_site(input_of(probe, settings.input.read), settings, false);
+  matching::check_match_input(ref, match_options, "REF", settings.ref_site_option);
+  matching::check_match_input(prb, match_options, "PROBE", settings.probe_site_option);
+  std::optional<matching::InputMatch> compared;
+  {
+    py::gil_scoped_release release;
+    const auto limit = tools::limit_threads(threads);
+    compared = matching::match_inputs(ref, prb, match_options);
+    if (!report_path.empty()) report::write_html_report(report_path, *compared, settings.match);
+  }
+  return match_dict(*compared);
+}
+
+py::list screen(const py::object& query, const std::string& library_path,
+                const std::vector<std::string>& args) {
+  tools::ScreenSettings settings;
+  boost::program_options::options_description options;
+  tools::add_screen_options(options, settings);
+  boost::program_options::variables_map vm;
+  parse_options(args, options, vm);
+  tools::finish_screen_options(settings);
+  const matching::MatchInputOptions query_options = tools::screen_query_options(settings);
+  const matching::MatchInput in =
+      tools::screen_query_input(input_of(query, query_options.input.read), settings);
+  matching::check_match_input(in, query_options, "QUERY");
+  std::optional<screening::Library> library;
+  screening::ScreenResult result;
+  {
+    py::gil_scoped_release release;
+    const auto limit = tools::limit_threads(settings.threads);
+    library.emplace(library_path);
+    screening::check_library_kind(*library, tools::is_site_query(settings));
+    matching::PreparedInput prepared = matching::prepare_input(in, query_options);
+    const screening::ScreenQuery screen_query = screening::make_screen_query(
+        std::move(prepared.descriptors), settings.options, prepared.site);
+    result = screening::screen(screen_query, *library, settings.options);
+  }
+  py::list hits;
+  for (std::size_t k = 0; k < result.hits.size(); ++k) {
+    const screening::Hit& hit = result.hits[k];
+    const screening::LibraryEntryInfo& info = library->info(hit.entry);
+    Eigen::Matrix<double, 4, 4, Eigen::RowMajor> transform = hit.score.transform;
+    py::dict d;
+    d["rank"] = k + 1;
+    d["entry"] = hit.entry + 1;
+    d["name"] = info.name;
+    d["source"] = info.source;
+    d["record"] = info.record;
+    d["conformer"] = info.conformer;
+    d["score"] = hit.score.score;
+    d["stage"] = hit.stage;
+    d["shape"] = hit.score.shape;
+    d["chem"] = hit.score.chem;
+    d["atoms"] = hit.score.atoms;
+    d["fast_score"] = hit.fast_score;
+    d["transform"] = owned_array(std::move(transform));
+    hits.append(d);
+  }
+  return hits;
+}
+
+py::dict option_defaults(const std::string& command) {
+  boost::program_options::options_description options;
+  tools::SurfaceInput surface;
+  tools::DescribeSettings describe_settings;
+  tools::MatchSettings match_settings;
+  int threads = 0;
+  tools::ScreenSettings screen_settings;
+  if (command == "build_surface") {
+    tools::add_surface_options(options, surface);
+  } else if (command == "describe") {
+    tools::add_describe_options(options, describe_settings);
+  } else if (command == "match") {
+    add_python_match_options(options, match_settings, threads);
+  } else if (command == "screen") {
+    tools::add_screen_options(options, screen_settings);
+  } else {
+    throw py::value_error("no option set named '" + command + "'");
+  }
+  return defaults_of(options);
+}
+
+// pybind11 calls translators as void(std::exception_ptr).
+void translate(std::exception_ptr error) {  // NOLINT(performance-unnecessary-value-param)
+  try {
+    if (error) std::rethrow_exception(error);
+  } catch (const FileError& e) {
+    PyErr_SetString(PyExc_OSError, e.what());
+  } catch (const InputError& e) {  // bad options and bad input alike: a ValueError
+    PyErr_SetString(PyExc_ValueError, e.what());
+  } catch (const boost::program_options::error& e) {
+    PyErr_SetString(PyExc_ValueError, e.what());
+  } catch (const Error& e) {
+    PyErr_SetString(PyExc_RuntimeError, e.what());
+  }
+}
+
+}  // namespace
+}  // namespace surfcomp::python
+
+PYBIND11_MODULE(_surfcomp, m) {
+  namespace sp = surfcomp::python;
+  m.doc() = "The C++ core of the surfcomp package; use `import surfcomp`.";
+  py::register_exception_translator(&sp::translate);
+
+  py::class_<sp::MoleculeBlock>(m, "MoleculeBlock", "An RDKit molecule as an MDL block.")
+      .def(py::init<std::string, std::string, std::optional<std::vector<double>>>(),
+           py::arg("text"), py::arg("name"), py::arg("charges") = py::none())
+      .def_readonly("name", &sp::MoleculeBlock::name);
+
+  py::class_<sp::PySurface>(m, "Surface")
+      .def_property_readonly(
+          "vertices", [](const sp::PySurface& s) { return sp::owned_array(s.surface.positions()); })
+      .def_property_readonly("normals",
+                             [](sp::PySurface& s) {
+                               if (!s.surface.has_normals()) s.surface.compute_normals();
+                               return sp::owned_array(s.surface.normals());
+                             })
+      .def_property_readonly(
+          "faces", [](const sp::PySurface& s) { return sp::owned_array(s.surface.faces()); })
+      .def_property_readonly("properties",
+                             [](const sp::PySurface& s) { return sp::properties_dict(s.surface); })
+      .def_property_readonly("source", [](const sp::PySurface& s) { return s.surface.source(); })
+      .def_property_readonly("n_vertices",
+                             [](const sp::PySurface& s) { return s.surface.n_vertices(); })
+      .def_property_readonly("n_faces", [](const sp::PySurface& s) { return s.surface.n_faces(); })
+      .def_property_readonly("has_molecule",
+                             [](const sp::PySurface& s) { return s.molecule.has_value(); })
+      .def("measures",
+           [](const sp::PySurface& s) {
+             const surfcomp::mesh::SurfaceMeasures measures =
+                 surfcomp::mesh::measure_surface(s.surface);
+             return py::dict(py::arg("area") = measures.area, py::arg("volume") = measures.volume,
+                             py::arg("euler_characteristic") = measures.euler_characteristic,
+                             py::arg("boundary_edges") = measures.boundary_edges);
+           })
+      .def(
+          "save",
+          [](const sp::PySurface& s, const std::filesystem::path& path, bool ascii) {
+            py::gil_scoped_release release;
+            sp::save_surface(s.surface, path, ascii);
+          },
+          py::arg("path"), py::arg("ascii") = false);
+
+  py::class_<sp::PyDescriptors>(m, "Descriptors")
+      .def_property_readonly("surface",
+                             [](const sp::PyDescriptors& d) {
+                               return sp::PySurface{d.descriptors.surface, std::nullopt};
+                             })
+      .def_property_readonly(
+          "critical_points",
+          [](const sp::PyDescriptors& d) { return sp::critical_points_dict(d.descriptors); })
+      .def_property_readonly(
+          "images", [](const sp::PyDescriptors& d) { return sp::images_array(d.descriptors); })
+      .def_property_readonly("options",
+                             [](const sp::PyDescriptors& d) {
+                               return sp::descriptor_options_dict(d.descriptors.options);
+                             })
+      .def_property_readonly("atoms",
+                             [](const sp::PyDescriptors& d) {
+                               py::list elements;
+                               Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> positions(
+                                   static_cast<Eigen::Index>(d.descriptors.atoms.size()), 3);
+                               for (std::size_t i = 0; i < d.descriptors.atoms.size(); ++i) {
+                                 elements.append(d.descriptors.atoms[i].element);
+                                 positions.row(static_cast<Eigen::Index>(i)) =
+                                     d.descriptors.atoms[i].position.transpose();
+                               }
+                               return py::make_tuple(elements,
+                                                     sp::owned_array(std::move(positions)));
+                             })
+      .def(
+          "save",
+          [](const sp::PyDescriptors& d, const std::filesystem::path& path) {
+            py::gil_scoped_release release;
+            surfcomp::harmonic::io::write_hsi(d.descriptors, path);
+          },
+          py::arg("path"));
+
+  m.def(
+      "load_descriptors",
+      [](const std::string& path) {
+        py::gil_scoped_release release;
+        return sp::PyDescriptors{surfcomp::harmonic::io::read_hsi(path)};
+      },
+      py::arg("path"));
+  m.def("build_surface", &sp::build_surface, py::arg("input"), py::arg("args"));
+  m.def("describe", &sp::describe, py::arg("input"), py::arg("args"));
+  m.def("match", &sp::match, py::arg("reference"), py::arg("probe"), py::arg("args"),
+        py::arg("report") = std::string());
+  m.def("screen", &sp::screen, py::arg("query"), py::arg("library"), py::arg("args"));
+  m.def("option_defaults", &sp::option_defaults, py::arg("command"));
+  m.def(
+      "run_command_line",
+      [](const std::vector<std::string>& args) {
+        py::gil_scoped_release release;
+        return surfcomp::tools::run_command_line(args);
+      },
+      py::arg("args"));
+  m.def(
+      "library_info",
+      [](const std::string& path) {
+        const surfcomp::screening::Library library(path);
+        py::list entries;
+        for (std::size_t i = 0; i < library.size(); ++i) {
+          const auto& info = library.info(i);
+          entries.append(py::dict(py::arg("entry") = i + 1, py::arg("name") = info.name,
+                                  py::arg("source") = info.source, py::arg("record") = info.record,
+                                  py::arg("conformer") = info.conformer,
+                                  py::arg("heavy_atoms") = info.heavy_atoms,
+                                  py::arg("site_spheres") = info.site_spheres));
+        }
+        return py::dict(py::arg("version") = library.version(),
+                        py::arg("settings") = library.settings(),
+                        py::arg("bytes") = library.file_bytes(), py::arg("entries") = entries);
+      },
+      py::arg("path"));
+}

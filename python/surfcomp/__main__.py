@@ -1,0 +1,15 @@
+"""``python3 -m surfcomp ...`` runs the surfcomp command line (the same subcommands, options,
+messages and exit statuses as the ``surfcomp`` program)."""
+
+import sys
+
+from . import _surfcomp
+
+
+def main() -> int:
+    sys.stdout.flush()
+    return _surfcomp.run_command_line(sys.argv[1:])
+
+
+if __name__ == "__main__":
+    sys.exit(main())
