@@ -7,6 +7,9 @@ find_package(CGAL 5.5 REQUIRED)
 find_package(TBB REQUIRED CONFIG)
 find_package(nlohmann_json 3 REQUIRED CONFIG)
 find_package(Boost 1.74 REQUIRED COMPONENTS graph iostreams program_options)
+# cairo (Debian libcairo2-dev) draws the shape images as PNG (patch-map); it has no CMake config.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 
 # OpenVDB's find module lives outside CMake's default search path; the installed
 # surfcompConfig.cmake looks there too.

@@ -5,6 +5,7 @@
 #include "surfcomp/harmonic/disk_map.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/harmonic/cgal_reference.hpp"
+#include "surfcomp/harmonic/map_distortion.hpp"
 
 #include "analytic_meshes.hpp"
 #include "disk_map_patches.hpp"
@@ -300,6 +301,48 @@ TEST(DiskMapTest, BowTieVertexIsATopologyError) {
   ASSERT_EQ(disk.faces.row(3), Eigen::RowVector3i(0, 4, 5));
   EXPECT_THROW(harmonic_disk_map(disk.positions, faces, disk.outer_boundary), TopologyError);
   EXPECT_THROW(cgal_disk_map(disk.positions, faces, disk.outer_boundary), TopologyError);
+}
+
+// The distortion measures on maps with known answers: a similarity keeps angles and area ratios,
+// a stretch keeps area ratios but not angles, a mirror flips every triangle.
+TEST(MapDistortionTest, SimilaritiesStretchesAndMirrorsHaveTheirKnownDistortion) {
+  const mesh::Surface plane = test::disk(2.0, 6);
+  const Eigen::MatrixX3d positions = plane.positions();
+  const Eigen::MatrixX3i faces = plane.faces();
+  const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(0.7).toRotationMatrix();
+  const Eigen::MatrixX2d similar = positions.leftCols<2>() * rotation.transpose() / 2.0;
+  const MapDistortion none = map_distortion(positions, faces, similar);
+  EXPECT_LT(none.angle_max_degrees, 1e-9);
+  EXPECT_LT(none.area_max_log, 1e-12);
+  EXPECT_EQ(none.flipped, 0);
+
+  Eigen::MatrixX2d stretched = positions.leftCols<2>();
+  stretched.col(0) *= 2.0;
+  const MapDistortion stretch = map_distortion(positions, faces, stretched);
+  EXPECT_GT(stretch.angle_mean_degrees, 5.0);
+  EXPECT_LT(stretch.area_max_log, 1e-12);  // every area doubles: the ratios stay
+  EXPECT_EQ(stretch.flipped, 0);
+
+  Eigen::MatrixX2d mirrored = positions.leftCols<2>();
+  mirrored.col(0) *= -1.0;
+  const MapDistortion mirror = map_distortion(positions, faces, mirrored);
+  EXPECT_EQ(mirror.flipped, faces.rows());
+  EXPECT_LT(mirror.angle_max_degrees, 1e-9);  // a mirror keeps unsigned angles
+  EXPECT_TRUE(std::isnan(mirror.area_mean_log));
+  EXPECT_THROW(map_distortion(positions, faces, Eigen::MatrixX2d::Zero(3, 2)), InputError);
+}
+
+// compare_with_cgal on a sphere cap: the two maps agree, and both are measured and timed.
+TEST(MapDistortionTest, TheCgalComparisonAgreesOnASphereCap) {
+  const test::TestPatch patch = test::sphere_cap_patch();
+  const DiskMapComparison c = compare_with_cgal(patch.positions, patch.faces, patch.outer_boundary);
+  EXPECT_LT(c.max_distance, 1e-9);
+  EXPECT_LE(c.mean_distance, c.max_distance);
+  EXPECT_NEAR(c.ours_distortion.angle_mean_degrees, c.cgal_distortion.angle_mean_degrees, 1e-6);
+  EXPECT_GT(c.ours_distortion.angle_mean_degrees, 0.0);  // a cap cannot be mapped conformally
+  EXPECT_EQ(c.ours_distortion.flipped, 0);
+  EXPECT_GT(c.ours_ms, 0.0);
+  EXPECT_GT(c.cgal_ms, 0.0);
 }
 
 }  // namespace

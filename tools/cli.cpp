@@ -32,6 +32,8 @@ constexpr std::array kCommands{
             &surfcomp::tools::screen},
     Command{"report", "REF PROBE -> a match as an HTML page to look at (3D viewer, tables)",
             &surfcomp::tools::report},
+    Command{"patch-map", "surface -> each critical point's patch and harmonic map (OBJ, PLY, PNG)",
+            &surfcomp::tools::patch_map},
 };
 
 void print_usage(std::ostream& out) {

@@ -30,5 +30,6 @@ int match(const std::vector<std::string>& args);
 int library(const std::vector<std::string>& args);
 int screen(const std::vector<std::string>& args);
 int report(const std::vector<std::string>& args);
+int patch_map(const std::vector<std::string>& args);
 
 }  // namespace surfcomp::tools

@@ -131,4 +131,20 @@ DescriptorCounts count_descriptors(const SurfaceDescriptors& descriptors) {
   return counts;
 }
 
+const char* to_string(PatchStatus status) {
+  switch (status) {
+    case PatchStatus::ok:
+      return "ok";
+    case PatchStatus::empty:
+      return "empty";
+    case PatchStatus::not_a_disk:
+      return "not_a_disk";
+    case PatchStatus::map_failed:
+      return "map_failed";
+    case PatchStatus::skipped:
+      return "skipped";
+  }
+  return "unknown";
+}
+
 }  // namespace surfcomp::harmonic

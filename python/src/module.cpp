@@ -216,22 +216,6 @@ py::dict descriptor_options_dict(const harmonic::DescriptorOptions& o) {
   return d;
 }
 
-const char* status_name(harmonic::PatchStatus status) {
-  switch (status) {
-    case harmonic::PatchStatus::ok:
-      return "ok";
-    case harmonic::PatchStatus::empty:
-      return "empty";
-    case harmonic::PatchStatus::not_a_disk:
-      return "not_a_disk";
-    case harmonic::PatchStatus::map_failed:
-      return "map_failed";
-    case harmonic::PatchStatus::skipped:
-      return "skipped";
-  }
-  return "unknown";
-}
-
 /// The critical points of a description as arrays, one row per point.
 py::dict critical_points_dict(const harmonic::SurfaceDescriptors& d) {
   const auto n = static_cast<Eigen::Index>(d.critical_points.size());
@@ -251,7 +235,7 @@ py::dict critical_points_dict(const harmonic::SurfaceDescriptors& d) {
     lp(i) = cp.point.lp;
     vertex(i) = cp.point.vertex;
     types.append(cp.point.type == mesh::CriticalPointType::peak ? "peak" : "valley");
-    status.append(status_name(cp.status));
+    status.append(harmonic::to_string(cp.status));
   }
   py::dict out;
   out["position"] = owned_array(std::move(positions));
@@ -265,6 +249,27 @@ py::dict critical_points_dict(const harmonic::SurfaceDescriptors& d) {
   out["curvedness"] = owned_array(std::move(curvedness));
   out["esp"] = owned_array(std::move(esp));
   out["lp"] = owned_array(std::move(lp));
+  return out;
+}
+
+/// Critical point `index`'s patch and harmonic map: positions (p, 3), faces (f, 3),
+/// surface_vertex, distance, uv (p, 2), outer_boundary, center, status. IndexError when out of
+/// range; empty arrays when the point has no patch.
+py::dict patch_dict(const harmonic::SurfaceDescriptors& d, std::size_t index) {
+  if (index >= d.critical_points.size()) {
+    throw py::index_error("critical point " + std::to_string(index) + " of " +
+                          std::to_string(d.critical_points.size()));
+  }
+  const harmonic::CriticalPointDescriptor& cp = d.critical_points[index];
+  py::dict out;
+  out["status"] = harmonic::to_string(cp.status);
+  out["center"] = cp.patch.center;
+  out["positions"] = owned_array(Eigen::MatrixX3d(cp.patch.positions));
+  out["faces"] = owned_array(Eigen::MatrixX3i(cp.patch.faces));
+  out["surface_vertex"] = cp.patch.surface_vertex;
+  out["distance"] = owned_array(Eigen::VectorXd(cp.patch.distance));
+  out["uv"] = owned_array(Eigen::MatrixX2d(cp.map.uv));
+  out["outer_boundary"] = cp.patch.outer_boundary;
   return out;
 }
 
@@ -533,6 +538,12 @@ PYBIND11_MODULE(_surfcomp, m) {
           [](const sp::PyDescriptors& d) { return sp::critical_points_dict(d.descriptors); })
       .def_property_readonly(
           "images", [](const sp::PyDescriptors& d) { return sp::images_array(d.descriptors); })
+      .def(
+          "patch",
+          [](const sp::PyDescriptors& d, std::size_t index) {
+            return sp::patch_dict(d.descriptors, index);
+          },
+          py::arg("index"))
       .def_property_readonly("options",
                              [](const sp::PyDescriptors& d) {
                                return sp::descriptor_options_dict(d.descriptors.options);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "surfcomp/harmonic/disk_map.hpp"
+#include "surfcomp/harmonic/map_distortion.hpp"
 
 #include <Eigen/Core>
 
@@ -32,5 +33,25 @@ namespace surfcomp::harmonic {
 DiskMap cgal_disk_map(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
                       const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                       const std::vector<int>& outer_boundary, const DiskMapOptions& options = {});
+
+/// harmonic_disk_map against cgal_disk_map on one patch, for people comparing
+/// parameterizations (surfcomp patch-map --compare-cgal).
+struct DiskMapComparison {
+  DiskMap ours, cgal;
+  double max_distance = 0.0;   ///< largest |uv_ours - uv_cgal| over the vertices (unit disk)
+  double mean_distance = 0.0;  ///< its mean over the vertices
+  MapDistortion ours_distortion, cgal_distortion;
+  /// Wall-clock time of one map, ms: the median of as many runs as fit in about 20 ms (at
+  /// least 3), each map alone on this thread.
+  double ours_ms = 0.0;
+  double cgal_ms = 0.0;
+};
+
+/// Both maps of the patch (harmonic_disk_map's arguments), their distance, distortion and time.
+/// Throws what either map throws.
+DiskMapComparison compare_with_cgal(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                    const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                    const std::vector<int>& outer_boundary,
+                                    const DiskMapOptions& options = {});
 
 }  // namespace surfcomp::harmonic

@@ -61,6 +61,9 @@ struct CriticalPointDescriptor {
   ShapeImage image;   ///< image_property resampled on the polar grid
 };
 
+/// "ok", "empty", "not_a_disk", "map_failed" or "skipped".
+const char* to_string(PatchStatus status);
+
 /// A heavy atom of the molecule a surface was built from, kept with the description so that a
 /// comparison can judge a pose on atoms too (matching::OverlayOptions::atom_weight).
 struct SurfaceAtom {

@@ -1,0 +1,238 @@
+// surfcomp patch-map: each critical point's geodesic patch, harmonic map and shape image as files
+// for mesh-processing tools (OBJ with texture coordinates, PLY, PNG), optionally compared with
+// CGAL's parameterization of the same patch.
+#include "command.hpp"
+#include "command_files.hpp"
+#include "describe_settings.hpp"
+#include "options.hpp"
+
+#include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/harmonic/cgal_reference.hpp"
+#include "surfcomp/harmonic/io/hsi_file.hpp"
+#include "surfcomp/mesh/critical_points.hpp"
+#include "surfcomp/report/patch_files.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <system_error>
+
+namespace surfcomp::tools {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: surfcomp patch-map INPUT -o DIR [--cp I ... | --all] [--compare-cgal] [options]\n\n"
+    "Writes, for each chosen critical point I (0-based, as cp-detect numbers them; --all: every\n"
+    "one), its geodesic patch and harmonic map onto the unit disk (METHOD sections 3-4) into DIR\n"
+    "(made if missing):\n"
+    "  cpI.obj        the patch with the map as texture coordinates: vt = ((u+1)/2, (v+1)/2)\n"
+    "  cpI.ply        the patch's vertices with the surface's properties, u, v and distance\n"
+    "  cpI_image.png  the harmonic shape image as a polar plot with a colour bar\n"
+    "  cpI_grid.png   the image's grid, one pixel per grid point (sectors x rings)\n"
+    "  patch_maps.json  every critical point written, with its files and, with --compare-cgal,\n"
+    "                 the comparison\n"
+    "--compare-cgal also maps each patch with CGAL's Surface_mesh_parameterization (the same\n"
+    "border and spring weights) and prints, per point, the largest and mean distance between\n"
+    "the two maps, the angle and area distortion and flipped triangles of both, and both times.\n\n"
+    "INPUT  a molecule or mesh (as hsi-build), or a .hsi file (its stored patches and maps; the\n"
+    "       description options then do not apply)";
+
+struct Chosen {
+  std::size_t index = 0;
+  harmonic::CriticalPointDescriptor descriptor;
+};
+
+nlohmann::json distortion_json(const harmonic::MapDistortion& d) {
+  return {{"angle_mean_degrees", d.angle_mean_degrees},
+          {"angle_max_degrees", d.angle_max_degrees},
+          {"area_mean_log", d.area_mean_log},
+          {"area_max_log", d.area_max_log},
+          {"flipped", d.flipped}};
+}
+
+/// The options of `described` the user gave (not left at their defaults).
+std::vector<std::string> given_options(const boost::program_options::options_description& described,
+                                       const boost::program_options::variables_map& vm) {
+  std::vector<std::string> given;
+  for (const auto& option : described.options()) {
+    const std::string& name = option->long_name();
+    if (vm.count(name) != 0 && !vm[name].defaulted()) given.push_back("--" + name);
+  }
+  return given;
+}
+
+}  // namespace
+
+int patch_map(const std::vector<std::string>& args) {
+  namespace po = boost::program_options;
+  std::string output;
+  std::vector<int> chosen_indices;
+  DescribeSettings settings;
+  po::options_description description_options("description options");
+  add_describe_options(description_options, settings);
+  po::options_description described("options");
+  // clang-format off
+  described.add_options()
+      ("help,h", "print this help")
+      ("output,o", po::value(&output)->required(), "the folder to write into")
+      ("cp", po::value(&chosen_indices)->composing(),
+       "a critical point to write (0-based; repeatable)")
+      ("all", po::bool_switch(), "write every critical point that has a patch")
+      ("compare-cgal", po::bool_switch(), "compare each map with CGAL's");
+  // clang-format on
+  described.add(description_options);
+  po::variables_map vm;
+  if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
+  if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
+  const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
+  const bool all = vm["all"].as<bool>(), compare = vm["compare-cgal"].as<bool>();
+  if (all == !chosen_indices.empty())
+    throw OptionError("give --cp I (one or more) or --all, not both and not neither");
+  for (const int i : chosen_indices)
+    if (i < 0) throw OptionError("--cp " + std::to_string(i) + ": expected an index >= 0");
+  finish_describe_options(settings);
+  const bool from_hsi = harmonic::io::is_hsi_file(path);
+  if (from_hsi) {
+    const std::vector<std::string> given = given_options(description_options, vm);
+    if (!given.empty()) {
+      throw OptionError(given.front() +
+                        " does not apply to a .hsi INPUT: its patches and maps "
+                        "are stored");
+    }
+  } else {
+    mesh::check_surface_input(path, settings.input);
+  }
+  const std::filesystem::path folder = output;
+  std::error_code error;
+  if (std::filesystem::exists(folder, error) && !std::filesystem::is_directory(folder, error))
+    throw FileError(folder.string(), "exists and is not a folder");
+  const std::filesystem::path index = folder / "patch_maps.json";
+  check_command_files(
+      {{{"INPUT", path}, {"--molecule", settings.input.molecule_file}},
+       {{"--output", std::filesystem::exists(folder, error) ? index : folder, {}, ""}}});
+  const auto limit = limit_threads(settings.threads);
+
+  // The critical points, and the chosen ones described.
+  const Stopwatch clock;
+  std::vector<Chosen> chosen;
+  mesh::Surface surface;
+  std::size_t total = 0;
+  if (from_hsi) {
+    harmonic::SurfaceDescriptors stored = harmonic::io::read_hsi(path);
+    surface = std::move(stored.surface);
+    total = stored.critical_points.size();
+    settings.descriptors = stored.options;
+    for (std::size_t i = 0; i < total; ++i) {
+      if (all || std::count(chosen_indices.begin(), chosen_indices.end(), static_cast<int>(i)))
+        chosen.push_back({i, std::move(stored.critical_points[i])});
+    }
+  } else {
+    surface = mesh::load_surface(path, settings.input).surface;
+    const std::vector<mesh::CriticalPoint> points =
+        mesh::detect_critical_points(surface, settings.descriptors.critical_points);
+    total = points.size();
+    for (std::size_t i = 0; i < total; ++i) {
+      if (all || std::count(chosen_indices.begin(), chosen_indices.end(), static_cast<int>(i)))
+        chosen.push_back({i, harmonic::describe_point(surface, points[i], settings.descriptors)});
+    }
+  }
+  for (const int i : chosen_indices) {
+    if (static_cast<std::size_t>(i) >= total) {
+      throw InputError(path.string() + ": --cp " + std::to_string(i) + ", but it has " +
+                       std::to_string(total) + " critical points (0 to " +
+                       std::to_string(static_cast<long>(total) - 1) + ")");
+    }
+  }
+
+  // The files, each point's checked against the inputs first; a failure removes those written.
+  const bool made_folder = !std::filesystem::exists(folder, error);
+  std::filesystem::create_directories(folder, error);
+  if (error) throw FileError(folder.string(), "cannot make the folder (" + error.message() + ")");
+  std::vector<std::filesystem::path> written_files;
+  std::size_t written = 0;
+  try {
+    nlohmann::json points = nlohmann::json::array();
+    if (compare) {
+      std::printf("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s %9s %9s\n", "cp", "vertices",
+                  "max |d uv|", "mean |d uv|", "angle", "angle", "area", "area", "flipped",
+                  "flipped", "ours ms", "CGAL ms");
+      std::printf("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s\n", "", "", "", "", "ours deg",
+                  "CGAL deg", "ours", "CGAL", "ours", "CGAL");
+    }
+    for (const Chosen& c : chosen) {
+      const std::string stem = "cp" + std::to_string(c.index);
+      nlohmann::json entry = {
+          {"index", c.index},
+          {"type", c.descriptor.point.type == mesh::CriticalPointType::peak ? "peak" : "valley"},
+          {"vertex", c.descriptor.point.vertex},
+          {"status", harmonic::to_string(c.descriptor.status)}};
+      if (c.descriptor.status != harmonic::PatchStatus::ok) {
+        entry["files"] = nlohmann::json::array();
+        points.push_back(entry);
+        continue;
+      }
+      const mesh::Patch& patch = c.descriptor.patch;
+      const std::vector<std::filesystem::path> files = {
+          folder / (stem + ".obj"), folder / (stem + ".ply"), folder / (stem + "_image.png"),
+          folder / (stem + "_grid.png")};
+      for (const auto& file : files) {
+        if (same_file(file, path)) {
+          throw OptionError(file.string() + " would overwrite INPUT " + path.string() +
+                            ": refusing to overwrite an input");
+        }
+      }
+      written_files.insert(written_files.end(), files.begin(), files.end());
+      report::write_patch_obj(patch, c.descriptor.map, files[0]);
+      report::write_patch_ply(surface, patch, c.descriptor.map, files[1]);
+      report::ImagePngOptions png;
+      png.label = settings.descriptors.image_property == mesh::property::shape_index
+                      ? "shape index"
+                      : settings.descriptors.image_property;
+      report::write_image_png(c.descriptor.image, files[2], png);
+      report::write_image_grid_png(c.descriptor.image, files[3]);
+      entry["patch_vertices"] = patch.positions.rows();
+      entry["patch_faces"] = patch.faces.rows();
+      entry["files"] = {files[0].filename().string(), files[1].filename().string(),
+                        files[2].filename().string(), files[3].filename().string()};
+      if (compare) {
+        const harmonic::DiskMapComparison m = harmonic::compare_with_cgal(
+            patch.positions, patch.faces, patch.outer_boundary, settings.descriptors.disk_map);
+        entry["cgal"] = {{"max_distance", m.max_distance},
+                         {"mean_distance", m.mean_distance},
+                         {"ours", distortion_json(m.ours_distortion)},
+                         {"cgal", distortion_json(m.cgal_distortion)},
+                         {"ours_ms", m.ours_ms},
+                         {"cgal_ms", m.cgal_ms}};
+        std::printf("%4zu %8ld %12.3g %12.3g %10.3f %10.3f %10.4f %10.4f %7d %7d %9.3f %9.3f\n",
+                    c.index, static_cast<long>(patch.positions.rows()), m.max_distance,
+                    m.mean_distance, m.ours_distortion.angle_mean_degrees,
+                    m.cgal_distortion.angle_mean_degrees, m.ours_distortion.area_mean_log,
+                    m.cgal_distortion.area_mean_log, m.ours_distortion.flipped,
+                    m.cgal_distortion.flipped, m.ours_ms, m.cgal_ms);
+      }
+      points.push_back(entry);
+      ++written;
+    }
+    const nlohmann::json document = {
+        {"input", path.string()},
+        {"critical_points", total},
+        {"weights", harmonic::to_string(settings.descriptors.disk_map.weights)},
+        {"patch_radius", settings.descriptors.patch.radius},
+        {"image_rings", settings.descriptors.image.rings},
+        {"image_sectors", settings.descriptors.image.sectors},
+        {"points", points}};
+    io::write_file_atomically(index, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
+  } catch (...) {
+    for (const auto& file : written_files) std::filesystem::remove(file, error);
+    if (made_folder) std::filesystem::remove(folder, error);
+    throw;
+  }
+  std::printf("%s: %zu of %zu critical points written (%zu without a patch), %.0f ms -> %s\n",
+              path.string().c_str(), written, total, chosen.size() - written, clock.elapsed_ms(),
+              folder.string().c_str());
+  return 0;
+}
+
+}  // namespace surfcomp::tools
