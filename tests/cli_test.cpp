@@ -370,5 +370,36 @@ TEST_F(Cli, HelpShowsDefaultsInTheirShortestForm) {
   }
 }
 
+// --quiet leaves stdout and stderr empty on success; --verbose adds each step on stderr.
+TEST_F(Cli, QuietSaysNothingAndVerboseSaysEachStep) {
+  const fs::path data = fs::path(SURFCOMP_SOURCE_DIR) / "datasets" / "cache" / "rdkit-data";
+  if (!fs::exists(data / "4i23_1C9.pdb")) GTEST_SKIP() << data << " is not fetched";
+  const std::string pair =
+      (data / "4i23_1C9.pdb").string() + " " + (data / "4i24_1C9.pdb").string();
+  const fs::path out = scratch("out.txt"), err = scratch("err.txt");
+  const auto text = [](const fs::path& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  const auto run_to = [&](const std::string& arguments) {
+    const std::string line =
+        kProgram.string() + " " + arguments + " >" + out.string() + " 2>" + err.string();
+    return std::system(line.c_str());
+  };
+  ASSERT_EQ(run_to("match " + pair + " -q -o " + scratch("q.json").string()), 0);
+  EXPECT_EQ(text(out), "");
+  EXPECT_EQ(text(err), "");
+  EXPECT_TRUE(fs::exists(scratch("q.json")));
+  ASSERT_EQ(run_to("match " + pair + " --verbose"), 0);
+  const std::string steps = text(err);
+  for (const char* expected : {"] REF ", "22 atoms, surface of", "] PROBE ", "imaged", "] match: "})
+    EXPECT_NE(steps.find(expected), std::string::npos) << expected << "\n" << steps;
+  EXPECT_NE(text(out).find("alignments"), std::string::npos);
+  EXPECT_NE(run_to("match " + pair + " -q -v"), 0);
+  EXPECT_NE(text(err).find("cannot be combined"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace surfcomp

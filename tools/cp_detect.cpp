@@ -2,6 +2,7 @@
 // for viewing, as PDB or PLY points.
 #include "command.hpp"
 #include "command_files.hpp"
+#include "console.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
@@ -160,9 +161,9 @@ int cp_detect(const std::vector<std::string>& args) {
     if (!points_out.empty()) std::filesystem::remove(points_out);
     throw;
   }
-  std::printf("%s: %zu vertices, %zu peaks, %zu valleys (r_cp %.2f A), %.0f ms -> %s\n",
-              path.string().c_str(), n_vertices, peaks, points.size() - peaks, cp_options.radius,
-              elapsed, output.c_str());
+  console::summary("%s: %zu vertices, %zu peaks, %zu valleys (r_cp %.2f A), %.0f ms -> %s\n",
+                   path.string().c_str(), n_vertices, peaks, points.size() - peaks,
+                   cp_options.radius, elapsed, output.c_str());
   return 0;
 }
 

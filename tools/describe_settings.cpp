@@ -1,5 +1,6 @@
 #include "describe_settings.hpp"
 
+#include "console.hpp"
 #include "options.hpp"
 
 namespace surfcomp::tools {
@@ -44,6 +45,13 @@ void finish_describe_options(DescribeSettings& settings) {
   require_in_range("image-sectors", d.image.sectors, 1, 4096);
   require_in_range("threads", settings.threads, 0, 1024);
   d.disk_map.weights = parse_weights(settings.weights);
+  d.progress = describe_progress();
+}
+
+std::function<void(std::int64_t, std::int64_t)> describe_progress() {
+  if (!console::progress_shown()) return {};
+  auto line = std::make_shared<console::ProgressLine>("describing", "critical points");
+  return [line](std::int64_t done, std::int64_t total) { (*line)(done, total); };
 }
 
 std::unique_ptr<tbb::global_control> limit_threads(int threads) {

@@ -10,6 +10,8 @@
 #include <boost/program_options.hpp>
 #include <tbb/global_control.h>
 
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -34,6 +36,9 @@ void finish_describe_options(DescribeSettings& settings);
 /// The spring weights named on the command line (inverse-length, uniform, cotangent,
 /// mean-value); OptionError otherwise.
 harmonic::SpringWeights parse_weights(const std::string& name);
+
+/// A progress line for describing critical points (console::ProgressLine), or none.
+std::function<void(std::int64_t, std::int64_t)> describe_progress();
 
 /// Limits TBB to `threads` worker threads while the result lives; nothing for 0 (all cores).
 std::unique_ptr<tbb::global_control> limit_threads(int threads);

@@ -2,6 +2,7 @@
 // images, stored in a .hsi file so that comparisons never rebuild them.
 #include "command.hpp"
 #include "command_files.hpp"
+#include "console.hpp"
 #include "describe_settings.hpp"
 #include "options.hpp"
 
@@ -59,7 +60,7 @@ int hsi_build(const std::vector<std::string>& args) {
   harmonic::io::write_hsi(descriptors, output);
 
   const harmonic::DescriptorCounts counts = harmonic::count_descriptors(descriptors);
-  std::printf(
+  console::summary(
       "%s: %zu vertices, %zu peaks, %zu valleys, %zu images, surface %.0f ms, "
       "images %.0f ms -> %s\n",
       path.string().c_str(), descriptors.surface.n_vertices(), counts.peaks, counts.valleys,

@@ -2,6 +2,7 @@
 // export its conformers as SDF.
 #include "command.hpp"
 #include "command_files.hpp"
+#include "console.hpp"
 #include "describe_settings.hpp"
 #include "options.hpp"
 
@@ -11,7 +12,6 @@
 
 #include <tbb/global_control.h>
 
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -56,7 +56,7 @@ std::string duration(double seconds) {
 
 /// A progress line on stderr when it is a terminal (entries done, rate, time left), else none.
 std::function<void(const screening::BuildProgress&)> progress_line() {
-  if (isatty(STDERR_FILENO) == 0) return {};
+  if (!console::progress_shown()) return {};
   return [last = -1.0](const screening::BuildProgress& p) mutable {
     if (p.records_done < p.records && p.seconds - last < 0.5) return;
     last = p.seconds;
@@ -88,7 +88,7 @@ void write_log_and_summary(const std::filesystem::path& library, const std::file
                      std::to_string(result.records) + " records were skipped (reasons in " +
                      log.string() + ")");
   }
-  std::printf(
+  console::summary(
       "%s: %zu records -> %zu entries, %zu skipped (see %s), %.1f MB, %.1f s (%.1f entries/s)\n",
       library.string().c_str(), result.records, result.entries, result.skipped.size(),
       log.string().c_str(), static_cast<double>(result.bytes) / 1e6, result.seconds,
@@ -196,15 +196,15 @@ int info(const std::vector<std::string>& args) {
   }
   const double mean =
       library.size() > 0 ? static_cast<double>(library.file_bytes()) / library.size() : 0.0;
-  std::printf(
+  console::summary(
       "%s: format version %u, %zu entries, %zu molecules, %.2f MB (%.1f KB per entry, "
       "largest %.1f KB)\n",
       library.path().string().c_str(), library.version(), library.size(), molecules.size(),
       static_cast<double>(library.file_bytes()) / 1e6, mean / 1e3,
       static_cast<double>(largest) / 1e3);
   for (const auto& [source, count] : per_source)
-    std::printf("  %s: %zu entries\n", source.c_str(), count);
-  std::printf("settings:\n%s", library.settings().c_str());
+    console::summary("  %s: %zu entries\n", source.c_str(), count);
+  console::summary("settings:\n%s", library.settings().c_str());
   return 0;
 }
 
@@ -233,7 +233,8 @@ int export_sdf(const std::vector<std::string>& args) {
           << entry.info.conformer << "\n\n$$$$\n";
     }
   });
-  std::printf("%s: %zu entries -> %s\n", path.string().c_str(), library.size(), output.c_str());
+  console::summary("%s: %zu entries -> %s\n", path.string().c_str(), library.size(),
+                   output.c_str());
   return 0;
 }
 

@@ -2,6 +2,7 @@
 // stdout and a JSON file other tools read; optionally PROBE moved by the top alignment.
 #include "command.hpp"
 #include "command_files.hpp"
+#include "console.hpp"
 #include "match_settings.hpp"
 #include "options.hpp"
 
@@ -130,40 +131,41 @@ int match(const std::vector<std::string>& args) {
   const matching::InputMatch compared =
       matching::match_inputs(pair.reference, pair.probe, match_input_options(settings));
   const matching::MatchResult& result = compared.result;
-  for (const std::string& note : compared.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+  for (const std::string& note : compared.notes) console::note(note);
   for (const std::string& warning : compared.warnings)
     std::fprintf(stderr, "surfcomp match: warning: %s\n", warning.c_str());
 
   if (vm["trace"].as<bool>()) {
-    std::printf("%-16s %8s %10s %10s\n", "stage", "nodes", "edges", "ms");
+    console::summary("%-16s %8s %10s %10s\n", "stage", "nodes", "edges", "ms");
     for (const auto& stage : result.trace) {
-      std::printf("%-16s %8zu %10zu %10.2f\n", stage.stage.c_str(), stage.nodes, stage.edges,
-                  stage.milliseconds);
+      console::summary("%-16s %8zu %10zu %10.2f\n", stage.stage.c_str(), stage.nodes, stage.edges,
+                       stage.milliseconds);
     }
-    std::printf("%zu maximal cliques\n\n", result.cliques);
+    console::summary("%zu maximal cliques\n\n", result.cliques);
   }
-  std::printf("%s vs %s: %zu alignments, surfaces and images %.0f ms, match %.0f ms\n",
-              ref_path.string().c_str(), probe_path.string().c_str(), result.alignments.size(),
-              compared.prepare_ms, compared.match_ms);
+  console::summary("%s vs %s: %zu alignments, surfaces and images %.0f ms, match %.0f ms\n",
+                   ref_path.string().c_str(), probe_path.string().c_str(), result.alignments.size(),
+                   compared.prepare_ms, compared.match_ms);
   if (!result.alignments.empty()) {
-    std::printf("%5s %-7s %8s %8s %8s %9s %8s %6s %7s  %s\n", "rank", "from", "rmsd", "points",
-                "r_chem", "consensus", "overlay", "pairs", "parent",
-                "rotation (deg) / translation (A)");
+    console::summary("%5s %-7s %8s %8s %8s %9s %8s %6s %7s  %s\n", "rank", "from", "rmsd", "points",
+                     "r_chem", "consensus", "overlay", "pairs", "parent",
+                     "rotation (deg) / translation (A)");
   }
   for (const auto& a : result.alignments) {
     if (a.rank > top) break;
     const Eigen::Matrix3d r = a.transform.topLeftCorner<3, 3>();
     const double angle = std::acos(std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
     if (a.source == matching::AlignmentSource::cliques) {
-      std::printf("%5d %-7s %8.3f %8zu %8.3f %9.3f %7.3f%s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n",
-                  a.rank, "cliques", a.rmsd, a.n_points, a.r_chem, a.consensus, a.overlay.score,
-                  a.refined ? "*" : " ", a.cp_pairs.size(),
-                  a.parent > 0 ? std::to_string(a.parent).c_str() : "-", angle, a.transform(0, 3),
-                  a.transform(1, 3), a.transform(2, 3));
+      console::summary(
+          "%5d %-7s %8.3f %8zu %8.3f %9.3f %7.3f%s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank,
+          "cliques", a.rmsd, a.n_points, a.r_chem, a.consensus, a.overlay.score,
+          a.refined ? "*" : " ", a.cp_pairs.size(),
+          a.parent > 0 ? std::to_string(a.parent).c_str() : "-", angle, a.transform(0, 3),
+          a.transform(1, 3), a.transform(2, 3));
     } else {  // no CP correspondences behind it: no fit RMSD, points, R_chem, consensus or tree
-      std::printf("%5d %-7s %8s %8s %8s %9s %7.3f%s %6s %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank,
-                  "axes", "-", "-", "-", "-", a.overlay.score, a.refined ? "*" : " ", "-", "-",
-                  angle, a.transform(0, 3), a.transform(1, 3), a.transform(2, 3));
+      console::summary("%5d %-7s %8s %8s %8s %9s %7.3f%s %6s %7s  %.1f / (%.2f, %.2f, %.2f)\n",
+                       a.rank, "axes", "-", "-", "-", "-", a.overlay.score, a.refined ? "*" : " ",
+                       "-", "-", angle, a.transform(0, 3), a.transform(1, 3), a.transform(2, 3));
     }
   }
   // Outputs last, each atomic; a failure of a later one removes the earlier ones.

@@ -1,5 +1,7 @@
 #include "match_settings.hpp"
 
+#include "console.hpp"
+#include "describe_settings.hpp"
 #include "options.hpp"
 
 #include <algorithm>
@@ -180,8 +182,10 @@ matching::MatchInputOptions match_input_options(const MatchSettings& settings) {
   matching::MatchInputOptions options;
   options.input = settings.input;
   options.descriptors = settings.descriptors;
+  options.descriptors.progress = describe_progress();
   options.site = settings.site;
   options.match = settings.match;
+  if (console::level() == console::Level::verbose) options.log = &console::step;
   return options;
 }
 

@@ -1,5 +1,7 @@
 #include "options.hpp"
 
+#include "console.hpp"
+
 #include <iostream>
 #include <sstream>
 
@@ -31,8 +33,12 @@ bool parse_command_line(const std::vector<std::string>& args,
                         const boost::program_options::options_description& options, int max_inputs,
                         const char* usage, boost::program_options::variables_map& vm) {
   namespace po = boost::program_options;
+  po::options_description general("general options");
+  general.add_options()("quiet,q", po::bool_switch(), "print only errors and warnings")(
+      "verbose,v", po::bool_switch(), "also print each step as it ends, with the time");
   po::options_description all;
   all.add(options);
+  all.add(general);
   all.add_options()("input", po::value<std::vector<std::string>>(), "input files");
   std::vector<Renamed> renamed;
   for (const Renamed& r : kRenamed) {
@@ -66,13 +72,17 @@ bool parse_command_line(const std::vector<std::string>& args,
   }
   po::store(parsed, vm);
   if (vm.count("help")) {
-    std::cout << usage << "\n" << options << "\n";
+    std::cout << usage << "\n" << options << "\n" << general << "\n";
     return false;
   }
   po::notify(vm);
-  for (const Renamed& r : used) {
-    std::cerr << "note: --" << r.old_name << " is deprecated; use --" << r.new_name << "\n";
-  }
+  if (vm["quiet"].as<bool>() && vm["verbose"].as<bool>())
+    throw po::error("--quiet and --verbose cannot be combined");
+  console::set_level(vm["quiet"].as<bool>()     ? console::Level::quiet
+                     : vm["verbose"].as<bool>() ? console::Level::verbose
+                                                : console::Level::normal);
+  for (const Renamed& r : used)
+    console::note(std::string("--") + r.old_name + " is deprecated; use --" + r.new_name);
   return true;
 }
 

@@ -3,6 +3,7 @@
 // CGAL's parameterization of the same patch.
 #include "command.hpp"
 #include "command_files.hpp"
+#include "console.hpp"
 #include "describe_settings.hpp"
 #include "options.hpp"
 
@@ -155,11 +156,11 @@ int patch_map(const std::vector<std::string>& args) {
   try {
     nlohmann::json points = nlohmann::json::array();
     if (compare) {
-      std::printf("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s %9s %9s\n", "cp", "vertices",
-                  "max |d uv|", "mean |d uv|", "angle", "angle", "area", "area", "flipped",
-                  "flipped", "ours ms", "CGAL ms");
-      std::printf("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s\n", "", "", "", "", "ours deg",
-                  "CGAL deg", "ours", "CGAL", "ours", "CGAL");
+      console::summary("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s %9s %9s\n", "cp", "vertices",
+                       "max |d uv|", "mean |d uv|", "angle", "angle", "area", "area", "flipped",
+                       "flipped", "ours ms", "CGAL ms");
+      console::summary("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s\n", "", "", "", "",
+                       "ours deg", "CGAL deg", "ours", "CGAL", "ours", "CGAL");
     }
     for (const Chosen& c : chosen) {
       const std::string stem = "cp" + std::to_string(c.index);
@@ -205,12 +206,12 @@ int patch_map(const std::vector<std::string>& args) {
                          {"cgal", distortion_json(m.cgal_distortion)},
                          {"ours_ms", m.ours_ms},
                          {"cgal_ms", m.cgal_ms}};
-        std::printf("%4zu %8ld %12.3g %12.3g %10.3f %10.3f %10.4f %10.4f %7d %7d %9.3f %9.3f\n",
-                    c.index, static_cast<long>(patch.positions.rows()), m.max_distance,
-                    m.mean_distance, m.ours_distortion.angle_mean_degrees,
-                    m.cgal_distortion.angle_mean_degrees, m.ours_distortion.area_mean_log,
-                    m.cgal_distortion.area_mean_log, m.ours_distortion.flipped,
-                    m.cgal_distortion.flipped, m.ours_ms, m.cgal_ms);
+        console::summary(
+            "%4zu %8ld %12.3g %12.3g %10.3f %10.3f %10.4f %10.4f %7d %7d %9.3f %9.3f\n", c.index,
+            static_cast<long>(patch.positions.rows()), m.max_distance, m.mean_distance,
+            m.ours_distortion.angle_mean_degrees, m.cgal_distortion.angle_mean_degrees,
+            m.ours_distortion.area_mean_log, m.cgal_distortion.area_mean_log,
+            m.ours_distortion.flipped, m.cgal_distortion.flipped, m.ours_ms, m.cgal_ms);
       }
       points.push_back(entry);
       ++written;
@@ -229,9 +230,9 @@ int patch_map(const std::vector<std::string>& args) {
     if (made_folder) std::filesystem::remove(folder, error);
     throw;
   }
-  std::printf("%s: %zu of %zu critical points written (%zu without a patch), %.0f ms -> %s\n",
-              path.string().c_str(), written, total, chosen.size() - written, clock.elapsed_ms(),
-              folder.string().c_str());
+  console::summary("%s: %zu of %zu critical points written (%zu without a patch), %.0f ms -> %s\n",
+                   path.string().c_str(), written, total, chosen.size() - written,
+                   clock.elapsed_ms(), folder.string().c_str());
   return 0;
 }
 

@@ -1,6 +1,7 @@
 // surfcomp report: the HTML report of a match, one self-contained file to open in a browser.
 #include "command.hpp"
 #include "command_files.hpp"
+#include "console.hpp"
 #include "match_settings.hpp"
 #include "options.hpp"
 
@@ -61,19 +62,19 @@ int report(const std::vector<std::string>& args) {
 
   const matching::InputMatch compared =
       matching::match_inputs(pair.reference, pair.probe, match_input_options(settings));
-  for (const std::string& note : compared.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+  for (const std::string& note : compared.notes) console::note(note);
   for (const std::string& warning : compared.warnings)
     std::fprintf(stderr, "surfcomp report: warning: %s\n", warning.c_str());
   report::write_html_report(output, compared, settings.match, options);
   const auto& alignments = compared.result.alignments;
   if (alignments.empty()) {
-    std::printf("%s vs %s: no alignment; %.0f ms -> %s\n", inputs[0].c_str(), inputs[1].c_str(),
-                compared.prepare_ms + compared.match_ms, output.c_str());
+    console::summary("%s vs %s: no alignment; %.0f ms -> %s\n", inputs[0].c_str(),
+                     inputs[1].c_str(), compared.prepare_ms + compared.match_ms, output.c_str());
   } else {
-    std::printf("%s vs %s: %zu alignments, top overlay score %.3f; %.0f ms -> %s\n",
-                inputs[0].c_str(), inputs[1].c_str(), alignments.size(),
-                alignments.front().overlay.score, compared.prepare_ms + compared.match_ms,
-                output.c_str());
+    console::summary("%s vs %s: %zu alignments, top overlay score %.3f; %.0f ms -> %s\n",
+                     inputs[0].c_str(), inputs[1].c_str(), alignments.size(),
+                     alignments.front().overlay.score, compared.prepare_ms + compared.match_ms,
+                     output.c_str());
   }
   return 0;
 }

@@ -2,6 +2,7 @@
 // CSV table; optionally the best hits moved onto the query (SDF).
 #include "command.hpp"
 #include "command_files.hpp"
+#include "console.hpp"
 #include "describe_settings.hpp"
 #include "options.hpp"
 #include "screen_mpi.hpp"
@@ -143,11 +144,20 @@ int screen(const std::vector<std::string>& args) {
             ? OutputFile{"--aligned-out", aligned_out, {".pdb"}, "site hits are written as PDB"}
             : OutputFile{"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"}}});
   const auto limit = limit_threads(settings.threads);
-  const screening::ScreenOptions& options = settings.options;
+  screening::ScreenOptions& options = settings.options;
+  if (console::progress_shown()) {
+    auto first = std::make_shared<console::ProgressLine>("stage 1 (fast scores)", "entries");
+    auto second = std::make_shared<console::ProgressLine>("stage 2 (full matches)", "candidates");
+    options.progress = [first, second](int stage, std::int64_t done, std::int64_t total) {
+      (stage == 1 ? *first : *second)(done, total);
+    };
+  }
 
   const Stopwatch clock;
   const screening::Library library(library_path);
   screening::check_library_kind(library, site_query);  // before the query's surface is built
+  console::step(library_path.string() + ": " + std::to_string(library.size()) +
+                " entries, format version " + std::to_string(library.version()));
   matching::PreparedInput prepared = matching::prepare_input(query_input, query_options);
   const screening::ScreenQuery query =
       screening::make_screen_query(std::move(prepared.descriptors), options, prepared.site);
@@ -178,7 +188,7 @@ int screen(const std::vector<std::string>& args) {
     if (!aligned_out.empty()) std::filesystem::remove(aligned_out);
     throw;
   }
-  std::printf(
+  console::summary(
       "%s vs %s: %zu entries, %zu hits; query %.2f s, stage 1 %.2f s (%.0f entries/s), stage 2 "
       "%.2f s (%zu candidates), total %.2f s (%d process%s)\n",
       query_path.string().c_str(), library_path.string().c_str(), library.size(), hits.size(),

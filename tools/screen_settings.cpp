@@ -1,5 +1,7 @@
 #include "screen_settings.hpp"
 
+#include "console.hpp"
+#include "describe_settings.hpp"
 #include "match_settings.hpp"
 #include "options.hpp"
 
@@ -59,6 +61,8 @@ matching::MatchInputOptions screen_query_options(const ScreenSettings& settings)
   matching::MatchInputOptions options;
   options.input.read.record = settings.record;
   options.site = settings.site;
+  options.descriptors.progress = describe_progress();
+  if (console::level() == console::Level::verbose) options.log = &console::step;
   return options;
 }
 

@@ -2,6 +2,7 @@
 // normals, ESP, LP and curvature out; one summary line on stdout.
 #include "command.hpp"
 #include "command_files.hpp"
+#include "console.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
@@ -60,15 +61,15 @@ int surf_build(const std::vector<std::string>& args) {
   }
 
   const mesh::SurfaceMeasures m = mesh::measure_surface(loaded.surface);
-  std::printf("%s: %zu atoms, %zu vertices, %zu faces, area %.1f A^2, ", path.string().c_str(),
-              loaded.molecule ? loaded.molecule->atoms.size() : std::size_t{0},
-              loaded.surface.n_vertices(), loaded.surface.n_faces(), m.area);
+  console::summary("%s: %zu atoms, %zu vertices, %zu faces, area %.1f A^2, ", path.string().c_str(),
+                   loaded.molecule ? loaded.molecule->atoms.size() : std::size_t{0},
+                   loaded.surface.n_vertices(), loaded.surface.n_faces(), m.area);
   if (m.boundary_edges == 0) {
-    std::printf("volume %.1f A^3, ", m.volume);
+    console::summary("volume %.1f A^3, ", m.volume);
   } else {
-    std::printf("volume n/a (open, %zu boundary edges), ", m.boundary_edges);
+    console::summary("volume n/a (open, %zu boundary edges), ", m.boundary_edges);
   }
-  std::printf("Euler %d, %.0f ms -> %s\n", m.euler_characteristic, elapsed, output.c_str());
+  console::summary("Euler %d, %.0f ms -> %s\n", m.euler_characteristic, elapsed, output.c_str());
   return 0;
 }
 

@@ -1,30 +1,19 @@
 #include "surface_input.hpp"
 
+#include "console.hpp"
 #include "options.hpp"
 
-#include <unistd.h>
-
-#include <chrono>
 #include <cstdint>
-#include <cstdio>
+#include <memory>
 
 namespace surfcomp::tools {
 namespace {
 
-/// A progress line on stderr ("ESP 42% of N points"), shown once the sum has run for a second
-/// and cleared at the end.
-mesh::PotentialProgress terminal_progress(const char* what) {
-  return [what, start = std::chrono::steady_clock::time_point{}, calls = 0, shown = false](
-             std::int64_t done, std::int64_t total) mutable {
-    const auto now = std::chrono::steady_clock::now();
-    if (calls++ == 0) start = now;
-    if (!shown && now - start < std::chrono::seconds(1)) return;
-    shown = true;
-    std::fprintf(stderr, "\r%s %3d%% of %lld points", what, static_cast<int>(100 * done / total),
-                 static_cast<long long>(total));
-    if (done == total) std::fprintf(stderr, "\r\033[K");
-    std::fflush(stderr);
-  };
+/// A progress line for an ESP or LP sum (console::ProgressLine), or none.
+mesh::PotentialProgress potential_progress(const char* what) {
+  if (!console::progress_shown()) return {};
+  auto line = std::make_shared<console::ProgressLine>(what, "points");
+  return [line](std::int64_t done, std::int64_t total) { (*line)(done, total); };
 }
 
 }  // namespace
@@ -81,10 +70,8 @@ void finish_surface_options(SurfaceInput& input) {
   require_one_of("lp-kernel", input.lp_kernel, {"fauchere", "dubost"});
   input.surface.lp.kernel = input.lp_kernel == "dubost" ? mesh::LipophilicKernel::dubost
                                                         : mesh::LipophilicKernel::fauchere;
-  if (isatty(STDERR_FILENO) != 0) {
-    input.surface.esp.progress = terminal_progress("ESP");
-    input.surface.lp.progress = terminal_progress("LP");
-  }
+  input.surface.esp.progress = potential_progress("ESP");
+  input.surface.lp.progress = potential_progress("LP");
 }
 
 }  // namespace surfcomp::tools

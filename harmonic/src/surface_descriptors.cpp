@@ -4,6 +4,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <cstdint>
 #include <sstream>
 #include <string>
@@ -85,13 +86,16 @@ SurfaceDescriptors describe_surface(
   }
   result.critical_points.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) result.critical_points[i].point = points[i];
+  std::atomic<std::int64_t> done{0};
   tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
     if (!wanted[i]) {
       result.critical_points[i].status = PatchStatus::skipped;
       return;
     }
     describe_point(surface, image_values, options, result.critical_points[i]);
+    if (options.progress) options.progress(++done, count);
   });
+  if (options.progress) options.progress(count, count);
   result.surface = std::move(surface);
   return result;
 }

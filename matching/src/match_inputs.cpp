@@ -6,10 +6,21 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <utility>
 
 namespace surfcomp::matching {
 namespace {
+
+void log(const MatchInputOptions& options, const std::string& text) {
+  if (options.log) options.log(text);
+}
+
+std::string milliseconds(double ms) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f ms", ms);
+  return text;
+}
 
 bool is_stored_description(const MatchInput& input) {
   return input.descriptors || (!input.path.empty() && harmonic::io::is_hsi_file(input.path));
@@ -40,7 +51,28 @@ void load_site(LoadedInput& side, const Molecule& structure, const MatchInput& i
   side.site = std::move(site.spheres);
 }
 
-LoadedInput load(const MatchInput& input, const MatchInputOptions& options) {
+LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& options);
+
+/// The side read or built, logged as `role`.
+LoadedInput load(const MatchInput& input, const MatchInputOptions& options, const char* role) {
+  const Stopwatch clock;
+  LoadedInput side = load_unlogged(input, options);
+  std::string text = std::string(role) + " " + side.name + ": ";
+  if (side.descriptors) {
+    text += "stored description, " + std::to_string(side.descriptors->surface.n_vertices()) +
+            " vertices, " + std::to_string(side.descriptors->critical_points.size()) +
+            " critical points";
+  } else {
+    if (side.molecule) text += std::to_string(side.molecule->atoms.size()) + " atoms, ";
+    text += "surface of " + std::to_string(side.surface->n_vertices()) + " vertices";
+    if (!side.site.empty())
+      text += " around a site of " + std::to_string(side.site.size()) + " spheres";
+  }
+  log(options, text + " (" + milliseconds(clock.elapsed_ms()) + ")");
+  return side;
+}
+
+LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& options) {
   LoadedInput side;
   side.name = input.name();
   side.site = input.site_spheres;
@@ -76,7 +108,25 @@ LoadedInput load(const MatchInput& input, const MatchInputOptions& options) {
   return side;
 }
 
-PreparedInput describe(LoadedInput side, const harmonic::DescriptorOptions& options) {
+PreparedInput describe_unlogged(LoadedInput side, const harmonic::DescriptorOptions& options);
+
+/// The side described, logged as `role`.
+PreparedInput describe(LoadedInput side, const harmonic::DescriptorOptions& descriptors,
+                       const MatchInputOptions& options, const char* role) {
+  const Stopwatch clock;
+  const bool stored = side.descriptors.has_value();
+  PreparedInput prepared = describe_unlogged(std::move(side), descriptors);
+  if (!stored) {
+    const harmonic::DescriptorCounts counts = harmonic::count_descriptors(prepared.descriptors);
+    log(options, std::string(role) + " " + prepared.name + ": " + std::to_string(counts.peaks) +
+                     " peaks, " + std::to_string(counts.valleys) + " valleys, " +
+                     std::to_string(counts.imaged) + " imaged (" +
+                     milliseconds(clock.elapsed_ms()) + ")");
+  }
+  return prepared;
+}
+
+PreparedInput describe_unlogged(LoadedInput side, const harmonic::DescriptorOptions& options) {
   PreparedInput prepared;
   prepared.name = std::move(side.name);
   prepared.site = std::move(side.site);
@@ -187,7 +237,7 @@ void check_match_input(const MatchInput& input, const MatchInputOptions& options
 
 PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& options) {
   check_match_input(input, options, "input");
-  return describe(load(input, options), options.descriptors);
+  return describe(load(input, options, "input"), options.descriptors, options, "input");
 }
 
 InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
@@ -200,16 +250,16 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
 
   InputMatch out;
   const Stopwatch clock;
-  LoadedInput ref = load(reference, options);
-  LoadedInput prb = load(probe, options);
+  LoadedInput ref = load(reference, options, "REF");
+  LoadedInput prb = load(probe, options, "PROBE");
   // A stored description fixes the parameters the other side is described with; the image
   // memory limit stays the caller's.
   harmonic::DescriptorOptions descriptors = options.descriptors;
   if (ref.descriptors && !prb.descriptors) descriptors = ref.descriptors->options;
   if (prb.descriptors && !ref.descriptors) descriptors = prb.descriptors->options;
   descriptors.max_image_bytes = options.descriptors.max_image_bytes;
-  out.reference = describe(std::move(ref), descriptors);
-  out.probe = describe(std::move(prb), descriptors);
+  out.reference = describe(std::move(ref), descriptors, options, "REF");
+  out.probe = describe(std::move(prb), descriptors, options, "PROBE");
   if (!same_parameters(out.reference.descriptors.options, out.probe.descriptors.options)) {
     throw InputError(out.reference.name + " and " + out.probe.name +
                      ": the .hsi files were built with different parameters (critical point "
@@ -231,6 +281,9 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
                      out.probe.site_points.empty() ? nullptr : &out.probe.site_points);
   out.match_ms = clock.elapsed_ms() - out.prepare_ms;
   out.warnings = match_warnings(out.result, match);
+  log(options, "match: " + std::to_string(out.result.alignments.size()) + " alignments from " +
+                   std::to_string(out.result.cliques) + " cliques (" + milliseconds(out.match_ms) +
+                   ")");
   return out;
 }
 

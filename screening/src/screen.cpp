@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <map>
 #include <numeric>
@@ -137,9 +138,13 @@ std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& libra
   end = std::min(end, library.size());
   begin = std::min(begin, end);
   std::vector<HitScore> scores(end - begin);
+  const auto total = static_cast<std::int64_t>(end - begin);
+  std::atomic<std::int64_t> done{0};
   tbb::parallel_for(begin, end, [&](std::size_t e) {
     scores[e - begin] = fast_score(query, library.entry(e), options);
+    if (options.progress) options.progress(1, ++done, total);
   });
+  if (options.progress) options.progress(1, total, total);
   return scores;
 }
 
@@ -185,9 +190,14 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
                                    molecule, query.descriptors.options);
     result = matching::match_surfaces(query.descriptors, described, match);
   } else {
-    const Molecule molecule = io::read_record_molecule(entry.molecule, options.read);
+    matching::BindingSite site;
+    site.structure = io::read_record_molecule(entry.molecule, options.read);
+    site.spheres = entry.site;
+    site.surface_margin =
+        std::max(matching::BindingSiteOptions{}.surface_margin,
+                 query.descriptors.options.patch.radius + matching::surface_margin_beyond_patch);
     const harmonic::SurfaceDescriptors described =
-        matching::describe_site(mesh::build_molecular_surface(molecule, options.surface), molecule,
+        matching::describe_site(matching::build_site_surface(site, options.surface), site.structure,
                                 entry.site, query.descriptors.options);
     const std::vector<bool> in_site = matching::critical_points_in_site(described, entry.site);
     result =
@@ -224,9 +234,13 @@ ScreenResult screen(const ScreenQuery& query, const Library& library,
   const std::vector<std::size_t> best = best_entry_per_molecule(library, fast);
   result.stage1_seconds = clock.elapsed_s();
   std::vector<HitScore> full(std::min(options.candidates, best.size()));
+  const auto total = static_cast<std::int64_t>(full.size());
+  std::atomic<std::int64_t> done{0};
   tbb::parallel_for(std::size_t{0}, full.size(), [&](std::size_t i) {
     full[i] = full_score(query, library.entry(best[i]), options);
+    if (options.progress) options.progress(2, ++done, total);
   });
+  if (options.progress) options.progress(2, total, total);
   result.stage2_seconds = clock.elapsed_s() - result.stage1_seconds;
   result.hits = rank_hits(best, fast, full, options.top);
   return result;

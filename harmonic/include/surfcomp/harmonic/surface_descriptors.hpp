@@ -36,6 +36,9 @@ struct DescriptorOptions {
   /// image_bytes(image, n) for the n critical points to be imaged
   /// (docs/decisions.md#resource-limits).
   std::int64_t max_image_bytes = std::int64_t{1} << 30;
+  /// Default none. Called as critical points are described (done, total), from the worker
+  /// threads (it must be thread-safe), and once with done == total at the end.
+  std::function<void(std::int64_t done, std::int64_t total)> progress;
 };
 
 /// The memory of `count` shape images on the grid of `image`, bytes: per grid point a value,

@@ -13,6 +13,7 @@
 #include "surfcomp/mesh/surface.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,9 @@ struct MatchInputOptions {
   BindingSiteOptions site;  ///< spheres of 4 A around a site ligand, surface margin 16 A
   /// The match; its mode is set to MatchMode::binding_sites when either side has a site.
   MatchOptions match;
+  /// Default none. Told, one line each, what each step did as it ends (a side read and
+  /// surfaced, a side described, the match), for a verbose front end.
+  std::function<void(const std::string&)> log;
 };
 
 /// A side ready to be matched.

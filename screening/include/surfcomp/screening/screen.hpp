@@ -20,6 +20,8 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <vector>
@@ -39,6 +41,9 @@ struct ScreenOptions {
   /// `surfcomp match` (its descriptors are built with the query's DescriptorOptions).
   io::MoleculeReadOptions read;
   mesh::MolecularSurfaceOptions surface;
+  /// Default none. Called as entries are scored, (stage 1 or 2, done, total), from the worker
+  /// threads (it must be thread-safe), and once with done == total at the end of each stage.
+  std::function<void(int stage, std::int64_t done, std::int64_t total)> progress;
 };
 
 /// The query, described once: its descriptors (stage 2) and its overlay samples (stage 1).
@@ -102,7 +107,8 @@ std::vector<std::size_t> best_entry_per_molecule(const Library& library,
 
 /// Stage 2 of one entry: the full match of the query with the entry's molecule, rebuilt (see
 /// ScreenOptions::read, surface; a site's structure described at its site, matched as binding
-/// sites); the top alignment's overlay score and transform. An entry
+/// sites, its surface that of the atoms within the site's margin, as matching::build_site_surface
+/// builds it); the top alignment's overlay score and transform. An entry
 /// without any alignment scores 0 with the identity. Throws what reading the molecule,
 /// building its surface or matching throws.
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
