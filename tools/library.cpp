@@ -10,9 +10,6 @@
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/library_build.hpp"
 
-#include <tbb/global_control.h>
-
-
 #include <cmath>
 #include <cstdio>
 #include <functional>
