@@ -71,6 +71,12 @@ def parse_args(argv=None):
     parser.add_argument("--skip-surfcomp", action="store_true",
                         help="no surfcomp: RDKit library conformers, baselines only")
     parser.add_argument("--skip-o3a", action="store_true", help="no Open3DAlign baseline")
+    parser.add_argument("--o3a-workers", type=int, default=1,
+                        help="processes for the Open3DAlign baseline (default 1); its time per "
+                             "conformer is the processes' CPU time, so it does not depend on this")
+    parser.add_argument("--resume", action="store_true",
+                        help="with --work: reuse a target's figures from an earlier run of the same "
+                             "settings (WORK/TARGET/result.json) instead of running it again")
     args = parser.parse_args(argv)
     args.targets = [t for t in args.targets.split(",") if t]
     for target in args.targets:
@@ -286,29 +292,20 @@ def with_hydrogens(mol):
     return Chem.AddHs(mol, addCoords=True)
 
 
-def o3a_shape_scores(queries, library):
-    """Open3DAlign (MMFF94) of every library conformer onto each query, then shape Tanimoto.
+# The Open3DAlign worker processes' inputs, set before the pool forks (so nothing is pickled in).
+_O3A_QUERIES = None
+_O3A_PREPARED = None
 
-    The similarity of a conformer is 1 - ShapeTanimotoDist after the alignment; a molecule's is
-    its best conformer's. A molecule MMFF cannot type, or whose alignment fails, scores 0 and is
-    listed. Returns (scores, timing, failed): scores[q][name], seconds spent on the MMFF
-    properties of the library and on aligning and scoring, and the names that scored 0.
-    """
-    start = time.perf_counter()
-    prepared = {}
-    failed = []
-    for name, mol in library.items():
-        mol = with_hydrogens(mol)
-        properties = AllChem.MMFFGetMoleculeProperties(mol)
-        if properties is None:
-            failed.append(name)
-        prepared[name] = (mol, properties)
-    query_properties = [AllChem.MMFFGetMoleculeProperties(q) for q in queries]
-    prepare = time.perf_counter() - start
-    start = time.perf_counter()
+
+def _o3a_chunk(names):
+    """Scores of the library molecules `names` against every query (a worker's share): ({q: {name:
+    score}}, failed names, CPU seconds)."""
+    start = time.process_time()
+    queries, query_properties = _O3A_QUERIES
     scores = [dict() for _ in queries]
-    alignment_failures = set()
-    for name, (mol, properties) in prepared.items():
+    failures = set()
+    for name in names:
+        mol, properties = _O3A_PREPARED[name]
         for q, query in enumerate(queries):
             if properties is None or query_properties[q] is None:
                 scores[q][name] = 0.0
@@ -323,13 +320,57 @@ def o3a_shape_scores(queries, library):
                     alignment.Align()
                     similarity = 1.0 - rdShapeHelpers.ShapeTanimotoDist(query, probe, confId2=cid)
                 except (RuntimeError, ValueError):
-                    alignment_failures.add(name)
+                    failures.add(name)
                     continue
                 best = max(best, similarity)
             scores[q][name] = best
-    score = time.perf_counter() - start
+    return scores, failures, time.process_time() - start
+
+
+def o3a_shape_scores(queries, library, workers=1):
+    """Open3DAlign (MMFF94) of every library conformer onto each query, then shape Tanimoto.
+
+    The similarity of a conformer is 1 - ShapeTanimotoDist after the alignment; a molecule's is
+    its best conformer's. A molecule MMFF cannot type, or whose alignment fails, scores 0 and is
+    listed. With workers > 1 the molecules are shared among that many forked processes. Returns
+    (scores, timing, failed): scores[q][name]; the seconds spent on the MMFF properties of the
+    library, and on aligning and scoring as CPU time summed over the processes (score_s) and as
+    wall time (score_wall_s); and the names that scored 0.
+    """
+    global _O3A_QUERIES, _O3A_PREPARED
+    start = time.perf_counter()
+    prepared = {}
+    failed = []
+    for name, mol in library.items():
+        mol = with_hydrogens(mol)
+        properties = AllChem.MMFFGetMoleculeProperties(mol)
+        if properties is None:
+            failed.append(name)
+        prepared[name] = (mol, properties)
+    query_properties = [AllChem.MMFFGetMoleculeProperties(q) for q in queries]
+    prepare = time.perf_counter() - start
+    _O3A_QUERIES, _O3A_PREPARED = (queries, query_properties), prepared
+    names = list(prepared)
+    chunks = [names[i::max(1, workers)] for i in range(max(1, workers))]
+    start = time.perf_counter()
+    if workers > 1:
+        import multiprocessing
+        with multiprocessing.get_context("fork").Pool(workers) as pool:
+            parts = pool.map(_o3a_chunk, chunks)
+    else:
+        parts = [_o3a_chunk(names)]
+    wall = time.perf_counter() - start
+    scores = [dict() for _ in queries]
+    alignment_failures = set()
+    cpu = 0.0
+    for part_scores, part_failures, part_cpu in parts:
+        for q in range(len(queries)):
+            scores[q].update(part_scores[q])
+        alignment_failures |= part_failures
+        cpu += part_cpu
+    _O3A_QUERIES, _O3A_PREPARED = None, None
     failed = sorted(set(failed) | alignment_failures)
-    return scores, {"prepare_s": prepare, "score_s": score}, failed
+    return scores, {"prepare_s": prepare, "score_s": cpu, "score_wall_s": wall}, failed
 
 
 def roc_auc(scores, labels):
@@ -462,7 +503,26 @@ def write_scores(path, names, active_names, scores_by_method):
             writer.writerow(row)
 
 
+RESUMED_SETTINGS = ("queries", "conformers", "max_actives", "max_decoys", "seed", "skip_surfcomp",
+                    "skip_o3a")
+
+
 def run_target(args, target, work):
+    """Runs the screen of one target and returns its figures as a dict (kept as
+    WORK/TARGET/result.json; with --resume, an earlier one of the same settings is reused)."""
+    saved = work / target / "result.json"
+    settings = {k: getattr(args, k) for k in RESUMED_SETTINGS}
+    if args.resume and saved.is_file():
+        earlier = json.loads(saved.read_text())
+        if earlier.get("settings") == settings:
+            log(f"{target}: reusing {saved}")
+            return earlier["result"]
+    result = run_target_anew(args, target, work)
+    saved.write_text(json.dumps({"settings": settings, "result": result}, indent=1))
+    return result
+
+
+def run_target_anew(args, target, work):
     """Runs the screen of one target and returns its figures as a dict."""
     dud = args.datasets / "dud"
     actives = read_dud_list(dud / f"cmp_list_DUD_{target}_actives.dat.gz")
@@ -519,7 +579,7 @@ def run_target(args, target, work):
     if not args.skip_o3a:
         log(f"  Open3DAlign: {conformers} conformers x {len(query_mols)} queries")
         scores["o3a_shape"], result["timing"]["o3a_shape"], result["o3a_failed"] = \
-            o3a_shape_scores(query_mols, library)
+            o3a_shape_scores(query_mols, library, args.o3a_workers)
 
     result["per_query"] = {}
     result["mean"] = {}
@@ -585,7 +645,7 @@ def summary_table(args, results, means):
     lines.append("time per library conformer, ms (mean over targets): build or prepare once; screen per query")
     labels = {"surfcomp": f"surfcomp (--threads {args.threads}, wall)",
               "usrcat": "USRCAT (1 thread): descriptor; score",
-              "o3a_shape": "O3A-shape (1 thread): MMFF typing; align + shape",
+              "o3a_shape": "O3A-shape (CPU time, 1 thread): MMFF typing; align + shape",
               "rdkit_conformers": "RDKit ETKDG + MMFF conformers (1 thread)"}
     for key, label in labels.items():
         build = mean([r["per_conformer_ms"].get(key, {}).get("build_ms") for r in results.values()])
