@@ -1,9 +1,12 @@
-// libFuzzer harness: the command-line option parsing the subcommands share (tools/options.cpp
-// and tools/surface_input.cpp), over an option table like hsi-build's: its own options, the
-// surface options, and options with a former name. The input is the argument list, one
+// libFuzzer harness: the command-line option parsing the subcommands share (tools/options.cpp),
+// over their own option sets (tools/*_settings.hpp, which the Python module's keyword arguments
+// go through too): describe (hsi-build, patch-map), match (match, report) and screen, with the
+// surface options and the options with a former name. The input is the argument list, one
 // argument per line (or NUL-separated).
+#include "describe_settings.hpp"
+#include "match_settings.hpp"
 #include "options.hpp"
-#include "surface_input.hpp"
+#include "screen_settings.hpp"
 
 #include "surfcomp/core/error.hpp"
 
@@ -30,37 +33,35 @@ std::vector<std::string> split_arguments(const std::uint8_t* data, std::size_t s
   return args;
 }
 
-void parse(const std::vector<std::string>& args) {
+/// Parses `args` with one of the subcommands' own option sets, chosen by the first argument's
+/// length: describe (hsi-build, patch-map), match (match, report, the Python module's match) or
+/// screen, each with the surface options where the subcommand has them.
+void parse(std::vector<std::string> args) {
   namespace po = boost::program_options;
   using namespace surfcomp::tools;
+  const std::size_t set = args.empty() ? 0 : args.front().size() % 3;
   std::string output;
-  double radius = 0.0;
-  int rings = 0;
-  int sectors = 0;
-  int threads = 0;
-  std::string weights;
-  SurfaceInput input;
   po::options_description described("options");
-  // clang-format off
-  described.add_options()
-      ("help,h", "print this help")
-      ("output,o", po::value(&output)->required(), "output file")
-      ("critical-point-radius", po::value(&radius)->default_value(1.5), "A")
-      ("image-rings", po::value(&rings)->default_value(16), "rings")
-      ("image-sectors", po::value(&sectors)->default_value(64), "sectors")
-      ("weights", po::value(&weights)->default_value("inverse-length"), "weights")
-      ("threads", po::value(&threads)->default_value(0), "threads")
-      ("ascii", po::bool_switch(), "ascii");
-  // clang-format on
-  add_surface_options(described, input);
+  described.add_options()("help,h", "print this help")("output,o", po::value(&output), "output");
+  DescribeSettings describe;
+  MatchSettings match;
+  ScreenSettings screen;
+  if (set == 0) {
+    add_describe_options(described, describe);
+  } else if (set == 1) {
+    add_match_options(described, match);
+  } else {
+    add_screen_options(described, screen);
+  }
   po::variables_map vm;
   if (!parse_command_line(args, described, 2, "usage: fuzz_options", vm)) return;
-  finish_surface_options(input);
-  require_in_range("critical-point-radius", radius, 1e-3, 100.0);
-  require_in_range("image-rings", rings, 1, 1024);
-  require_in_range("image-sectors", sectors, 1, 4096);
-  require_in_range("threads", threads, 0, 1024);
-  require_one_of("weights", weights, {"inverse-length", "uniform", "cotangent", "mean-value"});
+  if (set == 0) {
+    finish_describe_options(describe);
+  } else if (set == 1) {
+    finish_match_options(match, vm);
+  } else {
+    finish_screen_options(screen);
+  }
 }
 
 }  // namespace

@@ -352,8 +352,11 @@ TEST(Match, SiteMatchWithoutCliquesStillAlignsFromThePrincipalAxes) {
   ASSERT_FALSE(result.alignments.empty());
   for (const auto& a : result.alignments)
     EXPECT_EQ(a.source, matching::AlignmentSource::principal_axes);
-  // Shape alone ranks site poses (site.chem_weight 0): score and shape Tanimoto coincide.
-  EXPECT_DOUBLE_EQ(result.alignments[0].overlay.score, result.alignments[0].overlay.shape);
+  // Site poses rank on (shape + w chem) / (1 + w), w = site.chem_weight, without the atoms.
+  const matching::OverlayScore& top = result.alignments[0].overlay;
+  const double w = options.site.chem_weight;
+  EXPECT_NEAR(top.score, (top.shape + w * top.chem) / (1.0 + w), 1e-12);
+  EXPECT_EQ(top.atoms, 0.0);
   const auto [angle, shift] =
       transform_error(result.alignments[0].transform, motion.inverse(), centroid(probe.surface));
   std::printf(
@@ -396,15 +399,16 @@ TEST(Match, AnAllTrueMaskInWholeSurfaceModeChangesNothing) {
     EXPECT_EQ(x.overlay.atoms, y.overlay.atoms) << "rank " << k + 1;
   }
   // The whole-surface score weighs the chemistry and the atoms; a binding-site match of the
-  // same masks ranks on the linings' shape alone.
+  // same masks ranks on the linings' shape and a quarter-weight chemistry, without atoms.
   EXPECT_NE(unmasked.alignments[0].overlay.score, unmasked.alignments[0].overlay.shape);
   matching::MatchOptions site_options;
   site_options.mode = matching::MatchMode::binding_sites;
   const auto site =
       matching::match_surfaces(reference, probe, site_options, &all_reference, &all_probe);
   ASSERT_FALSE(site.alignments.empty());
-  EXPECT_EQ(site.alignments[0].overlay.score, site.alignments[0].overlay.shape);
-  EXPECT_EQ(site.alignments[0].overlay.atoms, 0.0);
+  const matching::OverlayScore& lining = site.alignments[0].overlay;
+  EXPECT_NEAR(lining.score, (lining.shape + 0.25 * lining.chem) / 1.25, 1e-12);
+  EXPECT_EQ(lining.atoms, 0.0);
 }
 
 // The options are checked before any work: a bad option is an OptionError naming it even where

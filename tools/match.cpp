@@ -51,9 +51,9 @@ constexpr const char* kUsage =
     "spheres. A site's surface is that of the atoms within --site-margin of its spheres (the\n"
     "whole structure's surface wherever patches of up to 8 A reach; ESP and LP from every\n"
     "atom). A site match overlays the pocket linings (within --site-overlay-radius of the\n"
-    "site's critical points) on shape alone (--site-chem-weight 0) from the cliques and 24\n"
-    "principal-axes starts; the top-1 overlay score is then the sites' similarity (shape\n"
-    "Tanimoto of the linings).";
+    "site's critical points) on shape and, weighted by --site-chem-weight, ESP/LP colour from\n"
+    "the cliques and 24 principal-axes starts; the top-1 overlay score is then the sites'\n"
+    "similarity ((shape + w chem) / (1 + w) Tanimoto of the linings).";
 
 /// The formats --aligned-out can take for this PROBE: a molecule moves as PDB, an SDF, MOL or
 /// MOL2 file also as SDF (its bonds kept), any side as its surface (PLY).

@@ -45,7 +45,7 @@ constexpr const char* kUsage =
     "QUERY  a molecule (.sdf .mol .mol2 .pdb; --record N of a multi-molecule file) or a .hsi\n"
     "       file built from one; with --site-ligand or --site-sphere, a binding site on a\n"
     "       structure, screened against a pocket library (library build --sites): the overlays\n"
-    "       then compare pocket linings on shape, as `match` does for sites (all 24 axes orders\n"
+    "       then compare pocket linings as `match` does for sites (all 24 axes orders\n"
     "       in stage 1), and --aligned-out writes the hits' structures moved onto QUERY (.pdb,\n"
     "       one MODEL per hit).";
 

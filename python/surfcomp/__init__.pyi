@@ -172,7 +172,7 @@ def match(
     overlay_tolerance: float = 0.1,
     principal_axes_starts: int = 24,
     site_overlay_radius: float = 2.0,
-    site_chem_weight: float = 0.0,
+    site_chem_weight: float = 0.25,
     site_principal_axes_starts: int = 24,
     patch_radius: float = 5.0,
     max_image_bytes: int = 1073741824,

@@ -37,9 +37,11 @@ struct SiteMatchOptions {
   /// Default 2 A. The pocket lining is the vertices within this distance of a critical point
   /// that takes part. Finite, > 0.
   double overlay_radius = 2.0;
-  /// Default 0: poses are refined and ranked on the linings' shape Tanimoto alone. The
-  /// overlay's chem_weight for sites (the atom term takes no part). Finite, >= 0.
-  double chem_weight = 0.0;
+  /// Default 0.25: poses are refined and ranked on (shape + 0.25 chem) / 1.25 of the linings,
+  /// mostly shape, with the ESP/LP colour telling pockets of like size apart
+  /// (docs/decisions.md#site-matches). The overlay's chem_weight for sites (the atom term takes
+  /// no part). Finite, >= 0.
+  double chem_weight = 0.25;
   /// Default 24. principal_axes_starts for sites: 0, 4 or 24.
   int principal_axes_starts = 24;
 };
