@@ -75,21 +75,36 @@ bool contains(const std::vector<int>& sorted, int x) {
   return std::binary_search(sorted.begin(), sorted.end(), x);
 }
 
+/// Membership in a list of mesh elements (faces or vertices) in constant time: a flag per
+/// element of the mesh, set for the listed ones.
+class Membership {
+ public:
+  Membership(std::size_t elements, const std::vector<int>& listed) : in_(elements, 0) {
+    for (const int i : listed) in_[static_cast<std::size_t>(i)] = 1;
+  }
+  bool operator()(int i) const { return i >= 0 && in_[static_cast<std::size_t>(i)] != 0; }
+  void remove(int i) { in_[static_cast<std::size_t>(i)] = 0; }
+
+ private:
+  std::vector<char> in_;
+};
+
 /// True when the edge of `h` is a border edge of the patch `faces`: the face across it is
 /// missing or not in the patch.
-bool is_border(const TriMesh& mesh, HalfedgeHandle h, const std::vector<int>& faces) {
+bool is_border(const TriMesh& mesh, HalfedgeHandle h, const Membership& faces) {
   const FaceHandle across = mesh.face_handle(mesh.opposite_halfedge_handle(h));
-  return !across.is_valid() || !contains(faces, across.idx());
+  return !across.is_valid() || !faces(across.idx());
 }
 
 /// The halfedges of a patch border: those of patch faces whose edge is a border edge, with
 /// the patch on their left, sorted by their start vertex.
 std::vector<std::pair<int, HalfedgeHandle>> border_halfedges(const TriMesh& mesh,
                                                              const std::vector<int>& faces) {
+  const Membership in_patch(mesh.n_faces(), faces);
   std::vector<std::pair<int, HalfedgeHandle>> out;
   for (const int f : faces) {
     for (const auto h : mesh.fh_range(FaceHandle(f))) {
-      if (is_border(mesh, h, faces)) out.emplace_back(mesh.from_vertex_handle(h).idx(), h);
+      if (is_border(mesh, h, in_patch)) out.emplace_back(mesh.from_vertex_handle(h).idx(), h);
     }
   }
   std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -99,11 +114,11 @@ std::vector<std::pair<int, HalfedgeHandle>> border_halfedges(const TriMesh& mesh
 /// The fans of patch faces around `v`: each starts at an outgoing border halfedge of v and
 /// turns around v through patch faces until the next border edge. Empty for an interior vertex.
 std::vector<std::vector<int>> fans_at(const TriMesh& mesh, VertexHandle v,
-                                      const std::vector<int>& faces) {
+                                      const Membership& faces) {
   std::vector<std::vector<int>> fans;
   for (const auto h0 : mesh.voh_range(v)) {
     const FaceHandle f0 = mesh.face_handle(h0);
-    if (!f0.is_valid() || !contains(faces, f0.idx()) || !is_border(mesh, h0, faces)) continue;
+    if (!f0.is_valid() || !faces(f0.idx()) || !is_border(mesh, h0, faces)) continue;
     std::vector<int> fan;
     HalfedgeHandle h = h0;
     while (true) {
@@ -160,10 +175,11 @@ std::vector<int> select_within_radius(const Surface& surface,
   check_length(surface, margin, "margin", caller);
   check_distance_list(surface, distances, caller);
   const TriMesh& mesh = tri_mesh(surface);
-  std::vector<int> core;
+  std::vector<int> core_list;
   for (const auto& [v, d] : distances) {
-    if (d <= radius) core.push_back(v);
+    if (d <= radius) core_list.push_back(v);
   }
+  const Membership core(mesh.n_vertices(), core_list);
   const double outer = radius * (1.0 + margin);
   std::vector<int> out;
   for (const auto& [v, d] : distances) {
@@ -171,7 +187,7 @@ std::vector<int> select_within_radius(const Surface& surface,
       out.push_back(v);
     } else if (d <= outer) {
       for (const auto w : mesh.vv_range(VertexHandle(v))) {
-        if (contains(core, w.idx())) {
+        if (core(w.idx())) {
           out.push_back(v);
           break;
         }
@@ -185,11 +201,12 @@ std::vector<int> faces_with_three_selected(const Surface& surface,
                                            const std::vector<int>& selected) {
   check_index_list(surface, selected, surface.n_vertices(), "vertex", "faces_with_three_selected");
   const TriMesh& mesh = tri_mesh(surface);
+  const Membership is_selected(mesh.n_vertices(), selected);
   std::vector<int> out;
   for (const int v : selected) {
     for (const auto f : mesh.vf_range(VertexHandle(v))) {
       bool all = true;
-      for (const auto w : mesh.fv_range(f)) all = all && contains(selected, w.idx());
+      for (const auto w : mesh.fv_range(f)) all = all && is_selected(w.idx());
       if (all) out.push_back(f.idx());
     }
   }
@@ -201,10 +218,12 @@ std::vector<int> faces_with_three_selected(const Surface& surface,
 std::vector<int> remove_dangling_triangles(const Surface& surface, const std::vector<int>& faces) {
   check_index_list(surface, faces, surface.n_faces(), "face", "remove_dangling_triangles");
   const TriMesh& mesh = tri_mesh(surface);
+  const Membership in_patch(mesh.n_faces(), faces);
   std::vector<int> out;
   for (const int f : faces) {
     int border = 0;
-    for (const auto h : mesh.fh_range(FaceHandle(f))) border += is_border(mesh, h, faces) ? 1 : 0;
+    for (const auto h : mesh.fh_range(FaceHandle(f)))
+      border += is_border(mesh, h, in_patch) ? 1 : 0;
     if (border <= 1) out.push_back(f);
   }
   return out;
@@ -216,10 +235,11 @@ std::vector<int> remove_isolated_vertices(const Surface& surface, const std::vec
   check_index_list(surface, vertices, surface.n_vertices(), "vertex", caller);
   check_index_list(surface, faces, surface.n_faces(), "face", caller);
   const TriMesh& mesh = tri_mesh(surface);
+  const Membership in_patch(mesh.n_faces(), faces);
   std::vector<int> out;
   for (const int v : vertices) {
     for (const auto f : mesh.vf_range(VertexHandle(v))) {
-      if (contains(faces, f.idx())) {
+      if (in_patch(f.idx())) {
         out.push_back(v);
         break;
       }
@@ -239,8 +259,9 @@ std::vector<int> resolve_nonmanifold_vertices(const Surface& surface,
   }
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  Membership in_out(mesh.n_faces(), out);
   for (const int v : vertices) {
-    const auto fans = fans_at(mesh, VertexHandle(v), out);
+    const auto fans = fans_at(mesh, VertexHandle(v), in_out);
     if (fans.size() < 2) continue;
     // Keep the fan with the most faces; ties go to the fan holding the lowest face index.
     std::size_t keep = 0;
@@ -258,6 +279,7 @@ std::vector<int> resolve_nonmanifold_vertices(const Surface& surface,
       if (i != keep) removed.insert(removed.end(), fans[i].begin(), fans[i].end());
     }
     std::sort(removed.begin(), removed.end());
+    for (const int f : removed) in_out.remove(f);
     std::vector<int> kept;
     std::set_difference(out.begin(), out.end(), removed.begin(), removed.end(),
                         std::back_inserter(kept));
@@ -271,31 +293,27 @@ std::vector<int> keep_component(const Surface& surface, const std::vector<int>& 
   check_vertex(surface, vertex, caller);
   check_index_list(surface, faces, surface.n_faces(), "face", caller);
   const TriMesh& mesh = tri_mesh(surface);
+  Membership unreached(mesh.n_faces(), faces);  // patch faces not reached yet
   int seed = -1;
   for (const auto f : mesh.vf_range(VertexHandle(vertex))) {
-    if (contains(faces, f.idx()) && (seed < 0 || f.idx() < seed)) seed = f.idx();
+    if (unreached(f.idx()) && (seed < 0 || f.idx() < seed)) seed = f.idx();
   }
   if (seed < 0) return {};
-  std::vector<char> reached(faces.size(), 0);
-  const auto slot = [&faces](int f) {
-    return static_cast<std::size_t>(std::lower_bound(faces.begin(), faces.end(), f) -
-                                    faces.begin());
-  };
   std::vector<int> stack = {seed};
-  reached[slot(seed)] = 1;
+  unreached.remove(seed);
   while (!stack.empty()) {
     const int f = stack.back();
     stack.pop_back();
     for (const auto h : mesh.fh_range(FaceHandle(f))) {
       const FaceHandle g = mesh.face_handle(mesh.opposite_halfedge_handle(h));
-      if (!g.is_valid() || !contains(faces, g.idx()) || reached[slot(g.idx())]) continue;
-      reached[slot(g.idx())] = 1;
+      if (!g.is_valid() || !unreached(g.idx())) continue;
+      unreached.remove(g.idx());
       stack.push_back(g.idx());
     }
   }
   std::vector<int> out;
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    if (reached[i]) out.push_back(faces[i]);
+  for (const int f : faces) {
+    if (!unreached(f)) out.push_back(f);
   }
   return out;
 }
