@@ -113,14 +113,8 @@ mesh::Surface build_site_surface(const BindingSite& site,
                                  const mesh::MolecularSurfaceOptions& options) {
   const Molecule& structure = site.structure;
   validate_molecule(structure);
+  const auto [centers, radii] = mesh::atom_balls(structure);
   const auto n = static_cast<Eigen::Index>(structure.atoms.size());
-  Eigen::MatrixX3d centers(n, 3);
-  Eigen::VectorXd radii(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const Atom& atom = structure.atoms[static_cast<std::size_t>(i)];
-    centers.row(i) = atom.position.transpose();
-    radii(i) = atom.radius;
-  }
   mesh::SesOptions ses = options.ses;
   ses.voxel_size = mesh::ses_voxel_size(centers, radii, ses);
   std::vector<Eigen::Index> near;

@@ -4,17 +4,21 @@
 
 namespace surfcomp::mesh {
 
-Surface build_molecular_surface(const Molecule& molecule, const MolecularSurfaceOptions& options) {
-  validate_molecule(molecule);
+AtomBalls atom_balls(const Molecule& molecule) {
   const auto n = static_cast<Eigen::Index>(molecule.atoms.size());
-  Eigen::MatrixX3d centers(n, 3);
-  Eigen::VectorXd radii(n);
+  AtomBalls balls{Eigen::MatrixX3d(n, 3), Eigen::VectorXd(n)};
   for (Eigen::Index i = 0; i < n; ++i) {
     const Atom& atom = molecule.atoms[static_cast<std::size_t>(i)];
-    centers.row(i) = atom.position.transpose();
-    radii(i) = atom.radius;
+    balls.centers.row(i) = atom.position.transpose();
+    balls.radii(i) = atom.radius;
   }
-  Surface surface = build_ses(centers, radii, options.ses);
+  return balls;
+}
+
+Surface build_molecular_surface(const Molecule& molecule, const MolecularSurfaceOptions& options) {
+  validate_molecule(molecule);
+  const AtomBalls balls = atom_balls(molecule);
+  Surface surface = build_ses(balls.centers, balls.radii, options.ses);
   surface.set_source(molecule.source);
   require_closed_manifold(surface);
   assign_surface_properties(surface, &molecule, options);

@@ -83,13 +83,18 @@ py::array owned_array(Matrix&& matrix) {
 
 // --- options ------------------------------------------------------------------------------------
 
-/// Parses `args` (the keyword options as command-line words) with an option set; throws
-/// ValueError (through the translator) for unknown options and bad values, as the CLI refuses
-/// them.
-void parse_options(const std::vector<std::string>& args,
-                   const boost::program_options::options_description& options,
-                   boost::program_options::variables_map& vm) {
+/// `settings` from `args` (the keyword options as command-line words) with a subcommand's
+/// option set: `add` binds the options to `settings`, `finish(settings, vm)` checks and
+/// completes them. Unknown options and bad values throw (ValueError through the translator) as
+/// the CLI refuses them.
+template <class Settings, class Add, class Finish>
+void parse_settings(const std::vector<std::string>& args, Settings& settings, Add add,
+                    Finish finish) {
+  boost::program_options::options_description options;
+  add(options, settings);
+  boost::program_options::variables_map vm;
   tools::parse_command_line(args, options, 0, "", vm);
+  finish(settings, vm);
 }
 
 /// The default of every option of `options`, as text ("" for options without one): the
@@ -318,13 +323,8 @@ void save_surface(const mesh::Surface& surface, const std::filesystem::path& p, 
 
 PySurface build_surface(const py::object& input, const std::vector<std::string>& args) {
   tools::SurfaceInput settings;
-  boost::program_options::options_description options;
-  tools::add_surface_options(options, settings);
-  boost::program_options::variables_map vm;
-  parse_options(args, options, vm);
-  tools::finish_surface_options(settings);
-  settings.surface.esp.progress = {};  // quiet: no progress line from Python
-  settings.surface.lp.progress = {};
+  parse_settings(args, settings, &tools::add_surface_options,
+                 [](tools::SurfaceInput& s, const auto&) { tools::finish_surface_options(s); });
   matching::MatchInput in = input_of(input, settings.read);
   py::gil_scoped_release release;
   PySurface out;
@@ -343,13 +343,9 @@ PySurface build_surface(const py::object& input, const std::vector<std::string>&
 
 PyDescriptors describe(const py::object& input, const std::vector<std::string>& args) {
   tools::DescribeSettings settings;
-  boost::program_options::options_description options;
-  tools::add_describe_options(options, settings);
-  boost::program_options::variables_map vm;
-  parse_options(args, options, vm);
-  tools::finish_describe_options(settings);
-  settings.input.surface.esp.progress = {};
-  settings.input.surface.lp.progress = {};
+  parse_settings(
+      args, settings, &tools::add_describe_options,
+      [](tools::DescribeSettings& s, const auto&) { tools::finish_describe_options(s); });
   matching::MatchInputOptions match_options;
   match_options.input = settings.input;
   match_options.descriptors = settings.descriptors;
@@ -373,13 +369,12 @@ py::dict match(const py::object& reference, const py::object& probe,
                const std::vector<std::string>& args, const std::string& report_path) {
   tools::MatchSettings settings;
   int threads = 0;
-  boost::program_options::options_description options;
-  add_python_match_options(options, settings, threads);
-  boost::program_options::variables_map vm;
-  parse_options(args, options, vm);
-  tools::finish_match_options(settings, vm);
-  settings.input.surface.esp.progress = {};
-  settings.input.surface.lp.progress = {};
+  parse_settings(
+      args, settings,
+      [&threads](auto& options, tools::MatchSettings& s) {
+        add_python_match_options(options, s, threads);
+      },
+      &tools::finish_match_options);
   const matching::MatchInputOptions match_options = tools::match_input_options(settings);
   const matching::MatchInput ref =
       tools::with_site(input_of(reference, settings.input.read), settings, true);
@@ -400,11 +395,8 @@ py::dict match(const py::object& reference, const py::object& probe,
 py::list screen(const py::object& query, const std::string& library_path,
                 const std::vector<std::string>& args) {
   tools::ScreenSettings settings;
-  boost::program_options::options_description options;
-  tools::add_screen_options(options, settings);
-  boost::program_options::variables_map vm;
-  parse_options(args, options, vm);
-  tools::finish_screen_options(settings);
+  parse_settings(args, settings, &tools::add_screen_options,
+                 [](tools::ScreenSettings& s, const auto&) { tools::finish_screen_options(s); });
   const matching::MatchInputOptions query_options = tools::screen_query_options(settings);
   const matching::MatchInput in =
       tools::screen_query_input(input_of(query, query_options.input.read), settings);

@@ -24,6 +24,13 @@ struct MolecularSurfaceOptions {
   }();
 };
 
+/// The atoms of a molecule as balls, in its order.
+struct AtomBalls {
+  Eigen::MatrixX3d centers;  ///< #A by 3, A
+  Eigen::VectorXd radii;     ///< #A, A
+};
+AtomBalls atom_balls(const Molecule& molecule);
+
 /// Builds the solvent-excluded surface of `molecule` (atom positions and radii) and assigns the
 /// vertex properties esp (kcal/(mol*e)), lp, cc1, cc2 (1/A), shape_index and curvedness.
 /// Preconditions: validate_molecule(molecule) passes (checked; throws InputError otherwise).
