@@ -43,6 +43,17 @@ struct Sources {
   Eigen::VectorXd weights;
 };
 
+/// The sources whose weight is not zero, in their order.
+Sources charged_only(const Sources& sources) {
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index i = 0; i < sources.weights.size(); ++i)
+    if (sources.weights(i) != 0.0) kept.push_back(i);
+  Sources out;
+  out.positions = sources.positions(kept, Eigen::all);
+  out.weights = sources.weights(kept);
+  return out;
+}
+
 Sources collect_sources(const Molecule& molecule, double Atom::*weight, const char* weight_name,
                         const char* caller) {
   if (molecule.atoms.empty()) {
@@ -291,7 +302,11 @@ Eigen::VectorXd electrostatic_potential(const Eigen::Ref<const Eigen::MatrixX3d>
   const double min_distance = options.min_distance;
   if (!options.distance_dependent && options.treecode_tolerance > 0.0 &&
       molecule.atoms.size() > treecode_min_atoms) {
-    const ChargeTree tree(sources, min_distance);
+    // An uncharged atom adds nothing: the tree holds the charged ones only (a protein read from
+    // PDB carries formal charges on a few atoms of its ionisable groups).
+    const Sources charged = charged_only(sources);
+    if (charged.weights.size() == 0) return Eigen::VectorXd::Zero(points.rows());
+    const ChargeTree tree(charged, min_distance);
     Eigen::VectorXd values(points.rows());
     ProgressReporter reporter(options.progress, points.rows());
     tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, points.rows(), 256),
