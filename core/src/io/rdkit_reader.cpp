@@ -145,21 +145,41 @@ Molecule convert_atoms(const RDKit::ROMol& mol, const std::string& source) {
   return molecule;
 }
 
-// Keeps only the atoms whose indices are in `keep` (sorted), in both representations.
-void keep_atoms(RDKit::RWMol& mol, Molecule& molecule, const std::vector<std::size_t>& keep) {
-  std::vector<bool> kept(molecule.atoms.size(), false);
-  for (std::size_t i : keep) kept[i] = true;
-  mol.beginBatchEdit();
+// Keeps only the atoms whose indices are in `keep` (sorted), in both representations. The
+// molecule is rebuilt from the kept atoms, the bonds between them and the conformers' kept
+// positions: removing atoms one at a time costs RDKit time proportional to the molecule for
+// each (20 s to select a ligand from a structure of 31,824 atoms).
+void keep_atoms(std::unique_ptr<RDKit::RWMol>& mol, Molecule& molecule,
+                const std::vector<std::size_t>& keep) {
+  auto kept = std::make_unique<RDKit::RWMol>();
+  std::vector<int> index(mol->getNumAtoms(), -1);
+  for (const std::size_t i : keep) {
+    index[i] = static_cast<int>(
+        kept->addAtom(new RDKit::Atom(*mol->getAtomWithIdx(static_cast<unsigned int>(i))),
+                      /*updateLabel=*/false, /*takeOwnership=*/true));
+  }
+  for (const RDKit::Bond* bond : mol->bonds()) {
+    const int a = index[bond->getBeginAtomIdx()], b = index[bond->getEndAtomIdx()];
+    if (a < 0 || b < 0) continue;
+    auto* copy = new RDKit::Bond(*bond);
+    copy->setOwningMol(kept.get());
+    copy->setBeginAtomIdx(static_cast<unsigned int>(a));
+    copy->setEndAtomIdx(static_cast<unsigned int>(b));
+    kept->addBond(copy, /*takeOwnership=*/true);
+  }
+  for (auto conformer = mol->beginConformers(); conformer != mol->endConformers(); ++conformer) {
+    auto* copy = new RDKit::Conformer(static_cast<unsigned int>(keep.size()));
+    copy->setId((*conformer)->getId());
+    copy->set3D((*conformer)->is3D());
+    for (std::size_t k = 0; k < keep.size(); ++k)
+      copy->setAtomPos(static_cast<unsigned int>(k),
+                       (*conformer)->getAtomPos(static_cast<unsigned int>(keep[k])));
+    kept->addConformer(copy, /*assignId=*/false);
+  }
+  mol = std::move(kept);
   std::vector<Atom> atoms;
   atoms.reserve(keep.size());
-  for (std::size_t i = 0; i < kept.size(); ++i) {
-    if (kept[i]) {
-      atoms.push_back(molecule.atoms[i]);
-    } else {
-      mol.removeAtom(static_cast<unsigned int>(i));
-    }
-  }
-  mol.commitBatchEdit();
+  for (const std::size_t i : keep) atoms.push_back(molecule.atoms[i]);
   molecule.atoms = std::move(atoms);
 }
 
@@ -326,7 +346,7 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& wh
       if (keep.empty()) throw InputError(source + ": the structure has no atoms besides water");
     }
     if (keep.size() != molecule.atoms.size()) {
-      rdkit_call(source, "select atoms", [&]() { keep_atoms(*mol, molecule, keep); });
+      rdkit_call(source, "select atoms", [&]() { keep_atoms(mol, molecule, keep); });
     }
   }
   if (format == RdkitFormat::pdb) {
