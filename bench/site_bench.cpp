@@ -177,6 +177,7 @@ std::vector<Variant> variants() {
   vary("chem0.25", [](matching::MatchOptions& o) { o.site.chem_weight = 0.25; });
   vary("chem0.5", [](matching::MatchOptions& o) { o.site.chem_weight = 0.5; });
   vary("image0.3", [](matching::MatchOptions& o) { o.graph.image_threshold = 0.3; });
+  vary("image0", [](matching::MatchOptions& o) { o.graph.image_threshold = 0.0; });
   return out;
 }
 
