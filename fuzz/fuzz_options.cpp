@@ -70,7 +70,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     parse(split_arguments(data, size));
   } catch (const boost::program_options::error&) {  // a command-line syntax error: exit 2
-  } catch (const surfcomp::Error&) {                // an option check: exit 1
-  }
+  } catch (const surfcomp::OptionError&) {          // an option outside its domain: exit 2
+  }  // anything else (another surfcomp::Error would exit 1 or 3) is a finding
   return 0;
 }

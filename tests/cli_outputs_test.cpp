@@ -133,6 +133,44 @@ TEST_F(CliOutputs, AnOutputIsNeverAnInput) {
   expect_refused("surf-build r.ply -o ./r.ply", 2, {"--output ./r.ply", "INPUT r.ply", refused});
   expect_refused("match r.hsi p.sdf -o r.hsi", 2, {"REF r.hsi", refused});
   expect_refused("match r.sdf r.ply --aligned-out r.ply", 2, {"PROBE r.ply", refused});
+  // patch-map writes cpI.obj files: an OBJ INPUT of that name in the folder is refused.
+  ASSERT_EQ(run("surf-build r.sdf -o cp0.obj").status, 0);
+  expect_refused("patch-map cp0.obj --cp 0 -o .", 2, {"cp0.obj", refused});
+}
+
+// patch-map writes a folder of files: when it cannot write them all, the folder keeps what an
+// earlier run left there, untouched.
+TEST_F(CliOutputs, APatchMapThatCannotWriteLeavesTheFolderAsItWas) {
+  SURFCOMP_SHARED_OR_SKIP(ref, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  copy_in(ref, "r.sdf");
+  ASSERT_EQ(run("patch-map r.sdf --cp 0 -o maps").status, 0);
+  const fs::path maps = dir_path() / "maps";
+  fs::create_directory(maps / "cp1.obj");  // where the next run would write a file
+  const auto contents = [&] {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::directory_iterator(maps))
+      files[entry.path().filename().string()] =
+          fs::is_directory(entry.path()) ? "<dir>" : file_bytes(entry.path());
+    return files;
+  };
+  const auto before = contents();
+  ASSERT_EQ(before.size(), 6u);  // cp0's four files, patch_maps.json, the folder cp1.obj
+  expect_refused("patch-map r.sdf --cp 0 --cp 1 --patch-radius 6 -o maps", 1,
+                 {"cp1.obj", "not a regular file"});
+  EXPECT_EQ(contents(), before);
+}
+
+// Names that are not UTF-8 (a Latin-1 file name) reach the JSON result as U+FFFD, not as an
+// internal error.
+TEST_F(CliOutputs, ANameThatIsNotUtf8StillGivesAResultFile) {
+  SURFCOMP_SHARED_OR_SKIP(ref, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/4TMN_ligand.sdf");
+  copy_in(ref, "r\xe9.sdf");
+  copy_in(probe, "p.sdf");
+  const ProgramRun r = run("match r\xe9.sdf p.sdf -o out.json --refine-top 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string json = file_bytes(dir_path() / "out.json");
+  EXPECT_NE(json.find("\"r\xef\xbf\xbd.sdf\""), std::string::npos) << json.substr(0, 200);
 }
 
 TEST_F(CliOutputs, TwoOutputsAreNeverOneFile) {

@@ -15,8 +15,10 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <random>
 
 namespace surfcomp {
@@ -155,6 +157,30 @@ TEST(Descriptors, ResultDoesNotDependOnTheThreadCount) {
     serial = encoded(harmonic::describe_surface(surface));
   }
   EXPECT_TRUE(parallel == serial);
+}
+
+// The progress callback hears every imaged point and a last (total, total), from the worker
+// threads; the description keeps its parameters without it (a stored description's options
+// describe other surfaces later, in other calls).
+TEST(Descriptors, ProgressCountsEveryImageAndIsNotKept) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "4TMN_ligand.sdf");
+  std::atomic<int> calls{0};
+  std::atomic<std::int64_t> last_total{-1};
+  std::mutex mutex;
+  std::int64_t largest = 0;
+  harmonic::DescriptorOptions options;
+  options.progress = [&](std::int64_t done, std::int64_t total) {
+    ++calls;
+    last_total = total;
+    const std::lock_guard<std::mutex> lock(mutex);
+    largest = std::max(largest, done);
+  };
+  const harmonic::SurfaceDescriptors d = harmonic::describe_surface(ligand_surface(file), options);
+  const auto imaged = static_cast<std::int64_t>(harmonic::count_descriptors(d).imaged);
+  EXPECT_EQ(calls.load(), imaged + 1);
+  EXPECT_EQ(last_total.load(), imaged);
+  EXPECT_EQ(largest, imaged);
+  EXPECT_FALSE(static_cast<bool>(d.options.progress));
 }
 
 TEST(HsiFile, RoundTripsExactly) {

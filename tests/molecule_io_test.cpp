@@ -801,7 +801,13 @@ TEST(MoleculeIo, WholeThermolysinWithoutWaterAndItsInhibitor) {
   for (const Atom& a : whole.atoms) EXPECT_NE(a.residue_name, "HOH");
   MoleculeReadOptions with_water;
   with_water.remove_water = false;
-  EXPECT_EQ(read_molecule(path, with_water).atoms.size(), 2620u);
+  const Molecule wet = read_molecule(path, with_water);
+  EXPECT_EQ(wet.atoms.size(), 2620u);
+  // Dropping the waters keeps the structure's title (RDKit's name from the HEADER), not the
+  // file's stem.
+  EXPECT_EQ(whole.title, wet.title);
+  EXPECT_NE(whole.title, "1THL");
+  EXPECT_FALSE(whole.title.empty());
 
   // The four Ca and the Zn have no Gasteiger parameters: ionic charges +2.
   int ions = 0;

@@ -7,6 +7,7 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 
 #include "test_data.hpp"
@@ -383,6 +384,36 @@ TEST(SiteSurface, ASiteFarFromEveryAtomIsRefused) {
     EXPECT_NE(std::string(e.what()).find("copies.pdb: no atom lies within 2 A"), std::string::npos)
         << e.what();
   }
+}
+
+// The margin a site's surface is built with grows with the patch radius it is described with,
+// also when a stored description on the other side fixes that radius.
+TEST(SiteSurface, TheMarginGrowsWithThePatchRadiusTheOtherSideFixes) {
+  EXPECT_EQ(matching::site_surface_margin(16.0, 5.0), 16.0);
+  EXPECT_EQ(matching::site_surface_margin(16.0, 12.0), 20.0);
+  EXPECT_EQ(matching::site_surface_margin(5.0, 5.0), 13.0);
+  EXPECT_EQ(matching::site_surface_margin(0.0, 12.0), 0.0);
+  SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/4TMN.pdb");
+  matching::MatchInput site;
+  site.molecule = io::read_molecule(pdb);
+  site.site_ligand = "0PK";
+  matching::MatchInputOptions wide;
+  wide.descriptors.patch.radius = 12.0;
+  const matching::PreparedInput stored = matching::prepare_input(site, wide);
+  matching::MatchInput reference;
+  reference.descriptors = stored.descriptors;
+  reference.site_spheres = stored.site;
+  matching::MatchInputOptions defaults;  // patch radius 5: the stored side's 12 prevails
+  defaults.match.refine_top = 1;
+  defaults.match.principal_axes_starts = 0;
+  const matching::InputMatch compared = matching::match_inputs(reference, site, defaults);
+  EXPECT_EQ(compared.probe.descriptors.options.patch.radius, 12.0);
+  EXPECT_EQ(compared.probe.descriptors.surface.n_vertices(),
+            stored.descriptors.surface.n_vertices());
+  const matching::BindingSite narrow =
+      matching::binding_site(*site.molecule, LigandSelector{"0PK", {}, {}});  // margin 16
+  EXPECT_GT(stored.descriptors.surface.n_vertices(),
+            matching::build_site_surface(narrow).n_vertices());
 }
 
 }  // namespace

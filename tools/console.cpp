@@ -2,13 +2,14 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdarg>
 #include <cstdio>
 
 namespace surfcomp::tools::console {
 namespace {
 
-Level current = Level::normal;
+std::atomic<Level> current{Level::normal};  // set by a Python call while another may run
 const auto program_start = std::chrono::steady_clock::now();
 
 std::string thousands(std::int64_t value) {
@@ -46,11 +47,7 @@ void step(const std::string& text) {
 bool progress_shown() { return current != Level::quiet && isatty(STDERR_FILENO) != 0; }
 
 ProgressLine::ProgressLine(std::string what, std::string unit)
-    : what_(std::move(what)),
-      unit_(std::move(unit)),
-      enabled_(progress_shown()),
-      start_(std::chrono::steady_clock::now()),
-      last_(start_) {}
+    : what_(std::move(what)), unit_(std::move(unit)), enabled_(progress_shown()) {}
 
 void ProgressLine::operator()(std::int64_t done, std::int64_t total) {
   if (!enabled_ || total <= 0) return;
@@ -59,8 +56,13 @@ void ProgressLine::operator()(std::int64_t done, std::int64_t total) {
   if (done >= total) {
     if (shown_) std::fprintf(stderr, "\r\033[K");
     shown_ = false;
+    started_ = false;
     std::fflush(stderr);
     return;
+  }
+  if (!started_) {
+    started_ = true;
+    start_ = now;
   }
   if (now - start_ < std::chrono::seconds(1)) return;
   if (shown_ && now - last_ < std::chrono::milliseconds(100)) return;

@@ -30,8 +30,9 @@ void step(const std::string& text);
 bool progress_shown();
 
 /// A progress line on stderr ("WHAT 42% (420 of 1,000 UNIT)"), drawn once the work has run
-/// for a second, at most ten times a second, and cleared when done == total. Thread-safe: a
-/// parallel loop may call it from every thread. Draws nothing when !progress_shown().
+/// for a second since its first report, at most ten times a second, and cleared when done ==
+/// total; the next report starts a new run (one line may serve REF, then PROBE). Thread-safe:
+/// a parallel loop may call it from every thread. Draws nothing when !progress_shown().
 class ProgressLine {
  public:
   ProgressLine(std::string what, std::string unit);
@@ -42,6 +43,7 @@ class ProgressLine {
   bool enabled_;
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, last_;
+  bool started_ = false;  ///< a run is under way (its first report came)
   bool shown_ = false;
 };
 

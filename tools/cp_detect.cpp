@@ -155,8 +155,9 @@ int cp_detect(const std::vector<std::string>& args) {
     }
   }
   try {
-    surfcomp::io::write_file_atomically(
-        output, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
+    surfcomp::io::write_file_atomically(output, [&](std::ostream& out) {
+      out << document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+    });
   } catch (...) {
     if (!points_out.empty()) std::filesystem::remove(points_out);
     throw;

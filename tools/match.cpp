@@ -127,6 +127,9 @@ int match(const std::vector<std::string>& args) {
          : aligned.size() == 2 ? "PROBE is not an SDF, MOL or MOL2 file"
                                : ""},
         {"--report", report_out, {".html"}, ""}}});
+  report::HtmlReportOptions report_options;
+  if (!report_out.empty())  // before the work, not after it
+    report_options.viewer_script = report::find_viewer_script();
 
   const matching::InputMatch compared =
       matching::match_inputs(pair.reference, pair.probe, match_input_options(settings));
@@ -183,7 +186,8 @@ int match(const std::vector<std::string>& args) {
       surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << document; });
       written.emplace_back(output);
     }
-    if (!report_out.empty()) report::write_html_report(report_out, compared, settings.match);
+    if (!report_out.empty())
+      report::write_html_report(report_out, compared, settings.match, report_options);
   } catch (...) {
     for (const auto& path : written) std::filesystem::remove(path);
     throw;

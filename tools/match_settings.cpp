@@ -47,8 +47,7 @@ void add_match_options(boost::program_options::options_description& options,
        "radius of the spheres around the site ligand's atoms, A")
       ("site-sphere", po::value(&settings.site_spheres)->composing(),
        "site sphere x,y,z,r on both sides (A)")
-      ("site-margin", defaulted(&settings.site.surface_margin),
-       (std::string(kSiteMarginHelp) + "; by default at least --patch-radius + 8").c_str())
+      ("site-margin", defaulted(&settings.site.surface_margin), kSiteMarginHelp)
       ("ref-site-sphere", po::value(&settings.ref_site_spheres)->composing(),
        "site sphere on REF only")
       ("probe-site-sphere", po::value(&settings.probe_site_spheres)->composing(),
@@ -128,12 +127,6 @@ void finish_match_options(MatchSettings& settings,
   require_in_range("overlap-tolerance", g.overlap_tolerance_degrees, 0.0, 180.0);
   require_positive("rmsd-cut", m.clustering.rmsd_cut, 100.0);
   require_in_range("patch-radius", settings.descriptors.patch.radius, 0.1, 100.0);
-  // The margin's default covers patches of 8 A; larger patches reach farther.
-  if (vm.count("site-margin") == 0 || vm["site-margin"].defaulted()) {
-    settings.site.surface_margin =
-        std::max(settings.site.surface_margin,
-                 settings.descriptors.patch.radius + matching::surface_margin_beyond_patch);
-  }
   require_in_range("refine-top", m.refine_top, 0, 1e6);
   require_in_range("overlay-sigma", m.overlay.sigma, 0.1, 10.0);
   require_in_range("overlay-chem-weight", m.overlay.chem_weight, 0.0, 100.0);

@@ -56,7 +56,7 @@ void require_one_of(const char* name, const std::string& value,
 
 /// --help text of --site-margin (match, screen, library build).
 inline constexpr const char* kSiteMarginHelp =
-    "a site's surface is built from the atoms within a site sphere's radius plus this margin, A "
-    "(0: from every atom); ESP and LP come from every atom";
+    "a site's surface is built from the atoms within a site sphere's radius plus this margin, A, "
+    "at least the patch radius + 8 (0: from every atom); ESP and LP come from every atom";
 
 }  // namespace surfcomp::tools

@@ -16,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <system_error>
@@ -53,13 +55,15 @@ nlohmann::json distortion_json(const harmonic::MapDistortion& d) {
           {"flipped", d.flipped}};
 }
 
-/// The options of `described` the user gave (not left at their defaults).
+/// The options of `described` the user gave (not left at their defaults), but --threads, which
+/// applies to any INPUT.
 std::vector<std::string> given_options(const boost::program_options::options_description& described,
                                        const boost::program_options::variables_map& vm) {
   std::vector<std::string> given;
   for (const auto& option : described.options()) {
     const std::string& name = option->long_name();
-    if (vm.count(name) != 0 && !vm[name].defaulted()) given.push_back("--" + name);
+    if (name != "threads" && vm.count(name) != 0 && !vm[name].defaulted())
+      given.push_back("--" + name);
   }
   return given;
 }
@@ -109,10 +113,12 @@ int patch_map(const std::vector<std::string>& args) {
   std::error_code error;
   if (std::filesystem::exists(folder, error) && !std::filesystem::is_directory(folder, error))
     throw FileError(folder.string(), "exists and is not a folder");
-  const std::filesystem::path index = folder / "patch_maps.json";
   check_command_files(
       {{{"INPUT", path}, {"--molecule", settings.input.molecule_file}},
-       {{"--output", std::filesystem::exists(folder, error) ? index : folder, {}, ""}}});
+       {{"--output",
+         std::filesystem::exists(folder, error) ? folder / "patch_maps.json" : folder,
+         {},
+         ""}}});
   const auto limit = limit_threads(settings.threads);
 
   // The critical points, and the chosen ones described.
@@ -134,10 +140,18 @@ int patch_map(const std::vector<std::string>& args) {
     const std::vector<mesh::CriticalPoint> points =
         mesh::detect_critical_points(surface, settings.descriptors.critical_points);
     total = points.size();
+    std::vector<std::size_t> indices;
+    std::vector<mesh::CriticalPoint> picked;
     for (std::size_t i = 0; i < total; ++i) {
-      if (all || std::count(chosen_indices.begin(), chosen_indices.end(), static_cast<int>(i)))
-        chosen.push_back({i, harmonic::describe_point(surface, points[i], settings.descriptors)});
+      if (all || std::count(chosen_indices.begin(), chosen_indices.end(), static_cast<int>(i))) {
+        indices.push_back(i);
+        picked.push_back(points[i]);
+      }
     }
+    std::vector<harmonic::CriticalPointDescriptor> descriptions =
+        harmonic::describe_points(surface, picked, settings.descriptors);
+    for (std::size_t k = 0; k < indices.size(); ++k)
+      chosen.push_back({indices[k], std::move(descriptions[k])});
   }
   for (const int i : chosen_indices) {
     if (static_cast<std::size_t>(i) >= total) {
@@ -147,11 +161,38 @@ int patch_map(const std::vector<std::string>& args) {
     }
   }
 
-  // The files, each point's checked against the inputs first; a failure removes those written.
+  // Every file's name is checked against the inputs, and against a folder or special file in
+  // its place, before any is written. The files go into a staging folder inside DIR and move
+  // into DIR once all are written, patch_maps.json last: a failure leaves DIR as it was.
+  std::vector<std::string> names;
+  for (const Chosen& c : chosen) {
+    if (c.descriptor.status != harmonic::PatchStatus::ok) continue;
+    const std::string stem = "cp" + std::to_string(c.index);
+    for (const char* suffix : {".obj", ".ply", "_image.png", "_grid.png"})
+      names.push_back(stem + suffix);
+  }
+  names.emplace_back("patch_maps.json");
+  for (const std::string& name : names) {
+    const std::filesystem::path target = folder / name;
+    if (std::filesystem::exists(target, error) &&
+        !std::filesystem::is_regular_file(target, error)) {
+      throw FileError(target.string(), "exists and is not a regular file");
+    }
+    for (const std::filesystem::path& input :
+         {path, std::filesystem::path(settings.input.molecule_file)}) {
+      if (!input.empty() && same_file(target, input)) {
+        throw OptionError(target.string() + " would overwrite the input " + input.string() +
+                          ": refusing to overwrite an input");
+      }
+    }
+  }
   const bool made_folder = !std::filesystem::exists(folder, error);
   std::filesystem::create_directories(folder, error);
   if (error) throw FileError(folder.string(), "cannot make the folder (" + error.message() + ")");
-  std::vector<std::filesystem::path> written_files;
+  const std::filesystem::path staging = folder / (".patch-map-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(staging, error);
+  std::filesystem::create_directory(staging, error);
+  if (error) throw FileError(staging.string(), "cannot make the folder (" + error.message() + ")");
   std::size_t written = 0;
   try {
     nlohmann::json points = nlohmann::json::array();
@@ -176,15 +217,8 @@ int patch_map(const std::vector<std::string>& args) {
       }
       const mesh::Patch& patch = c.descriptor.patch;
       const std::vector<std::filesystem::path> files = {
-          folder / (stem + ".obj"), folder / (stem + ".ply"), folder / (stem + "_image.png"),
-          folder / (stem + "_grid.png")};
-      for (const auto& file : files) {
-        if (same_file(file, path)) {
-          throw OptionError(file.string() + " would overwrite INPUT " + path.string() +
-                            ": refusing to overwrite an input");
-        }
-      }
-      written_files.insert(written_files.end(), files.begin(), files.end());
+          staging / (stem + ".obj"), staging / (stem + ".ply"), staging / (stem + "_image.png"),
+          staging / (stem + "_grid.png")};
       report::write_patch_obj(patch, c.descriptor.map, files[0]);
       report::write_patch_ply(surface, patch, c.descriptor.map, files[1]);
       report::ImagePngOptions png;
@@ -224,9 +258,13 @@ int patch_map(const std::vector<std::string>& args) {
         {"image_rings", settings.descriptors.image.rings},
         {"image_sectors", settings.descriptors.image.sectors},
         {"points", points}};
-    io::write_file_atomically(index, [&](std::ostream& out) { out << document.dump(2) << "\n"; });
+    io::write_file_atomically(staging / "patch_maps.json", [&](std::ostream& out) {
+      out << document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
+    });
+    for (const std::string& name : names) std::filesystem::rename(staging / name, folder / name);
+    std::filesystem::remove(staging);
   } catch (...) {
-    for (const auto& file : written_files) std::filesystem::remove(file, error);
+    std::filesystem::remove_all(staging, error);
     if (made_folder) std::filesystem::remove(folder, error);
     throw;
   }

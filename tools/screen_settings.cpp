@@ -34,13 +34,10 @@ void finish_screen_options(ScreenSettings& settings) {
   require_in_range("threads", settings.threads, 0, 1024);
   require_in_range("site-radius", settings.site.sphere_radius, 0.1, 100);
   require_in_range("site-margin", settings.site.surface_margin, 0.0, 1000.0);
-  if (is_water_residue(settings.site_ligand)) {
-    throw OptionError("--site-ligand " + settings.site_ligand +
-                      ": water cannot be a site ligand; give --site-sphere x,y,z,r around it");
-  }
   settings.spheres.clear();
   for (const std::string& text : settings.site_spheres)
     settings.spheres.push_back(parse_sphere_option(text));
+  settings.options.site = settings.site;
   settings.options.top = static_cast<std::size_t>(settings.top);
   settings.options.candidates = static_cast<std::size_t>(settings.candidates);
 }

@@ -47,6 +47,18 @@ void describe_point(const mesh::Surface& surface, const Eigen::VectorXd& image_v
 
 }  // namespace
 
+std::vector<CriticalPointDescriptor> describe_points(const mesh::Surface& surface,
+                                                     const std::vector<mesh::CriticalPoint>& points,
+                                                     const DescriptorOptions& options) {
+  const Eigen::VectorXd image_values = surface.property(options.image_property);
+  std::vector<CriticalPointDescriptor> out(points.size());
+  tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
+    out[i].point = points[i];
+    describe_point(surface, image_values, options, out[i]);
+  });
+  return out;
+}
+
 CriticalPointDescriptor describe_point(const mesh::Surface& surface,
                                        const mesh::CriticalPoint& point,
                                        const DescriptorOptions& options) {
@@ -65,6 +77,7 @@ SurfaceDescriptors describe_surface(
   }
   SurfaceDescriptors result;
   result.options = options;
+  result.options.progress = {};  // a description keeps its parameters, not the caller's callback
   const std::vector<mesh::CriticalPoint> points =
       mesh::detect_critical_points(surface, options.critical_points);
   const Eigen::VectorXd image_values = surface.property(options.image_property);

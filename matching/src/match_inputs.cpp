@@ -237,7 +237,10 @@ void check_match_input(const MatchInput& input, const MatchInputOptions& options
 
 PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& options) {
   check_match_input(input, options, "input");
-  return describe(load(input, options, "input"), options.descriptors, options, "input");
+  MatchInputOptions built = options;
+  built.site.surface_margin =
+      site_surface_margin(options.site.surface_margin, options.descriptors.patch.radius);
+  return describe(load(input, built, "input"), options.descriptors, options, "input");
 }
 
 InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
@@ -250,16 +253,26 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
 
   InputMatch out;
   const Stopwatch clock;
-  LoadedInput ref = load(reference, options, "REF");
-  LoadedInput prb = load(probe, options, "PROBE");
-  // A stored description fixes the parameters the other side is described with; the image
-  // memory limit stays the caller's.
+  // Stored descriptions first: one fixes the parameters the other side is described with (the
+  // image memory limit and the progress stay the caller's), and so the patch radius a site
+  // surface on the other side must reach.
+  const bool ref_stored = is_stored_description(reference);
+  const bool probe_stored = is_stored_description(probe);
+  std::optional<LoadedInput> ref, prb;
+  if (ref_stored) ref = load(reference, options, "REF");
+  if (probe_stored) prb = load(probe, options, "PROBE");
   harmonic::DescriptorOptions descriptors = options.descriptors;
-  if (ref.descriptors && !prb.descriptors) descriptors = ref.descriptors->options;
-  if (prb.descriptors && !ref.descriptors) descriptors = prb.descriptors->options;
+  if (ref_stored && !probe_stored) descriptors = ref->descriptors->options;
+  if (probe_stored && !ref_stored) descriptors = prb->descriptors->options;
   descriptors.max_image_bytes = options.descriptors.max_image_bytes;
-  out.reference = describe(std::move(ref), descriptors, options, "REF");
-  out.probe = describe(std::move(prb), descriptors, options, "PROBE");
+  descriptors.progress = options.descriptors.progress;
+  MatchInputOptions built = options;
+  built.site.surface_margin =
+      site_surface_margin(options.site.surface_margin, descriptors.patch.radius);
+  if (!ref) ref = load(reference, built, "REF");
+  if (!prb) prb = load(probe, built, "PROBE");
+  out.reference = describe(std::move(*ref), descriptors, options, "REF");
+  out.probe = describe(std::move(*prb), descriptors, options, "PROBE");
   if (!same_parameters(out.reference.descriptors.options, out.probe.descriptors.options)) {
     throw InputError(out.reference.name + " and " + out.probe.name +
                      ": the .hsi files were built with different parameters (critical point "

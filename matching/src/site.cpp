@@ -109,6 +109,10 @@ BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> sphe
   return site;
 }
 
+double site_surface_margin(double margin, double patch_radius) {
+  return margin == 0.0 ? 0.0 : std::max(margin, patch_radius + surface_margin_beyond_patch);
+}
+
 mesh::Surface build_site_surface(const BindingSite& site,
                                  const mesh::MolecularSurfaceOptions& options) {
   const Molecule& structure = site.structure;

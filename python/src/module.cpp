@@ -4,6 +4,7 @@
 // surfaces, descriptions) to matching::MatchInput, runs the library with the GIL released, and
 // returns NumPy arrays and plain Python values.
 #include "command.hpp"
+#include "command_files.hpp"
 #include "describe_settings.hpp"
 #include "match_settings.hpp"
 #include "options.hpp"
@@ -382,12 +383,19 @@ py::dict match(const py::object& reference, const py::object& probe,
       tools::with_site(input_of(probe, settings.input.read), settings, false);
   matching::check_match_input(ref, match_options, "REF", settings.ref_site_option);
   matching::check_match_input(prb, match_options, "PROBE", settings.probe_site_option);
+  report::HtmlReportOptions report_options;
+  if (!report_path.empty()) {  // as the CLI checks --report: before the work
+    tools::check_command_files(
+        {{{"REF", ref.path}, {"PROBE", prb.path}}, {{"report", report_path, {".html"}, ""}}});
+    report_options.viewer_script = report::find_viewer_script();
+  }
   std::optional<matching::InputMatch> compared;
   {
     py::gil_scoped_release release;
     const auto limit = tools::limit_threads(threads);
     compared = matching::match_inputs(ref, prb, match_options);
-    if (!report_path.empty()) report::write_html_report(report_path, *compared, settings.match);
+    if (!report_path.empty())
+      report::write_html_report(report_path, *compared, settings.match, report_options);
   }
   return match_dict(*compared);
 }

@@ -88,7 +88,10 @@ nlohmann::json match_document(const matching::InputMatch& compared,
 
 std::string match_json(const matching::InputMatch& compared,
                        const matching::MatchOptions& options) {
-  return detail::match_document(compared, options).dump(2) + "\n";
+  // Invalid UTF-8 in a path becomes U+FFFD rather than an exception.
+  return detail::match_document(compared, options)
+             .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+         "\n";
 }
 
 }  // namespace surfcomp::report

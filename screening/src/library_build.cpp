@@ -334,8 +334,11 @@ LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOpti
   matching::BindingSite site =
       request.ligand ? matching::binding_site(structure, *request.ligand, options.site)
                      : matching::binding_site(structure, request.spheres, options.site);
-  const harmonic::SurfaceDescriptors described = matching::describe_site(
-      matching::build_site_surface(site, options.surface), site.structure, site.spheres);
+  const harmonic::DescriptorOptions describing;
+  site.surface_margin = matching::site_surface_margin(site.surface_margin, describing.patch.radius);
+  const harmonic::SurfaceDescriptors described =
+      matching::describe_site(matching::build_site_surface(site, options.surface), site.structure,
+                              site.spheres, describing);
   const std::vector<bool> in_site = matching::critical_points_in_site(described, site.spheres);
   const std::vector<bool> lining =
       matching::pocket_lining(described, &in_site, options.lining_radius);

@@ -193,9 +193,8 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
     matching::BindingSite site;
     site.structure = io::read_record_molecule(entry.molecule, options.read);
     site.spheres = entry.site;
-    site.surface_margin =
-        std::max(matching::BindingSiteOptions{}.surface_margin,
-                 query.descriptors.options.patch.radius + matching::surface_margin_beyond_patch);
+    site.surface_margin = matching::site_surface_margin(options.site.surface_margin,
+                                                        query.descriptors.options.patch.radius);
     const harmonic::SurfaceDescriptors described =
         matching::describe_site(matching::build_site_surface(site, options.surface), site.structure,
                                 entry.site, query.descriptors.options);

@@ -216,3 +216,15 @@ def test_the_example_script_runs(cache, tmp_path):
     assert "heavy-atom RMSD to the crystal pose" in result.stdout
     assert (tmp_path / "4i24_1C9_on_4i23.sdf").exists()
     assert (tmp_path / "report.html").exists()
+
+
+def test_a_report_is_checked_before_the_work_and_never_lands_on_an_input(ligands, tmp_path):
+    before = ligands[0].read_bytes()
+    with pytest.raises(ValueError, match=r"use \.html"):
+        surfcomp.match(ligands[0], ligands[1], report=ligands[0])
+    assert ligands[0].read_bytes() == before
+    with pytest.raises(OSError, match="missing"):
+        surfcomp.match(ligands[0], ligands[1], report=tmp_path / "missing" / "r.html")
+    result = surfcomp.match(ligands[0], ligands[1], report=tmp_path / "r.html", refine_top=2)
+    page = (tmp_path / "r.html").read_text()
+    assert page.startswith("<!DOCTYPE html>") and len(result) > 0

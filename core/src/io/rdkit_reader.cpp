@@ -146,9 +146,9 @@ Molecule convert_atoms(const RDKit::ROMol& mol, const std::string& source) {
 }
 
 // Keeps only the atoms whose indices are in `keep` (sorted), in both representations. The
-// molecule is rebuilt from the kept atoms, the bonds between them and the conformers' kept
-// positions: removing atoms one at a time costs RDKit time proportional to the molecule for
-// each (20 s to select a ligand from a structure of 31,824 atoms).
+// molecule is rebuilt from the kept atoms, the bonds between them, the conformers' kept
+// positions and its own properties (the title): RDKit removes atoms one at a time in time
+// proportional to the molecule each.
 void keep_atoms(std::unique_ptr<RDKit::RWMol>& mol, Molecule& molecule,
                 const std::vector<std::size_t>& keep) {
   auto kept = std::make_unique<RDKit::RWMol>();
@@ -161,11 +161,11 @@ void keep_atoms(std::unique_ptr<RDKit::RWMol>& mol, Molecule& molecule,
   for (const RDKit::Bond* bond : mol->bonds()) {
     const int a = index[bond->getBeginAtomIdx()], b = index[bond->getEndAtomIdx()];
     if (a < 0 || b < 0) continue;
-    auto* copy = new RDKit::Bond(*bond);
+    auto copy = std::make_unique<RDKit::Bond>(*bond);
     copy->setOwningMol(kept.get());
     copy->setBeginAtomIdx(static_cast<unsigned int>(a));
     copy->setEndAtomIdx(static_cast<unsigned int>(b));
-    kept->addBond(copy, /*takeOwnership=*/true);
+    kept->addBond(copy.release(), /*takeOwnership=*/true);
   }
   for (auto conformer = mol->beginConformers(); conformer != mol->endConformers(); ++conformer) {
     auto* copy = new RDKit::Conformer(static_cast<unsigned int>(keep.size()));
@@ -176,6 +176,7 @@ void keep_atoms(std::unique_ptr<RDKit::RWMol>& mol, Molecule& molecule,
                        (*conformer)->getAtomPos(static_cast<unsigned int>(keep[k])));
     kept->addConformer(copy, /*assignId=*/false);
   }
+  kept->updateProps(*mol);
   mol = std::move(kept);
   std::vector<Atom> atoms;
   atoms.reserve(keep.size());

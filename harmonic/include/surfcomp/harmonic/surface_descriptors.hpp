@@ -37,7 +37,8 @@ struct DescriptorOptions {
   /// (docs/decisions.md#resource-limits).
   std::int64_t max_image_bytes = std::int64_t{1} << 30;
   /// Default none. Called as critical points are described (done, total), from the worker
-  /// threads (it must be thread-safe), and once with done == total at the end.
+  /// threads (it must be thread-safe), and once with done == total at the end. Not kept in
+  /// SurfaceDescriptors::options.
   std::function<void(std::int64_t done, std::int64_t total)> progress;
 };
 
@@ -112,6 +113,14 @@ SurfaceDescriptors describe_surface(
 CriticalPointDescriptor describe_point(const mesh::Surface& surface,
                                        const mesh::CriticalPoint& point,
                                        const DescriptorOptions& options = {});
+
+/// describe_point of each of `points` (critical points of `surface`, as
+/// mesh::detect_critical_points gives them), in parallel (TBB), in their order: a chosen few of
+/// a surface's critical points described as describe_surface would describe them. Requires the
+/// property options.image_property (InputError otherwise).
+std::vector<CriticalPointDescriptor> describe_points(const mesh::Surface& surface,
+                                                     const std::vector<mesh::CriticalPoint>& points,
+                                                     const DescriptorOptions& options = {});
 
 /// Counts of a description, for summaries.
 struct DescriptorCounts {

@@ -40,6 +40,7 @@ struct MatchInput {
   std::string name() const;
 };
 
+/// How match_inputs and prepare_input read, build, describe and match their inputs.
 struct MatchInputOptions {
   mesh::SurfaceInputOptions input;  ///< how files and molecules become surfaces
   /// How a side that is not a description already is described. When the other side is a
@@ -56,8 +57,8 @@ struct MatchInputOptions {
 
 /// A side ready to be matched.
 struct PreparedInput {
-  std::string name;
-  harmonic::SurfaceDescriptors descriptors;
+  std::string name;                          ///< MatchInput::name, for messages
+  harmonic::SurfaceDescriptors descriptors;  ///< its surface and description
   /// The molecule the surface was built from, or the mesh's --molecule; for a site with a
   /// ligand, the structure without water and without the ligand copy.
   std::optional<Molecule> molecule;
@@ -74,8 +75,9 @@ struct PreparedInput {
 void check_match_input(const MatchInput& input, const MatchInputOptions& options, const char* role,
                        const char* site_option = "--site-ligand");
 
-/// One side read or built and described as match_inputs does it (a site side: described at
-/// its site's critical points only, matching::describe_site). Throws as check_match_input,
+/// One side read or built and described as match_inputs does it (a site side: its surface
+/// built with site_surface_margin of options.descriptors' patch radius, described at its site's
+/// critical points only, matching::describe_site). Throws as check_match_input,
 /// the readers, the surface construction and the description; InputError when a site holds no
 /// critical point.
 PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& options);
@@ -96,8 +98,10 @@ struct InputMatch {
 
 /// Aligns `probe` onto `reference` as `surfcomp match` does: both sides checked
 /// (check_match_input), both read or built before either is described (a probe that cannot be
-/// matched is refused before the reference's descriptors are computed), described with common
-/// parameters, their sites' critical points flagged, then match_surfaces. Throws OptionError
+/// matched is refused before the reference's descriptors are computed; a stored description is
+/// read first, as its parameters are the other side's), described with common parameters, a
+/// site's surface built with site_surface_margin of their patch radius, their sites' critical
+/// points flagged, then match_surfaces. Throws OptionError
 /// for options outside their domain (before any work), InputError when two stored descriptions
 /// were built with different parameters, and what prepare_input and match_surfaces throw.
 InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,

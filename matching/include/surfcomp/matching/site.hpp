@@ -28,10 +28,15 @@ struct SiteSphere {
 std::optional<SiteSphere> parse_site_sphere(const std::string& text);
 
 /// A site's surface (build_site_surface) is the whole structure's wherever the site's patches
-/// reach when its margin is at least the patch radius plus this, A: the SES of a point depends
-/// on atoms up to a probe diameter and an atom radius away, its curvature on 2 A around it, and
-/// the remeshing moves the mesh a few edges (docs/decisions.md#site-surfaces).
+/// reach, up to the remeshing's small non-locality, when its margin is at least the patch
+/// radius plus this, A: the SES of a point depends on atoms up to a probe diameter and an atom
+/// radius away, its curvature on 2 A around it (docs/decisions.md#site-surfaces).
 inline constexpr double surface_margin_beyond_patch = 8.0;
+
+/// The surface margin a site described with patches of `patch_radius` (A) is built with:
+/// `margin` raised to at least patch_radius + surface_margin_beyond_patch, or 0 (every atom)
+/// when `margin` is 0.
+double site_surface_margin(double margin, double patch_radius);
 
 struct BindingSiteOptions {
   /// Default 4 A. Radius of the sphere around each atom of the ligand copy. Finite, > 0.
@@ -43,7 +48,9 @@ struct BindingSiteOptions {
   double chain_contact_radius = 0.0;
   /// Default 16 A (patches of up to 8 A; see surface_margin_beyond_patch). build_site_surface
   /// builds the SES of the structure's atoms within a sphere's radius plus this margin of its
-  /// centre, not of the whole structure. 0: every atom. Finite, >= 0.
+  /// centre, not of the whole structure. 0: every atom. Finite, >= 0. Where a site is
+  /// described (match_inputs, prepare_input, a pocket screen), it is raised to
+  /// site_surface_margin of the patch radius.
   double surface_margin = 16.0;
 };
 

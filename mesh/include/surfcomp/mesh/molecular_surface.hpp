@@ -29,6 +29,8 @@ struct AtomBalls {
   Eigen::MatrixX3d centers;  ///< #A by 3, A
   Eigen::VectorXd radii;     ///< #A, A
 };
+
+/// The centres and radii of `molecule`'s atoms (no check: validate_molecule does that).
 AtomBalls atom_balls(const Molecule& molecule);
 
 /// Builds the solvent-excluded surface of `molecule` (atom positions and radii) and assigns the

@@ -41,6 +41,9 @@ struct ScreenOptions {
   /// `surfcomp match` (its descriptors are built with the query's DescriptorOptions).
   io::MoleculeReadOptions read;
   mesh::MolecularSurfaceOptions surface;
+  /// A pocket screen: how a candidate site's surface is built in stage 2, its surface margin
+  /// raised to matching::site_surface_margin of the query's patch radius; default as `match`.
+  matching::BindingSiteOptions site;
   /// Default none. Called as entries are scored, (stage 1 or 2, done, total), from the worker
   /// threads (it must be thread-safe), and once with done == total at the end of each stage.
   std::function<void(int stage, std::int64_t done, std::int64_t total)> progress;
