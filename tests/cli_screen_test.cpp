@@ -3,20 +3,27 @@
 // itself first, a damaged library and a SMILES list without conformers are refused with one
 // line, and a bad record is skipped and logged. Pocket libraries: a site query finds its own
 // pocket first and writes the hits' structures as PDB models; queries and libraries of the other
-// kind, and --sites with INPUTs, are refused with one line.
+// kind, and --sites with INPUTs, are refused with one line. A build interrupted by a signal
+// leaves no file behind.
 #include "pocket_cut.hpp"
 #include "test_data.hpp"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <csignal>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+extern char** environ;
 
 namespace surfcomp {
 namespace {
@@ -215,6 +222,45 @@ TEST_F(CliScreen, SmilesWithoutConformersAreRefusedBeforeAnyWork) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--conformers"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "nothing.sclib"));
+}
+
+TEST_F(CliScreen, AnInterruptedBuildLeavesNoFileBehind) {
+  const fs::path folder = dir_ / "interrupted";
+  fs::create_directories(folder);
+  {
+    std::ofstream list(folder / "many.smi");
+    for (int i = 0; i < 400; ++i) list << "CC(C)Cc1ccc(cc1)C(C)C(=O)O ibuprofen_" << i << "\n";
+  }
+  const std::string program = kProgram.string();
+  const std::string input = (folder / "many.smi").string();
+  const std::string output = (folder / "many.sclib").string();
+  std::vector<const char*> argv{
+      program.c_str(), "library", "build",     input.c_str(), "-o", output.c_str(),
+      "--conformers",  "4",       "--threads", "1",           "-q", nullptr};
+  pid_t child = -1;
+  ASSERT_EQ(::posix_spawn(&child, program.c_str(), nullptr, nullptr,
+                          const_cast<char* const*>(argv.data()), environ),
+            0);
+  auto files_besides_the_input = [&folder] {
+    std::vector<std::string> names;
+    for (const auto& file : fs::directory_iterator(folder)) {
+      if (file.path().filename() != "many.smi") names.push_back(file.path().filename().string());
+    }
+    return names;
+  };
+  // 1,600 conformers take tens of seconds; the library's temporary file appears at the start.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (files_besides_the_input().empty() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_FALSE(files_besides_the_input().empty()) << "the build wrote nothing in 120 s";
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ASSERT_EQ(::kill(child, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT)
+      << "the build did not end by the signal: status " << status;
+  EXPECT_EQ(files_besides_the_input(), std::vector<std::string>{});
 }
 
 TEST_F(CliScreen, SiteQueryFindsItsOwnPocketInAPocketLibrary) {
