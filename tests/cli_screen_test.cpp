@@ -10,9 +10,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <fstream>
+#include <iterator>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -224,43 +228,115 @@ TEST_F(CliScreen, SmilesWithoutConformersAreRefusedBeforeAnyWork) {
   EXPECT_FALSE(fs::exists(dir_ / "nothing.sclib"));
 }
 
-TEST_F(CliScreen, AnInterruptedBuildLeavesNoFileBehind) {
-  const fs::path folder = dir_ / "interrupted";
-  fs::create_directories(folder);
-  {
-    std::ofstream list(folder / "many.smi");
-    for (int i = 0; i < 400; ++i) list << "CC(C)Cc1ccc(cc1)C(C)C(=O)O ibuprofen_" << i << "\n";
+/// A program started in the background with default signal actions and nothing blocked; killed
+/// and reaped when it goes out of scope unless it was reaped before.
+class BackgroundProgram {
+ public:
+  explicit BackgroundProgram(const std::vector<std::string>& arguments) {
+    std::vector<char*> argv;
+    for (const std::string& argument : arguments)
+      argv.push_back(const_cast<char*>(argument.c_str()));
+    argv.push_back(nullptr);
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t none;
+    sigemptyset(&none);
+    sigset_t ours;
+    sigemptyset(&ours);
+    for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&ours, signal_number);
+    posix_spawnattr_setsigmask(&attributes, &none);
+    posix_spawnattr_setsigdefault(&attributes, &ours);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+    if (::posix_spawn(&pid_, argv[0], nullptr, &attributes, argv.data(), environ) != 0) pid_ = -1;
+    posix_spawnattr_destroy(&attributes);
   }
-  const std::string program = kProgram.string();
-  const std::string input = (folder / "many.smi").string();
-  const std::string output = (folder / "many.sclib").string();
-  std::vector<const char*> argv{
-      program.c_str(), "library", "build",     input.c_str(), "-o", output.c_str(),
-      "--conformers",  "4",       "--threads", "1",           "-q", nullptr};
-  pid_t child = -1;
-  ASSERT_EQ(::posix_spawn(&child, program.c_str(), nullptr, nullptr,
-                          const_cast<char* const*>(argv.data()), environ),
-            0);
-  auto files_besides_the_input = [&folder] {
-    std::vector<std::string> names;
-    for (const auto& file : fs::directory_iterator(folder)) {
-      if (file.path().filename() != "many.smi") names.push_back(file.path().filename().string());
-    }
-    return names;
-  };
-  // 1,600 conformers take tens of seconds; the library's temporary file appears at the start.
+  ~BackgroundProgram() {
+    if (pid_ <= 0) return;
+    ::kill(pid_, SIGKILL);
+    int ignored = 0;
+    ::waitpid(pid_, &ignored, 0);
+  }
+  BackgroundProgram(const BackgroundProgram&) = delete;
+  BackgroundProgram& operator=(const BackgroundProgram&) = delete;
+
+  bool started() const { return pid_ > 0; }
+  /// False once the program was reaped (never kill(-1, ...), which signals every process).
+  bool signal(int signal_number) const { return pid_ > 0 && ::kill(pid_, signal_number) == 0; }
+  /// The wait status once the program has ended, or nothing if it still runs after `seconds`.
+  std::optional<int> wait(double seconds) {
+    if (pid_ <= 0) return std::nullopt;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    do {
+      int status = 0;
+      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return status;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    } while (std::chrono::steady_clock::now() < deadline);
+    return std::nullopt;
+  }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+/// Starts a long library build in `folder` (1,600 conformers: tens of seconds), through `sh -c
+/// SHELL_PREFIX exec surfcomp ...`, and waits until its temporary file exists.
+std::unique_ptr<BackgroundProgram> start_long_build(const fs::path& folder,
+                                                    const std::string& shell_prefix) {
+  fs::create_directories(folder);
+  std::ofstream list(folder / "many.smi");
+  for (int i = 0; i < 400; ++i) list << "CC(C)Cc1ccc(cc1)C(C)C(=O)O ibuprofen_" << i << "\n";
+  list.close();
+  const std::string command = shell_prefix + "exec " + kProgram.string() + " library build " +
+                              (folder / "many.smi").string() + " -o " +
+                              (folder / "many.sclib").string() + " --conformers 4 --threads 1 -q";
+  auto program =
+      std::make_unique<BackgroundProgram>(std::vector<std::string>{"/bin/sh", "-c", command});
+  if (!program->started()) return nullptr;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (files_besides_the_input().empty() && std::chrono::steady_clock::now() < deadline) {
+  while (std::distance(fs::directory_iterator(folder), fs::directory_iterator()) < 2) {
+    if (std::chrono::steady_clock::now() > deadline) return nullptr;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  ASSERT_FALSE(files_besides_the_input().empty()) << "the build wrote nothing in 120 s";
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  ASSERT_EQ(::kill(child, SIGINT), 0);
-  int status = 0;
-  ASSERT_EQ(::waitpid(child, &status, 0), child);
-  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT)
-      << "the build did not end by the signal: status " << status;
-  EXPECT_EQ(files_besides_the_input(), std::vector<std::string>{});
+  return program;
+}
+
+std::vector<std::string> files_in(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& file : fs::directory_iterator(folder)) {
+    names.push_back(file.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST_F(CliScreen, AnInterruptedBuildLeavesNoFileBehind) {
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    const fs::path folder = dir_ / ("interrupted_" + std::to_string(signal_number));
+    auto build = start_long_build(folder, "");
+    ASSERT_TRUE(build) << "the build did not start writing within 120 s";
+    ASSERT_TRUE(build->signal(signal_number));
+    const std::optional<int> status = build->wait(60);
+    ASSERT_TRUE(status) << "the build runs on 60 s after signal " << signal_number;
+    EXPECT_TRUE(WIFSIGNALED(*status) && WTERMSIG(*status) == signal_number)
+        << "the build did not end by signal " << signal_number << ": status " << *status;
+    EXPECT_EQ(files_in(folder), std::vector<std::string>{"many.smi"});
+  }
+}
+
+TEST_F(CliScreen, ASignalIgnoredAtStartStaysIgnored) {
+  const fs::path folder = dir_ / "nohup";
+  auto build = start_long_build(folder, "trap '' HUP; ");  // as nohup starts it
+  ASSERT_TRUE(build) << "the build did not start writing within 120 s";
+  ASSERT_TRUE(build->signal(SIGHUP));
+  EXPECT_FALSE(build->wait(1.0)) << "a hangup ended a build started to ignore it";
+  EXPECT_EQ(files_in(folder).size(), 2u);  // the list and the temporary
+  ASSERT_TRUE(build->signal(SIGINT));
+  ASSERT_TRUE(build->wait(60));
+  EXPECT_EQ(files_in(folder), std::vector<std::string>{"many.smi"});
 }
 
 TEST_F(CliScreen, SiteQueryFindsItsOwnPocketInAPocketLibrary) {

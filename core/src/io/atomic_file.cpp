@@ -4,14 +4,15 @@
 
 #include <array>
 #include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
 #include <system_error>
+#include <thread>
 
 #include <limits.h>
+#include <pthread.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -30,9 +31,11 @@ std::filesystem::path temporary_beside(const std::filesystem::path& path) {
 }
 
 /// The names of the temporary files being written, where a signal handler can read them: static
-/// storage (never freed), each slot published by its state only once its name is complete.
+/// storage (never freed), each slot published by its state only once its name is complete, and
+/// taken by the handler (live -> removing) before it reads the name, so that no writer reuses a
+/// slot while the handler reads it.
 struct TemporarySlot {
-  enum State : int { vacant, claimed, live };
+  enum State : int { vacant, claimed, live, removing };
   std::atomic<int> state{vacant};
   char name[PATH_MAX] = {};
 };
@@ -54,8 +57,14 @@ class ListedTemporary {
       return;
     }
   }
+  /// If a handler has taken the slot, the process is ending: wait for it.
   ~ListedTemporary() {
-    if (slot_) slot_->state.store(TemporarySlot::vacant);
+    if (!slot_) return;
+    for (int expected = TemporarySlot::live;
+         !slot_->state.compare_exchange_weak(expected, TemporarySlot::vacant);
+         expected = TemporarySlot::live) {
+      std::this_thread::yield();
+    }
   }
   ListedTemporary(const ListedTemporary&) = delete;
   ListedTemporary& operator=(const ListedTemporary&) = delete;
@@ -66,25 +75,42 @@ class ListedTemporary {
 
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads the states");
 
-/// Only async-signal-safe calls: unlink, sigaction, raise.
-void remove_temporaries_and_raise(int signal_number) {
+constexpr std::array<int, 3> kRemovingSignals{SIGINT, SIGTERM, SIGHUP};
+
+/// Removes the listed temporaries, then ends the process by the signal's default action (or,
+/// where that does nothing, as PID 1 in a container, by _exit with the shell's 128 + signal).
+/// Only async-signal-safe calls; it never returns.
+void remove_temporaries_and_end(int signal_number) {
   for (TemporarySlot& slot : temporary_slots) {
-    if (slot.state.load() == TemporarySlot::live) ::unlink(slot.name);
+    int expected = TemporarySlot::live;
+    if (slot.state.compare_exchange_strong(expected, TemporarySlot::removing)) {
+      ::unlink(slot.name);
+    }
   }
   struct sigaction default_action {};
   default_action.sa_handler = SIG_DFL;
   sigemptyset(&default_action.sa_mask);
   ::sigaction(signal_number, &default_action, nullptr);
-  std::raise(signal_number);
+  sigset_t just_this;
+  sigemptyset(&just_this);
+  sigaddset(&just_this, signal_number);
+  ::raise(signal_number);
+  ::pthread_sigmask(SIG_UNBLOCK, &just_this, nullptr);
+  ::_exit(128 + signal_number);
 }
 
 }  // namespace
 
 void remove_temporary_files_on_signals() {
   struct sigaction action {};
-  action.sa_handler = remove_temporaries_and_raise;
+  action.sa_handler = remove_temporaries_and_end;
   sigemptyset(&action.sa_mask);
-  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+  for (const int signal_number : kRemovingSignals) sigaddset(&action.sa_mask, signal_number);
+  for (const int signal_number : kRemovingSignals) {
+    // A signal the process was started to ignore (nohup, `&` in a script) stays ignored.
+    struct sigaction inherited {};
+    if (::sigaction(signal_number, nullptr, &inherited) != 0) continue;
+    if ((inherited.sa_flags & SA_SIGINFO) != 0 || inherited.sa_handler != SIG_DFL) continue;
     ::sigaction(signal_number, &action, nullptr);
   }
 }

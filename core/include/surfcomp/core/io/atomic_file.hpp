@@ -14,8 +14,9 @@ void write_file_atomically(const std::filesystem::path& path,
                            const std::function<void(std::ostream&)>& write);
 
 /// Makes SIGINT, SIGTERM and SIGHUP remove the temporary files of the writes in progress before
-/// the process ends by the signal as it would have without this. For a program's `main`: a
-/// library leaves the process's signal handling to its host (Python keeps its own SIGINT).
+/// the process ends by the signal as it would have without this. A signal the process ignores
+/// or handles already is left as it is. For a program's `main`: a library leaves the process's
+/// signal handling to its host (Python keeps its own SIGINT).
 void remove_temporary_files_on_signals();
 
 }  // namespace surfcomp::io
