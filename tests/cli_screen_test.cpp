@@ -181,14 +181,14 @@ TEST_F(CliScreen, HsiFilesMakeALibraryThatTheirMoleculesFind) {
             std::string::npos);
 }
 
-TEST_F(CliScreen, HitsAreTheSameUnderMpiWithOneAndTwoProcesses) {
+TEST_F(CliScreen, HitsAreTheSameUnderMpiWithOneTwoAndFourProcesses) {
 #ifndef SURFCOMP_MPIEXEC
   GTEST_SKIP() << "surfcomp was built without MPI";
 #else
   ASSERT_EQ(run("library export lib.sclib -o mpi.sdf").status, 0);
   ASSERT_EQ(run("screen mpi.sdf lib.sclib --record 1 --candidates 2 --top 0 -o serial.csv").status,
             0);
-  for (const char* ranks : {"1", "2"}) {
+  for (const char* ranks : {"1", "2", "4"}) {
     const ProgramRun r = run(
         "screen mpi.sdf lib.sclib --record 1 --candidates 2 --top 0 -o mpi" + std::string(ranks) +
             ".csv --threads 1",
