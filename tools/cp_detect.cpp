@@ -3,6 +3,7 @@
 #include "command.hpp"
 #include "command_files.hpp"
 #include "console.hpp"
+#include "json_text.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
@@ -155,9 +156,8 @@ int cp_detect(const std::vector<std::string>& args) {
     }
   }
   try {
-    surfcomp::io::write_file_atomically(output, [&](std::ostream& out) {
-      out << document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
-    });
+    surfcomp::io::write_file_atomically(output,
+                                        [&](std::ostream& out) { out << json_text(document); });
   } catch (...) {
     if (!points_out.empty()) std::filesystem::remove(points_out);
     throw;

@@ -5,6 +5,7 @@
 #include "command_files.hpp"
 #include "console.hpp"
 #include "describe_settings.hpp"
+#include "json_text.hpp"
 #include "options.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
@@ -258,9 +259,8 @@ int patch_map(const std::vector<std::string>& args) {
         {"image_rings", settings.descriptors.image.rings},
         {"image_sectors", settings.descriptors.image.sectors},
         {"points", points}};
-    io::write_file_atomically(staging / "patch_maps.json", [&](std::ostream& out) {
-      out << document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
-    });
+    io::write_file_atomically(staging / "patch_maps.json",
+                              [&](std::ostream& out) { out << json_text(document); });
     for (const std::string& name : names) std::filesystem::rename(staging / name, folder / name);
     std::filesystem::remove(staging);
   } catch (...) {

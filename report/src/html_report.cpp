@@ -116,8 +116,7 @@ std::string file_name(const std::string& path) {
 /// JSON string) as the JSON escape \u003c, so that no "</script" or "<!--" can end or disturb
 /// the element.
 std::string script_safe_json(const nlohmann::json& document) {
-  // Invalid UTF-8 (a Latin-1 atom name, a path) becomes U+FFFD rather than an exception.
-  const std::string text = document.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  const std::string text = detail::json_text(document, -1);
   std::string out;
   out.reserve(text.size());
   for (const char c : text) {

@@ -6,11 +6,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include <string>
+
 namespace surfcomp::report::detail {
 
 /// The fields of the README's result-file table: reference, probe, alignments, trace,
 /// timing_ms, cliques, warnings, parameters.
 nlohmann::json match_document(const matching::InputMatch& compared,
                               const matching::MatchOptions& options);
+
+/// `document` as text, indented by `indent` spaces (-1: on one line). Invalid UTF-8 (a Latin-1
+/// atom name or path) becomes U+FFFD rather than an exception.
+std::string json_text(const nlohmann::json& document, int indent);
 
 }  // namespace surfcomp::report::detail

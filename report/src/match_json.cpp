@@ -84,14 +84,15 @@ nlohmann::json match_document(const matching::InputMatch& compared,
             {"image_sectors", ref.descriptors.options.image.sectors}}}};
 }
 
+std::string json_text(const nlohmann::json& document, int indent) {
+  return document.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 }  // namespace detail
 
 std::string match_json(const matching::InputMatch& compared,
                        const matching::MatchOptions& options) {
-  // Invalid UTF-8 in a path becomes U+FFFD rather than an exception.
-  return detail::match_document(compared, options)
-             .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
-         "\n";
+  return detail::json_text(detail::match_document(compared, options), 2) + "\n";
 }
 
 }  // namespace surfcomp::report
