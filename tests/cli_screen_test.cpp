@@ -130,10 +130,10 @@ TEST_F(CliScreen, HitsAreTheSameWithOneAndTwoThreadsAndTheQueryFindsItselfFirst)
             0u);
   EXPECT_EQ(rows[1].rfind("1,3,salicylic_acid,set.smi,3,1,", 0), 0u) << rows[1];
   // Columns 8 (stage): the two candidates come from the full match, the third molecule from
-  // the fast score.
-  EXPECT_EQ(fields_of(rows[1])[7], "2");
-  EXPECT_EQ(fields_of(rows[2])[7], "2");
-  EXPECT_EQ(fields_of(rows[3])[7], "1");
+  // the refined overlay.
+  EXPECT_EQ(fields_of(rows[1])[7], "3");
+  EXPECT_EQ(fields_of(rows[2])[7], "3");
+  EXPECT_EQ(fields_of(rows[3])[7], "2");
   EXPECT_EQ(fields_of(rows[1]).size(), 28u);
   const std::string aligned = file_bytes(dir_ / "hits1.sdf");
   std::size_t records = 0;
@@ -160,7 +160,7 @@ TEST_F(CliScreen, HsiFilesMakeALibraryThatTheirMoleculesFind) {
   ASSERT_EQ(rows.size(), 3u);  // header and the two entries
   EXPECT_EQ(rows[1].rfind("1,2,entry3,hsi/entry3.hsi,1,0,", 0), 0u) << rows[1];
   EXPECT_NEAR(std::stod(fields_of(rows[1])[6]), 1.0, 1e-3) << rows[1];  // score
-  EXPECT_EQ(fields_of(rows[1])[7], "2");                                // from the full match
+  EXPECT_EQ(fields_of(rows[1])[7], "3");                                // from the full match
   // The hit's heavy atoms, without bonds: salicylic acid's 10.
   const std::string aligned = file_bytes(dir_ / "hsi.sdf");
   EXPECT_NE(aligned.find(" 10  0  0  0  0  0  0  0  0  0999 V2000"), std::string::npos) << aligned;

@@ -1,7 +1,8 @@
-// Screening libraries and the two-stage screen: a library reads back what was written, field
+// Screening libraries and the three-stage screen: a library reads back what was written, field
 // for field; a damaged or cut library is refused naming the file; a bad record is skipped and
 // listed while the others build; a query that is in the library finds itself first with the
-// self-overlay's score and the identity. Pocket libraries: a site list is read line by line; a
+// self-overlay's score and the identity; stage 2 refines each molecule's best conformers and
+// only raises their scores. Pocket libraries: a site list is read line by line; a
 // site entry keeps its spheres; a site query finds its own pocket first, and a library of the
 // other kind is refused. A .hsi file becomes an entry keeping its surface and heavy atoms.
 #include "analytic_meshes.hpp"
@@ -22,6 +23,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -74,7 +76,7 @@ std::string read_bytes(const fs::path& path) {
 void expect_found_itself_first(const std::vector<screening::Hit>& hits, std::size_t entry) {
   ASSERT_FALSE(hits.empty());
   EXPECT_EQ(hits[0].entry, entry);
-  EXPECT_EQ(hits[0].stage, 2);
+  EXPECT_EQ(hits[0].stage, 3);
   EXPECT_NEAR(hits[0].fast_score, 1.0, 1e-9);
   EXPECT_NEAR(hits[0].score.score, 1.0, 1e-3);
   EXPECT_NEAR(hits[0].score.shape, 1.0, 1e-3);
@@ -253,8 +255,76 @@ TEST(Screen, QueryInTheLibraryFindsItselfFirstWithTheIdentity) {
   ASSERT_EQ(hits.size(), 3u);
   expect_found_itself_first(hits, 1);
   for (std::size_t i = 1; i < hits.size(); ++i) EXPECT_LT(hits[i].score.score, hits[0].score.score);
-  EXPECT_EQ(hits[1].stage, 2);
-  EXPECT_EQ(hits[2].stage, 1);
+  EXPECT_EQ(hits[1].stage, 3);
+  EXPECT_EQ(hits[2].stage, 2);
+}
+
+TEST(Screen, StageTwoRefinesEachMoleculesBestConformersAndNeverLowersTheirScores) {
+  const test::TempDir dir;
+  const std::vector<io::MoleculeRecord> records{
+      smiles_record("CC(=O)Nc1ccc(O)cc1", "paracetamol", 1),
+      smiles_record("CC(C)Cc1ccc(cc1)C(C)C(=O)O", "ibuprofen", 2),
+      smiles_record("OC(=O)c1ccccc1O", "salicylic_acid", 3)};
+  screening::LibraryBuildOptions build;
+  ConformerOptions conformers;
+  conformers.count = 4;
+  conformers.seed = 7;
+  build.conformers = conformers;
+  const fs::path path = dir / "three.sclib";
+  screening::build_library(records, path, build);
+  const screening::Library library(path);
+  ASSERT_GE(library.size(), 6u);
+
+  // The query: ibuprofen in a conformer of its own, which no entry has exactly.
+  conformers.seed = 11;
+  conformers.count = 1;
+  const Molecule molecule = io::read_record_molecule(
+      io::MoleculeRecord{"query.sdf", 1, "ibuprofen", io::RecordFormat::mdl,
+                         generate_conformers(records[1], conformers).front()});
+  screening::ScreenOptions options;
+  options.top = 0;
+  options.candidates = 0;
+  const screening::ScreenQuery query = screening::make_screen_query(
+      harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options);
+  const std::vector<screening::HitScore> fast =
+      screening::fast_scores(query, library, 0, library.size(), options);
+
+  // Two per molecule, each molecule's two best by fast score.
+  const std::vector<std::size_t> chosen = screening::entries_to_refine(library, fast, 2);
+  ASSERT_EQ(chosen.size(), 6u);
+  for (std::size_t e = 0; e < library.size(); ++e) {
+    if (std::find(chosen.begin(), chosen.end(), e) != chosen.end()) continue;
+    std::size_t better = 0;  // entries of e's molecule chosen with a higher fast score
+    for (const std::size_t c : chosen) {
+      if (library.info(c).name == library.info(e).name && fast[c].score >= fast[e].score) ++better;
+    }
+    EXPECT_EQ(better, 2u) << "entry " << e << " (" << library.info(e).name << ")";
+  }
+  EXPECT_EQ(screening::entries_to_refine(library, fast, 0).size(), 0u);
+  EXPECT_EQ(screening::entries_to_refine(library, fast, 100).size(), library.size());
+
+  // The refinement only climbs, and it does climb: the overlay from the principal axes alone is
+  // not a local optimum.
+  double gain = 0.0;
+  for (const std::size_t e : chosen) {
+    const screening::HitScore refined = screening::refined_score(query, library.entry(e), options);
+    EXPECT_GE(refined.score, fast[e].score - 1e-12) << "entry " << e;
+    gain = std::max(gain, refined.score - fast[e].score);
+  }
+  EXPECT_GT(gain, 0.01);
+
+  // The screen ranks by the refined scores: ibuprofen first, every row from stage 2.
+  options.refine = 2;
+  const std::vector<screening::Hit> hits = screening::screen(query, library, options).hits;
+  ASSERT_EQ(hits.size(), 3u);
+  EXPECT_EQ(library.info(hits[0].entry).name, "ibuprofen");
+  for (const screening::Hit& hit : hits) {
+    EXPECT_EQ(hit.stage, 2);
+    EXPECT_GE(hit.score.score, hit.fast_score - 1e-12);
+  }
+  options.refine = 0;
+  for (const screening::Hit& hit : screening::screen(query, library, options).hits)
+    EXPECT_EQ(hit.stage, 1);
 }
 
 TEST(LibraryBuild, HsiFilesBecomeEntriesThatKeepTheirSurfaceAndFindThemselves) {

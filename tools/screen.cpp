@@ -27,18 +27,20 @@ namespace surfcomp::tools {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: surfcomp screen QUERY LIB.sclib -o hits.csv [--top N] [--candidates K]\n"
+    "usage: surfcomp screen QUERY LIB.sclib -o hits.csv [--top N] [--refine C] [--candidates K]\n"
     "                       [--aligned-out hits.sdf] [--threads T]\n"
     "       surfcomp screen STRUCTURE.pdb POCKETS.sclib --site-ligand RES | --site-sphere x,y,z,r\n"
     "                       -o hits.csv [--aligned-out hits.pdb] ...\n"
     "       mpirun -np R surfcomp screen ...   (the library split over R processes)\n\n"
     "Ranks the molecules of a library (surfcomp library build) by how well their surfaces\n"
-    "overlay QUERY's, in two stages: every conformer gets a fast score (the overlay score of\n"
+    "overlay QUERY's, in three stages: every conformer gets a fast score (the overlay score of\n"
     "its stored surface sample at the four principal-axes superpositions onto the query, no\n"
-    "refinement) and a molecule counts by its best conformer; the --candidates best molecules'\n"
-    "best conformers then get the full match of `surfcomp match` (cliques, refinement), their\n"
-    "surfaces rebuilt. hits.csv has one row per molecule, best first: the candidates by their\n"
-    "full-match score (stage 2), then the others by their fast score (stage 1); the columns\n"
+    "refinement); the --refine best conformers of each molecule then get that overlay refined\n"
+    "from each superposition, and a molecule counts by its best conformer; the --candidates\n"
+    "best molecules' best conformers last get the full match of `surfcomp match` (cliques,\n"
+    "refinement), their surfaces rebuilt. hits.csv has one row per molecule, best first: the\n"
+    "candidates by their full-match score (stage 3), then the others by their refined score\n"
+    "(stage 2; stage 1, the fast score, with --refine 0); the columns\n"
     "rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,fast_score and\n"
     "t00..t33, the transform moving the hit into QUERY's frame (row-major). The rows do not\n"
     "depend on --threads or on the number of MPI processes.\n\n"
@@ -147,9 +149,10 @@ int screen(const std::vector<std::string>& args) {
   screening::ScreenOptions& options = settings.options;
   if (console::progress_shown()) {
     auto first = std::make_shared<console::ProgressLine>("stage 1 (fast scores)", "entries");
-    auto second = std::make_shared<console::ProgressLine>("stage 2 (full matches)", "candidates");
-    options.progress = [first, second](int stage, std::int64_t done, std::int64_t total) {
-      (stage == 1 ? *first : *second)(done, total);
+    auto second = std::make_shared<console::ProgressLine>("stage 2 (refinements)", "conformers");
+    auto third = std::make_shared<console::ProgressLine>("stage 3 (full matches)", "candidates");
+    options.progress = [first, second, third](int stage, std::int64_t done, std::int64_t total) {
+      (stage == 1 ? *first : stage == 2 ? *second : *third)(done, total);
     };
   }
 
@@ -190,12 +193,12 @@ int screen(const std::vector<std::string>& args) {
   }
   console::summary(
       "%s vs %s: %zu entries, %zu hits; query %.2f s, stage 1 %.2f s (%.0f entries/s), stage 2 "
-      "%.2f s (%zu candidates), total %.2f s (%d process%s)\n",
+      "%.2f s (refinements), stage 3 %.2f s (%zu candidates), total %.2f s (%d process%s)\n",
       query_path.string().c_str(), library_path.string().c_str(), library.size(), hits.size(),
       query_s, result.stage1_seconds,
       result.stage1_seconds > 0 ? static_cast<double>(library.size()) / result.stage1_seconds : 0.0,
-      result.stage2_seconds, std::min(options.candidates, hits.size()), total_s, ranks,
-      ranks == 1 ? "" : "es");
+      result.stage2_seconds, result.stage3_seconds, std::min(options.candidates, hits.size()),
+      total_s, ranks, ranks == 1 ? "" : "es");
   return 0;
 }
 

@@ -57,6 +57,40 @@ std::vector<double> gather(const std::vector<double>& local, const std::vector<i
   return all;
 }
 
+/// Rank 0's list `chosen`, sent to every rank.
+std::vector<std::uint64_t> broadcast(std::vector<std::uint64_t> chosen) {
+  std::uint64_t k = chosen.size();
+  MPI_Bcast(&k, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  chosen.resize(k);
+  MPI_Bcast(chosen.data(), static_cast<int>(k), MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  return chosen;
+}
+
+/// score(i) for i in [0, count), item i on rank i mod ranks (in parallel there), gathered on
+/// rank 0 in item order; empty on the other ranks.
+template <class Score>
+std::vector<screening::HitScore> deal_out(std::size_t count, int rank, int ranks,
+                                          const Score& score) {
+  const auto step = static_cast<std::size_t>(ranks);
+  std::vector<std::size_t> mine;
+  for (std::size_t i = static_cast<std::size_t>(rank); i < count; i += step) mine.push_back(i);
+  std::vector<double> packed(mine.size() * kDoubles);
+  tbb::parallel_for(std::size_t{0}, mine.size(),
+                    [&](std::size_t j) { pack(score(mine[j]), &packed[j * kDoubles]); });
+  std::vector<int> counts(step);
+  for (std::size_t r = 0; r < step; ++r)
+    counts[r] = r < count ? static_cast<int>((count - r + step - 1) / step) : 0;
+  const std::vector<double> all = gather(packed, counts, rank);
+  std::vector<screening::HitScore> scores;
+  if (rank != 0) return scores;
+  scores.resize(count);
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < step; ++r) {
+    for (std::size_t i = r; i < count; i += step) scores[i] = unpack(&all[kDoubles * at++]);
+  }
+  return scores;
+}
+
 DistributedScreen run(const screening::ScreenQuery& query, const screening::Library& library,
                       const screening::ScreenOptions& options, int rank, int ranks) {
   matching::validate(screening::query_match_options(query, options));
@@ -77,55 +111,46 @@ DistributedScreen run(const screening::ScreenQuery& query, const screening::Libr
     counts[static_cast<std::size_t>(r)] = static_cast<int>(slice_begin(r + 1) - slice_begin(r));
   const std::vector<double> all = gather(packed, counts, rank);
 
-  // Rank 0 picks the candidates and tells the others.
+  // Stage 2: rank 0 picks the conformers to refine and tells the others.
   std::vector<screening::HitScore> fast;
+  std::vector<std::uint64_t> to_refine;
+  if (rank == 0) {
+    for (std::size_t e = 0; e < n; ++e) fast.push_back(unpack(&all[e * kDoubles]));
+    for (const std::size_t e : screening::entries_to_refine(library, fast, options.refine))
+      to_refine.push_back(e);
+  }
+  const double stage1_seconds = clock.elapsed_s();
+  to_refine = broadcast(std::move(to_refine));
+  const std::vector<screening::HitScore> refined =
+      deal_out(to_refine.size(), rank, ranks, [&](std::size_t i) {
+        return screening::refined_score(query, library.entry(to_refine[i]), options);
+      });
+
+  // Stage 3: rank 0 picks the candidates and tells the others.
+  std::vector<screening::EntryScore> scores;
   std::vector<std::size_t> best;
   std::vector<std::uint64_t> chosen;
   if (rank == 0) {
-    for (std::size_t e = 0; e < n; ++e) fast.push_back(unpack(&all[e * kDoubles]));
-    best = screening::best_entry_per_molecule(library, fast);
+    scores = screening::merge_refined(
+        fast, std::vector<std::size_t>(to_refine.begin(), to_refine.end()), refined);
+    best = screening::best_entry_per_molecule(library, scores);
     for (std::size_t i = 0; i < best.size() && i < options.candidates; ++i)
       chosen.push_back(best[i]);
   }
-  const double stage1_seconds = clock.elapsed_s();
-  std::uint64_t k = chosen.size();
-  MPI_Bcast(&k, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-  chosen.resize(k);
-  MPI_Bcast(chosen.data(), static_cast<int>(k), MPI_UINT64_T, 0, MPI_COMM_WORLD);
-
-  // Stage 2: candidate i on rank i mod ranks.
-  std::vector<std::size_t> my_candidates;
-  for (std::size_t i = static_cast<std::size_t>(rank); i < k; i += static_cast<std::size_t>(ranks))
-    my_candidates.push_back(i);
-  std::vector<double> full_packed(my_candidates.size() * kDoubles);
-  tbb::parallel_for(std::size_t{0}, my_candidates.size(), [&](std::size_t j) {
-    const screening::LibraryEntry entry = library.entry(chosen[my_candidates[j]]);
-    pack(screening::full_score(query, entry, options), &full_packed[j * kDoubles]);
-  });
-  std::vector<int> full_counts(static_cast<std::size_t>(ranks));
-  for (int r = 0; r < ranks; ++r) {
-    const auto first = static_cast<std::uint64_t>(r);
-    full_counts[static_cast<std::size_t>(r)] =
-        first < k ? static_cast<int>((k - first + static_cast<std::uint64_t>(ranks) - 1) /
-                                     static_cast<std::uint64_t>(ranks))
-                  : 0;
-  }
-  const std::vector<double> full_all = gather(full_packed, full_counts, rank);
+  const double stage2_seconds = clock.elapsed_s() - stage1_seconds;
+  chosen = broadcast(std::move(chosen));
+  const std::vector<screening::HitScore> full =
+      deal_out(chosen.size(), rank, ranks, [&](std::size_t i) {
+        return screening::full_score(query, library.entry(chosen[i]), options);
+      });
 
   DistributedScreen result;
   result.root = rank == 0;
   result.ranks = ranks;
   result.result.stage1_seconds = stage1_seconds;
-  result.result.stage2_seconds = clock.elapsed_s() - stage1_seconds;
-  if (rank == 0) {
-    std::vector<screening::HitScore> full(k);
-    std::size_t at = 0;
-    for (int r = 0; r < ranks; ++r) {
-      for (std::size_t i = static_cast<std::size_t>(r); i < k; i += static_cast<std::size_t>(ranks))
-        full[i] = unpack(&full_all[kDoubles * at++]);
-    }
-    result.result.hits = screening::rank_hits(best, fast, full, options.top);
-  }
+  result.result.stage2_seconds = stage2_seconds;
+  result.result.stage3_seconds = clock.elapsed_s() - stage1_seconds - stage2_seconds;
+  if (rank == 0) result.result.hits = screening::rank_hits(best, scores, full, options.top);
   return result;
 }
 

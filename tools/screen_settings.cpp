@@ -13,8 +13,11 @@ void add_screen_options(boost::program_options::options_description& options,
   // clang-format off
   options.add_options()
       ("top", defaulted(&settings.top), "rows of the table (0: every molecule)")
+      ("refine", defaulted(&settings.refine),
+       "conformers of each molecule whose overlay is refined (stage 2), best fast score "
+       "first (0: none)")
       ("candidates", defaulted(&settings.candidates),
-       "molecules given the full match (stage 2), best fast score first")
+       "molecules given the full match (stage 3), best score after stage 2 first")
       ("record", po::value(&settings.record),
        "QUERY holding several molecules: read molecule N (1-based)")
       ("site-ligand", po::value(&settings.site_ligand),
@@ -30,6 +33,7 @@ void add_screen_options(boost::program_options::options_description& options,
 
 void finish_screen_options(ScreenSettings& settings) {
   require_in_range("top", settings.top, 0, 1e9);
+  require_in_range("refine", settings.refine, 0, 1e6);
   require_in_range("candidates", settings.candidates, 0, 1e6);
   require_in_range("threads", settings.threads, 0, 1024);
   require_in_range("site-radius", settings.site.sphere_radius, 0.1, 100);
@@ -39,6 +43,7 @@ void finish_screen_options(ScreenSettings& settings) {
     settings.spheres.push_back(parse_sphere_option(text));
   settings.options.site = settings.site;
   settings.options.top = static_cast<std::size_t>(settings.top);
+  settings.options.refine = static_cast<std::size_t>(settings.refine);
   settings.options.candidates = static_cast<std::size_t>(settings.candidates);
 }
 

@@ -15,7 +15,8 @@
 namespace surfcomp::tools {
 
 struct ScreenSettings {
-  double top = 100, candidates = 50;  // read as doubles: a negative value is refused, not wrapped
+  double top = 100, refine = 2,
+         candidates = 50;  // read as doubles: a negative value is refused, not wrapped
   std::size_t record = 0;
   std::string site_ligand;
   std::vector<std::string> site_spheres;
@@ -26,7 +27,8 @@ struct ScreenSettings {
   std::vector<matching::SiteSphere> spheres;
 };
 
-/// Adds --top --candidates --record --site-ligand --site-sphere --site-radius --site-margin
+/// Adds --top --refine --candidates --record --site-ligand --site-sphere --site-radius
+/// --site-margin
 /// --threads, bound to `settings`.
 void add_screen_options(boost::program_options::options_description& options,
                         ScreenSettings& settings);

@@ -163,7 +163,8 @@ class MatchResult(list):
 @dataclasses.dataclass
 class Hit:
     """One molecule of a screen, best first: its best conformer's ``entry`` (1-based) in the
-    library, its ``score`` (stage 2: the full match's overlay score; stage 1: the fast score)
+    library, its ``score`` (stage 3: the full match's overlay score; stage 2: the refined
+    overlay score; stage 1: the fast score)
     and terms, and ``transform`` (4, 4) moving it into the query's frame."""
 
     rank: int
@@ -230,7 +231,7 @@ def screen(query, library, **options) -> List[Hit]:
     (a molecule, a ``.hsi`` file or :class:`Descriptors`; with site_ligand or site_sphere, a
     binding site on a structure against a pocket library), as ``surfcomp screen`` does.
 
-    Options: top=100 (0: every molecule), candidates=50, record, site_ligand, site_sphere,
+    Options: top=100 (0: every molecule), refine=2, candidates=50, record, site_ligand, site_sphere,
     site_radius=4, site_margin=16, threads=0.
     """
     return [Hit(**h) for h in _surfcomp.screen(_input(query), os.fspath(library),

@@ -57,6 +57,21 @@ bool same_overlay_options(const matching::OverlayOptions& x, const matching::Ove
          x.tolerance == y.tolerance;
 }
 
+/// score(i) for i in [0, count), in parallel into slots, reporting progress as `stage`.
+template <class Score>
+std::vector<HitScore> score_in_parallel(std::size_t count, int stage, const ScreenOptions& options,
+                                        const Score& score) {
+  std::vector<HitScore> scores(count);
+  const auto total = static_cast<std::int64_t>(count);
+  std::atomic<std::int64_t> done{0};
+  tbb::parallel_for(std::size_t{0}, count, [&](std::size_t i) {
+    scores[i] = score(i);
+    if (options.progress) options.progress(stage, ++done, total);
+  });
+  if (options.progress) options.progress(stage, total, total);
+  return scores;
+}
+
 }  // namespace
 
 void check_library_kind(const Library& library, bool site_query) {
@@ -108,25 +123,77 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
   return query;
 }
 
+namespace {
+
+/// The overlay of an entry's stored samples on the query's.
+matching::SurfaceOverlay entry_overlay(const ScreenQuery& query, const LibraryEntry& entry,
+                                       const ScreenOptions& options) {
+  const matching::OverlayOptions overlay_options =
+      matching::mode_overlay_options(query_match_options(query, options));
+  return query.overlay && same_overlay_options(query.overlay->options(), overlay_options)
+             ? matching::SurfaceOverlay(*query.overlay, entry.sample, entry.atoms)
+             : matching::SurfaceOverlay(query.sample, entry.sample, overlay_options, query.atoms,
+                                        entry.atoms);
+}
+
+/// The principal-axes superpositions of an entry onto the query: sites are few and their
+/// linings' axes less telling, so all 24 axes orders for them.
+std::vector<matching::RigidTransform> entry_starts(const ScreenQuery& query,
+                                                   const LibraryEntry& entry) {
+  return matching::principal_axes_starts(query.sample, entry.sample, !query.site.empty());
+}
+
+/// The molecules of a library (entries sharing source, record and name; not necessarily
+/// adjacent), each as its entries in index order, the molecules in order of their first entry.
+std::vector<std::vector<std::size_t>> molecules(const Library& library) {
+  std::map<std::tuple<std::string, std::uint32_t, std::string>, std::size_t> index;
+  std::vector<std::vector<std::size_t>> out;
+  for (std::size_t e = 0; e < library.size(); ++e) {
+    const LibraryEntryInfo& info = library.info(e);
+    const auto [it, inserted] =
+        index.emplace(std::make_tuple(info.source, info.record, info.name), out.size());
+    if (inserted) out.emplace_back();
+    out[it->second].push_back(e);
+  }
+  return out;
+}
+
+void check_score_count(const Library& library, std::size_t count, const char* function) {
+  if (count != library.size()) {
+    throw InputError(std::string(function) + ": " + std::to_string(count) +
+                     " scores for a library of " + std::to_string(library.size()) + " entries");
+  }
+}
+
+}  // namespace
+
 HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options) {
   if (entry.sample.size() == 0) return {};
-  const matching::OverlayOptions overlay_options =
-      matching::mode_overlay_options(query_match_options(query, options));
-  const matching::SurfaceOverlay overlay =
-      query.overlay && same_overlay_options(query.overlay->options(), overlay_options)
-          ? matching::SurfaceOverlay(*query.overlay, entry.sample, entry.atoms)
-          : matching::SurfaceOverlay(query.sample, entry.sample, overlay_options, query.atoms,
-                                     entry.atoms);
-  // Sites are few and their linings' axes less telling: all 24 axes orders for them.
-  const bool all_orders = !query.site.empty();
+  const matching::SurfaceOverlay overlay = entry_overlay(query, entry, options);
   HitScore best;
   bool first = true;
-  for (const matching::RigidTransform& start :
-       matching::principal_axes_starts(query.sample, entry.sample, all_orders)) {
+  for (const matching::RigidTransform& start : entry_starts(query, entry)) {
     const matching::OverlayScore s = overlay.score(start);
     if (first || s.score > best.score) best = from_overlay(s, start.matrix());
     first = false;
+  }
+  return best;
+}
+
+HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
+                       const ScreenOptions& options) {
+  if (entry.sample.size() == 0) return {};
+  const matching::SurfaceOverlay overlay = entry_overlay(query, entry, options);
+  HitScore best;
+  bool first = true;
+  for (const matching::RigidTransform& start : entry_starts(query, entry)) {
+    // The refinement climbs the surface part of the score: the start itself may score higher.
+    const matching::OverlayScore at_start = overlay.score(start);
+    if (first || at_start.score > best.score) best = from_overlay(at_start, start.matrix());
+    first = false;
+    const matching::RefineResult r = overlay.refine(start);
+    if (r.score.score > best.score) best = from_overlay(r.score, r.transform.matrix());
   }
   return best;
 }
@@ -137,39 +204,63 @@ std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& libra
   check_library_kind(library, !query.site.empty());
   end = std::min(end, library.size());
   begin = std::min(begin, end);
-  std::vector<HitScore> scores(end - begin);
-  const auto total = static_cast<std::int64_t>(end - begin);
-  std::atomic<std::int64_t> done{0};
-  tbb::parallel_for(begin, end, [&](std::size_t e) {
-    scores[e - begin] = fast_score(query, library.entry(e), options);
-    if (options.progress) options.progress(1, ++done, total);
+  return score_in_parallel(end - begin, 1, options, [&](std::size_t i) {
+    return fast_score(query, library.entry(begin + i), options);
   });
-  if (options.progress) options.progress(1, total, total);
+}
+
+std::vector<std::size_t> entries_to_refine(const Library& library,
+                                           const std::vector<HitScore>& fast,
+                                           std::size_t per_molecule) {
+  check_score_count(library, fast.size(), "entries_to_refine");
+  std::vector<std::size_t> chosen;
+  for (std::vector<std::size_t>& entries : molecules(library)) {
+    const std::size_t k = std::min(per_molecule, entries.size());
+    std::partial_sort(entries.begin(), entries.begin() + static_cast<std::ptrdiff_t>(k),
+                      entries.end(), [&](std::size_t x, std::size_t y) {
+                        if (fast[x].score != fast[y].score) return fast[x].score > fast[y].score;
+                        return x < y;
+                      });
+    chosen.insert(chosen.end(), entries.begin(), entries.begin() + static_cast<std::ptrdiff_t>(k));
+  }
+  std::sort(chosen.begin(), chosen.end());
+  return chosen;
+}
+
+std::vector<EntryScore> merge_refined(const std::vector<HitScore>& fast,
+                                      const std::vector<std::size_t>& refined_entries,
+                                      const std::vector<HitScore>& refined) {
+  if (refined.size() != refined_entries.size()) {
+    throw InputError("merge_refined: " + std::to_string(refined.size()) + " scores for " +
+                     std::to_string(refined_entries.size()) + " refined entries");
+  }
+  std::vector<EntryScore> scores(fast.size());
+  for (std::size_t e = 0; e < fast.size(); ++e) scores[e] = {fast[e], 1, fast[e].score};
+  for (std::size_t i = 0; i < refined_entries.size(); ++i) {
+    EntryScore& s = scores.at(refined_entries[i]);
+    s.score = refined[i];
+    s.stage = 2;
+  }
   return scores;
 }
 
 std::vector<std::size_t> best_entry_per_molecule(const Library& library,
-                                                 const std::vector<HitScore>& fast) {
-  if (fast.size() != library.size()) {
-    throw InputError("best_entry_per_molecule: " + std::to_string(fast.size()) +
-                     " scores for a library of " + std::to_string(library.size()) + " entries");
+                                                 const std::vector<EntryScore>& scores) {
+  check_score_count(library, scores.size(), "best_entry_per_molecule");
+  const auto score = [&](std::size_t e) { return scores[e].score.score; };
+  std::vector<std::size_t> best;
+  for (const std::vector<std::size_t>& entries : molecules(library)) {
+    best.push_back(
+        *std::min_element(entries.begin(), entries.end(), [&](std::size_t x, std::size_t y) {
+          if (score(x) != score(y)) return score(x) > score(y);
+          return x < y;
+        }));
   }
-  // A molecule is (source, record, name); its entries need not be adjacent.
-  std::map<std::tuple<std::string, std::uint32_t, std::string>, std::size_t> best;
-  for (std::size_t e = 0; e < library.size(); ++e) {
-    const LibraryEntryInfo& info = library.info(e);
-    const auto [it, inserted] =
-        best.emplace(std::make_tuple(info.source, info.record, info.name), e);
-    if (!inserted && fast[e].score > fast[it->second].score) it->second = e;
-  }
-  std::vector<std::size_t> entries;
-  entries.reserve(best.size());
-  for (const auto& item : best) entries.push_back(item.second);
-  std::sort(entries.begin(), entries.end(), [&](std::size_t x, std::size_t y) {
-    if (fast[x].score != fast[y].score) return fast[x].score > fast[y].score;
+  std::sort(best.begin(), best.end(), [&](std::size_t x, std::size_t y) {
+    if (score(x) != score(y)) return score(x) > score(y);
     return x < y;
   });
-  return entries;
+  return best;
 }
 
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
@@ -207,19 +298,22 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
   return from_overlay(top.overlay, top.transform);
 }
 
-std::vector<Hit> rank_hits(const std::vector<std::size_t>& best, const std::vector<HitScore>& fast,
-                           const std::vector<HitScore>& full, std::size_t top) {
+std::vector<Hit> rank_hits(const std::vector<std::size_t>& best,
+                           const std::vector<EntryScore>& scores, const std::vector<HitScore>& full,
+                           std::size_t top) {
   const std::size_t k = std::min(full.size(), best.size());
   std::vector<Hit> candidates;
   for (std::size_t i = 0; i < k; ++i)
-    candidates.push_back({best[i], 2, full[i], fast[best[i]].score});
+    candidates.push_back({best[i], 3, full[i], scores[best[i]].fast_score});
   std::sort(candidates.begin(), candidates.end(), [](const Hit& x, const Hit& y) {
     if (x.score.score != y.score.score) return x.score.score > y.score.score;
     return x.entry < y.entry;
   });
   std::vector<Hit> hits = std::move(candidates);
-  for (std::size_t i = k; i < best.size(); ++i)
-    hits.push_back({best[i], 1, fast[best[i]], fast[best[i]].score});
+  for (std::size_t i = k; i < best.size(); ++i) {
+    const EntryScore& s = scores[best[i]];
+    hits.push_back({best[i], s.stage, s.score, s.fast_score});
+  }
   if (top > 0 && hits.size() > top) hits.resize(top);
   return hits;
 }
@@ -230,18 +324,21 @@ ScreenResult screen(const ScreenQuery& query, const Library& library,
   ScreenResult result;
   const Stopwatch clock;
   const std::vector<HitScore> fast = fast_scores(query, library, 0, library.size(), options);
-  const std::vector<std::size_t> best = best_entry_per_molecule(library, fast);
   result.stage1_seconds = clock.elapsed_s();
-  std::vector<HitScore> full(std::min(options.candidates, best.size()));
-  const auto total = static_cast<std::int64_t>(full.size());
-  std::atomic<std::int64_t> done{0};
-  tbb::parallel_for(std::size_t{0}, full.size(), [&](std::size_t i) {
-    full[i] = full_score(query, library.entry(best[i]), options);
-    if (options.progress) options.progress(2, ++done, total);
-  });
-  if (options.progress) options.progress(2, total, total);
+
+  const std::vector<std::size_t> to_refine = entries_to_refine(library, fast, options.refine);
+  const std::vector<HitScore> refined = score_in_parallel(
+      to_refine.size(), 2, options,
+      [&](std::size_t i) { return refined_score(query, library.entry(to_refine[i]), options); });
+  const std::vector<EntryScore> scores = merge_refined(fast, to_refine, refined);
+  const std::vector<std::size_t> best = best_entry_per_molecule(library, scores);
   result.stage2_seconds = clock.elapsed_s() - result.stage1_seconds;
-  result.hits = rank_hits(best, fast, full, options.top);
+
+  const std::vector<HitScore> full = score_in_parallel(
+      std::min(options.candidates, best.size()), 3, options,
+      [&](std::size_t i) { return full_score(query, library.entry(best[i]), options); });
+  result.stage3_seconds = clock.elapsed_s() - result.stage1_seconds - result.stage2_seconds;
+  result.hits = rank_hits(best, scores, full, options.top);
   return result;
 }
 

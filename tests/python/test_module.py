@@ -174,7 +174,7 @@ def test_a_screen_finds_its_query_first(program, cache, tmp_path):
     assert len(info["entries"]) == 10
     query = Chem.SDMolSupplier(str(sdf), removeHs=False)[3]
     hits = surfcomp.screen(query, library, top=5, candidates=3)
-    assert len(hits) == 5 and hits[0].entry == 4 and hits[0].stage == 2
+    assert len(hits) == 5 and hits[0].entry == 4 and hits[0].stage == 3
     assert hits[0].score == pytest.approx(1.0, abs=1e-3)
     np.testing.assert_allclose(hits[0].transform, np.eye(4), atol=1e-2)
 

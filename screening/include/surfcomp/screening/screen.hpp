@@ -1,10 +1,13 @@
-// One query against a library, in two stages (docs/screening.md). The query is a molecule
+// One query against a library, in three stages (docs/screening.md). The query is a molecule
 // against a library of molecules, or a binding site against a pocket library (sites: the
 // overlays then compare pocket linings, as MatchMode::binding_sites does):
 //  1. a fast score of every entry: the whole-surface overlay score (matching::SurfaceOverlay)
 //     of the entry's stored samples at the four principal-axes superpositions onto the query,
-//     without refinement, the best of the four kept; a molecule counts by its best conformer;
-//  2. the full match (matching::match_surfaces, as `surfcomp match` runs it) of the query with
+//     without refinement, the best of the four kept;
+//  2. each molecule's `refine` best conformers by that score get the overlay refined
+//     (SurfaceOverlay::refine) from each of their principal-axes superpositions, the best kept;
+//     a molecule counts by its best conformer, refined scores above fast ones;
+//  3. the full match (matching::match_surfaces, as `surfcomp match` runs it) of the query with
 //     the best conformer of the `candidates` best molecules, its surface and descriptors
 //     rebuilt from the stored molecule.
 // Every entry is scored independently into its own slot (TBB): the hits do not depend on the
@@ -29,27 +32,31 @@
 namespace surfcomp::screening {
 
 struct ScreenOptions {
-  /// Default 50. The molecules, best fast score first, whose best conformer gets the full match
-  /// (stage 2). 0: stage 1 alone.
+  /// Default 2. The conformers of each molecule, best fast score first, whose overlay stage 2
+  /// refines. 0: no refinement.
+  std::size_t refine = 2;
+  /// Default 50. The molecules, best score after stage 2 first, whose best conformer gets the
+  /// full match (stage 3). 0: no full match.
   std::size_t candidates = 50;
   /// Default 100. Hits returned, best first; 0: every molecule of the library.
   std::size_t top = 100;
-  /// The full match of stage 2, whose overlay options (sigma, spacing, chemistry and atom
-  /// weights) stage 1 scores with too; default as `surfcomp match`.
+  /// The full match of stage 3, whose overlay options (sigma, spacing, chemistry and atom
+  /// weights, refinement steps) stages 1 and 2 score and refine with too; default as
+  /// `surfcomp match`.
   matching::MatchOptions match;
-  /// How a candidate's stored molecule is read and its surface rebuilt in stage 2; default as
+  /// How a candidate's stored molecule is read and its surface rebuilt in stage 3; default as
   /// `surfcomp match` (its descriptors are built with the query's DescriptorOptions).
   io::MoleculeReadOptions read;
   mesh::MolecularSurfaceOptions surface;
-  /// A pocket screen: how a candidate site's surface is built in stage 2, its surface margin
+  /// A pocket screen: how a candidate site's surface is built in stage 3, its surface margin
   /// raised to matching::site_surface_margin of the query's patch radius; default as `match`.
   matching::BindingSiteOptions site;
-  /// Default none. Called as entries are scored, (stage 1 or 2, done, total), from the worker
+  /// Default none. Called as entries are scored, (stage 1, 2 or 3, done, total), from the worker
   /// threads (it must be thread-safe), and once with done == total at the end of each stage.
   std::function<void(int stage, std::int64_t done, std::int64_t total)> progress;
 };
 
-/// The query, described once: its descriptors (stage 2) and its overlay samples (stage 1).
+/// The query, described once: its descriptors (stage 3) and its overlay samples (stages 1, 2).
 struct ScreenQuery {
   harmonic::SurfaceDescriptors descriptors;
   /// sample_surface(descriptors.surface, overlay spacing); of the pocket lining for a site
@@ -102,13 +109,36 @@ std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& libra
                                   std::size_t begin, std::size_t end,
                                   const ScreenOptions& options = {});
 
-/// Each molecule's best entry by its stage-1 score (a molecule: the entries sharing name,
-/// source and record), the molecules ordered by that score, best first; ties go to the lower
-/// entry index. `fast` holds one score per library entry.
-std::vector<std::size_t> best_entry_per_molecule(const Library& library,
-                                                 const std::vector<HitScore>& fast);
+/// The entries stage 2 refines: each molecule's (the entries sharing name, source and record)
+/// `per_molecule` best entries by their stage-1 score, ties to the lower index, in entry order.
+/// `fast` holds one score per library entry.
+std::vector<std::size_t> entries_to_refine(const Library& library,
+                                           const std::vector<HitScore>& fast,
+                                           std::size_t per_molecule);
 
-/// Stage 2 of one entry: the full match of the query with the entry's molecule, rebuilt (see
+/// Stage 2 of one entry (see the file comment): never below its fast score.
+HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
+                       const ScreenOptions& options = {});
+
+/// An entry's score after stages 1 and 2.
+struct EntryScore {
+  HitScore score;           ///< the refined score where stage 2 refined the entry, else the fast
+  int stage = 1;            ///< 2 where stage 2 refined it
+  double fast_score = 0.0;  ///< its stage-1 score
+};
+
+/// One EntryScore per library entry: `fast`, with the scores of the `refined` entries (as
+/// entries_to_refine lists them, one score each) in their place.
+std::vector<EntryScore> merge_refined(const std::vector<HitScore>& fast,
+                                      const std::vector<std::size_t>& refined_entries,
+                                      const std::vector<HitScore>& refined);
+
+/// Each molecule's best entry by its score after stage 2, the molecules ordered by that score,
+/// best first; ties go to the lower entry index. `scores` holds one score per library entry.
+std::vector<std::size_t> best_entry_per_molecule(const Library& library,
+                                                 const std::vector<EntryScore>& scores);
+
+/// Stage 3 of one entry: the full match of the query with the entry's molecule, rebuilt (see
 /// ScreenOptions::read, surface; a site's structure described at its site, matched as binding
 /// sites, its surface that of the atoms within the site's margin, as matching::build_site_surface
 /// builds it); the top alignment's overlay score and transform. An entry
@@ -120,26 +150,29 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
 /// One row of a screen's result.
 struct Hit {
   std::size_t entry = 0;  ///< 0-based library index of the molecule's best conformer
-  int stage = 1;          ///< the stage whose score `score` is: 2 for the candidates
+  int stage = 1;          ///< the stage whose score `score` is: 3 for the candidates
   HitScore score;
   double fast_score = 0.0;  ///< its stage-1 score
 };
 
 /// The result rows: first the `full.size()` candidates (the first entries of `best`, their
-/// stage-2 scores in `full`) by their stage-2 score, then the other molecules of `best` in
-/// their stage-1 order; at most `top` rows (0: all). Ties go to the lower entry index.
-std::vector<Hit> rank_hits(const std::vector<std::size_t>& best, const std::vector<HitScore>& fast,
-                           const std::vector<HitScore>& full, std::size_t top);
+/// stage-3 scores in `full`) by their stage-3 score, then the other molecules of `best` in
+/// their order after stage 2; at most `top` rows (0: all). Ties go to the lower entry index.
+std::vector<Hit> rank_hits(const std::vector<std::size_t>& best,
+                           const std::vector<EntryScore>& scores, const std::vector<HitScore>& full,
+                           std::size_t top);
 
 /// A screen's rows and its time.
 struct ScreenResult {
   std::vector<Hit> hits;
   double stage1_seconds = 0.0;  ///< wall-clock time of the fast scores
-  double stage2_seconds = 0.0;  ///< wall-clock time of the full matches
+  double stage2_seconds = 0.0;  ///< wall-clock time of the refinements
+  double stage3_seconds = 0.0;  ///< wall-clock time of the full matches
 };
 
-/// The whole screen in this process: fast_scores of every entry, best_entry_per_molecule, the
-/// first options.candidates of them through full_score (in parallel), rank_hits.
+/// The whole screen in this process: fast_scores of every entry, refined_score of the
+/// entries_to_refine (in parallel), merge_refined, best_entry_per_molecule, the first
+/// options.candidates of them through full_score (in parallel), rank_hits.
 ScreenResult screen(const ScreenQuery& query, const Library& library,
                     const ScreenOptions& options = {});
 
