@@ -74,6 +74,13 @@ def parse_args(argv=None):
     parser.add_argument("--o3a-workers", type=int, default=1,
                         help="processes for the Open3DAlign baseline (default 1); its time per "
                              "conformer is the processes' CPU time, so it does not depend on this")
+    parser.add_argument("--screen-args", default="",
+                        help="more arguments for every `surfcomp screen`, as one string "
+                             "(e.g. \"--refine 0\")")
+    parser.add_argument("--rescreen", action="store_true",
+                        help="with --work holding an earlier run of the same settings: keep its "
+                             "libraries, conformers and baseline scores, run only the surfcomp "
+                             "screens again (with this --surfcomp and --screen-args)")
     parser.add_argument("--resume", action="store_true",
                         help="with --work: reuse a target's figures from an earlier run of the same "
                              "settings (WORK/TARGET/result.json) instead of running it again")
@@ -82,6 +89,8 @@ def parse_args(argv=None):
     for target in args.targets:
         if target not in TARGETS:
             parser.error(f"unknown target '{target}' (expected some of {', '.join(TARGETS)})")
+    if args.rescreen and (args.work is None or args.skip_surfcomp):
+        parser.error("--rescreen needs --work (an earlier run's folder) and surfcomp")
     if not args.skip_surfcomp and args.surfcomp is None:
         parser.error("--surfcomp PATH is required unless --skip-surfcomp is given")
     for name in ("queries", "conformers", "threads"):
@@ -236,8 +245,8 @@ def read_hits(path):
 
     score and fast_score become floats; each row also gets `order_score`, minus the index of
     its group of consecutive rows with equal (stage, score). It follows the file's order, which
-    puts the full-match rows (stage 2) before the fast-scored ones (stage 1) whatever their
-    score columns, and keeps rows of equal stage and score tied.
+    puts the full-match rows (stage 3) before the refined (2) or fast-scored (1) ones whatever
+    their score columns, and keeps rows of equal stage and score tied.
     """
     hits = {}
     group = -1
@@ -453,12 +462,22 @@ def surfcomp_screen(args, target_dir, library_records, queries, query_paths):
     library = read_exported_library(export_path)
     build_log_path = Path(f"{library_path}.log")
     build_log = build_log_path.read_text().splitlines() if build_log_path.is_file() else []
+    scores, fast_scores, screen_s, stages = screen_queries(args, target_dir, library, queries, query_paths)
+    details = {"build_s": build_s, "export_s": export_s, "screen_s": screen_s, "hits": stages,
+               "fast_scores": fast_scores, "build_log": build_log}
+    return library, scores, details
+
+
+def screen_queries(args, target_dir, library, queries, query_paths):
+    """Screens every query against WORK/TARGET/library.sclib: per query the scores from the order
+    of hits.csv (see `read_hits`), the fast scores, the screen's time and its rows per stage."""
+    library_path = target_dir / "library.sclib"
     scores, fast_scores, screen_s, stages = [], [], [], []
     for q, query_path in enumerate(query_paths):
         hits_path = target_dir / f"hits_{q}.csv"
         log(f"  surfcomp screen query {q + 1}/{len(query_paths)} ({queries[q][0]['id']})")
         screen_s.append(run_command([args.surfcomp, "screen", query_path, library_path, "-o", hits_path,
-                                     "--top", 0, "--threads", args.threads]))
+                                     "--top", 0, "--threads", args.threads] + args.screen_args.split()))
         hits = read_hits(hits_path)
         missing = sorted(set(library) - set(hits))
         if missing:
@@ -470,9 +489,42 @@ def surfcomp_screen(args, target_dir, library_records, queries, query_paths):
         for row in hits.values():
             stage_counts[row.get("stage", "")] = stage_counts.get(row.get("stage", ""), 0) + 1
         stages.append({"missing": missing, "stages": stage_counts})
-    details = {"build_s": build_s, "export_s": export_s, "screen_s": screen_s, "hits": stages,
-               "fast_scores": fast_scores, "build_log": build_log}
-    return library, scores, details
+    return scores, fast_scores, screen_s, stages
+
+
+def rescreen_target(args, target, work, earlier):
+    """--rescreen: the earlier run's figures of one target with surfcomp's screens run again."""
+    target_dir = work / target
+    queries = [({"id": query_id}, None) for query_id in earlier["queries"]]
+    query_paths = [target_dir / f"query_{q}.sdf" for q in range(len(queries))]
+    library = read_exported_library(target_dir / "library.sdf")
+    with open(target_dir / "scores.csv", newline="") as stream:
+        rows = list(csv.DictReader(stream))
+    names = [row["name"] for row in rows]
+    active_ids = {row["name"] for row in rows if row["active"] == "1"}
+    log(f"{target}: screening again ({len(names)} molecules)")
+    scores = {}
+    for method in earlier["per_query"]:
+        columns = [f"{method}_q{q}" for q in range(len(queries))]
+        if method in ("surfcomp", "surfcomp_fast") or columns[0] not in rows[0]:
+            continue
+        scores[method] = [{row["name"]: float(row[c]) for row in rows if row[c] != ""} for c in columns]
+    new_scores, fast_scores, screen_s, stages = screen_queries(args, target_dir, library, queries, query_paths)
+    scores = {"surfcomp": new_scores, "surfcomp_fast": fast_scores, **scores}
+    result = dict(earlier)
+    result["timing"] = dict(earlier["timing"])
+    result["timing"]["surfcomp"] = dict(earlier["timing"]["surfcomp"], screen_s=screen_s)
+    result["surfcomp_hits"] = stages
+    result["rescreened_with"] = {"surfcomp": str(args.surfcomp), "screen_args": args.screen_args}
+    result["mean_before_rescreen"] = earlier.get("mean_before_rescreen", earlier["mean"])
+    result["per_query"] = {m: [evaluate(s, names, active_ids) for s in method_scores]
+                           for m, method_scores in scores.items()}
+    result["mean"] = {m: {k: mean([p[k] for p in per_query]) for k in ("auc", "ef1")}
+                      for m, per_query in result["per_query"].items()}
+    result["per_conformer_ms"] = per_conformer_times(result["timing"], result["library_conformers"],
+                                                     len(queries))
+    write_scores(target_dir / "scores.csv", names, active_ids, scores)
+    return result
 
 
 def rdkit_library(args, library_records):
@@ -512,6 +564,13 @@ def run_target(args, target, work):
     WORK/TARGET/result.json; with --resume, an earlier one of the same settings is reused)."""
     saved = work / target / "result.json"
     settings = {k: getattr(args, k) for k in RESUMED_SETTINGS}
+    if args.rescreen:
+        earlier = json.loads(saved.read_text()) if saved.is_file() else {}
+        if earlier.get("settings") != settings:
+            raise SystemExit(f"dud_screen_bench: --rescreen: {saved} is missing or of other settings")
+        result = rescreen_target(args, target, work, earlier["result"])
+        saved.write_text(json.dumps({"settings": settings, "result": result}, indent=1))
+        return result
     if args.resume and saved.is_file():
         earlier = json.loads(saved.read_text())
         if earlier.get("settings") == settings:
