@@ -72,6 +72,46 @@ std::vector<HitScore> score_in_parallel(std::size_t count, int stage, const Scre
   return scores;
 }
 
+/// The overlay of an entry's stored samples on the query's.
+matching::SurfaceOverlay entry_overlay(const ScreenQuery& query, const LibraryEntry& entry,
+                                       const ScreenOptions& options) {
+  const matching::OverlayOptions overlay_options =
+      matching::mode_overlay_options(query_match_options(query, options));
+  return query.overlay && same_overlay_options(query.overlay->options(), overlay_options)
+             ? matching::SurfaceOverlay(*query.overlay, entry.sample, entry.atoms)
+             : matching::SurfaceOverlay(query.sample, entry.sample, overlay_options, query.atoms,
+                                        entry.atoms);
+}
+
+/// The principal-axes superpositions of an entry onto the query: sites are few and their
+/// linings' axes less telling, so all 24 axes orders for them.
+std::vector<matching::RigidTransform> entry_starts(const ScreenQuery& query,
+                                                   const LibraryEntry& entry) {
+  return matching::principal_axes_starts(query.sample, entry.sample, !query.site.empty());
+}
+
+/// The molecules of a library (entries sharing source, record and name; not necessarily
+/// adjacent), each as its entries in index order, the molecules in order of their first entry.
+std::vector<std::vector<std::size_t>> molecules(const Library& library) {
+  std::map<std::tuple<std::string, std::uint32_t, std::string>, std::size_t> index;
+  std::vector<std::vector<std::size_t>> out;
+  for (std::size_t e = 0; e < library.size(); ++e) {
+    const LibraryEntryInfo& info = library.info(e);
+    const auto [it, inserted] =
+        index.emplace(std::make_tuple(info.source, info.record, info.name), out.size());
+    if (inserted) out.emplace_back();
+    out[it->second].push_back(e);
+  }
+  return out;
+}
+
+void check_score_count(const Library& library, std::size_t count, const char* function) {
+  if (count != library.size()) {
+    throw InputError(std::string(function) + ": " + std::to_string(count) +
+                     " scores for a library of " + std::to_string(library.size()) + " entries");
+  }
+}
+
 }  // namespace
 
 void check_library_kind(const Library& library, bool site_query) {
@@ -122,50 +162,6 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
   query.descriptors = std::move(descriptors);
   return query;
 }
-
-namespace {
-
-/// The overlay of an entry's stored samples on the query's.
-matching::SurfaceOverlay entry_overlay(const ScreenQuery& query, const LibraryEntry& entry,
-                                       const ScreenOptions& options) {
-  const matching::OverlayOptions overlay_options =
-      matching::mode_overlay_options(query_match_options(query, options));
-  return query.overlay && same_overlay_options(query.overlay->options(), overlay_options)
-             ? matching::SurfaceOverlay(*query.overlay, entry.sample, entry.atoms)
-             : matching::SurfaceOverlay(query.sample, entry.sample, overlay_options, query.atoms,
-                                        entry.atoms);
-}
-
-/// The principal-axes superpositions of an entry onto the query: sites are few and their
-/// linings' axes less telling, so all 24 axes orders for them.
-std::vector<matching::RigidTransform> entry_starts(const ScreenQuery& query,
-                                                   const LibraryEntry& entry) {
-  return matching::principal_axes_starts(query.sample, entry.sample, !query.site.empty());
-}
-
-/// The molecules of a library (entries sharing source, record and name; not necessarily
-/// adjacent), each as its entries in index order, the molecules in order of their first entry.
-std::vector<std::vector<std::size_t>> molecules(const Library& library) {
-  std::map<std::tuple<std::string, std::uint32_t, std::string>, std::size_t> index;
-  std::vector<std::vector<std::size_t>> out;
-  for (std::size_t e = 0; e < library.size(); ++e) {
-    const LibraryEntryInfo& info = library.info(e);
-    const auto [it, inserted] =
-        index.emplace(std::make_tuple(info.source, info.record, info.name), out.size());
-    if (inserted) out.emplace_back();
-    out[it->second].push_back(e);
-  }
-  return out;
-}
-
-void check_score_count(const Library& library, std::size_t count, const char* function) {
-  if (count != library.size()) {
-    throw InputError(std::string(function) + ": " + std::to_string(count) +
-                     " scores for a library of " + std::to_string(library.size()) + " entries");
-  }
-}
-
-}  // namespace
 
 HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options) {
