@@ -29,6 +29,7 @@ import gzip
 import json
 import math
 import random
+import shlex
 import shutil
 import subprocess
 import sys
@@ -83,7 +84,8 @@ def parse_args(argv=None):
                              "screens again (with this --surfcomp and --screen-args)")
     parser.add_argument("--resume", action="store_true",
                         help="with --work: reuse a target's figures from an earlier run of the same "
-                             "settings (WORK/TARGET/result.json) instead of running it again")
+                             "settings, --screen-args included (WORK/TARGET/result.json), instead "
+                             "of running it again; the program itself is not compared")
     args = parser.parse_args(argv)
     args.targets = [t for t in args.targets.split(",") if t]
     for target in args.targets:
@@ -477,7 +479,7 @@ def screen_queries(args, target_dir, library, queries, query_paths):
         hits_path = target_dir / f"hits_{q}.csv"
         log(f"  surfcomp screen query {q + 1}/{len(query_paths)} ({queries[q][0]['id']})")
         screen_s.append(run_command([args.surfcomp, "screen", query_path, library_path, "-o", hits_path,
-                                     "--top", 0, "--threads", args.threads] + args.screen_args.split()))
+                                     "--top", 0, "--threads", args.threads] + shlex.split(args.screen_args)))
         hits = read_hits(hits_path)
         missing = sorted(set(library) - set(hits))
         if missing:
@@ -500,6 +502,8 @@ def rescreen_target(args, target, work, earlier):
     library = read_exported_library(target_dir / "library.sdf")
     with open(target_dir / "scores.csv", newline="") as stream:
         rows = list(csv.DictReader(stream))
+    if not rows:
+        raise SystemExit(f"dud_screen_bench: --rescreen: {target_dir / 'scores.csv'} has no molecules")
     names = [row["name"] for row in rows]
     active_ids = {row["name"] for row in rows if row["active"] == "1"}
     log(f"{target}: screening again ({len(names)} molecules)")
@@ -510,7 +514,8 @@ def rescreen_target(args, target, work, earlier):
             continue
         scores[method] = [{row["name"]: float(row[c]) for row in rows if row[c] != ""} for c in columns]
     new_scores, fast_scores, screen_s, stages = screen_queries(args, target_dir, library, queries, query_paths)
-    scores = {"surfcomp": new_scores, "surfcomp_fast": fast_scores, **scores}
+    scores = {"surfcomp": new_scores, **({"surfcomp_fast": fast_scores} if all(fast_scores) else {}),
+              **scores}
     result = dict(earlier)
     result["timing"] = dict(earlier["timing"])
     result["timing"]["surfcomp"] = dict(earlier["timing"]["surfcomp"], screen_s=screen_s)
@@ -556,7 +561,9 @@ def write_scores(path, names, active_names, scores_by_method):
 
 
 RESUMED_SETTINGS = ("queries", "conformers", "max_actives", "max_decoys", "seed", "skip_surfcomp",
-                    "skip_o3a")
+                    "skip_o3a", "screen_args")
+# What --rescreen needs to match: the libraries, queries and baselines (not the screens).
+RESCREEN_SETTINGS = tuple(k for k in RESUMED_SETTINGS if k != "screen_args")
 
 
 def run_target(args, target, work):
@@ -566,7 +573,8 @@ def run_target(args, target, work):
     settings = {k: getattr(args, k) for k in RESUMED_SETTINGS}
     if args.rescreen:
         earlier = json.loads(saved.read_text()) if saved.is_file() else {}
-        if earlier.get("settings") != settings:
+        earlier_settings = earlier.get("settings") or {}
+        if any(earlier_settings.get(k) != settings[k] for k in RESCREEN_SETTINGS):
             raise SystemExit(f"dud_screen_bench: --rescreen: {saved} is missing or of other settings")
         result = rescreen_target(args, target, work, earlier["result"])
         saved.write_text(json.dumps({"settings": settings, "result": result}, indent=1))

@@ -48,8 +48,8 @@ constexpr const char* kUsage =
     "       file built from one; with --site-ligand or --site-sphere, a binding site on a\n"
     "       structure, screened against a pocket library (library build --sites): the overlays\n"
     "       then compare pocket linings as `match` does for sites (all 24 axes orders\n"
-    "       in stage 1), and --aligned-out writes the hits' structures moved onto QUERY (.pdb,\n"
-    "       one MODEL per hit).";
+    "       in stages 1 and 2), and --aligned-out writes the hits' structures moved onto\n"
+    "       QUERY (.pdb, one MODEL per hit).";
 
 void write_aligned(const std::filesystem::path& path, const screening::Library& library,
                    const std::vector<screening::Hit>& hits, std::size_t count) {

@@ -66,27 +66,29 @@ std::vector<std::uint64_t> broadcast(std::vector<std::uint64_t> chosen) {
   return chosen;
 }
 
-/// score(i) for i in [0, count), item i on rank i mod ranks (in parallel there), gathered on
-/// rank 0 in item order; empty on the other ranks.
+/// score(i) for every item i, on the rank owner[i] (in parallel there), gathered on rank 0 in
+/// item order; empty on the other ranks. Every rank passes the same owners.
 template <class Score>
-std::vector<screening::HitScore> deal_out(std::size_t count, int rank, int ranks,
+std::vector<screening::HitScore> deal_out(const std::vector<int>& owner, int rank, int ranks,
                                           const Score& score) {
-  const auto step = static_cast<std::size_t>(ranks);
   std::vector<std::size_t> mine;
-  for (std::size_t i = static_cast<std::size_t>(rank); i < count; i += step) mine.push_back(i);
+  std::vector<int> counts(static_cast<std::size_t>(ranks), 0);
+  for (std::size_t i = 0; i < owner.size(); ++i) {
+    ++counts[static_cast<std::size_t>(owner[i])];
+    if (owner[i] == rank) mine.push_back(i);
+  }
   std::vector<double> packed(mine.size() * kDoubles);
   tbb::parallel_for(std::size_t{0}, mine.size(),
                     [&](std::size_t j) { pack(score(mine[j]), &packed[j * kDoubles]); });
-  std::vector<int> counts(step);
-  for (std::size_t r = 0; r < step; ++r)
-    counts[r] = r < count ? static_cast<int>((count - r + step - 1) / step) : 0;
   const std::vector<double> all = gather(packed, counts, rank);
   std::vector<screening::HitScore> scores;
   if (rank != 0) return scores;
-  scores.resize(count);
+  scores.resize(owner.size());
   std::size_t at = 0;
-  for (std::size_t r = 0; r < step; ++r) {
-    for (std::size_t i = r; i < count; i += step) scores[i] = unpack(&all[kDoubles * at++]);
+  for (int r = 0; r < ranks; ++r) {
+    for (std::size_t i = 0; i < owner.size(); ++i) {
+      if (owner[i] == r) scores[i] = unpack(&all[kDoubles * at++]);
+    }
   }
   return scores;
 }
@@ -121,8 +123,14 @@ DistributedScreen run(const screening::ScreenQuery& query, const screening::Libr
   }
   const double stage1_seconds = clock.elapsed_s();
   to_refine = broadcast(std::move(to_refine));
+  // Each conformer is refined by the rank whose slice holds it: a rank reads only its slice.
+  std::vector<int> slice_of(to_refine.size());
+  for (std::size_t i = 0, r = 0; i < to_refine.size(); ++i) {
+    while (to_refine[i] >= slice_begin(static_cast<int>(r) + 1)) ++r;
+    slice_of[i] = static_cast<int>(r);
+  }
   const std::vector<screening::HitScore> refined =
-      deal_out(to_refine.size(), rank, ranks, [&](std::size_t i) {
+      deal_out(slice_of, rank, ranks, [&](std::size_t i) {
         return screening::refined_score(query, library.entry(to_refine[i]), options);
       });
 
@@ -139,8 +147,12 @@ DistributedScreen run(const screening::ScreenQuery& query, const screening::Libr
   }
   const double stage2_seconds = clock.elapsed_s() - stage1_seconds;
   chosen = broadcast(std::move(chosen));
+  // The candidates, few and costly, go round-robin.
+  std::vector<int> round_robin(chosen.size());
+  for (std::size_t i = 0; i < chosen.size(); ++i)
+    round_robin[i] = static_cast<int>(i % static_cast<std::size_t>(ranks));
   const std::vector<screening::HitScore> full =
-      deal_out(chosen.size(), rank, ranks, [&](std::size_t i) {
+      deal_out(round_robin, rank, ranks, [&](std::size_t i) {
         return screening::full_score(query, library.entry(chosen[i]), options);
       });
 

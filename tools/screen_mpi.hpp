@@ -20,11 +20,11 @@ struct DistributedScreen {
 };
 
 /// screening::screen over the ranks of MPI_COMM_WORLD: each rank scores a contiguous slice of
-/// the entries (stage 1), rank 0 gathers the scores and picks the conformers to refine, whose
-/// refinements (stage 2) are dealt out round-robin and gathered again, then the candidates,
-/// whose full matches (stage 3) go the same way, and rank 0 ranks the hits: the same hits as
-/// one process. Initialises and finalises MPI; an error on one rank aborts the job
-/// after printing it. Every rank must give the same query, library and options.
+/// the entries (stage 1), rank 0 gathers the scores and picks the conformers to refine, each
+/// refined (stage 2) by the rank whose slice holds it and gathered again, then the candidates,
+/// whose full matches (stage 3) are dealt out round-robin and gathered, and rank 0 ranks the
+/// hits: the same hits as one process. Initialises and finalises MPI; an error on one rank aborts
+/// the job after printing it. Every rank must give the same query, library and options.
 DistributedScreen screen_distributed(const screening::ScreenQuery& query,
                                      const screening::Library& library,
                                      const screening::ScreenOptions& options);

@@ -61,7 +61,7 @@ bool is_library_input(const std::filesystem::path& path) {
 }
 
 /// The entry of a .hsi file: its surface's samples, its heavy atoms as an MDL block, and its
-/// surface without critical points for the second stage.
+/// surface without critical points for the last stage (the full match).
 LibraryEntry hsi_entry(const io::MoleculeRecord& record, const LibraryBuildOptions& options) {
   harmonic::SurfaceDescriptors described = harmonic::io::read_hsi(record.source);
   // A .hsi made from a mesh has neither: the entry would be scored without chemistry.

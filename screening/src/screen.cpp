@@ -233,7 +233,11 @@ std::vector<EntryScore> merge_refined(const std::vector<HitScore>& fast,
   std::vector<EntryScore> scores(fast.size());
   for (std::size_t e = 0; e < fast.size(); ++e) scores[e] = {fast[e], 1, fast[e].score};
   for (std::size_t i = 0; i < refined_entries.size(); ++i) {
-    EntryScore& s = scores.at(refined_entries[i]);
+    if (refined_entries[i] >= scores.size()) {
+      throw InputError("merge_refined: entry " + std::to_string(refined_entries[i]) +
+                       " of a library of " + std::to_string(scores.size()) + " entries");
+    }
+    EntryScore& s = scores[refined_entries[i]];
     s.score = refined[i];
     s.stage = 2;
   }

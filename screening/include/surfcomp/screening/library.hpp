@@ -1,7 +1,7 @@
 // Screening libraries (.sclib): many molecules' conformers (or many binding sites) in one file,
-// each entry holding what the first stage of a screen reads (the overlay's surface and heteroatom
-// samples) and the molecule itself, from which the second stage rebuilds the surface of a
-// finalist; a site entry also holds its spheres, an entry made from a .hsi file its surface.
+// each entry holding what the first two stages of a screen read (the overlay's surface and
+// heteroatom samples) and the molecule itself, from which the last stage rebuilds the surface of
+// a finalist; a site entry also holds its spheres, an entry made from a .hsi file its surface.
 //
 // Layout (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
 //   header   "SURFCLIB", u32 format version, u32 0
@@ -60,7 +60,7 @@ struct LibraryEntry {
   /// molecule is then the site's structure (PDB text).
   std::vector<matching::SiteSphere> site;
   /// An entry made from a .hsi file: its surface and heavy atoms, encoded as a .hsi file
-  /// without critical points (harmonic::io::encode_hsi), from which the second stage describes
+  /// without critical points (harmonic::io::encode_hsi), from which the last stage describes
   /// the entry instead of rebuilding a surface; `molecule` then holds only the heavy atoms (an
   /// MDL block without bonds, io::atoms_mol_block). Empty for every other entry.
   std::vector<std::uint8_t> surface;

@@ -66,8 +66,8 @@ struct ScreenQuery {
   /// for a molecule.
   std::vector<matching::SiteSphere> site;
   std::vector<bool> site_points;
-  /// The query's sample indexed once for stage 1 (an overlay of the query on itself, from
-  /// which each entry's overlay is made without indexing the query again).
+  /// The query's sample indexed once for stages 1 and 2 (an overlay of the query on itself,
+  /// from which each entry's overlay is made without indexing the query again).
   std::shared_ptr<const matching::SurfaceOverlay> overlay;
 };
 
@@ -128,7 +128,8 @@ struct EntryScore {
 };
 
 /// One EntryScore per library entry: `fast`, with the scores of the `refined` entries (as
-/// entries_to_refine lists them, one score each) in their place.
+/// entries_to_refine lists them, one score each) in their place. Throws InputError when the
+/// counts differ or an entry is outside the library.
 std::vector<EntryScore> merge_refined(const std::vector<HitScore>& fast,
                                       const std::vector<std::size_t>& refined_entries,
                                       const std::vector<HitScore>& refined);
