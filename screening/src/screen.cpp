@@ -163,35 +163,38 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
   return query;
 }
 
-HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
-                    const ScreenOptions& options) {
-  if (entry.sample.size() == 0) return {};
-  const matching::SurfaceOverlay overlay = entry_overlay(query, entry, options);
-  HitScore best;
-  bool first = true;
-  for (const matching::RigidTransform& start : entry_starts(query, entry)) {
-    const matching::OverlayScore s = overlay.score(start);
-    if (first || s.score > best.score) best = from_overlay(s, start.matrix());
-    first = false;
-  }
-  return best;
-}
+namespace {
 
-HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
-                       const ScreenOptions& options) {
+/// The best overlay score of `entry` over its principal-axes starts, each start also refined
+/// when `refine` (the refinement climbs the surface part of the score, so a start itself may
+/// score higher than its refinement).
+HitScore best_over_starts(const ScreenQuery& query, const LibraryEntry& entry,
+                          const ScreenOptions& options, bool refine) {
   if (entry.sample.size() == 0) return {};
   const matching::SurfaceOverlay overlay = entry_overlay(query, entry, options);
   HitScore best;
   bool first = true;
   for (const matching::RigidTransform& start : entry_starts(query, entry)) {
-    // The refinement climbs the surface part of the score: the start itself may score higher.
     const matching::OverlayScore at_start = overlay.score(start);
     if (first || at_start.score > best.score) best = from_overlay(at_start, start.matrix());
     first = false;
+    if (!refine) continue;
     const matching::RefineResult r = overlay.refine(start);
     if (r.score.score > best.score) best = from_overlay(r.score, r.transform.matrix());
   }
   return best;
+}
+
+}  // namespace
+
+HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
+                    const ScreenOptions& options) {
+  return best_over_starts(query, entry, options, false);
+}
+
+HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
+                       const ScreenOptions& options) {
+  return best_over_starts(query, entry, options, true);
 }
 
 std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& library,
