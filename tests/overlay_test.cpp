@@ -1,7 +1,8 @@
 // The whole-surface overlay: sampling keeps the area, the Tanimoto scores are 1 exactly for a
 // surface on itself (also moved) and symmetric in the two surfaces, two points overlap by the
 // Gaussian of their distance, same-element heteroatoms tell apart poses the surface cannot,
-// refinement climbs back to a known motion, and the weighted rigid fit ignores what has no weight.
+// refinement climbs back to a known motion, the weighted rigid fit ignores what has no weight,
+// and overlays sharing one indexed reference give the pair's numbers.
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/mesh/surface.hpp"
@@ -388,6 +389,53 @@ TEST(Overlay, SameElementHeteroatomsTellApartPosesTheSurfaceCannot) {
   short_of_points.points.conservativeResize(3, 1);
   EXPECT_THROW(matching::SurfaceOverlay(shape, shape, options, molecule, short_of_points),
                InputError);
+}
+
+// A screen indexes its query once (for_many_probes, on finer cells) and overlays every library
+// entry on it; that must give the pair's numbers exactly, for a ligand-sized probe (its
+// self-overlap by all pairs) and a larger one (by a grid), scores and refinements alike.
+TEST(Overlay, OverlaysOfOneReferenceWithManyProbesGiveThePairsNumbers) {
+  const matching::SurfaceSample reference = matching::sample_surface(labelled_ellipsoid(), 1.0);
+  const matching::AtomSample reference_atoms =
+      atoms({{"O", {3.0, 0.0, 0.0}}, {"N", {-2.0, 1.0, 0.0}}});
+  const matching::AtomSample probe_atoms = atoms({{"O", {2.5, 0.5, 0.0}}});
+  mesh::Surface large = test::icosphere(2.5, 24);
+  large.set_property(mesh::property::esp, Eigen::VectorXd(large.positions().col(1)));
+  large.set_property(mesh::property::lp, Eigen::VectorXd(-large.positions().col(0)));
+  const std::vector<matching::SurfaceSample> probes = {
+      matching::sample_surface(
+          moved(labelled_ellipsoid(),
+                motion(20.0, Eigen::Vector3d(1.0, -1.0, 2.0), Eigen::Vector3d(0.4, 0.3, -0.2))),
+          1.0),
+      matching::sample_surface(large, 0.25)};
+  ASSERT_LE(probes[0].size(), 512U);  // the two paths of the probe's self-overlap
+  ASSERT_GT(probes[1].size(), 512U);
+  const matching::SurfaceOverlay base =
+      matching::SurfaceOverlay::for_many_probes(reference, {}, reference_atoms);
+  const matching::OverlayScore self = base.score(RigidTransform{});
+  EXPECT_EQ(self.score,
+            matching::SurfaceOverlay(reference, reference, {}, reference_atoms, reference_atoms)
+                .score(RigidTransform{})
+                .score);
+  EXPECT_NEAR(self.score, 1.0, 1e-12);
+  const RigidTransform t =
+      motion(-15.0, Eigen::Vector3d(0.0, 1.0, 1.0), Eigen::Vector3d(0.3, -0.2, 0.1));
+  for (std::size_t k = 0; k < probes.size(); ++k) {
+    const matching::SurfaceOverlay pair(reference, probes[k], {}, reference_atoms, probe_atoms);
+    const matching::SurfaceOverlay shared(base, probes[k], probe_atoms);
+    const matching::OverlayScore a = pair.score(t);
+    const matching::OverlayScore b = shared.score(t);
+    EXPECT_GT(a.shape, 0.05) << "probe " << k;
+    EXPECT_EQ(a.shape, b.shape) << "probe " << k;
+    EXPECT_EQ(a.chem, b.chem) << "probe " << k;
+    EXPECT_EQ(a.atoms, b.atoms) << "probe " << k;
+    EXPECT_EQ(a.score, b.score) << "probe " << k;
+    const matching::RefineResult ra = pair.refine(t);
+    const matching::RefineResult rb = shared.refine(t);
+    EXPECT_GT((ra.transform.translation - t.translation).norm(), 0.01) << "probe " << k;
+    EXPECT_EQ(ra.score.score, rb.score.score) << "probe " << k;
+    EXPECT_EQ(ra.transform.matrix(), rb.transform.matrix()) << "probe " << k;
+  }
 }
 
 TEST(Overlay, RejectsBadOptionsAndEmptySamples) {

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -19,6 +20,10 @@ namespace surfcomp::matching {
 namespace {
 
 constexpr double kCutoffSigmas = 3.0;
+/// A sample of at most this many points is ligand-sized (the 1THL ligand's has about 180): its
+/// self-overlap tests every pair's distance instead of listing it in cells
+/// (docs/decisions.md#screen-stage-one).
+constexpr std::size_t kLigandSizedPoints = 512;
 
 /// sqrt(sum w x^2 / sum w) over both samples' values; 1 when it is zero (no such property).
 double root_mean_square(const Eigen::VectorXd& a, const Eigen::VectorXd& wa,
@@ -87,9 +92,9 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
 struct SharedReference {
   SurfaceSample sample;  ///< as given, ESP and LP not scaled
   GaussianTable gaussian;
-  /// The reference points within 3 sigma of each cell (cells of edge sigma, or coarser for a
-  /// very large box): a query reads one list instead of the 27 cells of 3 sigma around it, the
-  /// same sums for fewer visits (docs/decisions.md#overlay-speed).
+  /// The reference points within 3 sigma of each cell (cells of edge sigma, sigma / 2 for many
+  /// probes, coarser for a very large box): a query reads one list instead of the cells of
+  /// 3 sigma around it, the same sums for fewer visits (docs/decisions.md#overlay-speed).
   mesh::SpatialGrid grid;
 };
 
@@ -99,23 +104,34 @@ struct SharedReference {
 /// Gaussian table and the self-overlaps: everything score and refine read, fixed on
 /// construction.
 struct SurfaceOverlay::Impl {
+  /// The reference listed on cells of `reference_cell` sigmas.
   Impl(SurfaceSample reference, SurfaceSample probe, const OverlayOptions& options,
-       AtomSample reference_atoms, AtomSample probe_atoms);
+       AtomSample reference_atoms, AtomSample probe_atoms, double reference_cell);
   /// `other`'s reference (its shared part) with a new probe.
   Impl(const Impl& other, SurfaceSample probe, AtomSample probe_atoms);
-  /// Checks the probe's side, scales ESP and LP and sums the self-overlaps, the probe's over a
-  /// grid of cells of edge `probe_cell` (any edge gives the same sums: a listed query visits
-  /// a cell's points by increasing index, and those beyond the cutoff add nothing).
-  void finish(double probe_cell);
+  /// Checks the probe's side, scales ESP and LP and sums the self-overlaps.
+  void finish();
 
   /// Sums over the pairs (i of a, j of b moved by `transform`) within 3 sigma (see overlay.hpp),
-  /// with `grid` listing a's points within 3 sigma of each of its cells; each j visits its
-  /// neighbours by increasing index. With `targets`, also the refinement's step: for each j,
-  /// the mean of its neighbours i weighted by w_i g max(0, n_i . R n_j) (1 + chem_weight c_ij),
-  /// and that weight's sum times w_j.
-  Sums overlap(const SurfaceSample& a, const mesh::SpatialGrid& grid, const SurfaceSample& b,
+  /// `neighbours(q, visit)` calling visit(i) for a superset of a's points within 3 sigma of q
+  /// by increasing index (so that any such superset gives the same sums: the points beyond
+  /// the cutoff add nothing). With `targets`, also the refinement's step: for each j, the mean
+  /// of its neighbours i weighted by w_i g max(0, n_i . R n_j) (1 + chem_weight c_ij), and that
+  /// weight's sum times w_j.
+  template <class Neighbours>
+  Sums overlap(const SurfaceSample& a, const Neighbours& neighbours, const SurfaceSample& b,
                const RigidTransform& transform, Eigen::Matrix3Xd* targets = nullptr,
                Eigen::VectorXd* target_weights = nullptr) const;
+  /// overlap(a, ..., b, ...) with `grid` listing a's points within 3 sigma of each of its cells.
+  Sums overlap(const SurfaceSample& a, const mesh::SpatialGrid& grid, const SurfaceSample& b,
+               const RigidTransform& transform, Eigen::Matrix3Xd* targets = nullptr,
+               Eigen::VectorXd* target_weights = nullptr) const {
+    return overlap(
+        a, [&grid](const Eigen::Vector3d& q, const auto& visit) { grid.for_each_listed(q, visit); },
+        b, transform, targets, target_weights);
+  }
+  /// overlap(s, ..., s, identity): S_SS and C_SS.
+  Sums self_overlap(const SurfaceSample& s) const;
   /// Unnormalised same-element heteroatom overlap H of `a` and `b` moved by `transform`. With
   /// `targets`, also the refinement's step for b's atoms: for each, the Gaussian-weighted mean
   /// of a's atoms of its element (its own moved position when there is none) and, in
@@ -147,7 +163,7 @@ struct SurfaceOverlay::Impl {
 
 SurfaceOverlay::Impl::Impl(SurfaceSample reference_sample, SurfaceSample probe_sample,
                            const OverlayOptions& overlay_options, AtomSample reference_atom_sample,
-                           AtomSample probe_atom_sample)
+                           AtomSample probe_atom_sample, double reference_cell)
     : reference(std::move(reference_sample)),
       probe(std::move(probe_sample)),
       options(overlay_options),
@@ -161,8 +177,8 @@ SurfaceOverlay::Impl::Impl(SurfaceSample reference_sample, SurfaceSample probe_s
   const double cutoff = kCutoffSigmas * options.sigma;
   shared = std::make_shared<const SharedReference>(
       SharedReference{reference, GaussianTable(options.sigma, cutoff),
-                      mesh::SpatialGrid(reference.points, options.sigma, cutoff)});
-  finish(options.sigma);
+                      mesh::SpatialGrid(reference.points, reference_cell * options.sigma, cutoff)});
+  finish();
 }
 
 SurfaceOverlay::Impl::Impl(const Impl& other, SurfaceSample probe_sample,
@@ -173,12 +189,10 @@ SurfaceOverlay::Impl::Impl(const Impl& other, SurfaceSample probe_sample,
       reference_atoms(other.reference_atoms),
       probe_atoms(std::move(probe_atom_sample)),
       shared(other.shared) {
-  // Cells of four cutoffs: a ligand's sample falls in one or a few, so listing it costs less
-  // than the sums it serves (docs/decisions.md#screen-stage-one).
-  finish(4.0 * kCutoffSigmas * options.sigma);
+  finish();
 }
 
-void SurfaceOverlay::Impl::finish(double probe_cell) {
+void SurfaceOverlay::Impl::finish() {
   if (probe.size() == 0) {
     throw InputError("overlay: the probe sample has no points (an empty surface or site region)");
   }
@@ -200,11 +214,9 @@ void SurfaceOverlay::Impl::finish(double probe_cell) {
     sample->esp /= esp_rms;
     sample->lp /= lp_rms;
   }
-  const double cutoff = kCutoffSigmas * options.sigma;
-  const mesh::SpatialGrid probe_grid(probe.points, probe_cell, cutoff);
   const RigidTransform identity;
   const Sums reference_self = overlap(reference, shared->grid, reference, identity);
-  const Sums probe_self = overlap(probe, probe_grid, probe, identity);
+  const Sums probe_self = self_overlap(probe);
   self.shape = reference_self.shape + probe_self.shape;
   self.chem = reference_self.chem + probe_self.chem;
   chem_weight = self.chem > 0.0 ? options.chem_weight : 0.0;
@@ -214,7 +226,21 @@ void SurfaceOverlay::Impl::finish(double probe_cell) {
   }
 }
 
-Sums SurfaceOverlay::Impl::overlap(const SurfaceSample& a, const mesh::SpatialGrid& grid,
+Sums SurfaceOverlay::Impl::self_overlap(const SurfaceSample& s) const {
+  const double cutoff = kCutoffSigmas * options.sigma;
+  if (s.size() > kLigandSizedPoints)
+    return overlap(s, mesh::SpatialGrid(s.points, options.sigma, cutoff), s, {});
+  const double cutoff2 = cutoff * cutoff;
+  const auto all_near = [&](const Eigen::Vector3d& q, const auto& visit) {
+    for (Eigen::Index i = 0; i < s.points.cols(); ++i) {
+      if ((s.points.col(i) - q).squaredNorm() <= cutoff2) visit(static_cast<int>(i));
+    }
+  };
+  return overlap(s, all_near, s, {});
+}
+
+template <class Neighbours>
+Sums SurfaceOverlay::Impl::overlap(const SurfaceSample& a, const Neighbours& neighbours,
                                    const SurfaceSample& b, const RigidTransform& transform,
                                    Eigen::Matrix3Xd* targets,
                                    Eigen::VectorXd* target_weights) const {
@@ -223,9 +249,8 @@ Sums SurfaceOverlay::Impl::overlap(const SurfaceSample& a, const mesh::SpatialGr
   for (Eigen::Index j = 0; j < b.points.cols(); ++j) {
     const Eigen::Vector3d q = transform.rotation * b.points.col(j) + transform.translation;
     const Eigen::Vector3d m = transform.rotation * b.normals.col(j);
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    double total = 0.0;
-    grid.for_each_listed(q, [&](int i) {
+    // The sums alone (a score) skip the step's weighted mean, a third of the work per pair.
+    const auto add_pair = [&](int i, auto with_step, Eigen::Vector3d& mean, double& total) {
       const double d2 = (a.points.col(i) - q).squaredNorm();
       if (!(d2 <= cutoff2)) return;
       const double facing = a.normals.col(i).dot(m);
@@ -234,14 +259,21 @@ Sums SurfaceOverlay::Impl::overlap(const SurfaceSample& a, const mesh::SpatialGr
       const double c = chemistry(a, i, b, j);
       sums.shape += b.weights(j) * k;
       sums.chem += b.weights(j) * k * c;
-      const double pull = k * (1.0 + options.chem_weight * c);
-      mean += pull * a.points.col(i);
-      total += pull;
-    });
-    if (targets != nullptr) {
-      targets->col(j) = total > 0.0 ? Eigen::Vector3d(mean / total) : q;
-      (*target_weights)(j) = b.weights(j) * total;
+      if constexpr (decltype(with_step)::value) {
+        const double pull = k * (1.0 + options.chem_weight * c);
+        mean += pull * a.points.col(i);
+        total += pull;
+      }
+    };
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    double total = 0.0;
+    if (targets == nullptr) {
+      neighbours(q, [&](int i) { add_pair(i, std::false_type{}, mean, total); });
+      continue;
     }
+    neighbours(q, [&](int i) { add_pair(i, std::true_type{}, mean, total); });
+    targets->col(j) = total > 0.0 ? Eigen::Vector3d(mean / total) : q;
+    (*target_weights)(j) = b.weights(j) * total;
   }
   return sums;
 }
@@ -376,7 +408,20 @@ SurfaceOverlay::SurfaceOverlay(SurfaceSample reference, SurfaceSample probe,
                                const OverlayOptions& options, AtomSample reference_atoms,
                                AtomSample probe_atoms)
     : impl_(std::make_unique<const Impl>(std::move(reference), std::move(probe), options,
-                                         std::move(reference_atoms), std::move(probe_atoms))) {}
+                                         std::move(reference_atoms), std::move(probe_atoms), 1.0)) {
+}
+
+SurfaceOverlay::SurfaceOverlay(std::unique_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+
+SurfaceOverlay SurfaceOverlay::for_many_probes(const SurfaceSample& reference,
+                                               const OverlayOptions& options,
+                                               const AtomSample& reference_atoms) {
+  // Cells of sigma / 2 list fewer points beyond the cutoff than cells of sigma, and eight times
+  // as many lists: worth building for many probes, not for one pair
+  // (docs/decisions.md#screen-stage-one).
+  return SurfaceOverlay(std::make_unique<const Impl>(reference, reference, options, reference_atoms,
+                                                     reference_atoms, 0.5));
+}
 
 SurfaceOverlay::SurfaceOverlay(const SurfaceOverlay& other, SurfaceSample probe,
                                AtomSample probe_atoms)

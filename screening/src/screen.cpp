@@ -158,7 +158,7 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                                                            "no vertex"));
   }
   query.overlay = std::make_shared<const matching::SurfaceOverlay>(
-      query.sample, query.sample, overlay, query.atoms, query.atoms);
+      matching::SurfaceOverlay::for_many_probes(query.sample, overlay, query.atoms));
   query.descriptors = std::move(descriptors);
   return query;
 }

@@ -113,6 +113,13 @@ class SurfaceOverlay {
   /// reference against many probes (a screen's first stage). Throws InputError when the probe
   /// sample is empty or its atoms are malformed.
   SurfaceOverlay(const SurfaceOverlay& other, SurfaceSample probe, AtomSample probe_atoms = {});
+  /// The overlay of `reference` on itself (the numbers of SurfaceOverlay(reference, reference,
+  /// options, reference_atoms, reference_atoms)) with the reference indexed for many probes:
+  /// on finer cells, which cost more to build once and less in each score of the overlays made
+  /// from it by SurfaceOverlay(other, probe, ...). Throws as the first constructor.
+  static SurfaceOverlay for_many_probes(const SurfaceSample& reference,
+                                        const OverlayOptions& options = {},
+                                        const AtomSample& reference_atoms = {});
   SurfaceOverlay(SurfaceOverlay&&) noexcept;
   SurfaceOverlay& operator=(SurfaceOverlay&&) noexcept;
   ~SurfaceOverlay();
@@ -136,6 +143,7 @@ class SurfaceOverlay {
 
  private:
   struct Impl;
+  explicit SurfaceOverlay(std::unique_ptr<const Impl> impl);
   std::unique_ptr<const Impl> impl_;
 };
 
