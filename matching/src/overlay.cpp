@@ -12,7 +12,6 @@
 #include <cstddef>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -87,6 +86,19 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
   return out;
 }
 
+/// The pairs (i, j) of a sample's self-overlap that add to it, in the order the sums take them,
+/// each with its weight w_j w_i g max(0, n_i . n_j): what the self-overlap keeps whatever the
+/// ESP and LP scaling, so that S_AA is summed once and C_AA is one pass over the pairs.
+struct SelfPairs {
+  struct Pair {
+    int i = 0;
+    int j = 0;
+    double weight = 0.0;
+  };
+  double shape = 0.0;  ///< S_AA
+  std::vector<Pair> pairs;
+};
+
 /// What an overlay keeps of its reference before the pair's ESP/LP scaling, with the table and
 /// index built from it: shared by the overlays of one reference with many probes.
 struct SharedReference {
@@ -96,6 +108,7 @@ struct SharedReference {
   /// probes, coarser for a very large box): a query reads one list instead of the cells of
   /// 3 sigma around it, the same sums for fewer visits (docs/decisions.md#overlay-speed).
   mesh::SpatialGrid grid;
+  SelfPairs self;  ///< of `sample` over `grid`
 };
 
 }  // namespace
@@ -122,6 +135,12 @@ struct SurfaceOverlay::Impl {
   Sums overlap(const SurfaceSample& a, const Neighbours& neighbours, const SurfaceSample& b,
                const RigidTransform& transform, Eigen::Matrix3Xd* targets = nullptr,
                Eigen::VectorXd* target_weights = nullptr) const;
+  /// For each j of b moved by `transform` (q_j, normal m_j), in order: pair(j, i, k) for each
+  /// neighbour i (as overlap takes them) within 3 sigma of q_j and facing m_j, with
+  /// k = w_i g(|a_i - q_j|^2) n_i . m_j; then done(j, q_j).
+  template <class Neighbours, class Pair, class Done>
+  void for_each_pair(const SurfaceSample& a, const Neighbours& neighbours, const SurfaceSample& b,
+                     const RigidTransform& transform, const Pair& pair, const Done& done) const;
   /// overlap(a, ..., b, ...) with `grid` listing a's points within 3 sigma of each of its cells.
   Sums overlap(const SurfaceSample& a, const mesh::SpatialGrid& grid, const SurfaceSample& b,
                const RigidTransform& transform, Eigen::Matrix3Xd* targets = nullptr,
@@ -132,6 +151,8 @@ struct SurfaceOverlay::Impl {
   }
   /// overlap(s, ..., s, identity): S_SS and C_SS.
   Sums self_overlap(const SurfaceSample& s) const;
+  /// The pairs of overlap(s, grid, s, identity), in its order.
+  SelfPairs self_pairs(const SurfaceSample& s, const mesh::SpatialGrid& grid) const;
   /// Unnormalised same-element heteroatom overlap H of `a` and `b` moved by `transform`. With
   /// `targets`, also the refinement's step for b's atoms: for each, the Gaussian-weighted mean
   /// of a's atoms of its element (its own moved position when there is none) and, in
@@ -175,9 +196,13 @@ SurfaceOverlay::Impl::Impl(SurfaceSample reference_sample, SurfaceSample probe_s
         "overlay: the reference sample has no points (an empty surface or site region)");
   }
   const double cutoff = kCutoffSigmas * options.sigma;
-  shared = std::make_shared<const SharedReference>(
-      SharedReference{reference, GaussianTable(options.sigma, cutoff),
-                      mesh::SpatialGrid(reference.points, reference_cell * options.sigma, cutoff)});
+  auto reference_index = std::make_shared<SharedReference>(
+      SharedReference{reference,
+                      GaussianTable(options.sigma, cutoff),
+                      mesh::SpatialGrid(reference.points, reference_cell * options.sigma, cutoff),
+                      {}});
+  shared = reference_index;  // self_pairs reads the table
+  reference_index->self = self_pairs(reference, reference_index->grid);
   finish();
 }
 
@@ -215,10 +240,12 @@ void SurfaceOverlay::Impl::finish() {
     sample->lp /= lp_rms;
   }
   const RigidTransform identity;
-  const Sums reference_self = overlap(reference, shared->grid, reference, identity);
+  double reference_chem = 0.0;
+  for (const SelfPairs::Pair& p : shared->self.pairs)
+    reference_chem += p.weight * chemistry(reference, p.i, reference, p.j);
   const Sums probe_self = self_overlap(probe);
-  self.shape = reference_self.shape + probe_self.shape;
-  self.chem = reference_self.chem + probe_self.chem;
+  self.shape = shared->self.shape + probe_self.shape;
+  self.chem = reference_chem + probe_self.chem;
   chem_weight = self.chem > 0.0 ? options.chem_weight : 0.0;
   if (reference_atoms.size() > 0 && probe_atoms.size() > 0) {
     atom_self = atom_overlap(reference_atoms, reference_atoms, identity) +
@@ -239,42 +266,72 @@ Sums SurfaceOverlay::Impl::self_overlap(const SurfaceSample& s) const {
   return overlap(s, all_near, s, {});
 }
 
+SelfPairs SurfaceOverlay::Impl::self_pairs(const SurfaceSample& s,
+                                           const mesh::SpatialGrid& grid) const {
+  SelfPairs found;
+  for_each_pair(
+      s, [&grid](const Eigen::Vector3d& q, const auto& visit) { grid.for_each_listed(q, visit); },
+      s, {},
+      [&](Eigen::Index j, int i, double k) {
+        const double weight = s.weights(j) * k;
+        found.shape += weight;
+        found.pairs.push_back({i, static_cast<int>(j), weight});
+      },
+      [](Eigen::Index, const Eigen::Vector3d&) {});
+  return found;
+}
+
+template <class Neighbours, class Pair, class Done>
+void SurfaceOverlay::Impl::for_each_pair(const SurfaceSample& a, const Neighbours& neighbours,
+                                         const SurfaceSample& b, const RigidTransform& transform,
+                                         const Pair& pair, const Done& done) const {
+  const double cutoff2 = std::pow(kCutoffSigmas * options.sigma, 2);
+  for (Eigen::Index j = 0; j < b.points.cols(); ++j) {
+    const Eigen::Vector3d q = transform.rotation * b.points.col(j) + transform.translation;
+    const Eigen::Vector3d m = transform.rotation * b.normals.col(j);
+    neighbours(q, [&](int i) {
+      const double d2 = (a.points.col(i) - q).squaredNorm();
+      if (!(d2 <= cutoff2)) return;
+      const double facing = a.normals.col(i).dot(m);
+      if (facing <= 0.0) return;
+      pair(j, i, a.weights(i) * shared->gaussian(d2) * facing);
+    });
+    done(j, q);
+  }
+}
+
 template <class Neighbours>
 Sums SurfaceOverlay::Impl::overlap(const SurfaceSample& a, const Neighbours& neighbours,
                                    const SurfaceSample& b, const RigidTransform& transform,
                                    Eigen::Matrix3Xd* targets,
                                    Eigen::VectorXd* target_weights) const {
-  const double cutoff2 = std::pow(kCutoffSigmas * options.sigma, 2);
   Sums sums;
-  for (Eigen::Index j = 0; j < b.points.cols(); ++j) {
-    const Eigen::Vector3d q = transform.rotation * b.points.col(j) + transform.translation;
-    const Eigen::Vector3d m = transform.rotation * b.normals.col(j);
-    // The sums alone (a score) skip the step's weighted mean, a third of the work per pair.
-    const auto add_pair = [&](int i, auto with_step, Eigen::Vector3d& mean, double& total) {
-      const double d2 = (a.points.col(i) - q).squaredNorm();
-      if (!(d2 <= cutoff2)) return;
-      const double facing = a.normals.col(i).dot(m);
-      if (facing <= 0.0) return;
-      const double k = a.weights(i) * shared->gaussian(d2) * facing;
-      const double c = chemistry(a, i, b, j);
-      sums.shape += b.weights(j) * k;
-      sums.chem += b.weights(j) * k * c;
-      if constexpr (decltype(with_step)::value) {
-        const double pull = k * (1.0 + options.chem_weight * c);
+  const auto add = [&](Eigen::Index j, int i, double k) {
+    const double c = chemistry(a, i, b, j);
+    sums.shape += b.weights(j) * k;
+    sums.chem += b.weights(j) * k * c;
+    return c;
+  };
+  // The sums alone (a score) skip the step's weighted means, a third of the work per pair.
+  if (targets == nullptr) {
+    for_each_pair(a, neighbours, b, transform, add, [](Eigen::Index, const Eigen::Vector3d&) {});
+    return sums;
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double total = 0.0;
+  for_each_pair(
+      a, neighbours, b, transform,
+      [&](Eigen::Index j, int i, double k) {
+        const double pull = k * (1.0 + options.chem_weight * add(j, i, k));
         mean += pull * a.points.col(i);
         total += pull;
-      }
-    };
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    double total = 0.0;
-    if (targets == nullptr) {
-      neighbours(q, [&](int i) { add_pair(i, std::false_type{}, mean, total); });
-      continue;
-    }
-    neighbours(q, [&](int i) { add_pair(i, std::true_type{}, mean, total); });
-    targets->col(j) = total > 0.0 ? Eigen::Vector3d(mean / total) : q;
-    (*target_weights)(j) = b.weights(j) * total;
-  }
+      },
+      [&](Eigen::Index j, const Eigen::Vector3d& q) {
+        targets->col(j) = total > 0.0 ? Eigen::Vector3d(mean / total) : q;
+        (*target_weights)(j) = b.weights(j) * total;
+        mean.setZero();
+        total = 0.0;
+      });
   return sums;
 }
 
