@@ -447,7 +447,6 @@ TEST(AssociationGraph, ThermolysinLigandsTraceBesideTheThesis) {
   EXPECT_LT(graph.trace[2].nodes, graph.trace[0].nodes / 2);
   EXPECT_LT(graph.trace[4].edges, graph.trace[3].edges);
   EXPECT_GT(graph.edges.size(), 10u);
-  EXPECT_LT(graph_ms, 200.0);
   for (const auto& c : cliques) {
     EXPECT_GE(c.size(), 2u);
     EXPECT_TRUE(std::is_sorted(c.begin(), c.end()));
