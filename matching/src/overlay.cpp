@@ -312,7 +312,7 @@ Sums SurfaceOverlay::Impl::overlap(const SurfaceSample& a, const Neighbours& nei
     sums.chem += b.weights(j) * k * c;
     return c;
   };
-  // The sums alone (a score) skip the step's weighted means, a third of the work per pair.
+  // The sums alone (a score) skip the step's weighted means.
   if (targets == nullptr) {
     for_each_pair(a, neighbours, b, transform, add, [](Eigen::Index, const Eigen::Vector3d&) {});
     return sums;
