@@ -24,12 +24,23 @@ constexpr double kCutoffSigmas = 3.0;
 /// (docs/decisions.md#screen-stage-one).
 constexpr std::size_t kLigandSizedPoints = 512;
 
-/// sqrt(sum w x^2 / sum w) over both samples' values; 1 when it is zero (no such property).
-double root_mean_square(const Eigen::VectorXd& a, const Eigen::VectorXd& wa,
-                        const Eigen::VectorXd& b, const Eigen::VectorXd& wb) {
-  const double r = std::sqrt(
-      ((a.array().square() * wa.array()).sum() + (b.array().square() * wb.array()).sum()) /
-      (wa.sum() + wb.sum()));
+/// A sample's weighted sums of squared ESP and LP and of weights: its share of the root mean
+/// squares over two samples.
+struct Squares {
+  double esp = 0.0;
+  double lp = 0.0;
+  double weight = 0.0;
+};
+
+Squares squares(const SurfaceSample& s) {
+  return {(s.esp.array().square() * s.weights.array()).sum(),
+          (s.lp.array().square() * s.weights.array()).sum(), s.weights.sum()};
+}
+
+/// sqrt(sum w x^2 / sum w) over both samples' values (x^2 summed as `a` and `b`); 1 when it is
+/// zero (no such property).
+double root_mean_square(double a, double b, const Squares& x, const Squares& y) {
+  const double r = std::sqrt((a + b) / (x.weight + y.weight));
   return r > 0.0 ? r : 1.0;
 }
 
@@ -64,8 +75,9 @@ struct Sums {
   double chem = 0.0;
 };
 
-/// The chemical match c_ij of point i of `a` and point j of `b` (see overlay.hpp); the samples'
-/// ESP and LP are already divided by their root mean squares.
+/// The chemical match c_ij of point i of `a` and point j of `b` (see overlay.hpp) when the
+/// product of the two points' ESPs is divided by the square of the ESP's root mean square, and so
+/// for LP: an overlay keeps its reference's values and divides its probe's by those squares.
 double chemistry(const SurfaceSample& a, Eigen::Index i, const SurfaceSample& b, Eigen::Index j) {
   return std::max(0.0, a.esp(i) * b.esp(j)) + std::max(0.0, a.lp(i) * b.lp(j));
 }
@@ -86,43 +98,41 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
   return out;
 }
 
-/// The pairs (i, j) of a sample's self-overlap that add to it, in the order the sums take them,
-/// each with its weight w_j w_i g max(0, n_i . n_j): what the self-overlap keeps whatever the
-/// ESP and LP scaling, so that S_AA is summed once and C_AA is one pass over the pairs.
-struct SelfPairs {
-  struct Pair {
-    int i = 0;
-    int j = 0;
-    double weight = 0.0;
-  };
-  double shape = 0.0;  ///< S_AA
-  std::vector<Pair> pairs;
+/// A sample's self-overlap S_SS and the ESP and LP parts of C_SS before the pair's scaling:
+/// C_SS = esp / r_esp^2 + lp / r_lp^2 for the root mean squares r of the pair's two samples,
+/// so that a reference's is summed once for all its probes.
+struct SelfSums {
+  double shape = 0.0;
+  double esp = 0.0;
+  double lp = 0.0;
 };
 
-/// What an overlay keeps of its reference before the pair's ESP/LP scaling, with the table and
-/// index built from it: shared by the overlays of one reference with many probes.
+/// What an overlay keeps of its reference (ESP and LP as given), with the table, index and sums
+/// built from it: shared by the overlays of one reference with many probes.
 struct SharedReference {
-  SurfaceSample sample;  ///< as given, ESP and LP not scaled
+  SurfaceSample sample;
+  AtomSample atoms;
   GaussianTable gaussian;
   /// The reference points within 3 sigma of each cell (cells of edge sigma, sigma / 2 for many
   /// probes, coarser for a very large box): a query reads one list instead of the cells of
   /// 3 sigma around it, the same sums for fewer visits (docs/decisions.md#overlay-speed).
   mesh::SpatialGrid grid;
-  SelfPairs self;  ///< of `sample` over `grid`
+  SelfSums self;  ///< of `sample` over `grid`
+  Squares squares;
+  double atom_self = 0.0;  ///< H_AA
 };
 
 }  // namespace
 
-/// The samples (ESP and LP over their root mean squares), the reference sample's grid, the
-/// Gaussian table and the self-overlaps: everything score and refine read, fixed on
-/// construction.
+/// The shared reference, the probe (ESP and LP over the squares of their root mean squares),
+/// and the self-overlaps: everything score and refine read, fixed on construction.
 struct SurfaceOverlay::Impl {
   /// The reference listed on cells of `reference_cell` sigmas.
   Impl(SurfaceSample reference, SurfaceSample probe, const OverlayOptions& options,
        AtomSample reference_atoms, AtomSample probe_atoms, double reference_cell);
   /// `other`'s reference (its shared part) with a new probe.
   Impl(const Impl& other, SurfaceSample probe, AtomSample probe_atoms);
-  /// Checks the probe's side, scales ESP and LP and sums the self-overlaps.
+  /// Checks the probe's side, sums the self-overlaps and scales the probe's ESP and LP.
   void finish();
 
   /// Sums over the pairs (i of a, j of b moved by `transform`) within 3 sigma (see overlay.hpp),
@@ -149,10 +159,11 @@ struct SurfaceOverlay::Impl {
         a, [&grid](const Eigen::Vector3d& q, const auto& visit) { grid.for_each_listed(q, visit); },
         b, transform, targets, target_weights);
   }
-  /// overlap(s, ..., s, identity): S_SS and C_SS.
-  Sums self_overlap(const SurfaceSample& s) const;
-  /// The pairs of overlap(s, grid, s, identity), in its order.
-  SelfPairs self_pairs(const SurfaceSample& s, const mesh::SpatialGrid& grid) const;
+  /// The self-overlap of s (ESP and LP as given) over `neighbours`, as overlap takes it.
+  template <class Neighbours>
+  SelfSums self_sums(const SurfaceSample& s, const Neighbours& neighbours) const;
+  /// self_sums of a probe: by a grid, or testing every pair once when it is ligand-sized.
+  SelfSums probe_self_sums(const SurfaceSample& s) const;
   /// Unnormalised same-element heteroatom overlap H of `a` and `b` moved by `transform`. With
   /// `targets`, also the refinement's step for b's atoms: for each, the Gaussian-weighted mean
   /// of a's atoms of its element (its own moved position when there is none) and, in
@@ -171,10 +182,11 @@ struct SurfaceOverlay::Impl {
   OverlayScore score(const RigidTransform& transform) const;
   RefineResult refine(const RigidTransform& start, const RefineOptions& refine_options) const;
 
-  SurfaceSample reference;
+  const SurfaceSample& reference() const { return shared->sample; }
+  const AtomSample& reference_atoms() const { return shared->atoms; }
+
   SurfaceSample probe;
   OverlayOptions options;
-  AtomSample reference_atoms;
   AtomSample probe_atoms;
   std::shared_ptr<const SharedReference> shared;
   double chem_weight = 0.0;  ///< options.chem_weight, 0 when neither sample has ESP or LP
@@ -182,36 +194,50 @@ struct SurfaceOverlay::Impl {
   double atom_self = 0.0;    ///< H_AA + H_BB, 0 when a side has no heteroatoms
 };
 
+namespace {
+
+void check_atoms(const AtomSample& atoms, const char* side) {
+  if (static_cast<std::size_t>(atoms.points.cols()) != atoms.size() || !atoms.points.allFinite()) {
+    throw InputError(std::string("overlay: the ") + side + " atoms have " +
+                     std::to_string(atoms.points.cols()) + " positions for " +
+                     std::to_string(atoms.size()) + " elements, or a position that is not finite");
+  }
+}
+
+}  // namespace
+
 SurfaceOverlay::Impl::Impl(SurfaceSample reference_sample, SurfaceSample probe_sample,
                            const OverlayOptions& overlay_options, AtomSample reference_atom_sample,
                            AtomSample probe_atom_sample, double reference_cell)
-    : reference(std::move(reference_sample)),
-      probe(std::move(probe_sample)),
+    : probe(std::move(probe_sample)),
       options(overlay_options),
-      reference_atoms(std::move(reference_atom_sample)),
       probe_atoms(std::move(probe_atom_sample)) {
   detail::check_overlay_options(options, {"overlay", ""});
-  if (reference.size() == 0) {
+  if (reference_sample.size() == 0) {
     throw InputError(
         "overlay: the reference sample has no points (an empty surface or site region)");
   }
+  check_atoms(reference_atom_sample, "reference");
   const double cutoff = kCutoffSigmas * options.sigma;
-  auto reference_index = std::make_shared<SharedReference>(
-      SharedReference{reference,
-                      GaussianTable(options.sigma, cutoff),
-                      mesh::SpatialGrid(reference.points, reference_cell * options.sigma, cutoff),
-                      {}});
-  shared = reference_index;  // self_pairs reads the table
-  reference_index->self = self_pairs(reference, reference_index->grid);
+  auto built = std::make_shared<SharedReference>();
+  built->gaussian = GaussianTable(options.sigma, cutoff);
+  built->grid = mesh::SpatialGrid(reference_sample.points, reference_cell * options.sigma, cutoff);
+  built->squares = squares(reference_sample);
+  built->sample = std::move(reference_sample);
+  built->atoms = std::move(reference_atom_sample);
+  shared = built;  // self_sums reads the table
+  const mesh::SpatialGrid& grid = built->grid;
+  built->self = self_sums(built->sample, [&grid](const Eigen::Vector3d& q, const auto& visit) {
+    grid.for_each_listed(q, visit);
+  });
+  if (built->atoms.size() > 0) built->atom_self = atom_overlap(built->atoms, built->atoms, {});
   finish();
 }
 
 SurfaceOverlay::Impl::Impl(const Impl& other, SurfaceSample probe_sample,
                            AtomSample probe_atom_sample)
-    : reference(other.shared->sample),
-      probe(std::move(probe_sample)),
+    : probe(std::move(probe_sample)),
       options(other.options),
-      reference_atoms(other.reference_atoms),
       probe_atoms(std::move(probe_atom_sample)),
       shared(other.shared) {
   finish();
@@ -221,64 +247,69 @@ void SurfaceOverlay::Impl::finish() {
   if (probe.size() == 0) {
     throw InputError("overlay: the probe sample has no points (an empty surface or site region)");
   }
-  for (const AtomSample* atoms : {&reference_atoms, &probe_atoms}) {
-    if (static_cast<std::size_t>(atoms->points.cols()) != atoms->size() ||
-        !atoms->points.allFinite()) {
-      throw InputError(
-          std::string("overlay: the ") + (atoms == &reference_atoms ? "reference" : "probe") +
-          " atoms have " + std::to_string(atoms->points.cols()) + " positions for " +
-          std::to_string(atoms->size()) + " elements, or a position that is not finite");
-    }
-  }
+  check_atoms(probe_atoms, "probe");
   // ESP and LP over their root mean squares over both samples, so that the two properties
-  // count alike whatever their units.
+  // count alike whatever their units: a product of two points' values over the square.
+  const Squares probe_squares = squares(probe);
+  const Squares& reference_squares = shared->squares;
   const double esp_rms =
-      root_mean_square(reference.esp, reference.weights, probe.esp, probe.weights);
-  const double lp_rms = root_mean_square(reference.lp, reference.weights, probe.lp, probe.weights);
-  for (SurfaceSample* sample : {&reference, &probe}) {
-    sample->esp /= esp_rms;
-    sample->lp /= lp_rms;
-  }
-  const RigidTransform identity;
-  double reference_chem = 0.0;
-  for (const SelfPairs::Pair& p : shared->self.pairs)
-    reference_chem += p.weight * chemistry(reference, p.i, reference, p.j);
-  const Sums probe_self = self_overlap(probe);
+      root_mean_square(reference_squares.esp, probe_squares.esp, reference_squares, probe_squares);
+  const double lp_rms =
+      root_mean_square(reference_squares.lp, probe_squares.lp, reference_squares, probe_squares);
+  const double esp_scale = 1.0 / (esp_rms * esp_rms);
+  const double lp_scale = 1.0 / (lp_rms * lp_rms);
+  const SelfSums probe_self = probe_self_sums(probe);
   self.shape = shared->self.shape + probe_self.shape;
-  self.chem = reference_chem + probe_self.chem;
+  self.chem = (shared->self.esp + probe_self.esp) * esp_scale +
+              (shared->self.lp + probe_self.lp) * lp_scale;
   chem_weight = self.chem > 0.0 ? options.chem_weight : 0.0;
-  if (reference_atoms.size() > 0 && probe_atoms.size() > 0) {
-    atom_self = atom_overlap(reference_atoms, reference_atoms, identity) +
-                atom_overlap(probe_atoms, probe_atoms, identity);
-  }
+  probe.esp *= esp_scale;
+  probe.lp *= lp_scale;
+  if (shared->atom_self > 0.0 && probe_atoms.size() > 0)
+    atom_self = shared->atom_self + atom_overlap(probe_atoms, probe_atoms, {});
 }
 
-Sums SurfaceOverlay::Impl::self_overlap(const SurfaceSample& s) const {
+SelfSums SurfaceOverlay::Impl::probe_self_sums(const SurfaceSample& s) const {
   const double cutoff = kCutoffSigmas * options.sigma;
-  if (s.size() > kLigandSizedPoints)
-    return overlap(s, mesh::SpatialGrid(s.points, options.sigma, cutoff), s, {});
+  if (s.size() > kLigandSizedPoints) {
+    const mesh::SpatialGrid grid(s.points, options.sigma, cutoff);
+    return self_sums(s, [&grid](const Eigen::Vector3d& q, const auto& visit) {
+      grid.for_each_listed(q, visit);
+    });
+  }
+  // Ligand-sized: each pair tested once, as the sums are symmetric in i and j.
   const double cutoff2 = cutoff * cutoff;
-  const auto all_near = [&](const Eigen::Vector3d& q, const auto& visit) {
-    for (Eigen::Index i = 0; i < s.points.cols(); ++i) {
-      if ((s.points.col(i) - q).squaredNorm() <= cutoff2) visit(static_cast<int>(i));
+  SelfSums sums;
+  for (Eigen::Index j = 0; j < s.points.cols(); ++j) {
+    for (Eigen::Index i = 0; i <= j; ++i) {
+      const double d2 = (s.points.col(i) - s.points.col(j)).squaredNorm();
+      if (!(d2 <= cutoff2)) continue;
+      const double facing = s.normals.col(i).dot(s.normals.col(j));
+      if (facing <= 0.0) continue;
+      const double weight =
+          (i == j ? 1.0 : 2.0) * s.weights(i) * s.weights(j) * shared->gaussian(d2) * facing;
+      sums.shape += weight;
+      sums.esp += weight * std::max(0.0, s.esp(i) * s.esp(j));
+      sums.lp += weight * std::max(0.0, s.lp(i) * s.lp(j));
     }
-  };
-  return overlap(s, all_near, s, {});
+  }
+  return sums;
 }
 
-SelfPairs SurfaceOverlay::Impl::self_pairs(const SurfaceSample& s,
-                                           const mesh::SpatialGrid& grid) const {
-  SelfPairs found;
+template <class Neighbours>
+SelfSums SurfaceOverlay::Impl::self_sums(const SurfaceSample& s,
+                                         const Neighbours& neighbours) const {
+  SelfSums sums;
   for_each_pair(
-      s, [&grid](const Eigen::Vector3d& q, const auto& visit) { grid.for_each_listed(q, visit); },
-      s, {},
+      s, neighbours, s, {},
       [&](Eigen::Index j, int i, double k) {
         const double weight = s.weights(j) * k;
-        found.shape += weight;
-        found.pairs.push_back({i, static_cast<int>(j), weight});
+        sums.shape += weight;
+        sums.esp += weight * std::max(0.0, s.esp(i) * s.esp(j));
+        sums.lp += weight * std::max(0.0, s.lp(i) * s.lp(j));
       },
       [](Eigen::Index, const Eigen::Vector3d&) {});
-  return found;
+  return sums;
 }
 
 template <class Neighbours, class Pair, class Done>
@@ -380,8 +411,9 @@ OverlayScore SurfaceOverlay::Impl::tanimoto(const Sums& sums) const {
 
 OverlayScore SurfaceOverlay::Impl::with_atoms(OverlayScore s,
                                               const RigidTransform& transform) const {
-  return uses_atoms() ? with_atom_overlap(s, atom_overlap(reference_atoms, probe_atoms, transform))
-                      : s;
+  return uses_atoms()
+             ? with_atom_overlap(s, atom_overlap(reference_atoms(), probe_atoms, transform))
+             : s;
 }
 
 OverlayScore SurfaceOverlay::Impl::with_atom_overlap(OverlayScore s, double h) const {
@@ -391,7 +423,7 @@ OverlayScore SurfaceOverlay::Impl::with_atom_overlap(OverlayScore s, double h) c
 }
 
 OverlayScore SurfaceOverlay::Impl::score(const RigidTransform& transform) const {
-  return with_atoms(tanimoto(overlap(reference, shared->grid, probe, transform)), transform);
+  return with_atoms(tanimoto(overlap(reference(), shared->grid, probe, transform)), transform);
 }
 
 RefineResult SurfaceOverlay::Impl::refine(const RigidTransform& start,
@@ -418,9 +450,9 @@ RefineResult SurfaceOverlay::Impl::refine(const RigidTransform& start,
   // The scores at `t` (the atom term's too when pulling atoms) and the EM targets and weights
   // there, the heteroatoms' after the surface points'.
   const auto step = [&](const RigidTransform& t, Eigen::Matrix3Xd& tg, Eigen::VectorXd& w) {
-    const OverlayScore score = tanimoto(overlap(reference, shared->grid, probe, t, &tg, &w));
+    const OverlayScore score = tanimoto(overlap(reference(), shared->grid, probe, t, &tg, &w));
     if (!pull_atoms) return score;
-    const double h = atom_overlap(reference_atoms, probe_atoms, t, &atom_targets, &atom_totals);
+    const double h = atom_overlap(reference_atoms(), probe_atoms, t, &atom_targets, &atom_totals);
     tg.rightCols(m) = atom_targets;
     w.tail(m) = atom_scale * atom_totals;
     return with_atom_overlap(score, h);
