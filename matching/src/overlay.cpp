@@ -37,10 +37,9 @@ Squares squares(const SurfaceSample& s) {
           (s.lp.array().square() * s.weights.array()).sum(), s.weights.sum()};
 }
 
-/// sqrt(sum w x^2 / sum w) over both samples' values (x^2 summed as `a` and `b`); 1 when it is
-/// zero (no such property).
-double root_mean_square(double a, double b, const Squares& x, const Squares& y) {
-  const double r = std::sqrt((a + b) / (x.weight + y.weight));
+/// sqrt(sum w x^2 / sum w) from those two sums; 1 when it is zero (no such property).
+double root_mean_square(double weighted_squares, double weights) {
+  const double r = std::sqrt(weighted_squares / weights);
   return r > 0.0 ? r : 1.0;
 }
 
@@ -102,6 +101,13 @@ RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& 
 /// C_SS = esp / r_esp^2 + lp / r_lp^2 for the root mean squares r of the pair's two samples,
 /// so that a reference's is summed once for all its probes.
 struct SelfSums {
+  /// Adds the pair (i, j) of `s` with weight w_i w_j g n_i . n_j (times its multiplicity).
+  void add(const SurfaceSample& s, Eigen::Index i, Eigen::Index j, double weight) {
+    shape += weight;
+    esp += weight * std::max(0.0, s.esp(i) * s.esp(j));
+    lp += weight * std::max(0.0, s.lp(i) * s.lp(j));
+  }
+
   double shape = 0.0;
   double esp = 0.0;
   double lp = 0.0;
@@ -252,10 +258,9 @@ void SurfaceOverlay::Impl::finish() {
   // count alike whatever their units: a product of two points' values over the square.
   const Squares probe_squares = squares(probe);
   const Squares& reference_squares = shared->squares;
-  const double esp_rms =
-      root_mean_square(reference_squares.esp, probe_squares.esp, reference_squares, probe_squares);
-  const double lp_rms =
-      root_mean_square(reference_squares.lp, probe_squares.lp, reference_squares, probe_squares);
+  const double weights = reference_squares.weight + probe_squares.weight;
+  const double esp_rms = root_mean_square(reference_squares.esp + probe_squares.esp, weights);
+  const double lp_rms = root_mean_square(reference_squares.lp + probe_squares.lp, weights);
   const double esp_scale = 1.0 / (esp_rms * esp_rms);
   const double lp_scale = 1.0 / (lp_rms * lp_rms);
   const SelfSums probe_self = probe_self_sums(probe);
@@ -286,11 +291,8 @@ SelfSums SurfaceOverlay::Impl::probe_self_sums(const SurfaceSample& s) const {
       if (!(d2 <= cutoff2)) continue;
       const double facing = s.normals.col(i).dot(s.normals.col(j));
       if (facing <= 0.0) continue;
-      const double weight =
-          (i == j ? 1.0 : 2.0) * s.weights(i) * s.weights(j) * shared->gaussian(d2) * facing;
-      sums.shape += weight;
-      sums.esp += weight * std::max(0.0, s.esp(i) * s.esp(j));
-      sums.lp += weight * std::max(0.0, s.lp(i) * s.lp(j));
+      sums.add(s, i, j,
+               (i == j ? 1.0 : 2.0) * s.weights(i) * s.weights(j) * shared->gaussian(d2) * facing);
     }
   }
   return sums;
@@ -302,12 +304,7 @@ SelfSums SurfaceOverlay::Impl::self_sums(const SurfaceSample& s,
   SelfSums sums;
   for_each_pair(
       s, neighbours, s, {},
-      [&](Eigen::Index j, int i, double k) {
-        const double weight = s.weights(j) * k;
-        sums.shape += weight;
-        sums.esp += weight * std::max(0.0, s.esp(i) * s.esp(j));
-        sums.lp += weight * std::max(0.0, s.lp(i) * s.lp(j));
-      },
+      [&](Eigen::Index j, int i, double k) { sums.add(s, i, j, s.weights(j) * k); },
       [](Eigen::Index, const Eigen::Vector3d&) {});
   return sums;
 }
