@@ -15,8 +15,9 @@
 namespace surfcomp::tools {
 
 struct ScreenSettings {
-  double top = 100, refine = 2,
-         candidates = 50;  // read as doubles: a negative value is refused, not wrapped
+  // Read as doubles: a negative value is refused, not wrapped.
+  double top = 100, refine = static_cast<double>(screening::ScreenOptions{}.refine),
+         candidates = static_cast<double>(screening::ScreenOptions{}.candidates);
   std::size_t record = 0;
   std::string site_ligand;
   std::vector<std::string> site_spheres;

@@ -197,7 +197,7 @@ def screen(
     library: PathLike,
     *,
     top: int = 100,
-    refine: int = 2,
+    refine: int = 5,
     candidates: int = 50,
     record: Optional[int] = None,
     site_ligand: Optional[str] = None,

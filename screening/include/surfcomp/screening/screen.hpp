@@ -32,9 +32,9 @@
 namespace surfcomp::screening {
 
 struct ScreenOptions {
-  /// Default 2. The conformers of each molecule, best fast score first, whose overlay stage 2
+  /// Default 5. The conformers of each molecule, best fast score first, whose overlay stage 2
   /// refines. 0: no refinement.
-  std::size_t refine = 2;
+  std::size_t refine = 5;
   /// Default 50. The molecules, best score after stage 2 first, whose best conformer gets the
   /// full match (stage 3). 0: no full match.
   std::size_t candidates = 50;
