@@ -721,7 +721,7 @@ def summary_table(args, results, means):
             lines.append(f"  {label:<52} {format_number(build, 3):>9} {format_number(screen, 3):>9}")
     if "surfcomp_fast" in means:
         lines.append("")
-        lines.append(f"surfcomp first stage alone (fast_score): mean AUC {format_number(means['surfcomp_fast']['auc'], 3)}, "
+        lines.append(f"surfcomp fast_score of the reported conformers: mean AUC {format_number(means['surfcomp_fast']['auc'], 3)}, "
                      f"mean EF1% {format_number(means['surfcomp_fast']['ef1'], 1)}")
     failed = {t: len(r.get("o3a_failed", [])) for t, r in results.items() if r.get("o3a_failed")}
     if failed:
