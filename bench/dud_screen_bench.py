@@ -82,6 +82,9 @@ def parse_args(argv=None):
                         help="with --work holding an earlier run of the same settings: keep its "
                              "libraries, conformers and baseline scores, run only the surfcomp "
                              "screens again (with this --surfcomp and --screen-args)")
+    parser.add_argument("--rebuild", action="store_true",
+                        help="--rescreen, with surfcomp's libraries built again by this --surfcomp "
+                             "first (the same conformers, checked against the earlier export)")
     parser.add_argument("--resume", action="store_true",
                         help="with --work: reuse a target's figures from an earlier run of the same "
                              "settings, --screen-args included (WORK/TARGET/result.json), instead "
@@ -91,8 +94,10 @@ def parse_args(argv=None):
     for target in args.targets:
         if target not in TARGETS:
             parser.error(f"unknown target '{target}' (expected some of {', '.join(TARGETS)})")
+    if args.rebuild:
+        args.rescreen = True
     if args.rescreen and (args.work is None or args.skip_surfcomp):
-        parser.error("--rescreen needs --work (an earlier run's folder) and surfcomp")
+        parser.error("--rescreen and --rebuild need --work (an earlier run's folder) and surfcomp")
     if not args.skip_surfcomp and args.surfcomp is None:
         parser.error("--surfcomp PATH is required unless --skip-surfcomp is given")
     for name in ("queries", "conformers", "threads"):
@@ -513,14 +518,32 @@ def rescreen_target(args, target, work, earlier):
         if method in ("surfcomp", "surfcomp_fast") or columns[0] not in rows[0]:
             continue
         scores[method] = [{row["name"]: float(row[c]) for row in rows if row[c] != ""} for c in columns]
+    timing = dict(earlier["timing"]["surfcomp"])
+    if args.rebuild:
+        library_path = target_dir / "library.sclib"
+        export_path = target_dir / "library_rebuilt.sdf"
+        log(f"{target}: building the library again")
+        timing["build_s"] = run_command(
+            [args.surfcomp, "library", "build", target_dir / "library.dat.gz", "-o", library_path,
+             "--conformers", args.conformers, "--seed", args.seed, "--threads", args.threads])
+        timing["export_s"] = run_command([args.surfcomp, "library", "export", library_path, "-o", export_path])
+        rebuilt = read_exported_library(export_path)
+        same = sorted(rebuilt) == sorted(library) and all(
+            rebuilt[n].GetNumConformers() == library[n].GetNumConformers() and
+            all((rebuilt[n].GetConformer(c.GetId()).GetPositions() == c.GetPositions()).all()
+                for c in library[n].GetConformers()) for n in library)
+        if not same:
+            raise SystemExit(f"dud_screen_bench: --rebuild: {export_path} holds other conformers "
+                             f"than {target_dir / 'library.sdf'}; the baselines would not match")
     new_scores, fast_scores, screen_s, stages = screen_queries(args, target_dir, library, queries, query_paths)
     scores = {"surfcomp": new_scores, **({"surfcomp_fast": fast_scores} if all(fast_scores) else {}),
               **scores}
     result = dict(earlier)
     result["timing"] = dict(earlier["timing"])
-    result["timing"]["surfcomp"] = dict(earlier["timing"]["surfcomp"], screen_s=screen_s)
+    result["timing"]["surfcomp"] = dict(timing, screen_s=screen_s)
     result["surfcomp_hits"] = stages
-    result["rescreened_with"] = {"surfcomp": str(args.surfcomp), "screen_args": args.screen_args}
+    result["rescreened_with"] = {"surfcomp": str(args.surfcomp), "screen_args": args.screen_args,
+                                 "library_rebuilt": bool(args.rebuild)}
     result["mean_before_rescreen"] = earlier.get("mean_before_rescreen", earlier["mean"])
     result["per_query"] = {m: [evaluate(s, names, active_ids) for s in method_scores]
                            for m, method_scores in scores.items()}

@@ -6,6 +6,8 @@ set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
 find_package(CGAL 5.5 REQUIRED)
 find_package(TBB REQUIRED CONFIG)
 find_package(nlohmann_json 3 REQUIRED CONFIG)
+# Highway (Debian libhwy-dev): the SIMD kernel of the screen's first stage, dispatched at run time.
+find_package(hwy REQUIRED CONFIG)
 find_package(Boost 1.74 REQUIRED COMPONENTS graph iostreams program_options)
 # cairo (Debian libcairo2-dev) draws the shape images as PNG (patch-map); it has no CMake config.
 find_package(PkgConfig REQUIRED)

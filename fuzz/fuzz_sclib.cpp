@@ -1,8 +1,9 @@
 // libFuzzer harness: the screening library reader (screening::Library). Each input is opened as
-// a library twice: as given, and with every checksum it holds (each entry's, in the index, and
-// the index's, in the trailer) recomputed where the trailer and index can be walked, so that
-// mutations reach the decoding of the index and the entries instead of stopping at a checksum.
-// Every entry is decoded, looked up by name, and an entry's described surface (.hsi bytes) is
+// a library twice: as given, and with every checksum it holds (each entry's record and, from
+// format 4, sample checksum, in the index, and the index's, in the trailer) recomputed where the
+// trailer and index can be walked, so that mutations reach the decoding of the index and the
+// entries instead of stopping at a checksum. Every entry is decoded, its packed sample read and
+// scored against itself, looked up by name, and an entry's described surface (.hsi bytes) is
 // decoded too.
 #include "fuzz_input.hpp"
 #include "surfcomp/core/error.hpp"
@@ -62,6 +63,15 @@ void repair_entry_checksums(std::vector<std::uint8_t>& bytes, std::uint32_t vers
       store_u64(bytes, at + 16, surfcomp::io::fnv1a64(bytes.data() + offset, size));
     }
     at += 24;
+    if (version >= 4) {  // the packed sample's offset, size and XXH3 checksum
+      if (!need(24)) return;
+      const std::uint64_t sample = load_u64(bytes, at);
+      const std::uint64_t sample_size = load_u64(bytes, at + 8);
+      if (sample <= index_offset && sample_size <= index_offset - sample) {
+        store_u64(bytes, at + 16, surfcomp::io::xxh3_64(bytes.data() + sample, sample_size));
+      }
+      at += 24;
+    }
     if (!skip_string() || !skip_string()) return;
     const std::size_t fields = version >= 2 ? 16 : 12;
     if (!need(fields)) return;
@@ -90,6 +100,12 @@ void read_library(const std::filesystem::path& path) {
       try {
         const surfcomp::screening::LibraryEntry entry = library.entry(i);
         (void)library.find(entry.info.name);
+        const surfcomp::screening::PackedEntry packed = library.packed(i, 1.0);
+        if (packed.view.header.points > 0) {
+          const surfcomp::matching::PackedQuery query{
+              surfcomp::matching::PackedSample(packed.view)};
+          (void)query.fast_score(packed.view, {});
+        }
         if (!entry.surface.empty()) {
           (void)surfcomp::harmonic::io::decode_hsi(entry.surface, path.string());
         }

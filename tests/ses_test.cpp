@@ -27,6 +27,8 @@ namespace {
 
 using test::Atoms;
 using test::make_atoms;
+using test::two_atom_ses;
+using test::TwoAtomSes;
 using test::union_area;
 
 /// Heavy atoms of a PDB file (ATOM/HETATM, no water, alternate location ' ' or 'A'), with
@@ -211,49 +213,6 @@ TEST(Sas, CreasedClusterMatchesShrakeRupley) {
     ASSERT_GT(depth, -1e-9) << "vertex " << v;
     ASSERT_LT(depth, 0.05) << "vertex " << v;
   }
-}
-
-/// Analytic SES area of two atoms (radii r1, r2, centres d apart) bridged by the probe (p).
-/// Put c1 at x = 0 and c2 at x = d on the axis. A probe touching both atoms has its centre P at
-/// distance R1 = r1 + p from c1 and R2 = r2 + p from c2; in a plane through the axis
-///   x0 = (d^2 + R1^2 - R2^2) / (2 d),  h = sqrt(R1^2 - x0^2)  (P's distance from the axis).
-/// It touches atom 1 at polar angle theta1 from the axis (cos theta1 = x0 / R1) and atom 2 at
-/// cos theta2 = (d - x0) / R2 measured from the reversed axis. The SES is
-///  - the cap of atom 1 beyond its contact circle: 2 pi r1^2 (1 + cos theta1),
-///  - the cap of atom 2 beyond its contact circle: 2 pi r2^2 (1 + cos theta2),
-///  - the re-entrant patch swept by the probe's arc between the two contact points, the arc
-///    that faces the axis: points P + p (cos phi, sin phi) for phi from phi1 = atan2(-h, -x0)
-///    (towards c1) to phi2 = atan2(-h, d - x0) (towards c2). A point at distance
-///    y = h + p sin phi from the axis sweeps a circle of length 2 pi y, so (Pappus)
-///      A_torus = int 2 pi y p dphi = 2 pi p [h (phi2 - phi1) - p (cos phi2 - cos phi1)]
-///    with cos phi1 = -x0 / R1 and cos phi2 = (d - x0) / R2.
-/// Valid when the torus does not self-intersect (h > p: the probe cannot pass between the
-/// atoms through the axis, so y > 0 on the arc) and each contact circle lies outside the other
-/// atom; the caller asserts both.
-struct TwoAtomSes {
-  double area = 0.0;
-  double h = 0.0;              ///< probe centre's distance from the axis, A
-  double contact1_margin = 0;  ///< distance of atom 1's contact points from atom 2's surface, A
-  double contact2_margin = 0;
-};
-
-TwoAtomSes two_atom_ses(double r1, double r2, double d, double p) {
-  const double big1 = r1 + p;
-  const double big2 = r2 + p;
-  const double x0 = (d * d + big1 * big1 - big2 * big2) / (2.0 * d);
-  TwoAtomSes out;
-  out.h = std::sqrt(big1 * big1 - x0 * x0);
-  const double phi1 = std::atan2(-out.h, -x0);
-  const double phi2 = std::atan2(-out.h, d - x0);
-  const double cap1 = 2.0 * M_PI * r1 * r1 * (1.0 + x0 / big1);
-  const double cap2 = 2.0 * M_PI * r2 * r2 * (1.0 + (d - x0) / big2);
-  const double torus = 2.0 * M_PI * p * (out.h * (phi2 - phi1) - p * ((d - x0) / big2 + x0 / big1));
-  out.area = cap1 + cap2 + torus;
-  const Eigen::Vector2d t1 = r1 / big1 * Eigen::Vector2d(x0, out.h);
-  const Eigen::Vector2d t2 = Eigen::Vector2d(d, 0) + r2 / big2 * Eigen::Vector2d(x0 - d, out.h);
-  out.contact1_margin = (t1 - Eigen::Vector2d(d, 0)).norm() - r2;
-  out.contact2_margin = t2.norm() - r1;
-  return out;
 }
 
 void expect_two_atom_area(double r1, double r2, double d, double tolerance) {

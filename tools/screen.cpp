@@ -163,7 +163,8 @@ int screen(const std::vector<std::string>& args) {
                 " entries, format version " + std::to_string(library.version()));
   matching::PreparedInput prepared = matching::prepare_input(query_input, query_options);
   const screening::ScreenQuery query =
-      screening::make_screen_query(std::move(prepared.descriptors), options, prepared.site);
+      screening::make_screen_query(std::move(prepared.descriptors), options, prepared.site,
+                                   prepared.molecule ? &*prepared.molecule : nullptr);
   const double query_s = clock.elapsed_s();
 
   screening::ScreenResult result;

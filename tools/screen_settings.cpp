@@ -16,6 +16,9 @@ void add_screen_options(boost::program_options::options_description& options,
       ("refine", defaulted(&settings.refine),
        "conformers of each molecule whose overlay is refined (stage 2), best fast score "
        "first (0: none)")
+      ("refine-starts", defaulted(&settings.refine_starts),
+       "principal-axes starts of each conformer refined in stage 2, best start score first "
+       "(0: all)")
       ("candidates", defaulted(&settings.candidates),
        "molecules given the full match (stage 3), best score after stage 2 first")
       ("record", po::value(&settings.record),
@@ -35,6 +38,7 @@ void finish_screen_options(ScreenSettings& settings) {
   require_in_range("top", settings.top, 0, 1e9);
   require_in_range("refine", settings.refine, 0, 1e6);
   require_in_range("candidates", settings.candidates, 0, 1e6);
+  require_in_range("refine-starts", settings.refine_starts, 0, 24);
   require_in_range("threads", settings.threads, 0, 1024);
   require_in_range("site-radius", settings.site.sphere_radius, 0.1, 100);
   require_in_range("site-margin", settings.site.surface_margin, 0.0, 1000.0);
@@ -45,6 +49,7 @@ void finish_screen_options(ScreenSettings& settings) {
   settings.options.top = static_cast<std::size_t>(settings.top);
   settings.options.refine = static_cast<std::size_t>(settings.refine);
   settings.options.candidates = static_cast<std::size_t>(settings.candidates);
+  settings.options.refine_starts = static_cast<std::size_t>(settings.refine_starts);
 }
 
 bool is_site_query(const ScreenSettings& settings) {

@@ -17,7 +17,8 @@ namespace surfcomp::tools {
 struct ScreenSettings {
   // Read as doubles: a negative value is refused, not wrapped.
   double top = 100, refine = static_cast<double>(screening::ScreenOptions{}.refine),
-         candidates = static_cast<double>(screening::ScreenOptions{}.candidates);
+         candidates = static_cast<double>(screening::ScreenOptions{}.candidates),
+         refine_starts = static_cast<double>(screening::ScreenOptions{}.refine_starts);
   std::size_t record = 0;
   std::string site_ligand;
   std::vector<std::string> site_spheres;
@@ -28,7 +29,8 @@ struct ScreenSettings {
   std::vector<matching::SiteSphere> spheres;
 };
 
-/// Adds --top --refine --candidates --record --site-ligand --site-sphere --site-radius
+/// Adds --top --refine --refine-starts --candidates --record --site-ligand --site-sphere
+/// --site-radius
 /// --site-margin
 /// --threads, bound to `settings`.
 void add_screen_options(boost::program_options::options_description& options,

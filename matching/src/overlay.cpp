@@ -1,5 +1,6 @@
 #include "surfcomp/matching/overlay.hpp"
 
+#include "em_climb.hpp"
 #include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/mesh/spatial_grid.hpp"
@@ -79,22 +80,6 @@ struct Sums {
 /// for LP: an overlay keeps its reference's values and divides its probe's by those squares.
 double chemistry(const SurfaceSample& a, Eigen::Index i, const SurfaceSample& b, Eigen::Index j) {
   return std::max(0.0, a.esp(i) * b.esp(j)) + std::max(0.0, a.lp(i) * b.lp(j));
-}
-
-/// `current` followed by `alpha` times the motion that takes `current` to `step` (rotation angle
-/// and translation scaled about `centre`, a point in the moved frame); alpha 1 gives `step`.
-RigidTransform extrapolate(const RigidTransform& current, const RigidTransform& step,
-                           const Eigen::Vector3d& centre, double alpha) {
-  const Eigen::Matrix3d relative = step.rotation * current.rotation.transpose();
-  const Eigen::Vector3d shift =
-      relative * centre + (step.translation - relative * current.translation) - centre;
-  const Eigen::AngleAxisd angle_axis(relative);
-  const Eigen::Matrix3d scaled =
-      Eigen::AngleAxisd(alpha * angle_axis.angle(), angle_axis.axis()).toRotationMatrix();
-  RigidTransform out;
-  out.rotation = scaled * current.rotation;
-  out.translation = scaled * (current.translation - centre) + centre + alpha * shift;
-  return out;
 }
 
 /// A sample's self-overlap S_SS and the ESP and LP parts of C_SS before the pair's scaling:
@@ -425,7 +410,6 @@ OverlayScore SurfaceOverlay::Impl::score(const RigidTransform& transform) const 
 
 RefineResult SurfaceOverlay::Impl::refine(const RigidTransform& start,
                                           const RefineOptions& refine_options) const {
-  constexpr double kMaxAlpha = 8.0;
   const bool pull_atoms = refine_options.pull_atoms && uses_atoms();
   const Eigen::Index n = probe.points.cols();
   const Eigen::Index m = pull_atoms ? probe_atoms.points.cols() : 0;
@@ -433,8 +417,6 @@ RefineResult SurfaceOverlay::Impl::refine(const RigidTransform& start,
   from.leftCols(n) = probe.points;
   if (m > 0) from.rightCols(m) = probe_atoms.points;
   const Eigen::Vector3d probe_centroid = probe.points * probe.weights / probe.weights.sum();
-  Eigen::Matrix3Xd targets(3, n + m), next_targets(3, n + m);
-  Eigen::VectorXd weights(n + m), next_weights(n + m);
   // Each term pulls about in proportion to its weight in the score over its self-overlap: a
   // surface point by its share of S + chem_weight C (its EM weight) over S_AA + S_BB, a
   // heteroatom by its share of H times atom_weight over H_AA + H_BB, the common factor
@@ -454,39 +436,13 @@ RefineResult SurfaceOverlay::Impl::refine(const RigidTransform& start,
     w.tail(m) = atom_scale * atom_totals;
     return with_atom_overlap(score, h);
   };
+  const detail::Climb climb = detail::em_climb(
+      from, n, probe.points, probe_centroid, start, options, step,
+      [&](const RigidTransform& t) { return refine_options.abandon && refine_options.abandon(t); });
   RefineResult result;
-  RigidTransform current = start;
-  OverlayScore current_score = step(current, targets, weights);
-  // Expectation-maximisation steps, over-relaxed: while they keep raising the score, the step
-  // is stretched (alpha doubles up to kMaxAlpha); one that does not is retried plain.
-  double alpha = 1.0;
-  for (int iteration = 0; iteration < options.iterations; ++iteration) {
-    if (!(weights.head(n).sum() > 0.0)) break;  // no surface contact: nothing to climb
-    const RigidTransform em = fit_rigid_weighted(from, targets, weights).transform;
-    RigidTransform next = extrapolate(current, em, current.apply(probe_centroid), alpha);
-    OverlayScore next_score = step(next, next_targets, next_weights);
-    if (!(next_score.score > current_score.score) && alpha > 1.0) {
-      alpha = 1.0;
-      next = em;
-      next_score = step(next, next_targets, next_weights);
-    } else {
-      alpha = std::min(2.0 * alpha, kMaxAlpha);
-    }
-    if (!(next_score.score > current_score.score)) break;
-    const double moved =
-        (next.apply(probe.points) - current.apply(probe.points)).colwise().norm().maxCoeff();
-    current = next;
-    current_score = next_score;
-    targets.swap(next_targets);
-    weights.swap(next_weights);
-    if (refine_options.abandon && refine_options.abandon(current)) {
-      result.abandoned = true;
-      break;
-    }
-    if (moved <= options.tolerance) break;
-  }
-  result.transform = current;
-  result.score = pull_atoms ? current_score : with_atoms(current_score, current);
+  result.transform = climb.transform;
+  result.abandoned = climb.abandoned;
+  result.score = pull_atoms ? climb.score : with_atoms(climb.score, climb.transform);
   return result;
 }
 

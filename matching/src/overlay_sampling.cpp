@@ -1,15 +1,86 @@
 #include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/mesh/ses_points.hpp"
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace surfcomp::matching {
+
+namespace {
+
+/// Points pooled in cubic cells of `spacing`: per cell the weighted mean position, the
+/// normalised weighted sum of normals, the weighted mean ESP and LP (zero without them) and the
+/// sum of weights, cells ordered by their integer coordinates. Points of weight <= 0 (or NaN)
+/// and unset mask flags are left out; a cell's points are summed in their order.
+SurfaceSample pool_in_cells(const Eigen::Ref<const Eigen::Matrix3Xd>& points,
+                            const Eigen::Ref<const Eigen::Matrix3Xd>& normals,
+                            const Eigen::Ref<const Eigen::VectorXd>& weights,
+                            const Eigen::VectorXd* esp, const Eigen::VectorXd* lp, double spacing,
+                            const std::vector<bool>* mask) {
+  using Key = std::array<long, 3>;
+  std::vector<std::pair<Key, Eigen::Index>> keyed;
+  keyed.reserve(static_cast<std::size_t>(points.cols()));
+  for (Eigen::Index i = 0; i < points.cols(); ++i) {
+    if (mask != nullptr && !(*mask)[static_cast<std::size_t>(i)]) continue;
+    if (!(weights(i) > 0.0)) continue;
+    keyed.push_back({{static_cast<long>(std::floor(points(0, i) / spacing)),
+                      static_cast<long>(std::floor(points(1, i) / spacing)),
+                      static_cast<long>(std::floor(points(2, i) / spacing))},
+                     i});
+  }
+  std::sort(keyed.begin(), keyed.end());
+  Eigen::Index cells = 0;
+  for (std::size_t k = 0; k < keyed.size(); ++k) {
+    if (k == 0 || keyed[k].first != keyed[k - 1].first) ++cells;
+  }
+  SurfaceSample sample;
+  sample.points.resize(3, cells);
+  sample.normals.resize(3, cells);
+  sample.weights.resize(cells);
+  sample.esp.resize(cells);
+  sample.lp.resize(cells);
+  Eigen::Index c = -1;
+  Eigen::Vector3d position, normal;
+  double weight = 0.0, esp_sum = 0.0, lp_sum = 0.0;
+  const auto close_cell = [&] {
+    sample.points.col(c) = position / weight;
+    const double length = normal.norm();
+    sample.normals.col(c) =
+        length > 0.0 ? Eigen::Vector3d(normal / length) : Eigen::Vector3d::Zero();
+    sample.esp(c) = esp_sum / weight;
+    sample.lp(c) = lp_sum / weight;
+    sample.weights(c) = weight;
+  };
+  for (std::size_t k = 0; k < keyed.size(); ++k) {
+    if (k == 0 || keyed[k].first != keyed[k - 1].first) {
+      if (c >= 0) close_cell();
+      ++c;
+      position.setZero();
+      normal.setZero();
+      weight = esp_sum = lp_sum = 0.0;
+    }
+    const Eigen::Index i = keyed[k].second;
+    const double w = weights(i);
+    position += w * points.col(i);
+    normal += w * normals.col(i);
+    esp_sum += w * (esp != nullptr ? (*esp)(i) : 0.0);
+    lp_sum += w * (lp != nullptr ? (*lp)(i) : 0.0);
+    weight += w;
+  }
+  if (c >= 0) close_cell();
+  return sample;
+}
+
+}  // namespace
 
 SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
                              const std::vector<bool>* vertex_mask) {
@@ -20,63 +91,40 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
                      std::to_string(vertex_mask->size()) + " flags for " + std::to_string(n) +
                      " vertices");
   }
-  const Eigen::MatrixX3d positions = surface.positions();
-  Eigen::MatrixX3d normals;
+  const Eigen::Matrix3Xd positions = surface.positions().transpose();
+  Eigen::Matrix3Xd normals;
   if (surface.has_normals()) {
-    normals = surface.normals();
+    normals = surface.normals().transpose();
   } else {
     mesh::Surface copy = surface;
     copy.compute_normals();
-    normals = copy.normals();
+    normals = copy.normals().transpose();
   }
   const Eigen::VectorXd area = mesh::vertex_areas(surface);
-  const auto property_or_zero = [&](const char* name) {
-    return surface.has_property(name)
-               ? surface.property(name)
-               : Eigen::VectorXd(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n)));
-  };
-  const Eigen::VectorXd esp = property_or_zero(mesh::property::esp);
-  const Eigen::VectorXd lp = property_or_zero(mesh::property::lp);
+  const bool has_esp = surface.has_property(mesh::property::esp);
+  const bool has_lp = surface.has_property(mesh::property::lp);
+  const Eigen::VectorXd esp = has_esp ? surface.property(mesh::property::esp) : Eigen::VectorXd();
+  const Eigen::VectorXd lp = has_lp ? surface.property(mesh::property::lp) : Eigen::VectorXd();
+  return pool_in_cells(positions, normals, area, has_esp ? &esp : nullptr, has_lp ? &lp : nullptr,
+                       spacing, vertex_mask);
+}
 
-  struct Cell {
-    Eigen::Vector3d position = Eigen::Vector3d::Zero();
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    double esp = 0.0, lp = 0.0, weight = 0.0;
-  };
-  std::map<std::array<long, 3>, Cell> cells;
-  for (std::size_t v = 0; v < n; ++v) {
-    if (vertex_mask != nullptr && !(*vertex_mask)[v]) continue;
-    const Eigen::Index i = static_cast<Eigen::Index>(v);
-    const double w = area(i);
-    if (!(w > 0.0)) continue;
-    const Eigen::Vector3d p = positions.row(i);
-    const std::array<long, 3> key{static_cast<long>(std::floor(p.x() / spacing)),
-                                  static_cast<long>(std::floor(p.y() / spacing)),
-                                  static_cast<long>(std::floor(p.z() / spacing))};
-    Cell& cell = cells[key];
-    cell.position += w * p;
-    cell.normal += w * Eigen::Vector3d(normals.row(i));
-    cell.esp += w * esp(i);
-    cell.lp += w * lp(i);
-    cell.weight += w;
-  }
-  SurfaceSample sample;
-  const Eigen::Index m = static_cast<Eigen::Index>(cells.size());
-  sample.points.resize(3, m);
-  sample.normals.resize(3, m);
-  sample.weights.resize(m);
-  sample.esp.resize(m);
-  sample.lp.resize(m);
-  Eigen::Index k = 0;
-  for (const auto& [key, cell] : cells) {
-    sample.points.col(k) = cell.position / cell.weight;
-    const double length = cell.normal.norm();
-    sample.normals.col(k) =
-        length > 0.0 ? Eigen::Vector3d(cell.normal / length) : Eigen::Vector3d::Zero();
-    sample.esp(k) = cell.esp / cell.weight;
-    sample.lp(k) = cell.lp / cell.weight;
-    sample.weights(k) = cell.weight;
-    ++k;
+SurfaceSample sample_molecule(const Molecule& molecule, double spacing,
+                              const mesh::MolecularSurfaceOptions& surface, double grid_spacing) {
+  detail::check_overlay_spacing(spacing, {"sample_molecule", ""});
+  validate_molecule(molecule);
+  mesh::SesPointOptions options;
+  options.probe_radius = surface.ses.probe_radius;
+  options.grid_spacing = grid_spacing;
+  options.max_grid_cells = surface.ses.max_grid_cells;
+  const mesh::AtomBalls balls = mesh::atom_balls(molecule);
+  const mesh::SurfacePoints points = mesh::ses_points(balls.centers, balls.radii, options);
+  SurfaceSample sample = pool_in_cells(points.points, points.normals, points.areas, nullptr,
+                                       nullptr, spacing, nullptr);
+  if (sample.size() > 0) {
+    const Eigen::MatrixX3d at = sample.points.transpose();
+    sample.esp = mesh::electrostatic_potential(at, molecule, surface.esp);
+    sample.lp = mesh::lipophilic_potential(at, molecule, surface.lp);
   }
   return sample;
 }

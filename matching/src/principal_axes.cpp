@@ -12,22 +12,18 @@
 #include <utility>
 
 namespace surfcomp::matching {
-namespace {
-
-/// The weighted centroid and principal axes (columns, by increasing variance, right-handed)
-/// of a sample.
-std::pair<Eigen::Vector3d, Eigen::Matrix3d> principal_frame(const SurfaceSample& sample) {
+PrincipalFrame principal_frame(const SurfaceSample& sample) {
+  if (sample.size() == 0) throw InputError("principal axes: the sample has no points");
   const double total = sample.weights.sum();
-  const Eigen::Vector3d centroid = sample.points * sample.weights / total;
-  const Eigen::Matrix3Xd centred = sample.points.colwise() - centroid;
+  PrincipalFrame frame;
+  frame.centroid = sample.points * sample.weights / total;
+  const Eigen::Matrix3Xd centred = sample.points.colwise() - frame.centroid;
   const Eigen::Matrix3d covariance =
       centred * sample.weights.asDiagonal() * centred.transpose() / total;
-  Eigen::Matrix3d axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
-  if (axes.determinant() < 0.0) axes.col(0) = -axes.col(0);
-  return {centroid, axes};
+  frame.axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors();
+  if (frame.axes.determinant() < 0.0) frame.axes.col(0) = -frame.axes.col(0);
+  return frame;
 }
-
-}  // namespace
 
 std::vector<RigidTransform> principal_axes_starts(const SurfaceSample& reference,
                                                   const SurfaceSample& probe, bool all_orders) {

@@ -2,6 +2,7 @@
 
 #include "surfcomp/core/error.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
@@ -108,6 +109,20 @@ double rotation_angle_degrees(const Eigen::Matrix3d& rotation) {
   const Eigen::Vector3d axis(rotation(2, 1) - rotation(1, 2), rotation(0, 2) - rotation(2, 0),
                              rotation(1, 0) - rotation(0, 1));
   return std::atan2(axis.norm(), rotation.trace() - 1.0) * 180.0 / M_PI;
+}
+
+RigidTransform extrapolate_motion(const RigidTransform& current, const RigidTransform& step,
+                                  const Eigen::Vector3d& centre, double alpha) {
+  const Eigen::Matrix3d relative = step.rotation * current.rotation.transpose();
+  const Eigen::Vector3d shift =
+      relative * centre + (step.translation - relative * current.translation) - centre;
+  const Eigen::AngleAxisd angle_axis(relative);
+  const Eigen::Matrix3d scaled =
+      Eigen::AngleAxisd(alpha * angle_axis.angle(), angle_axis.axis()).toRotationMatrix();
+  RigidTransform out;
+  out.rotation = scaled * current.rotation;
+  out.translation = scaled * (current.translation - centre) + centre + alpha * shift;
+  return out;
 }
 
 }  // namespace surfcomp::matching

@@ -418,7 +418,8 @@ py::list screen(const py::object& query, const std::string& library_path,
     screening::check_library_kind(*library, tools::is_site_query(settings));
     matching::PreparedInput prepared = matching::prepare_input(in, query_options);
     const screening::ScreenQuery screen_query = screening::make_screen_query(
-        std::move(prepared.descriptors), settings.options, prepared.site);
+        std::move(prepared.descriptors), settings.options, prepared.site,
+        prepared.molecule ? &*prepared.molecule : nullptr);
     result = screening::screen(screen_query, *library, settings.options);
   }
   py::list hits;

@@ -231,8 +231,8 @@ def screen(query, library, **options) -> List[Hit]:
     (a molecule, a ``.hsi`` file or :class:`Descriptors`; with site_ligand or site_sphere, a
     binding site on a structure against a pocket library), as ``surfcomp screen`` does.
 
-    Options: top=100 (0: every molecule), refine=5, candidates=50, record, site_ligand, site_sphere,
-    site_radius=4, site_margin=16, threads=0.
+    Options: top=100 (0: every molecule), refine=5, refine_starts=0 (all), candidates=50, record,
+    site_ligand, site_sphere, site_radius=4, site_margin=16, threads=0.
     """
     return [Hit(**h) for h in _surfcomp.screen(_input(query), os.fspath(library),
                                                _arguments(options))]

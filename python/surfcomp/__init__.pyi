@@ -198,6 +198,7 @@ def screen(
     *,
     top: int = 100,
     refine: int = 5,
+    refine_starts: int = 0,
     candidates: int = 50,
     record: Optional[int] = None,
     site_ligand: Optional[str] = None,

@@ -5,8 +5,10 @@
 #include "surfcomp/core/io/binary_stream.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 
+#include <array>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -49,27 +51,22 @@ std::uint32_t narrow32(std::size_t value, const char* what) {
   return static_cast<std::uint32_t>(value);
 }
 
-std::vector<std::uint8_t> encode(const LibraryEntry& entry) {
-  const matching::SurfaceSample& s = entry.sample;
-  const auto n = static_cast<Eigen::Index>(s.size());
-  if (s.normals.cols() != n || s.weights.size() != n || s.esp.size() != n || s.lp.size() != n ||
-      static_cast<std::size_t>(entry.atoms.points.cols()) != entry.atoms.size()) {
-    throw InputError("library entry " + entry.info.name + ": its sample's arrays differ in size");
-  }
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
+              "format 4 samples are read in place as little-endian floats");
+
+constexpr std::size_t kSampleAlignment = 64;
+constexpr std::size_t kPackedHeaderBytes = 192;
+
+std::size_t aligned(std::size_t bytes) {
+  return (bytes + kSampleAlignment - 1) / kSampleAlignment * kSampleAlignment;
+}
+
+/// The record of an entry (format 4): the molecule, the site spheres, the described surface.
+std::vector<std::uint8_t> encode_record(const LibraryEntry& entry) {
   narrow32(entry.molecule.text.size(), "molecule text");
   io::BinaryWriter w;
   w.u8(format_code(entry.molecule.format));
   w.string(entry.molecule.text);
-  w.double_matrix(s.points);
-  w.double_matrix(s.normals);
-  w.doubles(s.weights);
-  w.doubles(s.esp);
-  w.doubles(s.lp);
-  w.u64(entry.atoms.size());
-  for (std::size_t a = 0; a < entry.atoms.size(); ++a) {
-    w.string(entry.atoms.elements[a]);
-    for (int k = 0; k < 3; ++k) w.f64(entry.atoms.points(k, static_cast<Eigen::Index>(a)));
-  }
   w.u64(entry.site.size());
   for (const matching::SiteSphere& sphere : entry.site) {
     for (int k = 0; k < 3; ++k) w.f64(sphere.center(k));
@@ -77,6 +74,43 @@ std::vector<std::uint8_t> encode(const LibraryEntry& entry) {
   }
   w.blob(entry.surface);
   return w.bytes();
+}
+
+/// The bytes of a packed sample (format 4): its header, padded to kPackedHeaderBytes, the nine
+/// arrays, the heteroatoms, zeros to a multiple of kSampleAlignment.
+std::vector<std::uint8_t> encode_packed(const matching::PackedSampleView& v) {
+  const matching::PackedHeader& h = v.header;
+  io::BinaryWriter w;
+  w.u32(h.points);
+  w.u32(h.atoms);
+  w.u8(static_cast<std::uint8_t>(h.kind));
+  w.zeros(7);
+  for (int k = 0; k < 3; ++k) w.f64(h.centroid(k));
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) w.f64(h.axes(r, c));
+  }
+  for (const double value : {h.self_shape, h.self_esp, h.self_lp, h.squares_esp, h.squares_lp,
+                             h.squares_weight, h.atom_self, h.sigma})
+    w.f64(value);
+  w.zeros(kPackedHeaderBytes - w.bytes().size());
+  for (std::size_t k = 0; k < 9 * v.padded_points(); ++k) w.f32(v.arrays[k]);
+  for (std::size_t k = 0; k < std::size_t{3} * h.atoms; ++k) w.f32(v.atom_points[k]);
+  for (std::size_t k = 0; k < h.atoms; ++k) w.u32(v.atom_elements[k]);
+  w.zeros(aligned(w.bytes().size()) - w.bytes().size());
+  return w.bytes();
+}
+
+/// The packed sample of an entry: its own, or `sample` and `atoms` packed at `sigma`.
+matching::PackedSample packed_of(const LibraryEntry& entry, double sigma) {
+  const matching::SurfaceSample& s = entry.sample;
+  const auto n = static_cast<Eigen::Index>(s.size());
+  if (entry.packed.header().points > 0) return entry.packed;
+  if (n == 0) throw InputError("library entry " + entry.info.name + ": its sample is empty");
+  if (s.normals.cols() != n || s.weights.size() != n || s.esp.size() != n || s.lp.size() != n ||
+      static_cast<std::size_t>(entry.atoms.points.cols()) != entry.atoms.size()) {
+    throw InputError("library entry " + entry.info.name + ": its sample's arrays differ in size");
+  }
+  return matching::PackedSample(s, entry.atoms, sigma, entry.kind);
 }
 
 void write_bytes(std::ostream& out, const std::vector<std::uint8_t>& bytes) {
@@ -111,16 +145,28 @@ Eigen::VectorXd vector_of(io::BinaryReader& r, Eigen::Index size, const char* wh
 struct LibraryWriter::Impl {
   std::ostream* out = nullptr;
   std::string settings;
-  std::uint64_t offset = 0;
-  io::BinaryWriter index;  // the per-entry records, count prepended at finish()
-  std::size_t count = 0;
+  double sigma = 1.0;
+  std::uint64_t offset = 0;        // bytes written to `out`
+  std::FILE* samples = nullptr;    // the samples' region, until finish()
+  std::uint64_t samples_size = 0;  // bytes in it
+  /// Per entry: record offset, size, checksum, sample offset (in the region), size, checksum.
+  std::vector<std::array<std::uint64_t, 6>> places;
+  io::BinaryWriter names;  // per entry: name, source, record, conformer, heavy atoms, spheres
   bool finished = false;
+
+  ~Impl() {
+    if (samples != nullptr) std::fclose(samples);
+  }
 };
 
-LibraryWriter::LibraryWriter(std::ostream& out, std::string settings)
+LibraryWriter::LibraryWriter(std::ostream& out, std::string settings, double sigma)
     : impl_(std::make_unique<Impl>()) {
   impl_->out = &out;
   impl_->settings = std::move(settings);
+  impl_->sigma = sigma;
+  impl_->samples = std::tmpfile();
+  if (impl_->samples == nullptr)
+    throw FileError("<temporary file>", "cannot create one for the library's samples");
   io::BinaryWriter header;
   for (std::size_t i = 0; i < kMagicBytes; ++i) header.u8(static_cast<std::uint8_t>(kMagic[i]));
   header.u32(library_format_version);
@@ -133,32 +179,56 @@ LibraryWriter::~LibraryWriter() = default;
 
 void LibraryWriter::add(const LibraryEntry& entry) {
   if (impl_->finished) throw std::logic_error("LibraryWriter::add after finish");
-  const std::vector<std::uint8_t> bytes = encode(entry);
-  write_bytes(*impl_->out, bytes);
-  io::BinaryWriter& x = impl_->index;
-  x.u64(impl_->offset);
-  x.u64(bytes.size());
-  x.u64(io::fnv1a64(bytes.data(), bytes.size()));
+  const std::vector<std::uint8_t> record = encode_record(entry);
+  const matching::PackedSample packed = packed_of(entry, impl_->sigma);
+  const std::vector<std::uint8_t> sample = encode_packed(packed.view());
+  write_bytes(*impl_->out, record);
+  if (std::fwrite(sample.data(), 1, sample.size(), impl_->samples) != sample.size())
+    throw FileError("<temporary file>", "cannot write the library's samples (disk full?)");
+  impl_->places.push_back({impl_->offset, record.size(), io::fnv1a64(record.data(), record.size()),
+                           impl_->samples_size, sample.size(),
+                           io::xxh3_64(sample.data(), sample.size())});
+  io::BinaryWriter& x = impl_->names;
   x.string(entry.info.name);
   x.string(entry.info.source);
   x.u32(entry.info.record);
   x.u32(entry.info.conformer);
   x.u32(entry.info.heavy_atoms);
   x.u32(narrow32(entry.site.size(), "site sphere count"));
-  impl_->offset += bytes.size();
-  ++impl_->count;
+  impl_->offset += record.size();
+  impl_->samples_size += sample.size();
 }
 
 void LibraryWriter::finish() {
   if (impl_->finished) return;
   impl_->finished = true;
+  // The samples' region, from the next 64-byte boundary.
+  const std::uint64_t region = impl_->places.empty() ? impl_->offset : aligned(impl_->offset);
+  write_bytes(*impl_->out, std::vector<std::uint8_t>(region - impl_->offset, 0));
+  std::rewind(impl_->samples);
+  std::vector<char> buffer(std::size_t{1} << 20);
+  std::uint64_t copied = 0;
+  while (copied < impl_->samples_size) {
+    const std::size_t got = std::fread(buffer.data(), 1, buffer.size(), impl_->samples);
+    if (got == 0) throw FileError("<temporary file>", "cannot read back the library's samples");
+    impl_->out->write(buffer.data(), static_cast<std::streamsize>(got));
+    copied += got;
+  }
+  std::fclose(impl_->samples);
+  impl_->samples = nullptr;
+  impl_->offset = region + impl_->samples_size;
+
   io::BinaryWriter index;
-  index.u64(impl_->count);
-  std::vector<std::uint8_t> bytes = index.bytes();
-  bytes.insert(bytes.end(), impl_->index.bytes().begin(), impl_->index.bytes().end());
-  io::BinaryWriter settings;
-  settings.string(impl_->settings);
-  bytes.insert(bytes.end(), settings.bytes().begin(), settings.bytes().end());
+  index.u64(impl_->places.size());
+  io::BinaryReader names(impl_->names.bytes().data(), impl_->names.bytes().size(), "<index>");
+  for (const auto& place : impl_->places) {
+    for (int k = 0; k < 6; ++k) index.u64(k == 3 ? region + place[3] : place[k]);
+    index.string(names.string());
+    index.string(names.string());
+    for (int k = 0; k < 4; ++k) index.u32(names.u32());
+  }
+  index.string(impl_->settings);
+  const std::vector<std::uint8_t>& bytes = index.bytes();
   write_bytes(*impl_->out, bytes);
   io::BinaryWriter trailer;
   trailer.u64(impl_->offset);
@@ -169,14 +239,16 @@ void LibraryWriter::finish() {
   impl_->offset += bytes.size() + kTrailerBytes;
 }
 
-std::size_t LibraryWriter::size() const { return impl_->count; }
+std::size_t LibraryWriter::size() const { return impl_->places.size(); }
 
-std::uint64_t LibraryWriter::bytes() const { return impl_->offset; }
+std::uint64_t LibraryWriter::bytes() const {
+  return impl_->offset + (impl_->finished ? 0 : impl_->samples_size);
+}
 
 void write_library(const std::filesystem::path& path, const std::vector<LibraryEntry>& entries,
-                   const std::string& settings) {
+                   const std::string& settings, double sigma) {
   io::write_file_atomically(path, [&](std::ostream& out) {
-    LibraryWriter writer(out, settings);
+    LibraryWriter writer(out, settings, sigma);
     for (const LibraryEntry& entry : entries) writer.add(entry);
     writer.finish();
   });
@@ -191,7 +263,8 @@ struct Library::Impl {
   std::uint32_t version = 0;
   std::string settings;
   std::vector<LibraryEntryInfo> infos;
-  std::vector<std::uint64_t> offsets, sizes, checksums;
+  std::vector<std::uint64_t> offsets, sizes, checksums;  // of the entries (records in format 4)
+  std::vector<std::uint64_t> sample_offsets, sample_sizes, sample_checksums;  // format 4
   std::multimap<std::string, std::size_t> by_name;
 
   Impl() = default;
@@ -206,6 +279,13 @@ struct Library::Impl {
   }
   void map();
   void read_index();
+  std::string where(std::size_t index) const {
+    return "entry " + std::to_string(index + 1) + " (" + infos[index].name + ")";
+  }
+  /// Format 4: entry `index`'s packed sample in place, its checksum and sizes checked.
+  matching::PackedSampleView sample_view(std::size_t index) const;
+  /// Formats 1 to 3: the entry's sample and atoms, decoded from its bytes.
+  LibraryEntry decode_entry(std::size_t index) const;
 };
 
 void Library::Impl::map() {
@@ -263,11 +343,20 @@ void Library::Impl::read_index() {
   // Each index record takes at least 44 bytes: a count beyond that is damage, not a reason to
   // reserve memory.
   if (count > r.remaining() / 44) r.fail("entry count " + std::to_string(count) + " too large");
+  // Records (the entries before format 4) follow each other from the header; format 4's samples
+  // follow each other in the 64-byte-aligned region between the records and the index.
   std::uint64_t previous_end = kHeaderBytes;
+  std::uint64_t previous_sample_end = 0;
   for (std::uint64_t e = 0; e < count; ++e) {
     const std::uint64_t offset = r.u64();
     const std::uint64_t bytes = r.u64();
     const std::uint64_t checksum = r.u64();
+    std::uint64_t sample_offset = 0, sample_bytes = 0, sample_checksum = 0;
+    if (version >= 4) {
+      sample_offset = r.u64();
+      sample_bytes = r.u64();
+      sample_checksum = r.u64();
+    }
     LibraryEntryInfo info;
     info.name = r.string();
     info.source = r.string();
@@ -281,13 +370,31 @@ void Library::Impl::read_index() {
            " do not follow the previous entry within the entries' region");
     }
     previous_end = offset + bytes;
+    if (version >= 4) {
+      const bool in_order =
+          e == 0 ? sample_offset >= previous_end && sample_offset % kSampleAlignment == 0
+                 : sample_offset == previous_sample_end;
+      if (!in_order || sample_bytes < kPackedHeaderBytes || sample_bytes % kSampleAlignment != 0 ||
+          sample_bytes > index_offset - sample_offset) {
+        fail("entry " + std::to_string(e + 1) + " (" + info.name + "): its sample's offset " +
+             std::to_string(sample_offset) + " and size " + std::to_string(sample_bytes) +
+             " do not follow the previous sample within the samples' region");
+      }
+      previous_sample_end = sample_offset + sample_bytes;
+      sample_offsets.push_back(sample_offset);
+      sample_sizes.push_back(sample_bytes);
+      sample_checksums.push_back(sample_checksum);
+    }
     offsets.push_back(offset);
     sizes.push_back(bytes);
     checksums.push_back(checksum);
     by_name.emplace(info.name, infos.size());
     infos.push_back(std::move(info));
   }
-  if (previous_end != index_offset) fail("the entries do not end where the index begins");
+  const std::uint64_t entries_end = version >= 4 && count > 0 ? previous_sample_end : previous_end;
+  if (version >= 4 && count > 0 && aligned(previous_end) != sample_offsets.front())
+    fail("the samples do not begin at the first 64-byte boundary after the records");
+  if (entries_end != index_offset) fail("the entries do not end where the index begins");
   settings = r.string();
   if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes after the index");
 }
@@ -308,17 +415,57 @@ const LibraryEntryInfo& Library::info(std::size_t index) const { return impl_->i
 
 std::uint64_t Library::entry_bytes(std::size_t index) const { return impl_->sizes.at(index); }
 
-LibraryEntry Library::entry(std::size_t index) const {
-  const LibraryEntryInfo& info = impl_->infos.at(index);
-  const std::uint8_t* bytes = impl_->data + impl_->offsets[index];
-  const std::size_t size = impl_->sizes[index];
-  const std::string where =
-      impl_->path.string() + " entry " + std::to_string(index + 1) + " (" + info.name + ")";
-  if (io::fnv1a64(bytes, size) != impl_->checksums[index])
-    throw FormatError(impl_->path.string(), "entry " + std::to_string(index + 1) + " (" +
-                                                info.name +
-                                                ") does not match its checksum (a damaged file)");
-  io::BinaryReader r(bytes, size, where);
+matching::PackedSampleView Library::Impl::sample_view(std::size_t index) const {
+  const std::uint8_t* bytes = data + sample_offsets[index];
+  const std::size_t bytes_size = sample_sizes[index];
+  if (io::xxh3_64(bytes, bytes_size) != sample_checksums[index])
+    fail(where(index) + ": its sample does not match its checksum (a damaged file)");
+  io::BinaryReader r(bytes, bytes_size, path.string() + " " + where(index));
+  matching::PackedSampleView v;
+  matching::PackedHeader& h = v.header;
+  h.points = r.u32();
+  h.atoms = r.u32();
+  const std::uint8_t kind = r.u8();
+  if (kind > 1) r.fail("unknown sample kind " + std::to_string(kind));
+  h.kind = static_cast<matching::SampleKind>(kind);
+  for (int k = 0; k < 7; ++k) r.u8();
+  for (int k = 0; k < 3; ++k) h.centroid(k) = r.f64();
+  for (int row = 0; row < 3; ++row) {
+    for (int c = 0; c < 3; ++c) h.axes(row, c) = r.f64();
+  }
+  for (double* value : {&h.self_shape, &h.self_esp, &h.self_lp, &h.squares_esp, &h.squares_lp,
+                        &h.squares_weight, &h.atom_self, &h.sigma})
+    *value = r.f64();
+  if (!h.centroid.allFinite() || !h.axes.allFinite() || !std::isfinite(h.self_shape) ||
+      !std::isfinite(h.self_esp) || !std::isfinite(h.self_lp) || !std::isfinite(h.squares_esp) ||
+      !std::isfinite(h.squares_lp) || !std::isfinite(h.squares_weight) ||
+      !std::isfinite(h.atom_self) || !(h.sigma > 0.0) || !std::isfinite(h.sigma))
+    r.fail("the sample's header holds a value that is not finite, or a width that is not > 0");
+  const std::uint64_t floats =
+      9 * static_cast<std::uint64_t>(v.padded_points()) + 3 * std::uint64_t{h.atoms};
+  const std::uint64_t used = kPackedHeaderBytes + 4 * floats + 4 * std::uint64_t{h.atoms};
+  if (aligned(used) != bytes_size)
+    r.fail("the sample's " + std::to_string(h.points) + " points and " + std::to_string(h.atoms) +
+           " atoms do not fill its " + std::to_string(bytes_size) + " bytes");
+  v.arrays = reinterpret_cast<const float*>(bytes + kPackedHeaderBytes);
+  v.atom_points = v.arrays + 9 * v.padded_points();
+  v.atom_elements =
+      reinterpret_cast<const std::uint32_t*>(v.atom_points + std::size_t{3} * h.atoms);
+  // x - x is 0 for a finite x and NaN otherwise: one pass the compiler vectorises.
+  float nan_if_any = 0.0F;
+  for (std::uint64_t k = 0; k < floats; ++k) nan_if_any += v.arrays[k] - v.arrays[k];
+  if (nan_if_any != 0.0F) r.fail("the sample holds a value that is not finite");
+  return v;
+}
+
+LibraryEntry Library::Impl::decode_entry(std::size_t index) const {
+  const LibraryEntryInfo& info = infos.at(index);
+  const std::uint8_t* bytes = data + offsets[index];
+  const std::size_t bytes_size = sizes[index];
+  const std::string at = path.string() + " " + where(index);
+  if (io::fnv1a64(bytes, bytes_size) != checksums[index])
+    fail(where(index) + " does not match its checksum (a damaged file)");
+  io::BinaryReader r(bytes, bytes_size, at);
   LibraryEntry entry;
   entry.info = info;
   const std::uint8_t format = r.u8();
@@ -330,27 +477,29 @@ LibraryEntry Library::entry(std::size_t index) const {
   entry.molecule.source = info.source;
   entry.molecule.record = info.record;
   entry.molecule.name = info.name;
-  matching::SurfaceSample& s = entry.sample;
-  const Eigen::MatrixXd points = r.double_matrix();
-  if (points.rows() != 3 || !points.allFinite())
-    r.fail("the sample's points are not a finite 3 x N array");
-  s.points = points;
-  const Eigen::Index n = s.points.cols();
-  s.normals = three_rows(r, n, "the sample's normals");
-  s.weights = vector_of(r, n, "the sample's weights");
-  s.esp = vector_of(r, n, "the sample's ESP");
-  s.lp = vector_of(r, n, "the sample's LP");
-  const std::uint64_t atoms = r.u64();
-  if (atoms > r.remaining() / 28) r.fail("atom count " + std::to_string(atoms) + " too large");
-  entry.atoms.points.resize(3, static_cast<Eigen::Index>(atoms));
-  for (std::uint64_t a = 0; a < atoms; ++a) {
-    entry.atoms.elements.push_back(r.string());
-    Eigen::Vector3d position;
-    for (int k = 0; k < 3; ++k) position(k) = r.f64();
-    io::check_read_position(position, where, "heteroatom " + std::to_string(a + 1));
-    entry.atoms.points.col(static_cast<Eigen::Index>(a)) = position;
+  if (version < 4) {
+    matching::SurfaceSample& s = entry.sample;
+    const Eigen::MatrixXd points = r.double_matrix();
+    if (points.rows() != 3 || !points.allFinite())
+      r.fail("the sample's points are not a finite 3 x N array");
+    s.points = points;
+    const Eigen::Index n = s.points.cols();
+    s.normals = three_rows(r, n, "the sample's normals");
+    s.weights = vector_of(r, n, "the sample's weights");
+    s.esp = vector_of(r, n, "the sample's ESP");
+    s.lp = vector_of(r, n, "the sample's LP");
+    const std::uint64_t atoms = r.u64();
+    if (atoms > r.remaining() / 28) r.fail("atom count " + std::to_string(atoms) + " too large");
+    entry.atoms.points.resize(3, static_cast<Eigen::Index>(atoms));
+    for (std::uint64_t a = 0; a < atoms; ++a) {
+      entry.atoms.elements.push_back(r.string());
+      Eigen::Vector3d position;
+      for (int k = 0; k < 3; ++k) position(k) = r.f64();
+      io::check_read_position(position, at, "heteroatom " + std::to_string(a + 1));
+      entry.atoms.points.col(static_cast<Eigen::Index>(a)) = position;
+    }
   }
-  if (impl_->version >= 2) {
+  if (version >= 2) {
     const std::uint64_t spheres = r.u64();
     if (spheres != info.site_spheres) {
       r.fail(std::to_string(spheres) + " site spheres, the index says " +
@@ -365,9 +514,40 @@ LibraryEntry Library::entry(std::size_t index) const {
       entry.site.push_back(sphere);
     }
   }
-  if (impl_->version >= 3) entry.surface = r.blob();
+  if (version >= 3) entry.surface = r.blob();
   if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes after the entry");
   return entry;
+}
+
+LibraryEntry Library::entry(std::size_t index) const {
+  (void)impl_->infos.at(index);  // std::out_of_range beyond the end
+  LibraryEntry entry = impl_->decode_entry(index);
+  if (impl_->version >= 4) {
+    entry.packed = matching::PackedSample(impl_->sample_view(index));
+    entry.sample = entry.packed.sample();
+    entry.atoms = entry.packed.atoms();
+    entry.kind = entry.packed.header().kind;
+  }
+  return entry;
+}
+
+PackedEntry Library::packed(std::size_t index, double sigma) const {
+  (void)impl_->infos.at(index);
+  PackedEntry out;
+  if (impl_->version >= 4) {
+    out.view = impl_->sample_view(index);
+    if (out.view.header.sigma == sigma) return out;
+    const matching::PackedSample stored(out.view);
+    out.owned = std::make_unique<matching::PackedSample>(stored.sample(), stored.atoms(), sigma,
+                                                         stored.header().kind);
+  } else {
+    const LibraryEntry entry = impl_->decode_entry(index);
+    if (entry.sample.size() == 0) return out;  // no points: the first stage scores it 0
+    out.owned = std::make_unique<matching::PackedSample>(entry.sample, entry.atoms, sigma,
+                                                         matching::SampleKind::surface);
+  }
+  out.view = out.owned->view();
+  return out;
 }
 
 std::vector<std::size_t> Library::find(const std::string& name) const {

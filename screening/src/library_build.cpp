@@ -24,6 +24,8 @@ void check_options(const LibraryBuildOptions& options) {
   if (!(options.spacing > 0.0) || !std::isfinite(options.spacing))
     throw OptionError("library spacing must be finite and > 0, got " +
                       std::to_string(options.spacing));
+  if (!(options.sigma > 0.0) || !std::isfinite(options.sigma))
+    throw OptionError("--sigma must be finite and > 0, got " + std::to_string(options.sigma));
   if (options.batch < 1) throw OptionError("library build batch must be at least 1");
   if (!(options.lining_radius > 0.0) || !std::isfinite(options.lining_radius))
     throw OptionError("--site-overlay-radius must be finite and > 0, got " +
@@ -88,6 +90,8 @@ LibraryEntry hsi_entry(const io::MoleculeRecord& record, const LibraryBuildOptio
   entry.molecule.text = io::atoms_mol_block(atoms, record.name) + "$$$$\n";
   entry.sample = matching::sample_surface(described.surface, options.spacing);
   entry.atoms = matching::sample_atoms(described.atoms);
+  entry.kind = matching::SampleKind::surface;
+  entry.packed = matching::PackedSample(entry.sample, entry.atoms, options.sigma, entry.kind);
   described.critical_points.clear();
   entry.surface = harmonic::io::encode_hsi(described);
   return entry;
@@ -155,7 +159,6 @@ std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
   std::vector<LibraryEntry> entries;
   for (std::size_t c = 0; c < conformations.size(); ++c) {
     const Molecule molecule = io::read_record_molecule(conformations[c], options.read);
-    const mesh::Surface surface = mesh::build_molecular_surface(molecule, options.surface);
     LibraryEntry entry;
     entry.info.name = record.name;
     entry.info.source = record.source.string();
@@ -163,8 +166,10 @@ std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
     entry.info.conformer = options.conformers ? static_cast<std::uint32_t>(c + 1) : 0;
     entry.info.heavy_atoms = heavy_atom_count(molecule);
     entry.molecule = std::move(conformations[c]);
-    entry.sample = matching::sample_surface(surface, options.spacing);
+    entry.sample = matching::sample_molecule(molecule, options.spacing, options.surface);
     entry.atoms = matching::sample_atoms(harmonic::surface_atoms(molecule));
+    entry.kind = matching::SampleKind::atoms;
+    entry.packed = matching::PackedSample(entry.sample, entry.atoms, options.sigma, entry.kind);
     entries.push_back(std::move(entry));
   }
   return entries;
@@ -184,6 +189,9 @@ std::string build_settings(const LibraryBuildOptions& options, bool sites) {
     text << "conformers 0 (the records' coordinates)\n";
   }
   text << "spacing " << options.spacing << "\n";
+  text << "sigma " << options.sigma << "\n";
+  text << "sample " << (sites ? "surface" : "atoms (screening surface; .hsi inputs: surface)")
+       << "\n";
   text << "probe_radius " << options.surface.ses.probe_radius << "\n";
   text << "vertex_density " << options.surface.ses.vertex_density << "\n";
   return text.str();
@@ -217,7 +225,7 @@ LibraryBuildResult build_in_order(
   struct NothingBuilt {};  // abandons the output: no library of nothing, an old file kept
   try {
     io::write_file_atomically(output, [&](std::ostream& out) {
-      LibraryWriter writer(out, settings);
+      LibraryWriter writer(out, settings, options.sigma);
       std::size_t next = 0;
       tbb::parallel_pipeline(
           options.batch,
@@ -358,6 +366,8 @@ LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOpti
   entry.sample = matching::sample_surface(described.surface, options.spacing, &lining);
   if (entry.sample.size() == 0)
     throw InputError(request.name + ": the site's pocket lining has no vertex");
+  entry.kind = matching::SampleKind::surface;
+  entry.packed = matching::PackedSample(entry.sample, entry.atoms, options.sigma, entry.kind);
   entry.site = std::move(site.spheres);
   return entry;
 }

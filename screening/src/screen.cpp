@@ -51,12 +51,6 @@ std::string fixed(double value) {
   return s;
 }
 
-bool same_overlay_options(const matching::OverlayOptions& x, const matching::OverlayOptions& y) {
-  return x.sigma == y.sigma && x.spacing == y.spacing && x.chem_weight == y.chem_weight &&
-         x.atom_weight == y.atom_weight && x.iterations == y.iterations &&
-         x.tolerance == y.tolerance;
-}
-
 /// score(i) for i in [0, count), in parallel into slots, reporting progress as `stage`.
 template <class Score>
 std::vector<HitScore> score_in_parallel(std::size_t count, int stage, const ScreenOptions& options,
@@ -72,22 +66,20 @@ std::vector<HitScore> score_in_parallel(std::size_t count, int stage, const Scre
   return scores;
 }
 
-/// The overlay of an entry's stored samples on the query's.
-matching::SurfaceOverlay entry_overlay(const ScreenQuery& query, const LibraryEntry& entry,
-                                       const ScreenOptions& options) {
-  const matching::OverlayOptions overlay_options =
-      matching::mode_overlay_options(query_match_options(query, options));
-  return query.overlay && same_overlay_options(query.overlay->options(), overlay_options)
-             ? matching::SurfaceOverlay(*query.overlay, entry.sample, entry.atoms)
-             : matching::SurfaceOverlay(query.sample, entry.sample, overlay_options, query.atoms,
-                                        entry.atoms);
+/// The query's packed sample of an entry's kind.
+const matching::PackedQuery& packed_query(const ScreenQuery& query, matching::SampleKind kind) {
+  return kind == matching::SampleKind::atoms ? *query.atom_packed : *query.packed;
 }
 
-/// The principal-axes superpositions of an entry onto the query: sites are few and their
-/// linings' axes less telling, so all 24 axes orders for them.
-std::vector<matching::RigidTransform> entry_starts(const ScreenQuery& query,
-                                                   const LibraryEntry& entry) {
-  return matching::principal_axes_starts(query.sample, entry.sample, !query.site.empty());
+/// The overlay options of the query's mode.
+matching::OverlayOptions overlay_options(const ScreenQuery& query, const ScreenOptions& options) {
+  return matching::mode_overlay_options(query_match_options(query, options));
+}
+
+/// An entry's packed sample, or `sample` and `atoms` packed now.
+matching::PackedSample packed_entry(const LibraryEntry& entry, double sigma) {
+  if (entry.packed.header().points > 0 && entry.packed.header().sigma == sigma) return entry.packed;
+  return matching::PackedSample(entry.sample, entry.atoms, sigma, entry.kind);
 }
 
 /// The molecules of a library (entries sharing source, record and name; not necessarily
@@ -136,8 +128,8 @@ matching::MatchOptions query_match_options(const ScreenQuery& query, const Scree
 }
 
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
-                              const ScreenOptions& options,
-                              std::vector<matching::SiteSphere> site) {
+                              const ScreenOptions& options, std::vector<matching::SiteSphere> site,
+                              const Molecule* molecule) {
   ScreenQuery query;
   query.site = std::move(site);
   const matching::OverlayOptions overlay =
@@ -157,44 +149,63 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                                                          : ": the query site's pocket lining has "
                                                            "no vertex"));
   }
-  query.overlay = std::make_shared<const matching::SurfaceOverlay>(
-      matching::SurfaceOverlay::for_many_probes(query.sample, overlay, query.atoms));
+  query.atom_sample = molecule != nullptr && query.site.empty()
+                          ? matching::sample_molecule(*molecule, overlay.spacing, options.surface)
+                          : query.sample;
+  if (query.atom_sample.size() == 0) query.atom_sample = query.sample;
+  query.packed = std::make_shared<const matching::PackedQuery>(matching::PackedSample(
+      query.sample, query.atoms, overlay.sigma, matching::SampleKind::surface));
+  query.atom_packed = std::make_shared<const matching::PackedQuery>(matching::PackedSample(
+      query.atom_sample, query.atoms, overlay.sigma, matching::SampleKind::atoms));
   query.descriptors = std::move(descriptors);
   return query;
 }
 
-namespace {
+HitScore fast_score(const ScreenQuery& query, const matching::PackedSampleView& entry,
+                    const ScreenOptions& options) {
+  if (entry.header.points == 0) return {};
+  const matching::PackedQuery::Score best =
+      packed_query(query, entry.header.kind)
+          .fast_score(entry, overlay_options(query, options), !query.site.empty());
+  return from_overlay(best.score, best.transform.matrix());
+}
 
-/// The best overlay score of `entry` over its principal-axes starts, each start also refined
-/// when `refine` (the refinement climbs the surface part of the score, so a start itself may
-/// score higher than its refinement).
-HitScore best_over_starts(const ScreenQuery& query, const LibraryEntry& entry,
-                          const ScreenOptions& options, bool refine) {
-  if (entry.sample.size() == 0) return {};
-  const matching::SurfaceOverlay overlay = entry_overlay(query, entry, options);
-  HitScore best;
-  bool first = true;
-  for (const matching::RigidTransform& start : entry_starts(query, entry)) {
-    const matching::OverlayScore at_start = overlay.score(start);
-    if (first || at_start.score > best.score) best = from_overlay(at_start, start.matrix());
-    first = false;
-    if (!refine) continue;
-    const matching::RefineResult r = overlay.refine(start);
+HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
+                    const ScreenOptions& options) {
+  if (entry.sample.size() == 0 && entry.packed.header().points == 0) return {};
+  return fast_score(query, packed_entry(entry, overlay_options(query, options).sigma).view(),
+                    options);
+}
+
+HitScore refined_score(const ScreenQuery& query, const matching::PackedSampleView& entry,
+                       const ScreenOptions& options) {
+  if (entry.header.points == 0) return {};
+  const matching::OverlayOptions overlay = overlay_options(query, options);
+  const matching::PackedQuery& packed = packed_query(query, entry.header.kind);
+  const std::vector<matching::PackedQuery::Score> starts =
+      packed.start_scores(entry, overlay, !query.site.empty());
+  std::vector<std::size_t> order(starts.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return starts[x].score.score > starts[y].score.score;
+  });
+  const std::size_t refined =
+      options.refine_starts == 0 ? starts.size() : std::min(options.refine_starts, starts.size());
+  HitScore best = from_overlay(starts[order[0]].score, starts[order[0]].transform.matrix());
+  // In start order, so that ties go to the earlier start whatever refine_starts is.
+  std::sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(refined));
+  for (std::size_t k = 0; k < refined; ++k) {
+    const matching::RefineResult r = packed.refine(entry, starts[order[k]].transform, overlay);
     if (r.score.score > best.score) best = from_overlay(r.score, r.transform.matrix());
   }
   return best;
 }
 
-}  // namespace
-
-HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
-                    const ScreenOptions& options) {
-  return best_over_starts(query, entry, options, false);
-}
-
 HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
                        const ScreenOptions& options) {
-  return best_over_starts(query, entry, options, true);
+  if (entry.sample.size() == 0 && entry.packed.header().points == 0) return {};
+  return refined_score(query, packed_entry(entry, overlay_options(query, options).sigma).view(),
+                       options);
 }
 
 std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& library,
@@ -203,8 +214,9 @@ std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& libra
   check_library_kind(library, !query.site.empty());
   end = std::min(end, library.size());
   begin = std::min(begin, end);
+  const double sigma = overlay_options(query, options).sigma;
   return score_in_parallel(end - begin, 1, options, [&](std::size_t i) {
-    return fast_score(query, library.entry(begin + i), options);
+    return fast_score(query, library.packed(begin + i, sigma).view, options);
   });
 }
 
@@ -241,7 +253,7 @@ std::vector<EntryScore> merge_refined(const std::vector<HitScore>& fast,
                        " of a library of " + std::to_string(scores.size()) + " entries");
     }
     EntryScore& s = scores[refined_entries[i]];
-    s.score = refined[i];
+    if (refined[i].score >= s.score.score) s.score = refined[i];
     s.stage = 2;
   }
   return scores;
@@ -330,9 +342,11 @@ ScreenResult screen(const ScreenQuery& query, const Library& library,
   result.stage1_seconds = clock.elapsed_s();
 
   const std::vector<std::size_t> to_refine = entries_to_refine(library, fast, options.refine);
-  const std::vector<HitScore> refined = score_in_parallel(
-      to_refine.size(), 2, options,
-      [&](std::size_t i) { return refined_score(query, library.entry(to_refine[i]), options); });
+  const double sigma = overlay_options(query, options).sigma;
+  const std::vector<HitScore> refined =
+      score_in_parallel(to_refine.size(), 2, options, [&](std::size_t i) {
+        return refined_score(query, library.packed(to_refine[i], sigma).view, options);
+      });
   const std::vector<EntryScore> scores = merge_refined(fast, to_refine, refined);
   const std::vector<std::size_t> best = best_entry_per_molecule(library, scores);
   result.stage2_seconds = clock.elapsed_s() - result.stage1_seconds;

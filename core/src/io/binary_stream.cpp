@@ -5,6 +5,10 @@
 #include <cstring>
 #include <limits>
 
+// xxHash (Debian libxxhash-dev), compiled into this file: no library to load at run time.
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
 namespace surfcomp::io {
 namespace {
 
@@ -28,6 +32,18 @@ std::uint64_t fnv1a64(const std::uint8_t* data, std::size_t size) {
   }
   return hash;
 }
+
+std::uint64_t xxh3_64(const std::uint8_t* data, std::size_t size) {
+  return XXH3_64bits(data, size);
+}
+
+void BinaryWriter::f32(float value) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  u32(bits);
+}
+
+void BinaryWriter::zeros(std::size_t count) { bytes_.insert(bytes_.end(), count, 0); }
 
 void BinaryWriter::u32(std::uint32_t value) {
   for (int shift = 0; shift < 32; shift += 8)

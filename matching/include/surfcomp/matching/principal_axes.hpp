@@ -10,6 +10,16 @@
 
 namespace surfcomp::matching {
 
+/// A sample's area-weighted centroid (A) and principal axes (columns, by increasing variance,
+/// right-handed).
+struct PrincipalFrame {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+};
+
+/// The principal frame of `sample`. Throws InputError when it is empty.
+PrincipalFrame principal_frame(const SurfaceSample& sample);
+
 /// The proper rotations that superpose the probe sample's area-weighted principal axes on the
 /// reference sample's, with the weighted centroids coincident. With `all_orders` false, the
 /// four that pair the axes in order of their variance (signs taken in the four ways that keep

@@ -56,4 +56,10 @@ double rmsd_under(const RigidTransform& transform, const Eigen::Ref<const Eigen:
 /// angles too. Used to state how far a recovered rotation is from a known one.
 double rotation_angle_degrees(const Eigen::Matrix3d& rotation);
 
+/// `current` followed by `alpha` times the motion that takes `current` to `step` (its rotation
+/// angle and its translation scaled about `centre`, a point in the moved frame); alpha 1 gives
+/// `step`. The over-relaxation of the overlay refinement's EM steps.
+RigidTransform extrapolate_motion(const RigidTransform& current, const RigidTransform& step,
+                                  const Eigen::Vector3d& centre, double alpha);
+
 }  // namespace surfcomp::matching

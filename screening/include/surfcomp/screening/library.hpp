@@ -1,22 +1,29 @@
 // Screening libraries (.sclib): many molecules' conformers (or many binding sites) in one file,
-// each entry holding what the first two stages of a screen read (the overlay's surface and
-// heteroatom samples) and the molecule itself, from which the last stage rebuilds the surface of
-// a finalist; a site entry also holds its spheres, an entry made from a .hsi file its surface.
+// each entry holding what the first two stages of a screen read (the overlay's surface sample,
+// packed in single precision with its self-overlaps, and the heteroatoms) and the molecule itself,
+// from which the last stage rebuilds the surface of a finalist; a site entry also holds its
+// spheres, an entry made from a .hsi file its surface.
 //
-// Layout (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
+// Layout of format 4 (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
 //   header   "SURFCLIB", u32 format version, u32 0
-//   entries  one after the other, each checksummed (FNV-1a 64) in the index; each: the
-//            molecule (format, text), the samples, the heteroatoms, from version 2 the site
-//            spheres, from version 3 the bytes of a described surface (LibraryEntry::surface)
-//   index    u64 count; per entry u64 offset, u64 size, u64 checksum, string name,
-//            string source, u32 record, u32 conformer, u32 heavy atoms, from version 2 u32
-//            site spheres; string settings
+//   records  one per entry: the molecule (format, text), the site spheres, the bytes of a
+//            described surface (LibraryEntry::surface)
+//   samples  from a 64-byte boundary, one per entry, each on a 64-byte boundary: the packed
+//            sample (matching::PackedSampleView: a 192-byte header, nine float arrays, the
+//            heteroatoms), read in place by the first stage, in entry order
+//   index    u64 count; per entry u64 record offset, size and checksum (FNV-1a 64), u64 sample
+//            offset, size and checksum (XXH3 64), string name, string source, u32 record,
+//            u32 conformer, u32 heavy atoms, u32 site spheres; string settings
 //   trailer  u64 index offset, u64 index size, u64 index checksum, "SCLIBEND"
+// Formats 1 to 3 (one region of entries, each the molecule, the sample in double precision, the
+// heteroatoms, from 2 the site spheres, from 3 a described surface; an index without the sample
+// columns) are still read; their samples are packed when the first stage asks for them.
 // The file is memory-mapped and entries are decoded on demand, by index or by name.
 #pragma once
 
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
+#include "surfcomp/matching/packed_overlay.hpp"
 #include "surfcomp/matching/site.hpp"
 
 #include <cstddef>
@@ -29,9 +36,8 @@
 
 namespace surfcomp::screening {
 
-/// The format version write_library writes; Library reads it, version 2 (no described
-/// surfaces) and version 1 (no sites either).
-inline constexpr std::uint32_t library_format_version = 3;
+/// The format version write_library writes; Library reads it and versions 1 to 3.
+inline constexpr std::uint32_t library_format_version = 4;
 
 /// What the index says of an entry (it is read without decoding the entry).
 struct LibraryEntryInfo {
@@ -51,11 +57,16 @@ struct LibraryEntry {
   /// generated conformers, hydrogens explicit for the latter), a MOL2 section or a PDB text.
   /// molecule.source, record and name repeat info.
   io::MoleculeRecord molecule;
-  /// The surface sample (matching::sample_surface of the molecule's surface, built as
-  /// `surfcomp match` builds it; for a site, of its pocket lining, matching::pocket_lining) and
-  /// the heteroatoms (matching::sample_atoms; none for a site).
+  /// The surface sample and the heteroatoms (matching::sample_atoms; none for a site): for a
+  /// molecule, matching::sample_molecule (kind atoms); for a site, matching::sample_surface of its
+  /// pocket lining (matching::pocket_lining); for a .hsi file, of its surface (kind surface).
+  /// Read from format 4, the packed single-precision values in double.
   matching::SurfaceSample sample;
   matching::AtomSample atoms;
+  matching::SampleKind kind = matching::SampleKind::surface;
+  /// The sample and atoms packed for the first stage. Empty (no points) in an entry being built
+  /// until the writer packs it, unless its builder packed it already.
+  matching::PackedSample packed;
   /// A binding site's spheres (matching::BindingSite::spheres); empty for a molecule. The
   /// molecule is then the site's structure (PDB text).
   std::vector<matching::SiteSphere> site;
@@ -66,19 +77,32 @@ struct LibraryEntry {
   std::vector<std::uint8_t> surface;
 };
 
-/// Appends entries to a library being written to `out`; finish() writes the index. Entries
-/// keep the order they are added in.
+/// An entry's packed sample for the first stage: a view into the mapped file, or of a sample
+/// packed on reading (formats 1 to 3, or a Gaussian width other than the stored one). Valid
+/// while the library and this object live; move-only.
+struct PackedEntry {
+  matching::PackedSampleView view;
+  std::unique_ptr<matching::PackedSample> owned;  ///< what `view` shows when not the file
+};
+
+/// Appends entries to a library being written to `out`; finish() writes the samples' region, the
+/// index and the trailer. Entries keep the order they are added in. The samples wait in a
+/// temporary file until finish().
 class LibraryWriter {
  public:
   /// Writes the header. `settings` is free text stored in the index (how the library was
-  /// built), shown by `surfcomp library info`.
-  LibraryWriter(std::ostream& out, std::string settings);
+  /// built), shown by `surfcomp library info`; `sigma` the Gaussian width (A) entries' samples
+  /// are packed with when they come unpacked. Throws FileError when no temporary file can be
+  /// made.
+  LibraryWriter(std::ostream& out, std::string settings,
+                double sigma = matching::OverlayOptions{}.sigma);
   LibraryWriter(const LibraryWriter&) = delete;
   LibraryWriter& operator=(const LibraryWriter&) = delete;
   ~LibraryWriter();
 
-  /// Encodes and writes `entry`. Throws InputError for an entry whose sample's arrays differ
-  /// in size or whose text does not fit the format's 32-bit lengths.
+  /// Encodes and writes `entry` (its packed sample, packing it first when empty). Throws
+  /// InputError for an entry whose sample is empty or whose arrays differ in size, or whose
+  /// text does not fit the format's 32-bit lengths.
   void add(const LibraryEntry& entry);
   /// Writes the index and the trailer; no entry may be added after it.
   void finish();
@@ -94,7 +118,8 @@ class LibraryWriter {
 
 /// Writes `entries` as a library at `path`, atomically (io::write_file_atomically).
 void write_library(const std::filesystem::path& path, const std::vector<LibraryEntry>& entries,
-                   const std::string& settings = "");
+                   const std::string& settings = "",
+                   double sigma = matching::OverlayOptions{}.sigma);
 
 /// A library file opened for reading: memory-mapped, its header, index and trailer checked on
 /// opening; entries are decoded (and their checksums verified) when asked for. Thread-safe for
@@ -114,6 +139,10 @@ class Library {
   /// Entry `index`, decoded. Throws FormatError naming the file and the entry when its bytes
   /// do not match their checksum or do not decode; std::out_of_range for an index >= size().
   LibraryEntry entry(std::size_t index) const;
+  /// Entry `index`'s packed sample at Gaussian width `sigma` (A): in place for format 4 when it
+  /// was packed at that width, else packed now. Checks the sample's checksum and sizes; throws
+  /// as entry().
+  PackedEntry packed(std::size_t index, double sigma) const;
   /// The encoded size of entry `index`, bytes.
   std::uint64_t entry_bytes(std::size_t index) const;
   /// The indices of the entries named `name`, in library order (empty when none is).

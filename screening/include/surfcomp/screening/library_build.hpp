@@ -44,6 +44,9 @@ struct LibraryBuildOptions {
   /// Default OverlayOptions::spacing. Cell edge of the surface sample, A; a screen refuses a
   /// library sampled otherwise than its overlay. > 0.
   double spacing = matching::OverlayOptions{}.spacing;
+  /// Default OverlayOptions::sigma. The Gaussian width (A) the samples' self-overlaps are
+  /// packed with; a screen at another width packs them again as it reads them. > 0.
+  double sigma = matching::OverlayOptions{}.sigma;
   /// Sites (build_site_library): the spheres around a site ligand's atoms (sphere_radius,
   /// default 4 A, as `surfcomp match --site-radius`) and the chains kept.
   matching::BindingSiteOptions site;
@@ -80,10 +83,11 @@ struct LibraryBuildResult {
 std::vector<io::MoleculeRecord> read_library_inputs(
     const std::vector<std::filesystem::path>& inputs);
 
-/// The entries of one record: its own coordinates, or its conformers, each with its surface
-/// sample and heteroatoms; for a .hsi file, one entry with the file's surface (read_hsi) and
-/// heavy atoms (LibraryEntry::surface). Throws what reading the record, generating its conformers
-/// or building a surface throws (surfcomp::Error).
+/// The entries of one record: its own coordinates, or its conformers, each with its screening
+/// sample (matching::sample_molecule) and heteroatoms, packed; for a .hsi file, one entry with
+/// the sample of the file's surface (read_hsi) and its heavy atoms (LibraryEntry::surface). Throws
+/// what reading the record, generating its conformers or building a surface throws
+/// (surfcomp::Error).
 std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
                                         const LibraryBuildOptions& options = {});
 

@@ -1,9 +1,9 @@
 // One query against a library, in three stages (docs/screening.md). The query is a molecule
 // against a library of molecules, or a binding site against a pocket library (sites: the
 // overlays then compare pocket linings, as MatchMode::binding_sites does):
-//  1. a fast score of every entry: the whole-surface overlay score (matching::SurfaceOverlay)
-//     of the entry's stored samples at the four principal-axes superpositions onto the query,
-//     without refinement, the best of the four kept;
+//  1. a fast score of every entry: the whole-surface overlay score of the entry's stored packed
+//     sample at the four principal-axes superpositions onto the query's, without refinement, the
+//     best of the four kept (matching::PackedQuery, single precision, SIMD);
 //  2. each molecule's `refine` best conformers by that score get the overlay refined
 //     (SurfaceOverlay::refine) from each of their principal-axes superpositions, the best kept;
 //     a molecule counts by its best conformer, refined scores above fast ones;
@@ -17,6 +17,7 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
+#include "surfcomp/matching/packed_overlay.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/screening/library.hpp"
 
@@ -35,6 +36,9 @@ struct ScreenOptions {
   /// Default 5. The conformers of each molecule, best fast score first, whose overlay stage 2
   /// refines. 0: no refinement.
   std::size_t refine = 5;
+  /// Default 0 (all). Stage 2 refines only this many of an entry's principal-axes starts, those
+  /// with the best scores (ties to the earlier start); the others keep their start scores.
+  std::size_t refine_starts = 0;
   /// Default 50. The molecules, best score after stage 2 first, whose best conformer gets the
   /// full match (stage 3). 0: no full match.
   std::size_t candidates = 50;
@@ -56,29 +60,37 @@ struct ScreenOptions {
   std::function<void(int stage, std::int64_t done, std::int64_t total)> progress;
 };
 
-/// The query, described once: its descriptors (stage 3) and its overlay samples (stages 1, 2).
+/// The query, described once: its descriptors (stage 3) and its overlay samples (stages 1, 2), one
+/// of each kind an entry's sample can be (matching::SampleKind), so that an entry is always
+/// compared with a sample the query made the same way.
 struct ScreenQuery {
   harmonic::SurfaceDescriptors descriptors;
   /// sample_surface(descriptors.surface, overlay spacing); of the pocket lining for a site
   matching::SurfaceSample sample;
   matching::AtomSample atoms;  ///< sample_atoms(descriptors.atoms); none for a site
+  /// sample_molecule of the query's molecule (the screening surface straight from the atoms,
+  /// which library entries of molecules hold); `sample` when the query has no molecule with
+  /// charges (a .hsi file) or is a site.
+  matching::SurfaceSample atom_sample;
   /// A binding-site query: its spheres and critical_points_in_site of its descriptors. Empty
   /// for a molecule.
   std::vector<matching::SiteSphere> site;
   std::vector<bool> site_points;
-  /// The query's sample indexed once for stages 1 and 2 (an overlay of the query on itself,
-  /// from which each entry's overlay is made without indexing the query again).
-  std::shared_ptr<const matching::SurfaceOverlay> overlay;
+  /// The two samples packed and indexed once for stages 1 and 2 (matching::PackedQuery):
+  /// `packed` for `sample`, atom_packed for atom_sample.
+  std::shared_ptr<const matching::PackedQuery> packed, atom_packed;
 };
 
 /// The query of a screen from its descriptors (describe_surface of its molecule's surface, or
-/// a .hsi file); with `site` spheres, a binding-site query (descriptors from
-/// matching::describe_site) whose sample is its pocket lining (matching::pocket_lining,
-/// options.match.site.overlay_radius). Throws InputError when its surface (or lining) has no
-/// vertex.
+/// a .hsi file) and, for a molecule, the molecule itself (its screening sample,
+/// matching::sample_molecule with options.surface); with `site` spheres, a binding-site query
+/// (descriptors from matching::describe_site) whose sample is its pocket lining
+/// (matching::pocket_lining, options.match.site.overlay_radius). Throws InputError when its
+/// surface (or lining) has no vertex.
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               const ScreenOptions& options = {},
-                              std::vector<matching::SiteSphere> site = {});
+                              std::vector<matching::SiteSphere> site = {},
+                              const Molecule* molecule = nullptr);
 
 /// Throws InputError naming the library and its first entry of the other kind unless every
 /// entry of `library` is a binding site when `site_query` (a pocket library) and a molecule
@@ -98,7 +110,10 @@ struct HitScore {
   Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
 };
 
-/// Stage 1 of one entry (see the file comment).
+/// Stage 1 of one entry (see the file comment), from its packed sample.
+HitScore fast_score(const ScreenQuery& query, const matching::PackedSampleView& entry,
+                    const ScreenOptions& options = {});
+/// Stage 1 of one decoded entry (its packed sample, packed now when it has none).
 HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options = {});
 
@@ -116,7 +131,11 @@ std::vector<std::size_t> entries_to_refine(const Library& library,
                                            const std::vector<HitScore>& fast,
                                            std::size_t per_molecule);
 
-/// Stage 2 of one entry (see the file comment): never below its fast score.
+/// Stage 2 of one entry (see the file comment), from its packed sample: the best of its starts'
+/// scores and their refinements (matching::PackedQuery::refine).
+HitScore refined_score(const ScreenQuery& query, const matching::PackedSampleView& entry,
+                       const ScreenOptions& options = {});
+/// Stage 2 of one decoded entry (its packed sample, packed now when it has none).
 HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
                        const ScreenOptions& options = {});
 
@@ -128,8 +147,9 @@ struct EntryScore {
 };
 
 /// One EntryScore per library entry: `fast`, with the scores of the `refined` entries (as
-/// entries_to_refine lists them, one score each) in their place. Throws InputError when the
-/// counts differ or an entry is outside the library.
+/// entries_to_refine lists them, one score each) in their place, where they are not below the
+/// fast score (the two stages' arithmetic differs in the last digits). Throws InputError when
+/// the counts differ or an entry is outside the library.
 std::vector<EntryScore> merge_refined(const std::vector<HitScore>& fast,
                                       const std::vector<std::size_t>& refined_entries,
                                       const std::vector<HitScore>& refined);

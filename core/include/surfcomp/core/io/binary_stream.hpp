@@ -14,6 +14,10 @@ namespace surfcomp::io {
 /// FNV-1a 64-bit hash of `size` bytes (the .hsi checksum; detects corruption, not tampering).
 std::uint64_t fnv1a64(const std::uint8_t* data, std::size_t size);
 
+/// XXH3 64-bit hash of `size` bytes (xxHash): the checksum of data read in bulk, at memory speed
+/// (a library's packed samples); detects corruption, not tampering.
+std::uint64_t xxh3_64(const std::uint8_t* data, std::size_t size);
+
 /// Appends little-endian encodings to a byte buffer.
 class BinaryWriter {
  public:
@@ -22,6 +26,8 @@ class BinaryWriter {
   void u64(std::uint64_t value);
   void i32(std::int32_t value) { u32(static_cast<std::uint32_t>(value)); }
   void f64(double value);
+  void f32(float value);
+  void zeros(std::size_t count);                                  ///< `count` zero bytes (padding)
   void string(const std::string& value);                          ///< u32 length, then the bytes
   void blob(const std::vector<std::uint8_t>& value);              ///< u64 length, then the bytes
   void ints(const std::vector<int>& values);                      ///< u64 count, then i32 each
