@@ -181,9 +181,8 @@ static_assert(most_loops() == max_loops, "a cell has at most four loops");
 /// A cell the surface passes through.
 struct ActiveCell {
   GridCoord coord;
-  std::uint8_t inside = 0;
-  int first_vertex = 0;  ///< its loops' vertices are first_vertex + loop
-  CellTopology topology;
+  std::uint8_t inside = 0;  ///< its sign pattern (cell_table)
+  int first_vertex = 0;     ///< its loops' vertices are first_vertex + loop
 };
 
 /// The crossing point (index space) on edge e of the cell at `coord` with corner values `v`.
@@ -215,14 +214,6 @@ class CellIndex {
     const GridCoord local = SparseGrid::offset_in_block(coord);
     const int index = slots_[tables_.at(SparseGrid::block_of(coord))][slot(local)];
     return cells_[static_cast<std::size_t>(index)];
-  }
-
-  /// The active cell at `coord`, or nullptr.
-  const ActiveCell* find(const GridCoord& coord) const {
-    const auto it = tables_.find(SparseGrid::block_of(coord));
-    if (it == tables_.end()) return nullptr;
-    const int index = slots_[it->second][slot(SparseGrid::offset_in_block(coord))];
-    return index < 0 ? nullptr : &cells_[static_cast<std::size_t>(index)];
   }
 
   const std::vector<ActiveCell>& cells() const { return cells_; }
@@ -307,18 +298,18 @@ void scan_block(const SparseGrid& grid, const GridCoord& block, CellIndex& index
         ActiveCell cell;
         cell.coord = plus(origin, i, j, k);
         cell.inside = inside;
-        cell.topology = cell_table[inside];
+        const CellTopology& topology = cell_table[inside];
         cell.first_vertex = static_cast<int>(points.size());
         std::array<Eigen::Vector3d, max_loops> sum{};
         std::array<int, max_loops> count{};
         for (auto& s : sum) s.setZero();
         for (int e = 0; e < 12; ++e) {
-          const int loop = cell.topology.loop[static_cast<std::size_t>(e)];
+          const int loop = topology.loop[static_cast<std::size_t>(e)];
           if (loop < 0) continue;
           sum[static_cast<std::size_t>(loop)] += crossing_point(cell.coord, e, v);
           ++count[static_cast<std::size_t>(loop)];
         }
-        for (std::size_t l = 0; l < static_cast<std::size_t>(cell.topology.loops); ++l) {
+        for (std::size_t l = 0; l < static_cast<std::size_t>(topology.loops); ++l) {
           points.push_back(sum[l] / count[l]);
         }
         index.add(cell);
@@ -327,8 +318,6 @@ void scan_block(const SparseGrid& grid, const GridCoord& block, CellIndex& index
   }
 }
 
-/// A grid edge: its lower node and its axis.
-using GridEdge = std::pair<GridCoord, int>;
 /// Where a segment's own vertex goes: the grid edge of one of its crossings, the lower of the
 /// two cells sharing the segment's face, and the face's normal axis.
 using SplitKey = std::tuple<GridCoord, int, GridCoord, int>;
@@ -341,10 +330,10 @@ std::map<SplitKey, int> split_faces(const SparseGrid& grid, const CellIndex& ind
   for (const ActiveCell& a : index.cells()) {
     for (int d = 0; d < 3; ++d) {
       const int upper_face = 2 * d + 1;
-      if (((a.topology.one_loop_faces >> upper_face) & 1U) == 0) continue;
+      if (((cell_table[a.inside].one_loop_faces >> upper_face) & 1U) == 0) continue;
       const GridCoord above = plus(a.coord, d == 0, d == 1, d == 2);
       const ActiveCell& b = index.at(above);
-      if (((b.topology.one_loop_faces >> (2 * d)) & 1U) == 0) continue;
+      if (((cell_table[b.inside].one_loop_faces >> (2 * d)) & 1U) == 0) continue;
       std::array<float, 8> v{};
       for (int c = 0; c < 8; ++c) {
         v[static_cast<std::size_t>(c)] = grid.value(plus(a.coord, c & 1, (c >> 1) & 1, c >> 2));
@@ -424,7 +413,8 @@ std::vector<std::array<int, 3>> edge_polygons(const CellIndex& index,
       for (std::size_t r = 0; r < 4; ++r) {
         const ActiveCell& owner = index.at(around[r]);
         const int e = 4 * a + ring[r][0] + 2 * ring[r][1];
-        polygon.push_back(owner.first_vertex + owner.topology.loop[static_cast<std::size_t>(e)]);
+        polygon.push_back(owner.first_vertex +
+                          cell_table[owner.inside].loop[static_cast<std::size_t>(e)]);
         is_segment_vertex.push_back(false);
         if (splits.empty()) continue;
         // The face shared with the next cell around: its normal is the axis they differ in.
