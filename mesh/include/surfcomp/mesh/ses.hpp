@@ -79,7 +79,8 @@ double ses_voxel_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
 /// 2 rounds), and every vertex is projected onto the exact SES (convex sphere caps, toroidal
 /// and spherical re-entrant patches), with the exact normal, then moved by the chord
 /// compensation. Disjoint molecules give several outward components; so do parts joined only
-/// by a neck thinner than a voxel (the grid loses the neck).
+/// by a neck thinner than a voxel that the grid loses: the mesh connects two parts only through
+/// grid nodes inside the surface linked along grid edges or across the diagonals of cell faces.
 /// `centers` is #A by 3 (A), `radii` #A van der Waals radii (A).
 /// Returns a closed, 2-manifold, outward-oriented surface (positive volume) with exact unit
 /// outward vertex normals; source() is "<ses>". Deterministic: the same input gives the same
