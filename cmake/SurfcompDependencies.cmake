@@ -13,12 +13,6 @@ find_package(Boost 1.74 REQUIRED COMPONENTS graph iostreams program_options)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 
-# OpenVDB's find module lives outside CMake's default search path; the installed
-# surfcompConfig.cmake looks there too.
-set(SURFCOMP_OPENVDB_MODULE_DIR /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
-list(APPEND CMAKE_MODULE_PATH ${SURFCOMP_OPENVDB_MODULE_DIR})
-find_package(OpenVDB REQUIRED)
-
 # Debian's RDKit ships no CMake config: cmake/FindRDKit.cmake makes the imported target RDKit::RDKit.
 find_package(RDKit REQUIRED)
 

@@ -6,8 +6,8 @@
 # own header code. So this script first builds the same oneTBB as the installed libtbb-dev from
 # Debian's source package, with TBB_SANITIZE=thread, into build/tbb-tsan (kept between runs), then
 # builds the `tsan` preset against it and runs the threaded suites; the preset's TSAN_OPTIONS name
-# tests/tsan.supp, which suppresses only reports with a frame inside Debian's uninstrumented
-# libopenvdb.
+# tests/tsan.supp, which suppresses nothing: every threaded library the suites call is then
+# instrumented.
 #
 # Usage: scripts/tsan.sh [CTEST_ARGS...]   e.g. scripts/tsan.sh -R Match
 # Needs: the packages of scripts/install-deps.sh and access to Debian's source archive (once).

@@ -1,5 +1,5 @@
 // CGAL adapter: mesh::Surface <-> CGAL::Surface_mesh, isotropic remeshing. CGAL stays in this
-// translation unit (OpenVDB lives in ses.cpp).
+// translation unit.
 #include "surfcomp/mesh/remesh.hpp"
 
 #include "surface_mesh.hpp"

@@ -20,6 +20,9 @@ constexpr double collapse_fraction = 0.5;
 constexpr int collapse_passes = 3;
 /// Triangles of the crease splits and collapses keep at least this area (in L^2).
 constexpr double crease_min_area = 1e-4;
+/// Edge ends closer than this (in L) are one point: two vertices projected onto one SAS vertex,
+/// apart by rounding.
+constexpr double coincident_fraction = 1e-9;
 
 Vec3 to_vec(const TriMesh::Point& p) { return Vec3(p[0], p[1], p[2]); }
 TriMesh::Point to_point(const Vec3& x) { return TriMesh::Point(x.x(), x.y(), x.z()); }
@@ -145,13 +148,16 @@ void place_sas_vertices(Surface& surface, const SasGeometry& sas, double reach, 
       if (mesh.status(e).deleted()) continue;
       const double length = mesh.calc_edge_length(e);
       if (length >= shortest) continue;
+      const bool coincident = length <= coincident_fraction * edge_length;
       auto h = mesh.halfedge_handle(e, 0);
       const Spheres& a = mesh.property(label, mesh.from_vertex_handle(h));
       const Spheres& b = mesh.property(label, mesh.to_vertex_handle(h));
       if (a == none || b == none) continue;
+      // Ends with as many spheres but different ones are distinct crease points, unless they
+      // coincide: two labels of one point where more than three spheres meet.
       if (sphere_count(a) > sphere_count(b)) {
         h = mesh.opposite_halfedge_handle(h);
-      } else if (sphere_count(a) == sphere_count(b) && a != b) {
+      } else if (sphere_count(a) == sphere_count(b) && a != b && !coincident) {
         continue;
       }
       const auto removed = mesh.from_vertex_handle(h);
@@ -161,8 +167,8 @@ void place_sas_vertices(Surface& surface, const SasGeometry& sas, double reach, 
       for (auto w : mesh.vv_range(removed)) {
         if (!share_sphere(mesh.property(label, w), mesh.property(label, kept))) compatible = false;
       }
-      // Coincident ends (two vertices projected onto one SAS vertex) collapse unconditionally.
-      if (length > 0.0 &&
+      // Coincident ends collapse unconditionally.
+      if (!coincident &&
           (!compatible ||
            !move_keeps_orientation(mesh, removed, to_vec(mesh.point(kept)), kept, min_area))) {
         continue;

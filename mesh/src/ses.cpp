@@ -1,7 +1,7 @@
 // build_ses and build_sas: the stages in order. The exact geometry is sas_geometry.cpp, the
-// sampled and meshed field ses_grid.cpp (OpenVDB stays there), the component filter
-// ses_components.cpp, the remeshing remesh.cpp (CGAL), the vertex placement ses_vertices.cpp
-// (SES) and sas_creases.cpp (SAS).
+// sampled and meshed field ses_grid.cpp (storage sparse_grid.cpp, mesher
+// dual_marching_cubes.cpp), the component filter ses_components.cpp, the remeshing remesh.cpp
+// (CGAL), the vertex placement ses_vertices.cpp (SES) and sas_creases.cpp (SAS).
 #include "surfcomp/mesh/ses.hpp"
 
 #include "ses_components.hpp"
@@ -32,7 +32,7 @@ constexpr double min_atom_voxels = 2.0;
 constexpr double reach_voxels = 3.0;
 /// Rounds of isotropic remeshing: the grid mesh is already close to the target.
 constexpr int remesh_iterations = 2;
-/// Grid coordinates (centre +- reach, in voxels) must stay below this in magnitude: OpenVDB
+/// Grid coordinates (centre +- reach, in voxels) must stay below this in magnitude: the grid
 /// indexes nodes with 32-bit integers, and the sampler multiplies box indices by its box size.
 constexpr double max_grid_coordinate = 1073741824.0;  // 2^30
 
@@ -185,6 +185,17 @@ double expected_vertices(const detail::TriangleSoup& soup, const SesOptions& opt
   return area * options.vertex_density;
 }
 
+/// `surface` with the components of `soup` added after its own vertices and faces.
+Surface with_components(const Surface& surface, const detail::TriangleSoup& soup,
+                        const std::string& what) {
+  const Eigen::Index nv = static_cast<Eigen::Index>(surface.n_vertices());
+  Eigen::MatrixX3d positions(nv + soup.positions.rows(), 3);
+  positions << surface.positions(), soup.positions;
+  Eigen::MatrixX3i faces(static_cast<Eigen::Index>(surface.n_faces()) + soup.faces.rows(), 3);
+  faces << surface.faces(), soup.faces.array() + static_cast<int>(nv);
+  return Surface::from_arrays(positions, faces, what);
+}
+
 Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                       const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options,
                       bool excluded, const std::string& what) {
@@ -223,8 +234,19 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   require_within(what, "the surface would have about " + number(vertices) + " vertices", vertices,
                  static_cast<double>(options.max_vertices),
                  "--max-vertices (SesOptions::max_vertices)");
-  Surface surface = Surface::from_arrays(soup.positions, soup.faces, what);
-  if (options.remesh) surface = isotropic_remesh(surface, edge_length, remesh_iterations, false);
+  Surface surface;
+  if (!options.remesh) {
+    surface = Surface::from_arrays(soup.positions, soup.faces, what);
+  } else {
+    // Components within one voxel (the grid's trace of a neck thinner than a voxel, when every
+    // component is kept) stay as the grid meshed them: remeshing would shrink each to a
+    // tetrahedron, and the grid mesh of a lone inside node is an axis-aligned box whose two
+    // collapsed space diagonals land on one point.
+    const detail::ComponentsBySize parts = detail::split_by_extent(soup, voxel);
+    surface = isotropic_remesh(Surface::from_arrays(parts.large.positions, parts.large.faces, what),
+                               edge_length, remesh_iterations, false);
+    if (parts.small.faces.rows() > 0) surface = with_components(surface, parts.small, what);
+  }
   // Grid and remeshed vertices lie within a voxel of the surface; search a little wider.
   const double projection_reach = reach_voxels * voxel;
   if (excluded) {

@@ -20,4 +20,14 @@ struct ComponentVolumes {
 /// component of largest volume is always kept. Vertex and face order are preserved.
 TriangleSoup kept_components(const TriangleSoup& soup, const ComponentVolumes& limits);
 
+/// The vertex-connected components of a soup, in two soups by their bounding boxes.
+struct ComponentsBySize {
+  TriangleSoup small;  ///< the components whose bounding box fits in the cube
+  TriangleSoup large;  ///< the others
+};
+
+/// The components of `soup` whose bounding box has every side shorter than `side` (A), and the
+/// others. Vertex and face order are preserved within each.
+ComponentsBySize split_by_extent(const TriangleSoup& soup, double side);
+
 }  // namespace surfcomp::mesh::detail

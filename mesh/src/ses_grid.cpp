@@ -1,14 +1,13 @@
 #include "ses_grid.hpp"
 
-#include <openvdb/openvdb.h>
-#include <openvdb/tools/VolumeToMesh.h>
+#include "dual_marching_cubes.hpp"
+#include "sparse_grid.hpp"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
-#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -61,15 +60,13 @@ struct SasField {
 /// the band in magnitude lies wholly outside (background) or inside (an inactive negative
 /// fill), since the field is 1-Lipschitz; the cheap upper bound decides large boxes. Only root
 /// boxes within `reach` of an atom are visited. They are processed in parallel into separate
-/// slots and written in a fixed order, so the grid does not depend on the thread count.
+/// slots and written in a fixed order, so the grid does not depend on the thread count. Nodes
+/// not sampled hold +band (outside) or, in the inside boxes, -band.
 template <class Field>
-openvdb::FloatGrid::Ptr sample_band(const Field& field,
-                                    const Eigen::Ref<const Eigen::MatrixX3d>& centers, double reach,
-                                    double voxel) {
+SparseGrid sample_band(const Field& field, const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+                       double reach, double voxel) {
   const auto band = static_cast<float>(band_voxels * voxel);
-  auto grid = openvdb::FloatGrid::create(band);
-  grid->setTransform(openvdb::math::Transform::createLinearTransform(voxel));
-  grid->setGridClass(openvdb::GRID_LEVEL_SET);
+  SparseGrid grid(band);
 
   // Root boxes touching the ball of radius `reach` around some atom, in a sorted order.
   const double root_size = root_box * voxel;
@@ -88,8 +85,8 @@ openvdb::FloatGrid::Ptr sample_band(const Field& field,
   std::sort(roots.begin(), roots.end());
   roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
   struct Samples {
-    std::vector<std::pair<openvdb::Coord, float>> values;
-    std::vector<std::pair<openvdb::Coord, int>> inside_boxes;  ///< origin, size
+    std::vector<std::pair<GridCoord, float>> values;
+    std::vector<std::pair<GridCoord, int>> inside_boxes;  ///< origin, size
   };
   std::vector<Samples> slots(roots.size());
   tbb::parallel_for(std::size_t{0}, roots.size(), [&](std::size_t r) {
@@ -103,7 +100,7 @@ openvdb::FloatGrid::Ptr sample_band(const Field& field,
       const double half_diagonal = std::sqrt(3.0) * 0.5 * (size - 1) * voxel;
       const Vec3 centre = (origin.cast<double>() + Vec3::Constant(0.5 * (size - 1))) * voxel;
       const double threshold = half_diagonal + band;
-      const openvdb::Coord corner(origin.x(), origin.y(), origin.z());
+      const GridCoord corner = {origin.x(), origin.y(), origin.z()};
       bool exact = false;
       const double bound = field.upper_bound(centre, threshold + voxel, exact);
       if (bound < -threshold) {
@@ -125,7 +122,7 @@ openvdb::FloatGrid::Ptr sample_band(const Field& field,
               const Eigen::Vector3i c = origin + Eigen::Vector3i(i, j, k);
               const double v =
                   field.value(c.cast<double>() * voxel, static_cast<double>(band), candidates);
-              out.values.emplace_back(openvdb::Coord(c.x(), c.y(), c.z()), static_cast<float>(v));
+              out.values.emplace_back(GridCoord{c.x(), c.y(), c.z()}, static_cast<float>(v));
             }
           }
         }
@@ -139,67 +136,13 @@ openvdb::FloatGrid::Ptr sample_band(const Field& field,
       }
     }
   });
-  auto accessor = grid->getAccessor();
   for (const Samples& s : slots) {
-    for (const auto& [origin, size] : s.inside_boxes) {
-      grid->tree().fill(openvdb::CoordBBox::createCube(origin, size), -band, false);
-    }
+    for (const auto& [origin, size] : s.inside_boxes) grid.fill(origin, size, -band);
   }
   for (const Samples& s : slots) {
-    for (const auto& [coord, value] : s.values) accessor.setValue(coord, value);
+    for (const auto& [coord, value] : s.values) grid.set(coord, value);
   }
   return grid;
-}
-
-/// Meshes the zero isosurface of `grid` (dual contouring; each quad split along its shorter
-/// diagonal). Vertices are sorted by coordinates and faces by indices, so the arrays do not
-/// depend on the order in which OpenVDB's threads produced them.
-TriangleSoup extract_isosurface(const openvdb::FloatGrid& grid) {
-  std::vector<openvdb::Vec3s> points;
-  std::vector<openvdb::Vec4I> quads;
-  openvdb::tools::volumeToMesh(grid, points, quads, 0.0);
-
-  std::vector<std::uint32_t> order(points.size());
-  std::iota(order.begin(), order.end(), 0U);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const auto& p = points[a];
-    const auto& q = points[b];
-    if (p[0] != q[0]) return p[0] < q[0];
-    if (p[1] != q[1]) return p[1] < q[1];
-    if (p[2] != q[2]) return p[2] < q[2];
-    return a < b;
-  });
-  std::vector<int> rank(points.size());
-  TriangleSoup soup;
-  soup.positions.resize(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    rank[order[i]] = static_cast<int>(i);
-    const auto& p = points[order[i]];
-    soup.positions.row(static_cast<Eigen::Index>(i)) << p[0], p[1], p[2];
-  }
-  // OpenVDB winds quads clockwise seen from the positive (outer) side: reverse them.
-  std::vector<std::array<int, 3>> triangles;
-  triangles.reserve(2 * quads.size());
-  for (const auto& q : quads) {
-    const int a = rank[q[3]], b = rank[q[2]], c = rank[q[1]], d = rank[q[0]];
-    const double ac = (soup.positions.row(a) - soup.positions.row(c)).squaredNorm();
-    const double bd = (soup.positions.row(b) - soup.positions.row(d)).squaredNorm();
-    if (ac <= bd) {
-      triangles.push_back({a, b, c});
-      triangles.push_back({a, c, d});
-    } else {
-      triangles.push_back({a, b, d});
-      triangles.push_back({b, c, d});
-    }
-  }
-  for (auto& t : triangles) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-  std::sort(triangles.begin(), triangles.end());
-  soup.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
-  for (std::size_t f = 0; f < triangles.size(); ++f) {
-    soup.faces.row(static_cast<Eigen::Index>(f)) << triangles[f][0], triangles[f][1],
-        triangles[f][2];
-  }
-  return soup;
 }
 
 }  // namespace
@@ -207,10 +150,10 @@ TriangleSoup extract_isosurface(const openvdb::FloatGrid& grid) {
 TriangleSoup grid_mesh(const SasGeometry& sas, SurfaceKind kind,
                        const Eigen::Ref<const Eigen::MatrixX3d>& centers, double reach,
                        double voxel) {
-  const openvdb::FloatGrid::Ptr grid = kind == SurfaceKind::excluded
-                                           ? sample_band(SesField{sas}, centers, reach, voxel)
-                                           : sample_band(SasField{sas}, centers, reach, voxel);
-  return extract_isosurface(*grid);
+  const SparseGrid grid = kind == SurfaceKind::excluded
+                              ? sample_band(SesField{sas}, centers, reach, voxel)
+                              : sample_band(SasField{sas}, centers, reach, voxel);
+  return dual_marching_cubes(grid, voxel);
 }
 
 }  // namespace surfcomp::mesh::detail

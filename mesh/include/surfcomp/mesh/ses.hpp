@@ -1,5 +1,6 @@
 // The solvent-excluded (SES) and solvent-accessible (SAS) surfaces of a set of atoms, built on
-// a sparse signed-distance grid (OpenVDB) and remeshed isotropically (CGAL). METHOD section 1.
+// a sparse signed-distance grid (dual marching cubes) and remeshed isotropically (CGAL). METHOD
+// section 1.
 #pragma once
 
 #include "surfcomp/mesh/surface.hpp"
@@ -72,13 +73,14 @@ double ses_voxel_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
 /// SES region iff its distance to the boundary of U is at least `probe`. That distance is
 /// computed exactly from the exposed pieces of U's boundary (sphere patches, circle arcs where
 /// two spheres meet, vertices where three meet), sampled only near the surface into a sparse
-/// OpenVDB grid (adaptive octree culling, the field being 1-Lipschitz), meshed by
-/// openvdb::tools::volumeToMesh (quads split along the shorter diagonal), filtered by
+/// grid (adaptive octree culling, the field being 1-Lipschitz), meshed by dual marching cubes
+/// (Nielson 2004; a closed 2-manifold, quads split along the shorter diagonal), filtered by
 /// component (keep_cavities, min_component_volume_fraction), remeshed isotropically (CGAL,
 /// 2 rounds), and every vertex is projected onto the exact SES (convex sphere caps, toroidal
 /// and spherical re-entrant patches), with the exact normal, then moved by the chord
 /// compensation. Disjoint molecules give several outward components; so do parts joined only
-/// by a neck thinner than a voxel (the grid loses the neck).
+/// by a neck thinner than a voxel that the grid loses: the mesh connects two parts only through
+/// grid nodes inside the surface linked along grid edges or across the diagonals of cell faces.
 /// `centers` is #A by 3 (A), `radii` #A van der Waals radii (A).
 /// Returns a closed, 2-manifold, outward-oriented surface (positive volume) with exact unit
 /// outward vertex normals; source() is "<ses>". Deterministic: the same input gives the same

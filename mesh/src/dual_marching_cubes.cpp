@@ -1,0 +1,481 @@
+#include "dual_marching_cubes.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <map>
+#include <numeric>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace surfcomp::mesh::detail {
+namespace {
+
+/// The corner with offsets (x, y, z) in {0, 1}.
+constexpr int corner_at(int x, int y, int z) { return x | (y << 1) | (z << 2); }
+
+/// The corner with offset `along_a` along axis a, `along_b` along (a + 1) % 3 and `along_c`
+/// along (a + 2) % 3.
+constexpr int corner_on_axes(int a, int along_a, int along_b, int along_c) {
+  std::array<int, 3> offset{};
+  offset[static_cast<std::size_t>(a)] = along_a;
+  offset[static_cast<std::size_t>((a + 1) % 3)] = along_b;
+  offset[static_cast<std::size_t>((a + 2) % 3)] = along_c;
+  return corner_at(offset[0], offset[1], offset[2]);
+}
+
+/// The cube's edges and faces in the numbering of CellTopology, derived from it.
+struct CubeGeometry {
+  std::array<std::array<int, 2>, 12> edge_corners{};  ///< the ends of edge e, lower first
+  std::array<std::array<int, 4>, 6> face_corners{};   ///< face f's corners in cyclic order
+  std::array<std::array<int, 4>, 6> face_edges{};     ///< edge i joins face corners i, i + 1
+};
+
+constexpr CubeGeometry make_cube_geometry() {
+  CubeGeometry g{};
+  for (int a = 0; a < 3; ++a) {
+    for (int u = 0; u < 2; ++u) {
+      for (int v = 0; v < 2; ++v) {
+        auto& ends =
+            g.edge_corners[static_cast<std::size_t>(a) * 4 + static_cast<std::size_t>(u + 2 * v)];
+        ends[0] = corner_on_axes(a, 0, u, v);
+        ends[1] = corner_on_axes(a, 1, u, v);
+      }
+    }
+  }
+  constexpr std::array<std::array<int, 2>, 4> square = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+  for (int a = 0; a < 3; ++a) {
+    for (int s = 0; s < 2; ++s) {
+      const std::size_t f = static_cast<std::size_t>(a) * 2 + static_cast<std::size_t>(s);
+      auto& corners = g.face_corners[f];
+      auto& edges = g.face_edges[f];
+      for (std::size_t i = 0; i < 4; ++i) {
+        corners[i] = corner_on_axes(a, s, square[i][0], square[i][1]);
+      }
+      for (std::size_t i = 0; i < 4; ++i) {
+        const int p = corners[i];
+        const int q = corners[(i + 1) % 4];
+        for (int e = 0; e < 12; ++e) {
+          const auto& ends = g.edge_corners[static_cast<std::size_t>(e)];
+          if ((ends[0] == p && ends[1] == q) || (ends[0] == q && ends[1] == p)) edges[i] = e;
+        }
+      }
+    }
+  }
+  return g;
+}
+
+constexpr CubeGeometry cube = make_cube_geometry();
+
+constexpr bool is_inside(std::uint8_t inside, int corner) { return ((inside >> corner) & 1U) != 0; }
+
+constexpr int find_root(const std::array<int, 12>& parent, int e) {
+  while (parent[static_cast<std::size_t>(e)] != e) e = parent[static_cast<std::size_t>(e)];
+  return e;
+}
+
+constexpr void join(std::array<int, 12>& parent, int a, int b) {
+  a = find_root(parent, a);
+  b = find_root(parent, b);
+  parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+}
+
+/// Segments on one face of a cell: pairs of face-edge positions (0-3, see
+/// CubeGeometry::face_edges).
+struct FaceSegments {
+  int count = 0;
+  std::array<std::array<int, 2>, 2> segment{};
+};
+
+/// The segments the marching-cubes surface draws on face f of a cell. Two crossings give one
+/// segment; four (an ambiguous face) give two, each cutting off an outside corner, so that the
+/// face joins its inside corners.
+constexpr FaceSegments face_segments(std::uint8_t inside, int f) {
+  const auto& corners = cube.face_corners[static_cast<std::size_t>(f)];
+  std::array<int, 4> crossed{};
+  FaceSegments out;
+  int crossings = 0;
+  for (int i = 0; i < 4; ++i) {
+    if (is_inside(inside, corners[static_cast<std::size_t>(i)]) !=
+        is_inside(inside, corners[static_cast<std::size_t>((i + 1) % 4)])) {
+      crossed[static_cast<std::size_t>(crossings++)] = i;
+    }
+  }
+  if (crossings == 2) {
+    out.count = 1;
+    out.segment[0] = {crossed[0], crossed[1]};
+  } else if (crossings == 4) {
+    for (int i = 0; i < 4; ++i) {
+      if (!is_inside(inside, corners[static_cast<std::size_t>(i)])) {
+        out.segment[static_cast<std::size_t>(out.count++)] = {(i + 3) % 4, i};
+      }
+    }
+  }
+  return out;
+}
+
+/// The loops of the cell whose corner c is inside iff bit c of `inside` is set: the classes of
+/// crossed edges joined by the face segments.
+constexpr CellTopology compute_cell_topology(std::uint8_t inside) {
+  std::array<int, 12> parent{};
+  for (int e = 0; e < 12; ++e) parent[static_cast<std::size_t>(e)] = e;
+  for (int f = 0; f < 6; ++f) {
+    const auto& edges = cube.face_edges[static_cast<std::size_t>(f)];
+    const FaceSegments segments = face_segments(inside, f);
+    for (int s = 0; s < segments.count; ++s) {
+      const auto& ends = segments.segment[static_cast<std::size_t>(s)];
+      join(parent, edges[static_cast<std::size_t>(ends[0])],
+           edges[static_cast<std::size_t>(ends[1])]);
+    }
+  }
+  // Loops numbered in the order of their lowest edge.
+  CellTopology out;
+  std::array<int, 12> loop_of_root{};
+  for (auto& loop : loop_of_root) loop = -1;
+  for (std::size_t e = 0; e < 12; ++e) {
+    out.loop[e] = -1;
+    const auto& ends = cube.edge_corners[e];
+    if (is_inside(inside, ends[0]) == is_inside(inside, ends[1])) continue;
+    auto& loop = loop_of_root[static_cast<std::size_t>(find_root(parent, static_cast<int>(e)))];
+    if (loop < 0) loop = out.loops++;
+    out.loop[e] = loop;
+  }
+  for (int f = 0; f < 6; ++f) {
+    const auto& edges = cube.face_edges[static_cast<std::size_t>(f)];
+    const FaceSegments segments = face_segments(inside, f);
+    if (segments.count != 2) continue;
+    const auto first =
+        static_cast<std::size_t>(edges[static_cast<std::size_t>(segments.segment[0][0])]);
+    const auto second =
+        static_cast<std::size_t>(edges[static_cast<std::size_t>(segments.segment[1][0])]);
+    if (out.loop[first] == out.loop[second]) {
+      out.one_loop_faces = static_cast<std::uint8_t>(out.one_loop_faces | (1U << f));
+    }
+  }
+  return out;
+}
+
+constexpr std::array<CellTopology, 256> make_cell_table() {
+  std::array<CellTopology, 256> table{};
+  for (int inside = 0; inside < 256; ++inside) {
+    table[static_cast<std::size_t>(inside)] =
+        compute_cell_topology(static_cast<std::uint8_t>(inside));
+  }
+  return table;
+}
+
+/// The case table: the loops of each of the 256 sign configurations of a cell.
+constexpr std::array<CellTopology, 256> cell_table = make_cell_table();
+
+constexpr int most_loops() {
+  int most = 0;
+  for (const CellTopology& t : cell_table) most = std::max(most, t.loops);
+  return most;
+}
+
+/// The most loops a cell has (marching cubes: four, in the checkerboard configurations).
+constexpr std::size_t max_loops = 4;
+static_assert(most_loops() == max_loops, "a cell has at most four loops");
+
+/// A cell the surface passes through.
+struct ActiveCell {
+  GridCoord coord;
+  std::uint8_t inside = 0;  ///< its sign pattern (cell_table)
+  int first_vertex = 0;     ///< its loops' vertices are first_vertex + loop
+};
+
+/// The crossing point (index space) on edge e of the cell at `coord` with corner values `v`.
+Eigen::Vector3d crossing_point(const GridCoord& coord, int e, const std::array<float, 8>& v) {
+  const auto& ends = cube.edge_corners[static_cast<std::size_t>(e)];
+  const double v0 = v[static_cast<std::size_t>(ends[0])];
+  const double v1 = v[static_cast<std::size_t>(ends[1])];
+  const double t = v0 / (v0 - v1);
+  Eigen::Vector3d p(coord[0] + (ends[0] & 1), coord[1] + ((ends[0] >> 1) & 1),
+                    coord[2] + (ends[0] >> 2));
+  p[e / 4] += t;
+  return p;
+}
+
+/// Active cells and their vertices, with a lookup by cell coordinate.
+class CellIndex {
+ public:
+  void add(const ActiveCell& cell) {
+    const GridCoord block = SparseGrid::block_of(cell.coord);
+    const GridCoord local = SparseGrid::offset_in_block(cell.coord);
+    const auto [it, inserted] = tables_.try_emplace(block, slots_.size());
+    if (inserted) slots_.emplace_back().fill(-1);
+    slots_[it->second][slot(local)] = static_cast<int>(cells_.size());
+    cells_.push_back(cell);
+  }
+
+  /// The active cell at `coord`; it must exist.
+  const ActiveCell& at(const GridCoord& coord) const {
+    const GridCoord local = SparseGrid::offset_in_block(coord);
+    const int index = slots_[tables_.at(SparseGrid::block_of(coord))][slot(local)];
+    return cells_[static_cast<std::size_t>(index)];
+  }
+
+  const std::vector<ActiveCell>& cells() const { return cells_; }
+
+ private:
+  static std::size_t slot(const GridCoord& local) {
+    return SparseGrid::Block::index(local[0], local[1], local[2]);
+  }
+
+  std::vector<ActiveCell> cells_;
+  std::unordered_map<GridCoord, std::size_t, GridCoordHash> tables_;
+  std::vector<std::array<int, SparseGrid::block_nodes>> slots_;
+};
+
+GridCoord plus(const GridCoord& a, int dx, int dy, int dz) {
+  return {a[0] + dx, a[1] + dy, a[2] + dz};
+}
+
+/// The blocks whose cells may touch a stored block: each stored block and its neighbours below
+/// (a cell reads the nodes of its own block and of the blocks above it), sorted.
+std::vector<GridCoord> candidate_blocks(const SparseGrid& grid) {
+  std::vector<GridCoord> out;
+  out.reserve(8 * grid.block_coords().size());
+  for (const GridCoord& b : grid.block_coords()) {
+    for (int d = 0; d < 8; ++d) out.push_back(plus(b, -(d & 1), -((d >> 1) & 1), -(d >> 2)));
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+/// Finds the active cells of the cells whose lowest corner lies in block `block`, appending
+/// them to `index` and their loop vertices (index space) to `points`.
+void scan_block(const SparseGrid& grid, const GridCoord& block, CellIndex& index,
+                std::vector<Eigen::Vector3d>& points) {
+  constexpr int w = SparseGrid::block_width;
+  std::array<const SparseGrid::Block*, 8> near{};
+  bool mixed = false;
+  bool any_inside = false;
+  bool any_outside = false;
+  for (int d = 0; d < 8; ++d) {
+    near[static_cast<std::size_t>(d)] = grid.find_block(plus(block, d & 1, (d >> 1) & 1, d >> 2));
+    const SparseGrid::Block* b = near[static_cast<std::size_t>(d)];
+    if (b != nullptr && !b->uniform) {
+      mixed = true;
+    } else {
+      const float v = b == nullptr ? grid.background() : b->uniform_value;
+      (v < 0.0F ? any_inside : any_outside) = true;
+    }
+  }
+  if (!mixed && !(any_inside && any_outside)) return;
+
+  // The block's nodes and the first layer of the blocks above, (w + 1)^3 values.
+  constexpr int n = w + 1;
+  const auto at = [](int i, int j, int k) {
+    constexpr auto m = static_cast<std::size_t>(n);
+    return (static_cast<std::size_t>(i) * m + static_cast<std::size_t>(j)) * m +
+           static_cast<std::size_t>(k);
+  };
+  std::array<float, static_cast<std::size_t>(n) * n * n> values{};
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      for (int k = 0; k < n; ++k) {
+        const int d = (i / w) | ((j / w) << 1) | ((k / w) << 2);
+        const SparseGrid::Block* b = near[static_cast<std::size_t>(d)];
+        values[at(i, j, k)] = b == nullptr ? grid.background() : b->at(i % w, j % w, k % w);
+      }
+    }
+  }
+  const GridCoord origin = {w * block[0], w * block[1], w * block[2]};
+  for (int i = 0; i < w; ++i) {
+    for (int j = 0; j < w; ++j) {
+      for (int k = 0; k < w; ++k) {
+        std::array<float, 8> v{};
+        std::uint8_t inside = 0;
+        for (int c = 0; c < 8; ++c) {
+          v[static_cast<std::size_t>(c)] =
+              values[at(i + (c & 1), j + ((c >> 1) & 1), k + (c >> 2))];
+          if (v[static_cast<std::size_t>(c)] < 0.0F) inside |= static_cast<std::uint8_t>(1U << c);
+        }
+        if (inside == 0 || inside == 0xFF) continue;
+        ActiveCell cell;
+        cell.coord = plus(origin, i, j, k);
+        cell.inside = inside;
+        const CellTopology& topology = cell_table[inside];
+        cell.first_vertex = static_cast<int>(points.size());
+        std::array<Eigen::Vector3d, max_loops> sum{};
+        std::array<int, max_loops> count{};
+        for (auto& s : sum) s.setZero();
+        for (int e = 0; e < 12; ++e) {
+          const int loop = topology.loop[static_cast<std::size_t>(e)];
+          if (loop < 0) continue;
+          sum[static_cast<std::size_t>(loop)] += crossing_point(cell.coord, e, v);
+          ++count[static_cast<std::size_t>(loop)];
+        }
+        for (std::size_t l = 0; l < static_cast<std::size_t>(topology.loops); ++l) {
+          points.push_back(sum[l] / count[l]);
+        }
+        index.add(cell);
+      }
+    }
+  }
+}
+
+/// Where a segment's own vertex goes: the grid edge of one of its crossings, the lower of the
+/// two cells sharing the segment's face, and the face's normal axis.
+using SplitKey = std::tuple<GridCoord, int, GridCoord, int>;
+
+/// The segment vertices of the faces where both cells put both segments in one loop (see
+/// dual_marching_cubes), appended to `points`, keyed by each crossing of each segment.
+std::map<SplitKey, int> split_faces(const SparseGrid& grid, const CellIndex& index,
+                                    std::vector<Eigen::Vector3d>& points) {
+  std::map<SplitKey, int> splits;
+  for (const ActiveCell& a : index.cells()) {
+    for (int d = 0; d < 3; ++d) {
+      const int upper_face = 2 * d + 1;
+      if (((cell_table[a.inside].one_loop_faces >> upper_face) & 1U) == 0) continue;
+      const GridCoord above = plus(a.coord, d == 0, d == 1, d == 2);
+      const ActiveCell& b = index.at(above);
+      if (((cell_table[b.inside].one_loop_faces >> (2 * d)) & 1U) == 0) continue;
+      std::array<float, 8> v{};
+      for (int c = 0; c < 8; ++c) {
+        v[static_cast<std::size_t>(c)] = grid.value(plus(a.coord, c & 1, (c >> 1) & 1, c >> 2));
+      }
+      const FaceSegments segments = face_segments(a.inside, upper_face);
+      for (const auto& segment : segments.segment) {
+        Eigen::Vector3d mid = Eigen::Vector3d::Zero();
+        for (const int position : segment) {
+          const int e = cube.face_edges[static_cast<std::size_t>(upper_face)]
+                                       [static_cast<std::size_t>(position)];
+          mid += 0.5 * crossing_point(a.coord, e, v);
+          const int low = cube.edge_corners[static_cast<std::size_t>(e)][0];
+          const GridCoord node = plus(a.coord, low & 1, (low >> 1) & 1, low >> 2);
+          splits[SplitKey{node, e / 4, a.coord, d}] = static_cast<int>(points.size());
+        }
+        points.push_back(mid);
+      }
+    }
+  }
+  return splits;
+}
+
+/// Splits `polygon` into triangles: a quad along its shorter diagonal, a polygon with segment
+/// vertices as a fan from its first segment vertex.
+void triangulate(const std::vector<int>& polygon, const std::vector<bool>& is_segment_vertex,
+                 const std::vector<Eigen::Vector3d>& points,
+                 std::vector<std::array<int, 3>>& triangles) {
+  const std::size_t size = polygon.size();
+  const auto apex = static_cast<std::size_t>(
+      std::distance(is_segment_vertex.begin(),
+                    std::find(is_segment_vertex.begin(), is_segment_vertex.end(), true)));
+  if (apex == size) {
+    const int a = polygon[0], b = polygon[1], c = polygon[2], d = polygon[3];
+    const double ac =
+        (points[static_cast<std::size_t>(a)] - points[static_cast<std::size_t>(c)]).squaredNorm();
+    const double bd =
+        (points[static_cast<std::size_t>(b)] - points[static_cast<std::size_t>(d)]).squaredNorm();
+    if (ac <= bd) {
+      triangles.push_back({a, b, c});
+      triangles.push_back({a, c, d});
+    } else {
+      triangles.push_back({a, b, d});
+      triangles.push_back({b, c, d});
+    }
+    return;
+  }
+  for (std::size_t k = 1; k + 1 < size; ++k) {
+    triangles.push_back(
+        {polygon[apex], polygon[(apex + k) % size], polygon[(apex + k + 1) % size]});
+  }
+}
+
+/// The triangles of the quads (polygons, where segment vertices split a side) around every grid
+/// edge whose ends differ in sign.
+std::vector<std::array<int, 3>> edge_polygons(const CellIndex& index,
+                                              const std::map<SplitKey, int>& splits,
+                                              const std::vector<Eigen::Vector3d>& points) {
+  // The four cells around an edge along axis a, counter-clockwise seen from its positive end:
+  // offsets (along (a + 1) % 3, along (a + 2) % 3) subtracted from the edge's lower node.
+  constexpr std::array<std::array<int, 2>, 4> ring = {{{1, 1}, {0, 1}, {0, 0}, {1, 0}}};
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<int> polygon;
+  std::vector<bool> is_segment_vertex;
+  for (const ActiveCell& cell : index.cells()) {
+    for (int a = 0; a < 3; ++a) {
+      const bool lower_inside = is_inside(cell.inside, 0);
+      if (lower_inside == is_inside(cell.inside, 1 << a)) continue;
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      std::array<GridCoord, 4> around{};
+      polygon.clear();
+      is_segment_vertex.clear();
+      for (std::size_t r = 0; r < 4; ++r) {
+        around[r] = cell.coord;
+        around[r][static_cast<std::size_t>(b)] -= ring[r][0];
+        around[r][static_cast<std::size_t>(c)] -= ring[r][1];
+      }
+      for (std::size_t r = 0; r < 4; ++r) {
+        const ActiveCell& owner = index.at(around[r]);
+        const int e = 4 * a + ring[r][0] + 2 * ring[r][1];
+        polygon.push_back(owner.first_vertex +
+                          cell_table[owner.inside].loop[static_cast<std::size_t>(e)]);
+        is_segment_vertex.push_back(false);
+        if (splits.empty()) continue;
+        // The face shared with the next cell around: its normal is the axis they differ in.
+        const GridCoord& next = around[(r + 1) % 4];
+        const int normal =
+            next[static_cast<std::size_t>(b)] != around[r][static_cast<std::size_t>(b)] ? b : c;
+        const GridCoord lower = std::min(around[r], next);
+        const auto it = splits.find(SplitKey{cell.coord, a, lower, normal});
+        if (it != splits.end()) {
+          polygon.push_back(it->second);
+          is_segment_vertex.push_back(true);
+        }
+      }
+      if (!lower_inside) {
+        std::reverse(polygon.begin(), polygon.end());
+        std::reverse(is_segment_vertex.begin(), is_segment_vertex.end());
+      }
+      triangulate(polygon, is_segment_vertex, points, triangles);
+    }
+  }
+  return triangles;
+}
+
+}  // namespace
+
+CellTopology cell_topology(std::uint8_t inside) { return cell_table[inside]; }
+
+TriangleSoup dual_marching_cubes(const SparseGrid& grid, double spacing) {
+  CellIndex index;
+  std::vector<Eigen::Vector3d> points;
+  for (const GridCoord& block : candidate_blocks(grid)) scan_block(grid, block, index, points);
+  const std::map<SplitKey, int> splits = split_faces(grid, index, points);
+  std::vector<std::array<int, 3>> triangles = edge_polygons(index, splits, points);
+
+  // Canonical order: vertices by coordinates, faces by indices.
+  std::vector<int> order(points.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    const Eigen::Vector3d& p = points[static_cast<std::size_t>(a)];
+    const Eigen::Vector3d& q = points[static_cast<std::size_t>(b)];
+    return std::tie(p[0], p[1], p[2], a) < std::tie(q[0], q[1], q[2], b);
+  });
+  std::vector<int> rank(points.size());
+  TriangleSoup soup;
+  soup.positions.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    rank[static_cast<std::size_t>(order[i])] = static_cast<int>(i);
+    soup.positions.row(static_cast<Eigen::Index>(i)) =
+        spacing * points[static_cast<std::size_t>(order[i])].transpose();
+  }
+  for (auto& t : triangles) {
+    for (int& v : t) v = rank[static_cast<std::size_t>(v)];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  }
+  std::sort(triangles.begin(), triangles.end());
+  soup.faces.resize(static_cast<Eigen::Index>(triangles.size()), 3);
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    soup.faces.row(static_cast<Eigen::Index>(f)) << triangles[f][0], triangles[f][1],
+        triangles[f][2];
+  }
+  return soup;
+}
+
+}  // namespace surfcomp::mesh::detail
