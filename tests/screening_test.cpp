@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,38 @@ TEST(MoleculeRecords, DatListNamesByIdColumn) {
   EXPECT_EQ(records[1].text, "c1ccccc1");
   EXPECT_EQ(records[1].record, 2u);
   EXPECT_EQ(records[1].format, io::RecordFormat::smiles);
+}
+
+TEST(LibraryBuild, ConformersShareTheirMoleculeAsReadingEachWouldGiveIt) {
+  screening::LibraryBuildOptions options;
+  ConformerOptions conformers;
+  conformers.count = 3;
+  options.conformers = conformers;
+  screening::BuildTimes times;
+  const std::vector<screening::LibraryEntry> entries = screening::build_entries(
+      smiles_record("CC(C)Cc1ccc(cc1)C(C)C(=O)O", "ibuprofen", 1), options, &times);
+  ASSERT_EQ(entries.size(), 3u);
+  EXPECT_GT(times.conformers, 0.0);
+  EXPECT_GT(times.entries, 0.0);
+  for (const screening::LibraryEntry& entry : entries) {
+    // Each conformer's sample is the one its stored block gives when read whole.
+    const Molecule read = io::read_record_molecule(entry.molecule);
+    const matching::SurfaceSample sample =
+        matching::sample_molecule(read, options.spacing, options.surface);
+    EXPECT_TRUE(sample.points == entry.sample.points) << entry.info.conformer;
+    EXPECT_TRUE(sample.esp == entry.sample.esp) << entry.info.conformer;
+    EXPECT_TRUE(sample.lp == entry.sample.lp) << entry.info.conformer;
+    const std::optional<std::vector<Eigen::Vector3d>> positions =
+        io::mdl_coordinates(entry.molecule.text);
+    ASSERT_TRUE(positions.has_value());
+    ASSERT_EQ(positions->size(), read.atoms.size());
+    for (std::size_t a = 0; a < read.atoms.size(); ++a)
+      EXPECT_EQ((*positions)[a], read.atoms[a].position);
+  }
+  EXPECT_FALSE(io::mdl_coordinates("title\n\n\n  0  0  0  0  0  0  0  0  0  0999 V3000\n"));
+  EXPECT_FALSE(
+      io::mdl_coordinates("title\n\n\n  2  0  0  0  0  0  0  0  0  0999 V2000\n"
+                          "    0.0000    x.0000    0.0000 C\n"));
 }
 
 TEST(Library, RoundTripKeepsEveryFieldAndFindsByName) {

@@ -90,6 +90,16 @@ void write_log_and_summary(const std::filesystem::path& library, const std::file
       library.string().c_str(), result.records, result.entries, result.skipped.size(),
       log.string().c_str(), static_cast<double>(result.bytes) / 1e6, result.seconds,
       result.seconds > 0 ? static_cast<double>(result.entries) / result.seconds : 0.0);
+  const double per_entry = 1e3 / static_cast<double>(result.entries);
+  if (result.times.conformers > 0.0) {
+    console::summary(
+        "  core time per entry: %.2f ms conformers (RDKit ETKDG + MMFF), %.2f ms "
+        "surfcomp (reading, sample, packing)\n",
+        result.times.conformers * per_entry, result.times.entries * per_entry);
+  } else {
+    console::summary("  core time per entry: %.2f ms (reading, sample, packing)\n",
+                     result.times.entries * per_entry);
+  }
 }
 
 /// `library build --sites LIST`: a pocket library.

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -135,20 +136,25 @@ std::vector<io::MoleculeRecord> read_library_inputs(
 }
 
 std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
-                                        const LibraryBuildOptions& options) {
+                                        const LibraryBuildOptions& options, BuildTimes* times) {
   if (record.format == io::RecordFormat::descriptors) {
     if (options.conformers)
       throw InputError("a .hsi file has fixed coordinates: --conformers does not apply to it");
-    return {hsi_entry(record, options)};
+    const Stopwatch clock;
+    std::vector<LibraryEntry> entries{hsi_entry(record, options)};
+    if (times != nullptr) times->entries += clock.elapsed_s();
+    return entries;
   }
   std::vector<io::MoleculeRecord> conformations;
   if (options.conformers) {
+    const Stopwatch clock;
     for (std::string& block : generate_conformers(record, *options.conformers)) {
       io::MoleculeRecord conformer = record;
       conformer.format = io::RecordFormat::mdl;
       conformer.text = std::move(block);
       conformations.push_back(std::move(conformer));
     }
+    if (times != nullptr) times->conformers += clock.elapsed_s();
   } else if (record.format == io::RecordFormat::smiles) {
     throw InputError("a SMILES record has no coordinates: generate conformers (--conformers N)");
   } else if (record.format == io::RecordFormat::structure && record.text.empty()) {
@@ -156,22 +162,39 @@ std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
   } else {
     conformations.push_back(record);
   }
+  const Stopwatch clock;
   std::vector<LibraryEntry> entries;
+  std::optional<Molecule> first;  // generated conformers: one molecule, other coordinates
   for (std::size_t c = 0; c < conformations.size(); ++c) {
-    const Molecule molecule = io::read_record_molecule(conformations[c], options.read);
+    // The conformers of one record share their atoms, charges and lipophilicity, which depend
+    // on the bonds alone: the first is read whole, the others take its atoms with their own
+    // coordinates (as reading their blocks gives them, checked in tests).
+    std::optional<Molecule> molecule;
+    if (first && options.conformers) {
+      const std::optional<std::vector<Eigen::Vector3d>> positions =
+          io::mdl_coordinates(conformations[c].text);
+      if (positions && positions->size() == first->atoms.size()) {
+        molecule = *first;
+        for (std::size_t a = 0; a < positions->size(); ++a)
+          molecule->atoms[a].position = (*positions)[a];
+      }
+    }
+    if (!molecule) molecule = io::read_record_molecule(conformations[c], options.read);
+    if (!first) first = *molecule;
     LibraryEntry entry;
     entry.info.name = record.name;
     entry.info.source = record.source.string();
     entry.info.record = static_cast<std::uint32_t>(record.record);
     entry.info.conformer = options.conformers ? static_cast<std::uint32_t>(c + 1) : 0;
-    entry.info.heavy_atoms = heavy_atom_count(molecule);
+    entry.info.heavy_atoms = heavy_atom_count(*molecule);
     entry.molecule = std::move(conformations[c]);
-    entry.sample = matching::sample_molecule(molecule, options.spacing, options.surface);
-    entry.atoms = matching::sample_atoms(harmonic::surface_atoms(molecule));
+    entry.sample = matching::sample_molecule(*molecule, options.spacing, options.surface);
+    entry.atoms = matching::sample_atoms(harmonic::surface_atoms(*molecule));
     entry.kind = matching::SampleKind::atoms;
     entry.packed = matching::PackedSample(entry.sample, entry.atoms, options.sigma, entry.kind);
     entries.push_back(std::move(entry));
   }
+  if (times != nullptr) times->entries += clock.elapsed_s();
   return entries;
 }
 
@@ -209,7 +232,8 @@ struct ItemOrigin {
 /// Builds the entries of `count` items with `build_item(index)` in parallel and writes them in
 /// item order to `output` atomically; an item whose build throws is skipped and listed.
 LibraryBuildResult build_in_order(
-    std::size_t count, const std::function<std::vector<LibraryEntry>(std::size_t)>& build_item,
+    std::size_t count,
+    const std::function<std::vector<LibraryEntry>(std::size_t, BuildTimes&)>& build_item,
     const std::function<ItemOrigin(std::size_t)>& origin, const std::filesystem::path& output,
     const std::string& settings, const LibraryBuildOptions& options) {
   const Stopwatch clock;
@@ -220,6 +244,7 @@ LibraryBuildResult build_in_order(
   struct Built {
     std::size_t index = 0;
     std::vector<LibraryEntry> entries;
+    BuildTimes times;
     std::string error;
   };
   struct NothingBuilt {};  // abandons the output: no library of nothing, an old file kept
@@ -243,7 +268,7 @@ LibraryBuildResult build_in_order(
                     auto built = std::make_shared<Built>();
                     built->index = index;
                     try {
-                      built->entries = build_item(index);
+                      built->entries = build_item(index, built->times);
                     } catch (const std::bad_alloc&) {
                       built->error = "out of memory";
                     } catch (const std::exception& e) {
@@ -254,6 +279,8 @@ LibraryBuildResult build_in_order(
                   }) &
               tbb::make_filter<std::shared_ptr<Built>, void>(
                   tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<Built>& built) {
+                    result.times.conformers += built->times.conformers;
+                    result.times.entries += built->times.entries;
                     if (!built->error.empty()) {
                       ItemOrigin o = origin(built->index);
                       result.skipped.push_back(
@@ -284,7 +311,8 @@ LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
                                  const LibraryBuildOptions& options) {
   check_options(options);
   return build_in_order(
-      records.size(), [&](std::size_t i) { return build_entries(records[i], options); },
+      records.size(),
+      [&](std::size_t i, BuildTimes& times) { return build_entries(records[i], options, &times); },
       [&](std::size_t i) {
         return ItemOrigin{records[i].source.string(), records[i].record, records[i].name};
       },
@@ -379,7 +407,12 @@ LibraryBuildResult build_site_library(const std::vector<SiteRequest>& sites,
   if (options.conformers) throw OptionError("--conformers does not apply to sites (--sites)");
   return build_in_order(
       sites.size(),
-      [&](std::size_t i) { return std::vector<LibraryEntry>{build_site_entry(sites[i], options)}; },
+      [&](std::size_t i, BuildTimes& times) {
+        const Stopwatch clock;
+        std::vector<LibraryEntry> entries{build_site_entry(sites[i], options)};
+        times.entries += clock.elapsed_s();
+        return entries;
+      },
       [&](std::size_t i) {
         return ItemOrigin{sites[i].structure.string(), sites[i].line, sites[i].name};
       },

@@ -12,6 +12,7 @@
 #include <boost/iostreams/filtering_stream.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -221,6 +222,44 @@ Molecule read_record_molecule(const MoleculeRecord& record, const MoleculeReadOp
       break;
   }
   return detail::read_with_rdkit(record.source, record.text, detail::RdkitFormat::mdl, single);
+}
+
+std::optional<std::vector<Eigen::Vector3d>> mdl_coordinates(const std::string& block) {
+  // Header: three lines, then the counts line "aaabbb...V2000".
+  std::size_t at = 0;
+  for (int line = 0; line < 3; ++line) {
+    at = block.find('\n', at);
+    if (at == std::string::npos) return std::nullopt;
+    ++at;
+  }
+  const std::size_t counts_end = block.find('\n', at);
+  if (counts_end == std::string::npos) return std::nullopt;
+  const std::string counts = block.substr(at, counts_end - at);
+  if (counts.find("V2000") == std::string::npos || counts.size() < 3) return std::nullopt;
+  std::size_t atoms = 0;
+  try {
+    atoms = static_cast<std::size_t>(std::stoul(counts.substr(0, 3)));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(atoms);
+  at = counts_end + 1;
+  for (std::size_t a = 0; a < atoms; ++a) {
+    const std::size_t end = block.find('\n', at);
+    if (end == std::string::npos || end - at < 30) return std::nullopt;
+    Eigen::Vector3d p;
+    for (int c = 0; c < 3; ++c) {
+      const std::string field = block.substr(at + 10 * static_cast<std::size_t>(c), 10);
+      char* stop = nullptr;
+      p(c) = std::strtod(field.c_str(), &stop);
+      if (stop == field.c_str()) return std::nullopt;
+    }
+    if (!p.allFinite()) return std::nullopt;
+    out.push_back(p);
+    at = end + 1;
+  }
+  return out;
 }
 
 }  // namespace surfcomp::io

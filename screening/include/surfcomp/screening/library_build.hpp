@@ -68,12 +68,19 @@ struct SkippedRecord {
   std::string reason;  ///< the error's message, one line
 };
 
+/// Where a build's time goes, seconds summed over the threads (core-seconds).
+struct BuildTimes {
+  double conformers = 0.0;  ///< generating conformers (RDKit ETKDG + MMFF, their mol blocks)
+  double entries = 0.0;     ///< the rest of each entry: reading, sampling, packing
+};
+
 struct LibraryBuildResult {
   std::size_t records = 0;  ///< records read from the inputs
   std::size_t entries = 0;  ///< entries written
   std::uint64_t bytes = 0;  ///< size of the library file
   std::vector<SkippedRecord> skipped;
-  double seconds = 0.0;
+  double seconds = 0.0;  ///< wall-clock
+  BuildTimes times;      ///< of the records built and skipped
 };
 
 /// The records of `inputs` in order: each file's records (io::read_molecule_records), and for a
@@ -85,11 +92,12 @@ std::vector<io::MoleculeRecord> read_library_inputs(
 
 /// The entries of one record: its own coordinates, or its conformers, each with its screening
 /// sample (matching::sample_molecule) and heteroatoms, packed; for a .hsi file, one entry with
-/// the sample of the file's surface (read_hsi) and its heavy atoms (LibraryEntry::surface). Throws
-/// what reading the record, generating its conformers or building a surface throws
-/// (surfcomp::Error).
+/// the sample of the file's surface (read_hsi) and its heavy atoms (LibraryEntry::surface). Adds
+/// its time to `times` when given. Throws what reading the record, generating its conformers or
+/// building a surface throws (surfcomp::Error).
 std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
-                                        const LibraryBuildOptions& options = {});
+                                        const LibraryBuildOptions& options = {},
+                                        BuildTimes* times = nullptr);
 
 /// One line of a site list: a structure and a binding site on it.
 struct SiteRequest {

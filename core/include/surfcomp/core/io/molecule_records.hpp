@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,5 +71,9 @@ Molecule read_record_molecule(const MoleculeRecord& record,
 /// SMILES record or a PQR structure.
 std::string moved_record_block(const MoleculeRecord& record, const Eigen::Matrix3d& rotation,
                                const Eigen::Vector3d& translation);
+
+/// The atom coordinates (A) of a V2000 MDL mol block, in atom order, parsed as RDKit's reader
+/// parses them; nullopt for a V3000 block or one whose counts or atom lines do not parse.
+std::optional<std::vector<Eigen::Vector3d>> mdl_coordinates(const std::string& block);
 
 }  // namespace surfcomp::io
