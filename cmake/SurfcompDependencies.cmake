@@ -6,8 +6,12 @@ set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
 find_package(CGAL 5.5 REQUIRED)
 find_package(TBB REQUIRED CONFIG)
 find_package(nlohmann_json 3 REQUIRED CONFIG)
-# Highway (Debian libhwy-dev): the SIMD kernel of the screen's first stage, dispatched at run time.
-find_package(hwy REQUIRED CONFIG)
+# Highway (Debian libhwy-dev), headers only: the SIMD kernels (the screen's first two stages, the
+# screening surface), compiled for several x86 targets and picked at run time
+# (core/detail/simd_dispatch.hpp); its library is not linked, as it calibrates a timer when loaded.
+if(NOT EXISTS /usr/include/hwy/highway.h)
+  find_path(SURFCOMP_HWY_INCLUDE hwy/highway.h REQUIRED)
+endif()
 find_package(Boost 1.74 REQUIRED COMPONENTS graph iostreams program_options)
 # cairo (Debian libcairo2-dev) draws the shape images as PNG (patch-map); it has no CMake config.
 find_package(PkgConfig REQUIRED)

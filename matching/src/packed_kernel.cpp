@@ -2,6 +2,8 @@
 // and dispatched at run time.
 #include "packed_kernel.hpp"
 
+#include "surfcomp/core/detail/simd_dispatch.hpp"
+
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "packed_kernel.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -203,15 +205,11 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace surfcomp::matching::detail {
 
-HWY_EXPORT(CrossSumsImpl);
-HWY_EXPORT(SelfSumsImpl);
-HWY_EXPORT(CrossSumsAndTargetsImpl);
-
 CrossSums cross_sums_and_targets(const CellIndex& index, const PackedSampleView& probe,
                                  const FrameTransform& transform, float sigma, float esp_pull,
                                  float lp_pull, double* targets, double* weights) {
-  return HWY_DYNAMIC_DISPATCH(CrossSumsAndTargetsImpl)(index, probe, transform, sigma, esp_pull,
-                                                       lp_pull, targets, weights);
+  return SURFCOMP_SIMD_CALL(CrossSumsAndTargetsImpl, index, probe, transform, sigma, esp_pull,
+                            lp_pull, targets, weights);
 }
 
 std::vector<float> sample_groups(const PackedSampleView& sample) {
@@ -232,11 +230,11 @@ std::vector<float> sample_groups(const PackedSampleView& sample) {
 
 CrossSums cross_sums(const CellIndex& index, const PackedSampleView& probe,
                      const FrameTransform& transform, float sigma) {
-  return HWY_DYNAMIC_DISPATCH(CrossSumsImpl)(index, probe, transform, sigma);
+  return SURFCOMP_SIMD_CALL(CrossSumsImpl, index, probe, transform, sigma);
 }
 
 CrossSums self_sums(const PackedSampleView& sample, float sigma) {
-  return HWY_DYNAMIC_DISPATCH(SelfSumsImpl)(sample, sigma);
+  return SURFCOMP_SIMD_CALL(SelfSumsImpl, sample, sigma);
 }
 
 }  // namespace surfcomp::matching::detail

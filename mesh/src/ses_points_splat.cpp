@@ -2,6 +2,8 @@
 // dispatched at run time: a row of nodes within a probe's reach is one or two vectors.
 #include "ses_points_splat.hpp"
 
+#include "surfcomp/core/detail/simd_dispatch.hpp"
+
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "ses_points_splat.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -77,11 +79,9 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace surfcomp::mesh::detail {
 
-HWY_EXPORT(SplatProbesImpl);
-
 void splat_probes(const SplatGrid& grid, const std::vector<float>& probes, double reach,
                   float* distance2, std::int32_t* owner, int* first, int* last) {
-  HWY_DYNAMIC_DISPATCH(SplatProbesImpl)(grid, probes, reach, distance2, owner, first, last);
+  SURFCOMP_SIMD_CALL(SplatProbesImpl, grid, probes, reach, distance2, owner, first, last);
 }
 
 }  // namespace surfcomp::mesh::detail
