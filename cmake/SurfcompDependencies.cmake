@@ -21,7 +21,8 @@ pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 find_package(RDKit REQUIRED)
 
 # Optional: Open MPI (Debian openmpi-bin, libopenmpi-dev) gives `surfcomp screen` its
-# multi-process path (tools/screen_mpi.cpp); without it the program runs in one process.
+# multi-process path (tools/screen_mpi.cpp, its MPI calls in the module tools/mpi_module.cpp,
+# which alone links Open MPI); without it the program runs in one process.
 find_package(MPI COMPONENTS CXX)
 
 # The system's Python 3 (Debian python3-dev, pybind11-dev): the `surfcomp` Python module and the

@@ -3,8 +3,8 @@
 // itself first, a damaged library and a SMILES list without conformers are refused with one
 // line, and a bad record is skipped and logged. Pocket libraries: a site query finds its own
 // pocket first and writes the hits' structures as PDB models; queries and libraries of the other
-// kind, and --sites with INPUTs, are refused with one line. A build interrupted by a signal
-// leaves no file behind.
+// kind, and --sites with INPUTs, are refused with one line, as is a run under MPI without the MPI
+// module. A build interrupted by a signal leaves no file behind.
 #include "pocket_cut.hpp"
 #include "test_data.hpp"
 
@@ -198,6 +198,24 @@ TEST_F(CliScreen, HitsAreTheSameUnderMpiWithOneTwoAndFourProcesses) {
               file_bytes(dir_ / "serial.csv"))
         << ranks << " processes";
   }
+#endif
+}
+
+// The program loads Open MPI (its MPI module) only under an MPI launcher, which it tells from
+// the environment; without the module it stops with one line before any work.
+TEST_F(CliScreen, MissingMpiModuleUnderMpiIsRefusedWithOneLine) {
+#ifndef SURFCOMP_MPIEXEC
+  GTEST_SKIP() << "surfcomp was built without MPI";
+#else
+  ASSERT_EQ(run("library export lib.sclib -o nompi.sdf").status, 0);
+  const ProgramRun r = run("screen nompi.sdf lib.sclib --record 1 -o nompi.csv",
+                           "SURFCOMP_MODULE_DIR=" + dir_.string() + " OMPI_COMM_WORLD_SIZE=1 ");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("MPI launcher"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("libsurfcomp_mpi.so: not found in " + dir_.string()), std::string::npos)
+      << r.err;
+  EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "nompi.csv"));
 #endif
 }
 

@@ -146,6 +146,7 @@ int screen(const std::vector<std::string>& args) {
             ? OutputFile{"--aligned-out", aligned_out, {".pdb"}, "site hits are written as PDB"}
             : OutputFile{"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"}}});
   const auto limit = limit_threads(settings.threads);
+  const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
   screening::ScreenOptions& options = settings.options;
   if (console::progress_shown()) {
     auto first = std::make_shared<console::ProgressLine>("stage 1 (fast scores)", "entries");
@@ -169,7 +170,7 @@ int screen(const std::vector<std::string>& args) {
 
   screening::ScreenResult result;
   int ranks = 1;
-  if (launched_by_mpi()) {
+  if (under_mpi) {
     DistributedScreen distributed = screen_distributed(query, library, options);
     if (!distributed.root) return 0;
     result = std::move(distributed.result);

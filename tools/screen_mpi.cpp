@@ -1,22 +1,33 @@
-// The screen over the ranks of an MPI job (see screen_mpi.hpp). Scores travel as doubles, so
-// rank 0 ranks exactly the numbers one process would have computed.
+// The screen over the ranks of an MPI job (see screen_mpi.hpp), its MPI calls made through the
+// MPI module (mpi_module.hpp). Scores travel as doubles, so rank 0 ranks exactly the numbers one
+// process would have computed.
 #include "screen_mpi.hpp"
 
+#include "mpi_module.hpp"
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/loadable_module.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 
-#include <mpi.h>
 #include <tbb/parallel_for.h>
 
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <string>
 #include <vector>
 
 namespace surfcomp::tools {
 namespace {
 
 constexpr int kDoubles = 20;  // score, shape, chem, atoms, then the 16 transform numbers
+
+/// The MPI module, loaded on the first call; throws FileError when it cannot be loaded.
+const MpiModule& mpi() {
+  static const MpiModule& module =
+      *static_cast<const MpiModule*>(module_symbol(kMpiModuleFile, kMpiModuleSymbol));
+  return module;
+}
 
 void pack(const screening::HitScore& s, double* out) {
   out[0] = s.score;
@@ -52,17 +63,17 @@ std::vector<double> gather(const std::vector<double>& local, const std::vector<i
     total += sizes[r];
   }
   std::vector<double> all(rank == 0 ? static_cast<std::size_t>(total) : 0);
-  MPI_Gatherv(local.data(), static_cast<int>(local.size()), MPI_DOUBLE, all.data(), sizes.data(),
-              displacements.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  mpi().gather_doubles(local.data(), static_cast<int>(local.size()), all.data(), sizes.data(),
+                       displacements.data());
   return all;
 }
 
 /// Rank 0's list `chosen`, sent to every rank.
 std::vector<std::uint64_t> broadcast(std::vector<std::uint64_t> chosen) {
   std::uint64_t k = chosen.size();
-  MPI_Bcast(&k, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  mpi().broadcast_uint64(&k, 1);
   chosen.resize(k);
-  MPI_Bcast(chosen.data(), static_cast<int>(k), MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  mpi().broadcast_uint64(chosen.data(), static_cast<int>(k));
   return chosen;
 }
 
@@ -170,7 +181,14 @@ DistributedScreen run(const screening::ScreenQuery& query, const screening::Libr
 
 bool launched_by_mpi() {
   for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK"}) {
-    if (std::getenv(variable) != nullptr) return true;
+    if (std::getenv(variable) == nullptr) continue;
+    try {
+      mpi();
+    } catch (const FileError& e) {
+      throw InputError(std::string("run by an MPI launcher, which needs the MPI module: ") +
+                       e.what());
+    }
+    return true;
   }
   return false;
 }
@@ -178,19 +196,16 @@ bool launched_by_mpi() {
 DistributedScreen screen_distributed(const screening::ScreenQuery& query,
                                      const screening::Library& library,
                                      const screening::ScreenOptions& options) {
-  int provided = 0;
-  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
   int rank = 0, ranks = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  mpi().init(&rank, &ranks);
   DistributedScreen result;
   try {
     result = run(query, library, options, rank, ranks);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "surfcomp screen: rank %d: error: %s\n", rank, e.what());
-    MPI_Abort(MPI_COMM_WORLD, 1);
+    mpi().abort(1);
   }
-  MPI_Finalize();
+  mpi().finalize();
   return result;
 }
 

@@ -1,5 +1,5 @@
 // The screen split over the ranks of an MPI job (tools/screen_mpi.cpp, built when MPI is found):
-// the one place of the program that sees MPI.
+// the one place of the program that calls MPI, through the MPI module it loads (mpi_module.hpp).
 #pragma once
 
 #include "surfcomp/screening/screen.hpp"
@@ -9,7 +9,9 @@
 namespace surfcomp::tools {
 
 /// Whether this build has the MPI path and this process was started by an MPI launcher
-/// (mpirun/mpiexec of Open MPI, or any PMI/PMIx launch).
+/// (mpirun/mpiexec of Open MPI, or any PMI/PMIx launch), as its environment says. When it was,
+/// also loads the MPI module, so that a missing module stops the run before its work: throws
+/// InputError naming the module and the folders tried when it cannot be loaded.
 bool launched_by_mpi();
 
 /// The result of a screen split over the ranks.
