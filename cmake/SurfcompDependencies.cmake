@@ -13,7 +13,8 @@ if(NOT EXISTS /usr/include/hwy/highway.h)
   find_path(SURFCOMP_HWY_INCLUDE hwy/highway.h REQUIRED)
 endif()
 find_package(Boost 1.74 REQUIRED COMPONENTS graph iostreams program_options)
-# cairo (Debian libcairo2-dev) draws the shape images as PNG (patch-map); it has no CMake config.
+# cairo (Debian libcairo2-dev) draws the shape images as PNG (patch-map) in the PNG module
+# (report/src/png_module.cpp), which only the module links; it has no CMake config.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 

@@ -1,17 +1,17 @@
 #include "surfcomp/report/patch_files.hpp"
 
+#include "png_module.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/loadable_module.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
-
-#include <cairo.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace surfcomp::report {
 namespace {
@@ -41,36 +41,49 @@ void check_range(double lo, double hi) {
   }
 }
 
-using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
-using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
-
-cairo_status_t write_to_stream(void* closure, const unsigned char* data, unsigned int length) {
-  auto& out = *static_cast<std::ostream*>(closure);
-  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(length));
-  return out ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+/// The PNG module, loaded on the first call; throws FileError when it cannot be loaded.
+const detail::PngModule& png_module() {
+  static const detail::PngModule& module = *static_cast<const detail::PngModule*>(
+      module_symbol(detail::kPngModuleFile, detail::kPngModuleSymbol));
+  return module;
 }
 
-/// `surface` as a PNG file at `path`, atomically.
-void write_png(cairo_surface_t* surface, const std::filesystem::path& path) {
-  cairo_surface_flush(surface);
+bool write_to_stream(void* closure, const unsigned char* data, unsigned int length) {
+  auto& out = *static_cast<std::ostream*>(closure);
+  try {
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(length));
+  } catch (...) {  // the module calls this from inside cairo, which no exception may cross
+    return false;
+  }
+  return static_cast<bool>(out);
+}
+
+/// The module's PNG, drawn by `draw(sink, closure)`, as a file at `path`, atomically.
+template <class Draw>
+void write_png(const std::filesystem::path& path, int width, int height, const Draw& draw) {
   io::write_file_atomically(path, [&](std::ostream& out) {
-    if (cairo_surface_write_to_png_stream(surface, &write_to_stream, &out) !=
-        CAIRO_STATUS_SUCCESS) {
-      throw FileError(path.string(), "cannot write the PNG image");
+    const detail::PngStatus status = draw(&write_to_stream, static_cast<void*>(&out));
+    if (status == detail::PngStatus::no_image) {
+      throw NumericError("cairo cannot make a " + std::to_string(width) + " x " +
+                         std::to_string(height) + " image");
     }
+    if (status != detail::PngStatus::ok)
+      throw FileError(path.string(), "cannot write the PNG image");
   });
 }
 
-SurfacePtr image_surface(cairo_format_t format, int width, int height) {
-  SurfacePtr surface(cairo_image_surface_create(format, width, height), &cairo_surface_destroy);
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
-    throw NumericError("cairo cannot make a " + std::to_string(width) + " x " +
-                       std::to_string(height) + " image");
-  return surface;
-}
-
-void set_colour(cairo_t* cr, const std::array<std::uint8_t, 3>& rgb) {
-  cairo_set_source_rgb(cr, rgb[0] / 255.0, rgb[1] / 255.0, rgb[2] / 255.0);
+/// Every grid point's colour, ring after ring, as RGB triples: diverging_colour of its value,
+/// light grey without one.
+std::vector<std::uint8_t> grid_colours(const harmonic::ShapeImage& image, double lo, double hi) {
+  std::vector<std::uint8_t> rgb;
+  rgb.reserve(image.valid.size() * 3);
+  for (std::size_t g = 0; g < image.valid.size(); ++g) {
+    const std::array<std::uint8_t, 3> c =
+        image.valid[g] != 0 ? diverging_colour(image.values(static_cast<Eigen::Index>(g)), lo, hi)
+                            : std::array<std::uint8_t, 3>{kNoValue, kNoValue, kNoValue};
+    rgb.insert(rgb.end(), c.begin(), c.end());
+  }
+  return rgb;
 }
 
 std::string number(double value) {
@@ -143,93 +156,42 @@ void write_image_png(const harmonic::ShapeImage& image, const std::filesystem::p
   if (options.diameter < 64 || options.diameter > 4096)
     throw OptionError("image diameter " + std::to_string(options.diameter) +
                       " pixels: expected 64 to 4096");
-  const int d = options.diameter, width = d + 140, height = d + 60;
-  const SurfacePtr surface = image_surface(CAIRO_FORMAT_ARGB32, width, height);
-  const ContextPtr context(cairo_create(surface.get()), &cairo_destroy);
-  cairo_t* cr = context.get();
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
-
-  // The disk, u to the right and v up; wedges without antialiasing keep exact colours.
-  cairo_save(cr);
-  cairo_translate(cr, 20 + d / 2.0, 20 + d / 2.0);
-  cairo_scale(cr, 1, -1);
-  cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
-  const double radius = d / 2.0, step = 2.0 * M_PI / image.sectors;
-  for (int k = 0; k < image.rings; ++k) {
-    const double r0 = radius * k / image.rings, r1 = radius * (k + 1) / image.rings;
-    for (int j = 0; j < image.sectors; ++j) {
-      const std::size_t g = static_cast<std::size_t>(k) * static_cast<std::size_t>(image.sectors) +
-                            static_cast<std::size_t>(j);
-      const double a0 = (j - 0.5) * step, a1 = (j + 0.5) * step;
-      set_colour(cr, image.valid[g] != 0
-                         ? diverging_colour(image.values(static_cast<Eigen::Index>(g)), options.lo,
-                                            options.hi)
-                         : std::array<std::uint8_t, 3>{kNoValue, kNoValue, kNoValue});
-      cairo_new_path(cr);
-      cairo_arc(cr, 0, 0, r1, a0, a1);
-      if (r0 > 0) {
-        cairo_arc_negative(cr, 0, 0, r0, a1, a0);
-      } else {
-        cairo_line_to(cr, 0, 0);
-      }
-      cairo_close_path(cr);
-      cairo_fill(cr);
-    }
+  const int d = options.diameter;
+  const std::vector<std::uint8_t> wedges = grid_colours(image, options.lo, options.hi);
+  std::vector<std::uint8_t> bar;  // lo at the bottom, hi at the top
+  bar.reserve(static_cast<std::size_t>(d) * 3);
+  for (int y = 0; y < d; ++y) {
+    const double value = options.hi - (options.hi - options.lo) * (y + 0.5) / d;
+    const std::array<std::uint8_t, 3> c = diverging_colour(value, options.lo, options.hi);
+    bar.insert(bar.end(), c.begin(), c.end());
   }
-  cairo_restore(cr);
-  cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-  cairo_set_line_width(cr, 1);
-  cairo_arc(cr, 20 + d / 2.0, 20 + d / 2.0, d / 2.0, 0, 2 * M_PI);
-  cairo_stroke(cr);
-
-  // The colour bar: lo at the bottom, hi at the top.
-  const double bar_x = d + 50, bar_top = 20, bar_height = d, bar_width = 20;
-  for (int y = 0; y < static_cast<int>(bar_height); ++y) {
-    const double value = options.hi - (options.hi - options.lo) * (y + 0.5) / bar_height;
-    set_colour(cr, diverging_colour(value, options.lo, options.hi));
-    cairo_rectangle(cr, bar_x, bar_top + y, bar_width, 1);
-    cairo_fill(cr);
-  }
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_rectangle(cr, bar_x, bar_top, bar_width, bar_height);
-  cairo_stroke(cr);
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, 13);
-  const auto label = [&](double y, const std::string& text) {
-    cairo_move_to(cr, bar_x + bar_width + 6, y + 4);
-    cairo_show_text(cr, text.c_str());
-  };
-  label(bar_top, number(options.hi));
-  label(bar_top + bar_height / 2, number((options.lo + options.hi) / 2));
-  label(bar_top + bar_height, number(options.lo));
-  cairo_move_to(cr, bar_x - 10, bar_top + bar_height + 34);
-  cairo_show_text(cr, options.label.c_str());
-  write_png(surface.get(), path);
+  const std::string hi = number(options.hi), mid = number((options.lo + options.hi) / 2),
+                    lo = number(options.lo);
+  detail::PolarPlot plot;
+  plot.rings = image.rings;
+  plot.sectors = image.sectors;
+  plot.wedge_colours = wedges.data();
+  plot.diameter = d;
+  plot.bar_colours = bar.data();
+  plot.hi_text = hi.c_str();
+  plot.mid_text = mid.c_str();
+  plot.lo_text = lo.c_str();
+  plot.caption = options.label.c_str();
+  const detail::PngModule& module = png_module();
+  write_png(path, d + 140, d + 60, [&](detail::PngSink sink, void* closure) {
+    return module.polar_plot(&plot, sink, closure);
+  });
 }
 
 void write_image_grid_png(const harmonic::ShapeImage& image, const std::filesystem::path& path,
                           double lo, double hi) {
   check_image(image);
   check_range(lo, hi);
-  const SurfacePtr surface = image_surface(CAIRO_FORMAT_RGB24, image.sectors, image.rings);
-  cairo_surface_flush(surface.get());
-  unsigned char* data = cairo_image_surface_get_data(surface.get());
-  const int stride = cairo_image_surface_get_stride(surface.get());
-  for (int k = 0; k < image.rings; ++k) {
-    auto* row = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(k) * stride);
-    for (int j = 0; j < image.sectors; ++j) {
-      const std::size_t g = static_cast<std::size_t>(k) * static_cast<std::size_t>(image.sectors) +
-                            static_cast<std::size_t>(j);
-      const std::array<std::uint8_t, 3> rgb =
-          image.valid[g] != 0 ? diverging_colour(image.values(static_cast<Eigen::Index>(g)), lo, hi)
-                              : std::array<std::uint8_t, 3>{kNoValue, kNoValue, kNoValue};
-      row[j] = 0xFF000000u | (std::uint32_t{rgb[0]} << 16) | (std::uint32_t{rgb[1]} << 8) |
-               std::uint32_t{rgb[2]};
-    }
-  }
-  cairo_surface_mark_dirty(surface.get());
-  write_png(surface.get(), path);
+  const std::vector<std::uint8_t> pixels = grid_colours(image, lo, hi);
+  const detail::PngModule& module = png_module();
+  write_png(path, image.sectors, image.rings, [&](detail::PngSink sink, void* closure) {
+    return module.pixels(image.sectors, image.rings, pixels.data(), sink, closure);
+  });
 }
 
 }  // namespace surfcomp::report

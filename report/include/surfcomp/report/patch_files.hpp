@@ -1,7 +1,9 @@
 // A critical point's patch as files that mesh-processing tools open (surfcomp patch-map): the
 // patch as Wavefront OBJ with its harmonic map as texture coordinates, the patch's vertex
 // properties as PLY, and its harmonic shape image as PNG, both as a polar plot with a colour bar
-// and as the bare rings x sectors grid. PNG files are written with cairo.
+// and as the bare rings x sectors grid. PNG files are drawn with cairo by surfcomp's PNG module,
+// libsurfcomp_png.so, loaded when the first one is written (surfcomp/core/loadable_module.hpp
+// says where it is looked for).
 #pragma once
 
 #include "surfcomp/harmonic/disk_map.hpp"
@@ -50,7 +52,8 @@ std::array<std::uint8_t, 3> diverging_colour(double value, double lo, double hi)
 /// the right), coloured by diverging_colour; grid points without a value light grey; a colour
 /// bar with its range and caption beside it. Size: diameter + 140 by diameter + 60 pixels.
 /// Throws OptionError for options outside their domains, InputError for an image whose values
-/// do not fill its grid, FileError when the file cannot be written.
+/// do not fill its grid, FileError when the PNG module cannot be loaded or the file cannot be
+/// written.
 void write_image_png(const harmonic::ShapeImage& image, const std::filesystem::path& path,
                      const ImagePngOptions& options = {});
 
