@@ -9,9 +9,7 @@ find_package(nlohmann_json 3 REQUIRED CONFIG)
 # Highway (Debian libhwy-dev), headers only: the SIMD kernels (the screen's first two stages, the
 # screening surface), compiled for several x86 targets and picked at run time
 # (core/detail/simd_dispatch.hpp); its library is not linked, as it calibrates a timer when loaded.
-if(NOT EXISTS /usr/include/hwy/highway.h)
-  find_path(SURFCOMP_HWY_INCLUDE hwy/highway.h REQUIRED)
-endif()
+find_path(SURFCOMP_HWY_INCLUDE hwy/highway.h REQUIRED)
 find_package(Boost 1.74 REQUIRED COMPONENTS graph iostreams program_options)
 # cairo (Debian libcairo2-dev) draws the shape images as PNG (patch-map) in the PNG module
 # (report/src/png_module.cpp), which only the module links; it has no CMake config.
