@@ -14,8 +14,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -224,6 +226,101 @@ std::pair<double, double> sphere_curvatures(const Eigen::MatrixX3d& positions,
   return {k, k};
 }
 
+/// The least-squares solution x (Cols) of a x = b, a being rows by Cols with rows >= Cols, by
+/// Householder QR with column pivoting as Eigen::ColPivHouseholderQR computes it: the same
+/// pivot order, the same cut-off for the pivots treated as zero and, for a rank-deficient a,
+/// the same basic solution (zero in the columns beyond the cut-off). Written out for the few
+/// columns of the curvature fits, whose tiny systems Eigen's general code solves several times
+/// slower. `a` and `b` are overwritten.
+template <int Cols, class Matrix, class Vector>
+Eigen::Matrix<double, Cols, 1> pivoted_least_squares(Matrix& a, Vector& b) {
+  const Eigen::Index rows = a.rows();
+  constexpr double epsilon = std::numeric_limits<double>::epsilon();
+  std::array<double, Cols> norm_updated{}, norm_direct{}, tau{};
+  std::array<int, Cols> order{};
+  double largest = 0.0;
+  for (int j = 0; j < Cols; ++j) {
+    norm_direct[j] = norm_updated[j] = a.col(j).norm();
+    largest = std::max(largest, norm_updated[j]);
+    order[j] = j;
+  }
+  const double zero_pivot = largest * epsilon * (largest * epsilon) / static_cast<double>(rows);
+  const double downdate_limit = std::sqrt(epsilon);
+  int pivots = Cols;
+  for (int k = 0; k < Cols; ++k) {
+    int biggest = k;
+    for (int j = k + 1; j < Cols; ++j) {
+      if (norm_updated[j] > norm_updated[biggest]) biggest = j;
+    }
+    if (pivots == Cols && norm_updated[biggest] * norm_updated[biggest] <
+                              zero_pivot * static_cast<double>(rows - k)) {
+      pivots = k;
+    }
+    if (biggest != k) {
+      a.col(k).swap(a.col(biggest));
+      std::swap(norm_updated[k], norm_updated[biggest]);
+      std::swap(norm_direct[k], norm_direct[biggest]);
+      std::swap(order[k], order[biggest]);
+    }
+    // The reflector I - tau v v^T (v = (1, essential)) that maps column k below row k - 1 to
+    // (beta, 0, ...); its essential part is stored in place of the zeros.
+    const Eigen::Index below = rows - k - 1;
+    auto essential = a.col(k).tail(below);
+    const double tail = essential.squaredNorm();
+    const double c0 = a(k, k);
+    if (tail <= std::numeric_limits<double>::min()) {
+      tau[k] = 0.0;
+      essential.setZero();
+    } else {
+      double beta = std::sqrt(c0 * c0 + tail);
+      if (c0 >= 0.0) beta = -beta;
+      essential /= c0 - beta;
+      tau[k] = (beta - c0) / beta;
+      a(k, k) = beta;
+    }
+    for (int j = k + 1; j < Cols; ++j) {
+      if (below == 0) {
+        a(k, j) *= 1.0 - tau[k];
+      } else if (tau[k] != 0.0) {
+        const double dot = essential.dot(a.col(j).tail(below)) + a(k, j);
+        a(k, j) -= tau[k] * dot;
+        a.col(j).tail(below) -= (tau[k] * dot) * essential;
+      }
+      // The norm of column j below row k, downdated (or recomputed when cancellation looms).
+      if (norm_updated[j] != 0.0) {
+        double ratio = std::abs(a(k, j)) / norm_updated[j];
+        ratio = std::max(0.0, (1.0 + ratio) * (1.0 - ratio));
+        const double relative = norm_updated[j] / norm_direct[j];
+        if (ratio * relative * relative <= downdate_limit) {
+          norm_direct[j] = norm_updated[j] = a.col(j).tail(below).norm();
+        } else {
+          norm_updated[j] *= std::sqrt(ratio);
+        }
+      }
+    }
+  }
+  // Q^T b by the first `pivots` reflectors, then back substitution in R's leading block.
+  for (int k = 0; k < pivots; ++k) {
+    const Eigen::Index below = rows - k - 1;
+    if (below == 0) {
+      b(k) *= 1.0 - tau[k];
+    } else if (tau[k] != 0.0) {
+      const auto essential = a.col(k).tail(below);
+      const double dot = essential.dot(b.tail(below)) + b(k);
+      b(k) -= tau[k] * dot;
+      b.tail(below) -= (tau[k] * dot) * essential;
+    }
+  }
+  Eigen::Matrix<double, Cols, 1> x = Eigen::Matrix<double, Cols, 1>::Zero();
+  for (int k = pivots - 1; k >= 0; --k) {
+    double sum = b(k);
+    for (int j = k + 1; j < pivots; ++j) sum -= a(k, j) * b(j);
+    b(k) = sum / a(k, k);
+  }
+  for (int k = 0; k < pivots; ++k) x(order[k]) = b(k);
+  return x;
+}
+
 /// A height function's value, gradient and Hessian at the origin of the tangent plane.
 struct HeightJet {
   double value = 0.0;
@@ -246,10 +343,15 @@ struct HeightJet {
 /// boundary neighbourhoods) g, h, i are poorly determined, so a ridge term
 /// ridge_weight * #points * ((g - (a + c) / 2)^2 + h^2 + i^2) pulls them towards the sphere's
 /// values, exact for spheres and harmless where the P columns are well determined.
-std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
-                                             const std::vector<int>& members,
-                                             const Eigen::RowVector3d& normal, int passes,
-                                             double ridge_weight) {
+/// `MaxRows` bounds the rows of the least-squares system (#members + 3), or is Eigen::Dynamic.
+template <int MaxRows>
+std::pair<double, double> quadric_fit(const Eigen::MatrixX3d& positions,
+                                      const std::vector<int>& members,
+                                      const Eigen::RowVector3d& normal, int passes,
+                                      double ridge_weight) {
+  using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, MaxRows, 1>;
+  using Design = Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::ColMajor, MaxRows, 9>;
+  using Paraboloid = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::ColMajor, MaxRows, 6>;
   const Eigen::Vector3d n = normal.transpose().normalized();
   // Tangent basis: t1 perpendicular to n and to the coordinate axis least aligned with n.
   Eigen::Index axis = 0;
@@ -258,7 +360,7 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
   const Eigen::Vector3d t2 = n.cross(t1);
   const Eigen::Vector3d origin = positions.row(members.front()).transpose();
   const auto count = static_cast<Eigen::Index>(members.size());
-  Eigen::VectorXd x(count), y(count), z(count);
+  Column x(count), y(count), z(count);
   for (Eigen::Index k = 0; k < count; ++k) {
     const Eigen::Vector3d d =
         positions.row(members[static_cast<std::size_t>(k)]).transpose() - origin;
@@ -278,13 +380,13 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
   // Three extra rows hold the ridge penalty that pulls g towards (a + c) / 2 and h, i towards 0,
   // the values of a sphere in any tangent frame.
   const double ridge = std::sqrt(ridge_weight * static_cast<double>(count));
-  Eigen::MatrixXd design = Eigen::MatrixXd::Zero(count + 3, 9);
+  Design design = Design::Zero(count + 3, 9);
   design(count, 6) = ridge;
   design(count, 0) = -0.5 * ridge;
   design(count, 2) = -0.5 * ridge;
   design(count + 1, 7) = ridge;
   design(count + 2, 8) = ridge;
-  Eigen::VectorXd target = Eigen::VectorXd::Zero(count + 3);
+  Column target = Column::Zero(count + 3);
   target.head(count) = z;
   auto rows = design.topRows(count);
   rows.col(0) = x.cwiseProduct(x);
@@ -294,17 +396,23 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
   rows.col(4) = y;
   rows.col(5).setOnes();
   // Pass 0: the paraboloid.
-  Eigen::VectorXd q = rows.leftCols(6).colPivHouseholderQr().solve(z);
-  Eigen::VectorXd predicted = rows.leftCols(6) * q;
+  Paraboloid system = rows.template leftCols<6>();
+  Column right = z;
+  Eigen::Matrix<double, 9, 1> q = Eigen::Matrix<double, 9, 1>::Zero();
+  q.head<6>() = pivoted_least_squares<6>(system, right);
+  Column predicted = rows.template leftCols<6>() * q.head<6>();
   HeightJet jet;
   jet.value = q(5);
   jet.gradient << q(3), q(4);
   jet.hessian << 2 * q(0), q(1), q(1), 2 * q(2);
+  Design work;
   for (int pass = 0; pass < passes; ++pass) {
     rows.col(6) = predicted.cwiseProduct(predicted);
     rows.col(7) = x.cwiseProduct(predicted);
     rows.col(8) = y.cwiseProduct(predicted);
-    q = design.colPivHouseholderQr().solve(target);
+    work = design;
+    right = target;
+    q = pivoted_least_squares<9>(work, right);
     predicted = rows * q;
     const double g = q(6), h = q(7), i = q(8);
     const double p0 = jet.value;
@@ -328,6 +436,23 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
   const double mean = 0.5 * shape.trace();
   const double root = std::sqrt(std::max(0.0, mean * mean - shape.determinant()));
   return {(mean + root) / scale, (mean - root) / scale};
+}
+
+/// Neighbourhoods of up to this many points are fitted in matrices of a fixed capacity, which
+/// need no heap memory and let Eigen unroll the loops over the 9 columns; larger ones (a large
+/// options.radius) in heap matrices.
+constexpr std::size_t fixed_capacity_points = 61;
+
+/// quadric_fit in matrices of a fixed capacity when `members` fits in them.
+std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
+                                             const std::vector<int>& members,
+                                             const Eigen::RowVector3d& normal, int passes,
+                                             double ridge_weight) {
+  if (members.size() <= fixed_capacity_points) {
+    return quadric_fit<static_cast<int>(fixed_capacity_points) + 3>(positions, members, normal,
+                                                                    passes, ridge_weight);
+  }
+  return quadric_fit<Eigen::Dynamic>(positions, members, normal, passes, ridge_weight);
 }
 
 }  // namespace
