@@ -3,6 +3,7 @@
 #include "surfcomp/core/error.hpp"
 
 #include <Eigen/Geometry>
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
@@ -248,6 +249,17 @@ void require_finite(const Eigen::MatrixX2d& solution, bool solved, const DiskMap
   }
 }
 
+/// Eigen's approximate minimum degree ordering of a matrix whose pattern is symmetric already,
+/// as Eigen::SimplicialLDLT hands it over (both halves filled in): Eigen::AMDOrdering would first
+/// add the transpose to the pattern, at about the cost of the ordering itself.
+struct SymmetricAmdOrdering {
+  using PermutationType = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+  void operator()(const Eigen::SparseMatrix<double>& symmetric, PermutationType& inverse) const {
+    Eigen::SparseMatrix<double> pattern = symmetric;  // the ordering works in its input
+    Eigen::internal::minimum_degree_ordering(pattern, inverse);
+  }
+};
+
 /// The solution of a symmetric positive-definite system (positive symmetric weights: every
 /// free vertex is joined to the fixed border through its edges, so the matrix is an
 /// irreducibly diagonally dominant M-matrix), by a sparse Cholesky (LDL^T) factorisation with
@@ -255,7 +267,7 @@ void require_finite(const Eigen::MatrixX2d& solution, bool solved, const DiskMap
 Eigen::MatrixX2d solve_positive_definite(const Eigen::SparseMatrix<double>& matrix,
                                          const Eigen::MatrixX2d& rhs, const DiskMapOptions& options,
                                          const char* caller) {
-  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>>
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, SymmetricAmdOrdering>
       solver(matrix);
   if (solver.info() != Eigen::Success) {
     throw NumericError(
