@@ -226,65 +226,70 @@ std::pair<double, double> sphere_curvatures(const Eigen::MatrixX3d& positions,
   return {k, k};
 }
 
-/// The least-squares solution x (Cols) of a x = b, a being rows by Cols with rows >= Cols, by
-/// Householder QR with column pivoting as Eigen::ColPivHouseholderQR computes it: the same
-/// pivot order, the same cut-off for the pivots treated as zero and, for a rank-deficient a,
-/// the same basic solution (zero in the columns beyond the cut-off). Written out for the few
-/// columns of the curvature fits, whose tiny systems Eigen's general code solves several times
-/// slower. `a` and `b` are overwritten.
-template <int Cols, class Matrix, class Vector>
-Eigen::Matrix<double, Cols, 1> pivoted_least_squares(Matrix& a, Vector& b) {
+/// A Householder QR with column pivoting of a rows by Cols matrix (rows >= Cols), computed in
+/// place as Eigen::ColPivHouseholderQR computes it: the same pivot order and the same cut-off
+/// for the pivots treated as zero. Written out for the few columns of the curvature fits, whose
+/// tiny systems Eigen's general code factorises several times slower. The matrix holds R on and
+/// above its diagonal and the reflectors' essential parts below it.
+template <int Cols>
+struct PivotedQr {
+  std::array<double, Cols> tau{};  ///< reflector k is I - tau_k v v^T, v = (1, essential)
+  std::array<int, Cols> order{};   ///< column k of the factorisation is column order[k]
+  int pivots = Cols;               ///< the leading pivots not treated as zero
+  double largest_norm = 0.0;       ///< the largest column norm before factorising
+};
+
+template <int Cols, class Matrix>
+PivotedQr<Cols> pivoted_qr(Matrix& a) {
   const Eigen::Index rows = a.rows();
   constexpr double epsilon = std::numeric_limits<double>::epsilon();
-  std::array<double, Cols> norm_updated{}, norm_direct{}, tau{};
-  std::array<int, Cols> order{};
-  double largest = 0.0;
+  PivotedQr<Cols> qr;
+  std::array<double, Cols> norm_updated{}, norm_direct{};
   for (int j = 0; j < Cols; ++j) {
     norm_direct[j] = norm_updated[j] = a.col(j).norm();
-    largest = std::max(largest, norm_updated[j]);
-    order[j] = j;
+    qr.largest_norm = std::max(qr.largest_norm, norm_updated[j]);
+    qr.order[j] = j;
   }
-  const double zero_pivot = largest * epsilon * (largest * epsilon) / static_cast<double>(rows);
+  const double zero_pivot =
+      qr.largest_norm * epsilon * (qr.largest_norm * epsilon) / static_cast<double>(rows);
   const double downdate_limit = std::sqrt(epsilon);
-  int pivots = Cols;
   for (int k = 0; k < Cols; ++k) {
     int biggest = k;
     for (int j = k + 1; j < Cols; ++j) {
       if (norm_updated[j] > norm_updated[biggest]) biggest = j;
     }
-    if (pivots == Cols && norm_updated[biggest] * norm_updated[biggest] <
-                              zero_pivot * static_cast<double>(rows - k)) {
-      pivots = k;
+    if (qr.pivots == Cols && norm_updated[biggest] * norm_updated[biggest] <
+                                 zero_pivot * static_cast<double>(rows - k)) {
+      qr.pivots = k;
     }
     if (biggest != k) {
       a.col(k).swap(a.col(biggest));
       std::swap(norm_updated[k], norm_updated[biggest]);
       std::swap(norm_direct[k], norm_direct[biggest]);
-      std::swap(order[k], order[biggest]);
+      std::swap(qr.order[k], qr.order[biggest]);
     }
-    // The reflector I - tau v v^T (v = (1, essential)) that maps column k below row k - 1 to
-    // (beta, 0, ...); its essential part is stored in place of the zeros.
+    // The reflector that maps column k below row k - 1 to (beta, 0, ...).
     const Eigen::Index below = rows - k - 1;
     auto essential = a.col(k).tail(below);
     const double tail = essential.squaredNorm();
     const double c0 = a(k, k);
     if (tail <= std::numeric_limits<double>::min()) {
-      tau[k] = 0.0;
+      qr.tau[k] = 0.0;
       essential.setZero();
     } else {
       double beta = std::sqrt(c0 * c0 + tail);
       if (c0 >= 0.0) beta = -beta;
       essential /= c0 - beta;
-      tau[k] = (beta - c0) / beta;
+      qr.tau[k] = (beta - c0) / beta;
       a(k, k) = beta;
     }
     for (int j = k + 1; j < Cols; ++j) {
       if (below == 0) {
-        a(k, j) *= 1.0 - tau[k];
-      } else if (tau[k] != 0.0) {
+        a(k, j) *= 1.0 - qr.tau[k];
+      } else if (qr.tau[k] != 0.0) {
         const double dot = essential.dot(a.col(j).tail(below)) + a(k, j);
-        a(k, j) -= tau[k] * dot;
-        a.col(j).tail(below) -= (tau[k] * dot) * essential;
+        a(k, j) -= qr.tau[k] * dot;
+        a.col(j).tail(below) -= (qr.tau[k] * dot) * essential;
       }
       // The norm of column j below row k, downdated (or recomputed when cancellation looms).
       if (norm_updated[j] != 0.0) {
@@ -299,26 +304,60 @@ Eigen::Matrix<double, Cols, 1> pivoted_least_squares(Matrix& a, Vector& b) {
       }
     }
   }
-  // Q^T b by the first `pivots` reflectors, then back substitution in R's leading block.
-  for (int k = 0; k < pivots; ++k) {
+  return qr;
+}
+
+/// Applies the first `count` reflectors of `qr` (factorised in `a`) to column `b`: Q^T b.
+template <int Cols, class Matrix, class Vector>
+void apply_reflectors(const Matrix& a, const PivotedQr<Cols>& qr, int count, Vector&& b) {
+  const Eigen::Index rows = a.rows();
+  for (int k = 0; k < count; ++k) {
     const Eigen::Index below = rows - k - 1;
     if (below == 0) {
-      b(k) *= 1.0 - tau[k];
-    } else if (tau[k] != 0.0) {
+      b(k) *= 1.0 - qr.tau[k];
+    } else if (qr.tau[k] != 0.0) {
       const auto essential = a.col(k).tail(below);
       const double dot = essential.dot(b.tail(below)) + b(k);
-      b(k) -= tau[k] * dot;
-      b.tail(below) -= (tau[k] * dot) * essential;
+      b(k) -= qr.tau[k] * dot;
+      b.tail(below) -= (qr.tau[k] * dot) * essential;
     }
   }
-  Eigen::Matrix<double, Cols, 1> x = Eigen::Matrix<double, Cols, 1>::Zero();
-  for (int k = pivots - 1; k >= 0; --k) {
-    double sum = b(k);
-    for (int j = k + 1; j < pivots; ++j) sum -= a(k, j) * b(j);
-    b(k) = sum / a(k, k);
+}
+
+/// The solution x of R x = c over the first qr.pivots pivots (zero in the other columns), in
+/// the original column order; `c` holds Q^T b in its first qr.pivots entries.
+template <int Cols, class Matrix>
+Eigen::Matrix<double, Cols, 1> back_substitute(const Matrix& a, const PivotedQr<Cols>& qr,
+                                               Eigen::Matrix<double, Cols, 1> c) {
+  for (int k = qr.pivots - 1; k >= 0; --k) {
+    double sum = c(k);
+    for (int j = k + 1; j < qr.pivots; ++j) sum -= a(k, j) * c(j);
+    c(k) = sum / a(k, k);
   }
-  for (int k = 0; k < pivots; ++k) x(order[k]) = b(k);
+  Eigen::Matrix<double, Cols, 1> x = Eigen::Matrix<double, Cols, 1>::Zero();
+  for (int k = 0; k < qr.pivots; ++k) x(qr.order[k]) = c(k);
   return x;
+}
+
+/// The least-squares solution of a x = b as Eigen::ColPivHouseholderQR solves it (for a
+/// rank-deficient a, the same basic solution). `a` and `b` are overwritten.
+template <int Cols, class Matrix, class Vector>
+Eigen::Matrix<double, Cols, 1> pivoted_least_squares(Matrix& a, Vector& b) {
+  const PivotedQr<Cols> qr = pivoted_qr<Cols>(a);
+  apply_reflectors(a, qr, qr.pivots, b);
+  return back_substitute<Cols>(a, qr, b.template head<Cols>());
+}
+
+/// True when the factorisation has all its pivots and none below 1e-7 of its largest column
+/// norm: far from the cut-off of rank-deficient systems, where a solution assembled from the
+/// factors of two column blocks equals the pivoted QR's of the whole to rounding.
+template <int Cols, class Matrix>
+bool well_conditioned(const Matrix& a, const PivotedQr<Cols>& qr) {
+  if (qr.pivots < Cols || !(qr.largest_norm > 0.0)) return false;
+  for (int k = 0; k < Cols; ++k) {
+    if (!(std::abs(a(k, k)) > 1e-7 * qr.largest_norm)) return false;
+  }
+  return true;
 }
 
 /// A height function's value, gradient and Hessian at the origin of the tangent plane.
@@ -405,14 +444,48 @@ std::pair<double, double> quadric_fit(const Eigen::MatrixX3d& positions,
   jet.value = q(5);
   jet.gradient << q(3), q(4);
   jet.hessian << 2 * q(0), q(1), q(1), 2 * q(2);
+  // Every pass solves [A | B] (g, h, i) = target for the same first six columns A (the
+  // paraboloid's and the first ridge row) and new columns B (P^2, xP, yP and the ridge rows).
+  // A is factorised once; a pass applies its reflectors to B and the target and factorises
+  // the three columns left. When either block is near rank deficiency, the pass solves the
+  // whole system as one pivoted QR instead, whose basic solution the blocks would not give.
+  using Block = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::ColMajor, MaxRows, 6>;
+  using Rest = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::ColMajor, MaxRows, 3>;
+  Block first_block = design.template leftCols<6>();
+  const PivotedQr<6> first_qr = pivoted_qr<6>(first_block);
+  const bool first_well = well_conditioned(first_block, first_qr);
+  Column rotated_target = target;  // Q^T target, the same in every pass
+  if (first_well) apply_reflectors(first_block, first_qr, 6, rotated_target);
+  Rest rest(count + 3, 3);
   Design work;
   for (int pass = 0; pass < passes; ++pass) {
     rows.col(6) = predicted.cwiseProduct(predicted);
     rows.col(7) = x.cwiseProduct(predicted);
     rows.col(8) = y.cwiseProduct(predicted);
-    work = design;
-    right = target;
-    q = pivoted_least_squares<9>(work, right);
+    bool solved = false;
+    if (first_well) {
+      rest = design.template rightCols<3>();
+      for (int c = 0; c < 3; ++c) apply_reflectors(first_block, first_qr, 6, rest.col(c));
+      Rest second = rest.bottomRows(count - 3);
+      const PivotedQr<3> second_qr = pivoted_qr<3>(second);
+      if (well_conditioned(second, second_qr)) {
+        Column lower = rotated_target.tail(count - 3);
+        apply_reflectors(second, second_qr, 3, lower);
+        const Eigen::Vector3d tail =
+            back_substitute<3>(second, second_qr, lower.template head<3>());
+        // R12 holds B's first six rows in the factorisation's column order of A.
+        Eigen::Matrix<double, 6, 1> upper = rotated_target.template head<6>();
+        upper -= rest.template topRows<6>() * tail;
+        q.head<6>() = back_substitute<6>(first_block, first_qr, upper);
+        q.tail<3>() = tail;
+        solved = true;
+      }
+    }
+    if (!solved) {
+      work = design;
+      right = target;
+      q = pivoted_least_squares<9>(work, right);
+    }
     predicted = rows * q;
     const double g = q(6), h = q(7), i = q(8);
     const double p0 = jet.value;
