@@ -82,10 +82,19 @@ Surface isotropic_remesh(const Surface& input, double target_edge_length, int it
   if (input.n_faces() == 0)
     throw TopologyError(input.source() + ": nothing to remesh (no triangles)");
   CgalMesh mesh = to_cgal(input);
-  CGAL::Polygon_mesh_processing::isotropic_remeshing(
-      faces(mesh), target_edge_length, mesh,
-      CGAL::parameters::number_of_iterations(static_cast<unsigned int>(iterations))
-          .do_project(project_to_input));
+  const auto rounds = static_cast<unsigned int>(iterations);
+  if (project_to_input) {
+    CGAL::Polygon_mesh_processing::isotropic_remeshing(
+        faces(mesh), target_edge_length, mesh, CGAL::parameters::number_of_iterations(rounds));
+  } else {
+    // CGAL builds an AABB tree of the input for its default projection even when projection is
+    // off; a projection of our own (never called) spares the tree. The result is the same.
+    const auto unused_projection = [&mesh](CgalMesh::Vertex_index v) { return mesh.point(v); };
+    CGAL::Polygon_mesh_processing::isotropic_remeshing(
+        faces(mesh), target_edge_length, mesh,
+        CGAL::parameters::number_of_iterations(rounds).do_project(false).projection_functor(
+            unused_projection));
+  }
   return from_cgal(mesh, input.source());
 }
 
