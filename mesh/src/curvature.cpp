@@ -324,6 +324,32 @@ void apply_reflectors(const Matrix& a, const PivotedQr<Cols>& qr, int count, Vec
   }
 }
 
+/// apply_reflectors to every column of `b` (rows by Columns, column-major) at once: one sweep
+/// over the rows per reflector for all the dot products, one for all the updates.
+template <int Cols, int Columns, class Matrix, class Block>
+void apply_reflectors_to_columns(const Matrix& a, const PivotedQr<Cols>& qr, int count, Block&& b) {
+  const Eigen::Index rows = a.rows();
+  for (int k = 0; k < count; ++k) {
+    if (rows - k == 1) {
+      b.row(k) *= 1.0 - qr.tau[k];
+      continue;
+    }
+    if (qr.tau[k] == 0.0) continue;
+    const double* essential = a.col(k).data();
+    std::array<double, Columns> dot{};
+    for (Eigen::Index i = k + 1; i < rows; ++i) {
+      for (int c = 0; c < Columns; ++c) dot[c] += essential[i] * b(i, c);
+    }
+    for (int c = 0; c < Columns; ++c) {
+      dot[c] = qr.tau[k] * (dot[c] + b(k, c));
+      b(k, c) -= dot[c];
+    }
+    for (Eigen::Index i = k + 1; i < rows; ++i) {
+      for (int c = 0; c < Columns; ++c) b(i, c) -= dot[c] * essential[i];
+    }
+  }
+}
+
 /// The solution x of R x = c over the first qr.pivots pivots (zero in the other columns), in
 /// the original column order; `c` holds Q^T b in its first qr.pivots entries.
 template <int Cols, class Matrix>
@@ -436,26 +462,63 @@ std::pair<double, double> quadric_fit(const Eigen::MatrixX3d& positions,
   rows.col(5).setOnes();
   // Pass 0: the paraboloid.
   Paraboloid system = rows.template leftCols<6>();
+  const PivotedQr<6> first_qr = pivoted_qr<6>(system);
   Column right = z;
+  apply_reflectors(system, first_qr, first_qr.pivots, right);
   Eigen::Matrix<double, 9, 1> q = Eigen::Matrix<double, 9, 1>::Zero();
-  q.head<6>() = pivoted_least_squares<6>(system, right);
+  q.head<6>() = back_substitute<6>(system, first_qr, right.template head<6>());
   Column predicted = rows.template leftCols<6>() * q.head<6>();
   HeightJet jet;
   jet.value = q(5);
   jet.gradient << q(3), q(4);
   jet.hessian << 2 * q(0), q(1), q(1), 2 * q(2);
   // Every pass solves [A | B] (g, h, i) = target for the same first six columns A (the
-  // paraboloid's and the first ridge row) and new columns B (P^2, xP, yP and the ridge rows).
-  // A is factorised once; a pass applies its reflectors to B and the target and factorises
-  // the three columns left. When either block is near rank deficiency, the pass solves the
-  // whole system as one pivoted QR instead, whose basic solution the blocks would not give.
-  using Block = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::ColMajor, MaxRows, 6>;
+  // paraboloid's, with the first ridge row below) and new columns B (P^2, xP, yP and the ridge
+  // rows). A's factorisation is pass 0's with the ridge row rotated into its R (Givens
+  // rotations); a pass applies A's Q^T to B and factorises the three columns left. When either
+  // block is near rank deficiency, the pass solves the whole system as one pivoted QR instead,
+  // whose basic solution the blocks would not give.
   using Rest = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::ColMajor, MaxRows, 3>;
-  Block first_block = design.template leftCols<6>();
-  const PivotedQr<6> first_qr = pivoted_qr<6>(first_block);
-  const bool first_well = well_conditioned(first_block, first_qr);
+  Eigen::Matrix<double, 6, 6> upper_r = system.template topRows<6>();
+  upper_r.template triangularView<Eigen::StrictlyLower>().setZero();
+  std::array<double, 6> cosine{}, sine{};
+  double first_largest = 0.0;  // the largest column norm of [A; ridge row]
+  {
+    Eigen::Matrix<double, 6, 1> ridge_row;
+    for (int k = 0; k < 6; ++k) {
+      const int column = first_qr.order[static_cast<std::size_t>(k)];
+      ridge_row(k) = design(count, column);
+      first_largest = std::max(first_largest, std::hypot(rows.col(column).norm(), ridge_row(k)));
+    }
+    for (int k = 0; k < 6; ++k) {
+      const double a = upper_r(k, k), b = ridge_row(k);
+      const double length = std::hypot(a, b);
+      cosine[k] = length > 0.0 ? a / length : 1.0;
+      sine[k] = length > 0.0 ? b / length : 0.0;
+      for (int j = k; j < 6; ++j) {
+        const double top = upper_r(k, j), bottom = ridge_row(j);
+        upper_r(k, j) = cosine[k] * top + sine[k] * bottom;
+        ridge_row(j) = cosine[k] * bottom - sine[k] * top;
+      }
+    }
+  }
+  PivotedQr<6> first_r = first_qr;  // R of [A; ridge row], in pass 0's column order
+  first_r.largest_norm = first_largest;
+  const bool first_well = first_qr.pivots == 6 && well_conditioned(upper_r, first_r);
+  // Q^T of [A; ridge row] on the rows of a column: pass 0's reflectors on the data rows, then
+  // the rotations between each of the first six rows and the ridge row.
+  const auto rotate = [&](auto&& column) {
+    for (int k = 0; k < 6; ++k) {
+      const double top = column(k), bottom = column(count);
+      column(k) = cosine[k] * top + sine[k] * bottom;
+      column(count) = cosine[k] * bottom - sine[k] * top;
+    }
+  };
   Column rotated_target = target;  // Q^T target, the same in every pass
-  if (first_well) apply_reflectors(first_block, first_qr, 6, rotated_target);
+  if (first_well) {
+    apply_reflectors(system, first_qr, 6, rotated_target.head(count));
+    rotate(rotated_target);
+  }
   Rest rest(count + 3, 3);
   Design work;
   for (int pass = 0; pass < passes; ++pass) {
@@ -465,7 +528,8 @@ std::pair<double, double> quadric_fit(const Eigen::MatrixX3d& positions,
     bool solved = false;
     if (first_well) {
       rest = design.template rightCols<3>();
-      for (int c = 0; c < 3; ++c) apply_reflectors(first_block, first_qr, 6, rest.col(c));
+      apply_reflectors_to_columns<6, 3>(system, first_qr, 6, rest.topRows(count));
+      for (int c = 0; c < 3; ++c) rotate(rest.col(c));
       Rest second = rest.bottomRows(count - 3);
       const PivotedQr<3> second_qr = pivoted_qr<3>(second);
       if (well_conditioned(second, second_qr)) {
@@ -476,7 +540,7 @@ std::pair<double, double> quadric_fit(const Eigen::MatrixX3d& positions,
         // R12 holds B's first six rows in the factorisation's column order of A.
         Eigen::Matrix<double, 6, 1> upper = rotated_target.template head<6>();
         upper -= rest.template topRows<6>() * tail;
-        q.head<6>() = back_substitute<6>(first_block, first_qr, upper);
+        q.head<6>() = back_substitute<6>(upper_r, first_r, upper);
         q.tail<3>() = tail;
         solved = true;
       }
