@@ -31,8 +31,10 @@ CgalMesh to_cgal(const Surface& surface) {
     const auto& p = in.point(v);
     handles.push_back(out.add_vertex(Kernel::Point_3(p[0], p[1], p[2])));
   }
+  std::vector<CgalMesh::Vertex_index> tri;
+  tri.reserve(3);
   for (auto f : in.faces()) {
-    std::vector<CgalMesh::Vertex_index> tri;
+    tri.clear();
     for (auto v : in.fv_range(f)) tri.push_back(handles[static_cast<std::size_t>(v.idx())]);
     if (out.add_face(tri) == CgalMesh::null_face()) {
       throw TopologyError(surface.source() + ": triangle " + std::to_string(f.idx()) +
