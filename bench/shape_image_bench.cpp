@@ -1,4 +1,4 @@
-// Harmonic shape images (METHOD section 4): building one image (AABB tree over the embedded
+// Harmonic shape images (METHOD section 4): building one image (a grid over the embedded
 // triangles + 16 x 180 point queries) from a patch of about 170 vertices, preparing it for
 // comparison (per-ring FFTs), and comparing two images over all 180 rotations, beside a direct
 // evaluation of the same correlations measured in the same run. Target: one comparison over
@@ -254,9 +254,8 @@ int main(int argc, char** argv) {
       "its image has %d of 2880 points valid, %d of 16 rings full\n",
       static_cast<long long>(patch().uv.rows()), static_cast<long long>(patch().faces.rows()),
       cap_valid, cap_full_rings);
-  std::printf(
-      "build one image (AABB tree + 2880 queries): %.1f us; prepare it for comparison: %.1f us\n",
-      time("build_image/cap"), time("prepare_image/cap"));
+  std::printf("build one image (2880 point queries): %.1f us; prepare it for comparison: %.1f us\n",
+              time("build_image/cap"), time("prepare_image/cap"));
   std::printf("compare two prepared images over 180 rotations (target <= 20 us):\n");
   for (const char* name :
        {"compare_prepared/full_masks", "compare_prepared/cap", "compare_prepared/random_masks"}) {

@@ -1,12 +1,10 @@
-// Harmonic shape images: resampling on a polar grid with CGAL's AABB tree, and comparison over
-// all rotations by per-ring circular cross-correlations computed with FFTs (Eigen's kissfft).
+// Harmonic shape images: resampling on a polar grid (triangles found through a grid of their
+// bounding boxes, CGAL's exact orientation tests), and comparison over all rotations by
+// per-ring circular cross-correlations computed with FFTs (Eigen's kissfft).
 #include "surfcomp/harmonic/shape_image.hpp"
 
 #include "surfcomp/core/error.hpp"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <unsupported/Eigen/FFT>
 
@@ -16,7 +14,6 @@
 #include <complex>
 #include <iterator>
 #include <limits>
-#include <map>
 #include <string>
 #include <utility>
 
@@ -24,9 +21,6 @@ namespace surfcomp::harmonic {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Triangles = std::vector<Kernel::Triangle_3>;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 constexpr double kPi = 3.14159265358979323846;
 /// A weighted variance below this times the image's mean square value counts as zero: a
@@ -60,6 +54,71 @@ Eigen::FFT<double>& thread_fft() {
   }();
   return fft;
 }
+
+/// Plane triangles listed in the cells of a uniform grid over their common bounding box, each
+/// in every cell its own bounding box overlaps: a cell lists every triangle that may contain a
+/// point of it, by increasing index.
+class TriangleBins {
+ public:
+  /// `boxes`: per triangle its x min, x max, y min, y max.
+  explicit TriangleBins(const std::vector<std::array<double, 4>>& boxes) {
+    lo_ = {boxes[0][0], boxes[0][2]};
+    hi_ = {boxes[0][1], boxes[0][3]};
+    for (const auto& b : boxes) {
+      lo_ = {std::min(lo_[0], b[0]), std::min(lo_[1], b[2])};
+      hi_ = {std::max(hi_[0], b[1]), std::max(hi_[1], b[3])};
+    }
+    // About two triangles per cell.
+    side_ = std::max(
+        1, static_cast<int>(std::ceil(std::sqrt(0.5 * static_cast<double>(boxes.size())))));
+    for (int axis = 0; axis < 2; ++axis) {
+      inverse_[axis] = hi_[axis] > lo_[axis] ? side_ / (hi_[axis] - lo_[axis]) : 0.0;
+    }
+    offsets_.assign(static_cast<std::size_t>(side_) * side_ + 1, 0);
+    std::vector<std::array<int, 4>> ranges(boxes.size());  // first and last cell along x, y
+    for (std::size_t t = 0; t < boxes.size(); ++t) {
+      const auto& b = boxes[t];
+      ranges[t] = {cell(b[0], 0), cell(b[1], 0), cell(b[2], 1), cell(b[3], 1)};
+      for (int i = ranges[t][0]; i <= ranges[t][1]; ++i) {
+        for (int j = ranges[t][2]; j <= ranges[t][3]; ++j) ++offsets_[i * side_ + j + 1];
+      }
+    }
+    for (std::size_t c = 1; c < offsets_.size(); ++c) offsets_[c] += offsets_[c - 1];
+    listed_.resize(static_cast<std::size_t>(offsets_.back()));
+    std::vector<int> fill(offsets_.begin(), offsets_.end() - 1);
+    for (std::size_t t = 0; t < boxes.size(); ++t) {
+      for (int i = ranges[t][0]; i <= ranges[t][1]; ++i) {
+        for (int j = ranges[t][2]; j <= ranges[t][3]; ++j) {
+          listed_[static_cast<std::size_t>(fill[i * side_ + j]++)] = static_cast<int>(t);
+        }
+      }
+    }
+  }
+
+  /// Calls visit(t) for the triangles listed in the cell of q, by increasing index, until visit
+  /// returns true; nothing when q lies outside the bounding box.
+  template <class Visit>
+  void for_each_candidate(double x, double y, Visit&& visit) const {
+    if (!(x >= lo_[0] && x <= hi_[0] && y >= lo_[1] && y <= hi_[1])) return;
+    const int c = cell(x, 0) * side_ + cell(y, 1);
+    for (int k = offsets_[c]; k < offsets_[c + 1]; ++k) {
+      if (visit(listed_[static_cast<std::size_t>(k)])) return;
+    }
+  }
+
+ private:
+  /// The cell along `axis` holding coordinate v, clamped to the grid; non-decreasing in v, so
+  /// a point inside a box falls between the cells of the box's ends.
+  int cell(double v, int axis) const {
+    const double c = std::floor((v - lo_[axis]) * inverse_[axis]);
+    return static_cast<int>(std::clamp(c, 0.0, static_cast<double>(side_ - 1)));
+  }
+
+  std::array<double, 2> lo_{}, hi_{}, inverse_{};
+  int side_ = 1;
+  std::vector<int> offsets_;  ///< cell c lists listed_[offsets_[c] .. offsets_[c + 1])
+  std::vector<int> listed_;
+};
 
 }  // namespace
 
@@ -108,10 +167,8 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
   }
 
   // The triangles of non-zero area, in face order; triangle_face maps them back to faces.
-  Triangles triangles;
   std::vector<std::array<Kernel::Point_2, 3>> corners;
   std::vector<int> triangle_face;
-  triangles.reserve(static_cast<std::size_t>(faces.rows()));
   corners.reserve(static_cast<std::size_t>(faces.rows()));
   triangle_face.reserve(static_cast<std::size_t>(faces.rows()));
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
@@ -121,18 +178,32 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
       c[k] = Kernel::Point_2(uv(v, 0), uv(v, 1));
     }
     if (CGAL::collinear(c[0], c[1], c[2])) continue;
-    triangles.emplace_back(Kernel::Point_3(c[0].x(), c[0].y(), 0.0),
-                           Kernel::Point_3(c[1].x(), c[1].y(), 0.0),
-                           Kernel::Point_3(c[2].x(), c[2].y(), 0.0));
     corners.push_back(c);
     triangle_face.push_back(static_cast<int>(f));
   }
-  // True when q lies strictly inside triangle t (not on its edges), by exact orientation tests.
-  auto strictly_inside = [&](std::size_t t, const Kernel::Point_2& q) {
+  const std::size_t triangles = corners.size();
+  // The sign of each triangle's corners' orientation, and the three orientations of q against
+  // its edges, by exact predicates.
+  std::vector<CGAL::Orientation> turn(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    turn[t] = CGAL::orientation(corners[t][0], corners[t][1], corners[t][2]);
+  }
+  auto sides = [&](std::size_t t, const Kernel::Point_2& q) {
     const auto& c = corners[t];
-    const CGAL::Orientation side = CGAL::orientation(c[0], c[1], c[2]);
-    return CGAL::orientation(c[0], c[1], q) == side && CGAL::orientation(c[1], c[2], q) == side &&
-           CGAL::orientation(c[2], c[0], q) == side;
+    return std::array<CGAL::Orientation, 3>{CGAL::orientation(c[0], c[1], q),
+                                            CGAL::orientation(c[1], c[2], q),
+                                            CGAL::orientation(c[2], c[0], q)};
+  };
+  // True when q lies strictly inside triangle t (not on its edges).
+  auto strictly_inside = [&](std::size_t t, const Kernel::Point_2& q) {
+    const auto s = sides(t, q);
+    return s[0] == turn[t] && s[1] == turn[t] && s[2] == turn[t];
+  };
+  // True when q lies in the closed triangle t: no edge has q on the other side.
+  auto contains = [&](std::size_t t, const Kernel::Point_2& q) {
+    const auto s = sides(t, q);
+    const CGAL::Orientation other = CGAL::opposite(turn[t]);
+    return s[0] != other && s[1] != other && s[2] != other;
   };
 
   const int size = options.rings * options.sectors;
@@ -143,48 +214,87 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
   image.valid.assign(static_cast<std::size_t>(size), 0);
   image.face = Eigen::VectorXi::Constant(size, -1);
   image.barycentric = Eigen::MatrixX3d::Zero(size, 3);
-  if (triangles.empty()) return image;
+  if (triangles == 0) return image;
 
-  const Tree tree(triangles.cbegin(), triangles.cend());
-  std::vector<Primitive::Id> hits;
+  // The lowest triangle containing q, or `triangles` when none does: the bins' candidates by
+  // increasing index, screened by their bounding boxes before the exact tests.
+  std::vector<std::array<double, 4>> box(triangles);  // x min, x max, y min, y max
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const auto& c = corners[t];
+    box[t] = {std::min({c[0].x(), c[1].x(), c[2].x()}), std::max({c[0].x(), c[1].x(), c[2].x()}),
+              std::min({c[0].y(), c[1].y(), c[2].y()}), std::max({c[0].y(), c[1].y(), c[2].y()})};
+  }
+  const TriangleBins bins(box);
+  auto locate = [&](const Kernel::Point_2& q) {
+    std::size_t found = triangles;
+    bins.for_each_candidate(q.x(), q.y(), [&](int index) {
+      const auto t = static_cast<std::size_t>(index);
+      const auto& b = box[t];
+      if (q.x() >= b[0] && q.x() <= b[1] && q.y() >= b[2] && q.y() <= b[3] && contains(t, q)) {
+        found = t;
+        return true;
+      }
+      return false;
+    });
+    return found;
+  };
+
   // Triangles sharing an edge (as vertex pairs): up to three neighbours per triangle, -1 where
-  // none.
-  std::vector<std::array<int, 3>> neighbour(triangles.size(), {-1, -1, -1});
+  // none. An edge's first triangle (in triangle and side order) is linked with each later one.
+  std::vector<std::array<int, 3>> neighbour(triangles, {-1, -1, -1});
   {
-    std::map<std::pair<int, int>, std::pair<int, int>> edge_owner;  // edge -> (triangle, side)
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
+    // The triangle sides grouped by their lower vertex, in triangle and side order.
+    std::vector<int> first(static_cast<std::size_t>(vertex_count) + 1, 0);
+    for (std::size_t t = 0; t < triangles; ++t) {
+      for (int side = 0; side < 3; ++side) {
+        const Eigen::Index f = triangle_face[t];
+        ++first[static_cast<std::size_t>(std::min(faces(f, side), faces(f, (side + 1) % 3))) + 1];
+      }
+    }
+    for (std::size_t v = 1; v < first.size(); ++v) first[v] += first[v - 1];
+    struct Side {
+      int high, triangle, side;
+    };
+    std::vector<Side> sides_of(static_cast<std::size_t>(first.back()));
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for (std::size_t t = 0; t < triangles; ++t) {
       const Eigen::Index f = triangle_face[t];
       for (int side = 0; side < 3; ++side) {
-        const int v0 = faces(f, side), v1 = faces(f, (side + 1) % 3);
-        const auto key = std::minmax(v0, v1);
-        const auto [it, inserted] =
-            edge_owner.emplace(key, std::make_pair(static_cast<int>(t), side));
-        if (inserted) continue;
-        neighbour[t][static_cast<std::size_t>(side)] = it->second.first;
-        neighbour[static_cast<std::size_t>(it->second.first)]
-                 [static_cast<std::size_t>(it->second.second)] = static_cast<int>(t);
+        const int a = faces(f, side), b = faces(f, (side + 1) % 3);
+        const int low = std::min(a, b), high = std::max(a, b);
+        const int begin = first[static_cast<std::size_t>(low)];
+        int& end = fill[static_cast<std::size_t>(low)];
+        for (int k = begin; k < end; ++k) {
+          const Side& owner = sides_of[static_cast<std::size_t>(k)];
+          if (owner.high != high) continue;
+          neighbour[t][static_cast<std::size_t>(side)] = owner.triangle;
+          neighbour[static_cast<std::size_t>(owner.triangle)]
+                   [static_cast<std::size_t>(owner.side)] = static_cast<int>(t);
+          break;
+        }
+        sides_of[static_cast<std::size_t>(end++)] = Side{high, static_cast<int>(t), side};
       }
     }
   }
   // Neighbouring grid points mostly fall into the same triangle or one next to it: try the
   // previous point's triangle and its edge neighbours first, and accept one only when the point
   // is strictly inside it, where no other triangle of an embedding can contain it; otherwise
-  // ask the tree.
+  // search the grid.
   // The grid's directions, computed as in image_grid_point (so the points are bit-identical).
   std::vector<Eigen::Vector2d> direction(static_cast<std::size_t>(options.sectors));
   for (int j = 0; j < options.sectors; ++j) {
     const double angle = 2.0 * kPi * j / options.sectors;
     direction[static_cast<std::size_t>(j)] = {std::cos(angle), std::sin(angle)};
   }
-  std::size_t previous = triangles.size();
+  std::size_t previous = triangles;
   for (int i = 0; i < size; ++i) {
     const int ring = i / options.sectors;
     const double radius = (ring + 0.5) / options.rings;
     const Eigen::Vector2d& d = direction[static_cast<std::size_t>(i % options.sectors)];
     const Eigen::Vector2d q(radius * d.x(), radius * d.y());
     const Kernel::Point_2 q2(q.x(), q.y());
-    std::size_t found = triangles.size();
-    if (previous < triangles.size()) {
+    std::size_t found = triangles;
+    if (previous < triangles) {
       if (strictly_inside(previous, q2)) {
         found = previous;
       } else {
@@ -196,14 +306,8 @@ ShapeImage harmonic_shape_image(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
         }
       }
     }
-    if (found == triangles.size()) {
-      hits.clear();
-      tree.all_intersected_primitives(Kernel::Point_3(q.x(), q.y(), 0.0), std::back_inserter(hits));
-      for (const Primitive::Id& hit : hits) {
-        found = std::min(found, static_cast<std::size_t>(hit - triangles.cbegin()));
-      }
-    }
-    if (found == triangles.size()) continue;
+    if (found == triangles) found = locate(q2);
+    if (found == triangles) continue;
     previous = found;
     const int face = triangle_face[found];
     const Eigen::Vector2d p0 = uv.row(faces(face, 0)).transpose();

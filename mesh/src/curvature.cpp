@@ -14,8 +14,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -224,6 +226,166 @@ std::pair<double, double> sphere_curvatures(const Eigen::MatrixX3d& positions,
   return {k, k};
 }
 
+/// A Householder QR with column pivoting of a rows by Cols matrix (rows >= Cols), computed in
+/// place as Eigen::ColPivHouseholderQR computes it: the same pivot order and the same cut-off
+/// for the pivots treated as zero. Written out for the few columns of the curvature fits, whose
+/// tiny systems Eigen's general code factorises several times slower. The matrix holds R on and
+/// above its diagonal and the reflectors' essential parts below it.
+template <int Cols>
+struct PivotedQr {
+  std::array<double, Cols> tau{};  ///< reflector k is I - tau_k v v^T, v = (1, essential)
+  std::array<int, Cols> order{};   ///< column k of the factorisation is column order[k]
+  int pivots = Cols;               ///< the leading pivots not treated as zero
+  double largest_norm = 0.0;       ///< the largest column norm before factorising
+};
+
+template <int Cols, class Matrix>
+PivotedQr<Cols> pivoted_qr(Matrix& a) {
+  const Eigen::Index rows = a.rows();
+  constexpr double epsilon = std::numeric_limits<double>::epsilon();
+  PivotedQr<Cols> qr;
+  std::array<double, Cols> norm_updated{}, norm_direct{};
+  for (int j = 0; j < Cols; ++j) {
+    norm_direct[j] = norm_updated[j] = a.col(j).norm();
+    qr.largest_norm = std::max(qr.largest_norm, norm_updated[j]);
+    qr.order[j] = j;
+  }
+  const double zero_pivot =
+      qr.largest_norm * epsilon * (qr.largest_norm * epsilon) / static_cast<double>(rows);
+  const double downdate_limit = std::sqrt(epsilon);
+  for (int k = 0; k < Cols; ++k) {
+    int biggest = k;
+    for (int j = k + 1; j < Cols; ++j) {
+      if (norm_updated[j] > norm_updated[biggest]) biggest = j;
+    }
+    if (qr.pivots == Cols && norm_updated[biggest] * norm_updated[biggest] <
+                                 zero_pivot * static_cast<double>(rows - k)) {
+      qr.pivots = k;
+    }
+    if (biggest != k) {
+      a.col(k).swap(a.col(biggest));
+      std::swap(norm_updated[k], norm_updated[biggest]);
+      std::swap(norm_direct[k], norm_direct[biggest]);
+      std::swap(qr.order[k], qr.order[biggest]);
+    }
+    // The reflector that maps column k below row k - 1 to (beta, 0, ...).
+    const Eigen::Index below = rows - k - 1;
+    auto essential = a.col(k).tail(below);
+    const double tail = essential.squaredNorm();
+    const double c0 = a(k, k);
+    if (tail <= std::numeric_limits<double>::min()) {
+      qr.tau[k] = 0.0;
+      essential.setZero();
+    } else {
+      double beta = std::sqrt(c0 * c0 + tail);
+      if (c0 >= 0.0) beta = -beta;
+      essential /= c0 - beta;
+      qr.tau[k] = (beta - c0) / beta;
+      a(k, k) = beta;
+    }
+    for (int j = k + 1; j < Cols; ++j) {
+      if (below == 0) {
+        a(k, j) *= 1.0 - qr.tau[k];
+      } else if (qr.tau[k] != 0.0) {
+        const double dot = essential.dot(a.col(j).tail(below)) + a(k, j);
+        a(k, j) -= qr.tau[k] * dot;
+        a.col(j).tail(below) -= (qr.tau[k] * dot) * essential;
+      }
+      // The norm of column j below row k, downdated (or recomputed when cancellation looms).
+      if (norm_updated[j] != 0.0) {
+        double ratio = std::abs(a(k, j)) / norm_updated[j];
+        ratio = std::max(0.0, (1.0 + ratio) * (1.0 - ratio));
+        const double relative = norm_updated[j] / norm_direct[j];
+        if (ratio * relative * relative <= downdate_limit) {
+          norm_direct[j] = norm_updated[j] = a.col(j).tail(below).norm();
+        } else {
+          norm_updated[j] *= std::sqrt(ratio);
+        }
+      }
+    }
+  }
+  return qr;
+}
+
+/// Applies the first `count` reflectors of `qr` (factorised in `a`) to column `b`: Q^T b.
+template <int Cols, class Matrix, class Vector>
+void apply_reflectors(const Matrix& a, const PivotedQr<Cols>& qr, int count, Vector&& b) {
+  const Eigen::Index rows = a.rows();
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Index below = rows - k - 1;
+    if (below == 0) {
+      b(k) *= 1.0 - qr.tau[k];
+    } else if (qr.tau[k] != 0.0) {
+      const auto essential = a.col(k).tail(below);
+      const double dot = essential.dot(b.tail(below)) + b(k);
+      b(k) -= qr.tau[k] * dot;
+      b.tail(below) -= (qr.tau[k] * dot) * essential;
+    }
+  }
+}
+
+/// apply_reflectors to every column of `b` (rows by Columns, column-major) at once: one sweep
+/// over the rows per reflector for all the dot products, one for all the updates.
+template <int Cols, int Columns, class Matrix, class Block>
+void apply_reflectors_to_columns(const Matrix& a, const PivotedQr<Cols>& qr, int count, Block&& b) {
+  const Eigen::Index rows = a.rows();
+  for (int k = 0; k < count; ++k) {
+    if (rows - k == 1) {
+      b.row(k) *= 1.0 - qr.tau[k];
+      continue;
+    }
+    if (qr.tau[k] == 0.0) continue;
+    const double* essential = a.col(k).data();
+    std::array<double, Columns> dot{};
+    for (Eigen::Index i = k + 1; i < rows; ++i) {
+      for (int c = 0; c < Columns; ++c) dot[c] += essential[i] * b(i, c);
+    }
+    for (int c = 0; c < Columns; ++c) {
+      dot[c] = qr.tau[k] * (dot[c] + b(k, c));
+      b(k, c) -= dot[c];
+    }
+    for (Eigen::Index i = k + 1; i < rows; ++i) {
+      for (int c = 0; c < Columns; ++c) b(i, c) -= dot[c] * essential[i];
+    }
+  }
+}
+
+/// The solution x of R x = c over the first qr.pivots pivots (zero in the other columns), in
+/// the original column order; `c` holds Q^T b in its first qr.pivots entries.
+template <int Cols, class Matrix>
+Eigen::Matrix<double, Cols, 1> back_substitute(const Matrix& a, const PivotedQr<Cols>& qr,
+                                               Eigen::Matrix<double, Cols, 1> c) {
+  for (int k = qr.pivots - 1; k >= 0; --k) {
+    double sum = c(k);
+    for (int j = k + 1; j < qr.pivots; ++j) sum -= a(k, j) * c(j);
+    c(k) = sum / a(k, k);
+  }
+  Eigen::Matrix<double, Cols, 1> x = Eigen::Matrix<double, Cols, 1>::Zero();
+  for (int k = 0; k < qr.pivots; ++k) x(qr.order[k]) = c(k);
+  return x;
+}
+
+/// The least-squares solution of a x = b as Eigen::ColPivHouseholderQR solves it (for a
+/// rank-deficient a, the same basic solution). `a` and `b` are overwritten.
+template <int Cols, class Matrix, class Vector>
+Eigen::Matrix<double, Cols, 1> pivoted_least_squares(Matrix& a, Vector& b) {
+  const PivotedQr<Cols> qr = pivoted_qr<Cols>(a);
+  apply_reflectors(a, qr, qr.pivots, b);
+  return back_substitute<Cols>(a, qr, b.template head<Cols>());
+}
+
+/// True when the factorisation has all its pivots and none below 1e-7 of its largest column
+/// norm: far from the cut-off of rank-deficient systems, where a solution assembled from the
+/// factors of two column blocks equals the pivoted QR's of the whole to rounding.
+template <int Cols, class Matrix>
+bool well_conditioned(const Matrix& a, const PivotedQr<Cols>& qr) {
+  if (qr.pivots < Cols || !(qr.largest_norm > 0.0)) return false;
+  for (int k = 0; k < Cols; ++k) {
+    if (!(std::abs(a(k, k)) > 1e-7 * qr.largest_norm)) return false;
+  }
+  return true;
+}
+
 /// A height function's value, gradient and Hessian at the origin of the tangent plane.
 struct HeightJet {
   double value = 0.0;
@@ -246,10 +408,15 @@ struct HeightJet {
 /// boundary neighbourhoods) g, h, i are poorly determined, so a ridge term
 /// ridge_weight * #points * ((g - (a + c) / 2)^2 + h^2 + i^2) pulls them towards the sphere's
 /// values, exact for spheres and harmless where the P columns are well determined.
-std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
-                                             const std::vector<int>& members,
-                                             const Eigen::RowVector3d& normal, int passes,
-                                             double ridge_weight) {
+/// `MaxRows` bounds the rows of the least-squares system (#members + 3), or is Eigen::Dynamic.
+template <int MaxRows>
+std::pair<double, double> quadric_fit(const Eigen::MatrixX3d& positions,
+                                      const std::vector<int>& members,
+                                      const Eigen::RowVector3d& normal, int passes,
+                                      double ridge_weight) {
+  using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, MaxRows, 1>;
+  using Design = Eigen::Matrix<double, Eigen::Dynamic, 9, Eigen::ColMajor, MaxRows, 9>;
+  using Paraboloid = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::ColMajor, MaxRows, 6>;
   const Eigen::Vector3d n = normal.transpose().normalized();
   // Tangent basis: t1 perpendicular to n and to the coordinate axis least aligned with n.
   Eigen::Index axis = 0;
@@ -258,7 +425,7 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
   const Eigen::Vector3d t2 = n.cross(t1);
   const Eigen::Vector3d origin = positions.row(members.front()).transpose();
   const auto count = static_cast<Eigen::Index>(members.size());
-  Eigen::VectorXd x(count), y(count), z(count);
+  Column x(count), y(count), z(count);
   for (Eigen::Index k = 0; k < count; ++k) {
     const Eigen::Vector3d d =
         positions.row(members[static_cast<std::size_t>(k)]).transpose() - origin;
@@ -278,13 +445,13 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
   // Three extra rows hold the ridge penalty that pulls g towards (a + c) / 2 and h, i towards 0,
   // the values of a sphere in any tangent frame.
   const double ridge = std::sqrt(ridge_weight * static_cast<double>(count));
-  Eigen::MatrixXd design = Eigen::MatrixXd::Zero(count + 3, 9);
+  Design design = Design::Zero(count + 3, 9);
   design(count, 6) = ridge;
   design(count, 0) = -0.5 * ridge;
   design(count, 2) = -0.5 * ridge;
   design(count + 1, 7) = ridge;
   design(count + 2, 8) = ridge;
-  Eigen::VectorXd target = Eigen::VectorXd::Zero(count + 3);
+  Column target = Column::Zero(count + 3);
   target.head(count) = z;
   auto rows = design.topRows(count);
   rows.col(0) = x.cwiseProduct(x);
@@ -294,17 +461,95 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
   rows.col(4) = y;
   rows.col(5).setOnes();
   // Pass 0: the paraboloid.
-  Eigen::VectorXd q = rows.leftCols(6).colPivHouseholderQr().solve(z);
-  Eigen::VectorXd predicted = rows.leftCols(6) * q;
+  Paraboloid system = rows.template leftCols<6>();
+  const PivotedQr<6> first_qr = pivoted_qr<6>(system);
+  Column right = z;
+  apply_reflectors(system, first_qr, first_qr.pivots, right);
+  Eigen::Matrix<double, 9, 1> q = Eigen::Matrix<double, 9, 1>::Zero();
+  q.head<6>() = back_substitute<6>(system, first_qr, right.template head<6>());
+  Column predicted = rows.template leftCols<6>() * q.head<6>();
   HeightJet jet;
   jet.value = q(5);
   jet.gradient << q(3), q(4);
   jet.hessian << 2 * q(0), q(1), q(1), 2 * q(2);
+  // Every pass solves [A | B] (g, h, i) = target for the same first six columns A (the
+  // paraboloid's, with the first ridge row below) and new columns B (P^2, xP, yP and the ridge
+  // rows). A's factorisation is pass 0's with the ridge row rotated into its R (Givens
+  // rotations); a pass applies A's Q^T to B and factorises the three columns left. When either
+  // block is near rank deficiency, the pass solves the whole system as one pivoted QR instead,
+  // whose basic solution the blocks would not give.
+  using Rest = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::ColMajor, MaxRows, 3>;
+  Eigen::Matrix<double, 6, 6> upper_r = system.template topRows<6>();
+  upper_r.template triangularView<Eigen::StrictlyLower>().setZero();
+  std::array<double, 6> cosine{}, sine{};
+  double first_largest = 0.0;  // the largest column norm of [A; ridge row]
+  {
+    Eigen::Matrix<double, 6, 1> ridge_row;
+    for (int k = 0; k < 6; ++k) {
+      const int column = first_qr.order[static_cast<std::size_t>(k)];
+      ridge_row(k) = design(count, column);
+      first_largest = std::max(first_largest, std::hypot(rows.col(column).norm(), ridge_row(k)));
+    }
+    for (int k = 0; k < 6; ++k) {
+      const double a = upper_r(k, k), b = ridge_row(k);
+      const double length = std::hypot(a, b);
+      cosine[k] = length > 0.0 ? a / length : 1.0;
+      sine[k] = length > 0.0 ? b / length : 0.0;
+      for (int j = k; j < 6; ++j) {
+        const double top = upper_r(k, j), bottom = ridge_row(j);
+        upper_r(k, j) = cosine[k] * top + sine[k] * bottom;
+        ridge_row(j) = cosine[k] * bottom - sine[k] * top;
+      }
+    }
+  }
+  PivotedQr<6> first_r = first_qr;  // R of [A; ridge row], in pass 0's column order
+  first_r.largest_norm = first_largest;
+  const bool first_well = first_qr.pivots == 6 && well_conditioned(upper_r, first_r);
+  // Q^T of [A; ridge row] on the rows of a column: pass 0's reflectors on the data rows, then
+  // the rotations between each of the first six rows and the ridge row.
+  const auto rotate = [&](auto&& column) {
+    for (int k = 0; k < 6; ++k) {
+      const double top = column(k), bottom = column(count);
+      column(k) = cosine[k] * top + sine[k] * bottom;
+      column(count) = cosine[k] * bottom - sine[k] * top;
+    }
+  };
+  Column rotated_target = target;  // Q^T target, the same in every pass
+  if (first_well) {
+    apply_reflectors(system, first_qr, 6, rotated_target.head(count));
+    rotate(rotated_target);
+  }
+  Rest rest(count + 3, 3);
+  Design work;
   for (int pass = 0; pass < passes; ++pass) {
     rows.col(6) = predicted.cwiseProduct(predicted);
     rows.col(7) = x.cwiseProduct(predicted);
     rows.col(8) = y.cwiseProduct(predicted);
-    q = design.colPivHouseholderQr().solve(target);
+    bool solved = false;
+    if (first_well) {
+      rest = design.template rightCols<3>();
+      apply_reflectors_to_columns<6, 3>(system, first_qr, 6, rest.topRows(count));
+      for (int c = 0; c < 3; ++c) rotate(rest.col(c));
+      Rest second = rest.bottomRows(count - 3);
+      const PivotedQr<3> second_qr = pivoted_qr<3>(second);
+      if (well_conditioned(second, second_qr)) {
+        Column lower = rotated_target.tail(count - 3);
+        apply_reflectors(second, second_qr, 3, lower);
+        const Eigen::Vector3d tail =
+            back_substitute<3>(second, second_qr, lower.template head<3>());
+        // R12 holds B's first six rows in the factorisation's column order of A.
+        Eigen::Matrix<double, 6, 1> upper = rotated_target.template head<6>();
+        upper -= rest.template topRows<6>() * tail;
+        q.head<6>() = back_substitute<6>(upper_r, first_r, upper);
+        q.tail<3>() = tail;
+        solved = true;
+      }
+    }
+    if (!solved) {
+      work = design;
+      right = target;
+      q = pivoted_least_squares<9>(work, right);
+    }
     predicted = rows * q;
     const double g = q(6), h = q(7), i = q(8);
     const double p0 = jet.value;
@@ -328,6 +573,23 @@ std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
   const double mean = 0.5 * shape.trace();
   const double root = std::sqrt(std::max(0.0, mean * mean - shape.determinant()));
   return {(mean + root) / scale, (mean - root) / scale};
+}
+
+/// Neighbourhoods of up to this many points are fitted in matrices of a fixed capacity, which
+/// need no heap memory and let Eigen unroll the loops over the 9 columns; larger ones (a large
+/// options.radius) in heap matrices.
+constexpr std::size_t fixed_capacity_points = 61;
+
+/// quadric_fit in matrices of a fixed capacity when `members` fits in them.
+std::pair<double, double> quadric_curvatures(const Eigen::MatrixX3d& positions,
+                                             const std::vector<int>& members,
+                                             const Eigen::RowVector3d& normal, int passes,
+                                             double ridge_weight) {
+  if (members.size() <= fixed_capacity_points) {
+    return quadric_fit<static_cast<int>(fixed_capacity_points) + 3>(positions, members, normal,
+                                                                    passes, ridge_weight);
+  }
+  return quadric_fit<Eigen::Dynamic>(positions, members, normal, passes, ridge_weight);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -132,6 +132,61 @@ std::vector<std::vector<int>> fans_at(const TriMesh& mesh, VertexHandle v,
   return fans;
 }
 
+/// The border loops of a patch from its border halfedges (border_halfedges), as
+/// boundary_loops describes them.
+BoundaryLoops loops_of_border(const Surface& surface,
+                              const std::vector<std::pair<int, HalfedgeHandle>>& border) {
+  const char* caller = "boundary_loops";
+  const TriMesh& mesh = tri_mesh(surface);
+  for (std::size_t i = 1; i < border.size(); ++i) {
+    if (border[i].first == border[i - 1].first) {
+      throw TopologyError(where(surface, caller) + "vertex " + std::to_string(border[i].first) +
+                          " is on the border twice (a bow-tie); refine the patch first");
+    }
+  }
+  const auto outgoing = [&border](int v) {
+    const auto it = std::lower_bound(
+        border.begin(), border.end(), v,
+        [](const std::pair<int, HalfedgeHandle>& e, int x) { return e.first < x; });
+    return static_cast<std::size_t>(it - border.begin());
+  };
+  std::vector<char> walked(border.size(), 0);
+  std::vector<std::vector<int>> loops;
+  std::vector<double> perimeters;
+  for (std::size_t start = 0; start < border.size(); ++start) {
+    if (walked[start]) continue;
+    std::vector<int> loop;
+    double perimeter = 0.0;
+    std::size_t i = start;
+    while (!walked[i]) {
+      walked[i] = 1;
+      const HalfedgeHandle h = border[i].second;
+      loop.push_back(border[i].first);
+      const VertexHandle next = mesh.to_vertex_handle(h);
+      perimeter += (mesh.point(next) - mesh.point(mesh.from_vertex_handle(h))).norm();
+      i = outgoing(next.idx());
+      // Every border vertex has exactly one outgoing border halfedge (checked above) and, on
+      // a subset of a manifold surface, exactly one incoming one, so the walk returns to start.
+    }
+    loops.push_back(std::move(loop));
+    perimeters.push_back(perimeter);
+  }
+  BoundaryLoops out;
+  if (loops.empty()) return out;
+  std::size_t outer = 0;
+  for (std::size_t i = 1; i < loops.size(); ++i) {
+    if (perimeters[i] > perimeters[outer]) outer = i;
+  }
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    if (i == outer) {
+      out.outer = std::move(loops[i]);
+    } else {
+      out.holes.push_back(std::move(loops[i]));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<int> preselect_euclidean(const Surface& surface, int center_vertex, double radius) {
@@ -203,15 +258,19 @@ std::vector<int> faces_with_three_selected(const Surface& surface,
   const TriMesh& mesh = tri_mesh(surface);
   const Membership is_selected(mesh.n_vertices(), selected);
   std::vector<int> out;
+  out.reserve(2 * selected.size());
   for (const int v : selected) {
     for (const auto f : mesh.vf_range(VertexHandle(v))) {
-      bool all = true;
-      for (const auto w : mesh.fv_range(f)) all = all && is_selected(w.idx());
-      if (all) out.push_back(f.idx());
+      // Each face once, from its lowest vertex.
+      bool all = true, lowest = true;
+      for (const auto w : mesh.fv_range(f)) {
+        all = all && is_selected(w.idx());
+        lowest = lowest && w.idx() >= v;
+      }
+      if (all && lowest) out.push_back(f.idx());
     }
   }
   std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
@@ -252,15 +311,42 @@ std::vector<int> resolve_nonmanifold_vertices(const Surface& surface,
                                               const std::vector<int>& faces) {
   check_index_list(surface, faces, surface.n_faces(), "face", "resolve_nonmanifold_vertices");
   const TriMesh& mesh = tri_mesh(surface);
-  std::vector<int> out = faces;
-  std::vector<int> vertices;
+  Membership in_out(mesh.n_faces(), faces);
+  // A vertex has as many fans as outgoing border halfedges (each fan starts at one), so only
+  // vertices with two of them need resolving. Vertices are visited in increasing order; removing
+  // a fan changes the border only at the vertices of its faces, which are looked at again when
+  // they come later in the order.
+  const auto outgoing_border = [&](VertexHandle v) {
+    int count = 0;
+    for (const auto h : mesh.voh_range(v)) {
+      const FaceHandle f = mesh.face_handle(h);
+      count += f.is_valid() && in_out(f.idx()) && is_border(mesh, h, in_out) ? 1 : 0;
+    }
+    return count;
+  };
+  std::vector<int> starts;
   for (const int f : faces) {
-    for (const auto v : mesh.fv_range(FaceHandle(f))) vertices.push_back(v.idx());
+    for (const auto h : mesh.fh_range(FaceHandle(f))) {
+      if (is_border(mesh, h, in_out)) starts.push_back(mesh.from_vertex_handle(h).idx());
+    }
   }
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  Membership in_out(mesh.n_faces(), out);
-  for (const int v : vertices) {
+  std::sort(starts.begin(), starts.end());
+  std::vector<int> pending;  // a min-heap of vertices to look at
+  for (std::size_t i = 1; i < starts.size(); ++i) {
+    if (starts[i] == starts[i - 1] && (pending.empty() || pending.back() != starts[i])) {
+      pending.push_back(starts[i]);  // ascending: already a heap
+    }
+  }
+  const auto later = std::greater<int>();
+  std::make_heap(pending.begin(), pending.end(), later);
+  bool changed = false;
+  int last = -1;
+  while (!pending.empty()) {
+    std::pop_heap(pending.begin(), pending.end(), later);
+    const int v = pending.back();
+    pending.pop_back();
+    if (v <= last) continue;  // queued twice
+    last = v;
     const auto fans = fans_at(mesh, VertexHandle(v), in_out);
     if (fans.size() < 2) continue;
     // Keep the fan with the most faces; ties go to the fan holding the lowest face index.
@@ -274,16 +360,29 @@ std::vector<int> resolve_nonmanifold_vertices(const Surface& surface,
         keep = i;
       }
     }
-    std::vector<int> removed;
     for (std::size_t i = 0; i < fans.size(); ++i) {
-      if (i != keep) removed.insert(removed.end(), fans[i].begin(), fans[i].end());
+      if (i != keep) {
+        for (const int f : fans[i]) in_out.remove(f);
+      }
     }
-    std::sort(removed.begin(), removed.end());
-    for (const int f : removed) in_out.remove(f);
-    std::vector<int> kept;
-    std::set_difference(out.begin(), out.end(), removed.begin(), removed.end(),
-                        std::back_inserter(kept));
-    out = std::move(kept);
+    changed = true;
+    for (std::size_t i = 0; i < fans.size(); ++i) {
+      if (i == keep) continue;
+      for (const int f : fans[i]) {
+        for (const auto u : mesh.fv_range(FaceHandle(f))) {
+          if (u.idx() > v && outgoing_border(u) >= 2) {
+            pending.push_back(u.idx());
+            std::push_heap(pending.begin(), pending.end(), later);
+          }
+        }
+      }
+    }
+  }
+  if (!changed) return faces;
+  std::vector<int> out;
+  out.reserve(faces.size());
+  for (const int f : faces) {
+    if (in_out(f)) out.push_back(f);
   }
   return out;
 }
@@ -331,57 +430,8 @@ PatchSelection refine_patch(const Surface& surface, PatchSelection selection, in
 }
 
 BoundaryLoops boundary_loops(const Surface& surface, const std::vector<int>& faces) {
-  const char* caller = "boundary_loops";
-  check_index_list(surface, faces, surface.n_faces(), "face", caller);
-  const TriMesh& mesh = tri_mesh(surface);
-  const auto border = border_halfedges(mesh, faces);
-  for (std::size_t i = 1; i < border.size(); ++i) {
-    if (border[i].first == border[i - 1].first) {
-      throw TopologyError(where(surface, caller) + "vertex " + std::to_string(border[i].first) +
-                          " is on the border twice (a bow-tie); refine the patch first");
-    }
-  }
-  const auto outgoing = [&border](int v) {
-    const auto it = std::lower_bound(
-        border.begin(), border.end(), v,
-        [](const std::pair<int, HalfedgeHandle>& e, int x) { return e.first < x; });
-    return static_cast<std::size_t>(it - border.begin());
-  };
-  std::vector<char> walked(border.size(), 0);
-  std::vector<std::vector<int>> loops;
-  std::vector<double> perimeters;
-  for (std::size_t start = 0; start < border.size(); ++start) {
-    if (walked[start]) continue;
-    std::vector<int> loop;
-    double perimeter = 0.0;
-    std::size_t i = start;
-    while (!walked[i]) {
-      walked[i] = 1;
-      const HalfedgeHandle h = border[i].second;
-      loop.push_back(border[i].first);
-      const VertexHandle next = mesh.to_vertex_handle(h);
-      perimeter += (mesh.point(next) - mesh.point(mesh.from_vertex_handle(h))).norm();
-      i = outgoing(next.idx());
-      // Every border vertex has exactly one outgoing border halfedge (checked above) and, on
-      // a subset of a manifold surface, exactly one incoming one, so the walk returns to start.
-    }
-    loops.push_back(std::move(loop));
-    perimeters.push_back(perimeter);
-  }
-  BoundaryLoops out;
-  if (loops.empty()) return out;
-  std::size_t outer = 0;
-  for (std::size_t i = 1; i < loops.size(); ++i) {
-    if (perimeters[i] > perimeters[outer]) outer = i;
-  }
-  for (std::size_t i = 0; i < loops.size(); ++i) {
-    if (i == outer) {
-      out.outer = std::move(loops[i]);
-    } else {
-      out.holes.push_back(std::move(loops[i]));
-    }
-  }
-  return out;
+  check_index_list(surface, faces, surface.n_faces(), "face", "boundary_loops");
+  return loops_of_border(surface, border_halfedges(tri_mesh(surface), faces));
 }
 
 Patch assemble_patch(const Surface& surface, int center_vertex, const std::vector<int>& faces,
@@ -437,7 +487,7 @@ Patch assemble_patch(const Surface& surface, int center_vertex, const std::vecto
   const long long edges =
       (3 * static_cast<long long>(faces.size()) + static_cast<long long>(border.size())) / 2;
   const long long euler = static_cast<long long>(n) - edges + static_cast<long long>(faces.size());
-  BoundaryLoops loops = boundary_loops(surface, faces);
+  BoundaryLoops loops = loops_of_border(surface, border);
   const long long n_loops =
       static_cast<long long>(loops.holes.size()) + (loops.outer.empty() ? 0 : 1);
   patch.genus = static_cast<int>((2 - euler - n_loops) / 2);

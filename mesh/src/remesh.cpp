@@ -31,8 +31,10 @@ CgalMesh to_cgal(const Surface& surface) {
     const auto& p = in.point(v);
     handles.push_back(out.add_vertex(Kernel::Point_3(p[0], p[1], p[2])));
   }
+  std::vector<CgalMesh::Vertex_index> tri;
+  tri.reserve(3);
   for (auto f : in.faces()) {
-    std::vector<CgalMesh::Vertex_index> tri;
+    tri.clear();
     for (auto v : in.fv_range(f)) tri.push_back(handles[static_cast<std::size_t>(v.idx())]);
     if (out.add_face(tri) == CgalMesh::null_face()) {
       throw TopologyError(surface.source() + ": triangle " + std::to_string(f.idx()) +
@@ -82,10 +84,19 @@ Surface isotropic_remesh(const Surface& input, double target_edge_length, int it
   if (input.n_faces() == 0)
     throw TopologyError(input.source() + ": nothing to remesh (no triangles)");
   CgalMesh mesh = to_cgal(input);
-  CGAL::Polygon_mesh_processing::isotropic_remeshing(
-      faces(mesh), target_edge_length, mesh,
-      CGAL::parameters::number_of_iterations(static_cast<unsigned int>(iterations))
-          .do_project(project_to_input));
+  const auto rounds = static_cast<unsigned int>(iterations);
+  if (project_to_input) {
+    CGAL::Polygon_mesh_processing::isotropic_remeshing(
+        faces(mesh), target_edge_length, mesh, CGAL::parameters::number_of_iterations(rounds));
+  } else {
+    // CGAL builds an AABB tree of the input for its default projection even when projection is
+    // off; a projection of our own (never called) spares the tree. The result is the same.
+    const auto unused_projection = [&mesh](CgalMesh::Vertex_index v) { return mesh.point(v); };
+    CGAL::Polygon_mesh_processing::isotropic_remeshing(
+        faces(mesh), target_edge_length, mesh,
+        CGAL::parameters::number_of_iterations(rounds).do_project(false).projection_functor(
+            unused_projection));
+  }
   return from_cgal(mesh, input.source());
 }
 

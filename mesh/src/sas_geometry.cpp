@@ -40,9 +40,14 @@ SasGeometry::SasGeometry(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
 }
 
 double SasGeometry::union_value(const Vec3& x, double limit) const {
-  thread_local Candidates candidates;
-  gather(x, 0.0, limit, candidates);
-  return union_value(x, limit, candidates);
+  // The spheres gather() would keep are those with a value below `limit`; the others cannot
+  // lower the minimum, so the spheres near x are taken as they come.
+  double best = limit;
+  spheres_.for_each_near(x, max_big_ + limit, [&](int i) {
+    const double v = (x - center(i)).norm() - radius(i);
+    if (v < best) best = v;
+  });
+  return best;
 }
 
 NearestPoint SasGeometry::nearest_boundary_point(const Vec3& x, double limit,
@@ -51,6 +56,8 @@ NearestPoint SasGeometry::nearest_boundary_point(const Vec3& x, double limit,
   best.distance = limit;
   thread_local std::vector<std::pair<double, int>> near;
   thread_local std::vector<double> gap_of;
+  thread_local std::vector<std::pair<double, int>> arcs;  ///< distance, discovery order
+  thread_local std::vector<int> arc_circles;              ///< circle of each arc found
   near.clear();
   if (gap_of.size() != centers_.size()) gap_of.assign(centers_.size(), limit_none);
   for (const int i : candidates.spheres) {
@@ -65,41 +72,68 @@ NearestPoint SasGeometry::nearest_boundary_point(const Vec3& x, double limit,
     const double length = d.norm();
     if (length == 0.0 || !exposed_sphere_[static_cast<std::size_t>(i)]) continue;
     const Vec3 p = center(i) + radius(i) / length * d;
-    if (!buried(p, neighbours_[static_cast<std::size_t>(i)], i)) {
+    if (!buried(p, i)) {
       best = NearestPoint{gap, p, Feature::sphere, i};
       break;
     }
   }
+  // The nearest SAS vertex: the first of the nearest candidates, which wins if it is nearer
+  // than the sphere point and than every exposed circle point (a circle point at the same
+  // distance comes first).
+  int vertex = -1;
+  double vertex_distance = std::numeric_limits<double>::infinity();
+  for (const int v : candidates.vertices) {
+    const double distance = (x - vertices_[static_cast<std::size_t>(v)]).norm();
+    if (distance < vertex_distance) {
+      vertex_distance = distance;
+      vertex = v;
+    }
+  }
+  // Circles can win only within the sphere point's distance (strictly) and the vertex's (ties
+  // go to the circle). Each is reached once, from the sphere with the smaller gap, a lower bound
+  // of the distance to every point on that sphere; those within reach are tried by increasing
+  // distance (ties in the order they were found), and the first whose nearest point lies on an
+  // exposed arc is the nearest circle point.
+  const auto within_reach = [&](double d) { return d < best.distance && d <= vertex_distance; };
+  arcs.clear();
+  arc_circles.clear();
   for (const auto& [gap, i] : near) {
-    if (gap >= best.distance) break;
+    if (!within_reach(gap)) break;
     for (const int c : circles_of_[static_cast<std::size_t>(i)]) {
       const Circle& circle = circles_[static_cast<std::size_t>(c)];
       const int other = circle.i == i ? circle.j : circle.i;
       const double other_gap = gap_of[static_cast<std::size_t>(other)];
-      // Visit each circle once, from the sphere with the smaller gap.
-      if (other_gap >= best.distance || other_gap < gap || (other_gap == gap && other < i))
-        continue;
+      if (!within_reach(other_gap) || other_gap < gap || (other_gap == gap && other < i)) continue;
       const Vec3 v = x - circle.center;
       const double along = v.dot(circle.normal);
-      const Vec3 radial = v - along * circle.normal;
-      const double r = radial.norm();
-      const double distance = std::hypot(along, r - circle.radius);
-      if (distance >= best.distance) continue;
-      double angle = r > 0.0 ? std::atan2(radial.dot(circle.w), radial.dot(circle.u)) : 0.0;
-      if (angle < 0.0) angle += 2.0 * M_PI;
-      if (circle.exposed_at(angle)) {
-        const Vec3 p = circle.center +
-                       circle.radius * (std::cos(angle) * circle.u + std::sin(angle) * circle.w);
-        best = NearestPoint{distance, p, Feature::circle, c};
-      }
+      const double off = (v - along * circle.normal).norm() - circle.radius;
+      // Lengths of a few A: the square root needs no guard against overflow (hypot's).
+      const double distance = std::sqrt(along * along + off * off);
+      if (!within_reach(distance)) continue;
+      arcs.emplace_back(distance, static_cast<int>(arc_circles.size()));
+      arc_circles.push_back(c);
     }
   }
   for (const auto& entry : near) gap_of[static_cast<std::size_t>(entry.second)] = limit_none;
-  for (const int v : candidates.vertices) {
-    const double distance = (x - vertices_[static_cast<std::size_t>(v)]).norm();
-    if (distance < best.distance) {
-      best = NearestPoint{distance, vertices_[static_cast<std::size_t>(v)], Feature::vertex, v};
+  std::sort(arcs.begin(), arcs.end());
+  for (const auto& [distance, found] : arcs) {
+    const int c = arc_circles[static_cast<std::size_t>(found)];
+    const Circle& circle = circles_[static_cast<std::size_t>(c)];
+    const Vec3 v = x - circle.center;
+    const Vec3 radial = v - v.dot(circle.normal) * circle.normal;
+    const double a = radial.dot(circle.u), b = radial.dot(circle.w);
+    const bool on_axis = !(radial.norm() > 0.0);  // every point of the circle is as near
+    if (on_axis ? circle.exposed_at(0.0) : circle.exposed_towards(a, b)) {
+      double angle = on_axis ? 0.0 : std::atan2(b, a);
+      if (angle < 0.0) angle += 2.0 * M_PI;
+      const Vec3 p =
+          circle.center + circle.radius * (std::cos(angle) * circle.u + std::sin(angle) * circle.w);
+      return NearestPoint{distance, p, Feature::circle, c};
     }
+  }
+  if (vertex >= 0 && vertex_distance < best.distance) {
+    best = NearestPoint{vertex_distance, vertices_[static_cast<std::size_t>(vertex)],
+                        Feature::vertex, vertex};
   }
   return best;
 }
@@ -207,13 +241,13 @@ void SasGeometry::project_to_sas(Vec3& x, double reach, Vec3& normal,
   }
 }
 
-bool SasGeometry::buried(const Vec3& p, const std::vector<int>& others, int a) const {
-  for (const int k : others) {
-    if (k == a) continue;
-    if ((p - center(k)).squaredNorm() <
-        (radius(k) - burial_tolerance) * (radius(k) - burial_tolerance)) {
-      return true;
-    }
+bool SasGeometry::buried(const Vec3& p, int i) const {
+  const auto first = static_cast<std::size_t>(burial_offsets_[static_cast<std::size_t>(i)]);
+  const auto last = static_cast<std::size_t>(burial_offsets_[static_cast<std::size_t>(i) + 1]);
+  for (std::size_t k = first; k < last; ++k) {
+    const Burial& b = burials_[k];
+    const double dx = p.x() - b.center[0], dy = p.y() - b.center[1], dz = p.z() - b.center[2];
+    if (dx * dx + dy * dy + dz * dz < b.squared_radius) return true;
   }
   return false;
 }
@@ -228,6 +262,14 @@ void SasGeometry::find_neighbours() {
       }
     });
     std::sort(neighbours_[i].begin(), neighbours_[i].end());
+  }
+  burial_offsets_.assign(1, 0);
+  for (std::size_t i = 0; i < centers_.size(); ++i) {
+    for (const int j : neighbours_[i]) {
+      const double r = radius(j) - burial_tolerance;
+      burials_.push_back(Burial{{center(j).x(), center(j).y(), center(j).z()}, r * r});
+    }
+    burial_offsets_.push_back(static_cast<int>(burials_.size()));
   }
 }
 
@@ -309,6 +351,7 @@ void SasGeometry::find_circles() {
         add_arc_end(circle, covered, cover);
       }
       if (circle.exposed.empty()) continue;
+      add_pieces(circle);
       has_exposed_circle[a] = has_exposed_circle[static_cast<std::size_t>(j)] = true;
       circles_of_[a].push_back(static_cast<int>(circles_.size()));
       circles_of_[static_cast<std::size_t>(j)].push_back(static_cast<int>(circles_.size()));
@@ -320,6 +363,20 @@ void SasGeometry::find_circles() {
     exposed_sphere_[a] = has_exposed_circle[a] || (!has_circle[a] && !contained[a]);
   }
   vertex_index_ = SpatialGrid(columns(vertices_), sphere_cell);
+}
+
+void SasGeometry::add_pieces(Circle& circle) {
+  for (const auto& [start, end] : circle.exposed) {
+    const int count = std::max(1, static_cast<int>(std::ceil((end - start) / (0.5 * M_PI))));
+    double from_u = std::cos(start), from_w = std::sin(start);
+    for (int k = 1; k <= count; ++k) {
+      const double angle = k == count ? end : start + (end - start) * k / count;
+      const double to_u = std::cos(angle), to_w = std::sin(angle);
+      circle.pieces.push_back(Circle::Piece{from_u, from_w, to_u, to_w});
+      from_u = to_u;
+      from_w = to_w;
+    }
+  }
 }
 
 void SasGeometry::add_arc_end(const Circle& circle, double angle, int k) {

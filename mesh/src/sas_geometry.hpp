@@ -162,20 +162,42 @@ class SasGeometry {
     int j;
     std::vector<std::pair<double, double>> exposed;  ///< angle intervals within [0, 2 pi]
 
+    /// The exposed intervals cut into pieces of at most a quarter turn, each by the directions
+    /// (cos, sin) of its ends in the (u, w) plane; one piece's end is the next one's start.
+    struct Piece {
+      double start_u, start_w, end_u, end_w;
+    };
+    std::vector<Piece> pieces;
+
     bool exposed_at(double angle) const {
       for (const auto& [start, end] : exposed) {
         if (angle >= start && angle <= end) return true;
       }
       return false;
     }
+
+    /// exposed_at for the angle of the in-plane direction a u + b w ((a, b) != 0), decided by
+    /// cross products with the pieces' ends instead of the angle: the same answer but within
+    /// rounding of an interval's end, without an arctangent.
+    bool exposed_towards(double a, double b) const {
+      for (const Piece& p : pieces) {
+        if (p.start_u * b - p.start_w * a >= 0.0 && a * p.end_w - b * p.end_u >= 0.0 &&
+            a * (p.start_u + p.end_u) + b * (p.start_w + p.end_w) > 0.0) {
+          return true;
+        }
+      }
+      return false;
+    }
   };
 
-  /// True when a sphere of `others` other than `a` buries p.
-  bool buried(const Vec3& p, const std::vector<int>& others, int a) const;
+  /// True when a neighbour of sphere i buries p: |p - c_k| < R_k - burial tolerance.
+  bool buried(const Vec3& p, int i) const;
   void find_neighbours();
   /// Finds every circle where two spheres meet and its exposed arcs; keeps the circles with an
   /// exposed arc, their arc ends (the SAS vertices) and which spheres keep exposed area.
   void find_circles();
+  /// Fills circle.pieces from circle.exposed.
+  static void add_pieces(Circle& circle);
   /// Records the SAS vertex at `angle` on `circle` (an end of a buried arc; 0 and 2 pi are
   /// where the angle wraps, not vertices).
   void add_arc_end(const Circle& circle, double angle, int k);
@@ -189,6 +211,14 @@ class SasGeometry {
   double max_big_ = 0.0;
   SpatialGrid spheres_;  ///< the centres, binned (reach 0)
   std::vector<std::vector<int>> neighbours_;
+  /// A neighbour's centre and squared burial radius (R_k - burial tolerance)^2, packed so that
+  /// the burial test of a sphere reads one contiguous run.
+  struct Burial {
+    std::array<double, 3> center;
+    double squared_radius;
+  };
+  std::vector<Burial> burials_;      ///< the neighbours of sphere i, each as a Burial
+  std::vector<int> burial_offsets_;  ///< sphere i's run: burials_[offsets[i] .. offsets[i + 1])
   std::vector<Circle> circles_;
   std::vector<std::vector<int>> circles_of_;
   std::vector<bool> exposed_sphere_;

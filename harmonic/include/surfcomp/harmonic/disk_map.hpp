@@ -70,8 +70,10 @@ void check_disk_map_input(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
 /// outer_boundary[k] along the walk and L the border's perimeter (so outer_boundary[0] is at
 /// (1, 0) and angles increase counter-clockwise). Every other vertex, interior or on a hole
 /// (holes are free, not pinned), solves sum_j k_ij (u_i - u_j) = 0 over its neighbours j with
-/// the spring constants of options.weights: one sparse matrix, one Eigen::SparseLU
-/// factorisation, two right-hand sides. With positive weights and no hole, the result is an
+/// the spring constants of options.weights: one sparse matrix, one factorisation, two
+/// right-hand sides. The inverse_length and uniform weights give a symmetric positive-definite
+/// matrix, factorised by Eigen::SimplicialLDLT (sparse Cholesky, AMD ordering); cotangent and
+/// mean_value by Eigen::SparseLU. With positive weights and no hole, the result is an
 /// embedding (Tutte, Floater); see count_flipped_triangles.
 ///
 /// Throws what check_disk_map_input throws; NumericError when a weight is not finite

@@ -49,11 +49,11 @@ Eigen::Vector2d image_grid_point(const ImageOptions& options, int grid_index);
 /// Resamples a per-vertex scalar (the shape index, METHOD section 0) of a patch embedded in the
 /// unit disk onto the polar grid of `options`. uv: #V by 2 embedded vertex positions (normally
 /// inside the closed unit disk); faces: #F by 3 vertex indices; values: #V. Each grid point is
-/// located in the embedded triangles with CGAL's AABB tree (the triangles placed in the z = 0
-/// plane, exact predicates, so a point on an edge shared by two triangles is never lost); when
-/// several triangles contain it (a point on a shared edge or vertex) the lowest face index is
-/// used. A grid point strictly inside the previous grid point's triangle or one of its edge
-/// neighbours is taken from there without asking the tree: the same answer for an embedding,
+/// located in the embedded triangles through a uniform grid of their bounding boxes, by CGAL's
+/// exact orientation predicates (so a point on an edge shared by two triangles is never lost);
+/// when several triangles contain it (a point on a shared edge or vertex) the lowest face index
+/// is used. A grid point strictly inside the previous grid point's triangle or one of its edge
+/// neighbours is taken from there without a search: the same answer for an embedding,
 /// where no other triangle contains such a point (if triangles overlap, uv is no embedding and
 /// that triangle wins). The value is the barycentric interpolation of the three vertex values,
 /// exact for values linear in (u, v). Triangles of zero area in uv are skipped. Timing:
