@@ -10,7 +10,7 @@
 
 namespace surfcomp::report::detail {
 
-/// The fields of the README's result-file table: reference, probe, alignments, trace,
+/// The fields of the result-file table of docs/usage.md: reference, probe, alignments, trace,
 /// timing_ms, cliques, warnings, parameters.
 nlohmann::json match_document(const matching::InputMatch& compared,
                               const matching::MatchOptions& options);

@@ -1,5 +1,5 @@
 // A match as JSON, the result file of `surfcomp match -o` (its fields are documented in the
-// README): the alignments, the graph trace, the timings, the clique search, the warnings and
+// docs/usage.md): the alignments, the graph trace, the timings, the clique search, the warnings and
 // the parameters. The HTML report embeds the same objects.
 #pragma once
 
