@@ -1,4 +1,4 @@
-// A match as JSON, the result file of `surfcomp match -o` (its fields are documented in the
+// A match as JSON, the result file of `surfcomp match -o` (its fields are documented in
 // docs/usage.md): the alignments, the graph trace, the timings, the clique search, the warnings and
 // the parameters. The HTML report embeds the same objects.
 #pragma once
