@@ -2,8 +2,7 @@
 # the six static libraries as surfcomp::core, ::mesh, ::harmonic, ::matching, ::screening and
 # ::report (with the 3Dmol.js viewer the report inlines, in share/surfcomp, when it was found),
 # their public headers, the surfcomp program and its loadable modules (lib/surfcomp/), and
-# lib/cmake/surfcomp/ with the config, its version file, the exported targets and the find
-# module for RDKit (cmake/FindRDKit.cmake).
+# lib/cmake/surfcomp/ with the config, its version file and the exported targets.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -48,5 +47,4 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/surfcompConfigVersi
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/surfcompConfig.cmake
               ${CMAKE_CURRENT_BINARY_DIR}/surfcompConfigVersion.cmake
-              ${CMAKE_CURRENT_LIST_DIR}/FindRDKit.cmake
         DESTINATION ${SURFCOMP_INSTALL_CMAKEDIR})

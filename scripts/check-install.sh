@@ -37,7 +37,11 @@ quietly cmake -S examples -B "$work/examples" -G Ninja -DCMAKE_BUILD_TYPE=RelWit
   -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_FLAGS="$sanitize" \
   -DCMAKE_EXE_LINKER_FLAGS="$sanitize"
 quietly cmake --build "$work/examples"
-"$work/examples/align_two_ligands" "$ref" "$probe" | tee "$work/align.txt"
+# The installed modules, not the build tree's: the example must run from the install alone.
+module=$(find "$work/prefix" -name libsurfcomp_rdkit.so | head -n 1)
+[[ -n "$module" ]] || { echo "check-install: the install has no libsurfcomp_rdkit.so" >&2; exit 1; }
+SURFCOMP_MODULE_DIR="$(dirname "$module")" \
+  "$work/examples/align_two_ligands" "$ref" "$probe" | tee "$work/align.txt"
 
 # The transform's first three rows follow the line "top transform"; atoms are matched by name
 # (PDB columns 13-16).

@@ -1,4 +1,6 @@
+// ETKDG + MMFF conformers through RDKit. Part of the RDKit module (rdkit_module.hpp).
 #include "surfcomp/core/conformers.hpp"
+#include "rdkit_module.hpp"
 
 #include "surfcomp/core/error.hpp"
 
@@ -69,8 +71,8 @@ std::vector<std::string> embed(const io::MoleculeRecord& record, const Conformer
 
 }  // namespace
 
-std::vector<std::string> generate_conformers(const io::MoleculeRecord& record,
-                                             const ConformerOptions& options) {
+std::vector<std::string> rdkit_generate_conformers(const io::MoleculeRecord& record,
+                                                   const ConformerOptions& options) {
   if (options.count < 1)
     throw OptionError("conformer count must be at least 1, got " + std::to_string(options.count));
   if (options.seed < 0)

@@ -1,6 +1,8 @@
-// SDF/MOL, MOL2 and PDB reading through RDKit; charges and Wildman-Crippen increments.
+// SDF/MOL, MOL2 and PDB reading through RDKit; charges and Wildman-Crippen increments. Part of
+// the RDKit module (rdkit_module.hpp); surfcomp::core reaches these through its entry points.
 #include "molecule_reader_detail.hpp"
 #include "molecule_text.hpp"
+#include "rdkit_module.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
@@ -409,8 +411,8 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& wh
 
 }  // namespace
 
-Molecule read_with_rdkit(const std::filesystem::path& path, const std::string& text,
-                         RdkitFormat format, const MoleculeReadOptions& options) {
+Molecule rdkit_read_molecule(const std::filesystem::path& path, const std::string& text,
+                             RdkitFormat format, const MoleculeReadOptions& options) {
   const RDLog::LogStateSetter quiet;  // RDKit's warnings would go to stderr
   // Every RDKit call that can fail on bad input is wrapped where it is made; this catches what
   // RDKit throws from less expected places (property casts, invariant checks) on damaged files.
@@ -418,8 +420,8 @@ Molecule read_with_rdkit(const std::filesystem::path& path, const std::string& t
                     [&]() { return read_unguarded(path, text, format, options); });
 }
 
-std::vector<double> crippen_contributions_of_pdb_block(const std::string& pdb_block,
-                                                       const std::string& source) {
+std::vector<double> rdkit_crippen_of_pdb_block(const std::string& pdb_block,
+                                               const std::string& source) {
   const RDLog::LogStateSetter quiet;
   auto mol = parse(pdb_block, RdkitFormat::pdb, source);
   if (!mol || mol->getNumAtoms() == 0) {
@@ -456,8 +458,9 @@ std::string moved_block(const std::string& text, detail::RdkitFormat format,
 
 }  // namespace
 
-std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Matrix3d& rotation,
-                            const Eigen::Vector3d& translation, std::size_t record) {
+std::string rdkit_moved_mol_block(const std::filesystem::path& input,
+                                  const Eigen::Matrix3d& rotation,
+                                  const Eigen::Vector3d& translation, std::size_t record) {
   const std::string source = input.string();
   const std::string extension = lowercase_extension(input);
   detail::RdkitFormat format;
@@ -473,8 +476,8 @@ std::string moved_mol_block(const std::filesystem::path& input, const Eigen::Mat
   return moved_block(text, format, source, rotation, translation) + "$$$$\n";
 }
 
-std::string moved_record_block(const MoleculeRecord& record, const Eigen::Matrix3d& rotation,
-                               const Eigen::Vector3d& translation) {
+std::string rdkit_moved_record_block(const MoleculeRecord& record, const Eigen::Matrix3d& rotation,
+                                     const Eigen::Vector3d& translation) {
   const std::string source = record.source.string();
   switch (record.format) {
     case RecordFormat::mdl:
