@@ -273,7 +273,7 @@ Eigen::MatrixX2d solve_positive_definite(const Eigen::SparseMatrix<double>& matr
     throw NumericError(
         factorisation_failure(caller, "sparse LDL^T", matrix.rows(), options, "not positive"));
   }
-  const Eigen::MatrixX2d solution = solver.solve(rhs);
+  Eigen::MatrixX2d solution = solver.solve(rhs);
   require_finite(solution, solver.info() == Eigen::Success, options, caller);
   return solution;
 }
@@ -288,7 +288,7 @@ Eigen::MatrixX2d solve_general(const Eigen::SparseMatrix<double>& matrix,
     throw NumericError(factorisation_failure(caller, "sparse LU", matrix.rows(), options,
                                              solver.lastErrorMessage()));
   }
-  const Eigen::MatrixX2d solution = solver.solve(rhs);
+  Eigen::MatrixX2d solution = solver.solve(rhs);
   require_finite(solution, solver.info() == Eigen::Success, options, caller);
   return solution;
 }
