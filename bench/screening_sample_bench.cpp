@@ -153,7 +153,7 @@ void report(const Molecules& set, std::size_t pairs, unsigned seed) {
 }
 
 /// The first stage's score of every molecule against each of the first few, in double precision
-/// (SurfaceOverlay sharing the query's index, as the screen scored before) and packed (single
+/// (SurfaceOverlay sharing the query's index) and packed (single
 /// precision, SIMD): their agreement and their speed.
 void first_stage(const Molecules& set) {
   const matching::OverlayOptions options;
