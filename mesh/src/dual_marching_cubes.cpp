@@ -2,11 +2,9 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <map>
 #include <numeric>
 #include <tuple>
 #include <unordered_map>
-#include <utility>
 #include <vector>
 
 namespace surfcomp::mesh::detail {
@@ -178,11 +176,49 @@ constexpr int most_loops() {
 constexpr std::size_t max_loops = 4;
 static_assert(most_loops() == max_loops, "a cell has at most four loops");
 
+/// The one ambiguous face of a cell with two or three inside corners, or -1 when it has none
+/// or several.
+constexpr int lone_ambiguous_face(std::uint8_t inside) {
+  int inside_corners = 0;
+  for (int c = 0; c < 8; ++c) inside_corners += is_inside(inside, c) ? 1 : 0;
+  if (inside_corners < 2 || inside_corners > 3) return -1;
+  int face = -1;
+  for (int f = 0; f < 6; ++f) {
+    if (face_segments(inside, f).count != 2) continue;
+    if (face >= 0) return -1;
+    face = f;
+  }
+  return face;
+}
+
+constexpr std::array<int, 256> make_lone_face_table() {
+  std::array<int, 256> table{};
+  for (int inside = 0; inside < 256; ++inside) {
+    table[static_cast<std::size_t>(inside)] =
+        lone_ambiguous_face(static_cast<std::uint8_t>(inside));
+  }
+  return table;
+}
+
+constexpr std::array<int, 256> lone_face_table = make_lone_face_table();
+
+constexpr int lone_face_patterns() {
+  int count = 0;
+  for (const int face : lone_face_table) count += face >= 0 ? 1 : 0;
+  return count;
+}
+
+/// Twelve patterns of two inside corners on a face diagonal, 24 with a third inside corner that
+/// leaves the face the only ambiguous one: the 36 of OpenVDB's table of such patterns.
+static_assert(lone_face_patterns() == 36, "36 patterns have one ambiguous face");
+
 /// A cell the surface passes through.
 struct ActiveCell {
   GridCoord coord;
-  std::uint8_t inside = 0;  ///< its sign pattern (cell_table)
-  int first_vertex = 0;     ///< its loops' vertices are first_vertex + loop
+  std::uint8_t inside = 0;    ///< its sign pattern
+  std::uint8_t topology = 0;  ///< the pattern whose cell_table entry it takes (see cut_faces)
+  int first_vertex = 0;       ///< its loops' vertices are first_vertex + loop
+  std::array<float, 8> values{};
 };
 
 /// The crossing point (index space) on edge e of the cell at `coord` with corner values `v`.
@@ -217,6 +253,7 @@ class CellIndex {
   }
 
   const std::vector<ActiveCell>& cells() const { return cells_; }
+  std::vector<ActiveCell>& cells() { return cells_; }
 
  private:
   static std::size_t slot(const GridCoord& local) {
@@ -246,9 +283,8 @@ std::vector<GridCoord> candidate_blocks(const SparseGrid& grid) {
 }
 
 /// Finds the active cells of the cells whose lowest corner lies in block `block`, appending
-/// them to `index` and their loop vertices (index space) to `points`.
-void scan_block(const SparseGrid& grid, const GridCoord& block, CellIndex& index,
-                std::vector<Eigen::Vector3d>& points) {
+/// them to `index`.
+void scan_block(const SparseGrid& grid, const GridCoord& block, CellIndex& index) {
   constexpr int w = SparseGrid::block_width;
   std::array<const SparseGrid::Block*, 8> near{};
   bool mixed = false;
@@ -298,141 +334,95 @@ void scan_block(const SparseGrid& grid, const GridCoord& block, CellIndex& index
         ActiveCell cell;
         cell.coord = plus(origin, i, j, k);
         cell.inside = inside;
-        const CellTopology& topology = cell_table[inside];
-        cell.first_vertex = static_cast<int>(points.size());
-        std::array<Eigen::Vector3d, max_loops> sum{};
-        std::array<int, max_loops> count{};
-        for (auto& s : sum) s.setZero();
-        for (int e = 0; e < 12; ++e) {
-          const int loop = topology.loop[static_cast<std::size_t>(e)];
-          if (loop < 0) continue;
-          sum[static_cast<std::size_t>(loop)] += crossing_point(cell.coord, e, v);
-          ++count[static_cast<std::size_t>(loop)];
-        }
-        for (std::size_t l = 0; l < static_cast<std::size_t>(topology.loops); ++l) {
-          points.push_back(sum[l] / count[l]);
-        }
+        cell.topology = inside;
+        cell.values = v;
         index.add(cell);
       }
     }
   }
 }
 
-/// Where a segment's own vertex goes: the grid edge of one of its crossings, the lower of the
-/// two cells sharing the segment's face, and the face's normal axis.
-using SplitKey = std::tuple<GridCoord, int, GridCoord, int>;
-
-/// The segment vertices of the faces where both cells put both segments in one loop (see
-/// dual_marching_cubes), appended to `points`, keyed by each crossing of each segment.
-std::map<SplitKey, int> split_faces(const SparseGrid& grid, const CellIndex& index,
-                                    std::vector<Eigen::Vector3d>& points) {
-  std::map<SplitKey, int> splits;
-  for (const ActiveCell& a : index.cells()) {
-    for (int d = 0; d < 3; ++d) {
-      const int upper_face = 2 * d + 1;
-      if (((cell_table[a.inside].one_loop_faces >> upper_face) & 1U) == 0) continue;
-      const GridCoord above = plus(a.coord, d == 0, d == 1, d == 2);
-      const ActiveCell& b = index.at(above);
-      if (((cell_table[b.inside].one_loop_faces >> (2 * d)) & 1U) == 0) continue;
-      std::array<float, 8> v{};
-      for (int c = 0; c < 8; ++c) {
-        v[static_cast<std::size_t>(c)] = grid.value(plus(a.coord, c & 1, (c >> 1) & 1, c >> 2));
-      }
-      const FaceSegments segments = face_segments(a.inside, upper_face);
-      for (const auto& segment : segments.segment) {
-        Eigen::Vector3d mid = Eigen::Vector3d::Zero();
-        for (const int position : segment) {
-          const int e = cube.face_edges[static_cast<std::size_t>(upper_face)]
-                                       [static_cast<std::size_t>(position)];
-          mid += 0.5 * crossing_point(a.coord, e, v);
-          const int low = cube.edge_corners[static_cast<std::size_t>(e)][0];
-          const GridCoord node = plus(a.coord, low & 1, (low >> 1) & 1, low >> 2);
-          splits[SplitKey{node, e / 4, a.coord, d}] = static_cast<int>(points.size());
-        }
-        points.push_back(mid);
-      }
+/// The face rule's exception (OpenVDB's): where two cells share an ambiguous face that is the
+/// only one of each and each has two or three inside corners, both take the complement's loops,
+/// which separate that face's inside corners. A bridge of the solid thinner than a voxel, with
+/// nothing else ambiguous around it, is cut there rather than kept as a handle; and these are the
+/// faces where both cells would otherwise put both segments in one loop (dual_marching_cubes).
+void cut_faces(CellIndex& index) {
+  for (ActiveCell& cell : index.cells()) {
+    const int face = lone_face_table[cell.inside];
+    if (face < 0) continue;
+    const int axis = face / 2;
+    const int side = face % 2;
+    GridCoord across = cell.coord;
+    across[static_cast<std::size_t>(axis)] += side == 1 ? 1 : -1;
+    if (lone_face_table[index.at(across).inside] == (face ^ 1)) {
+      cell.topology = static_cast<std::uint8_t>(~cell.inside);
     }
-  }
-  return splits;
-}
-
-/// Splits `polygon` into triangles: a quad along its shorter diagonal, a polygon with segment
-/// vertices as a fan from its first segment vertex.
-void triangulate(const std::vector<int>& polygon, const std::vector<bool>& is_segment_vertex,
-                 const std::vector<Eigen::Vector3d>& points,
-                 std::vector<std::array<int, 3>>& triangles) {
-  const std::size_t size = polygon.size();
-  const auto apex = static_cast<std::size_t>(
-      std::distance(is_segment_vertex.begin(),
-                    std::find(is_segment_vertex.begin(), is_segment_vertex.end(), true)));
-  if (apex == size) {
-    const int a = polygon[0], b = polygon[1], c = polygon[2], d = polygon[3];
-    const double ac =
-        (points[static_cast<std::size_t>(a)] - points[static_cast<std::size_t>(c)]).squaredNorm();
-    const double bd =
-        (points[static_cast<std::size_t>(b)] - points[static_cast<std::size_t>(d)]).squaredNorm();
-    if (ac <= bd) {
-      triangles.push_back({a, b, c});
-      triangles.push_back({a, c, d});
-    } else {
-      triangles.push_back({a, b, d});
-      triangles.push_back({b, c, d});
-    }
-    return;
-  }
-  for (std::size_t k = 1; k + 1 < size; ++k) {
-    triangles.push_back(
-        {polygon[apex], polygon[(apex + k) % size], polygon[(apex + k + 1) % size]});
   }
 }
 
-/// The triangles of the quads (polygons, where segment vertices split a side) around every grid
-/// edge whose ends differ in sign.
-std::vector<std::array<int, 3>> edge_polygons(const CellIndex& index,
-                                              const std::map<SplitKey, int>& splits,
-                                              const std::vector<Eigen::Vector3d>& points) {
+/// Each cell's loop vertices (index space), appended to `points`: the mean of the loop's edge
+/// crossings.
+void place_vertices(CellIndex& index, std::vector<Eigen::Vector3d>& points) {
+  for (ActiveCell& cell : index.cells()) {
+    const CellTopology& topology = cell_table[cell.topology];
+    cell.first_vertex = static_cast<int>(points.size());
+    std::array<Eigen::Vector3d, max_loops> sum{};
+    std::array<int, max_loops> count{};
+    for (auto& s : sum) s.setZero();
+    for (int e = 0; e < 12; ++e) {
+      const int loop = topology.loop[static_cast<std::size_t>(e)];
+      if (loop < 0) continue;
+      sum[static_cast<std::size_t>(loop)] += crossing_point(cell.coord, e, cell.values);
+      ++count[static_cast<std::size_t>(loop)];
+    }
+    for (std::size_t l = 0; l < static_cast<std::size_t>(topology.loops); ++l) {
+      points.push_back(sum[l] / count[l]);
+    }
+  }
+}
+
+/// Appends the two triangles of quad a b c d (counter-clockwise), split along its shorter
+/// diagonal.
+void split_quad(const std::array<int, 4>& quad, const std::vector<Eigen::Vector3d>& points,
+                std::vector<std::array<int, 3>>& triangles) {
+  const auto [a, b, c, d] = quad;
+  const double ac =
+      (points[static_cast<std::size_t>(a)] - points[static_cast<std::size_t>(c)]).squaredNorm();
+  const double bd =
+      (points[static_cast<std::size_t>(b)] - points[static_cast<std::size_t>(d)]).squaredNorm();
+  if (ac <= bd) {
+    triangles.push_back({a, b, c});
+    triangles.push_back({a, c, d});
+  } else {
+    triangles.push_back({a, b, d});
+    triangles.push_back({b, c, d});
+  }
+}
+
+/// The triangles of the quads around every grid edge whose ends differ in sign.
+std::vector<std::array<int, 3>> edge_quads(const CellIndex& index,
+                                           const std::vector<Eigen::Vector3d>& points) {
   // The four cells around an edge along axis a, counter-clockwise seen from its positive end:
   // offsets (along (a + 1) % 3, along (a + 2) % 3) subtracted from the edge's lower node.
   constexpr std::array<std::array<int, 2>, 4> ring = {{{1, 1}, {0, 1}, {0, 0}, {1, 0}}};
   std::vector<std::array<int, 3>> triangles;
-  std::vector<int> polygon;
-  std::vector<bool> is_segment_vertex;
   for (const ActiveCell& cell : index.cells()) {
     for (int a = 0; a < 3; ++a) {
       const bool lower_inside = is_inside(cell.inside, 0);
       if (lower_inside == is_inside(cell.inside, 1 << a)) continue;
       const int b = (a + 1) % 3, c = (a + 2) % 3;
-      std::array<GridCoord, 4> around{};
-      polygon.clear();
-      is_segment_vertex.clear();
+      std::array<int, 4> quad{};
       for (std::size_t r = 0; r < 4; ++r) {
-        around[r] = cell.coord;
-        around[r][static_cast<std::size_t>(b)] -= ring[r][0];
-        around[r][static_cast<std::size_t>(c)] -= ring[r][1];
-      }
-      for (std::size_t r = 0; r < 4; ++r) {
-        const ActiveCell& owner = index.at(around[r]);
+        GridCoord around = cell.coord;
+        around[static_cast<std::size_t>(b)] -= ring[r][0];
+        around[static_cast<std::size_t>(c)] -= ring[r][1];
+        const ActiveCell& owner = index.at(around);
         const int e = 4 * a + ring[r][0] + 2 * ring[r][1];
-        polygon.push_back(owner.first_vertex +
-                          cell_table[owner.inside].loop[static_cast<std::size_t>(e)]);
-        is_segment_vertex.push_back(false);
-        if (splits.empty()) continue;
-        // The face shared with the next cell around: its normal is the axis they differ in.
-        const GridCoord& next = around[(r + 1) % 4];
-        const int normal =
-            next[static_cast<std::size_t>(b)] != around[r][static_cast<std::size_t>(b)] ? b : c;
-        const GridCoord lower = std::min(around[r], next);
-        const auto it = splits.find(SplitKey{cell.coord, a, lower, normal});
-        if (it != splits.end()) {
-          polygon.push_back(it->second);
-          is_segment_vertex.push_back(true);
-        }
+        quad[r] = owner.first_vertex + cell_table[owner.topology].loop[static_cast<std::size_t>(e)];
       }
-      if (!lower_inside) {
-        std::reverse(polygon.begin(), polygon.end());
-        std::reverse(is_segment_vertex.begin(), is_segment_vertex.end());
-      }
-      triangulate(polygon, is_segment_vertex, points, triangles);
+      if (!lower_inside) std::reverse(quad.begin(), quad.end());
+      split_quad(quad, points, triangles);
     }
   }
   return triangles;
@@ -445,9 +435,10 @@ CellTopology cell_topology(std::uint8_t inside) { return cell_table[inside]; }
 TriangleSoup dual_marching_cubes(const SparseGrid& grid, double spacing) {
   CellIndex index;
   std::vector<Eigen::Vector3d> points;
-  for (const GridCoord& block : candidate_blocks(grid)) scan_block(grid, block, index, points);
-  const std::map<SplitKey, int> splits = split_faces(grid, index, points);
-  std::vector<std::array<int, 3>> triangles = edge_polygons(index, splits, points);
+  for (const GridCoord& block : candidate_blocks(grid)) scan_block(grid, block, index);
+  cut_faces(index);
+  place_vertices(index, points);
+  std::vector<std::array<int, 3>> triangles = edge_quads(index, points);
 
   // Canonical order: vertices by coordinates, faces by indices.
   std::vector<int> order(points.size());

@@ -42,12 +42,15 @@ CellTopology cell_topology(std::uint8_t inside);
 /// each cell gets one vertex per loop of its marching-cubes surface (cell_topology), at the mean
 /// of the loop's edge crossings (linear interpolation along each edge), and each grid edge
 /// whose ends differ in sign gets the quad of the four loops around it, split along its shorter
-/// diagonal. An ambiguous face joins its inside corners (CellTopology), a rule of the face's
-/// signs alone, so the two cells sharing it agree; a wall of the solid thinner than a voxel
-/// stays whole rather than getting a hole. Where both cells put both
-/// segments of an ambiguous face in one loop, the two loops would share two mesh edges; each
-/// segment then gets a vertex of its own at its midpoint, which the quads at its two crossings
-/// take in between the two loops' vertices, so the mesh stays 2-manifold.
+/// diagonal. An ambiguous face joins its inside corners (CellTopology), so that a wall of the
+/// solid thinner than a voxel stays whole rather than getting a hole, except where it is the only
+/// ambiguous face of both cells sharing it and each has two or three inside corners: there both
+/// cells take the loops of their complement pattern, which separate the face's inside corners
+/// (OpenVDB's rule), and a lone bridge thinner than a voxel is cut. The rule reads the signs of
+/// the two cells only, so they agree. It also keeps the mesh 2-manifold: a face whose two
+/// segments lie in one loop of a cell is that cell's only ambiguous face with two or three inside
+/// corners, so where both cells would put both segments in one loop (and their two loops would
+/// share two mesh edges), the face is cut instead.
 /// Returns a closed, 2-manifold triangle mesh wound counter-clockwise seen from outside (the
 /// positive side), with vertices sorted by coordinates and faces by indices (each face starts
 /// at its smallest index); empty when no edge changes sign.
