@@ -21,6 +21,7 @@
 #include <string>
 #include <thread>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <spawn.h>
@@ -244,6 +245,26 @@ TEST_F(CliScreen, SmilesWithoutConformersAreRefusedBeforeAnyWork) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--conformers"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "nothing.sclib"));
+}
+
+TEST_F(CliScreen, InputsWithoutRecordsAreNamedAndNothingIsWritten) {
+  std::ofstream(dir_ / "empty.sdf").close();
+  std::ofstream(dir_ / "comment.smi") << "# a comment and a blank line\n\n";
+  std::ofstream(dir_ / "no_sites.txt") << "# no site\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"library build empty.sdf -o empty.sclib", "empty.sdf: holds no molecule record"},
+      {"library build comment.smi empty.sdf -o empty.sclib --conformers 1",
+       "comment.smi, empty.sdf: hold no molecule record"},
+      {"library build --sites no_sites.txt -o empty.sclib", "no_sites.txt: lists no site"},
+  };
+  for (const auto& [arguments, expected] : cases) {
+    const ProgramRun r = run(arguments);
+    EXPECT_EQ(r.status, 1) << arguments;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << arguments << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "not one line: " << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "empty.sclib")) << arguments;
+    EXPECT_FALSE(fs::exists(dir_ / "empty.sclib.log")) << arguments;
+  }
 }
 
 /// A program started in the background with default signal actions and nothing blocked; killed

@@ -79,7 +79,6 @@ void write_log_and_summary(const std::filesystem::path& library, const std::file
     for (const auto& s : result.skipped)
       out << s.source << '\t' << s.record << '\t' << s.name << '\t' << s.reason << '\n';
   });
-  if (result.records == 0) throw InputError(library.string() + ": the inputs hold no record");
   if (result.entries == 0) {  // an empty library would only fail later, further from the cause
     throw InputError(library.string() + ": no entry was built; all " +
                      std::to_string(result.records) + " records were skipped (reasons in " +

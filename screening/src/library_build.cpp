@@ -132,6 +132,13 @@ std::vector<io::MoleculeRecord> read_library_inputs(
                        ".dat.gz), a .hsi file nor a directory");
     }
   }
+  if (records.empty()) {
+    std::string names;
+    for (const std::filesystem::path& input : inputs)
+      names += (names.empty() ? "" : ", ") + input.string();
+    throw FileError(names,
+                    inputs.size() == 1 ? "holds no molecule record" : "hold no molecule record");
+  }
   return records;
 }
 
@@ -310,6 +317,7 @@ LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
                                  const std::filesystem::path& output,
                                  const LibraryBuildOptions& options) {
   check_options(options);
+  if (records.empty()) throw InputError(output.string() + ": no molecule record to build it from");
   return build_in_order(
       records.size(),
       [&](std::size_t i, BuildTimes& times) { return build_entries(records[i], options, &times); },
@@ -362,6 +370,7 @@ std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {
     }
     sites.push_back(std::move(site));
   }
+  if (sites.empty()) throw FileError(list.string(), "lists no site");
   return sites;
 }
 
@@ -405,6 +414,7 @@ LibraryBuildResult build_site_library(const std::vector<SiteRequest>& sites,
                                       const LibraryBuildOptions& options) {
   check_options(options);
   if (options.conformers) throw OptionError("--conformers does not apply to sites (--sites)");
+  if (sites.empty()) throw InputError(output.string() + ": no site to build it from");
   return build_in_order(
       sites.size(),
       [&](std::size_t i, BuildTimes& times) {

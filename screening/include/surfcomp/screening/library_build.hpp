@@ -86,7 +86,8 @@ struct LibraryBuildResult {
 /// The records of `inputs` in order: each file's records (io::read_molecule_records), and for a
 /// .hsi file one io::RecordFormat::descriptors record (read when its entry is built); a
 /// directory stands for those files (io::is_record_file, .hsi) directly inside it, in name
-/// order. Throws as read_molecule_records, and InputError for a path that is none of these.
+/// order. Throws as read_molecule_records, InputError for a path that is none of these, and
+/// FileError naming the inputs when they hold no record at all.
 std::vector<io::MoleculeRecord> read_library_inputs(
     const std::vector<std::filesystem::path>& inputs);
 
@@ -111,9 +112,9 @@ struct SiteRequest {
 
 /// The sites of a site list: one per line, `STRUCTURE LIGAND [CHAIN]` or
 /// `STRUCTURE x,y,z,r [x,y,z,r ...]` (whitespace-separated; blank lines and lines starting with
-/// '#' are skipped). Throws FileError when the list cannot be read and InputError naming the
-/// list and line for a line of neither form or with a sphere whose radius is not > 0; the
-/// structures are read only when their entries are built.
+/// '#' are skipped). Throws FileError when the list cannot be read or lists no site, and
+/// InputError naming the list and line for a line of neither form or with a sphere whose radius
+/// is not > 0; the structures are read only when their entries are built.
 std::vector<SiteRequest> read_site_list(const std::filesystem::path& list);
 
 /// The entry of one site: its structure read (`options.read`), the site built
