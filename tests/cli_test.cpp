@@ -219,6 +219,26 @@ TEST_F(Cli, BadInputGivesOneLineErrorAndNoOutput) {
   }
 }
 
+TEST_F(Cli, NoAlignmentStillWritesTheJsonAndSaysTheProbeWasNotMoved) {
+  SURFCOMP_SHARED_OR_SKIP(reference, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/4TMN_ligand.sdf");
+  // An image threshold no pair of images reaches and no principal-axes starts: no alignment.
+  const fs::path json = scratch("none.json");
+  const fs::path aligned = scratch("none.sdf");
+  const ProgramRun r = run("match " + reference.string() + " " + probe.string() +
+                           " --image-threshold 0.999 --principal-axes-starts 0 -o " +
+                           json.string() + " --aligned-out " + aligned.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: no alignment found: " + aligned.string() + " not written"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(aligned));
+  ASSERT_TRUE(fs::exists(json));
+  std::ifstream in(json);
+  const nlohmann::json document = nlohmann::json::parse(in);
+  EXPECT_TRUE(document.at("alignments").empty());
+}
+
 /// What `surfcomp ARGUMENTS` prints on stdout.
 std::string program_output(const std::string& arguments) {
   std::string text;

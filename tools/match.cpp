@@ -102,7 +102,7 @@ int match(const std::vector<std::string>& args) {
        "write the result as JSON (alignments, trace, timing_ms, parameters)")
       ("aligned-out", po::value(&aligned_out),
        "write PROBE moved by the top alignment: .sdf (SDF/MOL/MOL2 PROBE), .pdb (molecule PROBE) "
-       "or .ply")
+       "or .ply; with no alignment, a warning and no file")
       ("report", po::value(&report_out),
        "also write the HTML report (.html) of the match, as `surfcomp report` does")
       ("top", defaulted(&top), "alignments shown in the table")
@@ -174,9 +174,10 @@ int match(const std::vector<std::string>& args) {
   // Outputs last, each atomic; a failure of a later one removes the earlier ones.
   std::vector<std::filesystem::path> written;
   try {
-    if (!aligned_out.empty()) {
-      if (result.alignments.empty())
-        throw InputError("no alignment found: nothing to write to " + aligned_out);
+    if (!aligned_out.empty() && result.alignments.empty()) {
+      std::fprintf(stderr, "surfcomp match: warning: no alignment found: %s not written\n",
+                   aligned_out.c_str());
+    } else if (!aligned_out.empty()) {
       write_aligned(probe_path, settings.input.read.record, compared.probe,
                     result.alignments.front().transform, aligned_out);
       written.emplace_back(aligned_out);
