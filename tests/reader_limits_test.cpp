@@ -160,6 +160,53 @@ TEST(ReadCoordinates, HugePqrCoordinatesAreRefusedNamingLineAndAtom) {
   EXPECT_DOUBLE_EQ(ok.atoms[2].position.z(), 0.5);
 }
 
+TEST(ReadCharges, AbsurdPqrChargesAreRefusedNamingLineAndAtom) {
+  const TempDir dir;
+  const auto with_charge = [](const std::string& q) {  // atom O1's charge, 7 columns
+    std::string text = pqr_with_z("0.5");
+    text.replace(text.find("-0.1000"), 7, q);
+    return text;
+  };
+  const fs::path path = dir.write("q.pqr", with_charge("   1e30"));
+  expect_error<FormatError>([&] { io::read_molecule(path); },
+                            {path.string() + ":2:", "atom 'O1'", "charge 1e+30 e", "10 e"});
+  const Molecule ok = io::read_molecule(dir.write("ok.pqr", with_charge("-9.5000")));
+  EXPECT_DOUBLE_EQ(ok.atoms[1].charge, -9.5);
+}
+
+/// Ethanol in MOL2 with its own charges; the oxygen's charge is Q.
+constexpr const char* kMol2 =
+    "@<TRIPOS>MOLECULE\n"
+    "ethanol\n"
+    " 3 2 0 0 0\n"
+    "SMALL\n"
+    "USER_CHARGES\n"
+    "\n"
+    "@<TRIPOS>ATOM\n"
+    "      1 C1          0.0000    0.0000    0.0000 C.3     1  EOH1       -0.1000\n"
+    "      2 C2          1.5200    0.0000    0.0000 C.3     1  EOH1        0.3000\n"
+    "      3 O           2.0300    1.3400    0.0000 O.3     1  EOH1       Q\n"
+    "@<TRIPOS>BOND\n"
+    "     1     1     2    1\n"
+    "     2     2     3    1\n";
+
+TEST(ReadCharges, AbsurdMol2ChargesAreRefusedNamingLineAndAtom) {
+  const TempDir dir;
+  const auto with_charge = [](const std::string& q) {
+    std::string text = kMol2;
+    text.replace(text.find(" Q\n"), 3, " " + q + "\n");
+    return text;
+  };
+  const fs::path path = dir.write("q.mol2", with_charge("-1e30"));
+  expect_error<FormatError>([&] { io::read_molecule(path); },
+                            {path.string() + ":10:", "atom 3 (O)", "charge -1e+30 e"});
+  const Molecule ok = io::read_molecule(dir.write("ok.mol2", with_charge("-0.2000")));
+  const auto oxygen = std::find_if(ok.atoms.begin(), ok.atoms.end(),
+                                   [](const Atom& atom) { return atom.element == "O"; });
+  ASSERT_NE(oxygen, ok.atoms.end());
+  EXPECT_DOUBLE_EQ(oxygen->charge, -0.2);
+}
+
 /// Ethanol as two PDB HETATM records plus one, with standard columns.
 constexpr const char* kPdb =
     "HETATM    1  C1  EOH A   1       0.000   0.000   0.000  1.00  0.00           C\n"

@@ -99,4 +99,16 @@ void check_read_value(double value, const std::string& file, const std::string& 
   }
 }
 
+void check_read_charge(double charge, const std::string& file, std::size_t line,
+                       const std::string& item) {
+  if (!std::isfinite(charge))
+    throw FormatError(file, line, item + " has a non-finite charge (" + number(charge) + ")");
+  if (std::fabs(charge) > max_charge_magnitude) {
+    throw FormatError(file, line,
+                      item + " has charge " + number(charge) +
+                          " e, beyond the accepted magnitude " + number(max_charge_magnitude) +
+                          " e");
+  }
+}
+
 }  // namespace surfcomp::io

@@ -1,6 +1,7 @@
 #include "molecule_text.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/input_file.hpp"
 
 #include <cstdlib>
 #include <map>
@@ -252,7 +253,15 @@ void check_mol2_structure(const std::string& text, const std::string& source) {
     }
   }
   const std::size_t atoms = section("@<TRIPOS>ATOM", molecule);
-  records_after(atoms, *atom_count, 6, "ATOM");
+  for (std::size_t i : records_after(atoms, *atom_count, 6, "ATOM")) {
+    // atom_id atom_name x y z atom_type [subst_id [subst_name [charge ...]]]
+    const std::vector<std::string> fields = fields_of(lines[i]);
+    if (fields.size() < 9) continue;
+    char* end = nullptr;
+    const double charge = std::strtod(fields[8].c_str(), &end);
+    if (end == fields[8].c_str() || *end != '\0') continue;  // RDKit's reader judges the field
+    check_read_charge(charge, source, i + 1, "atom " + fields[0] + " (" + fields[1] + ")");
+  }
   if (*bond_count == 0) return;
   const std::size_t bonds = section("@<TRIPOS>BOND", atoms);
   for (std::size_t i : records_after(bonds, *bond_count, 4, "BOND")) {

@@ -43,7 +43,8 @@ std::string mol2_charge_type(const std::string& text);
 /// RDKit's Mol2 reader indexes atoms by the bond records' atom ids without checking them and
 /// crashes on an id outside the molecule (found by the robustness test and by fuzz_mol2).
 /// Checks the first molecule's counts line, that it has one ATOM and at most one BOND section,
-/// that its ATOM section holds that many records and that each of its bond records names two
+/// that its ATOM section holds that many records, that no atom's charge field holds a number
+/// beyond max_charge_magnitude (check_read_charge), and that each of its bond records names two
 /// atom ids in [1, atom count].
 void check_mol2_structure(const std::string& text, const std::string& source);
 

@@ -146,6 +146,7 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
     check_read_position(atom.position, source + ":" + std::to_string(line_number),
                         "atom '" + atom.name + "'");
     atom.charge = parse_real(fields[k + 4], "charge", source, line_number);
+    check_read_charge(atom.charge, source, line_number, "atom '" + atom.name + "'");
     atom.radius = parse_real(fields[k + 5], "radius", source, line_number);
     atom.element = element_from_name(atom.name, atom.residue_name);
     if (atom.element.empty() || !bondi_radius(atom.element)) {

@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -18,6 +19,10 @@ inline constexpr std::uint64_t max_input_file_bytes = std::uint64_t{4} << 30;
 /// more than 2 km is a corrupt file (a PDB's coordinate columns hold at most 1e4 A), and the
 /// grids built over it would not fit in memory.
 inline constexpr double max_coordinate_magnitude = 1e6;
+
+/// Largest magnitude of an atom's charge read from a file, e. Real atoms carry at most a few
+/// elementary charges (metal ions +4); a larger value is a corrupt or misaligned column.
+inline constexpr double max_charge_magnitude = 10.0;
 
 /// The whole content of `path`, read with one bounded read of at most its size. Refuses,
 /// with FileError "PATH: reason", a path that does not exist, is not a regular file (a
@@ -38,5 +43,11 @@ void check_read_position(const Eigen::Vector3d& position, const std::string& fil
 /// "FILE: ITEM has a non-finite NAME (nan)".
 void check_read_value(double value, const std::string& file, const std::string& item,
                       const std::string& name);
+
+/// Checks an atom charge read from line `line` of `file` (0: no line): finite and of magnitude
+/// at most max_charge_magnitude. Throws FormatError "FILE:LINE: ITEM has charge 1e+30 e, beyond
+/// the accepted magnitude 10 e" (or "a non-finite charge").
+void check_read_charge(double charge, const std::string& file, std::size_t line,
+                       const std::string& item);
 
 }  // namespace surfcomp::io
