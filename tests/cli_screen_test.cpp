@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <memory>
@@ -265,6 +267,44 @@ TEST_F(CliScreen, InputsWithoutRecordsAreNamedAndNothingIsWritten) {
     EXPECT_FALSE(fs::exists(dir_ / "empty.sclib")) << arguments;
     EXPECT_FALSE(fs::exists(dir_ / "empty.sclib.log")) << arguments;
   }
+}
+
+TEST_F(CliScreen, AMacromoleculeQueryIsScreenedWithAWarningThatNamesTheSiteOptions) {
+  // 30 alanine residues of one chain (150 heavy atoms): a polymer chain, not a ligand.
+  {
+    std::ofstream pdb(dir_ / "ala30.pdb");
+    const char* names[] = {"N", "CA", "C", "O", "CB"};
+    const char* elements[] = {"N", "C", "C", "O", "C"};
+    int serial = 1;
+    for (int r = 0; r < 30; ++r) {
+      for (int a = 0; a < 5; ++a, ++serial) {
+        char line[96];
+        std::snprintf(line, sizeof line,
+                      "ATOM  %5d  %-3s ALA A%4d    %8.3f%8.3f%8.3f  1.00  0.00           %s\n",
+                      serial, names[a], r + 1, 3.8 * r + 0.7 * a, 1.2 * std::sin(1.3 * a),
+                      1.2 * std::cos(1.3 * a), elements[a]);
+        pdb << line;
+      }
+    }
+    pdb << "END\n";
+  }
+  const ProgramRun r = run("screen ala30.pdb lib.sclib -o ala30_hits.csv");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: ala30.pdb: the query is a macromolecule (150 heavy atoms, a "
+                       "chain of 30 amino-acid residues)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("--site-ligand RES or --site-sphere x,y,z,r"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(lines_of(file_bytes(dir_ / "ala30_hits.csv")).size(), 4u);  // header, 3 molecules
+  // A ligand query says nothing.
+  std::ofstream(dir_ / "aspirin.smi") << "CC(=O)Oc1ccccc1C(=O)O aspirin\n";
+  ASSERT_EQ(run("library build aspirin.smi -o aspirin.sclib --conformers 1").status, 0);
+  const ProgramRun quiet = run("library export aspirin.sclib -o aspirin.sdf");
+  ASSERT_EQ(quiet.status, 0) << quiet.err;
+  const ProgramRun ligand = run("screen aspirin.sdf lib.sclib -o aspirin_hits.csv");
+  EXPECT_EQ(ligand.status, 0) << ligand.err;
+  EXPECT_EQ(ligand.err.find("macromolecule"), std::string::npos) << ligand.err;
 }
 
 /// A program started in the background with default signal actions and nothing blocked; killed

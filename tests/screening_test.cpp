@@ -26,8 +26,10 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace surfcomp {
@@ -87,6 +89,50 @@ void expect_found_itself_first(const std::vector<screening::Hit>& hits, std::siz
 
 void write_bytes(const fs::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+/// `residues` alanine residues of chain A (N, CA, C, O, CB), 3.8 A apart along x.
+Molecule alanine_chain(int residues) {
+  Molecule chain;
+  const std::pair<const char*, const char*> atoms[] = {
+      {"N", "N"}, {"CA", "C"}, {"C", "C"}, {"O", "O"}, {"CB", "C"}};
+  for (int r = 0; r < residues; ++r) {
+    for (std::size_t a = 0; a < std::size(atoms); ++a) {
+      Atom atom;
+      atom.name = atoms[a].first;
+      atom.element = atoms[a].second;
+      atom.residue_name = "ALA";
+      atom.residue_number = r + 1;
+      atom.chain = "A";
+      atom.position = Eigen::Vector3d(3.8 * r + 0.7 * static_cast<double>(a), 0.0, 0.0);
+      chain.atoms.push_back(atom);
+    }
+  }
+  return chain;
+}
+
+TEST(ScreenQuery, AMacromoleculeQueryIsNamedAndALigandIsNot) {
+  EXPECT_EQ(screening::macromolecule_query_warning(alanine_chain(29), "q.pdb"), "");
+  EXPECT_EQ(screening::macromolecule_query_warning(alanine_chain(30), "q.pdb"),
+            "q.pdb: the query is a macromolecule (150 heavy atoms, a chain of 30 amino-acid "
+            "residues): its whole surface is compared with the library's molecules");
+  // 1,001 heavy atoms without residues (an SDF record), and 1,000 with 500 hydrogens.
+  Molecule large;
+  for (int i = 0; i < 1001; ++i) {
+    Atom atom;
+    atom.element = "C";
+    large.atoms.push_back(atom);
+  }
+  EXPECT_NE(screening::macromolecule_query_warning(large, "big.sdf")
+                .find("big.sdf: the query is a macromolecule (1001 heavy atoms)"),
+            std::string::npos);
+  large.atoms.pop_back();
+  for (int i = 0; i < 500; ++i) {
+    Atom atom;
+    atom.element = "H";
+    large.atoms.push_back(atom);
+  }
+  EXPECT_EQ(screening::macromolecule_query_warning(large, "big.sdf"), "");
 }
 
 TEST(Conformers, SameSeedSameConformersAndCountAsked) {

@@ -163,6 +163,16 @@ int screen(const std::vector<std::string>& args) {
   console::step(library_path.string() + ": " + std::to_string(library.size()) +
                 " entries, format version " + std::to_string(library.version()));
   matching::PreparedInput prepared = matching::prepare_input(query_input, query_options);
+  if (!site_query && prepared.molecule) {
+    const std::string warning =
+        screening::macromolecule_query_warning(*prepared.molecule, query_path.string());
+    if (!warning.empty()) {
+      std::fprintf(stderr,
+                   "surfcomp screen: warning: %s; to screen its binding site, give "
+                   "--site-ligand RES or --site-sphere x,y,z,r\n",
+                   warning.c_str());
+    }
+  }
   const screening::ScreenQuery query =
       screening::make_screen_query(std::move(prepared.descriptors), options, prepared.site,
                                    prepared.molecule ? &*prepared.molecule : nullptr);

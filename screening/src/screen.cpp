@@ -2,6 +2,7 @@
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
+#include "surfcomp/core/protein_lipophilicity.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/overlay.hpp"
@@ -15,6 +16,8 @@
 #include <cstdio>
 #include <map>
 #include <numeric>
+#include <set>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -125,6 +128,24 @@ matching::MatchOptions query_match_options(const ScreenQuery& query, const Scree
   match.mode =
       query.site.empty() ? matching::MatchMode::whole_surfaces : matching::MatchMode::binding_sites;
   return match;
+}
+
+std::string macromolecule_query_warning(const Molecule& query, const std::string& source) {
+  std::size_t heavy = 0;
+  std::map<std::string, std::set<std::pair<int, std::string>>> chain_residues;
+  for (const Atom& atom : query.atoms) {
+    if (atom.element != "H") ++heavy;
+    if (protein_atom_lipophilicity(atom.residue_name, "CA"))
+      chain_residues[atom.chain].emplace(atom.residue_number, atom.residue_name);
+  }
+  std::size_t longest = 0;
+  for (const auto& [chain, residues] : chain_residues) longest = std::max(longest, residues.size());
+  if (heavy <= macromolecule_heavy_atoms && longest < macromolecule_chain_residues) return {};
+  return source + ": the query is a macromolecule (" + std::to_string(heavy) + " heavy atoms" +
+         (longest >= macromolecule_chain_residues
+              ? ", a chain of " + std::to_string(longest) + " amino-acid residues"
+              : std::string()) +
+         "): its whole surface is compared with the library's molecules";
 }
 
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,

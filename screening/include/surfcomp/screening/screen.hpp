@@ -28,6 +28,7 @@
 #include <functional>
 #include <memory>
 #include <ostream>
+#include <string>
 #include <vector>
 
 namespace surfcomp::screening {
@@ -91,6 +92,18 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               const ScreenOptions& options = {},
                               std::vector<matching::SiteSphere> site = {},
                               const Molecule* molecule = nullptr);
+
+/// Heavy atoms, and amino-acid residues in one chain, from which a whole-molecule query is a
+/// macromolecule (macromolecule_query_warning).
+inline constexpr std::size_t macromolecule_heavy_atoms = 1000;
+inline constexpr std::size_t macromolecule_chain_residues = 30;
+
+/// What to say of a whole-molecule query that is a macromolecule: more than
+/// macromolecule_heavy_atoms heavy atoms, or a chain of at least macromolecule_chain_residues
+/// standard amino-acid residues. Its whole surface is then compared with the library's
+/// molecules, which a user rarely wants (a binding site is the usual query): the text names
+/// `source` and what makes the query a macromolecule. Empty for any other query.
+std::string macromolecule_query_warning(const Molecule& query, const std::string& source);
 
 /// Throws InputError naming the library and its first entry of the other kind unless every
 /// entry of `library` is a binding site when `site_query` (a pocket library) and a molecule
