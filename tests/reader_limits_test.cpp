@@ -286,13 +286,15 @@ TEST(ReadRecords, LigandSelectionOnSdfIsRefused) {
 
 /// A description of a tetrahedron with one critical point (no patch): the smallest valid .hsi.
 /// Its vertex 0 sits at x = 777.25 and the point at x = 555.5, so that tests can find them.
-std::vector<std::uint8_t> small_hsi() {
+std::vector<std::uint8_t> small_hsi(const std::string& image_property = "shape_index") {
   Eigen::MatrixX3d positions(4, 3);
   positions << 777.25, 0, 0, 10, 0, 0, 0, 10, 0, 0, 0, 10;
   Eigen::MatrixX3i faces(4, 3);
   faces << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
   harmonic::SurfaceDescriptors d;
   d.surface = mesh::Surface::from_arrays(positions, faces, "t");
+  d.surface.set_property("shape_index", Eigen::VectorXd::Zero(4));
+  d.options.image_property = image_property;
   harmonic::CriticalPointDescriptor cp;
   cp.point.vertex = 0;
   cp.point.position = Eigen::Vector3d(555.5, 0, 0);
@@ -373,6 +375,11 @@ TEST(ReadHsi, CraftedContentsAreRefusedNamingTheFile) {
     const fs::path path = seal(dir, c.name, bytes);
     expect_error<FormatError>([&] { harmonic::io::read_hsi(path); }, {path.string(), c.problem});
   }
+  // Images of a property the stored surface does not carry.
+  const fs::path absent = seal(dir, "absent_property.hsi", small_hsi("curvedness"));
+  expect_error<FormatError>(
+      [&] { harmonic::io::read_hsi(absent); },
+      {absent.string(), "images are of property 'curvedness'", "surface does not carry"});
 }
 
 }  // namespace

@@ -389,6 +389,10 @@ SurfaceDescriptors decode_hsi(const std::uint8_t* data, std::size_t n_bytes,
   SurfaceDescriptors d;
   d.options = get_options(r);
   d.surface = get_surface(r);
+  if (!d.surface.has_property(d.options.image_property)) {
+    r.fail("its images are of property '" + d.options.image_property +
+           "', which its surface does not carry");
+  }
   const std::uint64_t n_points = r.u64();
   if (n_points > r.remaining() / kMinPointBytes) {
     r.fail("a count of " + std::to_string(n_points) + " critical points cannot fit in the " +
