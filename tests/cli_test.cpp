@@ -219,6 +219,19 @@ TEST_F(Cli, BadInputGivesOneLineErrorAndNoOutput) {
   }
 }
 
+TEST_F(Cli, ABadProbeIsRefusedBeforeTheReferenceSurfaceIsBuilt) {
+  SURFCOMP_SHARED_OR_SKIP(reference, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  const fs::path garbage = scratch("garbage.sdf");
+  std::ofstream(garbage) << "garbage\nnot a molfile\n";
+  // --verbose logs each side's surface as it is built: none may be logged before the refusal.
+  const ProgramRun r = run("match " + reference.string() + " " + garbage.string() + " -v -o " +
+                           scratch("r.json").string());
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("error: " + garbage.string() + ": "), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("surface of"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(scratch("r.json")));
+}
+
 TEST_F(Cli, NoAlignmentStillWritesTheJsonAndSaysTheProbeWasNotMoved) {
   SURFCOMP_SHARED_OR_SKIP(reference, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
   SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/4TMN_ligand.sdf");

@@ -53,6 +53,17 @@ void load_site(LoadedInput& side, const Molecule& structure, const MatchInput& i
 
 LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& options);
 
+/// `input` with the molecule of its molecule file read into MatchInput::molecule (its path
+/// kept, for messages); any other input as it is.
+MatchInput with_molecule_read(const MatchInput& input, const MatchInputOptions& options) {
+  MatchInput out = input;
+  if (!input.molecule && !input.surface && !input.descriptors && !input.path.empty() &&
+      !harmonic::io::is_hsi_file(input.path) && io::is_molecule_file(input.path)) {
+    out.molecule = io::read_molecule(input.path, options.input.read);
+  }
+  return out;
+}
+
 /// The side read or built, logged as `role`.
 LoadedInput load(const MatchInput& input, const MatchInputOptions& options, const char* role) {
   const Stopwatch clock;
@@ -255,12 +266,15 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
   const Stopwatch clock;
   // Stored descriptions first: one fixes the parameters the other side is described with (the
   // image memory limit and the progress stay the caller's), and so the patch radius a site
-  // surface on the other side must reach.
+  // surface on the other side must reach. Molecule files are read next, both before any
+  // surface is built, so that a bad file on either side is refused before the heavy work.
   const bool ref_stored = is_stored_description(reference);
   const bool probe_stored = is_stored_description(probe);
   std::optional<LoadedInput> ref, prb;
   if (ref_stored) ref = load(reference, options, "REF");
   if (probe_stored) prb = load(probe, options, "PROBE");
+  const MatchInput ref_read = with_molecule_read(reference, options);
+  const MatchInput probe_read = with_molecule_read(probe, options);
   harmonic::DescriptorOptions descriptors = options.descriptors;
   if (ref_stored && !probe_stored) descriptors = ref->descriptors->options;
   if (probe_stored && !ref_stored) descriptors = prb->descriptors->options;
@@ -269,8 +283,8 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
   MatchInputOptions built = options;
   built.site.surface_margin =
       site_surface_margin(options.site.surface_margin, descriptors.patch.radius);
-  if (!ref) ref = load(reference, built, "REF");
-  if (!prb) prb = load(probe, built, "PROBE");
+  if (!ref) ref = load(ref_read, built, "REF");
+  if (!prb) prb = load(probe_read, built, "PROBE");
   out.reference = describe(std::move(*ref), descriptors, options, "REF");
   out.probe = describe(std::move(*prb), descriptors, options, "PROBE");
   if (!same_parameters(out.reference.descriptors.options, out.probe.descriptors.options)) {
