@@ -196,6 +196,8 @@ TEST_F(Cli, BadInputGivesOneLineErrorAndNoOutput) {
       {"match " + ligand.string() + " " + ligand.string() + " --site-sphere 1,2", "x,y,z,r"},
       {"match " + ligand.string(), "REF and PROBE"},
       {"surf-build " + ligand.string() + " --probe-radius nan", "probe-radius"},
+      {"surf-build " + ligand.string() + " --density 100",
+       "--density: value 100 is outside [0.05, 20]"},
       {"match " + ligand.string() + " " + ligand.string() + " --principal-axes-starts 5",
        "principal-axes-starts"},
       {"match " + ligand.string() + " " + ligand.string() + " --site-principal-axes-starts 3",

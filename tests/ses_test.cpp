@@ -402,9 +402,14 @@ TEST(Ses, InvalidInputsThrow) {
   options = SesOptions{};
   options.voxel_size = 3.0;  // the sphere 1.7 + 1.4 spans ~1 voxel
   EXPECT_THROW(build_ses(one.centers, one.radii, options), OptionError);
+  for (const double density : {0.0, 0.049, 20.5, std::numeric_limits<double>::quiet_NaN()}) {
+    options = SesOptions{};
+    options.vertex_density = density;
+    EXPECT_THROW(build_ses(one.centers, one.radii, options), OptionError) << density;
+  }
   options = SesOptions{};
-  options.vertex_density = 0.0;
-  EXPECT_THROW(build_ses(one.centers, one.radii, options), OptionError);
+  options.vertex_density = max_vertex_density;  // the largest accepted: a 1.7 A atom builds
+  EXPECT_GT(build_ses(one.centers, one.radii, options).n_vertices(), 500u);
   for (const double fraction : {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
     options = SesOptions{};
     options.min_component_volume_fraction = fraction;

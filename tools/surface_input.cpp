@@ -60,7 +60,8 @@ void add_surface_options(boost::program_options::options_description& options,
 
 void finish_surface_options(SurfaceInput& input) {
   require_in_range("probe-radius", input.surface.ses.probe_radius, 0.0, 10.0);
-  require_in_range("density", input.surface.ses.vertex_density, 0.05, 100.0);
+  require_in_range("density", input.surface.ses.vertex_density, mesh::min_vertex_density,
+                   mesh::max_vertex_density);
   require_in_range("voxel", input.surface.ses.voxel_size, 0.0, 2.0);
   require_in_range("eps", input.surface.esp.dielectric, 1e-3, 1e3);
   require_one_of("charges", input.charges, {"file", "gasteiger", "mmff"});

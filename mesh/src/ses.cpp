@@ -67,6 +67,12 @@ void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
     throw InputError(what + ": " + std::to_string(centers.rows()) + " centres but " +
                      std::to_string(radii.size()) + " radii; expected one radius per centre");
   }
+  if (!(options.vertex_density >= min_vertex_density &&
+        options.vertex_density <= max_vertex_density)) {
+    throw OptionError(what + ": vertex density " + number(options.vertex_density) +
+                      " per A^2 is outside [" + number(min_vertex_density) + ", " +
+                      number(max_vertex_density) + "]");
+  }
   require_limit(what, "max_atoms", static_cast<double>(options.max_atoms));
   require_limit(what, "max_grid_cells", options.max_grid_cells);
   require_limit(what, "max_vertices", static_cast<double>(options.max_vertices));
