@@ -229,7 +229,7 @@ std::vector<double> gasteiger_charges(const RDKit::ROMol& mol, const Molecule& m
       }
       throw InputError(molecule.source + ": Gasteiger charges unavailable for the fragment of " +
                        describe_atom(molecule, first) + " (RDKit: " + one_line(e.what()) +
-                       "); use ChargeModel::mmff or a PQR file");
+                       "); use MMFF94 charges (--charges mmff) or a PQR file");
     }
     for (const RDKit::Atom* atom : fragment.atoms()) {
       const std::size_t index = static_cast<std::size_t>(mapping[f][atom->getIdx()]);
@@ -273,7 +273,7 @@ std::vector<double> mmff_charges(const RDKit::ROMol& mol, const std::string& sou
   if (!properties.isValid()) {
     throw InputError(source +
                      ": MMFF94 atom typing failed (RDKit found an atom without an "
-                     "MMFF94 type); use ChargeModel::gasteiger");
+                     "MMFF94 type); use Gasteiger charges (--charges gasteiger)");
   }
   std::vector<double> charges(with_h->getNumAtoms());
   for (unsigned int i = 0; i < with_h->getNumAtoms(); ++i) {

@@ -93,7 +93,7 @@ SurfaceDescriptors describe_surface(
     message << surface.source() << ": " << count << " shape images of " << options.image.rings
             << " rings x " << options.image.sectors << " sectors would take about " << bytes
             << " bytes; the limit is " << options.max_image_bytes
-            << " (raise it with --max-image-bytes (DescriptorOptions::max_image_bytes), or use a "
+            << " (raise it with --max-image-bytes, or use a "
                "smaller grid)";
     throw InputError(message.str());
   }

@@ -208,7 +208,7 @@ std::vector<std::vector<int>> maximal_cliques(const AssociationGraph& g, int min
   if (!result.complete) {
     throw InputError("maximal_cliques: the search stopped after " + std::to_string(result.work) +
                      " units of work and " + std::to_string(result.cliques.size()) +
-                     " cliques (CliqueOptions::max_work, max_cliques); the list would be "
+                     " cliques (--max-clique-work, --max-cliques); the list would be "
                      "incomplete");
   }
   return std::move(result.cliques);

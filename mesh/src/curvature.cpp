@@ -663,8 +663,7 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
 
   // Report the lowest failing vertex, whatever the thread schedule was.
   for (std::size_t v = 0; v < status.size(); ++v) {
-    const std::string where =
-        surface.source() + ": principal_curvatures: vertex " + std::to_string(v);
+    const std::string where = surface.source() + ": curvature: vertex " + std::to_string(v);
     switch (status[v]) {
       case FitStatus::ok:
         continue;

@@ -78,7 +78,7 @@ void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   require_limit(what, "max_vertices", static_cast<double>(options.max_vertices));
   require_within(what, std::to_string(centers.rows()) + " atoms",
                  static_cast<double>(centers.rows()), static_cast<double>(options.max_atoms),
-                 "--max-atoms (SesOptions::max_atoms)");
+                 "--max-atoms");
   for (Eigen::Index i = 0; i < centers.rows(); ++i) {
     if (!centers.row(i).allFinite()) {
       throw InputError(what + ": atom " + std::to_string(i) +
@@ -174,7 +174,7 @@ void check_grid_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers, double r
   require_within(
       what,
       "the surface grid would span about " + number(cells) + " cells of " + number(voxel) + " A",
-      cells, max_cells, "--max-grid-cells (SesOptions::max_grid_cells)");
+      cells, max_cells, "--max-grid-cells");
 }
 
 /// The vertex count the surface will have: the grid mesh's, or after remeshing its area times
@@ -238,8 +238,7 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   }
   const double vertices = expected_vertices(soup, options);
   require_within(what, "the surface would have about " + number(vertices) + " vertices", vertices,
-                 static_cast<double>(options.max_vertices),
-                 "--max-vertices (SesOptions::max_vertices)");
+                 static_cast<double>(options.max_vertices), "--max-vertices");
   Surface surface;
   if (!options.remesh) {
     surface = Surface::from_arrays(soup.positions, soup.faces, what);
