@@ -273,6 +273,31 @@ TEST(ReadRecords, MultiRecordSdfNeedsARecordAndReadsTheOneAsked) {
                            {"one.pdb", "record 2"});
 }
 
+TEST(ReadRecords, RdkitRefusalsAreSaidInAChemistsWords) {
+  const TempDir dir;
+  const std::string good = methanol_sdf("m", 0.0);
+  const auto edited = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const std::pair<std::string, std::string> cases[] = {
+      {edited("  1  2  1  0\n", "  1  7  1  0\n"),
+       "a bond names an atom number beyond the molecule's atom count"},
+      {edited("  1  2  1  0\n", "  2  2  1  0\n"), "a bond joins an atom to itself"},
+      {edited(" O   0", " Xx  0"), "'Xx' is not an element symbol"},
+      {edited("  2  1  0  0", "\n  2  1  0  0"),
+       "line 4: the counts line (atom and bond counts) is missing or short"},
+      // A triple bond to the oxygen.
+      {edited("  1  2  1  0\n", "  1  2  3  0\n"), "atom 2 (O) has valence 3, more than O allows"},
+  };
+  int k = 0;
+  for (const auto& [text, expected] : cases) {
+    const fs::path path = dir.write("bad" + std::to_string(++k) + ".sdf", text);
+    expect_error<FormatError>([&] { io::read_molecule(path); }, {path.string(), expected});
+  }
+}
+
 TEST(ReadRecords, LigandSelectionOnSdfIsRefused) {
   const TempDir dir;
   const fs::path sdf = dir.write("l.sdf", methanol_sdf("l", 0.0));

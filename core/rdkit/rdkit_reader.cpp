@@ -27,6 +27,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -48,6 +49,36 @@ std::string one_line(const std::string& text) {
   return out;
 }
 
+// RDKit's message for a file it refused, in a chemist's words where it is one of the common
+// ones (atom numbers from 1, as in the file); any other keeps RDKit's text after "RDKit: ".
+std::string in_chemists_words(const std::string& message) {
+  std::smatch m;
+  const auto atoms_from_one = [](const std::string& indices) {
+    std::istringstream in(indices);
+    std::string out;
+    for (int index = 0; in >> index;) out += (out.empty() ? "" : " ") + std::to_string(index + 1);
+    return out;
+  };
+  if (std::regex_search(message, m, std::regex(R"(Counts line too short: .* on line ?(\d+))")))
+    return "line " + m[1].str() + ": the counts line (atom and bond counts) is missing or short";
+  if (std::regex_search(message, m, std::regex(R"(Element '([^']*)' not found)")))
+    return "'" + m[1].str() + "' is not an element symbol";
+  if (message.find("self-bond") != std::string::npos) return "a bond joins an atom to itself";
+  if (message.find("AtomIdx()") != std::string::npos)
+    return "a bond names an atom number beyond the molecule's atom count";
+  if (std::regex_search(message, m,
+                        std::regex(R"(valence for atom # (\d+) (\w+), (\d+), is greater)"))) {
+    return "atom " + atoms_from_one(m[1].str()) + " (" + m[2].str() + ") has valence " +
+           m[3].str() + ", more than " + m[2].str() + " allows (a missing charge?)";
+  }
+  if (std::regex_search(message, m, std::regex(R"(Unkekulized atoms:([\d ]+))"))) {
+    return "the aromatic atoms " + atoms_from_one(m[1].str()) +
+           " admit no alternating single and double bonds (a missing hydrogen on an aromatic "
+           "N?)";
+  }
+  return "RDKit: " + message;
+}
+
 // Runs an RDKit call, turning any exception it throws into a FormatError naming `source`.
 template <typename Call>
 auto rdkit_call(const std::string& source, const std::string& what, Call&& call) {
@@ -56,9 +87,9 @@ auto rdkit_call(const std::string& source, const std::string& what, Call&& call)
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw FormatError(source, "RDKit could not " + what + ": " + one_line(e.what()));
+    throw FormatError(source, "cannot " + what + ": " + in_chemists_words(one_line(e.what())));
   } catch (...) {
-    throw FormatError(source, "RDKit could not " + what + " (unknown exception)");
+    throw FormatError(source, "cannot " + what + " (RDKit failed without a reason)");
   }
 }
 
@@ -113,7 +144,7 @@ void sanitize(std::unique_ptr<RDKit::RWMol>& mol, RdkitFormat format, const std:
         // fall through to the original reason
       }
     }
-    throw FormatError(source, "RDKit could not sanitise the molecule: " + reason);
+    throw FormatError(source, "not a valid molecule: " + in_chemists_words(reason));
   }
 }
 
@@ -329,7 +360,7 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& wh
                                : select_record(whole_text, format, options.record, source);
   if (format == RdkitFormat::mol2) check_mol2_structure(text, source);
   auto mol = parse(text, format, source);
-  if (!mol) throw FormatError(source, "RDKit could not parse the file");
+  if (!mol) throw FormatError(source, "cannot parse the file: it holds no molecule");
   if (mol->getNumAtoms() == 0) throw InputError(source + ": the file has no atoms");
   Molecule molecule = convert_atoms(*mol, source);
   check_read_atoms(molecule);
