@@ -3,6 +3,7 @@
 // limit that is no positive integer is a command-line error; a graph above --max-graph-nodes, or
 // shape images above --max-image-bytes, are refused in one line, as is a mesh without the ESP
 // and LP the match compares.
+#include "program_run.hpp"
 #include "test_data.hpp"
 
 #include <gtest/gtest.h>
@@ -10,32 +11,16 @@
 
 #include <algorithm>
 #include <fstream>
-#include <sstream>
-#include <sys/wait.h>
 
 namespace surfcomp {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct ProgramRun {
-  int status = -1;
-  std::string err;
-};
+using test::ProgramRun;
 
-/// Runs the surfcomp program with `arguments`, stdout discarded, stderr kept.
-ProgramRun run(const std::string& arguments, const fs::path& err) {
-  const fs::path program = fs::path(SURFCOMP_BINARY_DIR) / "tools" / "surfcomp";
-  const std::string command = program.string() + " " + arguments + " >/dev/null 2>" + err.string();
-  const int raw = std::system(command.c_str());
-  ProgramRun r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  r.err = text.str();
-  return r;
-}
+/// `surfcomp ARGUMENTS` (test::run_program).
+ProgramRun run(const std::string& arguments) { return test::run_program(arguments); }
 
 std::size_t lines(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
@@ -47,8 +32,7 @@ TEST(MatchBudgetCli, ACutCliqueSearchIsReportedAndTheMatchStillAnswers) {
   const test::TempDir dir;
   const std::string pair = ref.string() + " " + probe.string();
 
-  const ProgramRun full =
-      run("match " + pair + " -o " + (dir / "full.json").string(), dir / "full.err");
+  const ProgramRun full = run("match " + pair + " -o " + (dir / "full.json").string());
   ASSERT_EQ(full.status, 0) << full.err;
   EXPECT_EQ(full.err.find("warning"), std::string::npos) << full.err;
   std::ifstream full_in(dir / "full.json");
@@ -64,8 +48,7 @@ TEST(MatchBudgetCli, ACutCliqueSearchIsReportedAndTheMatchStillAnswers) {
   ASSERT_GT(count, 1u);
 
   const ProgramRun cut = run("match " + pair + " --max-clique-work " + std::to_string(work / 2) +
-                                 " -o " + (dir / "cut.json").string(),
-                             dir / "cut.err");
+                             " -o " + (dir / "cut.json").string());
   ASSERT_EQ(cut.status, 0) << cut.err;
   EXPECT_EQ(lines(cut.err), 1u) << cut.err;
   EXPECT_EQ(cut.err.rfind("surfcomp match: warning: clique search stopped after ", 0), 0u)
@@ -82,7 +65,7 @@ TEST(MatchBudgetCli, ACutCliqueSearchIsReportedAndTheMatchStillAnswers) {
             cut.err);
   EXPECT_FALSE(cut_doc["alignments"].empty());  // the principal-axes starts at least
 
-  const ProgramRun capped = run("match " + pair + " --max-cliques 1", dir / "capped.err");
+  const ProgramRun capped = run("match " + pair + " --max-cliques 1");
   ASSERT_EQ(capped.status, 0) << capped.err;
   EXPECT_EQ(capped.err,
             "surfcomp match: warning: clique search stopped at 1 cliques (--max-cliques); "
@@ -96,8 +79,7 @@ TEST(MatchBudgetCli, ALimitThatIsNoPositiveIntegerIsACommandLineError) {
     for (const std::string value : {"0", "-5", "1.5", "lots", "99999999999999999999"}) {
       const fs::path out = dir / "result.json";
       const ProgramRun r = run("match " + ref.string() + " " + ref.string() + " " + option + "=" +
-                                   value + " -o " + out.string(),
-                               dir / "err.txt");
+                               value + " -o " + out.string());
       EXPECT_EQ(r.status, 2) << option << " " << value << ": " << r.err;
       EXPECT_EQ(lines(r.err), 1u) << r.err;
       EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
@@ -111,9 +93,8 @@ TEST(MatchBudgetCli, AGraphAboveTheNodeLimitIsRefusedInOneLine) {
   SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/4TMN_ligand.sdf");
   const test::TempDir dir;
   const fs::path out = dir / "result.json";
-  const ProgramRun r = run(
-      "match " + ref.string() + " " + probe.string() + " --max-graph-nodes 3 -o " + out.string(),
-      dir / "err.txt");
+  const ProgramRun r = run("match " + ref.string() + " " + probe.string() +
+                           " --max-graph-nodes 3 -o " + out.string());
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(lines(r.err), 1u) << r.err;
   EXPECT_NE(r.err.find("more than max_nodes = 3"), std::string::npos) << r.err;
@@ -128,8 +109,7 @@ TEST(MatchBudgetCli, ImagesAboveTheByteLimitAreRefusedInOneLine) {
   const fs::path out = dir / "result.json";
   // One default image (16 x 180 samples of 37 bytes) is 106,560 bytes: a ligand needs several.
   const ProgramRun r = run("match " + ref.string() + " " + probe.string() +
-                               " --max-image-bytes 106560 -o " + out.string(),
-                           dir / "err.txt");
+                           " --max-image-bytes 106560 -o " + out.string());
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(lines(r.err), 1u) << r.err;
   EXPECT_NE(r.err.find("1THL_ligand.sdf"), std::string::npos) << r.err;
@@ -146,7 +126,7 @@ TEST(MatchBudgetCli, AMeshWithoutEspIsRefusedBeforeItIsDescribed) {
   const fs::path out = dir / "result.json";
   for (const std::string& pair :
        {ligand.string() + " " + mesh.string(), mesh.string() + " " + ligand.string()}) {
-    const ProgramRun r = run("match " + pair + " -o " + out.string(), dir / "err.txt");
+    const ProgramRun r = run("match " + pair + " -o " + out.string());
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find("1EWY_A.ply: the surface has no vertex property 'esp'"), std::string::npos)

@@ -1,18 +1,17 @@
 // The heavy shared libraries come in only with the work that needs them (loadable_module.hpp):
 // RDKit with the first molecule read through it, Open MPI under mpirun, cairo with the first PNG.
 // A process that reads a PQR file or prints its version maps none of them.
+#include "program_run.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 
 #include <gtest/gtest.h>
 #include <link.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -20,8 +19,6 @@
 namespace {
 
 namespace fs = std::filesystem;
-
-const fs::path kProgram = fs::path(SURFCOMP_BINARY_DIR) / "tools" / "surfcomp";
 
 /// The file names of the shared objects mapped into this process.
 std::vector<std::string> loaded_objects() {
@@ -70,23 +67,6 @@ const char* kEthanolSdf =
     "    1.4311    0.3229    0.5867 O   0  0  0  0  0  0  0  0  0  0  0  0\n"
     "  1  2  1  0\n  2  3  1  0\nM  END\n$$$$\n";
 
-/// stdout and stderr of `command` run by the shell, and its exit status.
-struct ShellRun {
-  int status = -1;
-  std::string output;
-};
-
-ShellRun shell(const std::string& command) {
-  ShellRun run;
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) run.output += buffer;
-  const int status = ::pclose(pipe);
-  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
 TEST(LoadableModules, RdkitComesInWithTheFirstMoleculeReadThroughIt) {
   ASSERT_FALSE(is_loaded("libRDKit")) << "the test program itself maps RDKit";
   const fs::path pqr = scratch("glycine.pqr");
@@ -114,13 +94,14 @@ TEST(LoadableModules, TheModuleThrowsCoreErrorsTheCallerCatches) {
 
 TEST(LoadableModules, VersionMapsNeitherRdkitNorMpiNorCairo) {
   // LD_DEBUG=files: the dynamic loader names every object it opens.
-  const ShellRun run = shell("LD_DEBUG=files " + kProgram.string() + " --version");
-  ASSERT_EQ(run.status, 0) << run.output;
-  EXPECT_NE(run.output.find("surfcomp "), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("file=libtbb"), std::string::npos)
-      << "LD_DEBUG printed no library loads: " << run.output;
+  const surfcomp::test::ProgramRun run =
+      surfcomp::test::run_program("--version", {{}, "LD_DEBUG=files "});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("surfcomp "), std::string::npos) << run.out;
+  EXPECT_NE(run.err.find("file=libtbb"), std::string::npos)
+      << "LD_DEBUG printed no library loads: " << run.err;
   for (const char* heavy : {"file=libRDKit", "file=libmpi", "file=libcairo", "file=libhwy"})
-    EXPECT_EQ(run.output.find(heavy), std::string::npos) << heavy << " in\n" << run.output;
+    EXPECT_EQ(run.err.find(heavy), std::string::npos) << heavy << " in\n" << run.err;
 }
 
 TEST(LoadableModules, AMissingModuleIsOneLineAndNoOutput) {
@@ -129,13 +110,14 @@ TEST(LoadableModules, AMissingModuleIsOneLineAndNoOutput) {
   const fs::path empty = scratch("no-modules");
   fs::create_directories(empty);
   const fs::path out = scratch("ethanol.ply");
-  const ShellRun run = shell("SURFCOMP_MODULE_DIR=" + empty.string() + " " + kProgram.string() +
-                             " surf-build " + sdf.string() + " -o " + out.string());
-  EXPECT_EQ(run.status, 1) << run.output;
-  EXPECT_NE(run.output.find("libsurfcomp_rdkit.so: not found in " + empty.string()),
-            std::string::npos)
-      << run.output;
-  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+  const surfcomp::test::ProgramRun run =
+      surfcomp::test::run_program("surf-build " + sdf.string() + " -o " + out.string(),
+                                  {{}, "SURFCOMP_MODULE_DIR=" + empty.string() + " "});
+  EXPECT_EQ(run.status, 1) << run.err;
+  EXPECT_NE(run.err.find("libsurfcomp_rdkit.so: not found in " + empty.string()), std::string::npos)
+      << run.err;
+  EXPECT_EQ(run.out, "");
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
   EXPECT_FALSE(fs::exists(out));
   fs::remove_all(sdf.parent_path());
 }

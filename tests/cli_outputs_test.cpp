@@ -3,6 +3,7 @@
 // byte for byte and no file behind, and its one-line message names the files and the problem
 // (exit status 2 for a command line that cannot run as given, 1 for a file that cannot be
 // written or read).
+#include "program_run.hpp"
 #include "test_data.hpp"
 
 #include "surfcomp/harmonic/io/hsi_file.hpp"
@@ -13,11 +14,9 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 namespace surfcomp {
@@ -25,36 +24,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kProgram = fs::path(SURFCOMP_BINARY_DIR) / "tools" / "surfcomp";
-
-struct ProgramRun {
-  int status = -1;
-  std::string err;
-};
-
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
+using test::file_bytes;
+using test::ProgramRun;
 
 /// Each test runs the program inside a temporary directory of its own, so that relative names
 /// ("./l.pdb") mean files of that directory and ctest -j runs the tests side by side.
 class CliOutputs : public ::testing::Test {
  protected:
-  /// Runs `surfcomp ARGUMENTS` in the test's directory, stdout discarded; returns its exit
-  /// status and stderr (kept outside the directory, whose listing the tests compare).
+  /// `surfcomp ARGUMENTS` in the test's directory (test::run_program, which keeps the streams
+  /// outside it, whose listing the tests compare).
   ProgramRun run(const std::string& arguments) const {
-    const fs::path err = fs::path(dir_ / "..") / (dir_name() + ".stderr");
-    const std::string command = "cd " + dir_path().string() + " && " + kProgram.string() + " " +
-                                arguments + " >/dev/null 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    ProgramRun r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.err = file_bytes(err);
-    fs::remove(err);
-    return r;
+    return test::run_program(arguments, {dir_path(), ""});
   }
 
   /// Copies a shared data set file into the test's directory as `name`.

@@ -6,6 +6,7 @@
 // kind, and --sites with INPUTs, are refused with one line, as is a run under MPI without the MPI
 // module. A build interrupted by a signal leaves no file behind.
 #include "pocket_cut.hpp"
+#include "program_run.hpp"
 #include "test_data.hpp"
 
 #include <gtest/gtest.h>
@@ -37,14 +38,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kProgram = fs::path(SURFCOMP_BINARY_DIR) / "tools" / "surfcomp";
+const fs::path kProgram = test::program_path();
 
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
+using test::file_bytes;
+using test::ProgramRun;
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
@@ -59,11 +56,6 @@ std::vector<std::string> fields_of(const std::string& row) {
   for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
   return fields;
 }
-
-struct ProgramRun {
-  int status = -1;
-  std::string err;
-};
 
 /// One library of three molecules, two conformers each, shared by the tests of the suite.
 class CliScreen : public ::testing::Test {
@@ -83,16 +75,9 @@ class CliScreen : public ::testing::Test {
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
 
-  /// Runs `PREFIX surfcomp ARGUMENTS` in the suite's directory, stdout discarded.
+  /// `PREFIX surfcomp ARGUMENTS` in the suite's directory (test::run_program).
   static ProgramRun run(const std::string& arguments, const std::string& prefix = "") {
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string command = "cd " + dir_.string() + " && " + prefix + kProgram.string() + " " +
-                                arguments + " >/dev/null 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    ProgramRun r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.err = file_bytes(err);
-    return r;
+    return test::run_program(arguments, {dir_, prefix});
   }
 
   static fs::path dir_;

@@ -1,6 +1,7 @@
 // The surfcomp program as a user runs it: the match output contract (result.json), the aligned
 // PROBE, bad input giving a one-line error, a non-zero exit and no output file, the former
 // names of renamed options, and --help's defaults.
+#include "program_run.hpp"
 #include "test_data.hpp"
 
 #include "surfcomp/harmonic/io/hsi_file.hpp"
@@ -13,39 +14,21 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
-#include <sys/wait.h>
 
 namespace surfcomp {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kProgram = fs::path(SURFCOMP_BINARY_DIR) / "tools" / "surfcomp";
+using test::file_bytes;
+using test::ProgramRun;
 
-struct ProgramRun {
-  int status = -1;
-  std::string err;
-};
-
-/// Each test runs the program in a temporary directory of its own (its stderr and outputs),
-/// so that ctest -j runs the tests side by side.
+/// Each test runs the program in a temporary directory of its own (its outputs), so that
+/// ctest -j runs the tests side by side.
 class Cli : public ::testing::Test {
  protected:
-  /// Runs `surfcomp ARGUMENTS` with stdout discarded; returns its exit status and stderr.
-  ProgramRun run(const std::string& arguments) const {
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string command =
-        kProgram.string() + " " + arguments + " >/dev/null 2>" + err.string();
-    const int raw = std::system(command.c_str());
-    ProgramRun r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    std::ifstream in(err);
-    std::stringstream text;
-    text << in.rdbuf();
-    r.err = text.str();
-    return r;
-  }
+  /// `surfcomp ARGUMENTS` (test::run_program).
+  static ProgramRun run(const std::string& arguments) { return test::run_program(arguments); }
 
   /// `name` in the test's directory.
   fs::path scratch(const std::string& name) const { return dir_ / name; }
@@ -256,20 +239,7 @@ TEST_F(Cli, NoAlignmentStillWritesTheJsonAndSaysTheProbeWasNotMoved) {
 
 /// What `surfcomp ARGUMENTS` prints on stdout.
 std::string program_output(const std::string& arguments) {
-  std::string text;
-  FILE* pipe = ::popen((kProgram.string() + " " + arguments + " 2>/dev/null").c_str(), "r");
-  if (pipe == nullptr) return text;
-  char buffer[4096];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) text.append(buffer, n);
-  ::pclose(pipe);
-  return text;
-}
-
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
+  return test::run_program(arguments).out;
 }
 
 /// The renamed options and their former names (tools/options.cpp), as a subcommand takes them.
@@ -392,13 +362,9 @@ TEST_F(Cli, RenamedOptionsKeepTheirFormerNamesAsDeprecatedAliases) {
 // the default (1.4, not 1.3999999999999999).
 TEST_F(Cli, HelpShowsDefaultsInTheirShortestForm) {
   for (const std::string command : {"surf-build", "match", "hsi-build"}) {
-    const fs::path out = scratch(command + "-help.txt");
-    const std::string line = kProgram.string() + " " + command + " --help >" + out.string();
-    ASSERT_EQ(std::system(line.c_str()), 0) << command;
-    std::ifstream in(out);
-    std::stringstream text;
-    text << in.rdbuf();
-    const std::string help = text.str();
+    const ProgramRun r = run(command + " --help");
+    ASSERT_EQ(r.status, 0) << command;
+    const std::string& help = r.out;
     EXPECT_EQ(help.find("99999"), std::string::npos) << command << "\n" << help;
     EXPECT_EQ(help.find("00000001"), std::string::npos) << command << "\n" << help;
     EXPECT_NE(help.find("--probe-radius arg (=1.4)"), std::string::npos) << command << "\n" << help;
@@ -411,29 +377,19 @@ TEST_F(Cli, QuietSaysNothingAndVerboseSaysEachStep) {
   if (!fs::exists(data / "4i23_1C9.pdb")) GTEST_SKIP() << data << " is not fetched";
   const std::string pair =
       (data / "4i23_1C9.pdb").string() + " " + (data / "4i24_1C9.pdb").string();
-  const fs::path out = scratch("out.txt"), err = scratch("err.txt");
-  const auto text = [](const fs::path& path) {
-    std::ifstream in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  };
-  const auto run_to = [&](const std::string& arguments) {
-    const std::string line =
-        kProgram.string() + " " + arguments + " >" + out.string() + " 2>" + err.string();
-    return std::system(line.c_str());
-  };
-  ASSERT_EQ(run_to("match " + pair + " -q -o " + scratch("q.json").string()), 0);
-  EXPECT_EQ(text(out), "");
-  EXPECT_EQ(text(err), "");
+  const ProgramRun quiet = run("match " + pair + " -q -o " + scratch("q.json").string());
+  ASSERT_EQ(quiet.status, 0) << quiet.err;
+  EXPECT_EQ(quiet.out, "");
+  EXPECT_EQ(quiet.err, "");
   EXPECT_TRUE(fs::exists(scratch("q.json")));
-  ASSERT_EQ(run_to("match " + pair + " --verbose"), 0);
-  const std::string steps = text(err);
+  const ProgramRun verbose = run("match " + pair + " --verbose");
+  ASSERT_EQ(verbose.status, 0) << verbose.err;
   for (const char* expected : {"] REF ", "22 atoms, surface of", "] PROBE ", "imaged", "] match: "})
-    EXPECT_NE(steps.find(expected), std::string::npos) << expected << "\n" << steps;
-  EXPECT_NE(text(out).find("alignments"), std::string::npos);
-  EXPECT_NE(run_to("match " + pair + " -q -v"), 0);
-  EXPECT_NE(text(err).find("cannot be combined"), std::string::npos);
+    EXPECT_NE(verbose.err.find(expected), std::string::npos) << expected << "\n" << verbose.err;
+  EXPECT_NE(verbose.out.find("alignments"), std::string::npos);
+  const ProgramRun both = run("match " + pair + " -q -v");
+  EXPECT_NE(both.status, 0);
+  EXPECT_NE(both.err.find("cannot be combined"), std::string::npos) << both.err;
 }
 
 }  // namespace

@@ -1,0 +1,70 @@
+// The surfcomp program run as a user runs it, for the tests of the command line: one helper that
+// every CLI test calls, so that how a run is started and what it returns is defined once.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+namespace surfcomp::test {
+
+/// What one run of the program gave.
+struct ProgramRun {
+  int status = -1;  ///< exit status; -1 when a signal ended it
+  std::string out;  ///< its stdout
+  std::string err;  ///< its stderr
+};
+
+/// How run_program starts the program.
+struct RunOptions {
+  std::filesystem::path folder;  ///< working folder; empty: the test's own
+  /// Put before the program on the shell's command line: environment assignments
+  /// ("SURFCOMP_MODULE_DIR=/x ") or a launcher ("mpirun -n 2 ").
+  std::string prefix;
+};
+
+/// The surfcomp program of this build.
+inline std::filesystem::path program_path() {
+  return std::filesystem::path(SURFCOMP_BINARY_DIR) / "tools" / "surfcomp";
+}
+
+/// The bytes of `path` ("" when it cannot be read).
+inline std::string file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+/// Runs `PREFIX surfcomp ARGUMENTS` through the shell (ARGUMENTS as a user types them) and
+/// returns its exit status, stdout and stderr. Both streams go through files in a folder of the
+/// run's own under the system's temporary folder, removed afterwards, so that runs side by side
+/// (ctest -j) and the listing of the working folder are not disturbed.
+inline ProgramRun run_program(const std::string& arguments, const RunOptions& options = {}) {
+  static std::atomic<int> runs{0};
+  namespace fs = std::filesystem;
+  const fs::path streams =
+      fs::temp_directory_path() /
+      ("surfcomp_run_" + std::to_string(::getpid()) + "_" + std::to_string(runs.fetch_add(1)));
+  fs::create_directories(streams);
+  std::string command = options.prefix + program_path().string() + " " + arguments + " >" +
+                        (streams / "out").string() + " 2>" + (streams / "err").string();
+  if (!options.folder.empty()) command = "cd " + options.folder.string() + " && " + command;
+  const int raw = std::system(command.c_str());
+  ProgramRun run;
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  run.out = file_bytes(streams / "out");
+  run.err = file_bytes(streams / "err");
+  std::error_code ignored;
+  fs::remove_all(streams, ignored);
+  return run;
+}
+
+}  // namespace surfcomp::test
