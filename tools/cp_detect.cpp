@@ -30,16 +30,12 @@ constexpr const char* kUsage =
     "ESP and LP averaged over a small geodesic disc.\n\n"
     "INPUT  a molecule or mesh (as surf-build) or a .hsi file (its stored critical points)";
 
-const char* type_name(mesh::CriticalPointType type) {
-  return type == mesh::CriticalPointType::peak ? "peak" : "valley";
-}
-
 nlohmann::json to_json(const std::vector<mesh::CriticalPoint>& points) {
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& p = points[i];
     list.push_back({{"index", i},
-                    {"type", type_name(p.type)},
+                    {"type", mesh::type_name(p.type)},
                     {"vertex", p.vertex},
                     {"position", {p.position.x(), p.position.y(), p.position.z()}},
                     {"normal", {p.normal.x(), p.normal.y(), p.normal.z()}},

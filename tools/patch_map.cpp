@@ -206,11 +206,10 @@ int patch_map(const std::vector<std::string>& args) {
     }
     for (const Chosen& c : chosen) {
       const std::string stem = "cp" + std::to_string(c.index);
-      nlohmann::json entry = {
-          {"index", c.index},
-          {"type", c.descriptor.point.type == mesh::CriticalPointType::peak ? "peak" : "valley"},
-          {"vertex", c.descriptor.point.vertex},
-          {"status", harmonic::to_string(c.descriptor.status)}};
+      nlohmann::json entry = {{"index", c.index},
+                              {"type", mesh::type_name(c.descriptor.point.type)},
+                              {"vertex", c.descriptor.point.vertex},
+                              {"status", harmonic::to_string(c.descriptor.status)}};
       if (c.descriptor.status != harmonic::PatchStatus::ok) {
         entry["files"] = nlohmann::json::array();
         points.push_back(entry);

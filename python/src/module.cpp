@@ -240,7 +240,7 @@ py::dict critical_points_dict(const harmonic::SurfaceDescriptors& d) {
     esp(i) = cp.point.esp;
     lp(i) = cp.point.lp;
     vertex(i) = cp.point.vertex;
-    types.append(cp.point.type == mesh::CriticalPointType::peak ? "peak" : "valley");
+    types.append(mesh::type_name(cp.point.type));
     status.append(harmonic::to_string(cp.status));
   }
   py::dict out;

@@ -82,7 +82,7 @@ nlohmann::json side_json(const matching::PreparedInput& side, const matching::Ma
     const mesh::CriticalPoint& p = side.descriptors.critical_points[i].point;
     const bool in_site = side.site_points.empty() || side.site_points[i];
     points.push_back({{"position", {p.position.x(), p.position.y(), p.position.z()}},
-                      {"type", p.type == mesh::CriticalPointType::peak ? "peak" : "valley"},
+                      {"type", mesh::type_name(p.type)},
                       {"in_site", in_site}});
   }
   nlohmann::json lining = nullptr;

@@ -13,6 +13,11 @@ namespace surfcomp::mesh {
 
 enum class CriticalPointType { peak, valley };
 
+/// The type's name in every output (JSON, PDB, the report, Python): "peak" or "valley".
+constexpr const char* type_name(CriticalPointType type) {
+  return type == CriticalPointType::peak ? "peak" : "valley";
+}
+
 struct CriticalPointOptions {
   /// Default 2.5 A. The on-surface radius r_cp of the neighbourhood N(p, r_cp) in which a
   /// critical point must have the extreme curvature, on-surface (see `distance`). Must be
