@@ -52,6 +52,16 @@ double max_distance(const Eigen::MatrixX2d& a, const Eigen::MatrixX2d& b) {
   return (a - b).rowwise().norm().maxCoeff();
 }
 
+TEST(SpringWeights, EachNameReadsBackAsItsWeights) {
+  for (const SpringWeights weights : {SpringWeights::inverse_length, SpringWeights::uniform,
+                                      SpringWeights::cotangent, SpringWeights::mean_value}) {
+    EXPECT_EQ(spring_weights_from_name(to_string(weights)), weights) << to_string(weights);
+  }
+  EXPECT_STREQ(to_string(SpringWeights::inverse_length), "inverse-length");
+  EXPECT_STREQ(to_string(SpringWeights::mean_value), "mean-value");
+  EXPECT_EQ(spring_weights_from_name("inverse_length"), std::nullopt);
+}
+
 TEST(DiskMapTest, TestPatchesHaveTheIntendedTopology) {
   for (const TestPatch& patch : analytic_patches()) {
     SCOPED_TRACE(patch.name);

@@ -6,11 +6,10 @@
 namespace surfcomp::tools {
 
 harmonic::SpringWeights parse_weights(const std::string& name) {
-  require_one_of("weights", name, {"inverse-length", "uniform", "cotangent", "mean-value"});
-  if (name == "uniform") return harmonic::SpringWeights::uniform;
-  if (name == "cotangent") return harmonic::SpringWeights::cotangent;
-  if (name == "mean-value") return harmonic::SpringWeights::mean_value;
-  return harmonic::SpringWeights::inverse_length;
+  const std::vector<std::string> names(harmonic::spring_weights_names.begin(),
+                                       harmonic::spring_weights_names.end());
+  require_one_of("weights", name, names);
+  return *harmonic::spring_weights_from_name(name);
 }
 
 void add_describe_options(boost::program_options::options_description& options,
@@ -27,7 +26,7 @@ void add_describe_options(boost::program_options::options_description& options,
        "image grid: rings of the polar grid")
       ("image-sectors", defaulted(&d.image.sectors),
        "image grid: sectors (samples per ring; 180 = 2-degree rotation steps)")
-      ("weights", po::value(&settings.weights)->default_value("inverse-length"),
+      ("weights", po::value(&settings.weights)->default_value(harmonic::to_string(d.disk_map.weights)),
        "harmonic map spring weights: inverse-length (seed) | uniform | cotangent | mean-value")
       ("threads", po::value(&settings.threads)->default_value(0), "worker threads (0 = all cores)")
       ("max-image-bytes", defaulted(&d.max_image_bytes),

@@ -20,7 +20,7 @@ namespace surfcomp::tools {
 struct DescribeSettings {
   SurfaceInput input;
   harmonic::DescriptorOptions descriptors;
-  std::string weights = "inverse-length";
+  std::string weights = harmonic::to_string(harmonic::DiskMapOptions{}.weights);
   int threads = 0;
 };
 

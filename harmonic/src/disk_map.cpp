@@ -296,17 +296,14 @@ Eigen::MatrixX2d solve_general(const Eigen::SparseMatrix<double>& matrix,
 }  // namespace
 
 const char* to_string(SpringWeights weights) {
-  switch (weights) {
-    case SpringWeights::inverse_length:
-      return "inverse_length";
-    case SpringWeights::uniform:
-      return "uniform";
-    case SpringWeights::cotangent:
-      return "cotangent";
-    case SpringWeights::mean_value:
-      return "mean_value";
+  return spring_weights_names[static_cast<std::size_t>(weights)];
+}
+
+std::optional<SpringWeights> spring_weights_from_name(const std::string& name) {
+  for (std::size_t i = 0; i < spring_weights_names.size(); ++i) {
+    if (name == spring_weights_names[i]) return static_cast<SpringWeights>(i);
   }
-  return "?";
+  return std::nullopt;
 }
 
 void check_disk_map_input(const Eigen::Ref<const Eigen::MatrixX3d>& positions,

@@ -215,9 +215,7 @@ py::dict descriptor_options_dict(const harmonic::DescriptorOptions& o) {
   d["patch_radius"] = o.patch.radius;
   d["image_rings"] = o.image.rings;
   d["image_sectors"] = o.image.sectors;
-  std::string weights = harmonic::to_string(o.disk_map.weights);  // as the option names them
-  for (char& c : weights) c = c == '_' ? '-' : c;
-  d["weights"] = weights;
+  d["weights"] = harmonic::to_string(o.disk_map.weights);
   d["image_property"] = o.image_property;
   return d;
 }

@@ -6,6 +6,9 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace surfcomp::harmonic {
@@ -31,8 +34,15 @@ enum class SpringWeights {
   mean_value,
 };
 
-/// "inverse_length", "uniform", "cotangent" or "mean_value".
+/// The weights' names as options and outputs spell them, in the enum's order.
+inline constexpr std::array<const char*, 4> spring_weights_names = {"inverse-length", "uniform",
+                                                                    "cotangent", "mean-value"};
+
+/// The name of `weights` (spring_weights_names).
 const char* to_string(SpringWeights weights);
+
+/// The weights of that name (spring_weights_names); nullopt for any other.
+std::optional<SpringWeights> spring_weights_from_name(const std::string& name);
 
 struct DiskMapOptions {
   /// Default inverse_length (seed eq. 3-2: k_ij = 1 / |p_i - p_j|).
