@@ -113,6 +113,21 @@ constexpr FaceSegments face_segments(std::uint8_t inside, int f) {
   return out;
 }
 
+/// The one ambiguous face of a cell with two or three inside corners, or -1 when it has none
+/// or several.
+constexpr int lone_ambiguous_face(std::uint8_t inside) {
+  int inside_corners = 0;
+  for (int c = 0; c < 8; ++c) inside_corners += is_inside(inside, c) ? 1 : 0;
+  if (inside_corners < 2 || inside_corners > 3) return -1;
+  int face = -1;
+  for (int f = 0; f < 6; ++f) {
+    if (face_segments(inside, f).count != 2) continue;
+    if (face >= 0) return -1;
+    face = f;
+  }
+  return face;
+}
+
 /// The loops of the cell whose corner c is inside iff bit c of `inside` is set: the classes of
 /// crossed edges joined by the face segments.
 constexpr CellTopology compute_cell_topology(std::uint8_t inside) {
@@ -151,6 +166,7 @@ constexpr CellTopology compute_cell_topology(std::uint8_t inside) {
       out.one_loop_faces = static_cast<std::uint8_t>(out.one_loop_faces | (1U << f));
     }
   }
+  out.lone_ambiguous_face = lone_ambiguous_face(inside);
   return out;
 }
 
@@ -176,35 +192,9 @@ constexpr int most_loops() {
 constexpr std::size_t max_loops = 4;
 static_assert(most_loops() == max_loops, "a cell has at most four loops");
 
-/// The one ambiguous face of a cell with two or three inside corners, or -1 when it has none
-/// or several.
-constexpr int lone_ambiguous_face(std::uint8_t inside) {
-  int inside_corners = 0;
-  for (int c = 0; c < 8; ++c) inside_corners += is_inside(inside, c) ? 1 : 0;
-  if (inside_corners < 2 || inside_corners > 3) return -1;
-  int face = -1;
-  for (int f = 0; f < 6; ++f) {
-    if (face_segments(inside, f).count != 2) continue;
-    if (face >= 0) return -1;
-    face = f;
-  }
-  return face;
-}
-
-constexpr std::array<int, 256> make_lone_face_table() {
-  std::array<int, 256> table{};
-  for (int inside = 0; inside < 256; ++inside) {
-    table[static_cast<std::size_t>(inside)] =
-        lone_ambiguous_face(static_cast<std::uint8_t>(inside));
-  }
-  return table;
-}
-
-constexpr std::array<int, 256> lone_face_table = make_lone_face_table();
-
 constexpr int lone_face_patterns() {
   int count = 0;
-  for (const int face : lone_face_table) count += face >= 0 ? 1 : 0;
+  for (const CellTopology& t : cell_table) count += t.lone_ambiguous_face >= 0 ? 1 : 0;
   return count;
 }
 
@@ -349,13 +339,13 @@ void scan_block(const SparseGrid& grid, const GridCoord& block, CellIndex& index
 /// faces where both cells would otherwise put both segments in one loop (dual_marching_cubes).
 void cut_faces(CellIndex& index) {
   for (ActiveCell& cell : index.cells()) {
-    const int face = lone_face_table[cell.inside];
+    const int face = cell_table[cell.inside].lone_ambiguous_face;
     if (face < 0) continue;
     const int axis = face / 2;
     const int side = face % 2;
     GridCoord across = cell.coord;
     across[static_cast<std::size_t>(axis)] += side == 1 ? 1 : -1;
-    if (lone_face_table[index.at(across).inside] == (face ^ 1)) {
+    if (cell_table[index.at(across).inside].lone_ambiguous_face == (face ^ 1)) {
       cell.topology = static_cast<std::uint8_t>(~cell.inside);
     }
   }

@@ -31,6 +31,9 @@ struct CellTopology {
   /// Bit f set: face f has four crossings (an ambiguous face) and both of its segments belong
   /// to one loop.
   std::uint8_t one_loop_faces = 0;
+  /// The cell's only ambiguous face when it has two or three inside corners and one ambiguous
+  /// face; -1 otherwise (see dual_marching_cubes).
+  int lone_ambiguous_face = -1;
 };
 
 /// The loops of a cell whose corner c is inside (value < 0) iff bit c of `inside` is set: an
