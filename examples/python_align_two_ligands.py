@@ -26,12 +26,12 @@ print(f"reference {reference.GetNumAtoms()} atoms, probe {probe.GetNumAtoms()} a
 # %% Surfaces: NumPy arrays of vertices, faces and per-vertex properties.
 surface = surfcomp.build_surface(reference_file)
 esp = surface.properties["esp"]
-print(f"reference surface: {surface.n_vertices} vertices, area {surface.measures()['area']:.1f} A^2,"
+print(f"reference surface: {surface.n_vertices} vertices, area {surface.measures().area:.1f} A^2,"
       f" ESP from {esp.min():.1f} to {esp.max():.1f} kcal/(mol e)")
 
 # %% Descriptors: critical points and harmonic shape images (k, rings, sectors).
 described = surfcomp.describe(surface)
-types = described.critical_points["type"]
+types = described.critical_points.type
 print(f"{(types == 'peak').sum()} peaks, {(types == 'valley').sum()} valleys,"
       f" images {described.images.shape}")
 
@@ -41,8 +41,8 @@ print(f"{len(result)} alignments in {result.prepare_ms + result.match_ms:.0f} ms
 print("rank  source          score  shape   chem  atoms  pairs")
 for a in result[:5]:
     o = a.overlay
-    print(f"{a.rank:4d}  {a.source:14s} {o['score']:6.3f} {o['shape']:6.3f} {o['chem']:6.3f}"
-          f" {o['atoms']:6.3f} {len(a.cp_pairs):6d}")
+    print(f"{a.rank:4d}  {a.source:14s} {o.score:6.3f} {o.shape:6.3f} {o.chem:6.3f}"
+          f" {o.atoms:6.3f} {len(a.cp_pairs):6d}")
 
 # %% The probe moved by the best alignment, and how far it is from its crystal pose, over the
 # atoms both crystal structures resolve (matched by PDB atom name; 4i23 lacks six of 1C9's).

@@ -335,17 +335,17 @@ TEST(Match, PrincipalAxesStartsJoinTheRefinedAlignments) {
 }
 
 TEST(Match, SiteMatchWithoutCliquesStillAlignsFromThePrincipalAxes) {
-  // A site match whose graph admits no CP pair (image threshold above any correlation) has no
-  // clique; the pocket overlay from the principal axes still gives alignments, and without
-  // them (site.principal_axes_starts 0) there are none. The site here is the whole molecule:
-  // every critical point takes part, so the lining is the vertices within 2 A of any of them.
+  // A site match whose graph has no edge (no two critical points 100 A apart) has no clique; the
+  // pocket overlay from the principal axes still gives alignments, and without them
+  // (site.principal_axes_starts 0) there are none. The site here is the whole molecule: every
+  // critical point takes part, so the lining is the vertices within 2 A of any of them.
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
   const auto [reference, probe, motion] = moved_copy(file, 99u);
   const std::vector<bool> all_reference(reference.critical_points.size(), true);
   const std::vector<bool> all_probe(probe.critical_points.size(), true);
   matching::MatchOptions options;
   options.mode = matching::MatchMode::binding_sites;
-  options.graph.image_threshold = 1.5;  // above any correlation
+  options.graph.min_distance = 100.0;  // beyond any two critical points' distance
   const auto result =
       matching::match_surfaces(reference, probe, options, &all_reference, &all_probe);
   EXPECT_EQ(result.cliques, 0u);
@@ -411,8 +411,9 @@ TEST(Match, AnAllTrueMaskInWholeSurfaceModeChangesNothing) {
   EXPECT_EQ(lining.atoms, 0.0);
 }
 
-// The options are checked before any work: a bad option is an OptionError naming it even where
-// the inputs would fail later (images on different grids are an InputError of the match).
+// The options are checked before any work: a bad option is an OptionError naming it (a user's
+// option as the command line spells it, one no option sets by its field) even where the inputs
+// would fail later (images on different grids are an InputError of the match).
 TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   const auto expect_named = [](const matching::MatchOptions& options, const std::string& name) {
     try {
@@ -425,10 +426,10 @@ TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   EXPECT_NO_THROW(matching::validate(matching::MatchOptions{}));
   matching::MatchOptions o;
   o.graph.fuzzy_threshold = 1.5;
-  expect_named(o, "graph.fuzzy_threshold");
+  expect_named(o, "--fuzzy-threshold");
   o = {};
   o.graph.overlap_tolerance_degrees = 190.0;
-  expect_named(o, "graph.overlap_tolerance_degrees");
+  expect_named(o, "--overlap-tolerance");
   o = {};
   o.min_clique_size = 0;
   expect_named(o, "min_clique_size");
@@ -443,28 +444,28 @@ TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   expect_named(o, "ranking.vote_top_fraction");
   o = {};
   o.refine_top = -1;
-  expect_named(o, "refine_top");
+  expect_named(o, "--refine-top");
   o = {};
   o.principal_axes_starts = 5;
-  expect_named(o, "principal_axes_starts");
+  expect_named(o, "--principal-axes-starts");
   o = {};
   o.polish_top = -1;
-  expect_named(o, "polish_top");
+  expect_named(o, "--polish-top");
   o = {};
   o.overlay.sigma = 0.0;
-  expect_named(o, "overlay.sigma");
+  expect_named(o, "--overlay-sigma");
   o = {};
   o.overlay.iterations = -1;
   expect_named(o, "overlay.iterations");
   o = {};
   o.site.overlay_radius = std::nan("");
-  expect_named(o, "site.overlay_radius");
+  expect_named(o, "--site-overlay-radius");
   o = {};
   o.site.chem_weight = -1.0;
-  expect_named(o, "site.chem_weight");
+  expect_named(o, "--site-chem-weight");
   o = {};
   o.site.principal_axes_starts = 3;
-  expect_named(o, "site.principal_axes_starts");
+  expect_named(o, "--site-principal-axes-starts");
 
   harmonic::SurfaceDescriptors a, b;
   b.options.image.rings = a.options.image.rings + 1;

@@ -304,7 +304,7 @@ TEST(ReadRecords, LigandSelectionOnSdfIsRefused) {
   io::MoleculeReadOptions options;
   options.ligand = "ATP";
   expect_error<OptionError>([&] { io::read_molecule(sdf, options); },
-                            {sdf.string(), "ligand 'ATP'", "PDB or PQR"});
+                            {sdf.string(), "--ligand ATP", "PDB or PQR"});
 }
 
 // ---- .hsi contents ---------------------------------------------------------------------------

@@ -1,11 +1,9 @@
 // The options of `surfcomp hsi-build` that say how a surface is described (critical points,
-// patches, harmonic maps, images), parsed into the library's options: shared by hsi-build,
-// patch-map and the Python module's describe().
+// patches, harmonic maps, images), as the library defines them
+// (matching::describe_option_table): shared by hsi-build and patch-map.
 #pragma once
 
-#include "surface_input.hpp"
-
-#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/matching/match_inputs.hpp"
 
 #include <boost/program_options.hpp>
 #include <tbb/global_control.h>
@@ -13,29 +11,15 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <string>
 
 namespace surfcomp::tools {
 
-struct DescribeSettings {
-  SurfaceInput input;
-  harmonic::DescriptorOptions descriptors;
-  std::string weights = harmonic::to_string(harmonic::DiskMapOptions{}.weights);
-  int threads = 0;
-};
+/// Adds the surface options and --critical-point-radius --patch-radius --image-rings
+/// --image-sectors --weights --max-image-bytes --threads.
+void add_describe_options(boost::program_options::options_description& described);
 
-/// Adds the surface options (add_surface_options) and --critical-point-radius,
-/// --patch-radius, --image-rings, --image-sectors, --weights, --threads and --max-image-bytes,
-/// bound to `settings`.
-void add_describe_options(boost::program_options::options_description& options,
-                          DescribeSettings& settings);
-
-/// Checks the parsed values (OptionError naming the option) and completes `settings`.
-void finish_describe_options(DescribeSettings& settings);
-
-/// The spring weights named on the command line (inverse-length, uniform, cotangent,
-/// mean-value); OptionError otherwise.
-harmonic::SpringWeights parse_weights(const std::string& name);
+/// The description options given on the command line (checked), with progress lines.
+matching::MatchInputOptions describe_options_from(const boost::program_options::variables_map& vm);
 
 /// A progress line for describing critical points (console::ProgressLine), or none.
 std::function<void(std::int64_t, std::int64_t)> describe_progress();

@@ -29,20 +29,19 @@ constexpr const char* kUsage =
 int hsi_build(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output;
-  DescribeSettings settings;
   po::options_description described("options");
   // clang-format off
   described.add_options()
       ("help,h", "print this help")
       ("output,o", po::value(&output)->required(), "output .hsi file");
   // clang-format on
-  add_describe_options(described, settings);
+  add_describe_options(described);
   po::variables_map vm;
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
-  finish_describe_options(settings);
-  const SurfaceInput& input = settings.input;
+  const matching::MatchInputOptions settings = describe_options_from(vm);
+  const mesh::SurfaceInputOptions& input = settings.input;
   const harmonic::DescriptorOptions& options = settings.descriptors;
   mesh::check_surface_input(path, input);
   check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},

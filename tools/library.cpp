@@ -7,6 +7,7 @@
 #include "options.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/library_build.hpp"
 
@@ -14,10 +15,7 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
-#include <map>
 #include <memory>
-#include <set>
-#include <tuple>
 
 namespace surfcomp::tools {
 namespace {
@@ -107,8 +105,6 @@ int build_sites(const boost::program_options::variables_map& vm, const std::stri
                 int threads) {
   if (vm.count("input")) throw OptionError("--sites takes no INPUT: the sites are in its list");
   if (conformers != 0) throw OptionError("--conformers does not apply to --sites");
-  require_in_range("site-radius", site.sphere_radius, 0.1, 100);
-  require_in_range("site-margin", site.surface_margin, 0.0, 1000.0);
   const auto limit = limit_threads(threads);
   const std::filesystem::path library = output;
   const std::filesystem::path log = output + ".log";
@@ -128,8 +124,7 @@ int build_sites(const boost::program_options::variables_map& vm, const std::stri
 int build(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output, sites;
-  int conformers = 0, seed = ConformerOptions{}.seed, threads = 0;
-  matching::BindingSiteOptions site;
+  int conformers = 0, seed = ConformerOptions{}.seed;
   po::options_description described("options");
   // clang-format off
   described.add_options()
@@ -138,15 +133,17 @@ int build(const std::vector<std::string>& args) {
       ("conformers", po::value(&conformers)->default_value(0),
        "conformers per molecule from ETKDG + MMFF (0: the records' own coordinates)")
       ("seed", defaulted(&seed), "ETKDG random seed (>= 0)")
-      ("sites", po::value(&sites), "build a pocket library from this site list (no INPUT)")
-      ("site-radius", defaulted(&site.sphere_radius),
-       "with --sites: radius of the spheres around a site ligand's atoms, A")
-      ("site-margin", defaulted(&site.surface_margin),
-       (std::string("with --sites: ") + kSiteMarginHelp).c_str())
-      ("threads", po::value(&threads)->default_value(0), "worker threads (0 = all cores)");
+      ("sites", po::value(&sites), "build a pocket library from this site list (no INPUT)");
   // clang-format on
+  po::options_description site_options("with --sites");
+  add_table_options(site_options, matching::binding_site_option_table());
+  described.add(site_options);
+  add_threads_option(described);
   po::variables_map vm;
   if (!parse_command_line(args, described, -1, kUsage, vm)) return 0;
+  matching::BindingSiteOptions site;
+  apply_table_options(matching::binding_site_option_table(), vm, site);
+  const int threads = threads_from(vm);
   if (!sites.empty()) return build_sites(vm, sites, output, site, conformers, threads);
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   std::vector<std::filesystem::path> inputs;
@@ -191,24 +188,16 @@ int info(const std::vector<std::string>& args) {
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing LIB (see --help)");
   const screening::Library library(vm["input"].as<std::vector<std::string>>().front());
-  std::set<std::tuple<std::string, std::uint32_t, std::string>> molecules;
-  std::map<std::string, std::size_t> per_source;
-  std::uint64_t largest = 0;
-  for (std::size_t e = 0; e < library.size(); ++e) {
-    const auto& i = library.info(e);
-    molecules.emplace(i.source, i.record, i.name);
-    ++per_source[i.source];
-    largest = std::max(largest, library.entry_bytes(e));
-  }
+  const screening::LibrarySummary summary = screening::summarize_library(library);
   const double mean =
-      library.size() > 0 ? static_cast<double>(library.file_bytes()) / library.size() : 0.0;
+      summary.entries > 0 ? static_cast<double>(summary.file_bytes) / summary.entries : 0.0;
   console::summary(
       "%s: format version %u, %zu entries, %zu molecules, %.2f MB (%.1f KB per entry, "
       "largest %.1f KB)\n",
-      library.path().string().c_str(), library.version(), library.size(), molecules.size(),
-      static_cast<double>(library.file_bytes()) / 1e6, mean / 1e3,
-      static_cast<double>(largest) / 1e3);
-  for (const auto& [source, count] : per_source)
+      library.path().string().c_str(), library.version(), summary.entries, summary.molecules,
+      static_cast<double>(summary.file_bytes) / 1e6, mean / 1e3,
+      static_cast<double>(summary.largest_entry_bytes) / 1e3);
+  for (const auto& [source, count] : summary.entries_per_source)
     console::summary("  %s: %zu entries\n", source.c_str(), count);
   console::summary("settings:\n%s", library.settings().c_str());
   return 0;
@@ -226,19 +215,8 @@ int export_sdf(const std::vector<std::string>& args) {
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   check_command_files({{{"LIB", path}}, {{"--output", output, {".sdf"}, ""}}});
   const screening::Library library(path);
-  io::write_file_atomically(output, [&](std::ostream& out) {
-    for (std::size_t e = 0; e < library.size(); ++e) {
-      const screening::LibraryEntry entry = library.entry(e);
-      out << io::moved_record_block(entry.molecule, Eigen::Matrix3d::Identity(),
-                                    Eigen::Vector3d::Zero())
-          << ">  <surfcomp_entry>\n"
-          << e + 1 << "\n\n"
-          << ">  <surfcomp_name>\n"
-          << entry.info.name << "\n\n"
-          << ">  <surfcomp_conformer>\n"
-          << entry.info.conformer << "\n\n$$$$\n";
-    }
-  });
+  io::write_file_atomically(output,
+                            [&](std::ostream& out) { screening::write_library_sdf(out, library); });
   console::summary("%s: %zu entries -> %s\n", path.string().c_str(), library.size(),
                    output.c_str());
   return 0;

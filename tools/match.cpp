@@ -3,6 +3,7 @@
 #include "command.hpp"
 #include "command_files.hpp"
 #include "console.hpp"
+#include "describe_settings.hpp"
 #include "match_settings.hpp"
 #include "options.hpp"
 
@@ -93,7 +94,6 @@ int match(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output, aligned_out, report_out;
   int top = 10;
-  MatchSettings settings;
   po::options_description described("options");
   // clang-format off
   described.add_options()
@@ -108,31 +108,33 @@ int match(const std::vector<std::string>& args) {
       ("top", defaulted(&top), "alignments shown in the table")
       ("trace", po::bool_switch(), "print the association graph's nodes and edges after each stage");
   // clang-format on
-  add_match_options(described, settings);
+  add_match_options(described);
   po::variables_map vm;
   if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
   const auto inputs =
       vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
   if (inputs.size() != 2) throw OptionError("expected REF and PROBE (see --help)");
   require_in_range("top", top, 1, 1e9);
-  finish_match_options(settings, vm);
+  const matching::PairMatchOptions settings = match_options_from(vm);
   const std::filesystem::path ref_path = inputs[0], probe_path = inputs[1];
   const PairInputs pair = pair_inputs(ref_path, probe_path, settings);
   const std::vector<std::string> aligned = aligned_formats(probe_path);
-  check_command_files(
-      {{{"REF", ref_path}, {"PROBE", probe_path}, {"--molecule", settings.input.molecule_file}},
-       {{"--output", output, {}, ""},
-        {"--aligned-out", aligned_out, aligned,
-         aligned.size() == 1   ? "PROBE is not a molecule"
-         : aligned.size() == 2 ? "PROBE is not an SDF, MOL or MOL2 file"
-                               : ""},
-        {"--report", report_out, {".html"}, ""}}});
+  check_command_files({{{"REF", ref_path},
+                        {"PROBE", probe_path},
+                        {"--molecule", settings.inputs.input.molecule_file}},
+                       {{"--output", output, {}, ""},
+                        {"--aligned-out", aligned_out, aligned,
+                         aligned.size() == 1   ? "PROBE is not a molecule"
+                         : aligned.size() == 2 ? "PROBE is not an SDF, MOL or MOL2 file"
+                                               : ""},
+                        {"--report", report_out, {".html"}, ""}}});
   report::HtmlReportOptions report_options;
   if (!report_out.empty())  // before the work, not after it
     report_options.viewer_script = report::find_viewer_script();
 
+  const auto limit = limit_threads(settings.inputs.threads);
   const matching::InputMatch compared =
-      matching::match_inputs(pair.reference, pair.probe, match_input_options(settings));
+      matching::match_inputs(pair.reference, pair.probe, settings.inputs);
   const matching::MatchResult& result = compared.result;
   for (const std::string& note : compared.notes) console::note(note);
   for (const std::string& warning : compared.warnings)
@@ -178,17 +180,17 @@ int match(const std::vector<std::string>& args) {
       std::fprintf(stderr, "surfcomp match: warning: no alignment found: %s not written\n",
                    aligned_out.c_str());
     } else if (!aligned_out.empty()) {
-      write_aligned(probe_path, settings.input.read.record, compared.probe,
+      write_aligned(probe_path, settings.inputs.input.read.record, compared.probe,
                     result.alignments.front().transform, aligned_out);
       written.emplace_back(aligned_out);
     }
     if (!output.empty()) {
-      const std::string document = report::match_json(compared, settings.match);
+      const std::string document = report::match_json(compared, settings.inputs.match);
       surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << document; });
       written.emplace_back(output);
     }
     if (!report_out.empty())
-      report::write_html_report(report_out, compared, settings.match, report_options);
+      report::write_html_report(report_out, compared, settings.inputs.match, report_options);
   } catch (...) {
     for (const auto& path : written) std::filesystem::remove(path);
     throw;

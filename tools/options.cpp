@@ -86,6 +86,64 @@ bool parse_command_line(const std::vector<std::string>& args,
   return true;
 }
 
+void add_table_option(boost::program_options::options_description& described,
+                      const options::Spec& spec, const options::Value& fallback) {
+  namespace po = boost::program_options;
+  const std::string help = options::help_line(spec);
+  if (spec.kind == options::Kind::flag) {
+    described.add_options()(spec.name.c_str(), po::bool_switch(), help.c_str());
+  } else if (spec.kind == options::Kind::spheres) {
+    described.add_options()(spec.name.c_str(), po::value<std::vector<std::string>>()->composing(),
+                            help.c_str());
+  } else if (spec.optional) {
+    described.add_options()(spec.name.c_str(), po::value<std::string>(), help.c_str());
+  } else {
+    const std::string text = options::format(fallback);
+    described.add_options()(spec.name.c_str(), po::value<std::string>()->default_value(text),
+                            help.c_str());
+  }
+}
+
+std::optional<options::Value> given_value(const options::Spec& spec,
+                                          const boost::program_options::variables_map& vm) {
+  const auto found = vm.find(spec.name);
+  if (found == vm.end() || found->second.defaulted()) return std::nullopt;
+  const std::string shown = "--" + spec.name;
+  if (spec.kind == options::Kind::flag) {
+    if (!found->second.as<bool>()) return std::nullopt;
+    return options::Value(true);
+  }
+  if (spec.kind == options::Kind::spheres) {
+    std::vector<options::Sphere> spheres;
+    for (const std::string& text : found->second.as<std::vector<std::string>>()) {
+      const auto one = std::get<std::vector<options::Sphere>>(options::parse(spec, text, shown));
+      spheres.insert(spheres.end(), one.begin(), one.end());
+    }
+    return options::Value(std::move(spheres));
+  }
+  return options::parse(spec, found->second.as<std::string>(), shown);
+}
+
+namespace {
+
+const options::Table<int>& threads_table() {
+  static const options::Table<int> table = {
+      options::threads_option<int>([](auto& threads) -> auto& { return threads; })};
+  return table;
+}
+
+}  // namespace
+
+void add_threads_option(boost::program_options::options_description& described) {
+  add_table_options(described, threads_table());
+}
+
+int threads_from(const boost::program_options::variables_map& vm) {
+  int threads = 0;
+  apply_table_options(threads_table(), vm, threads);
+  return threads;
+}
+
 void require_in_range(const char* name, double value, double lo, double hi) {
   if (!(std::isfinite(value) && value >= lo && value <= hi)) {
     std::ostringstream message;

@@ -3,11 +3,13 @@
 #pragma once
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_table.hpp"
 
 #include <boost/program_options.hpp>
 
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -44,6 +46,41 @@ boost::program_options::typed_value<T>* defaulted(T* target) {
   return defaulted(target, *target);
 }
 
+/// Adds the option of `spec` to `described`: its help line (options::help_line) and, unless it
+/// is optional, `fallback` as its default. A flag is a switch; spheres repeat.
+void add_table_option(boost::program_options::options_description& described,
+                      const options::Spec& spec, const options::Value& fallback);
+
+/// The value of the option of `spec` as given on the command line (options::parse, naming
+/// "--NAME" in errors); none when it was not given.
+std::optional<options::Value> given_value(const options::Spec& spec,
+                                          const boost::program_options::variables_map& vm);
+
+/// Adds every option of `table`, with its default as `defaults` holds it.
+template <class Settings>
+void add_table_options(boost::program_options::options_description& described,
+                       const options::Table<Settings>& table, const Settings& defaults = {}) {
+  for (const options::Option<Settings>& option : table) {
+    add_table_option(described, option.spec, option.get(defaults));
+  }
+}
+
+/// Sets in `settings` every option of `table` given on the command line.
+template <class Settings>
+void apply_table_options(const options::Table<Settings>& table,
+                         const boost::program_options::variables_map& vm, Settings& settings) {
+  for (const options::Option<Settings>& option : table) {
+    if (const std::optional<options::Value> value = given_value(option.spec, vm))
+      option.set(settings, *value);
+  }
+}
+
+/// Adds --threads (options::threads_option) for a subcommand whose other options are its own.
+void add_threads_option(boost::program_options::options_description& described);
+
+/// The --threads given on the command line (checked), else 0: all cores.
+int threads_from(const boost::program_options::variables_map& vm);
+
 /// Throws OptionError "--name: value V is outside [lo, hi]" unless lo <= value <= hi and finite.
 void require_in_range(const char* name, double value, double lo, double hi);
 
@@ -53,10 +90,5 @@ void require_positive(const char* name, double value, double hi);
 /// Throws OptionError unless `value` is one of `allowed`.
 void require_one_of(const char* name, const std::string& value,
                     const std::vector<std::string>& allowed);
-
-/// --help text of --site-margin (match, screen, library build).
-inline constexpr const char* kSiteMarginHelp =
-    "a site's surface is built from the atoms within a site sphere's radius plus this margin, A, "
-    "at least the patch radius + 8 (0: from every atom); ESP and LP come from every atom";
 
 }  // namespace surfcomp::tools

@@ -75,9 +75,8 @@ int patch_map(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output;
   std::vector<int> chosen_indices;
-  DescribeSettings settings;
   po::options_description description_options("description options");
-  add_describe_options(description_options, settings);
+  add_describe_options(description_options);
   po::options_description described("options");
   // clang-format off
   described.add_options()
@@ -98,7 +97,7 @@ int patch_map(const std::vector<std::string>& args) {
     throw OptionError("give --cp I (one or more) or --all, not both and not neither");
   for (const int i : chosen_indices)
     if (i < 0) throw OptionError("--cp " + std::to_string(i) + ": expected an index >= 0");
-  finish_describe_options(settings);
+  matching::MatchInputOptions settings = describe_options_from(vm);
   const bool from_hsi = harmonic::io::is_hsi_file(path);
   if (from_hsi) {
     const std::vector<std::string> given = given_options(description_options, vm);

@@ -2,6 +2,7 @@
 #include "command.hpp"
 #include "command_files.hpp"
 #include "console.hpp"
+#include "describe_settings.hpp"
 #include "match_settings.hpp"
 #include "options.hpp"
 
@@ -29,7 +30,6 @@ constexpr const char* kUsage =
 int report(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output;
-  MatchSettings settings;
   report::HtmlReportOptions options;
   // Read as signed integers, so that a negative value is refused rather than wrapped.
   auto top = static_cast<std::int64_t>(options.top);
@@ -43,7 +43,7 @@ int report(const std::vector<std::string>& args) {
       ("max-display-vertices", defaulted(&max_vertices),
        "simplify a surface with more vertices than this for display");
   // clang-format on
-  add_match_options(described, settings);
+  add_match_options(described);
   po::variables_map vm;
   if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
   const auto inputs =
@@ -53,19 +53,21 @@ int report(const std::vector<std::string>& args) {
   require_in_range("max-display-vertices", static_cast<double>(max_vertices), 4, 1e7);
   options.top = static_cast<std::size_t>(top);
   options.max_display_vertices = static_cast<std::size_t>(max_vertices);
-  finish_match_options(settings, vm);
+  const matching::PairMatchOptions settings = match_options_from(vm);
   const PairInputs pair = pair_inputs(inputs[0], inputs[1], settings);
-  check_command_files(
-      {{{"REF", inputs[0]}, {"PROBE", inputs[1]}, {"--molecule", settings.input.molecule_file}},
-       {{"--output", output, {".html"}, ""}}});
+  check_command_files({{{"REF", inputs[0]},
+                        {"PROBE", inputs[1]},
+                        {"--molecule", settings.inputs.input.molecule_file}},
+                       {{"--output", output, {".html"}, ""}}});
   options.viewer_script = report::find_viewer_script();  // before the work, not after it
 
+  const auto limit = limit_threads(settings.inputs.threads);
   const matching::InputMatch compared =
-      matching::match_inputs(pair.reference, pair.probe, match_input_options(settings));
+      matching::match_inputs(pair.reference, pair.probe, settings.inputs);
   for (const std::string& note : compared.notes) console::note(note);
   for (const std::string& warning : compared.warnings)
     std::fprintf(stderr, "surfcomp report: warning: %s\n", warning.c_str());
-  report::write_html_report(output, compared, settings.match, options);
+  report::write_html_report(output, compared, settings.inputs.match, options);
   const auto& alignments = compared.result.alignments;
   if (alignments.empty()) {
     console::summary("%s vs %s: no alignment; %.0f ms -> %s\n", inputs[0].c_str(),

@@ -14,6 +14,7 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/matching/site.hpp"
+#include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/screen.hpp"
 
@@ -51,65 +52,12 @@ constexpr const char* kUsage =
     "       in stages 1 and 2), and --aligned-out writes the hits' structures moved onto\n"
     "       QUERY (.pdb, one MODEL per hit).";
 
-void write_aligned(const std::filesystem::path& path, const screening::Library& library,
-                   const std::vector<screening::Hit>& hits, std::size_t count) {
-  io::write_file_atomically(path, [&](std::ostream& out) {
-    for (std::size_t i = 0; i < hits.size() && i < count; ++i) {
-      const screening::Hit& hit = hits[i];
-      const screening::LibraryEntry entry = library.entry(hit.entry);
-      const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();
-      const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
-      char score[32];
-      std::snprintf(score, sizeof score, "%.6f", hit.score.score);
-      out << io::moved_record_block(entry.molecule, rotation, translation) << ">  <surfcomp_rank>\n"
-          << i + 1 << "\n\n"
-          << ">  <surfcomp_entry>\n"
-          << hit.entry + 1 << "\n\n"
-          << ">  <surfcomp_name>\n"
-          << entry.info.name << "\n\n"
-          << ">  <surfcomp_conformer>\n"
-          << entry.info.conformer << "\n\n"
-          << ">  <surfcomp_score>\n"
-          << score << "\n\n$$$$\n";
-    }
-  });
-}
-
-/// The structures of the first `count` hits of a pocket library moved onto the query, one PDB
-/// MODEL each.
-void write_aligned_sites(const std::filesystem::path& path, const screening::Library& library,
-                         const std::vector<screening::Hit>& hits, std::size_t count,
-                         const io::MoleculeReadOptions& read) {
-  io::write_file_atomically(path, [&](std::ostream& out) {
-    for (std::size_t i = 0; i < hits.size() && i < count; ++i) {
-      const screening::Hit& hit = hits[i];
-      const screening::LibraryEntry entry = library.entry(hit.entry);
-      Molecule structure = io::read_record_molecule(entry.molecule, read);
-      const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();
-      const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
-      for (Atom& atom : structure.atoms) atom.position = rotation * atom.position + translation;
-      std::ostringstream pdb;
-      io::write_pdb(structure, pdb);
-      std::string text = pdb.str();
-      if (text.size() >= 4 && text.compare(text.size() - 4, 4, "END\n") == 0)
-        text.resize(text.size() - 4);
-      char score[32];
-      std::snprintf(score, sizeof score, "%.6f", hit.score.score);
-      out << "MODEL     " << std::setw(4) << i + 1 << "\nREMARK   1 surfcomp rank " << i + 1
-          << " entry " << hit.entry + 1 << " " << entry.info.name << " score " << score << "\n"
-          << text << "ENDMDL\n";
-    }
-    out << "END\n";
-  });
-}
-
 }  // namespace
 
 int screen(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output, aligned_out;
   double aligned_top = 10;
-  ScreenSettings settings;
   po::options_description described("options");
   // clang-format off
   described.add_options()
@@ -120,24 +68,24 @@ int screen(const std::vector<std::string>& args) {
       ("aligned-top", defaulted(&aligned_top),
        "hits written to --aligned-out");
   // clang-format on
-  add_screen_options(described, settings);
+  add_screen_options(described);
   po::variables_map vm;
   if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
   const auto inputs =
       vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
   if (inputs.size() != 2) throw OptionError("expected QUERY and LIB (see --help)");
   require_in_range("aligned-top", aligned_top, 1, 1e6);
-  finish_screen_options(settings);
+  screening::QueryScreenOptions settings = screen_options_from(vm);
   const std::filesystem::path query_path = inputs[0], library_path = inputs[1];
-  const bool site_query = is_site_query(settings);
+  const bool site_query = screening::is_site_query(settings);
   if (site_query && (harmonic::io::is_hsi_file(query_path) || !io::is_molecule_file(query_path))) {
     throw OptionError(query_path.string() +
                       ": a site query needs a molecule file (the structure), not a .hsi or mesh");
   }
   matching::MatchInput query_input;
   query_input.path = query_path;
-  query_input = screen_query_input(std::move(query_input), settings);
-  const matching::MatchInputOptions query_options = screen_query_options(settings);
+  query_input = screening::screen_query_input(std::move(query_input), settings);
+  const matching::MatchInputOptions query_options = screening::screen_query_options(settings);
   matching::check_match_input(query_input, query_options, "QUERY");
   check_command_files(
       {{{"QUERY", query_path}, {"LIB", library_path}},
@@ -145,9 +93,9 @@ int screen(const std::vector<std::string>& args) {
         site_query
             ? OutputFile{"--aligned-out", aligned_out, {".pdb"}, "site hits are written as PDB"}
             : OutputFile{"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"}}});
-  const auto limit = limit_threads(settings.threads);
+  const auto limit = limit_threads(settings.query.threads);
   const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
-  screening::ScreenOptions& options = settings.options;
+  screening::ScreenOptions& options = settings.screen;
   if (console::progress_shown()) {
     auto first = std::make_shared<console::ProgressLine>("stage 1 (fast scores)", "entries");
     auto second = std::make_shared<console::ProgressLine>("stage 2 (refinements)", "conformers");
@@ -190,11 +138,15 @@ int screen(const std::vector<std::string>& args) {
   }
   const std::vector<screening::Hit>& hits = result.hits;
   const double total_s = clock.elapsed_s();
-  if (!aligned_out.empty() && site_query) {
-    write_aligned_sites(aligned_out, library, hits, static_cast<std::size_t>(aligned_top),
-                        options.read);
-  } else if (!aligned_out.empty()) {
-    write_aligned(aligned_out, library, hits, static_cast<std::size_t>(aligned_top));
+  const auto count = static_cast<std::size_t>(aligned_top);
+  if (!aligned_out.empty()) {
+    io::write_file_atomically(aligned_out, [&](std::ostream& out) {
+      if (site_query) {
+        screening::write_aligned_sites_pdb(out, library, hits, count, options.read);
+      } else {
+        screening::write_aligned_hits_sdf(out, library, hits, count);
+      }
+    });
   }
   try {
     io::write_file_atomically(

@@ -30,7 +30,6 @@ constexpr const char* kUsage =
 int surf_build(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output;
-  SurfaceInput input;
   po::options_description described("options");
   // clang-format off
   described.add_options()
@@ -39,12 +38,12 @@ int surf_build(const std::vector<std::string>& args) {
        "output surface: .ply (binary, all properties), .off or .obj (geometry only)")
       ("ascii", po::bool_switch(), "write ASCII PLY instead of binary little-endian");
   // clang-format on
-  add_surface_options(described, input);
+  add_surface_options(described);
   po::variables_map vm;
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
-  finish_surface_options(input);
+  const mesh::SurfaceInputOptions input = surface_options_from(vm);
   mesh::check_surface_input(path, input);
   check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
                        {{"--output", output, {".ply", ".off", ".obj"}, ""}}});

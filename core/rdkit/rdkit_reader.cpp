@@ -347,9 +347,9 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& wh
   const std::string source = path.string();
   if (trimmed(whole_text).empty()) throw InputError(source + ": the file is empty (no atoms)");
   if (format != RdkitFormat::pdb && !options.ligand.empty()) {
-    throw OptionError(source + ": ligand '" + options.ligand +
-                      "' selects a HETATM residue of a PDB or PQR file; an SDF, MOL or MOL2 "
-                      "file is the ligand itself (give no ligand)");
+    throw OptionError(source + ": --ligand " + options.ligand +
+                      " selects a HETATM residue of a PDB or PQR file; an SDF, MOL or MOL2 "
+                      "file is the ligand itself (give no --ligand)");
   }
   if (format == RdkitFormat::pdb) {
     check_single_record(options.record, source);

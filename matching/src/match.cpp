@@ -258,6 +258,7 @@ OverlayOptions mode_overlay_options(const MatchOptions& options) {
 }
 
 void validate(const MatchOptions& options) {
+  surfcomp::options::check_all(match_option_table(), options);
   const std::string caller = "match options";
   const detail::OptionCheck check{caller, ""};
   check.require(

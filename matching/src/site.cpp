@@ -137,8 +137,8 @@ mesh::Surface build_site_surface(const BindingSite& site,
             << " A (the site's surface margin) of the site's spheres";
     throw InputError(message.str());
   }
-  mesh::Surface surface =
-      mesh::spatially_ordered(mesh::build_ses(centers(near, Eigen::all), radii(near), ses));
+  mesh::Surface surface = mesh::spatially_ordered(
+      mesh::build_ses(centers(near, Eigen::all), radii(near), ses, structure.source));
   surface.set_source(structure.source);
   mesh::require_closed_manifold(surface);
   mesh::assign_surface_properties(surface, &structure, options);
@@ -146,14 +146,59 @@ mesh::Surface build_site_surface(const BindingSite& site,
 }
 
 std::optional<SiteSphere> parse_site_sphere(const std::string& text) {
-  std::istringstream in(text);
-  SiteSphere s;
-  char c1 = 0, c2 = 0, c3 = 0;
-  if (!(in >> s.center.x() >> c1 >> s.center.y() >> c2 >> s.center.z() >> c3 >> s.radius) ||
-      c1 != ',' || c2 != ',' || c3 != ',' || !(in >> std::ws).eof() || !s.center.allFinite() ||
-      !(s.radius > 0 && std::isfinite(s.radius)))
-    return std::nullopt;
-  return s;
+  const std::optional<options::Sphere> sphere = options::parse_sphere(text);
+  if (!sphere) return std::nullopt;
+  return site_spheres({*sphere}).front();
+}
+
+std::vector<options::Sphere> sphere_values(const std::vector<SiteSphere>& spheres) {
+  std::vector<options::Sphere> values;
+  for (const SiteSphere& s : spheres)
+    values.push_back({s.center.x(), s.center.y(), s.center.z(), s.radius});
+  return values;
+}
+
+std::vector<SiteSphere> site_spheres(const std::vector<options::Sphere>& values) {
+  std::vector<SiteSphere> spheres;
+  for (const options::Sphere& v : values)
+    spheres.push_back({Eigen::Vector3d(v[0], v[1], v[2]), v[3]});
+  return spheres;
+}
+
+options::Spec site_ligand_spec() {
+  return {"site-ligand",
+          options::Kind::text,
+          "a binding site: the site of one copy of this ligand residue (match: on both inputs)",
+          "",
+          0,
+          0,
+          false,
+          {},
+          true};
+}
+
+options::Spec site_sphere_spec() {
+  return {"site-sphere", options::Kind::spheres,
+          "a binding site sphere x,y,z,r (repeatable; match: on both inputs)", "A"};
+}
+
+const options::Table<BindingSiteOptions>& binding_site_option_table() {
+  using options::Kind;
+  using B = BindingSiteOptions;
+  static const options::Table<B> table = {
+      options::field<B>(
+          {"site-radius", Kind::real, "radius of the spheres around the site ligand's atoms", "A",
+           0.1, 100.0},
+          [](auto& b) -> auto& { return b.sphere_radius; }),
+      options::field<B>(
+          {"site-margin", Kind::real,
+           "a site's surface is built from the atoms within a site sphere's radius "
+           "plus this margin, at least the patch radius + 8 (0: from every atom); "
+           "ESP and LP come from every atom",
+           "A", 0.0, 1000.0},
+          [](auto& b) -> auto& { return b.surface_margin; }),
+  };
+  return table;
 }
 
 std::vector<bool> pocket_lining(const harmonic::SurfaceDescriptors& descriptors,

@@ -177,4 +177,20 @@ std::vector<CriticalPoint> detect_critical_points(const Surface& surface,
   return out;
 }
 
+const options::Table<CriticalPointOptions>& critical_point_option_table() {
+  using options::Kind;
+  using C = CriticalPointOptions;
+  static const options::Table<C> table = {
+      options::field<C>(
+          {"critical-point-radius", Kind::real, "critical point radius r_cp (on-surface)", "A",
+           1e-3, 100.0},
+          [](auto& c) -> auto& { return c.radius; }),
+      options::field<C>(
+          {"disc-radius", Kind::real,
+           "geodesic disc over which shape index, ESP and LP are averaged", "A", 0.0, 100.0},
+          [](auto& c) -> auto& { return c.property_disc_radius; }),
+  };
+  return table;
+}
+
 }  // namespace surfcomp::mesh

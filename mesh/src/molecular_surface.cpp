@@ -18,8 +18,7 @@ AtomBalls atom_balls(const Molecule& molecule) {
 Surface build_molecular_surface(const Molecule& molecule, const MolecularSurfaceOptions& options) {
   validate_molecule(molecule);
   const AtomBalls balls = atom_balls(molecule);
-  Surface surface = build_ses(balls.centers, balls.radii, options.ses);
-  surface.set_source(molecule.source);
+  Surface surface = build_ses(balls.centers, balls.radii, options.ses, molecule.source);
   require_closed_manifold(surface);
   assign_surface_properties(surface, &molecule, options);
   return surface;

@@ -237,8 +237,8 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                         " A");
   }
   const double vertices = expected_vertices(soup, options);
-  require_within(what, "the surface would have about " + number(vertices) + " vertices", vertices,
-                 static_cast<double>(options.max_vertices), "--max-vertices");
+  require_within(what, "the surface would have about " + number(std::round(vertices)) + " vertices",
+                 vertices, static_cast<double>(options.max_vertices), "--max-vertices");
   Surface surface;
   if (!options.remesh) {
     surface = Surface::from_arrays(soup.positions, soup.faces, what);
@@ -274,8 +274,9 @@ double ses_voxel_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
 }
 
 Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
-                  const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options) {
-  return build_surface(centers, radii, options, true, "<ses>");
+                  const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options,
+                  const std::string& source) {
+  return build_surface(centers, radii, options, true, source);
 }
 
 Surface build_sas(const Eigen::Ref<const Eigen::MatrixX3d>& centers,

@@ -1,24 +1,23 @@
-// The C++ side of `import surfcomp` (the Python package in python/surfcomp/ wraps it). It parses
-// keyword options with the command line's own option sets (tools/*_settings.hpp), so that names,
-// defaults and messages are the CLI's, converts inputs (paths, RDKit molecules as MDL blocks,
-// surfaces, descriptions) to matching::MatchInput, runs the library with the GIL released, and
-// returns NumPy arrays and plain Python values.
+// The C++ side of `import surfcomp` (the Python package in python/surfcomp/ wraps it). Keyword
+// options are set through the library's option tables (the same definitions the command line's
+// --help and parsing come from), inputs (paths, RDKit molecules as MDL blocks, surfaces,
+// descriptions) become matching::MatchInput, the library runs with the GIL released, and results
+// come back as NumPy arrays and plain Python values.
 #include "command.hpp"
 #include "command_files.hpp"
 #include "describe_settings.hpp"
-#include "match_settings.hpp"
-#include "options.hpp"
-#include "screen_settings.hpp"
-#include "surface_input.hpp"
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
+#include "surfcomp/core/option_table.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
 #include "surfcomp/mesh/topology.hpp"
+#include "surfcomp/report/critical_point_files.hpp"
 #include "surfcomp/report/html_report.hpp"
+#include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/screen.hpp"
 
@@ -31,6 +30,7 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -84,30 +84,120 @@ py::array owned_array(Matrix&& matrix) {
 
 // --- options ------------------------------------------------------------------------------------
 
-/// `settings` from `args` (the keyword options as command-line words) with a subcommand's
-/// option set: `add` binds the options to `settings`, `finish(settings, vm)` checks and
-/// completes them. Unknown options and bad values throw (ValueError through the translator) as
-/// the CLI refuses them.
-template <class Settings, class Add, class Finish>
-void parse_settings(const std::vector<std::string>& args, Settings& settings, Add add,
-                    Finish finish) {
-  boost::program_options::options_description options;
-  add(options, settings);
-  boost::program_options::variables_map vm;
-  tools::parse_command_line(args, options, 0, "", vm);
-  finish(settings, vm);
+/// The option value of the Python object for `spec`: a number (not a bool) for a real, an
+/// integer for an integer, a str (or path) for text and choices, a bool for a flag, and for
+/// spheres one (x, y, z, r) or a list of them. TypeError naming `shown` otherwise; the value is
+/// then checked as the command line checks it (ValueError).
+options::Value python_value(const options::Spec& spec, const py::handle& object,
+                            const std::string& shown) {
+  const bool is_bool = PyBool_Check(object.ptr()) != 0;
+  const auto fail = [&shown](const char* expected) {
+    return py::type_error(shown + ": expected " + expected);
+  };
+  options::Value value;
+  switch (spec.kind) {
+    case options::Kind::real:
+      if (is_bool || !py::hasattr(object, "__float__")) throw fail("a number");
+      value = object.cast<double>();
+      break;
+    case options::Kind::integer:
+      if (is_bool || PyIndex_Check(object.ptr()) == 0) throw fail("an integer");
+      value = py::int_(py::reinterpret_borrow<py::object>(object)).cast<std::int64_t>();
+      break;
+    case options::Kind::flag:
+      if (!is_bool) throw fail("True or False");
+      value = object.cast<bool>();
+      break;
+    case options::Kind::text:
+    case options::Kind::choice:
+      if (py::hasattr(object, "__fspath__")) {
+        value = py::str(object.attr("__fspath__")()).cast<std::string>();
+      } else if (py::isinstance<py::str>(object)) {
+        value = object.cast<std::string>();
+      } else {
+        throw fail("a str");
+      }
+      break;
+    case options::Kind::spheres: {
+      const auto sphere_of = [&](const py::handle& item) {
+        if (py::isinstance<py::str>(item)) {
+          const options::Value parsed = options::parse(spec, item.cast<std::string>(), shown);
+          return std::get<std::vector<options::Sphere>>(parsed).front();
+        }
+        if (!py::isinstance<py::sequence>(item) || py::len(item) != 4) {
+          throw fail("(x, y, z, r), \"x,y,z,r\" or a list of them");
+        }
+        options::Sphere sphere{};
+        for (std::size_t k = 0; k < 4; ++k) sphere[k] = item[py::int_(k)].cast<double>();
+        return sphere;
+      };
+      std::vector<options::Sphere> spheres;
+      const bool one = py::isinstance<py::sequence>(object) && py::len(object) == 4 &&
+                       py::hasattr(object[py::int_(0)], "__float__");
+      if (one || py::isinstance<py::str>(object)) {
+        spheres.push_back(sphere_of(object));
+      } else if (py::isinstance<py::sequence>(object) && !py::isinstance<py::str>(object)) {
+        for (const py::handle item : object) spheres.push_back(sphere_of(item));
+      } else {
+        throw fail("(x, y, z, r), \"x,y,z,r\" or a list of them");
+      }
+      value = std::move(spheres);
+      break;
+    }
+  }
+  options::check(spec, value, shown);
+  return value;
 }
 
-/// The default of every option of `options`, as text ("" for options without one): the
-/// .pyi stubs are checked against these.
-py::dict defaults_of(const boost::program_options::options_description& options) {
-  py::dict out;
-  for (const auto& option : options.options()) {
-    const std::string parameter = option->format_parameter();
-    const auto at = parameter.find("(=");
-    std::string value;
-    if (at != std::string::npos) value = parameter.substr(at + 2, parameter.size() - at - 3);
-    out[py::str(option->long_name())] = value;
+/// `settings` with the keyword options of `keywords` set through `table` (Python names; None
+/// leaves an option at its default). TypeError for a name the table does not hold.
+template <class Settings>
+Settings settings_from(const options::Table<Settings>& table, const py::dict& keywords) {
+  Settings settings;
+  for (const auto& [key, object] : keywords) {
+    const std::string name = py::str(key).cast<std::string>();
+    const options::Option<Settings>* option = nullptr;
+    for (const options::Option<Settings>& candidate : table) {
+      if (options::python_name(candidate.spec.name) == name) option = &candidate;
+    }
+    if (option == nullptr) throw py::type_error("unexpected keyword argument '" + name + "'");
+    if (object.is_none()) continue;
+    option->set(settings, python_value(option->spec, object, name));
+  }
+  return settings;
+}
+
+/// An option's default as a Python value: None for an optional option.
+py::object python_default(const options::Spec& spec, const options::Value& value) {
+  if (spec.optional) return py::none();
+  return std::visit(
+      [](const auto& v) -> py::object {
+        using V = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<V, std::vector<options::Sphere>>) {
+          py::list spheres;
+          for (const options::Sphere& s : v) spheres.append(py::make_tuple(s[0], s[1], s[2], s[3]));
+          return std::move(spheres);
+        } else {
+          return py::cast(v);
+        }
+      },
+      value);
+}
+
+/// The options of `table` as Python sees them, in order: name (Python's), option (the command
+/// line's), kind, default, help (with unit and range), unit, range, choices.
+template <class Settings>
+py::list table_list(const options::Table<Settings>& table) {
+  const Settings defaults;
+  py::list out;
+  for (const options::Option<Settings>& option : table) {
+    const options::Spec& spec = option.spec;
+    out.append(py::dict(
+        py::arg("name") = options::python_name(spec.name), py::arg("option") = "--" + spec.name,
+        py::arg("kind") = options::kind_names[static_cast<std::size_t>(spec.kind)],
+        py::arg("default") = python_default(spec, option.get(defaults)),
+        py::arg("help") = options::help_line(spec), py::arg("unit") = spec.unit,
+        py::arg("range") = options::range_text(spec), py::arg("choices") = spec.choices));
   }
   return out;
 }
@@ -306,6 +396,17 @@ py::dict properties_dict(const mesh::Surface& surface) {
   return out;
 }
 
+void write_critical_points(const harmonic::SurfaceDescriptors& d,
+                           const std::filesystem::path& path) {
+  report::CriticalPointSet set{d.surface.source(),
+                               d.options.critical_points,
+                               static_cast<std::size_t>(d.surface.n_vertices()),
+                               {}};
+  for (const harmonic::CriticalPointDescriptor& cp : d.critical_points)
+    set.points.push_back(cp.point);
+  report::write_critical_points(path, set);
+}
+
 void save_surface(const mesh::Surface& surface, const std::filesystem::path& p, bool ascii) {
   std::string extension = p.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -320,10 +421,8 @@ void save_surface(const mesh::Surface& surface, const std::filesystem::path& p, 
 // --- the functions
 // --------------------------------------------------------------------------------
 
-PySurface build_surface(const py::object& input, const std::vector<std::string>& args) {
-  tools::SurfaceInput settings;
-  parse_settings(args, settings, &tools::add_surface_options,
-                 [](tools::SurfaceInput& s, const auto&) { tools::finish_surface_options(s); });
+PySurface build_surface(const py::object& input, const py::dict& keywords) {
+  const auto settings = settings_from(mesh::surface_input_option_table(), keywords);
   matching::MatchInput in = input_of(input, settings.read);
   py::gil_scoped_release release;
   PySurface out;
@@ -340,47 +439,27 @@ PySurface build_surface(const py::object& input, const std::vector<std::string>&
   return out;
 }
 
-PyDescriptors describe(const py::object& input, const std::vector<std::string>& args) {
-  tools::DescribeSettings settings;
-  parse_settings(
-      args, settings, &tools::add_describe_options,
-      [](tools::DescribeSettings& s, const auto&) { tools::finish_describe_options(s); });
-  matching::MatchInputOptions match_options;
-  match_options.input = settings.input;
-  match_options.descriptors = settings.descriptors;
+PyDescriptors describe(const py::object& input, const py::dict& keywords) {
+  const auto settings = settings_from(matching::describe_option_table(), keywords);
   const matching::MatchInput in = input_of(input, settings.input.read);
   py::gil_scoped_release release;
   const auto limit = tools::limit_threads(settings.threads);
   PyDescriptors out;
-  out.descriptors = matching::prepare_input(in, match_options).descriptors;
+  out.descriptors = matching::prepare_input(in, settings).descriptors;
   return out;
 }
 
-/// match()'s options: the CLI's match options, and --threads.
-void add_python_match_options(boost::program_options::options_description& options,
-                              tools::MatchSettings& settings, int& threads) {
-  tools::add_match_options(options, settings);
-  options.add_options()("threads", boost::program_options::value(&threads)->default_value(0),
-                        "worker threads (0 = all cores)");
-}
-
-py::dict match(const py::object& reference, const py::object& probe,
-               const std::vector<std::string>& args, const std::string& report_path) {
-  tools::MatchSettings settings;
-  int threads = 0;
-  parse_settings(
-      args, settings,
-      [&threads](auto& options, tools::MatchSettings& s) {
-        add_python_match_options(options, s, threads);
-      },
-      &tools::finish_match_options);
-  const matching::MatchInputOptions match_options = tools::match_input_options(settings);
+py::dict match(const py::object& reference, const py::object& probe, const py::dict& keywords,
+               const std::string& report_path) {
+  const auto settings = settings_from(matching::pair_match_option_table(), keywords);
   const matching::MatchInput ref =
-      tools::with_site(input_of(reference, settings.input.read), settings, true);
+      matching::with_site(input_of(reference, settings.inputs.input.read), settings.sites, true);
   const matching::MatchInput prb =
-      tools::with_site(input_of(probe, settings.input.read), settings, false);
-  matching::check_match_input(ref, match_options, "REF", settings.ref_site_option);
-  matching::check_match_input(prb, match_options, "PROBE", settings.probe_site_option);
+      matching::with_site(input_of(probe, settings.inputs.input.read), settings.sites, false);
+  matching::check_match_input(ref, settings.inputs, "REF",
+                              matching::site_ligand_option(settings.sites, true));
+  matching::check_match_input(prb, settings.inputs, "PROBE",
+                              matching::site_ligand_option(settings.sites, false));
   report::HtmlReportOptions report_options;
   if (!report_path.empty()) {  // as the CLI checks --report: before the work
     tools::check_command_files(
@@ -390,35 +469,33 @@ py::dict match(const py::object& reference, const py::object& probe,
   std::optional<matching::InputMatch> compared;
   {
     py::gil_scoped_release release;
-    const auto limit = tools::limit_threads(threads);
-    compared = matching::match_inputs(ref, prb, match_options);
+    const auto limit = tools::limit_threads(settings.inputs.threads);
+    compared = matching::match_inputs(ref, prb, settings.inputs);
     if (!report_path.empty())
-      report::write_html_report(report_path, *compared, settings.match, report_options);
+      report::write_html_report(report_path, *compared, settings.inputs.match, report_options);
   }
   return match_dict(*compared);
 }
 
-py::list screen(const py::object& query, const std::string& library_path,
-                const std::vector<std::string>& args) {
-  tools::ScreenSettings settings;
-  parse_settings(args, settings, &tools::add_screen_options,
-                 [](tools::ScreenSettings& s, const auto&) { tools::finish_screen_options(s); });
-  const matching::MatchInputOptions query_options = tools::screen_query_options(settings);
+py::list screen(const py::object& query, const std::string& library_path, const py::dict& keywords,
+                bool molecules) {
+  const auto settings = settings_from(screening::screen_option_table(), keywords);
+  const matching::MatchInputOptions query_options = screening::screen_query_options(settings);
   const matching::MatchInput in =
-      tools::screen_query_input(input_of(query, query_options.input.read), settings);
+      screening::screen_query_input(input_of(query, query_options.input.read), settings);
   matching::check_match_input(in, query_options, "QUERY");
   std::optional<screening::Library> library;
   screening::ScreenResult result;
   {
     py::gil_scoped_release release;
-    const auto limit = tools::limit_threads(settings.threads);
+    const auto limit = tools::limit_threads(settings.query.threads);
     library.emplace(library_path);
-    screening::check_library_kind(*library, tools::is_site_query(settings));
+    screening::check_library_kind(*library, screening::is_site_query(settings));
     matching::PreparedInput prepared = matching::prepare_input(in, query_options);
     const screening::ScreenQuery screen_query = screening::make_screen_query(
-        std::move(prepared.descriptors), settings.options, prepared.site,
+        std::move(prepared.descriptors), settings.screen, prepared.site,
         prepared.molecule ? &*prepared.molecule : nullptr);
-    result = screening::screen(screen_query, *library, settings.options);
+    result = screening::screen(screen_query, *library, settings.screen);
   }
   py::list hits;
   for (std::size_t k = 0; k < result.hits.size(); ++k) {
@@ -439,44 +516,78 @@ py::list screen(const py::object& query, const std::string& library_path,
     d["atoms"] = hit.score.atoms;
     d["fast_score"] = hit.fast_score;
     d["transform"] = owned_array(std::move(transform));
+    if (molecules) {
+      std::ostringstream aligned;
+      const bool site = screening::is_site_query(settings);
+      if (site) {
+        screening::write_aligned_sites_pdb(aligned, *library, {hit}, 1, settings.screen.read);
+      } else {
+        aligned << screening::aligned_hit_record(*library, hit, k + 1);
+      }
+      d["aligned"] = py::make_tuple(aligned.str(), site ? "pdb" : "sdf");
+    }
     hits.append(d);
   }
   return hits;
 }
 
-py::dict option_defaults(const std::string& command) {
-  boost::program_options::options_description options;
-  tools::SurfaceInput surface;
-  tools::DescribeSettings describe_settings;
-  tools::MatchSettings match_settings;
-  int threads = 0;
-  tools::ScreenSettings screen_settings;
-  if (command == "build_surface") {
-    tools::add_surface_options(options, surface);
-  } else if (command == "describe") {
-    tools::add_describe_options(options, describe_settings);
-  } else if (command == "match") {
-    add_python_match_options(options, match_settings, threads);
-  } else if (command == "screen") {
-    tools::add_screen_options(options, screen_settings);
-  } else {
-    throw py::value_error("no option set named '" + command + "'");
-  }
-  return defaults_of(options);
+py::list option_table(const std::string& function) {
+  if (function == "build_surface") return table_list(mesh::surface_input_option_table());
+  if (function == "describe") return table_list(matching::describe_option_table());
+  if (function == "match") return table_list(matching::pair_match_option_table());
+  if (function == "screen") return table_list(screening::screen_option_table());
+  throw py::value_error("no function '" + function +
+                        "' with options (build_surface, describe, match, screen)");
+}
+
+/// The module's exception classes: Error, the base of all; InputError (also a ValueError) and
+/// OptionError under it; FileError (also an OSError).
+struct ErrorClasses {
+  PyObject* error = nullptr;
+  PyObject* input = nullptr;
+  PyObject* option = nullptr;
+  PyObject* file = nullptr;
+};
+
+ErrorClasses& error_classes() {
+  static ErrorClasses classes;
+  return classes;
+}
+
+void add_error_classes(py::module_& m) {
+  ErrorClasses& c = error_classes();
+  c.error = PyErr_NewExceptionWithDoc("surfcomp.Error", "Base of every error surfcomp raises.",
+                                      PyExc_Exception, nullptr);
+  const py::tuple input_bases = py::make_tuple(py::handle(c.error), py::handle(PyExc_ValueError));
+  c.input = PyErr_NewExceptionWithDoc(
+      "surfcomp.InputError", "Bad input: a file's contents, a molecule, a mesh or an option.",
+      input_bases.ptr(), nullptr);
+  c.option = PyErr_NewExceptionWithDoc("surfcomp.OptionError",
+                                       "An option outside its range or not one of its choices.",
+                                       c.input, nullptr);
+  const py::tuple file_bases = py::make_tuple(py::handle(c.error), py::handle(PyExc_OSError));
+  c.file = PyErr_NewExceptionWithDoc("surfcomp.FileError",
+                                     "A file that cannot be opened, read or written.",
+                                     file_bases.ptr(), nullptr);
+  m.attr("Error") = py::handle(c.error);
+  m.attr("InputError") = py::handle(c.input);
+  m.attr("OptionError") = py::handle(c.option);
+  m.attr("FileError") = py::handle(c.file);
 }
 
 // pybind11 calls translators as void(std::exception_ptr).
 void translate(std::exception_ptr error) {  // NOLINT(performance-unnecessary-value-param)
+  const ErrorClasses& c = error_classes();
   try {
     if (error) std::rethrow_exception(error);
   } catch (const FileError& e) {
-    PyErr_SetString(PyExc_OSError, e.what());
-  } catch (const InputError& e) {  // bad options and bad input alike: a ValueError
-    PyErr_SetString(PyExc_ValueError, e.what());
-  } catch (const boost::program_options::error& e) {
-    PyErr_SetString(PyExc_ValueError, e.what());
+    PyErr_SetString(c.file, e.what());
+  } catch (const OptionError& e) {
+    PyErr_SetString(c.option, e.what());
+  } catch (const InputError& e) {
+    PyErr_SetString(c.input, e.what());
   } catch (const Error& e) {
-    PyErr_SetString(PyExc_RuntimeError, e.what());
+    PyErr_SetString(c.error, e.what());
   }
 }
 
@@ -486,6 +597,7 @@ void translate(std::exception_ptr error) {  // NOLINT(performance-unnecessary-va
 PYBIND11_MODULE(_surfcomp, m) {
   namespace sp = surfcomp::python;
   m.doc() = "The C++ core of the surfcomp package; use `import surfcomp`.";
+  sp::add_error_classes(m);
   py::register_exception_translator(&sp::translate);
 
   py::class_<sp::MoleculeBlock>(m, "MoleculeBlock", "An RDKit molecule as an MDL block.")
@@ -511,7 +623,7 @@ PYBIND11_MODULE(_surfcomp, m) {
       .def_property_readonly("n_faces", [](const sp::PySurface& s) { return s.surface.n_faces(); })
       .def_property_readonly("has_molecule",
                              [](const sp::PySurface& s) { return s.molecule.has_value(); })
-      .def("measures",
+      .def("_measures",
            [](const sp::PySurface& s) {
              const surfcomp::mesh::SurfaceMeasures measures =
                  surfcomp::mesh::measure_surface(s.surface);
@@ -532,21 +644,29 @@ PYBIND11_MODULE(_surfcomp, m) {
                              [](const sp::PyDescriptors& d) {
                                return sp::PySurface{d.descriptors.surface, std::nullopt};
                              })
-      .def_property_readonly(
-          "critical_points",
-          [](const sp::PyDescriptors& d) { return sp::critical_points_dict(d.descriptors); })
+      .def("_critical_points",
+           [](const sp::PyDescriptors& d) { return sp::critical_points_dict(d.descriptors); })
       .def_property_readonly(
           "images", [](const sp::PyDescriptors& d) { return sp::images_array(d.descriptors); })
       .def(
-          "patch",
+          "_patch",
           [](const sp::PyDescriptors& d, std::size_t index) {
             return sp::patch_dict(d.descriptors, index);
           },
           py::arg("index"))
-      .def_property_readonly("options",
-                             [](const sp::PyDescriptors& d) {
-                               return sp::descriptor_options_dict(d.descriptors.options);
-                             })
+      .def("_parameters",
+           [](const sp::PyDescriptors& d) {
+             return sp::descriptor_options_dict(d.descriptors.options);
+           })
+      .def(
+          "write_critical_points",
+          [](const sp::PyDescriptors& d, const std::filesystem::path& path) {
+            py::gil_scoped_release release;
+            sp::write_critical_points(d.descriptors, path);
+          },
+          py::arg("path"),
+          "Writes the critical points as cp-detect does, in the format the extension names: "
+          ".json, .pdb or .ply.")
       .def_property_readonly("atoms",
                              [](const sp::PyDescriptors& d) {
                                py::list elements;
@@ -575,12 +695,13 @@ PYBIND11_MODULE(_surfcomp, m) {
         return sp::PyDescriptors{surfcomp::harmonic::io::read_hsi(path)};
       },
       py::arg("path"));
-  m.def("build_surface", &sp::build_surface, py::arg("input"), py::arg("args"));
-  m.def("describe", &sp::describe, py::arg("input"), py::arg("args"));
-  m.def("match", &sp::match, py::arg("reference"), py::arg("probe"), py::arg("args"),
+  m.def("build_surface", &sp::build_surface, py::arg("input"), py::arg("options"));
+  m.def("describe", &sp::describe, py::arg("input"), py::arg("options"));
+  m.def("match", &sp::match, py::arg("reference"), py::arg("probe"), py::arg("options"),
         py::arg("report") = std::string());
-  m.def("screen", &sp::screen, py::arg("query"), py::arg("library"), py::arg("args"));
-  m.def("option_defaults", &sp::option_defaults, py::arg("command"));
+  m.def("screen", &sp::screen, py::arg("query"), py::arg("library"), py::arg("options"),
+        py::arg("molecules"));
+  m.def("option_table", &sp::option_table, py::arg("function"));
   m.def(
       "run_command_line",
       [](const std::vector<std::string>& args) {
@@ -592,6 +713,8 @@ PYBIND11_MODULE(_surfcomp, m) {
       "library_info",
       [](const std::string& path) {
         const surfcomp::screening::Library library(path);
+        const surfcomp::screening::LibrarySummary summary =
+            surfcomp::screening::summarize_library(library);
         py::list entries;
         for (std::size_t i = 0; i < library.size(); ++i) {
           const auto& info = library.info(i);
@@ -601,9 +724,11 @@ PYBIND11_MODULE(_surfcomp, m) {
                                   py::arg("heavy_atoms") = info.heavy_atoms,
                                   py::arg("site_spheres") = info.site_spheres));
         }
-        return py::dict(py::arg("version") = library.version(),
-                        py::arg("settings") = library.settings(),
-                        py::arg("bytes") = library.file_bytes(), py::arg("entries") = entries);
+        return py::dict(
+            py::arg("version") = library.version(), py::arg("settings") = library.settings(),
+            py::arg("bytes") = summary.file_bytes, py::arg("molecules") = summary.molecules,
+            py::arg("largest_entry_bytes") = summary.largest_entry_bytes,
+            py::arg("entries") = entries);
       },
       py::arg("path"));
 }

@@ -13,8 +13,12 @@ hydrogens as the molecule has them; its partial charges when every atom carries 
 :class:`Surface` or :class:`Descriptors` from this module.
 
 Options are keyword arguments with the command line's names (``probe_radius`` for
-``--probe-radius``) and defaults; ``surfcomp match --help`` lists them. A value outside its
-range raises ``ValueError`` with the command line's message, an unreadable file ``OSError``.
+``--probe-radius``), defaults, ranges and help, all from the library's one definition of each
+option: ``help(surfcomp.match)`` and ``inspect.signature`` show them. Every error the library
+raises derives from :class:`Error`: :class:`OptionError` (also a ``ValueError``) for a value
+outside its range, :class:`InputError` (a ``ValueError``) for bad input, :class:`FileError`
+(an ``OSError``) for a file that cannot be read or written. A keyword the function does not
+take, or a value of the wrong type, raises ``TypeError``.
 
 Example::
 
@@ -29,18 +33,20 @@ Example::
 
 from __future__ import annotations
 
-import dataclasses
+import inspect
 import os
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Union
 
 import numpy as np
 
 from . import _surfcomp
-from ._surfcomp import Descriptors, Surface
+from ._surfcomp import Descriptors, Error, FileError, InputError, OptionError, Surface
 
 __all__ = [
-    "Alignment", "Descriptors", "Hit", "MatchResult", "Surface", "build_surface", "describe",
-    "library_info", "load_descriptors", "match", "option_defaults", "screen",
+    "Alignment", "CriticalPoints", "DescriptionParameters", "Descriptors", "Error", "FileError",
+    "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
+    "OverlayScore", "Patch", "Surface", "SurfaceMeasures", "build_surface", "describe",
+    "library_info", "load_descriptors", "match", "option_table", "screen",
 ]
 __version__ = "0.1.0"
 
@@ -70,7 +76,7 @@ def _input(obj: Any):
         from rdkit import Chem  # imported only when an RDKit molecule is given
 
         if obj.GetNumConformers() == 0:
-            raise ValueError("the RDKit molecule has no conformer: surfcomp needs 3D coordinates")
+            raise InputError("the RDKit molecule has no conformer: surfcomp needs 3D coordinates")
         name = obj.GetProp("_Name") if obj.HasProp("_Name") and obj.GetProp("_Name") else "mol"
         block = Chem.MolToMolBlock(obj, includeStereo=True, kekulize=True)
         return _surfcomp.MoleculeBlock(block, f"<rdkit Mol {name}>", _partial_charges(obj))
@@ -78,36 +84,60 @@ def _input(obj: Any):
                     f"got {type(obj).__name__}")
 
 
-def _arguments(options: Dict[str, Any]) -> List[str]:
-    """Keyword options as command-line words: probe_radius=1.2 -> ['--probe-radius', '1.2'];
-    True switches a flag on; a list or tuple of lists repeats the option; None is left out; a
-    site sphere may be given as four numbers."""
-    words: List[str] = []
-    for key, value in options.items():
-        flag = "--" + key.replace("_", "-")
-        if value is None or value is False:
-            continue
-        if value is True:
-            words.append(flag)
-            continue
-        values = value if isinstance(value, list) else [value]
-        for v in values:
-            if isinstance(v, (tuple, np.ndarray)):
-                v = ",".join(repr(float(x)) for x in v)
-            words += [flag, str(v)]
-    return words
+_ANNOTATIONS = {"real": float, "integer": int, "text": Optional[str], "choice": str,
+                "flag": bool, "spheres": Sequence[Sequence[float]]}
 
 
-@dataclasses.dataclass
-class Alignment:
-    """One rigid alignment of the probe onto the reference, best first by ``rank``.
+def _keyword_options(function_name: str):
+    """Gives the decorated function the keyword options of the library's option table for
+    ``function_name``: its signature (names, defaults, types) and an Options section of its
+    docstring. The function takes them as ``**options`` and hands them to the library, which
+    checks each against the same definition."""
+    table = _surfcomp.option_table(function_name)
 
-    ``transform`` (4, 4) moves probe coordinates into the reference's frame:
-    ``x' = transform[:3, :3] @ x + transform[:3, 3]``. ``source`` is ``"cliques"`` (critical-point
-    correspondences) or ``"principal_axes"`` (a refined principal-axes start; then ``rmsd``,
-    ``n_points``, ``r_chem`` and ``consensus`` are 0 and ``cp_pairs`` is empty). ``cp_pairs``
-    (k, 2) holds (reference, probe) critical-point indices.
-    """
+    def decorate(function):
+        signature = inspect.signature(function)
+        fixed = [p for p in signature.parameters.values()
+                 if p.kind is not inspect.Parameter.VAR_KEYWORD]
+        options = [inspect.Parameter(o["name"], inspect.Parameter.KEYWORD_ONLY,
+                                     default=o["default"], annotation=_ANNOTATIONS[o["kind"]])
+                   for o in table]
+        function.__signature__ = signature.replace(parameters=fixed + options)
+        lines = [f"    {o['name']} (default {o['default']!r}): {o['help']}" for o in table]
+        function.__doc__ = (function.__doc__ or "") + "\n\n    Options:\n\n" + "\n".join(lines)
+        return function
+
+    return decorate
+
+
+def _documented(cls, **docs):
+    """Gives each field of the named tuple ``cls`` its docstring (``help()`` shows them); every
+    field must have one."""
+    if set(docs) != set(cls._fields):
+        raise AssertionError(f"{cls.__name__}: fields {sorted(set(cls._fields) ^ set(docs))}")
+    for name, doc in docs.items():
+        getattr(cls, name).__doc__ = doc
+    return cls
+
+
+class OverlayScore(NamedTuple):
+    """The Gaussian overlay score of an alignment and its terms (Tanimoto coefficients)."""
+
+    score: float
+    shape: float
+    chem: float
+    atoms: float
+
+
+_documented(OverlayScore,
+            score="(shape + w_chem chem + w_atoms atoms) / (1 + w_chem + w_atoms)",
+            shape="shape Tanimoto of the two surfaces' Gaussian samples",
+            chem="ESP/LP-weighted Tanimoto of the samples",
+            atoms="same-element heteroatom Tanimoto (0 where either side has no atoms)")
+
+
+class Alignment(NamedTuple):
+    """One rigid alignment of the probe onto the reference, best first by ``rank``."""
 
     rank: int
     source: str
@@ -117,7 +147,7 @@ class Alignment:
     r_chem: float
     consensus: float
     refined: bool
-    overlay: Dict[str, float]
+    overlay: OverlayScore
     cp_pairs: np.ndarray
     parent: Optional[int]
     children: List[int]
@@ -125,7 +155,7 @@ class Alignment:
     @property
     def overlay_score(self) -> float:
         """The overlay score (shape + chemistry + atoms Tanimoto, weighted) of ``transform``."""
-        return self.overlay["score"]
+        return self.overlay.score
 
     def apply_to(self, points: np.ndarray) -> np.ndarray:
         """``points`` (n, 3) moved by the alignment."""
@@ -144,28 +174,48 @@ class Alignment:
         return moved
 
 
+_documented(
+    Alignment,
+    rank="1-based position, best first",
+    source='"cliques" (critical-point correspondences) or "principal_axes" (a refined '
+           "principal-axes start; then rmsd, n_points, r_chem and consensus are 0)",
+    transform="(4, 4) moving probe coordinates into the reference's frame: "
+              "x' = transform[:3, :3] @ x + transform[:3, 3]",
+    rmsd="RMSD of the clique's least-squares fit, A",
+    n_points="corresponding image points of the fit",
+    r_chem="ESP correlation of the corresponding points",
+    consensus="the consensus ranking's value",
+    refined="whether the overlay refinement moved this pose",
+    overlay="the overlay score of the pose and its terms (OverlayScore)",
+    cp_pairs="(k, 2) (reference, probe) critical-point indices of the clique",
+    parent="rank of the alignment this one was merged into, or None",
+    children="ranks of the alignments merged into this one")
+
+
 class MatchResult(list):
     """The alignments of a match, best first (a list of :class:`Alignment`), with what the match
-    did: ``trace`` (the association graph after each filter: stage, nodes, edges, ms),
-    ``timing_ms``, ``warnings`` (what the match cut), ``notes``, ``cliques`` and
-    ``cliques_complete``, ``prepare_ms`` (surfaces and descriptors) and ``match_ms``."""
+    did."""
 
+    #: The association graph after each filter: dicts of stage, nodes, edges, ms.
     trace: List[Dict[str, Any]]
+    #: Milliseconds per step of the match.
     timing_ms: Dict[str, float]
+    #: What the match cut, one line each (the clique search stopped early).
     warnings: List[str]
+    #: What a reader may want to know, one line each.
     notes: List[str]
+    #: Cliques found.
     cliques: int
+    #: Whether the clique search finished within its budget.
     cliques_complete: bool
+    #: Milliseconds spent reading, building surfaces and describing.
     prepare_ms: float
+    #: Milliseconds spent matching.
     match_ms: float
 
 
-@dataclasses.dataclass
-class Hit:
-    """One molecule of a screen, best first: its best conformer's ``entry`` (1-based) in the
-    library, its ``score`` (stage 3: the full match's overlay score; stage 2: the refined
-    overlay score; stage 1: the fast score)
-    and terms, and ``transform`` (4, 4) moving it into the query's frame."""
+class Hit(NamedTuple):
+    """One molecule of a screen, best first."""
 
     rank: int
     entry: int
@@ -180,28 +230,193 @@ class Hit:
     atoms: float
     fast_score: float
     transform: np.ndarray
+    molecule: Any = None
 
 
+_documented(
+    Hit,
+    rank="1-based position, best first",
+    entry="1-based library entry of the molecule's best conformer",
+    name="the molecule's name",
+    source="the file the molecule came from",
+    record="1-based record of that file",
+    conformer="the conformer's number (0: the record's own coordinates)",
+    score="stage 3: the full match's overlay score; stage 2: the refined overlay score; "
+          "stage 1: the fast score",
+    stage="the stage whose score ``score`` is (3 for the full-match candidates)",
+    shape="shape Tanimoto of the pose",
+    chem="ESP/LP Tanimoto of the pose",
+    atoms="same-element heteroatom Tanimoto of the pose",
+    fast_score="the stage-1 score",
+    transform="(4, 4) moving the hit into the query's frame",
+    molecule="with screen(..., molecules=True): the hit as an RDKit molecule moved onto the "
+             "query (a pocket hit: its structure), else None")
+
+
+class CriticalPoints(NamedTuple):
+    """The critical points of a description, one row per point."""
+
+    position: np.ndarray
+    normal: np.ndarray
+    vertex: np.ndarray
+    type: np.ndarray
+    status: np.ndarray
+    cc1: np.ndarray
+    cc2: np.ndarray
+    shape_index: np.ndarray
+    curvedness: np.ndarray
+    esp: np.ndarray
+    lp: np.ndarray
+
+
+_documented(
+    CriticalPoints,
+    position="(n, 3) positions, A",
+    normal="(n, 3) unit outward normals",
+    vertex="(n,) surface vertex indices",
+    type='(n,) "peak" or "valley"',
+    status='(n,) "ok" or why the point has no image',
+    cc1="(n,) first principal curvature at the vertex, 1/A (convex < 0)",
+    cc2="(n,) second principal curvature, 1/A",
+    shape_index="(n,) shape index averaged over the property disc, [-1, 1]",
+    curvedness="(n,) curvedness at the vertex, 1/A",
+    esp="(n,) ESP averaged over the property disc, kcal/(mol e)",
+    lp="(n,) lipophilic potential averaged over the property disc")
+
+
+class Patch(NamedTuple):
+    """A critical point's geodesic patch and its harmonic map onto the unit disk."""
+
+    status: str
+    center: int
+    positions: np.ndarray
+    faces: np.ndarray
+    surface_vertex: List[int]
+    distance: np.ndarray
+    uv: np.ndarray
+    outer_boundary: List[int]
+
+
+_documented(
+    Patch,
+    status='"ok" or why the point has no patch or map',
+    center="the patch vertex at the critical point",
+    positions="(p, 3) patch vertex positions, A",
+    faces="(f, 3) patch triangles",
+    surface_vertex="the surface vertex of each patch vertex",
+    distance="(p,) on-surface distance from the critical point, A",
+    uv="(p, 2) harmonic map onto the unit disk",
+    outer_boundary="patch vertices of the outer boundary, in order")
+
+
+class SurfaceMeasures(NamedTuple):
+    """Global measures of a surface."""
+
+    area: float
+    volume: float
+    euler_characteristic: int
+    boundary_edges: int
+
+
+_documented(SurfaceMeasures, area="area, A^2", volume="enclosed volume, A^3 (closed surfaces)",
+            euler_characteristic="V - E + F (2 for a sphere)",
+            boundary_edges="edges with one triangle (0 for a closed surface)")
+
+
+class DescriptionParameters(NamedTuple):
+    """The parameters a description was built with."""
+
+    critical_point_radius: float
+    patch_radius: float
+    image_rings: int
+    image_sectors: int
+    weights: str
+    image_property: str
+
+
+_documented(DescriptionParameters, critical_point_radius="r_cp, A", patch_radius="patch radius, A",
+            image_rings="rings of the image grid", image_sectors="sectors of the image grid",
+            weights="spring weights of the harmonic maps",
+            image_property="the vertex property the images resample")
+
+
+class LibraryEntry(NamedTuple):
+    """One entry (a conformer) of a screening library."""
+
+    entry: int
+    name: str
+    source: str
+    record: int
+    conformer: int
+    heavy_atoms: int
+    site_spheres: int
+
+
+_documented(LibraryEntry, entry="1-based entry number", name="the molecule's name",
+            source="the file it came from", record="1-based record of that file",
+            conformer="conformer number (0: the record's own coordinates)",
+            heavy_atoms="heavy atoms of the molecule",
+            site_spheres="spheres of a pocket entry's site (0 for a molecule)")
+
+
+class LibraryInfo(NamedTuple):
+    """A screening library's index, as ``surfcomp library info`` reports it."""
+
+    version: int
+    settings: str
+    bytes: int
+    molecules: int
+    largest_entry_bytes: int
+    entries: List[LibraryEntry]
+
+
+_documented(LibraryInfo, version="file format version", settings="how the library was built",
+            bytes="size of the file", molecules="distinct molecules (source, record, name)",
+            largest_entry_bytes="size of the largest entry",
+            entries="the entries in library order (LibraryEntry)")
+
+
+def _critical_points(self) -> CriticalPoints:
+    """The critical points, one row per point (:class:`CriticalPoints`)."""
+    return CriticalPoints(**self._critical_points())
+
+
+def _patch(self, index: int) -> Patch:
+    """Critical point ``index``'s patch and harmonic map (:class:`Patch`); IndexError when out of
+    range, empty arrays when the point has no patch."""
+    return Patch(**self._patch(index))
+
+
+def _parameters(self) -> DescriptionParameters:
+    """The parameters the description was built with (:class:`DescriptionParameters`)."""
+    return DescriptionParameters(**self._parameters())
+
+
+def _measures(self) -> SurfaceMeasures:
+    """Area, volume, Euler characteristic and boundary edges (:class:`SurfaceMeasures`)."""
+    return SurfaceMeasures(**self._measures())
+
+
+Descriptors.critical_points = property(_critical_points)
+Descriptors.patch = _patch
+Descriptors.options = property(_parameters)
+Surface.measures = _measures
+
+
+@_keyword_options("build_surface")
 def build_surface(mol, **options) -> Surface:
     """The solvent-excluded surface of ``mol`` (or a mesh file with its properties) with per-vertex
-    normals, ``esp``, ``lp``, ``cc1``, ``cc2``, ``shape_index`` and ``curvedness``.
-
-    Options (``surfcomp surf-build --help``): probe_radius=1.4, density=2.5, voxel=0,
-    charges="file", eps=1, eps_distance_dependent=False, lp_kernel="fauchere", ligand=None,
-    record=None, molecule=None, max_atoms, max_grid_cells, max_vertices.
-    """
-    return _surfcomp.build_surface(_input(mol), _arguments(options))
+    normals, ``esp``, ``lp``, ``cc1``, ``cc2``, ``shape_index`` and ``curvedness``, as
+    ``surfcomp surf-build`` builds it."""
+    return _surfcomp.build_surface(_input(mol), options)
 
 
+@_keyword_options("describe")
 def describe(mol_or_surface, **options) -> Descriptors:
     """The critical points of a surface and, for each, its patch, harmonic map and harmonic shape
-    image. ``mol_or_surface`` is a molecule, a mesh, a ``.hsi`` file or a :class:`Surface`.
-
-    Options: the surface options of :func:`build_surface`, and critical_point_radius=2.5,
-    patch_radius=5, image_rings=16, image_sectors=180, weights="inverse-length", threads=0,
-    max_image_bytes.
-    """
-    return _surfcomp.describe(_input(mol_or_surface), _arguments(options))
+    image, as ``surfcomp hsi-build`` describes it. ``mol_or_surface`` is a molecule, a mesh, a
+    ``.hsi`` file or a :class:`Surface`."""
+    return _surfcomp.describe(_input(mol_or_surface), options)
 
 
 def load_descriptors(path) -> Descriptors:
@@ -209,42 +424,48 @@ def load_descriptors(path) -> Descriptors:
     return _surfcomp.load_descriptors(os.fspath(path))
 
 
+@_keyword_options("match")
 def match(ref, probe, *, report: Union[str, os.PathLike, None] = None, **options) -> MatchResult:
     """Aligns ``probe`` onto ``ref`` as ``surfcomp match`` does and returns the alignments, best
-    first. With ``report``, also writes the HTML report of the match there.
-
-    Options: every option of ``surfcomp match --help`` (fuzzy_threshold=0.3,
-    image_threshold=0.5, ..., site_ligand, site_sphere=(x, y, z, r) or a list of them,
-    patch_radius=5, and the surface options), and threads=0.
-    """
-    raw = _surfcomp.match(_input(ref), _input(probe), _arguments(options),
+    first. With ``report``, also writes the HTML report of the match there. A site sphere is
+    ``(x, y, z, r)`` or a list of them."""
+    raw = _surfcomp.match(_input(ref), _input(probe), options,
                           os.fspath(report) if report is not None else "")
-    result = MatchResult(Alignment(**a) for a in raw["alignments"])
+    result = MatchResult(Alignment(**dict(a, overlay=OverlayScore(**a["overlay"])))
+                         for a in raw["alignments"])
     for key in ("trace", "timing_ms", "warnings", "notes", "cliques", "cliques_complete",
                 "prepare_ms", "match_ms"):
         setattr(result, key, raw[key])
     return result
 
 
-def screen(query, library, **options) -> List[Hit]:
+@_keyword_options("screen")
+def screen(query, library, *, molecules: bool = False, **options) -> List[Hit]:
     """Ranks the molecules of a screening library (``surfcomp library build``) against ``query``
     (a molecule, a ``.hsi`` file or :class:`Descriptors`; with site_ligand or site_sphere, a
-    binding site on a structure against a pocket library), as ``surfcomp screen`` does.
+    binding site on a structure against a pocket library), as ``surfcomp screen`` does. With
+    ``molecules``, each hit carries its molecule moved onto the query as an RDKit molecule
+    (``Hit.molecule``; a pocket hit: its structure), written as ``screen --aligned-out``
+    writes it."""
+    hits = _surfcomp.screen(_input(query), os.fspath(library), options, molecules)
+    if molecules:
+        from rdkit import Chem
 
-    Options: top=100 (0: every molecule), refine=5, refine_starts=0 (all), candidates=50, record,
-    site_ligand, site_sphere, site_radius=4, site_margin=16, threads=0.
-    """
-    return [Hit(**h) for h in _surfcomp.screen(_input(query), os.fspath(library),
-                                               _arguments(options))]
+        for hit in hits:
+            block, kind = hit.pop("aligned")
+            hit["molecule"] = (Chem.MolFromMolBlock(block, removeHs=False) if kind == "sdf"
+                               else Chem.MolFromPDBBlock(block, removeHs=False))
+    return [Hit(**h) for h in hits]
 
 
-def library_info(path) -> Dict[str, Any]:
-    """A library's format version, build settings, size in bytes and entries (entry, name,
-    source, record, conformer, heavy_atoms, site_spheres), read from its index."""
-    return _surfcomp.library_info(os.fspath(path))
+def library_info(path) -> LibraryInfo:
+    """A library's format version, build settings, size and entries, read from its index."""
+    raw = _surfcomp.library_info(os.fspath(path))
+    return LibraryInfo(**dict(raw, entries=[LibraryEntry(**e) for e in raw["entries"]]))
 
 
-def option_defaults(function: str) -> Dict[str, str]:
-    """The options of ``build_surface``, ``describe``, ``match`` or ``screen`` with their
-    defaults as the command line shows them (command-line names)."""
-    return _surfcomp.option_defaults(function)
+def option_table(function: str) -> List[Dict[str, Any]]:
+    """The options of ``build_surface``, ``describe``, ``match`` or ``screen`` as the library
+    defines them, in order: ``name`` (the keyword), ``option`` (the command line's), ``kind``,
+    ``default``, ``help`` (with unit and range), ``unit``, ``range`` and ``choices``."""
+    return _surfcomp.option_table(function)

@@ -1,9 +1,9 @@
 """Type stubs of the surfcomp package (see __init__.py for the documentation). The keyword
-options and their defaults are the command line's (tests/python/test_module.py checks them
-against the option sets the C++ side parses)."""
+options and their defaults are the library's option tables' (tests/python/test_module.py checks
+them against the module's signatures)."""
 
 import os
-from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -15,6 +15,18 @@ Molecule = Any
 SiteSpheres = Union[Sequence[float], str, List[Union[Sequence[float], str]]]
 
 __version__: str
+
+class Error(Exception):
+    """Base of every error surfcomp raises."""
+
+class InputError(Error, ValueError):
+    """Bad input: a file's contents, a molecule, a mesh or an option."""
+
+class OptionError(InputError):
+    """An option outside its range or not one of its choices."""
+
+class FileError(Error, OSError):
+    """A file that cannot be opened, read or written."""
 
 class Surface:
     """A closed triangle surface with per-vertex properties (built or read; not constructed)."""
@@ -34,7 +46,7 @@ class Surface:
     def n_faces(self) -> int: ...
     @property
     def has_molecule(self) -> bool: ...
-    def measures(self) -> Dict[str, float]: ...  # area, volume, euler_characteristic, boundary_edges
+    def measures(self) -> SurfaceMeasures: ...
     def save(self, path: PathLike, ascii: bool = ...) -> None: ...  # .ply, .off or .obj
 
 class Descriptors:
@@ -42,18 +54,61 @@ class Descriptors:
     @property
     def surface(self) -> Surface: ...
     @property
-    def critical_points(self) -> Dict[str, np.ndarray]: ...
-    # position (k, 3), normal (k, 3), vertex, type ("peak"/"valley"), status ("ok", "skipped",
-    # ...), cc1, cc2, shape_index, curvedness, esp, lp: one row per critical point
+    def critical_points(self) -> CriticalPoints: ...
+    def patch(self, index: int) -> Patch: ...
     @property
     def images(self) -> npt.NDArray[np.float64]: ...  # (k, rings, sectors); NaN where none
     @property
-    def options(self) -> Dict[str, Any]: ...
+    def options(self) -> DescriptionParameters: ...
     @property
     def atoms(self) -> Tuple[List[str], npt.NDArray[np.float64]]: ...  # heavy atoms: elements, (a, 3)
     def save(self, path: PathLike) -> None: ...  # .hsi
+    def write_critical_points(self, path: PathLike) -> None: ...  # .json, .pdb or .ply
 
-class Alignment:
+class SurfaceMeasures(NamedTuple):
+    area: float
+    volume: float
+    euler_characteristic: int
+    boundary_edges: int
+
+class CriticalPoints(NamedTuple):
+    position: npt.NDArray[np.float64]  # (k, 3)
+    normal: npt.NDArray[np.float64]  # (k, 3)
+    vertex: npt.NDArray[np.int32]
+    type: npt.NDArray[Any]  # "peak" or "valley"
+    status: npt.NDArray[Any]  # "ok", "skipped", ...
+    cc1: npt.NDArray[np.float64]
+    cc2: npt.NDArray[np.float64]
+    shape_index: npt.NDArray[np.float64]
+    curvedness: npt.NDArray[np.float64]
+    esp: npt.NDArray[np.float64]
+    lp: npt.NDArray[np.float64]
+
+class Patch(NamedTuple):
+    status: str
+    center: int
+    positions: npt.NDArray[np.float64]  # (p, 3)
+    faces: npt.NDArray[np.int32]  # (f, 3)
+    surface_vertex: List[int]
+    distance: npt.NDArray[np.float64]
+    uv: npt.NDArray[np.float64]  # (p, 2)
+    outer_boundary: List[int]
+
+class DescriptionParameters(NamedTuple):
+    critical_point_radius: float
+    patch_radius: float
+    image_rings: int
+    image_sectors: int
+    weights: str
+    image_property: str
+
+class OverlayScore(NamedTuple):
+    score: float
+    shape: float
+    chem: float
+    atoms: float
+
+class Alignment(NamedTuple):
     rank: int
     source: str
     transform: npt.NDArray[np.float64]  # (4, 4): probe coordinates -> reference frame
@@ -62,7 +117,7 @@ class Alignment:
     r_chem: float
     consensus: float
     refined: bool
-    overlay: Dict[str, float]  # score, shape, chem, atoms
+    overlay: OverlayScore
     cp_pairs: npt.NDArray[np.int32]  # (k, 2): reference, probe critical-point indices
     parent: Optional[int]
     children: List[int]
@@ -81,7 +136,7 @@ class MatchResult(List[Alignment]):
     prepare_ms: float
     match_ms: float
 
-class Hit:
+class Hit(NamedTuple):
     rank: int
     entry: int
     name: str
@@ -95,6 +150,24 @@ class Hit:
     atoms: float
     fast_score: float
     transform: npt.NDArray[np.float64]
+    molecule: Any = None  # with screen(..., molecules=True): an RDKit molecule
+
+class LibraryEntry(NamedTuple):
+    entry: int
+    name: str
+    source: str
+    record: int
+    conformer: int
+    heavy_atoms: int
+    site_spheres: int
+
+class LibraryInfo(NamedTuple):
+    version: int
+    settings: str
+    bytes: int
+    molecules: int
+    largest_entry_bytes: int
+    entries: List[LibraryEntry]
 
 def build_surface(
     mol: Union[PathLike, Molecule],
@@ -110,20 +183,13 @@ def build_surface(
     record: Optional[int] = None,
     molecule: Optional[PathLike] = None,
     max_atoms: int = 2000000,
-    max_grid_cells: int = 200000000,
+    max_grid_cells: float = 200000000.0,
     max_vertices: int = 20000000,
 ) -> Surface: ...
 
 def describe(
     mol_or_surface: Union[PathLike, Molecule, Surface],
     *,
-    critical_point_radius: float = 2.5,
-    patch_radius: float = 5.0,
-    image_rings: int = 16,
-    image_sectors: int = 180,
-    weights: str = 'inverse-length',
-    threads: int = 0,
-    max_image_bytes: int = 1073741824,
     probe_radius: float = 1.4,
     density: float = 2.5,
     voxel: float = 0.0,
@@ -135,8 +201,16 @@ def describe(
     record: Optional[int] = None,
     molecule: Optional[PathLike] = None,
     max_atoms: int = 2000000,
-    max_grid_cells: int = 200000000,
+    max_grid_cells: float = 200000000.0,
     max_vertices: int = 20000000,
+    critical_point_radius: float = 2.5,
+    disc_radius: float = 1.0,
+    patch_radius: float = 5.0,
+    image_rings: int = 16,
+    image_sectors: int = 180,
+    weights: str = 'inverse-length',
+    max_image_bytes: int = 1073741824,
+    threads: int = 0,
 ) -> Descriptors: ...
 
 def load_descriptors(path: PathLike) -> Descriptors: ...
@@ -146,14 +220,21 @@ def match(
     probe: Union[PathLike, Molecule, Surface, Descriptors],
     *,
     report: Optional[PathLike] = None,
-    site_ligand: Optional[str] = None,
-    ref_site_ligand: Optional[str] = None,
-    probe_site_ligand: Optional[str] = None,
-    site_radius: float = 4.0,
-    site_sphere: Optional[SiteSpheres] = None,
-    site_margin: float = 16.0,
-    ref_site_sphere: Optional[SiteSpheres] = None,
-    probe_site_sphere: Optional[SiteSpheres] = None,
+    probe_radius: float = 1.4,
+    density: float = 2.5,
+    voxel: float = 0.0,
+    charges: str = 'file',
+    eps: float = 1.0,
+    eps_distance_dependent: bool = False,
+    lp_kernel: str = 'fauchere',
+    ligand: Optional[str] = None,
+    record: Optional[int] = None,
+    molecule: Optional[PathLike] = None,
+    max_atoms: int = 2000000,
+    max_grid_cells: float = 200000000.0,
+    max_vertices: int = 20000000,
+    patch_radius: float = 5.0,
+    max_image_bytes: int = 1073741824,
     fuzzy_threshold: float = 0.3,
     image_threshold: float = 0.5,
     distance_tolerance: float = 1.5,
@@ -174,21 +255,14 @@ def match(
     site_overlay_radius: float = 2.0,
     site_chem_weight: float = 0.25,
     site_principal_axes_starts: int = 24,
-    patch_radius: float = 5.0,
-    max_image_bytes: int = 1073741824,
-    probe_radius: float = 1.4,
-    density: float = 2.5,
-    voxel: float = 0.0,
-    charges: str = 'file',
-    eps: float = 1.0,
-    eps_distance_dependent: bool = False,
-    lp_kernel: str = 'fauchere',
-    ligand: Optional[str] = None,
-    record: Optional[int] = None,
-    molecule: Optional[PathLike] = None,
-    max_atoms: int = 2000000,
-    max_grid_cells: int = 200000000,
-    max_vertices: int = 20000000,
+    site_ligand: Optional[str] = None,
+    ref_site_ligand: Optional[str] = None,
+    probe_site_ligand: Optional[str] = None,
+    site_sphere: Optional[SiteSpheres] = None,
+    ref_site_sphere: Optional[SiteSpheres] = None,
+    probe_site_sphere: Optional[SiteSpheres] = None,
+    site_radius: float = 4.0,
+    site_margin: float = 16.0,
     threads: int = 0,
 ) -> MatchResult: ...
 
@@ -196,6 +270,7 @@ def screen(
     query: Union[PathLike, Molecule, Descriptors],
     library: PathLike,
     *,
+    molecules: bool = False,
     top: int = 100,
     refine: int = 5,
     refine_starts: int = 0,
@@ -208,5 +283,5 @@ def screen(
     threads: int = 0,
 ) -> List[Hit]: ...
 
-def library_info(path: PathLike) -> Dict[str, Any]: ...
-def option_defaults(function: str) -> Dict[str, str]: ...
+def library_info(path: PathLike) -> LibraryInfo: ...
+def option_table(function: str) -> List[Dict[str, Any]]: ...

@@ -1,10 +1,13 @@
 """The Python module `surfcomp`: round trips, RDKit molecules against their files, a self-match,
 errors, the GIL, the type stubs against the command line's options, and the example script."""
 import ast
+import inspect
 import os
+import re
 import pathlib
+import linecache
+import sys
 import threading
-import time
 
 import numpy as np
 import pytest
@@ -37,7 +40,7 @@ def test_a_surface_holds_its_arrays_and_round_trips_through_ply(ligands, tmp_pat
     np.testing.assert_allclose(np.linalg.norm(surface.normals, axis=1), 1.0, atol=1e-9)
     assert {"esp", "lp", "cc1", "cc2", "shape_index", "curvedness"} <= set(surface.properties)
     measures = surface.measures()
-    assert measures["euler_characteristic"] == 2 and measures["boundary_edges"] == 0
+    assert measures.euler_characteristic == 2 and measures.boundary_edges == 0
     # Euler's formula for a closed triangle mesh: F = 2 V - 4.
     assert surface.n_faces == 2 * surface.n_vertices - 4
     surface.save(tmp_path / "s.ply")
@@ -50,17 +53,17 @@ def test_a_surface_holds_its_arrays_and_round_trips_through_ply(ligands, tmp_pat
 def test_descriptors_round_trip_through_hsi(ligands, tmp_path):
     described = surfcomp.describe(ligands[0], image_rings=8, image_sectors=90)
     points = described.critical_points
-    k = len(points["type"])
+    k = len(points.type)
     assert k > 5 and described.images.shape == (k, 8, 90)
-    assert set(points["type"]) <= {"peak", "valley"} and points["position"].shape == (k, 3)
-    ok = points["status"] == "ok"
+    assert set(points.type) <= {"peak", "valley"} and points.position.shape == (k, 3)
+    ok = points.status == "ok"
     assert ok.all()
     assert np.isfinite(described.images).any(axis=(1, 2)).all()
-    assert described.options["image_sectors"] == 90
+    assert described.options.image_sectors == 90
     described.save(tmp_path / "d.hsi")
     loaded = surfcomp.load_descriptors(tmp_path / "d.hsi")
     np.testing.assert_array_equal(loaded.images, described.images)
-    np.testing.assert_array_equal(loaded.critical_points["position"], points["position"])
+    np.testing.assert_array_equal(loaded.critical_points.position, points.position)
     assert loaded.options == described.options
     elements, positions = loaded.atoms
     assert len(elements) == positions.shape[0] > 10
@@ -108,21 +111,25 @@ def test_the_alignment_moves_an_rdkit_molecule_onto_its_crystal_pose(ligands):
 
 
 def test_bad_input_raises_and_never_crashes(ligands, tmp_path):
-    with pytest.raises(ValueError, match=r"--probe-radius: value -1 is outside \[0, 10\]"):
+    with pytest.raises(surfcomp.OptionError, match=r"probe_radius: value -1 is outside \[0, 10\]"):
         surfcomp.build_surface(ligands[0], probe_radius=-1)
-    with pytest.raises(ValueError, match="unrecognised option '--no-such-option'"):
+    with pytest.raises(TypeError, match="unexpected keyword argument 'no_such_option'"):
         surfcomp.match(ligands[0], ligands[1], no_such_option=1)
-    with pytest.raises(ValueError, match="--ranking"):
+    with pytest.raises(ValueError, match="ranking: 'best' is not one of rank|number|vote"):
         surfcomp.match(ligands[0], ligands[1], ranking="best")
-    with pytest.raises(OSError, match="missing.sdf"):
+    with pytest.raises(TypeError, match="refine_top: expected an integer"):
+        surfcomp.match(ligands[0], ligands[1], refine_top=2.5)
+    with pytest.raises(surfcomp.OptionError, match="site_sphere '1,2,3,-1'"):
+        surfcomp.match(ligands[0], ligands[1], site_sphere=(1, 2, 3, -1))
+    with pytest.raises(surfcomp.FileError, match="missing.sdf"):
         surfcomp.build_surface(tmp_path / "missing.sdf")
     garbage = tmp_path / "garbage.sdf"
     garbage.write_text("not a molecule\n")
-    with pytest.raises(ValueError, match="garbage.sdf"):
+    with pytest.raises(surfcomp.InputError, match="garbage.sdf"):
         surfcomp.describe(garbage)
     with pytest.raises(TypeError):
         surfcomp.build_surface(42)
-    with pytest.raises(ValueError, match="no conformer"):
+    with pytest.raises(surfcomp.InputError, match="no conformer"):
         surfcomp.build_surface(Chem.MolFromSmiles("CCO"))
     mol = Chem.MolFromMolFile(str(ligands[0]), removeHs=False)
     for atom in mol.GetAtoms():
@@ -142,25 +149,22 @@ def test_partial_charges_of_an_rdkit_molecule_are_used(ligands):
 
 
 def test_the_work_runs_without_the_gil(ligands):
-    ticks = 0
-    done = threading.Event()
-
-    def work():
-        surfcomp.match(ligands[2], ligands[3], principal_axes_starts=24)
-        done.set()
-
-    thread = threading.Thread(target=work)
-    start = time.perf_counter()
-    thread.start()
-    while not done.is_set():
-        ticks += 1
-        time.sleep(0.001)
-    thread.join()
-    elapsed = time.perf_counter() - start
-    # With the GIL held for the whole match this loop could not run; it ticks throughout (a
-    # quarter of the 1 ms sleeps it could fit is a margin for a loaded machine).
-    assert elapsed > 0.05
-    assert ticks > 0.25 * elapsed / 0.001
+    # The main thread watches the worker's Python frame: it can see the worker parked on the
+    # line that calls into the C++ match only while that call has let the GIL go. With the GIL
+    # held for the whole call it could see that line at most at the call's two edges.
+    worker = threading.Thread(
+        target=surfcomp.match, args=(ligands[2], ligands[3]), kwargs={"principal_axes_starts": 24})
+    worker.start()
+    inside = 0
+    while worker.is_alive() and inside < 1000:
+        frame = sys._current_frames().get(worker.ident)
+        if (frame is not None and frame.f_code.co_name == "match"
+                and frame.f_code.co_filename.endswith(os.path.join("surfcomp", "__init__.py"))
+                and "_surfcomp.match" in linecache.getline(frame.f_code.co_filename,
+                                                           frame.f_lineno)):
+            inside += 1
+    worker.join()
+    assert inside >= 100
 
 
 def test_a_screen_finds_its_query_first(program, cache, tmp_path):
@@ -171,31 +175,106 @@ def test_a_screen_finds_its_query_first(program, cache, tmp_path):
     result = run([program, "library", "build", sdf, "-o", library])
     assert result.returncode == 0, result.stderr
     info = surfcomp.library_info(library)
-    assert len(info["entries"]) == 10
+    assert len(info.entries) == 10 and info.molecules == 10
+    assert [e.entry for e in info.entries] == list(range(1, 11))
     query = Chem.SDMolSupplier(str(sdf), removeHs=False)[3]
     hits = surfcomp.screen(query, library, top=5, candidates=3)
     assert len(hits) == 5 and hits[0].entry == 4 and hits[0].stage == 3
     assert hits[0].score == pytest.approx(1.0, abs=1e-3)
     np.testing.assert_allclose(hits[0].transform, np.eye(4), atol=1e-2)
+    assert hits[0].molecule is None
+    # molecules=True: each hit moved onto the query as the CLI's --aligned-out writes it.
+    moved = surfcomp.screen(query, library, top=3, candidates=3, molecules=True)
+    aligned = tmp_path / "hits.sdf"
+    result = run([program, "screen", sdf, library, "--record", "4", "-o", tmp_path / "h.csv",
+                  "--top", "3", "--candidates", "3", "--aligned-out", aligned, "--aligned-top", "3"])
+    assert result.returncode == 0, result.stderr
+    written = [m for m in Chem.SDMolSupplier(str(aligned), removeHs=False)]
+    assert [h.entry for h in moved] == [int(m.GetProp("surfcomp_entry")) for m in written]
+    for hit, mol in zip(moved, written):
+        assert hit.molecule.GetNumAtoms() == mol.GetNumAtoms()
+        np.testing.assert_allclose(hit.molecule.GetConformer().GetPositions(),
+                                   mol.GetConformer().GetPositions(), atol=1e-3)
+    # The best hit is the query itself: moved onto it, its atoms sit on the query's.
+    np.testing.assert_allclose(moved[0].molecule.GetConformer().GetPositions(),
+                               query.GetConformer().GetPositions(), atol=0.05)
 
 
-def test_the_stubs_list_every_option_with_the_command_lines_default():
+def _help_defaults(program, subcommand):
+    """The options of ``surfcomp SUBCOMMAND --help`` with their defaults as text ("" for none)."""
+    text = run([program, *subcommand.split(), "--help"]).stdout
+    return {m.group(1).replace("-", "_"): m.group(3) or ""
+            for m in re.finditer(r"^  --([a-z0-9-]+)( arg(?: \(=([^)]*)\))?)?", text, re.M)}
+
+
+@pytest.mark.parametrize("function,subcommand,own", [
+    ("build_surface", "surf-build", {"ascii", "output", "help"}),
+    ("describe", "hsi-build", {"output", "help"}),
+    ("match", "match", {"output", "aligned_out", "report", "top", "trace", "help"}),
+    ("screen", "screen", {"output", "aligned_out", "aligned_top", "help"}),
+])
+def test_signatures_and_help_come_from_one_option_table(program, function, subcommand, own):
+    signature = inspect.signature(getattr(surfcomp, function))
+    keywords = {name: p.default for name, p in signature.parameters.items()
+                if p.kind is inspect.Parameter.KEYWORD_ONLY and name not in ("report", "molecules")}
+    cli = {k: v for k, v in _help_defaults(program, subcommand).items() if k not in own}
+    assert set(keywords) == set(cli), function
+    for name, default in keywords.items():
+        if default is None or default is False:
+            assert cli[name] == "", (function, name)
+        elif isinstance(default, str):
+            assert cli[name] == default, (function, name)
+        else:
+            assert float(cli[name]) == default, (function, name)
+    documented = getattr(surfcomp, function).__doc__
+    assert all(f"    {name} (default " in documented for name in keywords), function
+
+
+def test_the_stubs_match_the_module():
     tree = ast.parse((SOURCE_DIR / "python" / "surfcomp" / "__init__.pyi").read_text())
     functions = {f.name: f for f in tree.body if isinstance(f, ast.FunctionDef)}
     for name in ("build_surface", "describe", "match", "screen"):
         arguments = functions[name].args
         stub = {a.arg: ast.literal_eval(d) for a, d in zip(arguments.kwonlyargs,
                                                             arguments.kw_defaults)}
-        stub.pop("report", None)
-        cli = {k.replace("-", "_"): v for k, v in surfcomp.option_defaults(name).items()}
-        assert set(stub) == set(cli), name
-        for option, default in cli.items():
-            if default == "":
-                assert stub[option] in (None, False), (name, option)
-            elif isinstance(stub[option], str):
-                assert stub[option] == default, (name, option)
-            else:
-                assert stub[option] == float(default), (name, option)
+        module = {n: p.default for n, p in inspect.signature(getattr(surfcomp, name)).parameters.items()
+                  if p.kind is inspect.Parameter.KEYWORD_ONLY}
+        assert stub == module, name
+    exported = {node.name for node in tree.body if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
+    assert set(surfcomp.__all__) <= exported
+
+
+def test_every_field_of_every_result_class_is_documented():
+    for cls in (surfcomp.Alignment, surfcomp.Hit, surfcomp.OverlayScore, surfcomp.CriticalPoints,
+                surfcomp.Patch, surfcomp.SurfaceMeasures, surfcomp.DescriptionParameters,
+                surfcomp.LibraryEntry, surfcomp.LibraryInfo):
+        for field in cls._fields:
+            doc = getattr(cls, field).__doc__
+            assert doc and not doc.startswith("Alias for field"), (cls.__name__, field)
+
+
+def test_critical_points_are_written_as_cp_detect_writes_them(program, ligands, tmp_path):
+    cli = run([program, "cp-detect", ligands[0], "-o", tmp_path / "cli.json",
+               "--points-out", tmp_path / "cli.pdb"])
+    assert cli.returncode == 0, cli.stderr
+    described = surfcomp.describe(ligands[0])
+    described.write_critical_points(tmp_path / "py.pdb")
+    assert (tmp_path / "py.pdb").read_text() == (tmp_path / "cli.pdb").read_text()
+    described.write_critical_points(tmp_path / "py.json")
+    import json
+    ours = json.loads((tmp_path / "py.json").read_text())
+    theirs = json.loads((tmp_path / "cli.json").read_text())
+    assert ours["critical_points"] == theirs["critical_points"]
+    assert ours["parameters"] == theirs["parameters"]
+    with pytest.raises(surfcomp.InputError, match=r"\.json, \.pdb or \.ply"):
+        described.write_critical_points(tmp_path / "py.txt")
+
+
+def test_errors_share_one_base():
+    for error in (surfcomp.InputError, surfcomp.OptionError, surfcomp.FileError):
+        assert issubclass(error, surfcomp.Error)
+    assert issubclass(surfcomp.OptionError, ValueError)
+    assert issubclass(surfcomp.FileError, OSError)
 
 
 def test_python_m_surfcomp_mirrors_the_program(program):

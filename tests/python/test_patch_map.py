@@ -49,12 +49,12 @@ def test_the_obj_texture_coordinates_are_the_harmonic_map(maps, ligand):
     for index in (0, 5):
         patch = described.patch(index)
         v, vt, f = read_obj(folder / f"cp{index}.obj")
-        np.testing.assert_array_equal(v, patch["positions"])
-        np.testing.assert_array_equal(f, patch["faces"])
-        np.testing.assert_allclose(2.0 * vt - 1.0, patch["uv"], rtol=0, atol=1e-15)
+        np.testing.assert_array_equal(v, patch.positions)
+        np.testing.assert_array_equal(f, patch.faces)
+        np.testing.assert_allclose(2.0 * vt - 1.0, patch.uv, rtol=0, atol=1e-15)
         assert np.all((vt >= 0.0) & (vt <= 1.0))
         # The border lies on the unit circle.
-        border = patch["uv"][patch["outer_boundary"]]
+        border = patch.uv[patch.outer_boundary]
         np.testing.assert_allclose(np.linalg.norm(border, axis=1), 1.0, atol=1e-12)
 
 

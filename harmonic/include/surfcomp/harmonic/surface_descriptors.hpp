@@ -4,6 +4,7 @@
 #pragma once
 
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/core/option_table.hpp"
 #include "surfcomp/harmonic/disk_map.hpp"
 #include "surfcomp/harmonic/shape_image.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
@@ -41,6 +42,10 @@ struct DescriptorOptions {
   /// SurfaceDescriptors::options.
   std::function<void(std::int64_t done, std::int64_t total)> progress;
 };
+
+/// The user's options of DescriptorOptions: --critical-point-radius --patch-radius
+/// --image-rings --image-sectors --weights --max-image-bytes, with their ranges.
+const options::Table<DescriptorOptions>& descriptor_option_table();
 
 /// The memory of `count` shape images on the grid of `image`, bytes: per grid point a value,
 /// a validity flag, a face index and three barycentric coordinates.

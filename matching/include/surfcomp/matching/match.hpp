@@ -3,6 +3,7 @@
 // single-linkage merging, the consensus ranking and the overlay refinement of the first poses.
 #pragma once
 
+#include "surfcomp/core/option_table.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/association_graph.hpp"
 #include "surfcomp/matching/cliques.hpp"
@@ -78,10 +79,16 @@ struct MatchOptions {
   SiteMatchOptions site;   ///< used with MatchMode::binding_sites
 };
 
-/// Throws OptionError, naming the option (e.g. "graph.fuzzy_threshold"), its value and its
-/// domain, for the first option of `options` outside its domain; match_surfaces calls it
-/// before any work, and a caller may call it before building the surfaces.
+/// Throws OptionError, naming the option, its value and its domain, for the first option of
+/// `options` outside its domain: a user's option as the command line spells it
+/// ("--fuzzy-threshold", match_option_table), one no option sets by its field; match_surfaces calls
+/// it before any work, and a caller may call it before building the surfaces.
 void validate(const MatchOptions& options);
+
+/// The user's options of MatchOptions, with their ranges: the association graph's filters and
+/// size limit, the clique budget, --rmsd-cut, --ranking, the overlay refinement and the site
+/// overlay. validate() checks these first, naming each option as the command line spells it.
+const options::Table<MatchOptions>& match_option_table();
 
 /// Where an alignment came from.
 enum class AlignmentSource {

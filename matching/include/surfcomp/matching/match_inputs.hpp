@@ -50,10 +50,48 @@ struct MatchInputOptions {
   BindingSiteOptions site;  ///< spheres of 4 A around a site ligand, surface margin 16 A
   /// The match; its mode is set to MatchMode::binding_sites when either side has a site.
   MatchOptions match;
+  /// Default 0: all cores. The worker threads the caller lets TBB use while this runs (the CLI
+  /// and the Python module limit TBB's pool to it).
+  int threads = 0;
   /// Default none. Told, one line each, what each step did as it ends (a side read and
   /// surfaced, a side described, the match), for a verbose front end.
   std::function<void(const std::string&)> log;
 };
+
+/// The user's options of describing one input: the surface options
+/// (mesh::surface_input_option_table), the descriptor options
+/// (harmonic::descriptor_option_table) and --threads.
+const options::Table<MatchInputOptions>& describe_option_table();
+
+/// The binding sites a pair match asks for, as a user gives them: a ligand residue and spheres
+/// on both sides, or on one side only (default: none, whole surfaces).
+struct PairSites {
+  std::string ligand;                         ///< both sides' site ligand
+  std::string reference_ligand;               ///< REF's, instead of `ligand`
+  std::string probe_ligand;                   ///< PROBE's, instead of `ligand`
+  std::vector<SiteSphere> spheres;            ///< on both sides
+  std::vector<SiteSphere> reference_spheres;  ///< on REF only, after `spheres`
+  std::vector<SiteSphere> probe_spheres;      ///< on PROBE only, after `spheres`
+};
+
+/// A pair match as a user asks for it: how the sides are read, described and matched, and
+/// their sites.
+struct PairMatchOptions {
+  MatchInputOptions inputs;
+  PairSites sites;
+};
+
+/// The user's options of a pair match, each defined once: the surface options, --patch-radius,
+/// --max-image-bytes, --site-radius, --site-margin, the match's (match_option_table), the site
+/// ligands and spheres, and --threads.
+const options::Table<PairMatchOptions>& pair_match_option_table();
+
+/// `input` with REF's (`reference`) or PROBE's site from `sites`: its ligand and its spheres.
+MatchInput with_site(MatchInput input, const PairSites& sites, bool reference);
+
+/// The option that names REF's (`reference`) or PROBE's site ligand as `sites` holds it:
+/// "--ref-site-ligand" or "--probe-site-ligand" when that was given, else "--site-ligand".
+const char* site_ligand_option(const PairSites& sites, bool reference);
 
 /// A side ready to be matched.
 struct PreparedInput {

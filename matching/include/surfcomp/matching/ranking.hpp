@@ -5,6 +5,7 @@
 
 #include "surfcomp/matching/clustering.hpp"
 
+#include <array>
 #include <vector>
 
 namespace surfcomp::matching {
@@ -24,6 +25,9 @@ enum class ConsensusScheme {
   /// consensus is better.
   rank_by_vote,
 };
+
+/// The names of the schemes, indexed by ConsensusScheme (as --ranking spells them).
+inline constexpr std::array<const char*, 3> consensus_scheme_names = {"rank", "number", "vote"};
 
 struct RankingOptions {
   /// Default rank_by_rank (the seed's choice).

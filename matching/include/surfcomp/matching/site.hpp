@@ -5,6 +5,7 @@
 #pragma once
 
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/core/option_table.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/surface.hpp"
@@ -26,6 +27,27 @@ struct SiteSphere {
 /// The sphere written "x,y,z,r" (A; what `--site-sphere` and a site list take), or none when
 /// `text` is not four comma-separated numbers with a finite centre and a finite radius > 0.
 std::optional<SiteSphere> parse_site_sphere(const std::string& text);
+
+/// Site spheres as an option's value, and back.
+std::vector<options::Sphere> sphere_values(const std::vector<SiteSphere>& spheres);
+std::vector<SiteSphere> site_spheres(const std::vector<options::Sphere>& values);
+
+/// What the user sees of --site-ligand and --site-sphere, wherever a site is asked for.
+options::Spec site_ligand_spec();
+options::Spec site_sphere_spec();
+
+/// The repeatable option of a list of site spheres at `access(settings)` (a generic lambda as
+/// for options::field).
+template <class Settings, class Access>
+options::Option<Settings> sphere_option(options::Spec spec, Access access) {
+  spec.kind = options::Kind::spheres;
+  spec.optional = true;
+  return {std::move(spec),
+          [access](const Settings& s) { return options::Value(sphere_values(access(s))); },
+          [access](Settings& s, const options::Value& v) {
+            access(s) = site_spheres(std::get<std::vector<options::Sphere>>(v));
+          }};
+}
 
 /// A site's surface (build_site_surface) is the whole structure's wherever the site's patches
 /// reach, up to the remeshing's small non-locality, when its margin is at least the patch
@@ -53,6 +75,9 @@ struct BindingSiteOptions {
   /// site_surface_margin of the patch radius.
   double surface_margin = 16.0;
 };
+
+/// The user's options of BindingSiteOptions: --site-radius and --site-margin.
+const options::Table<BindingSiteOptions>& binding_site_option_table();
 
 /// A binding site and the structure whose surface it lies on.
 struct BindingSite {

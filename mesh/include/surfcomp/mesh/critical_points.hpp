@@ -2,6 +2,7 @@
 // that form SURFCOMP's coarse-level representation of a surface.
 #pragma once
 
+#include "surfcomp/core/option_table.hpp"
 #include "surfcomp/mesh/geodesic.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
@@ -32,6 +33,9 @@ struct CriticalPointOptions {
   /// computed (geodesic.hpp).
   GeodesicMethod distance = GeodesicMethod::dijkstra;
 };
+
+/// The user's options of CriticalPointOptions: --critical-point-radius and --disc-radius.
+const options::Table<CriticalPointOptions>& critical_point_option_table();
 
 struct CriticalPoint {
   CriticalPointType type = CriticalPointType::peak;

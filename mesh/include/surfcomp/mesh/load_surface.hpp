@@ -5,6 +5,7 @@
 
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/core/option_table.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
@@ -21,6 +22,11 @@ struct SurfaceInputOptions {
   /// Refused for a molecule input.
   std::string molecule_file;
 };
+
+/// The user's options of SurfaceInputOptions: --probe-radius --density --voxel --charges --eps
+/// --eps-distance-dependent --lp-kernel --ligand --record --molecule --max-atoms
+/// --max-grid-cells --max-vertices, with their ranges.
+const options::Table<SurfaceInputOptions>& surface_input_option_table();
 
 /// A surface and the molecule it was built from (or whose properties it carries), if any.
 struct LoadedSurface {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -65,6 +66,9 @@ enum class LipophilicKernel {
   fauchere,  ///< g(d) = exp(-d), Fauchere et al. 1988
   dubost,    ///< g(d) = 1 / (1 + d), Dubost 1975
 };
+
+/// The names of the kernels, indexed by LipophilicKernel (as --lp-kernel spells them).
+inline constexpr std::array<const char*, 2> lipophilic_kernel_names = {"fauchere", "dubost"};
 
 /// The cutoff of Fauchere's kernel unless LpOptions says otherwise, A. The atoms beyond it
 /// change a point's LP by at most exp(-12) = 6.1e-6 times the sum of their |f_i|; measured over

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <string>
 
 namespace surfcomp::mesh {
 
@@ -91,7 +92,8 @@ double ses_voxel_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
 /// grid nodes inside the surface linked along grid edges or across the diagonals of cell faces.
 /// `centers` is #A by 3 (A), `radii` #A van der Waals radii (A).
 /// Returns a closed, 2-manifold, outward-oriented surface (positive volume) with exact unit
-/// outward vertex normals; source() is "<ses>". Deterministic: the same input gives the same
+/// outward vertex normals; source() is `source`, which the messages name (default "<ses>"; a
+/// molecule's file). Deterministic: the same input gives the same
 /// arrays whatever the thread count.
 /// Atoms with the same centre and radius as an earlier atom are skipped: they add nothing to the
 /// union of spheres.
@@ -102,7 +104,8 @@ double ses_voxel_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
 /// min_component_volume_fraction outside [0, 1], a limit < 1;
 /// TopologyError if the mesh is not a closed manifold (a bug, reported rather than returned).
 Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
-                  const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options = {});
+                  const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options = {},
+                  const std::string& source = "<ses>");
 
 /// The solvent-accessible surface (Lee & Richards 1971): the boundary of the union of spheres of
 /// radius r_i + probe_radius (the surface the probe centre traces), built like build_ses from

@@ -17,6 +17,7 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
+#include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/matching/packed_overlay.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/screening/library.hpp"
@@ -60,6 +61,30 @@ struct ScreenOptions {
   /// threads (it must be thread-safe), and once with done == total at the end of each stage.
   std::function<void(int stage, std::int64_t done, std::int64_t total)> progress;
 };
+
+/// A screen as a user asks for it: the screen's stages, and how the query is read, described
+/// and where its binding site is (none: a molecule query).
+struct QueryScreenOptions {
+  ScreenOptions screen;
+  /// How the query is read (its record) and described; its site options are screen.site's
+  /// (screen_query_options).
+  matching::MatchInputOptions query;
+  std::string site_ligand;                         ///< a site query: its ligand residue
+  std::vector<matching::SiteSphere> site_spheres;  ///< a site query: its spheres (A)
+};
+
+/// The user's options of a screen, each defined once: --top --refine --refine-starts
+/// --candidates --record --site-ligand --site-sphere --site-radius --site-margin --threads.
+const options::Table<QueryScreenOptions>& screen_option_table();
+
+/// Whether `options` ask for a binding-site query (a site ligand or spheres).
+bool is_site_query(const QueryScreenOptions& options);
+
+/// `query` with the site `options` ask for, and the options it is read and described with
+/// (matching::prepare_input): its record, the site's sphere radius and margin, the threads.
+matching::MatchInput screen_query_input(matching::MatchInput query,
+                                        const QueryScreenOptions& options);
+matching::MatchInputOptions screen_query_options(const QueryScreenOptions& options);
 
 /// The query, described once: its descriptors (stage 3) and its overlay samples (stages 1, 2), one
 /// of each kind an entry's sample can be (matching::SampleKind), so that an entry is always

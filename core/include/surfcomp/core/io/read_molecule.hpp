@@ -4,6 +4,7 @@
 
 #include "surfcomp/core/molecule.hpp"
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -20,6 +21,9 @@ enum class ChargeModel {
   gasteiger,  ///< Gasteiger-Marsili charges computed by RDKit (12 iterations)
   mmff,       ///< MMFF94 charges computed by RDKit
 };
+
+/// The names of the charge models, indexed by ChargeModel (as the --charges option spells them).
+inline constexpr std::array<const char*, 3> charge_model_names = {"file", "gasteiger", "mmff"};
 
 /// How read_molecule interprets a file.
 struct MoleculeReadOptions {

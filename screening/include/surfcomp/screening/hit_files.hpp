@@ -1,0 +1,50 @@
+// A screen's hits as files: the molecules moved onto the query as SDF records tagged with their
+// rank and score, or a pocket library's structures as PDB models, and a library's summary.
+// `surfcomp screen`, `surfcomp library info` and the Python module use these functions.
+#pragma once
+
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/screening/library.hpp"
+#include "surfcomp/screening/screen.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace surfcomp::screening {
+
+/// Hit `hit` (row `rank`, 1-based) as one SDF record: its stored molecule moved into the
+/// query's frame as an MDL block (io::moved_record_block: bonds and hydrogens as stored) with
+/// the data items surfcomp_rank, surfcomp_entry (1-based), surfcomp_name, surfcomp_conformer
+/// and surfcomp_score, ending with "$$$$".
+std::string aligned_hit_record(const Library& library, const Hit& hit, std::size_t rank);
+
+/// The first `count` hits as SDF records (aligned_hit_record).
+void write_aligned_hits_sdf(std::ostream& out, const Library& library, const std::vector<Hit>& hits,
+                            std::size_t count);
+
+/// The first `count` hits of a pocket library as PDB models, each its structure (read with
+/// `read`) moved into the query's frame, with a REMARK giving rank, entry, name and score.
+void write_aligned_sites_pdb(std::ostream& out, const Library& library,
+                             const std::vector<Hit>& hits, std::size_t count,
+                             const io::MoleculeReadOptions& read);
+
+/// Every entry of `library` as an SDF record in its stored frame, with the data items
+/// surfcomp_entry (1-based), surfcomp_name and surfcomp_conformer (`surfcomp library export`).
+void write_library_sdf(std::ostream& out, const Library& library);
+
+/// What `surfcomp library info` reports of a library.
+struct LibrarySummary {
+  std::size_t entries = 0;
+  std::size_t molecules = 0;  ///< distinct (source, record, name)
+  std::map<std::string, std::size_t> entries_per_source;
+  std::uint64_t file_bytes = 0;
+  std::uint64_t largest_entry_bytes = 0;
+};
+
+LibrarySummary summarize_library(const Library& library);
+
+}  // namespace surfcomp::screening

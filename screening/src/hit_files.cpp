@@ -1,0 +1,100 @@
+#include "surfcomp/screening/hit_files.hpp"
+
+#include "surfcomp/core/io/molecule_records.hpp"
+#include "surfcomp/core/io/write_molecule.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <iomanip>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+namespace surfcomp::screening {
+namespace {
+
+std::string score_text(double score) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6f", score);
+  return text;
+}
+
+}  // namespace
+
+std::string aligned_hit_record(const Library& library, const Hit& hit, std::size_t rank) {
+  const LibraryEntry entry = library.entry(hit.entry);
+  const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();
+  const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
+  std::ostringstream out;
+  out << io::moved_record_block(entry.molecule, rotation, translation) << ">  <surfcomp_rank>\n"
+      << rank << "\n\n"
+      << ">  <surfcomp_entry>\n"
+      << hit.entry + 1 << "\n\n"
+      << ">  <surfcomp_name>\n"
+      << entry.info.name << "\n\n"
+      << ">  <surfcomp_conformer>\n"
+      << entry.info.conformer << "\n\n"
+      << ">  <surfcomp_score>\n"
+      << score_text(hit.score.score) << "\n\n$$$$\n";
+  return out.str();
+}
+
+void write_aligned_hits_sdf(std::ostream& out, const Library& library, const std::vector<Hit>& hits,
+                            std::size_t count) {
+  for (std::size_t i = 0; i < hits.size() && i < count; ++i)
+    out << aligned_hit_record(library, hits[i], i + 1);
+}
+
+void write_aligned_sites_pdb(std::ostream& out, const Library& library,
+                             const std::vector<Hit>& hits, std::size_t count,
+                             const io::MoleculeReadOptions& read) {
+  for (std::size_t i = 0; i < hits.size() && i < count; ++i) {
+    const Hit& hit = hits[i];
+    const LibraryEntry entry = library.entry(hit.entry);
+    Molecule structure = io::read_record_molecule(entry.molecule, read);
+    const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();
+    const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
+    for (Atom& atom : structure.atoms) atom.position = rotation * atom.position + translation;
+    std::ostringstream pdb;
+    io::write_pdb(structure, pdb);
+    std::string text = pdb.str();
+    if (text.size() >= 4 && text.compare(text.size() - 4, 4, "END\n") == 0)
+      text.resize(text.size() - 4);
+    out << "MODEL     " << std::setw(4) << i + 1 << "\nREMARK   1 surfcomp rank " << i + 1
+        << " entry " << hit.entry + 1 << " " << entry.info.name << " score "
+        << score_text(hit.score.score) << "\n"
+        << text << "ENDMDL\n";
+  }
+  out << "END\n";
+}
+
+void write_library_sdf(std::ostream& out, const Library& library) {
+  for (std::size_t e = 0; e < library.size(); ++e) {
+    const LibraryEntry entry = library.entry(e);
+    out << io::moved_record_block(entry.molecule, Eigen::Matrix3d::Identity(),
+                                  Eigen::Vector3d::Zero())
+        << ">  <surfcomp_entry>\n"
+        << e + 1 << "\n\n"
+        << ">  <surfcomp_name>\n"
+        << entry.info.name << "\n\n"
+        << ">  <surfcomp_conformer>\n"
+        << entry.info.conformer << "\n\n$$$$\n";
+  }
+}
+
+LibrarySummary summarize_library(const Library& library) {
+  LibrarySummary summary;
+  summary.entries = library.size();
+  summary.file_bytes = library.file_bytes();
+  std::set<std::tuple<std::string, std::uint32_t, std::string>> molecules;
+  for (std::size_t e = 0; e < library.size(); ++e) {
+    const LibraryEntryInfo& info = library.info(e);
+    molecules.emplace(info.source, info.record, info.name);
+    ++summary.entries_per_source[info.source];
+    summary.largest_entry_bytes = std::max(summary.largest_entry_bytes, library.entry_bytes(e));
+  }
+  summary.molecules = molecules.size();
+  return summary;
+}
+
+}  // namespace surfcomp::screening

@@ -1,0 +1,65 @@
+#include "surfcomp/screening/screen.hpp"
+
+namespace surfcomp::screening {
+
+const options::Table<QueryScreenOptions>& screen_option_table() {
+  using options::Kind;
+  using Q = QueryScreenOptions;
+  static const options::Table<Q> table = [] {
+    options::Table<Q> t = {
+        options::field<Q>(
+            {"top", Kind::integer, "rows of the table (0: every molecule)", "", 0, 1e9},
+            [](auto& q) -> auto& { return q.screen.top; }),
+        options::field<Q>(
+            {"refine", Kind::integer,
+             "conformers of each molecule whose overlay is refined (stage 2), best "
+             "fast score first (0: none)",
+             "", 0, 1e6},
+            [](auto& q) -> auto& { return q.screen.refine; }),
+        options::field<Q>(
+            {"refine-starts", Kind::integer,
+             "principal-axes starts of each conformer refined in stage 2, best "
+             "start score first (0: all)",
+             "", 0, 24},
+            [](auto& q) -> auto& { return q.screen.refine_starts; }),
+        options::field<Q>(
+            {"candidates", Kind::integer,
+             "molecules given the full match (stage 3), best score after stage 2 "
+             "first",
+             "", 0, 1e6},
+            [](auto& q) -> auto& { return q.screen.candidates; }),
+        options::field<Q>(
+            matching::site_ligand_spec(), [](auto& q) -> auto& { return q.site_ligand; }),
+        matching::sphere_option<Q>(
+            matching::site_sphere_spec(), [](auto& q) -> auto& { return q.site_spheres; }),
+    };
+    options::append(
+        t, options::pick(mesh::surface_input_option_table(), {"record"}),
+        [](auto& q) -> auto& { return q.query.input; });
+    options::append(
+        t, matching::binding_site_option_table(), [](auto& q) -> auto& { return q.screen.site; });
+    t.push_back(options::threads_option<Q>([](auto& q) -> auto& { return q.query.threads; }));
+    return t;
+  }();
+  return table;
+}
+
+bool is_site_query(const QueryScreenOptions& options) {
+  return !options.site_ligand.empty() || !options.site_spheres.empty();
+}
+
+matching::MatchInput screen_query_input(matching::MatchInput query,
+                                        const QueryScreenOptions& options) {
+  query.site_ligand = options.site_ligand;
+  query.site_spheres.insert(query.site_spheres.end(), options.site_spheres.begin(),
+                            options.site_spheres.end());
+  return query;
+}
+
+matching::MatchInputOptions screen_query_options(const QueryScreenOptions& options) {
+  matching::MatchInputOptions query = options.query;
+  query.site = options.screen.site;
+  return query;
+}
+
+}  // namespace surfcomp::screening
