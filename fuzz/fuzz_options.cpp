@@ -1,7 +1,7 @@
 // libFuzzer harness: the command-line option parsing the subcommands share (tools/options.cpp),
-// over their own option sets (tools/*_settings.hpp, which the Python module's keyword arguments
-// go through too): describe (hsi-build, patch-map), match (match, report) and screen, with the
-// surface options and the options with a former name. The input is the argument list, one
+// over the library's option tables they add (tools/*_settings.hpp): describe (hsi-build,
+// patch-map), match (match, report) and screen, with the surface options and the options with a
+// former name. The input is the argument list, one
 // argument per line (or NUL-separated).
 #include "describe_settings.hpp"
 #include "match_settings.hpp"
@@ -43,24 +43,21 @@ void parse(std::vector<std::string> args) {
   std::string output;
   po::options_description described("options");
   described.add_options()("help,h", "print this help")("output,o", po::value(&output), "output");
-  DescribeSettings describe;
-  MatchSettings match;
-  ScreenSettings screen;
   if (set == 0) {
-    add_describe_options(described, describe);
+    add_describe_options(described);
   } else if (set == 1) {
-    add_match_options(described, match);
+    add_match_options(described);
   } else {
-    add_screen_options(described, screen);
+    add_screen_options(described);
   }
   po::variables_map vm;
   if (!parse_command_line(args, described, 2, "usage: fuzz_options", vm)) return;
   if (set == 0) {
-    finish_describe_options(describe);
+    describe_options_from(vm);
   } else if (set == 1) {
-    finish_match_options(match, vm);
+    match_options_from(vm);
   } else {
-    finish_screen_options(screen);
+    screen_options_from(vm);
   }
 }
 

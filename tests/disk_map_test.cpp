@@ -342,7 +342,7 @@ TEST(MapDistortionTest, SimilaritiesStretchesAndMirrorsHaveTheirKnownDistortion)
   EXPECT_THROW(map_distortion(positions, faces, Eigen::MatrixX2d::Zero(3, 2)), InputError);
 }
 
-// compare_with_cgal on a sphere cap: the two maps agree, and both are measured and timed.
+// compare_with_cgal on a sphere cap: the two maps agree, and both are measured.
 TEST(MapDistortionTest, TheCgalComparisonAgreesOnASphereCap) {
   const test::TestPatch patch = test::sphere_cap_patch();
   const DiskMapComparison c = compare_with_cgal(patch.positions, patch.faces, patch.outer_boundary);
@@ -351,8 +351,6 @@ TEST(MapDistortionTest, TheCgalComparisonAgreesOnASphereCap) {
   EXPECT_NEAR(c.ours_distortion.angle_mean_degrees, c.cgal_distortion.angle_mean_degrees, 1e-6);
   EXPECT_GT(c.ours_distortion.angle_mean_degrees, 0.0);  // a cap cannot be mapped conformally
   EXPECT_EQ(c.ours_distortion.flipped, 0);
-  EXPECT_GT(c.ours_ms, 0.0);
-  EXPECT_GT(c.cgal_ms, 0.0);
 }
 
 }  // namespace

@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -355,14 +354,13 @@ TEST(MeshIoPly, MalformedInputGivesFormatErrorsWithLineNumbers) {
   std::istringstream good(ascii_ply("6", octahedron_vertices, octahedron_faces));
   EXPECT_EQ(io::read_ply(good, "good.ply").n_faces(), 8u);
 
-  // A header claiming 10^12 vertices fails before allocating anything, and fast.
-  const auto start = std::chrono::steady_clock::now();
+  // A header claiming 10^12 vertices fails at the header, before any element is read or
+  // allocated.
   const std::string huge =
       ply_error<FormatError>(ascii_ply("1000000000000", octahedron_vertices, octahedron_faces));
   EXPECT_NE(huge.find("bad.ply:3: the header claims 1000000000000 items of element 'vertex'"),
             std::string::npos)
       << huge;
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
   const std::string many =
       ply_error<FormatError>(ascii_ply("4000000", octahedron_vertices, octahedron_faces));
   EXPECT_NE(many.find("claims 4000000"), std::string::npos) << many;

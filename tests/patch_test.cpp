@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <iterator>
@@ -469,21 +468,13 @@ TEST(ExtractPatch, TorusPatchWrappingTheTubeIsAnAnnulus) {
   EXPECT_EQ(big.genus, 1);
 }
 
-TEST(ExtractPatch, DeterministicAndThreadSafeWithTimings) {
+TEST(ExtractPatch, DeterministicAndThreadSafe) {
   const Surface sphere = test::icosphere(6.2, 11);  // 1,212 vertices, 2.5 per A^2
   const int n = static_cast<int>(sphere.n_vertices());
   PatchOptions options;  // 5 A
   std::vector<Patch> sequential(static_cast<std::size_t>(n));
-  const auto start = std::chrono::steady_clock::now();
   for (int v = 0; v < n; ++v)
     sequential[static_cast<std::size_t>(v)] = extract_patch(sphere, v, options);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::size_t vertices = 0;
-  for (const auto& p : sequential) vertices += p.surface_vertex.size();
-  std::cout << "extract_patch, 5 A on a " << n << "-vertex sphere: " << 1e6 * seconds / n
-            << " us per patch (" << vertices / static_cast<std::size_t>(n)
-            << " vertices per patch)\n";
   std::vector<Patch> threaded(static_cast<std::size_t>(n));
   std::vector<std::thread> workers;
   for (int t = 0; t < 3; ++t) {

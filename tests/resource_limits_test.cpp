@@ -10,7 +10,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,10 +29,11 @@ Atoms three_atoms(double last_radius = 1.6) {
   return atoms;
 }
 
-/// Runs `build` and returns the message of the exception E it must throw, within a second.
+/// Runs `build` and returns the message of the exception E it must throw. The refusals are
+/// the estimates' (their messages state the estimate and the limit), which come before any
+/// grid or mesh is allocated.
 template <class E, class F>
 std::string refusal(F build) {
-  const auto start = std::chrono::steady_clock::now();
   std::string message;
   try {
     build();
@@ -41,7 +41,6 @@ std::string refusal(F build) {
   } catch (const E& e) {
     message = e.what();
   }
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1)) << message;
   return message;
 }
 

@@ -4,7 +4,6 @@
 // the 1THL protein there too. The top alignment of the 1THL site onto the 4TMN site must agree
 // with that transform on the site residues' C-alphas.
 #include "surfcomp/core/io/read_molecule.hpp"
-#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/rigid_fit.hpp"
@@ -34,7 +33,6 @@ struct Site {
   matching::BindingSite site;
   harmonic::SurfaceDescriptors descriptors;  ///< critical points outside the site skipped
   std::vector<bool> in_site;                 ///< one flag per critical point
-  double surface_ms = 0, describe_ms = 0;
 };
 
 Site build_site(const std::filesystem::path& pdb, const std::string& ligand_name,
@@ -43,14 +41,10 @@ Site build_site(const std::filesystem::path& pdb, const std::string& ligand_name
   // The whole structure is read, so the ligand's charges are not typed (Gasteiger cannot type
   // 4TMN's phosphonamidate), and only its positions are needed.
   out.site = matching::binding_site(io::read_molecule(pdb), LigandSelector{ligand_name, {}, {}});
-  Stopwatch start;
   mesh::Surface surface = mesh::build_molecular_surface(out.site.structure);
-  out.surface_ms = start.elapsed_ms();
-  start.restart();
   out.descriptors =
       matching::describe_site(std::move(surface), out.site.structure, out.site.spheres, options);
   out.in_site = matching::critical_points_in_site(out.descriptors, out.site.spheres);
-  out.describe_ms = start.elapsed_ms();
   return out;
 }
 
@@ -111,23 +105,17 @@ TEST(SiteMatch, ThermolysinSitesAlignWithinHalfAnAngstrom) {
   options.patch.radius = kPatchRadius;
   const Site ref = build_site(ref_pdb, "0PK", options);
   const Site probe = build_site(probe_pdb, "0DB", options);
-  std::printf(
-      "[ sites    ] 4TMN: %zu atoms, %zu vertices, %zu site CPs (surface %.0f ms, describe %.0f "
-      "ms)\n",
-      ref.site.structure.atoms.size(), ref.descriptors.surface.n_vertices(),
-      harmonic::count_descriptors(ref.descriptors).imaged, ref.surface_ms, ref.describe_ms);
-  std::printf(
-      "[ sites    ] 1THL: %zu atoms, %zu vertices, %zu site CPs (surface %.0f ms, describe %.0f "
-      "ms)\n",
-      probe.site.structure.atoms.size(), probe.descriptors.surface.n_vertices(),
-      harmonic::count_descriptors(probe.descriptors).imaged, probe.surface_ms, probe.describe_ms);
+  std::printf("[ sites    ] 4TMN: %zu atoms, %zu vertices, %zu site CPs\n",
+              ref.site.structure.atoms.size(), ref.descriptors.surface.n_vertices(),
+              harmonic::count_descriptors(ref.descriptors).imaged);
+  std::printf("[ sites    ] 1THL: %zu atoms, %zu vertices, %zu site CPs\n",
+              probe.site.structure.atoms.size(), probe.descriptors.surface.n_vertices(),
+              harmonic::count_descriptors(probe.descriptors).imaged);
 
-  const Stopwatch start;
   matching::MatchOptions match_options;
   match_options.mode = matching::MatchMode::binding_sites;
   const auto result = matching::match_surfaces(ref.descriptors, probe.descriptors, match_options,
                                                &ref.in_site, &probe.in_site);
-  const double match_ms = start.elapsed_ms();
   ASSERT_FALSE(result.alignments.empty());
 
   const double site_radius = matching::BindingSiteOptions{}.sphere_radius;
@@ -163,8 +151,6 @@ TEST(SiteMatch, ThermolysinSitesAlignWithinHalfAnAngstrom) {
     std::printf("[ sites    ] %-10s %6zu nodes %8zu edges\n", stage.stage.c_str(), stage.nodes,
                 stage.edges);
   }
-  std::printf("[ sites    ] match %.0f ms; site pair from PDB files %.0f ms\n", match_ms,
-              match_ms + ref.surface_ms + ref.describe_ms + probe.surface_ms + probe.describe_ms);
   // Measured 0.26 A; the bound leaves a margin for round-off across platforms, not for a
   // different pose.
   EXPECT_LT(ca_rmsd(result.alignments[0].transform), 0.5);

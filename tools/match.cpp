@@ -8,14 +8,10 @@
 #include "options.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
-#include "surfcomp/core/io/file_extension.hpp"
-#include "surfcomp/core/io/write_molecule.hpp"
-#include "surfcomp/core/molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
-#include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/site.hpp"
-#include "surfcomp/mesh/io/ply.hpp"
+#include "surfcomp/report/aligned_probe.hpp"
 #include "surfcomp/report/html_report.hpp"
 #include "surfcomp/report/match_json.hpp"
 
@@ -56,38 +52,6 @@ constexpr const char* kUsage =
     "the cliques and 24 principal-axes starts; the top-1 overlay score is then the sites'\n"
     "similarity ((shape + w chem) / (1 + w) Tanimoto of the linings).";
 
-/// The formats --aligned-out can take for this PROBE: a molecule moves as PDB, an SDF, MOL or
-/// MOL2 file also as SDF (its bonds kept), any side as its surface (PLY).
-std::vector<std::string> aligned_formats(const std::filesystem::path& probe) {
-  if (!io::is_molecule_file(probe)) return {".ply"};
-  const std::string extension = io::lowercase_extension(probe);
-  if (extension == ".sdf" || extension == ".mol" || extension == ".mol2") {
-    return {".sdf", ".pdb", ".ply"};
-  }
-  return {".pdb", ".ply"};
-}
-
-void write_aligned(const std::filesystem::path& probe_path, std::size_t record,
-                   const matching::PreparedInput& probe, const Eigen::Matrix4d& transform,
-                   const std::string& output) {
-  const Eigen::Matrix3d rotation = transform.topLeftCorner<3, 3>();
-  const Eigen::Vector3d translation = transform.topRightCorner<3, 1>();
-  const std::string extension = io::lowercase_extension(output);
-  if (extension == ".ply") {
-    mesh::Surface moved = probe.descriptors.surface;
-    mesh::transform_surface(moved, rotation, translation);
-    mesh::io::write_ply(moved, output);
-  } else if (extension == ".sdf") {
-    const std::string block = io::moved_mol_block(probe_path, rotation, translation, record);
-    surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << block; });
-  } else {
-    Molecule moved = *probe.molecule;
-    transform_molecule(moved, rotation, translation);
-    surfcomp::io::write_file_atomically(output,
-                                        [&](std::ostream& out) { io::write_pdb(moved, out); });
-  }
-}
-
 }  // namespace
 
 int match(const std::vector<std::string>& args) {
@@ -118,7 +82,7 @@ int match(const std::vector<std::string>& args) {
   const matching::PairMatchOptions settings = match_options_from(vm);
   const std::filesystem::path ref_path = inputs[0], probe_path = inputs[1];
   const PairInputs pair = pair_inputs(ref_path, probe_path, settings);
-  const std::vector<std::string> aligned = aligned_formats(probe_path);
+  const std::vector<std::string> aligned = report::aligned_probe_formats(probe_path);
   check_command_files({{{"REF", ref_path},
                         {"PROBE", probe_path},
                         {"--molecule", settings.inputs.input.molecule_file}},
@@ -180,8 +144,8 @@ int match(const std::vector<std::string>& args) {
       std::fprintf(stderr, "surfcomp match: warning: no alignment found: %s not written\n",
                    aligned_out.c_str());
     } else if (!aligned_out.empty()) {
-      write_aligned(probe_path, settings.inputs.input.read.record, compared.probe,
-                    result.alignments.front().transform, aligned_out);
+      report::write_aligned_probe(aligned_out, probe_path, settings.inputs.input.read.record,
+                                  compared.probe, result.alignments.front().transform);
       written.emplace_back(aligned_out);
     }
     if (!output.empty()) {

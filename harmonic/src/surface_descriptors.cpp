@@ -71,10 +71,7 @@ CriticalPointDescriptor describe_point(const mesh::Surface& surface,
 SurfaceDescriptors describe_surface(
     mesh::Surface surface, const DescriptorOptions& options,
     const std::function<bool(const mesh::CriticalPoint&)>& describe_if) {
-  if (options.max_image_bytes < 1) {
-    throw OptionError("describe_surface: max_image_bytes " +
-                      std::to_string(options.max_image_bytes) + "; expected a limit >= 1");
-  }
+  surfcomp::options::check_all(descriptor_option_table(), options);
   SurfaceDescriptors result;
   result.options = options;
   result.options.progress = {};  // a description keeps its parameters, not the caller's callback

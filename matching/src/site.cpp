@@ -153,6 +153,7 @@ std::optional<SiteSphere> parse_site_sphere(const std::string& text) {
 
 std::vector<options::Sphere> sphere_values(const std::vector<SiteSphere>& spheres) {
   std::vector<options::Sphere> values;
+  values.reserve(spheres.size());
   for (const SiteSphere& s : spheres)
     values.push_back({s.center.x(), s.center.y(), s.center.z(), s.radius});
   return values;
@@ -160,6 +161,7 @@ std::vector<options::Sphere> sphere_values(const std::vector<SiteSphere>& sphere
 
 std::vector<SiteSphere> site_spheres(const std::vector<options::Sphere>& values) {
   std::vector<SiteSphere> spheres;
+  spheres.reserve(values.size());
   for (const options::Sphere& v : values)
     spheres.push_back({Eigen::Vector3d(v[0], v[1], v[2]), v[3]});
   return spheres;

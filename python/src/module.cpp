@@ -261,7 +261,7 @@ py::dict alignment_dict(const matching::Alignment& a) {
   }
   py::dict d;
   d["rank"] = a.rank;
-  d["source"] = a.source == matching::AlignmentSource::cliques ? "cliques" : "principal_axes";
+  d["source"] = matching::alignment_source_names[static_cast<std::size_t>(a.source)];
   d["transform"] = owned_array(std::move(transform));
   d["rmsd"] = a.rmsd;
   d["n_points"] = a.n_points;

@@ -18,8 +18,7 @@ nlohmann::json match_document(const matching::InputMatch& compared,
     }
     nlohmann::json pairs = nlohmann::json::array();
     for (const auto& [x, y] : a.cp_pairs) pairs.push_back({x, y});
-    const char* source =
-        a.source == matching::AlignmentSource::cliques ? "cliques" : "principal_axes";
+    const char* source = matching::alignment_source_names[static_cast<std::size_t>(a.source)];
     alignments.push_back(
         {{"rank", a.rank},
          {"source", source},

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -95,6 +96,10 @@ enum class AlignmentSource {
   cliques,         ///< a cluster of the merge tree (CP correspondences)
   principal_axes,  ///< a principal-axes superposition of the whole samples, refined
 };
+
+/// The names of the sources, indexed by AlignmentSource (as the result file and Python give
+/// them).
+inline constexpr std::array<const char*, 2> alignment_source_names = {"cliques", "principal_axes"};
 
 /// One alignment of PROBE onto REF. From the cliques it is a cluster of the merge tree: rmsd,
 /// n_points and r_chem describe the fit of the cluster's CP correspondences, and transform is
