@@ -100,7 +100,10 @@ def _keyword_options(function_name: str):
         fixed = [p for p in signature.parameters.values()
                  if p.kind is not inspect.Parameter.VAR_KEYWORD]
         options = [inspect.Parameter(o["name"], inspect.Parameter.KEYWORD_ONLY,
-                                     default=o["default"], annotation=_ANNOTATIONS[o["kind"]])
+                                     default=o["default"],
+                                     annotation=(Optional[_ANNOTATIONS[o["kind"]]]
+                                                 if o["default"] is None
+                                                 else _ANNOTATIONS[o["kind"]]))
                    for o in table]
         function.__signature__ = signature.replace(parameters=fixed + options)
         lines = [f"    {o['name']} (default {o['default']!r}): {o['help']}" for o in table]
