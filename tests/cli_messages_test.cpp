@@ -30,8 +30,9 @@ std::string internal_words(const std::string& message) {
   static const std::regex patterns[] = {
       std::regex(R"(\b[A-Za-z_]\w*::\w)"),
       std::regex(R"(\b[a-z_]\w*\(\))"),
-      std::regex(R"(\b[A-Z][a-z]+[A-Z]\w*(Options|Error|Model|Kernel|Weights)\b)"),
-      std::regex(R"((^|[\s'"(])[a-z]+_[a-z_]+(?=[\s'",:)]|$))"),
+      std::regex(R"(\b[A-Z][a-z]+(?:[A-Z][a-z]+)*(Options|Error|Model|Kernel|Weights|Scheme)\b)"),
+      std::regex(R"(\b[a-z]+\.[a-z]+_[a-z_]+\b)"),
+      std::regex(R"((^|[\s'"(])[a-z]+_[a-z_]+(?=[\s'",:;=.)]|$))"),
   };
   for (const std::regex& pattern : patterns) {
     std::smatch found;
@@ -135,6 +136,9 @@ TEST(CliMessagesPattern, CatchesTheProgramsInternals) {
   EXPECT_EQ(internal_words("principal_curvatures: vertex 3 has no defined normal"),
             "principal_curvatures");
   EXPECT_EQ(internal_words("use ChargeModel::mmff"), "ChargeModel::m");
+  EXPECT_EQ(internal_words("refused by SesOptions"), "SesOptions");
+  EXPECT_EQ(internal_words("match options: graph.fuzzy_threshold = 2"), "graph.fuzzy_threshold");
+  EXPECT_EQ(internal_words("more than max_nodes = 3"), " max_nodes");
   EXPECT_EQ(internal_words("failed: bond_pin->getEndAtomIdx()"), "getEndAtomIdx()");
   EXPECT_EQ(internal_words("failed: bond_pin is null"), " bond_pin");
   EXPECT_EQ(internal_words("l.pdb: 3 atoms; --max-grid-cells 10 is too small"), "");

@@ -2,7 +2,7 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
+#include <limits>
 
 namespace surfcomp::options {
 namespace {
@@ -21,10 +21,18 @@ std::string sphere_text(const Sphere& sphere) {
 /// The double of the whole of `text` ("nan" and "inf" included), or none when it is not one
 /// number.
 std::optional<double> whole_number(const std::string& text) {
-  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return std::nullopt;
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size()) return std::nullopt;
+  // std::from_chars, unlike strtod, does not follow the locale (a decimal comma).
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (first != last && *first == '+') ++first;
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(first, last, value);
+  if (text.empty() || end != last) return std::nullopt;
+  if (error == std::errc::result_out_of_range) {
+    return text.find('-') == 0 ? -std::numeric_limits<double>::infinity()
+                               : std::numeric_limits<double>::infinity();
+  }
+  if (error != std::errc()) return std::nullopt;
   return value;
 }
 
@@ -143,6 +151,10 @@ Value parse(const Spec& spec, const std::string& text, const std::string& shown)
     case Kind::integer: {
       std::int64_t n = 0;
       const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), n);
+      if (!text.empty() && end == text.data() + text.size() &&
+          error == std::errc::result_out_of_range) {
+        throw OptionError(shown + ": value " + text + " is outside " + range_text(spec));
+      }
       if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
         throw OptionError(shown + ": '" + text + "' is not a whole number");
       }

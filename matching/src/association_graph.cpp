@@ -329,11 +329,11 @@ AssociationGraph build_association_graph(const SurfaceDescriptors& a, const Surf
     throw InputError(a.surface.source() + " and " + b.surface.source() + ": " +
                      std::to_string(graph.nodes.size()) +
                      " critical-point pairs pass the fuzzy and image filters, more than "
-                     "max_nodes = " +
+                     "the limit of " +
                      std::to_string(p.max_nodes) +
                      " (the distance filter and the clique search grow with the square of "
-                     "that count); match binding sites, raise the image threshold or raise "
-                     "the limit (surfcomp match --max-graph-nodes)");
+                     "that count); match binding sites, raise --image-threshold or raise "
+                     "--max-graph-nodes");
   }
   graph.edges = distance_filter(graph.nodes, a, b, p.distance_tolerance, p.min_distance);
   record("distance", false);

@@ -28,6 +28,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -96,14 +97,29 @@ options::Value python_value(const options::Spec& spec, const py::handle& object,
   };
   options::Value value;
   switch (spec.kind) {
-    case options::Kind::real:
+    case options::Kind::real: {
       if (is_bool || !py::hasattr(object, "__float__")) throw fail("a number");
-      value = object.cast<double>();
+      const double x = PyFloat_AsDouble(object.ptr());
+      if (x == -1.0 && PyErr_Occurred() != nullptr) {  // an int beyond a double's range
+        PyErr_Clear();
+        value = std::numeric_limits<double>::infinity();
+      } else {
+        value = x;
+      }
       break;
-    case options::Kind::integer:
+    }
+    case options::Kind::integer: {
       if (is_bool || PyIndex_Check(object.ptr()) == 0) throw fail("an integer");
-      value = py::int_(py::reinterpret_borrow<py::object>(object)).cast<std::int64_t>();
+      const py::int_ whole(py::reinterpret_borrow<py::object>(object));
+      int overflow = 0;
+      const long long n = PyLong_AsLongLongAndOverflow(whole.ptr(), &overflow);
+      if (overflow != 0) {
+        throw OptionError(shown + ": value " + py::repr(whole).cast<std::string>() +
+                          " is outside " + options::range_text(spec));
+      }
+      value = static_cast<std::int64_t>(n);
       break;
+    }
     case options::Kind::flag:
       if (!is_bool) throw fail("True or False");
       value = object.cast<bool>();
@@ -111,7 +127,7 @@ options::Value python_value(const options::Spec& spec, const py::handle& object,
     case options::Kind::text:
     case options::Kind::choice:
       if (py::hasattr(object, "__fspath__")) {
-        value = py::str(object.attr("__fspath__")()).cast<std::string>();
+        value = py::module_::import("os").attr("fsdecode")(object).cast<std::string>();
       } else if (py::isinstance<py::str>(object)) {
         value = object.cast<std::string>();
       } else {
@@ -124,19 +140,29 @@ options::Value python_value(const options::Spec& spec, const py::handle& object,
           const options::Value parsed = options::parse(spec, item.cast<std::string>(), shown);
           return std::get<std::vector<options::Sphere>>(parsed).front();
         }
-        if (!py::isinstance<py::sequence>(item) || py::len(item) != 4) {
+        if (!py::hasattr(item, "__len__") || py::len(item) != 4) {
           throw fail("(x, y, z, r), \"x,y,z,r\" or a list of them");
         }
         options::Sphere sphere{};
-        for (std::size_t k = 0; k < 4; ++k) sphere[k] = item[py::int_(k)].cast<double>();
+        std::size_t k = 0;
+        for (const py::handle number : item) {
+          if (PyBool_Check(number.ptr()) != 0 || !py::hasattr(number, "__float__"))
+            throw fail("(x, y, z, r), \"x,y,z,r\" or a list of them");
+          sphere[k++] = py::float_(py::reinterpret_borrow<py::object>(number)).cast<double>();
+        }
         return sphere;
       };
       std::vector<options::Sphere> spheres;
-      const bool one = py::isinstance<py::sequence>(object) && py::len(object) == 4 &&
-                       py::hasattr(object[py::int_(0)], "__float__");
+      // One sphere: four numbers (no item of it has a length, as a NumPy row would).
+      bool one = py::hasattr(object, "__len__") && !py::isinstance<py::str>(object) &&
+                 py::len(object) == 4;
+      if (one) {
+        for (const py::handle item : object)
+          one = one && !py::hasattr(item, "__len__") && py::hasattr(item, "__float__");
+      }
       if (one || py::isinstance<py::str>(object)) {
         spheres.push_back(sphere_of(object));
-      } else if (py::isinstance<py::sequence>(object) && !py::isinstance<py::str>(object)) {
+      } else if (py::hasattr(object, "__iter__")) {
         for (const py::handle item : object) spheres.push_back(sphere_of(item));
       } else {
         throw fail("(x, y, z, r), \"x,y,z,r\" or a list of them");
@@ -302,6 +328,7 @@ py::dict match_dict(const matching::InputMatch& compared) {
 py::dict descriptor_options_dict(const harmonic::DescriptorOptions& o) {
   py::dict d;
   d["critical_point_radius"] = o.critical_points.radius;
+  d["disc_radius"] = o.critical_points.property_disc_radius;
   d["patch_radius"] = o.patch.radius;
   d["image_rings"] = o.image.rings;
   d["image_sectors"] = o.image.sectors;

@@ -330,6 +330,7 @@ class DescriptionParameters(NamedTuple):
     """The parameters a description was built with."""
 
     critical_point_radius: float
+    disc_radius: float
     patch_radius: float
     image_rings: int
     image_sectors: int
@@ -337,7 +338,9 @@ class DescriptionParameters(NamedTuple):
     image_property: str
 
 
-_documented(DescriptionParameters, critical_point_radius="r_cp, A", patch_radius="patch radius, A",
+_documented(DescriptionParameters, critical_point_radius="r_cp, A",
+            disc_radius="radius of the disc the critical points' properties average over, A",
+            patch_radius="patch radius, A",
             image_rings="rings of the image grid", image_sectors="sectors of the image grid",
             weights="spring weights of the harmonic maps",
             image_property="the vertex property the images resample")

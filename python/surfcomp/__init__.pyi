@@ -96,6 +96,7 @@ class Patch(NamedTuple):
 
 class DescriptionParameters(NamedTuple):
     critical_point_radius: float
+    disc_radius: float
     patch_radius: float
     image_rings: int
     image_sectors: int

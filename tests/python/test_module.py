@@ -121,6 +121,10 @@ def test_bad_input_raises_and_never_crashes(ligands, tmp_path):
         surfcomp.match(ligands[0], ligands[1], refine_top=2.5)
     with pytest.raises(surfcomp.OptionError, match="site_sphere '1,2,3,-1'"):
         surfcomp.match(ligands[0], ligands[1], site_sphere=(1, 2, 3, -1))
+    with pytest.raises(surfcomp.OptionError, match="site_sphere '1,2,3,-1'"):  # NumPy rows
+        surfcomp.match(ligands[0], ligands[1], site_sphere=np.array([[1, 2, 3, 4], [1, 2, 3, -1]]))
+    with pytest.raises(surfcomp.OptionError, match=r"max_cliques: value 1{30} is outside"):
+        surfcomp.match(ligands[0], ligands[1], max_cliques=int("1" * 30))
     with pytest.raises(surfcomp.FileError, match="missing.sdf"):
         surfcomp.build_surface(tmp_path / "missing.sdf")
     garbage = tmp_path / "garbage.sdf"

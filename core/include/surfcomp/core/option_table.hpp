@@ -6,10 +6,12 @@
 
 #include "surfcomp/core/error.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -43,6 +45,7 @@ using Value = std::variant<bool, std::int64_t, double, std::string, std::vector<
 /// What the user sees of an option.
 struct Spec {
   Spec() = default;
+  /// Every field in order; the trailing ones may be left out (a pure number, any value).
   Spec(std::string name_, Kind kind_, std::string help_, std::string unit_ = "", double lo_ = 0.0,
        double hi_ = 0.0, bool lo_open_ = false, std::vector<std::string> choices_ = {},
        bool optional_ = false)
@@ -76,10 +79,13 @@ struct Spec {
 template <class Settings>
 struct Option {
   Spec spec;
+  /// The field's value in `settings`, as an option value of the spec's kind.
   std::function<Value(const Settings&)> get;
+  /// Sets the field from a value that has passed check() (OptionError for an unknown choice).
   std::function<void(Settings&, const Value&)> set;
 };
 
+/// The user's options of one Options struct, in the order --help lists them.
 template <class Settings>
 using Table = std::vector<Option<Settings>>;
 
@@ -149,6 +155,10 @@ Value to_value(const Field& field) {
     return field;
   } else if constexpr (std::is_floating_point_v<Field>) {
     return static_cast<double>(field);
+  } else if constexpr (std::is_unsigned_v<Field> && sizeof(Field) >= sizeof(std::int64_t)) {
+    // An unsigned count beyond int64's range (SIZE_MAX as "no limit") shows as its largest.
+    constexpr auto largest = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+    return static_cast<std::int64_t>(std::min<std::uint64_t>(field, largest));
   } else {
     return static_cast<std::int64_t>(field);
   }
@@ -190,13 +200,18 @@ Option<Settings> choice(Spec spec, Access access, const std::array<const char*, 
   spec.choices.assign(names.begin(), names.end());
   return {std::move(spec),
           [access, names](const Settings& s) {
-            return Value(std::string(names[static_cast<std::size_t>(access(s))]));
+            const auto index = static_cast<std::size_t>(access(s));
+            return Value(std::string(index < N ? names[index] : "?"));
           },
           [access, names](Settings& s, const Value& v) {
             const auto& name = std::get<std::string>(v);
             for (std::size_t i = 0; i < N; ++i) {
-              if (name == names[i]) access(s) = static_cast<Field>(i);
+              if (name == names[i]) {
+                access(s) = static_cast<Field>(i);
+                return;
+              }
             }
+            throw OptionError("'" + name + "' is not a choice of this option");
           }};
 }
 

@@ -40,7 +40,7 @@ struct GraphOptions {
   /// dz <= 0.54; 0.5 drops most true pairs (docs/decisions.md#fuzzy-threshold).
   double fuzzy_threshold = 0.3;
   /// Default 0.5 (METHOD). R: a pair is dropped when its best image correlation is below R.
-  /// Finite. See docs/decisions.md#image-threshold.
+  /// In [-1, 1] (--image-threshold). See docs/decisions.md#image-threshold.
   double image_threshold = 0.5;
   /// Default 1.5 A. t: two pairs are joined when |d_A - d_B| <= t (eq. 3-3). Finite, >= 0.
   double distance_tolerance = 1.5;

@@ -77,8 +77,8 @@ struct PairSites {
 /// A pair match as a user asks for it: how the sides are read, described and matched, and
 /// their sites.
 struct PairMatchOptions {
-  MatchInputOptions inputs;
-  PairSites sites;
+  MatchInputOptions inputs;  ///< how both sides are read, described and matched
+  PairSites sites;           ///< the sites asked for; none: whole surfaces
 };
 
 /// The user's options of a pair match, each defined once: the surface options, --patch-radius,

@@ -16,10 +16,10 @@ namespace surfcomp::report {
 
 /// The critical points of one input and how they were found.
 struct CriticalPointSet {
-  std::string input;                   ///< the input's name (a path)
-  mesh::CriticalPointOptions options;  ///< r_cp and the property disc radius used
-  std::size_t surface_vertices = 0;
-  std::vector<mesh::CriticalPoint> points;
+  std::string input;                        ///< the input's name (a path)
+  mesh::CriticalPointOptions options;       ///< r_cp and the property disc radius used
+  std::size_t surface_vertices = 0;         ///< vertices of the surface they lie on
+  std::vector<mesh::CriticalPoint> points;  ///< in detection order (their indices)
 };
 
 /// The JSON document, indented by two spaces, ending with a newline: input, parameters (radius,

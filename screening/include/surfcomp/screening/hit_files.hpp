@@ -38,13 +38,14 @@ void write_library_sdf(std::ostream& out, const Library& library);
 
 /// What `surfcomp library info` reports of a library.
 struct LibrarySummary {
-  std::size_t entries = 0;
-  std::size_t molecules = 0;  ///< distinct (source, record, name)
-  std::map<std::string, std::size_t> entries_per_source;
-  std::uint64_t file_bytes = 0;
-  std::uint64_t largest_entry_bytes = 0;
+  std::size_t entries = 0;                                ///< conformers (entries) of the library
+  std::size_t molecules = 0;                              ///< distinct (source, record, name)
+  std::map<std::string, std::size_t> entries_per_source;  ///< input file -> its entries
+  std::uint64_t file_bytes = 0;                           ///< the .sclib file's size, bytes
+  std::uint64_t largest_entry_bytes = 0;                  ///< the largest encoded entry, bytes
 };
 
+/// The summary of `library`, read from its index and its entries' sizes.
 LibrarySummary summarize_library(const Library& library);
 
 }  // namespace surfcomp::screening
