@@ -7,6 +7,7 @@
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
 #include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/screening/library_build.hpp"
 #include "surfcomp/screening/screen.hpp"
 
 #include <gtest/gtest.h>
@@ -42,7 +43,8 @@ std::vector<Described> every_table() {
           described("binding site", matching::binding_site_option_table()),
           described("describe", matching::describe_option_table()),
           described("pair match", matching::pair_match_option_table()),
-          described("screen", screening::screen_option_table())};
+          described("screen", screening::screen_option_table()),
+          described("library build", screening::library_build_option_table())};
 }
 
 bool same_spec(const options::Spec& a, const options::Spec& b) {
@@ -138,6 +140,24 @@ TEST(OptionTable, SettingAnOptionSetsTheLibrarysField) {
   EXPECT_EQ(settings.sites.spheres[0].radius, 4.0);
   EXPECT_EQ(settings.inputs.threads, 3);
   EXPECT_EQ(options::find(table, "weights"), nullptr);  // hsi-build's, not match's
+}
+
+TEST(OptionTable, LibraryBuildConformersAndSeedShareTheirOptionalSettings) {
+  const auto& table = screening::library_build_option_table();
+  screening::LibraryBuildOptions options;
+  const auto set = [&](const std::string& name, const std::string& text) {
+    const auto* option = options::find(table, name);
+    option->set(options, options::parse(option->spec, text, "--" + name));
+  };
+  set("seed", "7");  // without --conformers the seed has nothing to seed
+  EXPECT_FALSE(options.conformers);
+  set("conformers", "4");
+  set("seed", "7");
+  ASSERT_TRUE(options.conformers);
+  EXPECT_EQ(options.conformers->count, 4);
+  EXPECT_EQ(options.conformers->seed, 7);
+  set("conformers", "0");
+  EXPECT_FALSE(options.conformers);
 }
 
 TEST(OptionTable, TheLibraryChecksItsOptionsWithTheTablesRanges) {

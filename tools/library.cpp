@@ -16,6 +16,7 @@
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <utility>
 
 namespace surfcomp::tools {
 namespace {
@@ -101,18 +102,14 @@ void write_log_and_summary(const std::filesystem::path& library, const std::file
 
 /// `library build --sites LIST`: a pocket library.
 int build_sites(const boost::program_options::variables_map& vm, const std::string& list,
-                const std::string& output, const matching::BindingSiteOptions& site, int conformers,
-                int threads) {
+                const std::string& output, screening::LibraryBuildOptions options, int threads) {
   if (vm.count("input")) throw OptionError("--sites takes no INPUT: the sites are in its list");
-  if (conformers != 0) throw OptionError("--conformers does not apply to --sites");
+  if (options.conformers) throw OptionError("--conformers does not apply to --sites");
   const auto limit = limit_threads(threads);
   const std::filesystem::path library = output;
   const std::filesystem::path log = output + ".log";
   check_command_files(
       {{{"--sites", list}}, {{"--output", library, {".sclib"}, ""}, {"the log", log, {}, ""}}});
-  screening::LibraryBuildOptions options;
-  options.site.sphere_radius = site.sphere_radius;
-  options.site.surface_margin = site.surface_margin;
   options.progress = progress_line();
   const std::vector<screening::SiteRequest> sites = screening::read_site_list(list);
   const screening::LibraryBuildResult result =
@@ -124,32 +121,24 @@ int build_sites(const boost::program_options::variables_map& vm, const std::stri
 int build(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output, sites;
-  int conformers = 0, seed = ConformerOptions{}.seed;
   po::options_description described("options");
   // clang-format off
   described.add_options()
       ("help,h", "print this help")
       ("output,o", po::value(&output)->required(), "output library (.sclib)")
-      ("conformers", po::value(&conformers)->default_value(0),
-       "conformers per molecule from ETKDG + MMFF (0: the records' own coordinates)")
-      ("seed", defaulted(&seed), "ETKDG random seed (>= 0)")
       ("sites", po::value(&sites), "build a pocket library from this site list (no INPUT)");
   // clang-format on
-  po::options_description site_options("with --sites");
-  add_table_options(site_options, matching::binding_site_option_table());
-  described.add(site_options);
+  add_table_options(described, screening::library_build_option_table());
   add_threads_option(described);
   po::variables_map vm;
   if (!parse_command_line(args, described, -1, kUsage, vm)) return 0;
-  matching::BindingSiteOptions site;
-  apply_table_options(matching::binding_site_option_table(), vm, site);
+  screening::LibraryBuildOptions options;
+  apply_table_options(screening::library_build_option_table(), vm, options);
   const int threads = threads_from(vm);
-  if (!sites.empty()) return build_sites(vm, sites, output, site, conformers, threads);
+  if (!sites.empty()) return build_sites(vm, sites, output, std::move(options), threads);
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   std::vector<std::filesystem::path> inputs;
   for (const auto& input : vm["input"].as<std::vector<std::string>>()) inputs.emplace_back(input);
-  require_in_range("conformers", conformers, 0, 10000);
-  require_in_range("seed", seed, 0, 2147483647.0);
   const auto limit = limit_threads(threads);
   const std::filesystem::path library = output;
   const std::filesystem::path log = output + ".log";
@@ -158,12 +147,6 @@ int build(const std::vector<std::string>& args) {
   files.outputs.push_back({"--output", library, {".sclib"}, ""});
   files.outputs.push_back({"the log", log, {}, ""});
   check_command_files(files);
-  screening::LibraryBuildOptions options;
-  if (conformers > 0) {
-    options.conformers = ConformerOptions{};
-    options.conformers->count = conformers;
-    options.conformers->seed = seed;
-  }
 
   const std::vector<io::MoleculeRecord> records = screening::read_library_inputs(inputs);
   if (!options.conformers) {

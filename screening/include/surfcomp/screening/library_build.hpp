@@ -8,6 +8,7 @@
 #include "surfcomp/core/conformers.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/option_table.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/matching/site.hpp"
@@ -59,6 +60,11 @@ struct LibraryBuildOptions {
   /// Default none. Called after each record is written or skipped, one call at a time.
   std::function<void(const BuildProgress&)> progress;
 };
+
+/// The user's options of LibraryBuildOptions: --conformers (0: the records' own coordinates,
+/// else that many ETKDG + MMFF conformers), --seed (ETKDG's, with --conformers), --site-radius
+/// and --site-margin (a pocket library).
+const options::Table<LibraryBuildOptions>& library_build_option_table();
 
 /// A record the build left out, and why.
 struct SkippedRecord {

@@ -1,0 +1,43 @@
+#include "surfcomp/screening/library_build.hpp"
+
+namespace surfcomp::screening {
+
+const options::Table<LibraryBuildOptions>& library_build_option_table() {
+  using options::Kind;
+  using L = LibraryBuildOptions;
+  static const options::Table<L> table = [] {
+    // Both options live in the optional ConformerOptions: --conformers 0 leaves it unset (the
+    // records' own coordinates), and --seed, applied after it, only matters when it is set.
+    options::Table<L> t = {
+        {{"conformers", Kind::integer,
+          "conformers per molecule from ETKDG + MMFF (0: the records' own coordinates)", "", 0,
+          10000},
+         [](const L& l) {
+           return options::Value(std::int64_t{l.conformers ? l.conformers->count : 0});
+         },
+         [](L& l, const options::Value& v) {
+           const auto count = static_cast<int>(std::get<std::int64_t>(v));
+           if (count == 0) {
+             l.conformers.reset();
+           } else {
+             if (!l.conformers) l.conformers = ConformerOptions{};
+             l.conformers->count = count;
+           }
+         }},
+        {{"seed", Kind::integer, "ETKDG's random seed (with --conformers)", "", 0, 2147483647.0},
+         [](const L& l) {
+           return options::Value(
+               std::int64_t{l.conformers ? l.conformers->seed : ConformerOptions{}.seed});
+         },
+         [](L& l, const options::Value& v) {
+           if (l.conformers) l.conformers->seed = static_cast<int>(std::get<std::int64_t>(v));
+         }},
+    };
+    options::append(
+        t, matching::binding_site_option_table(), [](auto& l) -> auto& { return l.site; });
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace surfcomp::screening
