@@ -152,22 +152,4 @@ void require_in_range(const char* name, double value, double lo, double hi) {
   }
 }
 
-void require_positive(const char* name, double value, double hi) {
-  if (!(std::isfinite(value) && value > 0.0 && value <= hi)) {
-    std::ostringstream message;
-    message << "--" << name << ": value " << value << " is outside (0, " << hi << "]";
-    throw OptionError(message.str());
-  }
-}
-
-void require_one_of(const char* name, const std::string& value,
-                    const std::vector<std::string>& allowed) {
-  for (const auto& a : allowed) {
-    if (value == a) return;
-  }
-  std::string list;
-  for (const auto& a : allowed) list += (list.empty() ? "" : "|") + a;
-  throw OptionError(std::string("--") + name + ": '" + value + "' is not one of " + list);
-}
-
 }  // namespace surfcomp::tools

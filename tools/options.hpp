@@ -84,11 +84,4 @@ int threads_from(const boost::program_options::variables_map& vm);
 /// Throws OptionError "--name: value V is outside [lo, hi]" unless lo <= value <= hi and finite.
 void require_in_range(const char* name, double value, double lo, double hi);
 
-/// Throws OptionError "--name: value V is outside (0, hi]" unless 0 < value <= hi and finite.
-void require_positive(const char* name, double value, double hi);
-
-/// Throws OptionError unless `value` is one of `allowed`.
-void require_one_of(const char* name, const std::string& value,
-                    const std::vector<std::string>& allowed);
-
 }  // namespace surfcomp::tools

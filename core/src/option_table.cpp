@@ -36,9 +36,14 @@ std::optional<double> whole_number(const std::string& text) {
   return value;
 }
 
+/// A finite centre and a finite radius > 0.
+bool valid_sphere(const Sphere& sphere) {
+  return std::isfinite(sphere[0]) && std::isfinite(sphere[1]) && std::isfinite(sphere[2]) &&
+         std::isfinite(sphere[3]) && sphere[3] > 0.0;
+}
+
 void check_sphere(const Sphere& sphere, const std::string& shown) {
-  if (!(std::isfinite(sphere[0]) && std::isfinite(sphere[1]) && std::isfinite(sphere[2]) &&
-        std::isfinite(sphere[3]) && sphere[3] > 0.0)) {
+  if (!valid_sphere(sphere)) {
     throw OptionError(shown + " '" + sphere_text(sphere) + "': expected x,y,z,r with r > 0 (A)");
   }
 }
@@ -60,9 +65,7 @@ std::optional<Sphere> parse_sphere(const std::string& text) {
     sphere[k] = *x;
     start = end + 1;
   }
-  const bool finite = std::isfinite(sphere[0]) && std::isfinite(sphere[1]) &&
-                      std::isfinite(sphere[2]) && std::isfinite(sphere[3]);
-  if (!finite || !(sphere[3] > 0.0)) return std::nullopt;
+  if (!valid_sphere(sphere)) return std::nullopt;
   return sphere;
 }
 

@@ -31,7 +31,6 @@
 #include <limits>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -544,14 +543,11 @@ py::list screen(const py::object& query, const std::string& library_path, const 
     d["fast_score"] = hit.fast_score;
     d["transform"] = owned_array(std::move(transform));
     if (molecules) {
-      std::ostringstream aligned;
       const bool site = screening::is_site_query(settings);
-      if (site) {
-        screening::write_aligned_sites_pdb(aligned, *library, {hit}, 1, settings.screen.read);
-      } else {
-        aligned << screening::aligned_hit_record(*library, hit, k + 1);
-      }
-      d["aligned"] = py::make_tuple(aligned.str(), site ? "pdb" : "sdf");
+      d["aligned"] = py::make_tuple(
+          site ? screening::aligned_site_model(*library, hit, k + 1, settings.screen.read)
+               : screening::aligned_hit_record(*library, hit, k + 1),
+          site ? "pdb" : "sdf");
     }
     hits.append(d);
   }

@@ -45,26 +45,30 @@ void write_aligned_hits_sdf(std::ostream& out, const Library& library, const std
     out << aligned_hit_record(library, hits[i], i + 1);
 }
 
+std::string aligned_site_model(const Library& library, const Hit& hit, std::size_t rank,
+                               const io::MoleculeReadOptions& read) {
+  const LibraryEntry entry = library.entry(hit.entry);
+  Molecule structure = io::read_record_molecule(entry.molecule, read);
+  const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();
+  const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
+  for (Atom& atom : structure.atoms) atom.position = rotation * atom.position + translation;
+  std::ostringstream pdb;
+  io::write_pdb(structure, pdb);
+  std::string text = pdb.str();
+  if (text.size() >= 4 && text.compare(text.size() - 4, 4, "END\n") == 0)
+    text.resize(text.size() - 4);
+  std::ostringstream out;
+  out << "MODEL     " << std::setw(4) << rank << "\nREMARK   1 surfcomp rank " << rank << " entry "
+      << hit.entry + 1 << " " << entry.info.name << " score " << score_text(hit.score.score) << "\n"
+      << text << "ENDMDL\n";
+  return out.str();
+}
+
 void write_aligned_sites_pdb(std::ostream& out, const Library& library,
                              const std::vector<Hit>& hits, std::size_t count,
                              const io::MoleculeReadOptions& read) {
-  for (std::size_t i = 0; i < hits.size() && i < count; ++i) {
-    const Hit& hit = hits[i];
-    const LibraryEntry entry = library.entry(hit.entry);
-    Molecule structure = io::read_record_molecule(entry.molecule, read);
-    const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();
-    const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
-    for (Atom& atom : structure.atoms) atom.position = rotation * atom.position + translation;
-    std::ostringstream pdb;
-    io::write_pdb(structure, pdb);
-    std::string text = pdb.str();
-    if (text.size() >= 4 && text.compare(text.size() - 4, 4, "END\n") == 0)
-      text.resize(text.size() - 4);
-    out << "MODEL     " << std::setw(4) << i + 1 << "\nREMARK   1 surfcomp rank " << i + 1
-        << " entry " << hit.entry + 1 << " " << entry.info.name << " score "
-        << score_text(hit.score.score) << "\n"
-        << text << "ENDMDL\n";
-  }
+  for (std::size_t i = 0; i < hits.size() && i < count; ++i)
+    out << aligned_site_model(library, hits[i], i + 1, read);
   out << "END\n";
 }
 
