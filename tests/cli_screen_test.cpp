@@ -4,10 +4,16 @@
 // line, and a bad record is skipped and logged. Pocket libraries: a site query finds its own
 // pocket first and writes the hits' structures as PDB models; queries and libraries of the other
 // kind, and --sites with INPUTs, are refused with one line, as is a run under MPI without the MPI
-// module. A build interrupted by a signal leaves no file behind.
+// module. A build interrupted by a signal leaves no file behind. Several queries in one pass give
+// each query the rows of its own screen and fuse them as defined; a screen's peak memory does not
+// grow with the library.
 #include "pocket_cut.hpp"
 #include "program_run.hpp"
 #include "test_data.hpp"
+
+#include "surfcomp/core/conformers.hpp"
+#include "surfcomp/screening/library.hpp"
+#include "surfcomp/screening/library_build.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,6 +25,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -30,6 +37,7 @@
 #include <poll.h>
 #include <spawn.h>
 #include <sys/inotify.h>
+#include <sys/resource.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -60,6 +68,9 @@ std::vector<std::string> fields_of(const std::string& row) {
   return fields;
 }
 
+/// Writes the records `numbers` (1-based) of the SD file `from` into `to`, in that order.
+void write_records(const std::string& from, const std::vector<int>& numbers, const std::string& to);
+
 /// One library of three molecules, two conformers each, shared by the tests of the suite.
 class CliScreen : public ::testing::Test {
  protected:
@@ -84,9 +95,107 @@ class CliScreen : public ::testing::Test {
   }
 
   static fs::path dir_;
+
+ public:
+  static const fs::path& directory() { return dir_; }
 };
 
 fs::path CliScreen::dir_;
+
+void write_records(const std::string& from, const std::vector<int>& numbers,
+                   const std::string& to) {
+  const std::string text = file_bytes(CliScreen::directory() / from);
+  std::vector<std::string> records;
+  for (std::size_t at = 0, end; (end = text.find("$$$$\n", at)) != std::string::npos; at = end + 5)
+    records.push_back(text.substr(at, end + 5 - at));
+  std::ofstream out(CliScreen::directory() / to);
+  for (const int number : numbers) out << records.at(static_cast<std::size_t>(number - 1));
+}
+
+/// The rows of a hits table by molecule name: its score column (7th).
+std::map<std::string, double> scores_by_name(const std::string& table) {
+  std::map<std::string, double> scores;
+  const std::vector<std::string> rows = lines_of(table);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const std::vector<std::string> fields = fields_of(rows[i]);
+    scores[fields.at(2)] = std::stod(fields.at(6));
+  }
+  return scores;
+}
+
+// Several queries in one pass: each query's table is what its own screen writes, the fused
+// table ranks every molecule by the maximum (or the mean) of its scores against the queries,
+// and a multi-record query file is a list of queries.
+TEST_F(CliScreen, SeveralQueriesInOnePassEqualTheirOwnScreensAndFuseAsDefined) {
+  ASSERT_EQ(run("library export lib.sclib -o fuse.sdf").status, 0);
+  write_records("fuse.sdf", {1}, "fuse_q1.sdf");  // paracetamol, salicylic acid, ibuprofen
+  write_records("fuse.sdf", {3}, "fuse_q3.sdf");
+  write_records("fuse.sdf", {6}, "fuse_q6.sdf");
+  write_records("fuse.sdf", {1, 3, 6}, "fuse_three.sdf");
+  const std::string options = " --candidates 1 --top 0 --threads 2";
+  for (const char* q : {"1", "3", "6"}) {
+    const ProgramRun r =
+        run(std::string("screen fuse_q") + q + ".sdf lib.sclib -o single" + q + ".csv" + options);
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  ProgramRun r = run("screen fuse_q1.sdf fuse_q3.sdf fuse_q6.sdf lib.sclib -o fused.csv" + options);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("screen fuse_three.sdf lib.sclib -o listed.csv --fusion mean" + options);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const char* singles[] = {"single1.csv", "single3.csv", "single6.csv"};
+  std::vector<std::map<std::string, double>> single;
+  for (int q = 0; q < 3; ++q) {
+    const std::string own = file_bytes(dir_ / singles[q]);
+    const std::string k = std::to_string(q + 1);
+    EXPECT_EQ(file_bytes(dir_ / ("fused.query" + k + ".csv")), own) << "query " << k;
+    EXPECT_EQ(file_bytes(dir_ / ("listed.query" + k + ".csv")), own) << "query " << k;
+    single.push_back(scores_by_name(own));
+  }
+  for (const auto& [table, mean] : {std::pair{"fused.csv", false}, std::pair{"listed.csv", true}}) {
+    const std::vector<std::string> rows = lines_of(file_bytes(dir_ / table));
+    ASSERT_EQ(rows.size(), 4u) << table;  // header and three molecules
+    EXPECT_EQ(rows[0],
+              "rank,entry,name,source,record,conformer,score,query,score_1,score_2,score_3");
+    double previous = 2.0;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+      const std::vector<std::string> f = fields_of(rows[i]);
+      ASSERT_EQ(f.size(), 11u) << rows[i];
+      double best = -1.0, sum = 0.0;
+      std::size_t best_query = 0;
+      for (std::size_t q = 0; q < 3; ++q) {
+        const double s = std::stod(f[8 + q]);
+        EXPECT_NEAR(s, single[q].at(f[2]), 1e-6) << table << " " << rows[i];
+        if (s > best) {
+          best = s;
+          best_query = q + 1;
+        }
+        sum += s;
+      }
+      const double score = std::stod(f[6]);
+      EXPECT_NEAR(score, mean ? sum / 3.0 : best, 2e-6) << table << " " << rows[i];
+      EXPECT_EQ(f[7], std::to_string(best_query)) << rows[i];
+      EXPECT_LE(score, previous) << table << ": rows out of order";
+      previous = score;
+    }
+  }
+  // Each query finds itself: in the max fusion its own molecule scores about 1 against it.
+  EXPECT_NEAR(single[1].at("salicylic_acid"), 1.0, 1e-3);
+}
+
+// A query record that cannot be read stops the screen before any work, naming the record.
+TEST_F(CliScreen, AnUnreadableQueryRecordStopsTheScreenNamingIt) {
+  ASSERT_EQ(run("library export lib.sclib -o bad_query.sdf").status, 0);
+  write_records("bad_query.sdf", {1}, "bad_queries.sdf");
+  std::ofstream(dir_ / "bad_queries.sdf", std::ios::app)
+      << "broken\n  surfcomp\n\n  2  1  0  0  0  0  0  0  0  0999 V2000\n"
+         "    0.0000    0.0000    0.0000 C   0  0\nM  END\n$$$$\n";
+  const ProgramRun r = run("screen bad_queries.sdf lib.sclib -o bad.csv");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("query 2 (bad_queries.sdf record 2)"), std::string::npos) << r.err;
+  EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "bad.query1.csv"));
+}
 
 TEST_F(CliScreen, LibraryIsTheSameWithOneThreadAndTheBadRecordIsLogged) {
   const ProgramRun built =
@@ -177,17 +286,32 @@ TEST_F(CliScreen, HitsAreTheSameUnderMpiWithOneTwoAndFourProcesses) {
   GTEST_SKIP() << "surfcomp was built without MPI";
 #else
   ASSERT_EQ(run("library export lib.sclib -o mpi.sdf").status, 0);
-  ASSERT_EQ(run("screen mpi.sdf lib.sclib --record 1 --candidates 2 --top 0 -o serial.csv").status,
-            0);
+  write_records("mpi.sdf", {1}, "mpi_q1.sdf");
+  write_records("mpi.sdf", {4}, "mpi_q4.sdf");
+  ASSERT_EQ(run("screen mpi_q1.sdf lib.sclib --candidates 2 --top 0 -o serial.csv").status, 0);
+  ASSERT_EQ(
+      run("screen mpi_q1.sdf mpi_q4.sdf lib.sclib --candidates 2 --top 0 -o serial_two.csv").status,
+      0);
   for (const char* ranks : {"1", "2", "4"}) {
-    const ProgramRun r = run(
-        "screen mpi.sdf lib.sclib --record 1 --candidates 2 --top 0 -o mpi" + std::string(ranks) +
-            ".csv --threads 1",
-        std::string(SURFCOMP_MPIEXEC) + " --allow-run-as-root --oversubscribe -np " + ranks + " ");
+    const std::string one = "mpi" + std::string(ranks) + ".csv";
+    const std::string two = "mpi_two" + std::string(ranks) + ".csv";
+    const std::string mpirun =
+        std::string(SURFCOMP_MPIEXEC) + " --allow-run-as-root --oversubscribe -np " + ranks + " ";
+    ProgramRun r = run(
+        "screen mpi_q1.sdf lib.sclib --candidates 2 --top 0 -o " + one + " --threads 1", mpirun);
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(file_bytes(dir_ / ("mpi" + std::string(ranks) + ".csv")),
-              file_bytes(dir_ / "serial.csv"))
-        << ranks << " processes";
+    EXPECT_EQ(file_bytes(dir_ / one), file_bytes(dir_ / "serial.csv")) << ranks << " processes";
+    // Two queries in one pass: the fused table and each query's the same as in one process.
+    r = run(
+        "screen mpi_q1.sdf mpi_q4.sdf lib.sclib --candidates 2 --top 0 -o " + two + " --threads 1",
+        mpirun);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(file_bytes(dir_ / two), file_bytes(dir_ / "serial_two.csv")) << ranks;
+    for (const char* q : {"1", "2"}) {
+      EXPECT_EQ(file_bytes(dir_ / ("mpi_two" + std::string(ranks) + ".query" + q + ".csv")),
+                file_bytes(dir_ / ("serial_two.query" + std::string(q) + ".csv")))
+          << ranks << " processes, query " << q;
+    }
   }
 #endif
 }
@@ -507,6 +631,80 @@ TEST_F(CliScreen, SiteQueryFindsItsOwnPocketInAPocketLibrary) {
     EXPECT_FALSE(fs::exists(dir_ / "x.csv")) << arguments;
     EXPECT_FALSE(fs::exists(dir_ / "x.sclib")) << arguments;
   }
+}
+
+/// The largest resident set (bytes) of the children this process has waited for so far.
+long peak_child_rss_bytes() {
+  rusage usage{};
+  ::getrusage(RUSAGE_CHILDREN, &usage);
+  return usage.ru_maxrss * 1024L;
+}
+
+/// `copies` copies of `entry`, each its own molecule, written as a library at `path`.
+void write_copies(const screening::LibraryEntry& entry, std::size_t copies, const fs::path& path) {
+  std::ofstream out(path, std::ios::binary);
+  screening::LibraryWriter writer(out, "copies");
+  screening::LibraryEntry copy = entry;
+  for (std::size_t i = 0; i < copies; ++i) {
+    copy.info.name = "copy" + std::to_string(i + 1);
+    copy.info.record = static_cast<std::uint32_t>(i + 1);
+    writer.add(copy);
+  }
+  writer.finish();
+}
+
+// A screen keeps its memory bounded whatever the library's size: it streams the library (the
+// pages of the entries it has scored are released) and keeps only each query's best molecules.
+// A library of one entry and one of many copies of it, several times a screen's working set,
+// are screened and the two runs' peak resident memory compared.
+TEST(CliScreenMemory, PeakMemoryDoesNotGrowWithTheLibrary) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("surfcomp_memory_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  io::MoleculeRecord record;
+  record.source = "memory.smi";
+  record.record = 1;
+  record.name = "ibuprofen";
+  record.format = io::RecordFormat::smiles;
+  record.text = "CC(C)Cc1ccc(cc1)C(C)C(=O)O";
+  screening::LibraryBuildOptions build;
+  build.conformers = ConformerOptions{};
+  build.conformers->count = 1;
+  const std::vector<screening::LibraryEntry> entries = screening::build_entries(record, build);
+  ASSERT_EQ(entries.size(), 1u);
+  { std::ofstream(dir / "query.sdf") << entries.front().molecule.text; }
+  constexpr std::size_t kCopies = 12000;
+  write_copies(entries.front(), 1, dir / "one.sclib");
+  write_copies(entries.front(), kCopies, dir / "many.sclib");
+  const auto library_bytes = static_cast<long>(fs::file_size(dir / "many.sclib"));
+  ASSERT_GT(library_bytes, 60L << 20) << "the library must be well above a block's pages";
+
+  // Stage 1 alone reads every entry's sample; --top bounds the rows kept.
+  const std::string options = " --refine 0 --candidates 0 --top 10 --threads 2 -o hits.csv";
+  const test::ProgramRun small =
+      test::run_program("screen query.sdf one.sclib" + options, {dir, ""});
+  ASSERT_EQ(small.status, 0) << small.err;
+  const long small_rss = peak_child_rss_bytes();
+  const test::ProgramRun large =
+      test::run_program("screen query.sdf many.sclib" + options, {dir, ""});
+  ASSERT_EQ(large.status, 0) << large.err;
+  const long large_rss = peak_child_rss_bytes();
+  std::printf("peak RSS: %.1f MB with 1 entry, %.1f MB with %zu (library %.1f MB)\n",
+              static_cast<double>(small_rss) / 1e6, static_cast<double>(large_rss) / 1e6, kCopies,
+              static_cast<double>(library_bytes) / 1e6);
+  // Reading the whole mapping would add the library's size; a block of entries and the index
+  // add a fifth of it at most.
+  EXPECT_LT(large_rss - small_rss, library_bytes / 5)
+      << "peak RSS " << large_rss << " B against " << small_rss << " B for one entry";
+  // The copies all score as the query itself.
+  std::ifstream hits(dir / "hits.csv");
+  std::string header, first;
+  std::getline(hits, header);
+  std::getline(hits, first);
+  ASSERT_EQ(first.rfind("1,1,copy1,memory.smi,1,1,", 0), 0u) << first;
+  EXPECT_NEAR(std::stod(first.substr(first.find(",1,1,") + 5)), 1.0, 1e-4) << first;
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <fstream>
 #include <iterator>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -457,27 +458,42 @@ TEST(Screen, StageTwoRefinesEachMoleculesBestConformersAndNeverLowersTheirScores
   const screening::ScreenQuery query = screening::make_screen_query(
       harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options, {},
       &molecule);
-  const std::vector<screening::HitScore> fast =
-      screening::fast_scores(query, library, 0, library.size(), options);
+  std::vector<screening::HitScore> fast;
+  for (std::size_t e = 0; e < library.size(); ++e)
+    fast.push_back(screening::fast_score(query, library.entry(e), options));
+  const std::vector<std::size_t> starts = screening::molecule_starts(library);
+  ASSERT_EQ(starts.size(), 4u);  // three molecules, their conformers adjacent
 
-  // Two per molecule, each molecule's two best by fast score.
-  const std::vector<std::size_t> chosen = screening::entries_to_refine(library, fast, 2);
-  ASSERT_EQ(chosen.size(), 6u);
-  for (std::size_t e = 0; e < library.size(); ++e) {
-    if (std::find(chosen.begin(), chosen.end(), e) != chosen.end()) continue;
-    std::size_t better = 0;  // entries of e's molecule chosen with a higher fast score
-    for (const std::size_t c : chosen) {
-      if (library.info(c).name == library.info(e).name && fast[c].score >= fast[e].score) ++better;
-    }
-    EXPECT_EQ(better, 2u) << "entry " << e << " (" << library.info(e).name << ")";
+  // With refine 2, a molecule's best is one of its two best conformers by fast score, at its
+  // refined score (when that is not lower); with refine 0, its best conformer by fast score.
+  options.refine = 2;
+  const screening::StreamedScores two =
+      screening::score_molecules({&query}, library, starts, 0, 3, options, true);
+  options.refine = 0;
+  const screening::StreamedScores none =
+      screening::score_molecules({&query}, library, starts, 0, 3, options, true);
+  ASSERT_EQ(two.queries[0].all.size(), 3u);
+  for (std::size_t m = 0; m < 3; ++m) {
+    std::vector<std::size_t> order(starts[m + 1] - starts[m]);
+    std::iota(order.begin(), order.end(), starts[m]);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t x, std::size_t y) { return fast[x].score > fast[y].score; });
+    if (order.size() == 1) order.push_back(order[0]);
+    const screening::MoleculeScore& refined = two.queries[0].all[m];
+    EXPECT_TRUE(refined.entry == order[0] || refined.entry == order[1]) << "molecule " << m;
+    const double expected =
+        std::max({fast[order[0]].score, fast[order[1]].score,
+                  screening::refined_score(query, library.entry(order[0]), options).score,
+                  screening::refined_score(query, library.entry(order[1]), options).score});
+    EXPECT_NEAR(refined.score, expected, 1e-12) << "molecule " << m;
+    EXPECT_EQ(none.queries[0].all[m].entry, order[0]);
+    EXPECT_EQ(none.queries[0].all[m].score, fast[order[0]].score);
   }
-  EXPECT_EQ(screening::entries_to_refine(library, fast, 0).size(), 0u);
-  EXPECT_EQ(screening::entries_to_refine(library, fast, 100).size(), library.size());
 
   // The refinement only climbs, and it does climb: the overlay from the principal axes alone is
   // not a local optimum.
   double gain = 0.0;
-  for (const std::size_t e : chosen) {
+  for (std::size_t e = 0; e < library.size(); ++e) {
     const screening::HitScore refined = screening::refined_score(query, library.entry(e), options);
     EXPECT_GE(refined.score, fast[e].score) << "entry " << e;
     gain = std::max(gain, refined.score - fast[e].score);

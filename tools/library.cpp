@@ -1,29 +1,41 @@
-// surfcomp library: build a screening library (.sclib) from molecule files, describe one, or
-// export its conformers as SDF.
+// surfcomp library: build a screening library (.sclib) from molecule files (one file, or an index
+// of shards that the processes of an MPI job share), describe one, or export its conformers as
+// SDF.
 #include "command.hpp"
 #include "command_files.hpp"
 #include "console.hpp"
 #include "describe_settings.hpp"
+#include "mpi_loader.hpp"
 #include "options.hpp"
+#include "screen_mpi.hpp"
 
+#include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/library_build.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace surfcomp::tools {
 namespace {
 
 constexpr const char* kUsage =
     "usage: surfcomp library build INPUT... -o LIB.sclib [--conformers N] [--seed S]\n"
-    "                              [--threads T]\n"
+    "                              [--shard-records N] [--resume] [--threads T]\n"
+    "       mpirun -np R surfcomp library build INPUT... -o LIB.sclib ...   (shards over R\n"
+    "                                                                     processes)\n"
     "       surfcomp library build --sites LIST -o POCKETS.sclib [--site-radius R] [--threads T]\n"
     "       surfcomp library info LIB.sclib\n"
     "       surfcomp library export LIB.sclib -o OUT.sdf\n\n"
@@ -39,7 +51,15 @@ constexpr const char* kUsage =
     "        keeping its surface and heavy atoms (no bonds; no --conformers; at most 999 heavy\n"
     "        atoms); screen describes that surface again.\n"
     "        Entries keep the input order; the file does not depend on --threads.\n"
-    "info    prints the library's version, entries, molecules, sizes and build settings.\n"
+    "        More records than --shard-records N make a sharded library: LIB.sclib is then an\n"
+    "        index of shards of N consecutive records each (LIB.sclib.d/000001.sclib, ...), which\n"
+    "        screen, info and export read as one library. Under mpirun the R processes share\n"
+    "        the shards (process k builds shards k + 1, k + 1 + R, ...), each with --threads;\n"
+    "        the index and shards do not depend on R or --threads. A build that was stopped\n"
+    "        continues with --resume (the same INPUTs and options): the finished shards are\n"
+    "        checked and kept, the others built. Without --resume an existing LIB.sclib.d is\n"
+    "        refused. A pocket library (--sites) is always one file.\n"
+    "info    prints the library's version, entries, molecules, shards, sizes and build settings.\n"
     "export  writes every entry's molecule in its conformation, with the SD tags\n"
     "        surfcomp_entry (1-based), surfcomp_name and surfcomp_conformer.";
 
@@ -51,9 +71,11 @@ std::string duration(double seconds) {
 }
 
 /// A progress line on stderr when it is a terminal (entries done, rate, time left), else none.
-std::function<void(const screening::BuildProgress&)> progress_line() {
+/// `who` starts it: "library", or a process of an MPI job.
+std::function<void(const screening::BuildProgress&)> progress_line(
+    const std::string& who = "library") {
   if (!console::progress_shown()) return {};
-  return [last = -1.0](const screening::BuildProgress& p) mutable {
+  return [who, last = -1.0](const screening::BuildProgress& p) mutable {
     if (p.records_done < p.records && p.seconds - last < 0.5) return;
     last = p.seconds;
     const double rate = p.seconds > 0 ? static_cast<double>(p.entries) / p.seconds : 0.0;
@@ -61,8 +83,8 @@ std::function<void(const screening::BuildProgress&)> progress_line() {
                             ? p.seconds * static_cast<double>(p.records - p.records_done) /
                                   static_cast<double>(p.records_done)
                             : 0.0;
-    std::fprintf(stderr, "\r\033[Klibrary: %zu/%zu records, %zu entries, %.1f entries/s, %s left",
-                 p.records_done, p.records, p.entries, rate, duration(left).c_str());
+    std::fprintf(stderr, "\r\033[K%s: %zu/%zu records, %zu entries, %.1f entries/s, %s left",
+                 who.c_str(), p.records_done, p.records, p.entries, rate, duration(left).c_str());
     if (p.records_done == p.records) std::fprintf(stderr, "\r\033[K");
     std::fflush(stderr);
   };
@@ -71,24 +93,35 @@ std::function<void(const screening::BuildProgress&)> progress_line() {
 /// Writes LIB.sclib.log (the skipped records and why) and prints the build's summary line.
 void write_log_and_summary(const std::filesystem::path& library, const std::filesystem::path& log,
                            const screening::LibraryBuildResult& result) {
-  io::write_file_atomically(log, [&](std::ostream& out) {
-    out << "# surfcomp library build -> " << library.string() << ": " << result.records
-        << " records, " << result.entries << " entries, " << result.skipped.size()
-        << " skipped\n# source\trecord\tname\treason\n";
-    for (const auto& s : result.skipped)
-      out << s.source << '\t' << s.record << '\t' << s.name << '\t' << s.reason << '\n';
-  });
+  io::write_file_atomically(
+      log, [&](std::ostream& out) { screening::write_build_log(out, library, result); });
   if (result.entries == 0) {  // an empty library would only fail later, further from the cause
     throw InputError(library.string() + ": no entry was built; all " +
                      std::to_string(result.records) + " records were skipped (reasons in " +
                      log.string() + ")");
   }
-  console::summary(
-      "%s: %zu records -> %zu entries, %zu skipped (see %s), %.1f MB, %.1f s (%.1f entries/s)\n",
-      library.string().c_str(), result.records, result.entries, result.skipped.size(),
-      log.string().c_str(), static_cast<double>(result.bytes) / 1e6, result.seconds,
-      result.seconds > 0 ? static_cast<double>(result.entries) / result.seconds : 0.0);
-  const double per_entry = 1e3 / static_cast<double>(result.entries);
+  std::string shards;
+  if (result.shards > 1) {
+    shards = " in " + std::to_string(result.shards) + " shards of " +
+             screening::shard_folder(library).string();
+  }
+  // A resumed build's rate and core times are those of the entries it built.
+  const std::size_t built = result.entries - result.entries_resumed;
+  char rate[64] = "nothing left to build";
+  if (built > 0) {
+    std::snprintf(rate, sizeof rate, "%.1f entries/s",
+                  result.seconds > 0 ? static_cast<double>(built) / result.seconds : 0.0);
+  }
+  console::summary("%s: %zu records -> %zu entries%s, %zu skipped (see %s), %.1f MB, %.1f s (%s)\n",
+                   library.string().c_str(), result.records, result.entries, shards.c_str(),
+                   result.skipped.size(), log.string().c_str(),
+                   static_cast<double>(result.bytes) / 1e6, result.seconds, rate);
+  if (result.shards_resumed > 0) {
+    console::summary("  resumed: %zu of the shards (%zu entries) were finished before\n",
+                     result.shards_resumed, result.entries_resumed);
+  }
+  if (built == 0) return;
+  const double per_entry = 1e3 / static_cast<double>(built);
   if (result.times.conformers > 0.0) {
     console::summary(
         "  core time per entry: %.2f ms conformers (RDKit ETKDG + MMFF), %.2f ms "
@@ -105,6 +138,7 @@ int build_sites(const boost::program_options::variables_map& vm, const std::stri
                 const std::string& output, screening::LibraryBuildOptions options, int threads) {
   if (vm.count("input")) throw OptionError("--sites takes no INPUT: the sites are in its list");
   if (options.conformers) throw OptionError("--conformers does not apply to --sites");
+  if (options.resume) throw OptionError("--resume does not apply to --sites (one file)");
   const auto limit = limit_threads(threads);
   const std::filesystem::path library = output;
   const std::filesystem::path log = output + ".log";
@@ -116,6 +150,67 @@ int build_sites(const boost::program_options::variables_map& vm, const std::stri
       screening::build_site_library(sites, library, options);
   write_log_and_summary(library, log, result);
   return 0;
+}
+
+/// build_library over the ranks of an MPI job: rank 0 creates or checks the shard folder
+/// (ShardedLibraryBuild::prepare) before any rank builds, every rank builds its shards (k % ranks
+/// == rank) with its own threads, and rank 0, once every rank is done (the gather of their core
+/// times is the barrier), writes the index (finish). Inputs of one shard make one library file,
+/// built by rank 0. Returns the build's result on rank 0, none on the others. A refusal on rank 0
+/// (an existing folder, another build's manifest, a damaged shard) is thrown there after every
+/// rank has finalised MPI, so that it ends the job with one line; any other error prints its
+/// rank and aborts the job.
+std::optional<screening::LibraryBuildResult> build_under_mpi(
+    const std::vector<io::MoleculeRecord>& records, const std::filesystem::path& library,
+    screening::LibraryBuildOptions options) {
+  int rank = 0, ranks = 1;
+  mpi().init(&rank, &ranks);
+  const Stopwatch clock;
+  options.progress = progress_line(ranks == 1 ? "library"
+                                              : "library, process " + std::to_string(rank + 1) +
+                                                    " of " + std::to_string(ranks));
+  std::optional<screening::ShardedLibraryBuild> build;
+  std::exception_ptr refused;
+  try {
+    build.emplace(records, library, options);
+    if (rank == 0 && build->shards() > 1) build->prepare();
+  } catch (const std::exception&) {
+    refused = std::current_exception();
+  }
+  std::uint64_t ready = refused ? 0 : 1;  // rank 0's
+  mpi().broadcast_uint64(&ready, 1);
+  if (ready == 0) {
+    mpi().finalize();
+    if (rank == 0) std::rethrow_exception(refused);
+    return std::nullopt;
+  }
+  screening::LibraryBuildResult built;
+  try {
+    if (refused) std::rethrow_exception(refused);  // this rank's plan failed, rank 0's did not
+    if (build->shards() > 1) {
+      built = build->build(static_cast<std::size_t>(rank), static_cast<std::size_t>(ranks));
+    } else if (rank == 0) {
+      built = screening::build_library(records, library, options);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "surfcomp library: rank %d: error: %s\n", rank, e.what());
+    mpi().abort(1);
+  }
+  const std::vector<double> times{built.times.conformers, built.times.entries};
+  std::vector<double> all(rank == 0 ? times.size() * static_cast<std::size_t>(ranks) : 0);
+  std::vector<int> counts(static_cast<std::size_t>(ranks), 2), at(counts.size());
+  for (std::size_t r = 0; r < at.size(); ++r) at[r] = static_cast<int>(2 * r);
+  mpi().gather_doubles(times.data(), 2, all.data(), counts.data(), at.data());
+  mpi().finalize();
+  if (rank != 0) return std::nullopt;
+  if (build->shards() == 1) return built;
+  screening::LibraryBuildResult result = build->finish();
+  for (std::size_t r = 0; r < all.size(); r += 2) {
+    result.times.conformers += all[r];
+    result.times.entries += all[r + 1];
+  }
+  result.seconds = clock.elapsed_s();
+  return result;
 }
 
 int build(const std::vector<std::string>& args) {
@@ -147,6 +242,7 @@ int build(const std::vector<std::string>& args) {
   files.outputs.push_back({"--output", library, {".sclib"}, ""});
   files.outputs.push_back({"the log", log, {}, ""});
   check_command_files(files);
+  const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
 
   const std::vector<io::MoleculeRecord> records = screening::read_library_inputs(inputs);
   if (!options.conformers) {
@@ -156,6 +252,12 @@ int build(const std::vector<std::string>& args) {
                           ": SMILES records have no coordinates; give --conformers N");
       }
     }
+  }
+  if (under_mpi) {
+    const std::optional<screening::LibraryBuildResult> result =
+        build_under_mpi(records, library, std::move(options));
+    if (result) write_log_and_summary(library, log, *result);
+    return 0;
   }
   options.progress = progress_line();
   const screening::LibraryBuildResult result = screening::build_library(records, library, options);
@@ -175,9 +277,10 @@ int info(const std::vector<std::string>& args) {
   const double mean =
       summary.entries > 0 ? static_cast<double>(summary.file_bytes) / summary.entries : 0.0;
   console::summary(
-      "%s: format version %u, %zu entries, %zu molecules, %.2f MB (%.1f KB per entry, "
-      "largest %.1f KB)\n",
+      "%s: format version %u, %zu entries, %zu molecules, %zu shard%s, %.2f MB (%.1f KB per "
+      "entry, largest %.1f KB)\n",
       library.path().string().c_str(), library.version(), summary.entries, summary.molecules,
+      library.shards(), library.shards() == 1 ? "" : "s",
       static_cast<double>(summary.file_bytes) / 1e6, mean / 1e3,
       static_cast<double>(summary.largest_entry_bytes) / 1e3);
   for (const auto& [source, count] : summary.entries_per_source)

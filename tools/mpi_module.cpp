@@ -1,4 +1,5 @@
-// libsurfcomp_mpi.so: the MPI calls of the distributed screen (mpi_module.hpp) over Open MPI.
+// libsurfcomp_mpi.so: the MPI calls of the distributed screen and library build (mpi_module.hpp)
+// over Open MPI.
 #include "mpi_module.hpp"
 
 #include <mpi.h>

@@ -1,7 +1,8 @@
 // The interface between the program and its MPI module, libsurfcomp_mpi.so (mpi_module.cpp): the
-// MPI calls of the distributed screen (screen_mpi.cpp), as plain functions. The module alone links
-// Open MPI, and the program loads it only when an MPI launcher started it, so that no other run
-// maps and initialises Open MPI's libraries (docs/decisions.md#loadable-modules).
+// MPI calls of the distributed screen (screen_mpi.cpp) and library build (library.cpp), as plain
+// functions. The module alone links Open MPI, and the program loads it (mpi_loader.hpp) only when
+// an MPI launcher started it, so that no other run maps and initialises Open MPI's libraries
+// (docs/decisions.md#loadable-modules).
 #pragma once
 
 #include <cstdint>

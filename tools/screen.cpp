@@ -28,8 +28,9 @@ namespace surfcomp::tools {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: surfcomp screen QUERY LIB.sclib -o hits.csv [--top N] [--refine C] [--candidates K]\n"
-    "                       [--aligned-out hits.sdf] [--threads T]\n"
+    "usage: surfcomp screen QUERY... LIB.sclib -o hits.csv [--top N] [--refine C] [--candidates "
+    "K]\n"
+    "                       [--fusion max|mean] [--aligned-out hits.sdf] [--threads T]\n"
     "       surfcomp screen STRUCTURE.pdb POCKETS.sclib --site-ligand RES | --site-sphere x,y,z,r\n"
     "                       -o hits.csv [--aligned-out hits.pdb] ...\n"
     "       mpirun -np R surfcomp screen ...   (the library split over R processes)\n\n"
@@ -39,18 +40,66 @@ constexpr const char* kUsage =
     "refinement); the --refine best conformers of each molecule then get that overlay refined\n"
     "from each superposition, and a molecule counts by its best conformer; the --candidates\n"
     "best molecules' best conformers last get the full match of `surfcomp match` (cliques,\n"
-    "refinement), their surfaces rebuilt. hits.csv has one row per molecule, best first: the\n"
-    "candidates by their full-match score (stage 3), then the others by their refined score\n"
-    "(stage 2; stage 1, the fast score, with --refine 0); the columns\n"
+    "refinement), their surfaces rebuilt. The library is read in sequence, once for all the\n"
+    "queries, and only each query's best molecules are kept: memory does not grow with the\n"
+    "library's size. hits.csv has one row per molecule, best first: the candidates by their\n"
+    "full-match score (stage 3), then the others by their refined score (stage 2; stage 1,\n"
+    "the fast score, with --refine 0); the columns\n"
     "rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,fast_score and\n"
     "t00..t33, the transform moving the hit into QUERY's frame (row-major). The rows do not\n"
     "depend on --threads or on the number of MPI processes.\n\n"
-    "QUERY  a molecule (.sdf .mol .mol2 .pdb; --record N of a multi-molecule file) or a .hsi\n"
-    "       file built from one; with --site-ligand or --site-sphere, a binding site on a\n"
-    "       structure, screened against a pocket library (library build --sites): the overlays\n"
-    "       then compare pocket linings as `match` does for sites (all 24 axes orders\n"
-    "       in stages 1 and 2), and --aligned-out writes the hits' structures moved onto\n"
-    "       QUERY (.pdb, one MODEL per hit).";
+    "QUERY  a molecule (.sdf .mol .mol2 .pdb) or a .hsi file built from one; with\n"
+    "       --site-ligand or --site-sphere, a binding site on a structure, screened against a\n"
+    "       pocket library (library build --sites): the overlays then compare pocket linings\n"
+    "       as `match` does for sites (all 24 axes orders in stages 1 and 2), and --aligned-out\n"
+    "       writes the hits' structures moved onto QUERY (.pdb, one MODEL per hit).\n"
+    "       Several QUERY files, or a file of several molecules (without --record, which picks\n"
+    "       one), are several queries screened in one pass: each query's rows go to\n"
+    "       hits.queryK.csv (K = 1, 2, ... in the order given; the same rows as a screen of that\n"
+    "       query alone) and hits.csv ranks every molecule by its fused score, --fusion max\n"
+    "       (the best of its scores against the queries) or mean, with the columns\n"
+    "       rank,entry,name,source,record,conformer,score,query (the best query) and\n"
+    "       score_1..score_K. Every query is read and described before the library is: a\n"
+    "       query record that cannot be read stops the command, naming it, before any\n"
+    "       screening work and without output. --aligned-out takes one query.";
+
+/// One query of a screen: a file, and its record in a multi-molecule file (0: its only one).
+struct QuerySpec {
+  std::filesystem::path path;
+  std::size_t record = 0;
+  std::string label() const {
+    return path.string() + (record > 0 ? " record " + std::to_string(record) : "");
+  }
+};
+
+/// The queries the QUERY files stand for: each file once with --record, else every record of a
+/// multi-molecule file (SDF, MOL2) and each other file once.
+std::vector<QuerySpec> query_specs(const std::vector<std::string>& files, std::size_t record) {
+  if (record > 0 && files.size() > 1)
+    throw OptionError("--record picks a record of one QUERY file; several QUERY files were given");
+  std::vector<QuerySpec> specs;
+  for (const std::string& file : files) {
+    const std::filesystem::path path = file;
+    std::size_t records = 1;
+    if (record == 0 && io::is_record_file(path) && !harmonic::io::is_hsi_file(path) &&
+        std::filesystem::is_regular_file(path))
+      records = io::read_molecule_records(path).size();
+    if (records <= 1) {
+      specs.push_back({path, record});
+    } else {
+      for (std::size_t r = 1; r <= records; ++r) specs.push_back({path, r});
+    }
+  }
+  return specs;
+}
+
+/// `output` with ".queryK" before its extension: the table of query K (1-based).
+std::filesystem::path query_table(const std::filesystem::path& output, std::size_t k) {
+  std::filesystem::path table = output;
+  table.replace_filename(output.stem().string() + ".query" + std::to_string(k) +
+                         output.extension().string());
+  return table;
+}
 
 }  // namespace
 
@@ -62,46 +111,56 @@ int screen(const std::vector<std::string>& args) {
   // clang-format off
   described.add_options()
       ("help,h", "print this help")
-      ("output,o", po::value(&output)->required(), "output table (.csv)")
+      ("output,o", po::value(&output)->required(),
+       "output table (.csv); with several queries their fused ranking")
       ("aligned-out", po::value(&aligned_out),
-       "write the first --aligned-top hits moved onto QUERY (.sdf, bonds kept)")
+       "write the first --aligned-top hits moved onto QUERY (.sdf, bonds kept; one query)")
       ("aligned-top", defaulted(&aligned_top),
        "hits written to --aligned-out");
   // clang-format on
   add_screen_options(described);
   po::variables_map vm;
-  if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
+  if (!parse_command_line(args, described, -1, kUsage, vm)) return 0;
   const auto inputs =
       vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
-  if (inputs.size() != 2) throw OptionError("expected QUERY and LIB (see --help)");
+  if (inputs.size() < 2) throw OptionError("expected QUERY... and LIB (see --help)");
   require_in_range("aligned-top", aligned_top, 1, 1e6);
   screening::QueryScreenOptions settings = screen_options_from(vm);
-  const std::filesystem::path query_path = inputs[0], library_path = inputs[1];
+  const std::filesystem::path library_path = inputs.back();
   const bool site_query = screening::is_site_query(settings);
-  if (site_query && (harmonic::io::is_hsi_file(query_path) || !io::is_molecule_file(query_path))) {
-    throw OptionError(query_path.string() +
-                      ": a site query needs a molecule file (the structure), not a .hsi or mesh");
+  const std::vector<std::string> query_files(inputs.begin(), inputs.end() - 1);
+  for (const std::string& file : query_files) {
+    if (site_query && (harmonic::io::is_hsi_file(file) || !io::is_molecule_file(file))) {
+      throw OptionError(file +
+                        ": a site query needs a molecule file (the structure), not a .hsi or mesh");
+    }
   }
-  matching::MatchInput query_input;
-  query_input.path = query_path;
-  query_input = screening::screen_query_input(std::move(query_input), settings);
-  const matching::MatchInputOptions query_options = screening::screen_query_options(settings);
-  matching::check_match_input(query_input, query_options, "QUERY");
-  check_command_files(
-      {{{"QUERY", query_path}, {"LIB", library_path}},
-       {{"--output", output, {".csv"}, ""},
-        site_query
-            ? OutputFile{"--aligned-out", aligned_out, {".pdb"}, "site hits are written as PDB"}
-            : OutputFile{"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"}}});
+  CommandFiles files;
+  for (const std::string& file : query_files) files.inputs.push_back({"QUERY", file});
+  files.inputs.push_back({"LIB", library_path});
+  files.outputs.push_back({"--output", output, {".csv"}, ""});
+  files.outputs.push_back(
+      site_query
+          ? OutputFile{"--aligned-out", aligned_out, {".pdb"}, "site hits are written as PDB"}
+          : OutputFile{"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"});
+  check_command_files(files);
+  const std::vector<QuerySpec> specs = query_specs(query_files, settings.query.input.read.record);
+  const bool several = specs.size() > 1;
+  if (several && !aligned_out.empty())
+    throw OptionError("--aligned-out writes the hits of one query; " +
+                      std::to_string(specs.size()) + " queries were given");
+  CommandFiles tables;
+  for (std::size_t q = 0; several && q < specs.size(); ++q)
+    tables.outputs.push_back({"a query's table", query_table(output, q + 1), {".csv"}, ""});
+  check_command_files(tables);
   const auto limit = limit_threads(settings.query.threads);
   const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
   screening::ScreenOptions& options = settings.screen;
   if (console::progress_shown()) {
-    auto first = std::make_shared<console::ProgressLine>("stage 1 (fast scores)", "entries");
-    auto second = std::make_shared<console::ProgressLine>("stage 2 (refinements)", "conformers");
+    auto first = std::make_shared<console::ProgressLine>("stages 1-2 (scores)", "entries");
     auto third = std::make_shared<console::ProgressLine>("stage 3 (full matches)", "candidates");
-    options.progress = [first, second, third](int stage, std::int64_t done, std::int64_t total) {
-      (stage == 1 ? *first : stage == 2 ? *second : *third)(done, total);
+    options.progress = [first, third](int stage, std::int64_t done, std::int64_t total) {
+      (stage == 3 ? *third : *first)(done, total);
     };
   }
 
@@ -110,59 +169,94 @@ int screen(const std::vector<std::string>& args) {
   screening::check_library_kind(library, site_query);  // before the query's surface is built
   console::step(library_path.string() + ": " + std::to_string(library.size()) +
                 " entries, format version " + std::to_string(library.version()));
-  matching::PreparedInput prepared = matching::prepare_input(query_input, query_options);
-  if (!site_query && prepared.molecule) {
-    const std::string warning =
-        screening::macromolecule_query_warning(*prepared.molecule, query_path.string());
-    if (!warning.empty()) {
-      std::fprintf(stderr,
-                   "surfcomp screen: warning: %s; to screen its binding site, give "
-                   "--site-ligand RES or --site-sphere x,y,z,r\n",
-                   warning.c_str());
+  // Every query is read and described before the library is: a query that cannot be stops the
+  // command before any screening work.
+  std::vector<screening::ScreenQuery> queries;
+  for (const QuerySpec& spec : specs) {
+    matching::MatchInput query_input;
+    query_input.path = spec.path;
+    query_input = screening::screen_query_input(std::move(query_input), settings);
+    matching::MatchInputOptions query_options = screening::screen_query_options(settings);
+    query_options.input.read.record = spec.record;
+    try {
+      matching::check_match_input(query_input, query_options, "QUERY");
+      matching::PreparedInput prepared = matching::prepare_input(query_input, query_options);
+      if (!site_query && prepared.molecule) {
+        const std::string warning =
+            screening::macromolecule_query_warning(*prepared.molecule, spec.label());
+        if (!warning.empty()) {
+          std::fprintf(stderr,
+                       "surfcomp screen: warning: %s; to screen its binding site, give "
+                       "--site-ligand RES or --site-sphere x,y,z,r\n",
+                       warning.c_str());
+        }
+      }
+      queries.push_back(
+          screening::make_screen_query(std::move(prepared.descriptors), options, prepared.site,
+                                       prepared.molecule ? &*prepared.molecule : nullptr));
+    } catch (const Error& e) {
+      if (!several) throw;
+      throw InputError("query " + std::to_string(queries.size() + 1) + " (" + spec.label() +
+                       "): " + e.what());
     }
   }
-  const screening::ScreenQuery query =
-      screening::make_screen_query(std::move(prepared.descriptors), options, prepared.site,
-                                   prepared.molecule ? &*prepared.molecule : nullptr);
+  std::vector<const screening::ScreenQuery*> query_list;
+  for (const screening::ScreenQuery& query : queries) query_list.push_back(&query);
   const double query_s = clock.elapsed_s();
 
-  screening::ScreenResult result;
+  screening::MultiScreenResult result;
   int ranks = 1;
   if (under_mpi) {
-    DistributedScreen distributed = screen_distributed(query, library, options);
+    DistributedScreen distributed = screen_distributed(query_list, library, options);
     if (!distributed.root) return 0;
     result = std::move(distributed.result);
     ranks = distributed.ranks;
   } else {
-    result = screening::screen(query, library, options);
+    result = screening::screen_queries(query_list, library, options);
   }
-  const std::vector<screening::Hit>& hits = result.hits;
   const double total_s = clock.elapsed_s();
-  const auto count = static_cast<std::size_t>(aligned_top);
-  if (!aligned_out.empty()) {
-    io::write_file_atomically(aligned_out, [&](std::ostream& out) {
-      if (site_query) {
-        screening::write_aligned_sites_pdb(out, library, hits, count, options.read);
+  std::vector<std::filesystem::path> written;
+  try {
+    if (!aligned_out.empty()) {
+      const auto count = static_cast<std::size_t>(aligned_top);
+      const std::vector<screening::Hit>& hits = result.hits.front();
+      io::write_file_atomically(aligned_out, [&](std::ostream& out) {
+        if (site_query) {
+          screening::write_aligned_sites_pdb(out, library, hits, count, options.read);
+        } else {
+          screening::write_aligned_hits_sdf(out, library, hits, count);
+        }
+      });
+      written.emplace_back(aligned_out);
+    }
+    for (std::size_t q = 0; several && q < specs.size(); ++q) {
+      io::write_file_atomically(query_table(output, q + 1), [&](std::ostream& out) {
+        screening::write_hits_csv(out, library, result.hits[q]);
+      });
+      written.push_back(query_table(output, q + 1));
+    }
+    io::write_file_atomically(output, [&](std::ostream& out) {
+      if (several) {
+        screening::write_fused_csv(out, library, result.fused);
       } else {
-        screening::write_aligned_hits_sdf(out, library, hits, count);
+        screening::write_hits_csv(out, library, result.hits.front());
       }
     });
-  }
-  try {
-    io::write_file_atomically(
-        output, [&](std::ostream& out) { screening::write_hits_csv(out, library, hits); });
   } catch (...) {
-    if (!aligned_out.empty()) std::filesystem::remove(aligned_out);
+    for (const std::filesystem::path& path : written) std::filesystem::remove(path);
     throw;
   }
+  const std::size_t rows = several ? result.fused.size() : result.hits.front().size();
   console::summary(
-      "%s vs %s: %zu entries, %zu hits; query %.2f s, stage 1 %.2f s (%.0f entries/s), stage 2 "
-      "%.2f s (refinements), stage 3 %.2f s (%zu candidates), total %.2f s (%d process%s)\n",
-      query_path.string().c_str(), library_path.string().c_str(), library.size(), hits.size(),
-      query_s, result.stage1_seconds,
-      result.stage1_seconds > 0 ? static_cast<double>(library.size()) / result.stage1_seconds : 0.0,
-      result.stage2_seconds, result.stage3_seconds, std::min(options.candidates, hits.size()),
-      total_s, ranks, ranks == 1 ? "" : "es");
+      "%s vs %s: %zu entries, %zu quer%s, %zu rows; queries %.2f s, stages 1-2 %.2f s (stage 1 "
+      "%.0f entries/s), stage 3 %.2f s, total %.2f s (%d process%s)\n",
+      several ? (std::to_string(specs.size()) + " queries").c_str() : specs.front().label().c_str(),
+      library_path.string().c_str(), library.size(), specs.size(), several ? "ies" : "y", rows,
+      query_s, result.stage1_seconds + result.stage2_seconds,
+      result.stage1_seconds > 0
+          ? static_cast<double>(library.size() * specs.size()) / result.stage1_seconds
+          : 0.0,
+      result.stage3_seconds, total_s, ranks, ranks == 1 ? "" : "es");
   return 0;
 }
 

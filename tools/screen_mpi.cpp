@@ -3,13 +3,13 @@
 // process would have computed.
 #include "screen_mpi.hpp"
 
-#include "mpi_module.hpp"
+#include "mpi_loader.hpp"
 #include "surfcomp/core/error.hpp"
-#include "surfcomp/core/loadable_module.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -21,13 +21,6 @@ namespace surfcomp::tools {
 namespace {
 
 constexpr int kDoubles = 20;  // score, shape, chem, atoms, then the 16 transform numbers
-
-/// The MPI module, loaded on the first call; throws FileError when it cannot be loaded.
-const MpiModule& mpi() {
-  static const MpiModule& module =
-      *static_cast<const MpiModule*>(module_symbol(kMpiModuleFile, kMpiModuleSymbol));
-  return module;
-}
 
 void pack(const screening::HitScore& s, double* out) {
   out[0] = s.score;
@@ -51,14 +44,17 @@ screening::HitScore unpack(const double* in) {
   return s;
 }
 
-/// Gathers every rank's packed scores on rank 0, in rank order; `counts` (scores per rank) is
-/// known to every rank.
-std::vector<double> gather(const std::vector<double>& local, const std::vector<int>& counts,
-                           int rank) {
-  std::vector<int> sizes(counts.size()), displacements(counts.size());
+/// Every rank's `local` doubles gathered on rank 0 in rank order (their counts gathered first).
+std::vector<double> gather_any(const std::vector<double>& local, int rank, int ranks) {
+  const std::vector<double> count{static_cast<double>(local.size())};
+  std::vector<int> ones(static_cast<std::size_t>(ranks), 1), at(static_cast<std::size_t>(ranks));
+  for (int r = 0; r < ranks; ++r) at[static_cast<std::size_t>(r)] = r;
+  std::vector<double> counts(rank == 0 ? static_cast<std::size_t>(ranks) : 0);
+  mpi().gather_doubles(count.data(), 1, counts.data(), ones.data(), at.data());
+  std::vector<int> sizes(static_cast<std::size_t>(ranks)), displacements(sizes.size());
   int total = 0;
   for (std::size_t r = 0; r < counts.size(); ++r) {
-    sizes[r] = counts[r] * kDoubles;
+    sizes[r] = static_cast<int>(counts[r]);
     displacements[r] = total;
     total += sizes[r];
   }
@@ -83,15 +79,13 @@ template <class Score>
 std::vector<screening::HitScore> deal_out(const std::vector<int>& owner, int rank, int ranks,
                                           const Score& score) {
   std::vector<std::size_t> mine;
-  std::vector<int> counts(static_cast<std::size_t>(ranks), 0);
   for (std::size_t i = 0; i < owner.size(); ++i) {
-    ++counts[static_cast<std::size_t>(owner[i])];
     if (owner[i] == rank) mine.push_back(i);
   }
   std::vector<double> packed(mine.size() * kDoubles);
   tbb::parallel_for(std::size_t{0}, mine.size(),
                     [&](std::size_t j) { pack(score(mine[j]), &packed[j * kDoubles]); });
-  const std::vector<double> all = gather(packed, counts, rank);
+  const std::vector<double> all = gather_any(packed, rank, ranks);
   std::vector<screening::HitScore> scores;
   if (rank != 0) return scores;
   scores.resize(owner.size());
@@ -104,76 +98,102 @@ std::vector<screening::HitScore> deal_out(const std::vector<int>& owner, int ran
   return scores;
 }
 
-DistributedScreen run(const screening::ScreenQuery& query, const screening::Library& library,
-                      const screening::ScreenOptions& options, int rank, int ranks) {
-  matching::validate(screening::query_match_options(query, options));
-  screening::check_library_kind(library,
-                                !query.site.empty());  // on every rank, before any collective
+/// A hit as doubles: the entry, the stage, the fast score, then the score (pack).
+constexpr int kHitDoubles = 3 + kDoubles;
+
+void pack_hit(const screening::Hit& hit, double* out) {
+  out[0] = static_cast<double>(hit.entry);
+  out[1] = hit.stage;
+  out[2] = hit.fast_score;
+  pack(hit.score, out + 3);
+}
+
+screening::Hit unpack_hit(const double* in) {
+  return {static_cast<std::size_t>(in[0]), static_cast<int>(in[1]), unpack(in + 3), in[2]};
+}
+
+DistributedScreen run(const std::vector<const screening::ScreenQuery*>& queries,
+                      const screening::Library& library, const screening::ScreenOptions& options,
+                      int rank, int ranks) {
+  matching::validate(screening::query_match_options(*queries.front(), options));
   const Stopwatch clock;
-  const std::size_t n = library.size();
+  const std::size_t q_count = queries.size();
+  const std::vector<std::size_t> starts = screening::molecule_starts(library);
+  // Stages 1 and 2: a slice of whole molecules per rank, about n / ranks entries each.
   const auto slice_begin = [&](int r) {
-    return n * static_cast<std::size_t>(r) / static_cast<std::size_t>(ranks);
+    const std::size_t entry =
+        library.size() * static_cast<std::size_t>(r) / static_cast<std::size_t>(ranks);
+    return static_cast<std::size_t>(std::lower_bound(starts.begin(), starts.end() - 1, entry) -
+                                    starts.begin());
   };
-  // Stage 1: a contiguous slice per rank.
-  const std::vector<screening::HitScore> mine =
-      screening::fast_scores(query, library, slice_begin(rank), slice_begin(rank + 1), options);
-  std::vector<double> packed(mine.size() * kDoubles);
-  for (std::size_t i = 0; i < mine.size(); ++i) pack(mine[i], &packed[i * kDoubles]);
-  std::vector<int> counts(static_cast<std::size_t>(ranks));
-  for (int r = 0; r < ranks; ++r)
-    counts[static_cast<std::size_t>(r)] = static_cast<int>(slice_begin(r + 1) - slice_begin(r));
-  const std::vector<double> all = gather(packed, counts, rank);
+  const screening::StreamedScores mine = screening::score_molecules(
+      queries, library, starts, slice_begin(rank), slice_begin(rank + 1), options, q_count > 1);
+  std::vector<std::vector<screening::Hit>> best(q_count);
+  std::vector<std::vector<screening::MoleculeScore>> all(q_count);
+  for (std::size_t q = 0; q < q_count; ++q) {
+    const screening::QueryScores& local = mine.queries[q];
+    std::vector<double> packed(local.best.size() * kHitDoubles);
+    for (std::size_t i = 0; i < local.best.size(); ++i)
+      pack_hit(local.best[i], &packed[i * kHitDoubles]);
+    const std::vector<double> gathered = gather_any(packed, rank, ranks);
+    std::vector<screening::Hit> hits;
+    for (std::size_t at = 0; at < gathered.size(); at += kHitDoubles)
+      hits.push_back(unpack_hit(&gathered[at]));
+    if (rank == 0) best[q] = screening::merge_best({hits}, options);
+    if (q_count == 1) continue;
+    std::vector<double> scores;
+    for (const screening::MoleculeScore& s : local.all) {
+      scores.push_back(static_cast<double>(s.entry));
+      scores.push_back(s.score);
+    }
+    const std::vector<double> every = gather_any(scores, rank, ranks);
+    for (std::size_t at = 0; at < every.size(); at += 2)
+      all[q].push_back({static_cast<std::size_t>(every[at]), every[at + 1]});
+  }
+  const double stages12_seconds = clock.elapsed_s();
 
-  // Stage 2: rank 0 picks the conformers to refine and tells the others.
-  std::vector<screening::HitScore> fast;
-  std::vector<std::uint64_t> to_refine;
+  // Stage 3: rank 0 picks each query's candidates and deals them out round-robin.
+  std::vector<std::uint64_t> chosen;  // (query, entry) pairs
   if (rank == 0) {
-    for (std::size_t e = 0; e < n; ++e) fast.push_back(unpack(&all[e * kDoubles]));
-    for (const std::size_t e : screening::entries_to_refine(library, fast, options.refine))
-      to_refine.push_back(e);
+    for (std::size_t q = 0; q < q_count; ++q) {
+      for (std::size_t i = 0; i < best[q].size() && i < options.candidates; ++i) {
+        chosen.push_back(q);
+        chosen.push_back(best[q][i].entry);
+      }
+    }
   }
-  const double stage1_seconds = clock.elapsed_s();
-  to_refine = broadcast(std::move(to_refine));
-  // Each conformer is refined by the rank whose slice holds it: a rank reads only its slice.
-  std::vector<int> slice_of(to_refine.size());
-  for (std::size_t i = 0, r = 0; i < to_refine.size(); ++i) {
-    while (to_refine[i] >= slice_begin(static_cast<int>(r) + 1)) ++r;
-    slice_of[i] = static_cast<int>(r);
-  }
-  const std::vector<screening::HitScore> refined =
-      deal_out(slice_of, rank, ranks, [&](std::size_t i) {
-        return screening::refined_score(query, library.entry(to_refine[i]), options);
-      });
-
-  // Stage 3: rank 0 picks the candidates and tells the others.
-  std::vector<screening::EntryScore> scores;
-  std::vector<std::size_t> best;
-  std::vector<std::uint64_t> chosen;
-  if (rank == 0) {
-    scores = screening::merge_refined(
-        fast, std::vector<std::size_t>(to_refine.begin(), to_refine.end()), refined);
-    best = screening::best_entry_per_molecule(library, scores);
-    for (std::size_t i = 0; i < best.size() && i < options.candidates; ++i)
-      chosen.push_back(best[i]);
-  }
-  const double stage2_seconds = clock.elapsed_s() - stage1_seconds;
   chosen = broadcast(std::move(chosen));
-  // The candidates, few and costly, go round-robin.
-  std::vector<int> round_robin(chosen.size());
-  for (std::size_t i = 0; i < chosen.size(); ++i)
+  std::vector<int> round_robin(chosen.size() / 2);
+  for (std::size_t i = 0; i < round_robin.size(); ++i)
     round_robin[i] = static_cast<int>(i % static_cast<std::size_t>(ranks));
   const std::vector<screening::HitScore> full =
       deal_out(round_robin, rank, ranks, [&](std::size_t i) {
-        return screening::full_score(query, library.entry(chosen[i]), options);
+        return screening::full_score(*queries[chosen[2 * i]], library.entry(chosen[2 * i + 1]),
+                                     options);
       });
 
   DistributedScreen result;
   result.root = rank == 0;
   result.ranks = ranks;
-  result.result.stage1_seconds = stage1_seconds;
-  result.result.stage2_seconds = stage2_seconds;
-  result.result.stage3_seconds = clock.elapsed_s() - stage1_seconds - stage2_seconds;
-  if (rank == 0) result.result.hits = screening::rank_hits(best, scores, full, options.top);
+  // The stage times as rank 0 saw them: its own stages 1 and 2, in proportion, with the gathers.
+  const double own = mine.stage1_seconds + mine.stage2_seconds;
+  const double share = own > 0 ? mine.stage1_seconds / own : 1.0;
+  result.result.stage1_seconds = stages12_seconds * share;
+  result.result.stage2_seconds = stages12_seconds - result.result.stage1_seconds;
+  result.result.stage3_seconds = clock.elapsed_s() - stages12_seconds;
+  if (rank != 0) return result;
+  for (std::size_t q = 0, at = 0; q < q_count; ++q) {
+    const std::size_t k = std::min(options.candidates, best[q].size());
+    const std::vector<screening::HitScore> theirs(
+        full.begin() + static_cast<std::ptrdiff_t>(at),
+        full.begin() + static_cast<std::ptrdiff_t>(at + k));
+    at += k;
+    result.result.hits.push_back(screening::rank_hits(best[q], theirs, options.top));
+  }
+  if (q_count > 1) {
+    result.result.fused =
+        screening::fuse_scores(all, result.result.hits, starts, options.fusion, options.top);
+  }
   return result;
 }
 
@@ -193,14 +213,14 @@ bool launched_by_mpi() {
   return false;
 }
 
-DistributedScreen screen_distributed(const screening::ScreenQuery& query,
+DistributedScreen screen_distributed(const std::vector<const screening::ScreenQuery*>& queries,
                                      const screening::Library& library,
                                      const screening::ScreenOptions& options) {
   int rank = 0, ranks = 1;
   mpi().init(&rank, &ranks);
   DistributedScreen result;
   try {
-    result = run(query, library, options, rank, ranks);
+    result = run(queries, library, options, rank, ranks);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "surfcomp screen: rank %d: error: %s\n", rank, e.what());
     mpi().abort(1);

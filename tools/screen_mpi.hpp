@@ -18,16 +18,17 @@ bool launched_by_mpi();
 struct DistributedScreen {
   bool root = true;  ///< rank 0: the one that writes the outputs
   int ranks = 1;
-  screening::ScreenResult result;  ///< hits on rank 0 only; stage times as rank 0 saw them
+  screening::MultiScreenResult result;  ///< hits on rank 0 only; stage times as rank 0 saw them
 };
 
-/// screening::screen over the ranks of MPI_COMM_WORLD: each rank scores a contiguous slice of
-/// the entries (stage 1), rank 0 gathers the scores and picks the conformers to refine, each
-/// refined (stage 2) by the rank whose slice holds it and gathered again, then the candidates,
-/// whose full matches (stage 3) are dealt out round-robin and gathered, and rank 0 ranks the
-/// hits: the same hits as one process. Initialises and finalises MPI; an error on one rank aborts
-/// the job after printing it. Every rank must give the same query, library and options.
-DistributedScreen screen_distributed(const screening::ScreenQuery& query,
+/// screening::screen_queries over the ranks of MPI_COMM_WORLD: each rank runs stages 1 and 2 on
+/// a contiguous slice of whole molecules (screening::score_molecules), rank 0 gathers each
+/// query's best molecules (and, for several queries, every molecule's scores) and merges them,
+/// then picks each query's candidates, whose full matches (stage 3) are dealt out round-robin and
+/// gathered, and ranks the hits and fuses them: the same rows as one process. Initialises and
+/// finalises MPI; an error on one rank aborts the job after printing it. Every rank must give
+/// the same queries, library and options.
+DistributedScreen screen_distributed(const std::vector<const screening::ScreenQuery*>& queries,
                                      const screening::Library& library,
                                      const screening::ScreenOptions& options);
 

@@ -7,7 +7,7 @@ namespace surfcomp::tools {
 
 bool launched_by_mpi() { return false; }
 
-DistributedScreen screen_distributed(const screening::ScreenQuery& /*query*/,
+DistributedScreen screen_distributed(const std::vector<const screening::ScreenQuery*>& /*queries*/,
                                      const screening::Library& /*library*/,
                                      const screening::ScreenOptions& /*options*/) {
   throw InputError("this surfcomp was built without MPI");

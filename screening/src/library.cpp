@@ -5,6 +5,7 @@
 #include "surfcomp/core/io/binary_stream.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <system_error>
 #include <utility>
 
 #include <fcntl.h>
@@ -254,41 +256,32 @@ void write_library(const std::filesystem::path& path, const std::vector<LibraryE
   });
 }
 
-// ---------------------------------------------------------------------------------------------
+namespace {
 
-struct Library::Impl {
-  std::filesystem::path path;
-  const std::uint8_t* data = nullptr;
-  std::size_t size = 0;
-  std::uint32_t version = 0;
-  std::string settings;
-  std::vector<LibraryEntryInfo> infos;
-  std::vector<std::uint64_t> offsets, sizes, checksums;  // of the entries (records in format 4)
-  std::vector<std::uint64_t> sample_offsets, sample_sizes, sample_checksums;  // format 4
-  std::multimap<std::string, std::size_t> by_name;
+constexpr char kIndexMagic[] = "SURFCSET";
+constexpr char kIndexEndMagic[] = "SCSETEND";
+constexpr std::size_t kIndexTrailerBytes = 16;  // body checksum, end magic
 
-  Impl() = default;
-  Impl(const Impl&) = delete;
-  Impl& operator=(const Impl&) = delete;
-  ~Impl() {
-    if (data != nullptr) ::munmap(const_cast<std::uint8_t*>(data), size);
+/// A file mapped read-only into memory, unmapped when destroyed.
+class MappedFile {
+ public:
+  /// Maps `path`. Throws FileError when it is missing, unreadable or not a regular file, and
+  /// FormatError when it is shorter than any library (kHeaderBytes + kTrailerBytes).
+  explicit MappedFile(const std::filesystem::path& path);
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+  ~MappedFile() {
+    if (data_ != nullptr) ::munmap(const_cast<std::uint8_t*>(data_), size_);
   }
+  const std::uint8_t* data() const { return data_; }
+  std::size_t size() const { return size_; }
 
-  [[noreturn]] void fail(const std::string& reason) const {
-    throw FormatError(path.string(), reason);
-  }
-  void map();
-  void read_index();
-  std::string where(std::size_t index) const {
-    return "entry " + std::to_string(index + 1) + " (" + infos[index].name + ")";
-  }
-  /// Format 4: entry `index`'s packed sample in place, its checksum and sizes checked.
-  matching::PackedSampleView sample_view(std::size_t index) const;
-  /// Formats 1 to 3: the entry's sample and atoms, decoded from its bytes.
-  LibraryEntry decode_entry(std::size_t index) const;
+ private:
+  const std::uint8_t* data_ = nullptr;
+  std::size_t size_ = 0;
 };
 
-void Library::Impl::map() {
+MappedFile::MappedFile(const std::filesystem::path& path) {
   const std::string name = path.string();
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
@@ -301,20 +294,61 @@ void Library::Impl::map() {
     ::close(fd);
     throw FileError(name, "not a regular file");
   }
-  size = static_cast<std::size_t>(status.st_size);
+  const auto size = static_cast<std::size_t>(status.st_size);
   if (size < kHeaderBytes + kTrailerBytes) {
     ::close(fd);
-    fail("not a surfcomp library (" + std::to_string(size) + " bytes, too short)");
+    throw FormatError(name,
+                      "not a surfcomp library (" + std::to_string(size) + " bytes, too short)");
   }
   void* mapped = ::mmap(nullptr, size, PROT_READ, MAP_SHARED, fd, 0);
+  const int error = errno;
   ::close(fd);
-  if (mapped == MAP_FAILED) {
-    throw FileError(name, std::string("cannot map into memory (") + std::strerror(errno) + ")");
-  }
-  data = static_cast<const std::uint8_t*>(mapped);
+  if (mapped == MAP_FAILED)
+    throw FileError(name, std::string("cannot map into memory (") + std::strerror(error) + ")");
+  data_ = static_cast<const std::uint8_t*>(mapped);
+  size_ = size;
 }
 
-void Library::Impl::read_index() {
+/// One library file (format 1 to 4), mapped, its header, index and trailer checked: a whole
+/// library, or one shard of a sharded library whose entries begin at the library's entry
+/// `first`. Entries are numbered within the file; messages give the library's numbers.
+struct LibraryFile {
+  LibraryFile(std::filesystem::path path_, std::size_t first_)
+      : path(std::move(path_)), file(path), first(first_) {
+    read_index();
+  }
+
+  std::filesystem::path path;
+  MappedFile file;
+  std::size_t first = 0;
+  std::uint32_t version = 0;
+  std::string settings;
+  std::uint64_t index_checksum = 0;  // the trailer's
+  std::vector<LibraryEntryInfo> infos;
+  std::vector<std::uint64_t> offsets, sizes, checksums;  // of the entries (records in format 4)
+  std::vector<std::uint64_t> sample_offsets, sample_sizes, sample_checksums;  // format 4
+
+  std::size_t size() const { return infos.size(); }
+  [[noreturn]] void fail(const std::string& reason) const {
+    throw FormatError(path.string(), reason);
+  }
+  std::string where(std::size_t index) const {
+    return "entry " + std::to_string(first + index + 1) + " (" + infos[index].name + ")";
+  }
+  void read_index();
+  /// Format 4: entry `index`'s packed sample in place, its checksum and sizes checked.
+  matching::PackedSampleView sample_view(std::size_t index) const;
+  /// The entry's record decoded; for formats 1 to 3 also its sample and atoms.
+  LibraryEntry decode_entry(std::size_t index) const;
+  /// Checks entry `index`'s record (and format 4's sample) against its checksum.
+  void verify(std::size_t index) const;
+  /// MADV_DONTNEED on the pages wholly inside the records and samples of entries [begin, end).
+  void release(std::size_t begin, std::size_t end) const;
+};
+
+void LibraryFile::read_index() {
+  const std::uint8_t* data = file.data();
+  const std::size_t size = file.size();
   if (std::memcmp(data, kMagic, kMagicBytes) != 0)
     fail("not a surfcomp library (no SURFCLIB magic)");
   io::BinaryReader header(data + kMagicBytes, kHeaderBytes - kMagicBytes, path.string());
@@ -329,7 +363,7 @@ void Library::Impl::read_index() {
   io::BinaryReader trailer(trailer_data, kTrailerBytes - kMagicBytes, path.string());
   const std::uint64_t index_offset = trailer.u64();
   const std::uint64_t index_size = trailer.u64();
-  const std::uint64_t index_checksum = trailer.u64();
+  index_checksum = trailer.u64();
   const std::uint64_t index_end = size - kTrailerBytes;
   if (index_offset < kHeaderBytes || index_offset > index_end ||
       index_size != index_end - index_offset) {
@@ -364,9 +398,9 @@ void Library::Impl::read_index() {
     info.conformer = r.u32();
     info.heavy_atoms = r.u32();
     if (version >= 2) info.site_spheres = r.u32();
+    const std::string entry = "entry " + std::to_string(first + e + 1) + " (" + info.name + ")";
     if (offset != previous_end || bytes > index_offset - offset) {
-      fail("entry " + std::to_string(e + 1) + " (" + info.name + "): offset " +
-           std::to_string(offset) + " and size " + std::to_string(bytes) +
+      fail(entry + ": offset " + std::to_string(offset) + " and size " + std::to_string(bytes) +
            " do not follow the previous entry within the entries' region");
     }
     previous_end = offset + bytes;
@@ -376,8 +410,8 @@ void Library::Impl::read_index() {
                  : sample_offset == previous_sample_end;
       if (!in_order || sample_bytes < kPackedHeaderBytes || sample_bytes % kSampleAlignment != 0 ||
           sample_bytes > index_offset - sample_offset) {
-        fail("entry " + std::to_string(e + 1) + " (" + info.name + "): its sample's offset " +
-             std::to_string(sample_offset) + " and size " + std::to_string(sample_bytes) +
+        fail(entry + ": its sample's offset " + std::to_string(sample_offset) + " and size " +
+             std::to_string(sample_bytes) +
              " do not follow the previous sample within the samples' region");
       }
       previous_sample_end = sample_offset + sample_bytes;
@@ -388,7 +422,6 @@ void Library::Impl::read_index() {
     offsets.push_back(offset);
     sizes.push_back(bytes);
     checksums.push_back(checksum);
-    by_name.emplace(info.name, infos.size());
     infos.push_back(std::move(info));
   }
   const std::uint64_t entries_end = version >= 4 && count > 0 ? previous_sample_end : previous_end;
@@ -399,24 +432,8 @@ void Library::Impl::read_index() {
   if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes after the index");
 }
 
-Library::Library(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
-  impl_->path = path;
-  impl_->map();
-  impl_->read_index();
-}
-
-Library::Library(Library&&) noexcept = default;
-Library& Library::operator=(Library&&) noexcept = default;
-Library::~Library() = default;
-
-std::size_t Library::size() const { return impl_->infos.size(); }
-
-const LibraryEntryInfo& Library::info(std::size_t index) const { return impl_->infos.at(index); }
-
-std::uint64_t Library::entry_bytes(std::size_t index) const { return impl_->sizes.at(index); }
-
-matching::PackedSampleView Library::Impl::sample_view(std::size_t index) const {
-  const std::uint8_t* bytes = data + sample_offsets[index];
+matching::PackedSampleView LibraryFile::sample_view(std::size_t index) const {
+  const std::uint8_t* bytes = file.data() + sample_offsets[index];
   const std::size_t bytes_size = sample_sizes[index];
   if (io::xxh3_64(bytes, bytes_size) != sample_checksums[index])
     fail(where(index) + ": its sample does not match its checksum (a damaged file)");
@@ -458,9 +475,9 @@ matching::PackedSampleView Library::Impl::sample_view(std::size_t index) const {
   return v;
 }
 
-LibraryEntry Library::Impl::decode_entry(std::size_t index) const {
-  const LibraryEntryInfo& info = infos.at(index);
-  const std::uint8_t* bytes = data + offsets[index];
+LibraryEntry LibraryFile::decode_entry(std::size_t index) const {
+  const LibraryEntryInfo& info = infos[index];
+  const std::uint8_t* bytes = file.data() + offsets[index];
   const std::size_t bytes_size = sizes[index];
   const std::string at = path.string() + " " + where(index);
   if (io::fnv1a64(bytes, bytes_size) != checksums[index])
@@ -519,11 +536,193 @@ LibraryEntry Library::Impl::decode_entry(std::size_t index) const {
   return entry;
 }
 
+void LibraryFile::verify(std::size_t index) const {
+  if (io::fnv1a64(file.data() + offsets[index], sizes[index]) != checksums[index])
+    fail(where(index) + " does not match its checksum (a damaged file)");
+  if (version >= 4 && io::xxh3_64(file.data() + sample_offsets[index], sample_sizes[index]) !=
+                          sample_checksums[index])
+    fail(where(index) + ": its sample does not match its checksum (a damaged file)");
+}
+
+void LibraryFile::release(std::size_t begin, std::size_t end) const {
+  if (begin >= end) return;
+  static const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  // The mapping starts on a page: the pages wholly inside [from, to) of the file.
+  const auto drop = [&](std::uint64_t from, std::uint64_t to) {
+    const std::uint64_t first_page = (from + page - 1) / page * page;
+    const std::uint64_t end_page = to / page * page;
+    if (first_page < end_page) {
+      ::madvise(const_cast<std::uint8_t*>(file.data()) + first_page, end_page - first_page,
+                MADV_DONTNEED);
+    }
+  };
+  drop(offsets[begin], offsets[end - 1] + sizes[end - 1]);
+  if (version >= 4) drop(sample_offsets[begin], sample_offsets[end - 1] + sample_sizes[end - 1]);
+}
+
+}  // namespace
+
+void write_library_index(const std::filesystem::path& path,
+                         const std::vector<std::filesystem::path>& shards,
+                         const std::string& settings) {
+  if (shards.empty()) throw InputError(path.string() + ": a library index needs a shard");
+  io::BinaryWriter body;
+  body.u64(shards.size());
+  for (const std::filesystem::path& shard : shards) {
+    if (shard.empty() || !shard.is_relative())
+      throw InputError(path.string() + ": shard path '" + shard.string() + "' is not relative");
+    const LibraryFile file(path.parent_path() / shard, 0);
+    if (file.version != library_format_version)
+      file.fail("format version " + std::to_string(file.version) + "; a shard must be version " +
+                std::to_string(library_format_version));
+    body.string(shard.generic_string());
+    body.u64(file.size());
+    body.u64(file.file.size());
+    body.u64(file.index_checksum);
+  }
+  body.string(settings);
+  io::BinaryWriter header;
+  for (std::size_t i = 0; i < kMagicBytes; ++i)
+    header.u8(static_cast<std::uint8_t>(kIndexMagic[i]));
+  header.u32(library_index_version);
+  header.u32(0);
+  io::BinaryWriter trailer;
+  trailer.u64(io::fnv1a64(body.bytes().data(), body.bytes().size()));
+  for (std::size_t i = 0; i < kMagicBytes; ++i)
+    trailer.u8(static_cast<std::uint8_t>(kIndexEndMagic[i]));
+  io::write_file_atomically(path, [&](std::ostream& out) {
+    for (const io::BinaryWriter* part : {&header, &body, &trailer}) write_bytes(out, part->bytes());
+  });
+}
+
+// ---------------------------------------------------------------------------------------------
+
+struct Library::Impl {
+  std::filesystem::path path;
+  std::vector<std::unique_ptr<LibraryFile>> files;
+  std::vector<std::size_t> ends;  // entries in files[0..f]
+  std::string settings;           // the file's, or the index's
+  std::uint64_t bytes = 0;        // of the file, or of the index and the shards
+  std::multimap<std::string, std::size_t> by_name;
+
+  /// Opens the shards the index `index` (mapped from `path`) lists.
+  void open_shards(const MappedFile& index);
+  void add(std::unique_ptr<LibraryFile> file) {
+    for (std::size_t e = 0; e < file->size(); ++e)
+      by_name.emplace(file->infos[e].name, file->first + e);
+    ends.push_back(file->first + file->size());
+    files.push_back(std::move(file));
+  }
+  /// The file holding entry `index` and the entry's number in it; std::out_of_range beyond the
+  /// last entry.
+  std::pair<const LibraryFile*, std::size_t> locate(std::size_t index) const {
+    const auto it = std::upper_bound(ends.begin(), ends.end(), index);
+    if (it == ends.end()) {
+      throw std::out_of_range("library entry " + std::to_string(index) + " of " +
+                              std::to_string(ends.empty() ? 0 : ends.back()));
+    }
+    const LibraryFile* file = files[static_cast<std::size_t>(it - ends.begin())].get();
+    return {file, index - file->first};
+  }
+};
+
+void Library::Impl::open_shards(const MappedFile& index) {
+  const std::string name = path.string();
+  const std::uint8_t* data = index.data();
+  const std::size_t size = index.size();
+  io::BinaryReader header(data + kMagicBytes, kHeaderBytes - kMagicBytes, name);
+  const std::uint32_t version = header.u32();
+  if (version != library_index_version) {
+    throw FormatError(name, "library index version " + std::to_string(version) +
+                                ", this program reads version " +
+                                std::to_string(library_index_version));
+  }
+  const std::uint8_t* trailer_data = data + size - kIndexTrailerBytes;
+  if (std::memcmp(trailer_data + kIndexTrailerBytes - kMagicBytes, kIndexEndMagic, kMagicBytes) !=
+      0)
+    throw FormatError(name, "the library index is truncated (no SCSETEND trailer at the end)");
+  const std::size_t body_size = size - kHeaderBytes - kIndexTrailerBytes;
+  if (io::fnv1a64(data + kHeaderBytes, body_size) !=
+      io::BinaryReader(trailer_data, kIndexTrailerBytes, name).u64())
+    throw FormatError(name, "the library index does not match its checksum (a damaged file)");
+  io::BinaryReader r(data + kHeaderBytes, body_size, name);
+  const std::uint64_t count = r.u64();
+  // Each shard takes at least 28 bytes.
+  if (count == 0 || count > r.remaining() / 28)
+    r.fail("shard count " + std::to_string(count) + " is not one the index can hold");
+  std::size_t first = 0;
+  for (std::uint64_t k = 0; k < count; ++k) {
+    const std::filesystem::path relative = r.string();
+    const std::uint64_t entries = r.u64();
+    const std::uint64_t file_size = r.u64();
+    const std::uint64_t checksum = r.u64();
+    if (relative.empty() || !relative.is_relative())
+      r.fail("shard path '" + relative.string() + "' is not relative to the index's folder");
+    const std::filesystem::path shard_path = path.parent_path() / relative;
+    const std::string listed = ", the index " + name + " lists ";
+    std::error_code missing;  // the shard's opening says why
+    const std::uintmax_t found_size = std::filesystem::file_size(shard_path, missing);
+    if (!missing && found_size != file_size) {
+      throw FormatError(shard_path.string(), std::to_string(found_size) + " bytes" + listed +
+                                                 std::to_string(file_size) +
+                                                 " (a cut or replaced shard)");
+    }
+    auto shard = std::make_unique<LibraryFile>(shard_path, first);
+    if (shard->size() != entries)
+      shard->fail(std::to_string(shard->size()) + " entries" + listed + std::to_string(entries));
+    if (shard->index_checksum != checksum) {
+      shard->fail("its index checksum is not the one the index " + name +
+                  " lists (a shard rebuilt or replaced since)");
+    }
+    if (shard->version != library_format_version) {
+      shard->fail("format version " + std::to_string(shard->version) +
+                  "; a shard must be version " + std::to_string(library_format_version));
+    }
+    first += shard->size();
+    bytes += shard->file.size();
+    add(std::move(shard));
+  }
+  settings = r.string();
+  if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes after the index");
+}
+
+Library::Library(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  {
+    const MappedFile file(path);
+    if (std::memcmp(file.data(), kIndexMagic, kMagicBytes) == 0) {
+      impl_->bytes = file.size();
+      impl_->open_shards(file);
+      return;
+    }
+  }
+  auto file = std::make_unique<LibraryFile>(path, 0);
+  impl_->settings = file->settings;
+  impl_->bytes = file->file.size();
+  impl_->add(std::move(file));
+}
+
+Library::Library(Library&&) noexcept = default;
+Library& Library::operator=(Library&&) noexcept = default;
+Library::~Library() = default;
+
+std::size_t Library::size() const { return impl_->ends.back(); }
+
+const LibraryEntryInfo& Library::info(std::size_t index) const {
+  const auto [file, local] = impl_->locate(index);
+  return file->infos[local];
+}
+
+std::uint64_t Library::entry_bytes(std::size_t index) const {
+  const auto [file, local] = impl_->locate(index);
+  return file->sizes[local];
+}
+
 LibraryEntry Library::entry(std::size_t index) const {
-  (void)impl_->infos.at(index);  // std::out_of_range beyond the end
-  LibraryEntry entry = impl_->decode_entry(index);
-  if (impl_->version >= 4) {
-    entry.packed = matching::PackedSample(impl_->sample_view(index));
+  const auto [file, local] = impl_->locate(index);
+  LibraryEntry entry = file->decode_entry(local);
+  if (file->version >= 4) {
+    entry.packed = matching::PackedSample(file->sample_view(local));
     entry.sample = entry.packed.sample();
     entry.atoms = entry.packed.atoms();
     entry.kind = entry.packed.header().kind;
@@ -532,16 +731,16 @@ LibraryEntry Library::entry(std::size_t index) const {
 }
 
 PackedEntry Library::packed(std::size_t index, double sigma) const {
-  (void)impl_->infos.at(index);
+  const auto [file, local] = impl_->locate(index);
   PackedEntry out;
-  if (impl_->version >= 4) {
-    out.view = impl_->sample_view(index);
+  if (file->version >= 4) {
+    out.view = file->sample_view(local);
     if (out.view.header.sigma == sigma) return out;
     const matching::PackedSample stored(out.view);
     out.owned = std::make_unique<matching::PackedSample>(stored.sample(), stored.atoms(), sigma,
                                                          stored.header().kind);
   } else {
-    const LibraryEntry entry = impl_->decode_entry(index);
+    const LibraryEntry entry = file->decode_entry(local);
     if (entry.sample.size() == 0) return out;  // no points: the first stage scores it 0
     out.owned = std::make_unique<matching::PackedSample>(entry.sample, entry.atoms, sigma,
                                                          matching::SampleKind::surface);
@@ -557,12 +756,32 @@ std::vector<std::size_t> Library::find(const std::string& name) const {
   return found;  // a multimap keeps equal keys in insertion order: library order
 }
 
-std::uint32_t Library::version() const { return impl_->version; }
+void Library::verify() const {
+  for (const auto& file : impl_->files) {
+    for (std::size_t e = 0; e < file->size(); ++e) file->verify(e);
+  }
+}
+
+void Library::release(std::size_t begin, std::size_t end) const {
+  if (begin > end || end > size()) {
+    throw std::out_of_range("library entries [" + std::to_string(begin) + ", " +
+                            std::to_string(end) + ") of " + std::to_string(size()));
+  }
+  for (const auto& file : impl_->files) {
+    const std::size_t from = std::max(begin, file->first);
+    const std::size_t to = std::min(end, file->first + file->size());
+    if (from < to) file->release(from - file->first, to - file->first);
+  }
+}
+
+std::uint32_t Library::version() const { return impl_->files.front()->version; }
 
 const std::string& Library::settings() const { return impl_->settings; }
 
-std::uint64_t Library::file_bytes() const { return impl_->size; }
+std::uint64_t Library::file_bytes() const { return impl_->bytes; }
 
 const std::filesystem::path& Library::path() const { return impl_->path; }
+
+std::size_t Library::shards() const { return impl_->files.size(); }
 
 }  // namespace surfcomp::screening

@@ -2,6 +2,7 @@
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/binary_stream.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
@@ -9,13 +10,18 @@
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 namespace surfcomp::screening {
@@ -28,6 +34,7 @@ void check_options(const LibraryBuildOptions& options) {
   if (!(options.sigma > 0.0) || !std::isfinite(options.sigma))
     throw OptionError("--sigma must be finite and > 0, got " + std::to_string(options.sigma));
   if (options.batch < 1) throw OptionError("library build batch must be at least 1");
+  if (options.shard_records < 1) throw OptionError("--shard-records must be at least 1, got 0");
   if (!(options.lining_radius > 0.0) || !std::isfinite(options.lining_radius))
     throw OptionError("--site-overlay-radius must be finite and > 0, got " +
                       std::to_string(options.lining_radius));
@@ -52,6 +59,15 @@ std::string one_line(std::string text) {
   }
   return text;
 }
+
+/// `text` as one field of a log line: a tab, like a line break, becomes a space.
+std::string log_field(std::string text) {
+  text = one_line(std::move(text));
+  std::replace(text.begin(), text.end(), '\t', ' ');
+  return text;
+}
+
+constexpr const char* kLogColumns = "# source\trecord\tname\treason";
 
 std::uint32_t heavy_atom_count(const Molecule& molecule) {
   return static_cast<std::uint32_t>(
@@ -313,18 +329,329 @@ LibraryBuildResult build_in_order(
 
 }  // namespace
 
+namespace {
+
+/// build_in_order of records [begin, end) into `output`.
+LibraryBuildResult build_records(const std::vector<io::MoleculeRecord>& records, std::size_t begin,
+                                 std::size_t end, const std::filesystem::path& output,
+                                 const std::string& settings, const LibraryBuildOptions& options) {
+  return build_in_order(
+      end - begin,
+      [&](std::size_t i, BuildTimes& times) {
+        return build_entries(records[begin + i], options, &times);
+      },
+      [&](std::size_t i) {
+        const io::MoleculeRecord& record = records[begin + i];
+        return ItemOrigin{record.source.string(), record.record, record.name};
+      },
+      output, settings, options);
+}
+
+/// What a build's log (write_build_log) says: records, entries and the skipped records. Throws
+/// FileError when `path` cannot be read, FormatError naming it and the line for a line that is
+/// not what write_build_log writes.
+LibraryBuildResult read_build_log(const std::filesystem::path& path) {
+  std::istringstream lines(io::read_input_file(path));
+  LibraryBuildResult result;
+  std::string line;
+  const auto fail = [&](std::size_t number, const std::string& reason) {
+    throw FormatError(path.string(), number, reason);
+  };
+  std::size_t skipped = 0;
+  const std::size_t summary_at = std::getline(lines, line) ? line.rfind(": ") : std::string::npos;
+  if (line.rfind("# surfcomp library build -> ", 0) != 0 || summary_at == std::string::npos ||
+      std::sscanf(line.c_str() + summary_at, ": %zu records, %zu entries, %zu skipped",
+                  &result.records, &result.entries, &skipped) != 3)
+    fail(1, "not the first line of a library build's log");
+  if (!std::getline(lines, line) || line != kLogColumns) fail(2, "not the log's column line");
+  for (std::size_t number = 3; std::getline(lines, line); ++number) {
+    std::vector<std::string> fields;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, '\t');) fields.push_back(cell);
+    char* rest = nullptr;
+    const std::size_t record = fields.size() == 4 ? std::strtoull(fields[1].c_str(), &rest, 10) : 0;
+    if (fields.size() != 4 || rest == fields[1].c_str() || *rest != '\0')
+      fail(number, "not a skipped record (source, record, name, reason, tab-separated)");
+    result.skipped.push_back({fields[0], record, fields[2], fields[3]});
+  }
+  if (result.skipped.size() != skipped) {
+    fail(1, "says " + std::to_string(skipped) + " records were skipped, the log lists " +
+                std::to_string(result.skipped.size()));
+  }
+  return result;
+}
+
+std::string hex64(std::uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+/// The 64-bit hash of what records [begin, end) are: each one's source, record number, name,
+/// format and text.
+std::uint64_t input_hash(const std::vector<io::MoleculeRecord>& records, std::size_t begin,
+                         std::size_t end) {
+  io::BinaryWriter bytes;
+  for (std::size_t i = begin; i < end; ++i) {
+    bytes.string(records[i].source.string());
+    bytes.u64(records[i].record);
+    bytes.string(records[i].name);
+    bytes.u8(static_cast<std::uint8_t>(records[i].format));
+    bytes.string(records[i].text);
+  }
+  return io::xxh3_64(bytes.bytes().data(), bytes.bytes().size());
+}
+
+}  // namespace
+
+void write_build_log(std::ostream& out, const std::filesystem::path& library,
+                     const LibraryBuildResult& result) {
+  out << "# surfcomp library build -> " << library.string() << ": " << result.records
+      << " records, " << result.entries << " entries, " << result.skipped.size() << " skipped\n"
+      << kLogColumns << '\n';
+  for (const SkippedRecord& s : result.skipped) {
+    out << log_field(s.source) << '\t' << s.record << '\t' << log_field(s.name) << '\t'
+        << log_field(s.reason) << '\n';
+  }
+}
+
 LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
                                  const std::filesystem::path& output,
                                  const LibraryBuildOptions& options) {
-  check_options(options);
-  if (records.empty()) throw InputError(output.string() + ": no molecule record to build it from");
-  return build_in_order(
-      records.size(),
-      [&](std::size_t i, BuildTimes& times) { return build_entries(records[i], options, &times); },
-      [&](std::size_t i) {
-        return ItemOrigin{records[i].source.string(), records[i].record, records[i].name};
-      },
-      output, build_settings(options), options);
+  ShardedLibraryBuild sharded(records, output, options);
+  if (sharded.shards() == 1)
+    return build_records(records, 0, records.size(), output, build_settings(options), options);
+  const Stopwatch clock;
+  sharded.prepare();
+  const LibraryBuildResult built = sharded.build();
+  LibraryBuildResult result = sharded.finish();
+  result.times = built.times;
+  result.seconds = clock.elapsed_s();
+  return result;
+}
+
+std::filesystem::path shard_folder(const std::filesystem::path& output) {
+  return output.parent_path() / (output.filename().string() + ".d");
+}
+
+struct ShardedLibraryBuild::Impl {
+  Impl(const std::vector<io::MoleculeRecord>& records_, std::filesystem::path output_,
+       LibraryBuildOptions options_)
+      : records(records_), output(std::move(output_)), options(std::move(options_)) {}
+
+  const std::vector<io::MoleculeRecord>& records;
+  std::filesystem::path output, folder;
+  LibraryBuildOptions options;
+  std::string settings;   // build_settings(options): the index's, and each shard's first lines
+  std::size_t count = 0;  // shards
+  std::vector<std::uint64_t> hashes;  // input_hash of each shard (more than one shard)
+  std::size_t resumed = 0, resumed_entries = 0;
+
+  std::size_t begin(std::size_t k) const { return k * options.shard_records; }
+  std::size_t end(std::size_t k) const {
+    return std::min(records.size(), (k + 1) * options.shard_records);
+  }
+  std::filesystem::path file(std::size_t k, const char* extension) const {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06zu%s", k + 1, extension);
+    return folder / name;
+  }
+  std::filesystem::path library_file(std::size_t k) const { return file(k, ".sclib"); }
+  std::filesystem::path log_file(std::size_t k) const { return file(k, ".log"); }
+  std::filesystem::path manifest_file() const { return folder / "manifest.txt"; }
+
+  /// Shard k's settings: the build's, then its number, records and input hash.
+  std::string shard_settings(std::size_t k) const {
+    return settings + "shard " + std::to_string(k + 1) + " of " + std::to_string(count) +
+           ": records " + std::to_string(begin(k) + 1) + "-" + std::to_string(end(k)) + " of " +
+           std::to_string(records.size()) + ", inputs " + hex64(hashes[k]) + "\n";
+  }
+  std::string manifest() const {
+    std::ostringstream text;
+    text << "surfcomp library build manifest 1\nrecords " << records.size() << "\nshard-records "
+         << options.shard_records << "\nshards " << count << "\n";
+    std::istringstream lines(settings);
+    for (std::string line; std::getline(lines, line);) text << "settings " << line << "\n";
+    for (std::size_t k = 0; k < count; ++k) {
+      text << "shard " << library_file(k).stem().string() << " records " << begin(k) + 1 << "-"
+           << end(k) << " inputs " << hex64(hashes[k]) << "\n";
+    }
+    return text.str();
+  }
+  /// Shard k's log when the shard is finished (its log written and, unless all its records
+  /// were skipped, its library file there), else none.
+  std::optional<LibraryBuildResult> finished(std::size_t k) const {
+    if (!std::filesystem::exists(log_file(k))) return std::nullopt;
+    LibraryBuildResult log = read_build_log(log_file(k));
+    if (log.entries > 0 && !std::filesystem::exists(library_file(k))) return std::nullopt;
+    return log;
+  }
+  /// Throws InputError naming the manifest unless it is this build's.
+  void check_manifest() const;
+  /// Throws what opening or verifying the first bad shard file throws, or FormatError naming it
+  /// when its settings are not its own.
+  void verify_shards() const;
+};
+
+void ShardedLibraryBuild::Impl::check_manifest() const {
+  const std::filesystem::path path = manifest_file();
+  const std::string advice =
+      "; resume with the same inputs and options, or remove " + folder.string() + " to start again";
+  if (!std::filesystem::exists(path))
+    throw InputError(path.string() + ": missing, so the folder holds no build to resume" + advice);
+  std::istringstream found(io::read_input_file(path)), expected(manifest());
+  std::string was, now;
+  for (std::size_t number = 1;; ++number) {
+    const bool more_found = static_cast<bool>(std::getline(found, was));
+    const bool more_expected = static_cast<bool>(std::getline(expected, now));
+    if (!more_found && !more_expected) return;
+    if (more_found && more_expected && was == now) continue;
+    throw InputError(path.string() + ":" + std::to_string(number) +
+                     ": records another build's inputs or options ('" + (more_found ? was : "") +
+                     "' where this build has '" + (more_expected ? now : "") + "')" + advice);
+  }
+}
+
+void ShardedLibraryBuild::Impl::verify_shards() const {
+  // The shards are checked in parallel; the first bad one in shard order is reported.
+  std::vector<std::exception_ptr> errors(count);
+  tbb::parallel_for(std::size_t{0}, count, [&](std::size_t k) {
+    const std::filesystem::path path = library_file(k);
+    if (!std::filesystem::exists(path)) return;
+    try {
+      const Library shard(path);
+      if (shard.shards() != 1 || shard.settings() != shard_settings(k)) {
+        throw FormatError(path.string(), "its settings are not those of shard " +
+                                             std::to_string(k + 1) + " of this build");
+      }
+      shard.verify();
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+}
+
+ShardedLibraryBuild::ShardedLibraryBuild(const std::vector<io::MoleculeRecord>& records,
+                                         std::filesystem::path output, LibraryBuildOptions options)
+    : impl_(std::make_unique<Impl>(records, std::move(output), std::move(options))) {
+  Impl& m = *impl_;
+  check_options(m.options);
+  if (records.empty())
+    throw InputError(m.output.string() + ": no molecule record to build it from");
+  m.folder = shard_folder(m.output);
+  m.settings = build_settings(m.options);
+  m.count = (records.size() + m.options.shard_records - 1) / m.options.shard_records;
+  if (m.count == 1) return;  // one library file: no shard to name
+  m.hashes.resize(m.count);
+  tbb::parallel_for(std::size_t{0}, m.count, [&](std::size_t k) {
+    m.hashes[k] = input_hash(records, m.begin(k), m.end(k));
+  });
+}
+
+ShardedLibraryBuild::~ShardedLibraryBuild() = default;
+
+std::size_t ShardedLibraryBuild::shards() const { return impl_->count; }
+
+const std::filesystem::path& ShardedLibraryBuild::folder() const { return impl_->folder; }
+
+void ShardedLibraryBuild::prepare() {
+  namespace fs = std::filesystem;
+  Impl& m = *impl_;
+  if (!fs::exists(m.folder)) {
+    std::error_code error;
+    if (!fs::create_directory(m.folder, error) && error) {
+      throw FileError(m.folder.string(),
+                      "cannot create the folder of the shards (" + error.message() + ")");
+    }
+    io::write_file_atomically(m.manifest_file(), [&](std::ostream& out) { out << m.manifest(); });
+    return;
+  }
+  if (!m.options.resume) {
+    throw FileError(m.folder.string(),
+                    "the shard folder of an earlier build is in the way; continue that build "
+                    "with --resume, or remove the folder");
+  }
+  if (!fs::is_directory(m.folder)) throw FileError(m.folder.string(), "not a folder; remove it");
+  m.check_manifest();
+  m.verify_shards();
+  for (std::size_t k = 0; k < m.count; ++k) {
+    if (const std::optional<LibraryBuildResult> log = m.finished(k)) {
+      ++m.resumed;
+      m.resumed_entries += log->entries;
+    }
+  }
+  for (const fs::directory_entry& item : fs::directory_iterator(m.folder)) {
+    std::error_code ignored;
+    if (item.is_regular_file() && io::is_temporary_file(item.path()))
+      fs::remove(item.path(), ignored);
+  }
+}
+
+LibraryBuildResult ShardedLibraryBuild::build(std::size_t rank, std::size_t ranks) {
+  if (ranks == 0 || rank >= ranks)
+    throw std::invalid_argument("ShardedLibraryBuild::build: rank outside [0, ranks)");
+  const Impl& m = *impl_;
+  const Stopwatch clock;
+  std::vector<std::size_t> unfinished;
+  std::size_t records = 0;
+  for (std::size_t k = rank; k < m.count; k += ranks) {
+    if (m.finished(k)) continue;
+    unfinished.push_back(k);
+    records += m.end(k) - m.begin(k);
+  }
+  LibraryBuildResult result;
+  result.shards = m.count;
+  for (const std::size_t k : unfinished) {
+    LibraryBuildOptions options = m.options;
+    if (m.options.progress) {
+      options.progress = [&](const BuildProgress& p) {
+        m.options.progress({result.records + p.records_done, records, result.entries + p.entries,
+                            result.skipped.size() + p.skipped, clock.elapsed_s()});
+      };
+    }
+    const std::filesystem::path file = m.library_file(k);
+    const LibraryBuildResult shard =
+        build_records(m.records, m.begin(k), m.end(k), file, m.shard_settings(k), options);
+    io::write_file_atomically(m.log_file(k),
+                              [&](std::ostream& out) { write_build_log(out, file, shard); });
+    result.records += shard.records;
+    result.entries += shard.entries;
+    result.bytes += shard.bytes;
+    result.skipped.insert(result.skipped.end(), shard.skipped.begin(), shard.skipped.end());
+    result.times.conformers += shard.times.conformers;
+    result.times.entries += shard.times.entries;
+  }
+  result.seconds = clock.elapsed_s();
+  return result;
+}
+
+LibraryBuildResult ShardedLibraryBuild::finish() const {
+  const Impl& m = *impl_;
+  LibraryBuildResult result;
+  result.records = m.records.size();
+  result.shards = m.count;
+  result.shards_resumed = m.resumed;
+  result.entries_resumed = m.resumed_entries;
+  std::vector<std::filesystem::path> listed;
+  for (std::size_t k = 0; k < m.count; ++k) {
+    const std::optional<LibraryBuildResult> log = m.finished(k);
+    if (!log) {
+      throw FileError(m.log_file(k).string(), "shard " + std::to_string(k + 1) + " of " +
+                                                  std::to_string(m.count) + " is not finished");
+    }
+    result.entries += log->entries;
+    result.skipped.insert(result.skipped.end(), log->skipped.begin(), log->skipped.end());
+    if (log->entries > 0) listed.push_back(m.folder.filename() / m.library_file(k).filename());
+  }
+  if (result.entries == 0) return result;
+  write_library_index(m.output, listed, m.settings);
+  result.bytes = std::filesystem::file_size(m.output);
+  for (const std::filesystem::path& shard : listed)
+    result.bytes += std::filesystem::file_size(m.output.parent_path() / shard);
+  return result;
 }
 
 std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {

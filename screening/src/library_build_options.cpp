@@ -32,6 +32,16 @@ const options::Table<LibraryBuildOptions>& library_build_option_table() {
          [](L& l, const options::Value& v) {
            if (l.conformers) l.conformers->seed = static_cast<int>(std::get<std::int64_t>(v));
          }},
+        options::field<L>(
+            {"shard-records", Kind::integer,
+             "input records per shard: more make an index and a folder of shards", "", 1,
+             2147483647.0},
+            [](auto& l) -> auto& { return l.shard_records; }),
+        options::field<L>(
+            {"resume", Kind::flag,
+             "continue the interrupted sharded build of the same output, inputs "
+             "and options, keeping its finished shards"},
+            [](auto& l) -> auto& { return l.resume; }),
     };
     options::append(
         t, matching::binding_site_option_table(), [](auto& l) -> auto& { return l.site; });

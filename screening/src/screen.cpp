@@ -85,26 +85,65 @@ matching::PackedSample packed_entry(const LibraryEntry& entry, double sigma) {
   return matching::PackedSample(entry.sample, entry.atoms, sigma, entry.kind);
 }
 
-/// The molecules of a library (entries sharing source, record and name; not necessarily
-/// adjacent), each as its entries in index order, the molecules in order of their first entry.
-std::vector<std::vector<std::size_t>> molecules(const Library& library) {
-  std::map<std::tuple<std::string, std::uint32_t, std::string>, std::size_t> index;
-  std::vector<std::vector<std::size_t>> out;
-  for (std::size_t e = 0; e < library.size(); ++e) {
-    const LibraryEntryInfo& info = library.info(e);
-    const auto [it, inserted] =
-        index.emplace(std::make_tuple(info.source, info.record, info.name), out.size());
-    if (inserted) out.emplace_back();
-    out[it->second].push_back(e);
-  }
-  return out;
+/// Whether two entries are conformers of one molecule (name, source and record shared).
+bool same_molecule(const LibraryEntryInfo& a, const LibraryEntryInfo& b) {
+  return a.record == b.record && a.name == b.name && a.source == b.source;
 }
 
-void check_score_count(const Library& library, std::size_t count, const char* function) {
-  if (count != library.size()) {
-    throw InputError(std::string(function) + ": " + std::to_string(count) +
-                     " scores for a library of " + std::to_string(library.size()) + " entries");
+/// Ranks hits: the higher score first, ties to the lower entry.
+bool better_hit(const Hit& x, const Hit& y) {
+  if (x.score.score != y.score.score) return x.score.score > y.score.score;
+  return x.entry < y.entry;
+}
+
+/// The `capacity` best hits added (every one when capacity is 0), as a heap whose top is the
+/// worst kept.
+class BestMolecules {
+ public:
+  explicit BestMolecules(std::size_t capacity) : capacity_(capacity) {}
+  void add(const Hit& hit) {
+    if (capacity_ > 0 && heap_.size() == capacity_) {
+      if (!better_hit(hit, heap_.front())) return;
+      std::pop_heap(heap_.begin(), heap_.end(), better_hit);
+      heap_.back() = hit;
+    } else {
+      heap_.push_back(hit);
+    }
+    std::push_heap(heap_.begin(), heap_.end(), better_hit);
   }
+  /// The hits kept, best first.
+  std::vector<Hit> sorted() const {
+    std::vector<Hit> hits = heap_;
+    std::sort(hits.begin(), hits.end(), better_hit);
+    return hits;
+  }
+
+ private:
+  std::size_t capacity_;
+  std::vector<Hit> heap_;
+};
+
+/// Entries a block of stage 1 scores before its molecules are refined and its pages released.
+constexpr std::size_t kBlockEntries = 1024;
+
+/// The `count` best entries of [begin, end) by their fast score against query q (ties to the
+/// lower index), in entry order; `fast` holds the block's scores from entry `block`, q_count per
+/// entry.
+std::vector<std::size_t> best_by_fast(const std::vector<HitScore>& fast, std::size_t q,
+                                      std::size_t q_count, std::size_t block, std::size_t begin,
+                                      std::size_t end, std::size_t count) {
+  std::vector<std::size_t> entries(end - begin);
+  std::iota(entries.begin(), entries.end(), begin);
+  const std::size_t k = std::min(count, entries.size());
+  const auto score = [&](std::size_t e) { return fast[(e - block) * q_count + q].score; };
+  std::partial_sort(entries.begin(), entries.begin() + static_cast<std::ptrdiff_t>(k),
+                    entries.end(), [&](std::size_t x, std::size_t y) {
+                      if (score(x) != score(y)) return score(x) > score(y);
+                      return x < y;
+                    });
+  entries.resize(k);
+  std::sort(entries.begin(), entries.end());
+  return entries;
 }
 
 }  // namespace
@@ -229,74 +268,111 @@ HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
                        options);
 }
 
-std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& library,
-                                  std::size_t begin, std::size_t end,
-                                  const ScreenOptions& options) {
-  check_library_kind(library, !query.site.empty());
-  end = std::min(end, library.size());
-  begin = std::min(begin, end);
-  const double sigma = overlay_options(query, options).sigma;
-  return score_in_parallel(end - begin, 1, options, [&](std::size_t i) {
-    return fast_score(query, library.packed(begin + i, sigma).view, options);
-  });
+std::vector<std::size_t> molecule_starts(const Library& library) {
+  std::vector<std::size_t> starts;
+  for (std::size_t e = 0; e < library.size(); ++e) {
+    const LibraryEntryInfo& info = library.info(e);
+    if (e == 0 || !same_molecule(library.info(e - 1), info)) starts.push_back(e);
+  }
+  starts.push_back(library.size());
+  return starts;
 }
 
-std::vector<std::size_t> entries_to_refine(const Library& library,
-                                           const std::vector<HitScore>& fast,
-                                           std::size_t per_molecule) {
-  check_score_count(library, fast.size(), "entries_to_refine");
-  std::vector<std::size_t> chosen;
-  for (std::vector<std::size_t>& entries : molecules(library)) {
-    const std::size_t k = std::min(per_molecule, entries.size());
-    std::partial_sort(entries.begin(), entries.begin() + static_cast<std::ptrdiff_t>(k),
-                      entries.end(), [&](std::size_t x, std::size_t y) {
-                        if (fast[x].score != fast[y].score) return fast[x].score > fast[y].score;
-                        return x < y;
-                      });
-    chosen.insert(chosen.end(), entries.begin(), entries.begin() + static_cast<std::ptrdiff_t>(k));
-  }
-  std::sort(chosen.begin(), chosen.end());
-  return chosen;
+std::size_t kept_molecules(const ScreenOptions& options) {
+  return options.top == 0 ? 0 : std::max(options.top, options.candidates);
 }
 
-std::vector<EntryScore> merge_refined(const std::vector<HitScore>& fast,
-                                      const std::vector<std::size_t>& refined_entries,
-                                      const std::vector<HitScore>& refined) {
-  if (refined.size() != refined_entries.size()) {
-    throw InputError("merge_refined: " + std::to_string(refined.size()) + " scores for " +
-                     std::to_string(refined_entries.size()) + " refined entries");
+StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
+                               const Library& library, const std::vector<std::size_t>& starts,
+                               std::size_t first, std::size_t last, const ScreenOptions& options,
+                               bool every_molecule) {
+  if (queries.empty()) throw InputError("score_molecules: no query");
+  const bool sites = !queries.front()->site.empty();
+  for (const ScreenQuery* query : queries) {
+    if (query->site.empty() == sites)
+      throw InputError("a screen's queries are all molecules or all binding sites");
   }
-  std::vector<EntryScore> scores(fast.size());
-  for (std::size_t e = 0; e < fast.size(); ++e) scores[e] = {fast[e], 1, fast[e].score};
-  for (std::size_t i = 0; i < refined_entries.size(); ++i) {
-    if (refined_entries[i] >= scores.size()) {
-      throw InputError("merge_refined: entry " + std::to_string(refined_entries[i]) +
-                       " of a library of " + std::to_string(scores.size()) + " entries");
+  check_library_kind(library, sites);
+  if (starts.empty() || starts.back() != library.size() || last >= starts.size() || first > last)
+    throw InputError("score_molecules: molecules outside the library");
+  const std::size_t q_count = queries.size();
+  const double sigma = overlay_options(*queries.front(), options).sigma;
+  const std::size_t keep = kept_molecules(options);
+  std::vector<BestMolecules> kept(q_count, BestMolecules(keep));
+  StreamedScores result;
+  result.queries.resize(q_count);
+  const auto total = static_cast<std::int64_t>(starts[last] - starts[first]);
+  std::int64_t done = 0;
+  for (std::size_t m0 = first; m0 < last;) {
+    std::size_t m1 = m0 + 1;
+    while (m1 < last && starts[m1] - starts[m0] < kBlockEntries) ++m1;
+    const std::size_t e0 = starts[m0], e1 = starts[m1];
+    Stopwatch clock;
+    // Stage 1: every entry of the block against every query, read once.
+    std::vector<HitScore> fast((e1 - e0) * q_count);
+    tbb::parallel_for(e0, e1, [&](std::size_t e) {
+      const PackedEntry packed = library.packed(e, sigma);
+      for (std::size_t q = 0; q < q_count; ++q)
+        fast[(e - e0) * q_count + q] = fast_score(*queries[q], packed.view, options);
+    });
+    result.stage1_seconds += clock.elapsed_s();
+    clock = Stopwatch();
+    // Stage 2: each molecule's best conformers by fast score, refined.
+    std::vector<std::pair<std::size_t, std::size_t>> chosen;  // (query, entry)
+    for (std::size_t q = 0; q < q_count; ++q) {
+      for (std::size_t m = m0; m < m1; ++m) {
+        for (const std::size_t e :
+             best_by_fast(fast, q, q_count, e0, starts[m], starts[m + 1], options.refine))
+          chosen.emplace_back(q, e);
+      }
     }
-    EntryScore& s = scores[refined_entries[i]];
-    if (refined[i].score >= s.score.score) s.score = refined[i];
-    s.stage = 2;
+    std::vector<HitScore> refined(chosen.size());
+    tbb::parallel_for(std::size_t{0}, chosen.size(), [&](std::size_t i) {
+      const auto [q, e] = chosen[i];
+      refined[i] = refined_score(*queries[q], library.packed(e, sigma).view, options);
+    });
+    // Each molecule's best entry: fast scores, refined ones in their place where not lower.
+    std::vector<Hit> scores((e1 - e0) * q_count);
+    for (std::size_t e = e0; e < e1; ++e) {
+      for (std::size_t q = 0; q < q_count; ++q) {
+        const HitScore& f = fast[(e - e0) * q_count + q];
+        scores[(e - e0) * q_count + q] = {e, 1, f, f.score};
+      }
+    }
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      const auto [q, e] = chosen[i];
+      Hit& hit = scores[(e - e0) * q_count + q];
+      if (refined[i].score >= hit.score.score) hit.score = refined[i];
+      hit.stage = 2;
+    }
+    for (std::size_t q = 0; q < q_count; ++q) {
+      for (std::size_t m = m0; m < m1; ++m) {
+        const Hit* best = nullptr;
+        for (std::size_t e = starts[m]; e < starts[m + 1]; ++e) {
+          const Hit& hit = scores[(e - e0) * q_count + q];
+          if (best == nullptr || hit.score.score > best->score.score) best = &hit;
+        }
+        kept[q].add(*best);
+        if (every_molecule) result.queries[q].all.push_back({best->entry, best->score.score});
+      }
+    }
+    result.stage2_seconds += clock.elapsed_s();
+    library.release(e0, e1);
+    done += static_cast<std::int64_t>(e1 - e0);
+    if (options.progress) options.progress(1, done, total);
+    m0 = m1;
   }
-  return scores;
+  for (std::size_t q = 0; q < q_count; ++q) result.queries[q].best = kept[q].sorted();
+  return result;
 }
 
-std::vector<std::size_t> best_entry_per_molecule(const Library& library,
-                                                 const std::vector<EntryScore>& scores) {
-  check_score_count(library, scores.size(), "best_entry_per_molecule");
-  const auto score = [&](std::size_t e) { return scores[e].score.score; };
-  std::vector<std::size_t> best;
-  for (const std::vector<std::size_t>& entries : molecules(library)) {
-    best.push_back(
-        *std::min_element(entries.begin(), entries.end(), [&](std::size_t x, std::size_t y) {
-          if (score(x) != score(y)) return score(x) > score(y);
-          return x < y;
-        }));
+std::vector<Hit> merge_best(const std::vector<std::vector<Hit>>& parts,
+                            const ScreenOptions& options) {
+  BestMolecules kept(kept_molecules(options));
+  for (const std::vector<Hit>& part : parts) {
+    for (const Hit& hit : part) kept.add(hit);
   }
-  std::sort(best.begin(), best.end(), [&](std::size_t x, std::size_t y) {
-    if (score(x) != score(y)) return score(x) > score(y);
-    return x < y;
-  });
-  return best;
+  return kept.sorted();
 }
 
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
@@ -334,51 +410,122 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
   return from_overlay(top.overlay, top.transform);
 }
 
-std::vector<Hit> rank_hits(const std::vector<std::size_t>& best,
-                           const std::vector<EntryScore>& scores, const std::vector<HitScore>& full,
+std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,
                            std::size_t top) {
   const std::size_t k = std::min(full.size(), best.size());
-  std::vector<Hit> candidates;
+  std::vector<Hit> hits;
   for (std::size_t i = 0; i < k; ++i)
-    candidates.push_back({best[i], 3, full[i], scores[best[i]].fast_score});
-  std::sort(candidates.begin(), candidates.end(), [](const Hit& x, const Hit& y) {
-    if (x.score.score != y.score.score) return x.score.score > y.score.score;
-    return x.entry < y.entry;
-  });
-  std::vector<Hit> hits = std::move(candidates);
-  for (std::size_t i = k; i < best.size(); ++i) {
-    const EntryScore& s = scores[best[i]];
-    hits.push_back({best[i], s.stage, s.score, s.fast_score});
-  }
+    hits.push_back({best[i].entry, 3, full[i], best[i].fast_score});
+  std::sort(hits.begin(), hits.end(), better_hit);
+  hits.insert(hits.end(), best.begin() + static_cast<std::ptrdiff_t>(k), best.end());
   if (top > 0 && hits.size() > top) hits.resize(top);
   return hits;
 }
 
-ScreenResult screen(const ScreenQuery& query, const Library& library,
-                    const ScreenOptions& options) {
-  matching::validate(query_match_options(query, options));
-  ScreenResult result;
+std::vector<FusedHit> fuse_scores(const std::vector<std::vector<MoleculeScore>>& all,
+                                  const std::vector<std::vector<Hit>>& ranked,
+                                  const std::vector<std::size_t>& starts, Fusion fusion,
+                                  std::size_t top) {
+  const std::size_t molecules = starts.empty() ? 0 : starts.size() - 1;
+  if (all.size() != ranked.size() || all.empty())
+    throw InputError("fuse_scores: one list of scores and of rows per query needed");
+  std::vector<std::vector<MoleculeScore>> final_scores = all;
+  for (std::size_t q = 0; q < all.size(); ++q) {
+    if (all[q].size() != molecules) {
+      throw InputError("fuse_scores: " + std::to_string(all[q].size()) + " scores for " +
+                       std::to_string(molecules) + " molecules");
+    }
+    for (const Hit& hit : ranked[q]) {
+      if (hit.stage != 3) continue;
+      const auto m = static_cast<std::size_t>(
+          std::upper_bound(starts.begin(), starts.end(), hit.entry) - starts.begin() - 1);
+      final_scores[q][m] = {hit.entry, hit.score.score};
+    }
+  }
+  std::vector<FusedHit> fused(molecules);
+  for (std::size_t m = 0; m < molecules; ++m) {
+    FusedHit& row = fused[m];
+    double sum = 0.0;
+    for (std::size_t q = 0; q < all.size(); ++q) {
+      const MoleculeScore& s = final_scores[q][m];
+      row.scores.push_back(s.score);
+      sum += s.score;
+      if (q == 0 || s.score > row.scores[row.query]) {
+        row.query = q;
+        row.entry = s.entry;
+      }
+    }
+    row.score =
+        fusion == Fusion::max ? row.scores[row.query] : sum / static_cast<double>(all.size());
+  }
+  // Molecules in library order, so that a stable sort breaks ties to the lower molecule.
+  std::stable_sort(fused.begin(), fused.end(),
+                   [](const FusedHit& x, const FusedHit& y) { return x.score > y.score; });
+  if (top > 0 && fused.size() > top) fused.resize(top);
+  return fused;
+}
+
+MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
+                                 const Library& library, const ScreenOptions& options) {
+  if (queries.empty()) throw InputError("screen: no query");
+  matching::validate(query_match_options(*queries.front(), options));
+  MultiScreenResult result;
+  const std::vector<std::size_t> starts = molecule_starts(library);
+  StreamedScores streamed =
+      score_molecules(queries, library, starts, 0, starts.size() - 1, options, queries.size() > 1);
+  result.stage1_seconds = streamed.stage1_seconds;
+  result.stage2_seconds = streamed.stage2_seconds;
   const Stopwatch clock;
-  const std::vector<HitScore> fast = fast_scores(query, library, 0, library.size(), options);
-  result.stage1_seconds = clock.elapsed_s();
-
-  const std::vector<std::size_t> to_refine = entries_to_refine(library, fast, options.refine);
-  const double sigma = overlay_options(query, options).sigma;
-  const std::vector<HitScore> refined =
-      score_in_parallel(to_refine.size(), 2, options, [&](std::size_t i) {
-        return refined_score(query, library.packed(to_refine[i], sigma).view, options);
+  std::vector<std::pair<std::size_t, std::size_t>> candidates;  // (query, rank in its best)
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    const std::size_t k = std::min(options.candidates, streamed.queries[q].best.size());
+    for (std::size_t i = 0; i < k; ++i) candidates.emplace_back(q, i);
+  }
+  const std::vector<HitScore> full =
+      score_in_parallel(candidates.size(), 3, options, [&](std::size_t i) {
+        const auto [q, rank] = candidates[i];
+        return full_score(*queries[q], library.entry(streamed.queries[q].best[rank].entry),
+                          options);
       });
-  const std::vector<EntryScore> scores = merge_refined(fast, to_refine, refined);
-  const std::vector<std::size_t> best = best_entry_per_molecule(library, scores);
-  result.stage2_seconds = clock.elapsed_s() - result.stage1_seconds;
-
-  const std::vector<HitScore> full = score_in_parallel(
-      std::min(options.candidates, best.size()), 3, options,
-      [&](std::size_t i) { return full_score(query, library.entry(best[i]), options); });
-  result.stage3_seconds = clock.elapsed_s() - result.stage1_seconds - result.stage2_seconds;
-  result.hits = rank_hits(best, scores, full, options.top);
+  result.stage3_seconds = clock.elapsed_s();
+  for (std::size_t q = 0, at = 0; q < queries.size(); ++q) {
+    const std::size_t k = std::min(options.candidates, streamed.queries[q].best.size());
+    const std::vector<HitScore> mine(full.begin() + static_cast<std::ptrdiff_t>(at),
+                                     full.begin() + static_cast<std::ptrdiff_t>(at + k));
+    at += k;
+    result.hits.push_back(rank_hits(streamed.queries[q].best, mine, options.top));
+  }
+  if (queries.size() > 1) {
+    std::vector<std::vector<MoleculeScore>> all;
+    for (QueryScores& scores : streamed.queries) all.push_back(std::move(scores.all));
+    result.fused = fuse_scores(all, result.hits, starts, options.fusion, options.top);
+  }
   return result;
 }
+
+ScreenResult screen(const ScreenQuery& query, const Library& library,
+                    const ScreenOptions& options) {
+  MultiScreenResult multi = screen_queries({&query}, library, options);
+  ScreenResult result;
+  result.hits = std::move(multi.hits.front());
+  result.stage1_seconds = multi.stage1_seconds;
+  result.stage2_seconds = multi.stage2_seconds;
+  result.stage3_seconds = multi.stage3_seconds;
+  return result;
+}
+
+namespace {
+
+/// The first columns of a row of hits: rank, entry (1-based), name, source, record, conformer,
+/// each followed by a comma.
+void write_entry_columns(std::ostream& out, const Library& library, std::size_t rank,
+                         std::size_t entry) {
+  const LibraryEntryInfo& info = library.info(entry);
+  out << rank << ',' << entry + 1 << ',' << csv_field(info.name) << ',' << csv_field(info.source)
+      << ',' << info.record << ',' << info.conformer << ',';
+}
+
+}  // namespace
 
 void write_hits_csv(std::ostream& out, const Library& library, const std::vector<Hit>& hits) {
   out << "rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,fast_score";
@@ -388,14 +535,27 @@ void write_hits_csv(std::ostream& out, const Library& library, const std::vector
   out << "\n";
   for (std::size_t i = 0; i < hits.size(); ++i) {
     const Hit& hit = hits[i];
-    const LibraryEntryInfo& info = library.info(hit.entry);
-    out << i + 1 << ',' << hit.entry + 1 << ',' << csv_field(info.name) << ','
-        << csv_field(info.source) << ',' << info.record << ',' << info.conformer << ','
-        << fixed(hit.score.score) << ',' << hit.stage << ',' << fixed(hit.score.shape) << ','
+    write_entry_columns(out, library, i + 1, hit.entry);
+    out << fixed(hit.score.score) << ',' << hit.stage << ',' << fixed(hit.score.shape) << ','
         << fixed(hit.score.chem) << ',' << fixed(hit.score.atoms) << ',' << fixed(hit.fast_score);
     for (int r = 0; r < 4; ++r) {
       for (int c = 0; c < 4; ++c) out << ',' << fixed(hit.score.transform(r, c));
     }
+    out << "\n";
+  }
+}
+
+void write_fused_csv(std::ostream& out, const Library& library,
+                     const std::vector<FusedHit>& fused) {
+  const std::size_t queries = fused.empty() ? 0 : fused.front().scores.size();
+  out << "rank,entry,name,source,record,conformer,score,query";
+  for (std::size_t q = 0; q < queries; ++q) out << ",score_" << q + 1;
+  out << "\n";
+  for (std::size_t i = 0; i < fused.size(); ++i) {
+    const FusedHit& hit = fused[i];
+    write_entry_columns(out, library, i + 1, hit.entry);
+    out << fixed(hit.score) << ',' << hit.query + 1;
+    for (const double score : hit.scores) out << ',' << fixed(score);
     out << "\n";
   }
 }

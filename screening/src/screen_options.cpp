@@ -28,6 +28,11 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
              "first",
              "", 0, 1e6},
             [](auto& q) -> auto& { return q.screen.candidates; }),
+        options::choice<Q>(
+            {"fusion", Kind::choice,
+             "with several queries, how a molecule's scores make the fused ranking: max "
+             "(the best query's score) or mean"},
+            [](auto& q) -> auto& { return q.screen.fusion; }, fusion_names),
         options::field<Q>(
             matching::site_ligand_spec(), [](auto& q) -> auto& { return q.site_ligand; }),
         matching::sphere_option<Q>(

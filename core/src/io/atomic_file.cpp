@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <string_view>
 #include <system_error>
 #include <thread>
 
@@ -19,14 +20,18 @@
 namespace surfcomp::io {
 namespace {
 
+/// How a temporary file's name begins and ends (is_temporary_file).
+constexpr std::string_view kTemporaryPrefix = ".surfcomp-", kTemporarySuffix = ".tmp";
+
 /// A hidden name beside `path` that no other writer uses at the same time: the process id, a
 /// count of this process's writes and a hash of the file name. It is short whatever the length
 /// of the name, so any name the file system accepts can be written.
 std::filesystem::path temporary_beside(const std::filesystem::path& path) {
   static std::atomic<unsigned> writes{0};
   char name[64];
-  std::snprintf(name, sizeof name, ".surfcomp-%ld-%u-%016zx.tmp", static_cast<long>(::getpid()),
-                writes++, std::hash<std::string>{}(path.filename().string()));
+  std::snprintf(name, sizeof name, "%s%ld-%u-%016zx%s", kTemporaryPrefix.data(),
+                static_cast<long>(::getpid()), writes++,
+                std::hash<std::string>{}(path.filename().string()), kTemporarySuffix.data());
   return path.parent_path() / name;
 }
 
@@ -100,6 +105,14 @@ void remove_temporaries_and_end(int signal_number) {
 }
 
 }  // namespace
+
+bool is_temporary_file(const std::filesystem::path& path) {
+  const std::string name = path.filename().string();
+  return name.size() > kTemporaryPrefix.size() + kTemporarySuffix.size() &&
+         name.compare(0, kTemporaryPrefix.size(), kTemporaryPrefix) == 0 &&
+         name.compare(name.size() - kTemporarySuffix.size(), kTemporarySuffix.size(),
+                      kTemporarySuffix) == 0;
+}
 
 void remove_temporary_files_on_signals() {
   struct sigaction action {};

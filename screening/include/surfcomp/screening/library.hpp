@@ -1,8 +1,8 @@
-// Screening libraries (.sclib): many molecules' conformers (or many binding sites) in one file,
-// each entry holding what the first two stages of a screen read (the overlay's surface sample,
-// packed in single precision with its self-overlaps, and the heteroatoms) and the molecule itself,
-// from which the last stage rebuilds the surface of a finalist; a site entry also holds its
-// spheres, an entry made from a .hsi file its surface.
+// Screening libraries (.sclib): many molecules' conformers (or many binding sites), each entry
+// holding what the first two stages of a screen read (the overlay's surface sample, packed in
+// single precision with its self-overlaps, and the heteroatoms) and the molecule itself, from
+// which the last stage rebuilds the surface of a finalist; a site entry also holds its spheres, an
+// entry made from a .hsi file its surface. A library is one file, or an index of shards.
 //
 // Layout of format 4 (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
 //   header   "SURFCLIB", u32 format version, u32 0
@@ -18,7 +18,15 @@
 // Formats 1 to 3 (one region of entries, each the molecule, the sample in double precision, the
 // heteroatoms, from 2 the site spheres, from 3 a described surface; an index without the sample
 // columns) are still read; their samples are packed when the first stage asks for them.
-// The file is memory-mapped and entries are decoded on demand, by index or by name.
+//
+// A sharded library (a build of many records, library_build.hpp) is an index file listing
+// format-4 library files, its shards, whose entries follow each other in its order:
+//   header   "SURFCSET", u32 index version, u32 0
+//   body     u64 shard count; per shard string path (relative to the index's folder, '/'
+//            separated), u64 entries, u64 file size, u64 the shard's index checksum (its
+//            trailer's); string settings
+//   trailer  u64 checksum of the body (FNV-1a 64), "SCSETEND"
+// The files are memory-mapped and entries are decoded on demand, by index or by name.
 #pragma once
 
 #include "surfcomp/core/io/molecule_records.hpp"
@@ -38,6 +46,9 @@ namespace surfcomp::screening {
 
 /// The format version write_library writes; Library reads it and versions 1 to 3.
 inline constexpr std::uint32_t library_format_version = 4;
+
+/// The version of a sharded library's index that write_library_index writes and Library reads.
+inline constexpr std::uint32_t library_index_version = 1;
 
 /// What the index says of an entry (it is read without decoding the entry).
 struct LibraryEntryInfo {
@@ -121,14 +132,28 @@ void write_library(const std::filesystem::path& path, const std::vector<LibraryE
                    const std::string& settings = "",
                    double sigma = matching::OverlayOptions{}.sigma);
 
-/// A library file opened for reading: memory-mapped, its header, index and trailer checked on
-/// opening; entries are decoded (and their checksums verified) when asked for. Thread-safe for
-/// reading.
+/// Writes at `path`, atomically, the index of a sharded library whose shards are the format-4
+/// library files `shards` (paths relative to `path`'s folder, in entry order), with `settings`
+/// (how the library was built, as a whole file stores them). Each shard is opened and checked
+/// as Library opens a file, and listed with its entries, size and index checksum. Throws
+/// InputError for no shard or a path that is not relative, and what Library throws for a shard
+/// (naming it); `path` is then left as it was.
+void write_library_index(const std::filesystem::path& path,
+                         const std::vector<std::filesystem::path>& shards,
+                         const std::string& settings);
+
+/// A library opened for reading, one file or a sharded library's index and every shard it lists:
+/// memory-mapped, headers, indices and trailers checked on opening; entries are decoded (and
+/// their checksums verified) when asked for. The entries of a sharded library are its shards'
+/// entries in the index's order, numbered from 0 across the shards. Thread-safe for reading.
 class Library {
  public:
-  /// Opens and checks `path`. Throws FileError (missing, unreadable, not a regular file) and
-  /// FormatError naming the file for anything that is not a library of this version: a wrong
-  /// magic, version, size or checksum, an index entry outside the entries' region.
+  /// Opens and checks `path`, a library file or an index. Throws FileError (missing, unreadable,
+  /// not a regular file) and FormatError naming the file for anything that is not a library of
+  /// this version: a wrong magic, version, size or checksum, an index entry outside the entries'
+  /// region. For an index, the same for each shard, naming the shard: FileError for a missing
+  /// one, FormatError for one whose size, entry count or index checksum is not what the index
+  /// lists (a cut, replaced or rebuilt shard) or whose format version is not 4.
   explicit Library(const std::filesystem::path& path);
   Library(Library&&) noexcept;
   Library& operator=(Library&&) noexcept;
@@ -148,10 +173,28 @@ class Library {
   /// The indices of the entries named `name`, in library order (empty when none is).
   std::vector<std::size_t> find(const std::string& name) const;
 
+  /// Checks every entry's record and sample against their checksums, without decoding them:
+  /// reads the whole library once. Throws FormatError naming the file (the shard) and the entry
+  /// of the first that does not match.
+  void verify() const;
+  /// Tells the kernel that the pages of entries [begin, end) (their records and samples, the
+  /// pages wholly inside those regions) are not needed for now: MADV_DONTNEED on the read-only
+  /// mapping, so that a reader streaming through a library larger than memory, releasing what
+  /// it has read, keeps its resident memory bounded. The entries stay readable: a page touched
+  /// again is read again from the file (or the page cache); views from packed() stay valid.
+  /// Throws std::out_of_range unless begin <= end <= size().
+  void release(std::size_t begin, std::size_t end) const;
+
+  /// The format version of the file, or of the shards of a sharded library (4).
   std::uint32_t version() const;
+  /// The build settings stored in the file, or in the index of a sharded library.
   const std::string& settings() const;
+  /// The bytes of the file, or of the index and every shard.
   std::uint64_t file_bytes() const;
+  /// The path opened: the file, or the index.
   const std::filesystem::path& path() const;
+  /// The files the entries are in: 1 for a library file, the shards an index lists.
+  std::size_t shards() const;
 
  private:
   struct Impl;

@@ -1,8 +1,9 @@
 // Building a screening library from molecule files: each record read (or its conformers
 // generated), its surface built and sampled as `surfcomp match` does, in parallel (TBB), the
-// entries written in input order whatever the thread count. A pocket library is built the same
-// way from a site list: each site's structure surfaced and its pocket lining sampled as a
-// binding-site match does.
+// entries written in input order whatever the thread count. A build of many records is cut into
+// shards of consecutive records, which several processes can build (ShardedLibraryBuild) and an
+// interrupted build can resume. A pocket library is built the same way from a site list: each
+// site's structure surfaced and its pocket lining sampled as a binding-site match does.
 #pragma once
 
 #include "surfcomp/core/conformers.hpp"
@@ -19,7 +20,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -57,13 +60,20 @@ struct LibraryBuildOptions {
   /// Default 64. Most records in flight (being built or waiting for their turn to be written):
   /// bounds the memory a build holds. >= 1.
   std::size_t batch = 64;
+  /// Default 1000. Consecutive input records per shard: a build of more records writes a
+  /// sharded library (an index at the output, the shards in the folder beside it,
+  /// shard_folder), of at most this many one library file. >= 1.
+  std::size_t shard_records = 1000;
+  /// Default false. A sharded build continues the build an interrupted run left in the shard
+  /// folder (ShardedLibraryBuild::prepare); without it an existing shard folder is refused.
+  bool resume = false;
   /// Default none. Called after each record is written or skipped, one call at a time.
   std::function<void(const BuildProgress&)> progress;
 };
 
 /// The user's options of LibraryBuildOptions: --conformers (0: the records' own coordinates,
-/// else that many ETKDG + MMFF conformers), --seed (ETKDG's, with --conformers), --site-radius
-/// and --site-margin (a pocket library).
+/// else that many ETKDG + MMFF conformers), --seed (ETKDG's, with --conformers),
+/// --shard-records, --resume, --site-radius and --site-margin (a pocket library).
 const options::Table<LibraryBuildOptions>& library_build_option_table();
 
 /// A record the build left out, and why.
@@ -83,11 +93,21 @@ struct BuildTimes {
 struct LibraryBuildResult {
   std::size_t records = 0;  ///< records read from the inputs
   std::size_t entries = 0;  ///< entries written
-  std::uint64_t bytes = 0;  ///< size of the library file
+  std::uint64_t bytes = 0;  ///< size of the library file (a sharded library: index and shards)
   std::vector<SkippedRecord> skipped;
-  double seconds = 0.0;  ///< wall-clock
-  BuildTimes times;      ///< of the records built and skipped
+  double seconds = 0.0;             ///< wall-clock
+  BuildTimes times;                 ///< of the records built and skipped
+  std::size_t shards = 1;           ///< the shards the records were cut into; 1: one file
+  std::size_t shards_resumed = 0;   ///< shards an interrupted build had finished (resume)
+  std::size_t entries_resumed = 0;  ///< the entries of those shards
 };
+
+/// Writes the log of a build that made `library`: a line "# surfcomp library build -> LIBRARY:
+/// R records, E entries, S skipped", a header line "# source<TAB>record<TAB>name<TAB>reason",
+/// then one line per skipped record in that order (a tab or line break inside a field written as
+/// a space).
+void write_build_log(std::ostream& out, const std::filesystem::path& library,
+                     const LibraryBuildResult& result);
 
 /// The records of `inputs` in order: each file's records (io::read_molecule_records), and for a
 /// .hsi file one io::RecordFormat::descriptors record (read when its entry is built); a
@@ -147,9 +167,69 @@ std::string build_settings(const LibraryBuildOptions& options, bool sites = fals
 /// goes on. When no entry is built (result.entries 0), nothing is written: a file already at
 /// `output` is left as it was. The file's bytes do not depend on the thread count. Throws
 /// OptionError for options outside their domain (before any work), FileError when `output` cannot
-/// be written.
+/// be written. More records than options.shard_records make a sharded library, built shard by
+/// shard in this process (ShardedLibraryBuild: prepare, build, finish), which throws as those do.
 LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
                                  const std::filesystem::path& output,
                                  const LibraryBuildOptions& options = {});
+
+/// The folder of the shards of the sharded library whose index is `output`: "OUTPUT.d" beside
+/// it (target.sclib -> target.sclib.d).
+std::filesystem::path shard_folder(const std::filesystem::path& output);
+
+/// A build cut into shards of options.shard_records consecutive records, shard k (0-based)
+/// holding records [k N, (k + 1) N): a format-4 library file in shard_folder(output) named by
+/// its 1-based number (000001.sclib ...), with a log of its skipped records beside it
+/// (000001.log), written once the shard is complete. A shard whose records were all skipped has
+/// a log and no library file. The output is the index of the shards that have entries
+/// (write_library_index). A shard's bytes do not depend on which process built it, on the number
+/// of processes or on the thread count: its settings are the build's settings and its number,
+/// records and input hash (a 64-bit hash of its records' source, record number, name, format and
+/// text). A manifest (manifest.txt in the folder: the settings, the shard size and count, the
+/// record count and each shard's input hash) records what the folder is being built from.
+///
+/// One process calls prepare(), then build() on every process (each building its share of the
+/// shards), then, once all have returned, finish() on the process that called prepare().
+class ShardedLibraryBuild {
+ public:
+  /// The plan of a build of `records` (kept by reference: they must outlive this object) to
+  /// `output`. Reads and writes nothing. Throws OptionError for options outside their domain,
+  /// InputError for no record.
+  ShardedLibraryBuild(const std::vector<io::MoleculeRecord>& records, std::filesystem::path output,
+                      LibraryBuildOptions options);
+  ShardedLibraryBuild(const ShardedLibraryBuild&) = delete;
+  ShardedLibraryBuild& operator=(const ShardedLibraryBuild&) = delete;
+  ~ShardedLibraryBuild();
+
+  std::size_t shards() const;
+  const std::filesystem::path& folder() const;
+
+  /// Before any shard is built. A fresh build creates the folder and writes the manifest; when
+  /// the folder exists it throws FileError naming it unless options.resume. Resuming (the folder
+  /// exists): throws InputError naming the manifest when it is missing or records other inputs
+  /// or options (the first line that differs), FileError or FormatError naming a shard file
+  /// that does not open, whose settings are not its own or whose entries do not match their
+  /// checksums; after those checks, removes the temporary files an interrupted write left in the
+  /// folder (io::is_temporary_file). Nothing in the folder is changed when it throws.
+  void prepare();
+  /// Builds the shards k with k % ranks == rank that are not finished (a shard is finished when
+  /// its log is written and, unless all its records were skipped, its library file exists),
+  /// writing each shard's file and then its log atomically. options.progress sees this call's
+  /// records (records_done of records, over its shards). Returns this call's records, entries,
+  /// bytes, skipped records, times and seconds. Throws what building a shard throws (FileError
+  /// when a file cannot be written).
+  LibraryBuildResult build(std::size_t rank = 0, std::size_t ranks = 1);
+  /// Once every shard is finished: writes the index at the output atomically (none when no
+  /// shard has an entry) and returns the build's records, entries, bytes (index and shards),
+  /// skipped records of every shard in record order, shard counts and, when prepare() ran in
+  /// this object, the shards it found finished; times and seconds are left 0 (the builders').
+  /// Throws FileError naming the log of a shard that is not finished, and what
+  /// write_library_index throws.
+  LibraryBuildResult finish() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace surfcomp::screening

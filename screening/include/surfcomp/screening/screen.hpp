@@ -10,8 +10,12 @@
 //  3. the full match (matching::match_surfaces, as `surfcomp match` runs it) of the query with
 //     the best conformer of the `candidates` best molecules, its surface and descriptors
 //     rebuilt from the stored molecule.
-// Every entry is scored independently into its own slot (TBB): the hits do not depend on the
-// thread count, and a caller may split the entries over processes (fast_scores on a range).
+// Stages 1 and 2 stream through the library a block of molecules at a time, every query scored
+// in the same read, and keep of each query only its best molecules (a bounded list) and, for a
+// fused ranking of several queries, one score per molecule: the memory held does not grow with
+// the library's bytes (Library::release drops the pages read). Every entry is scored
+// independently into its own slot (TBB): the hits do not depend on the thread count, and a
+// caller may split the molecules over processes (score_molecules on a range).
 #pragma once
 
 #include "surfcomp/core/io/read_molecule.hpp"
@@ -24,6 +28,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
+
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -33,6 +39,11 @@
 #include <vector>
 
 namespace surfcomp::screening {
+
+/// How a molecule's scores against several queries make one score: their maximum, or their mean.
+enum class Fusion { max, mean };
+/// The names of the fusion rules, indexed by Fusion (as --fusion spells them).
+inline constexpr std::array<const char*, 2> fusion_names = {"max", "mean"};
 
 struct ScreenOptions {
   /// Default 5. The conformers of each molecule, best fast score first, whose overlay stage 2
@@ -46,6 +57,8 @@ struct ScreenOptions {
   std::size_t candidates = 50;
   /// Default 100. Hits returned, best first; 0: every molecule of the library.
   std::size_t top = 100;
+  /// Default Fusion::max. How the scores of several queries make one ranking (fuse_scores).
+  Fusion fusion = Fusion::max;
   /// The full match of stage 3, whose overlay options (sigma, spacing, chemistry and atom
   /// weights, refinement steps) stages 1 and 2 score and refine with too; default as
   /// `surfcomp match`.
@@ -155,20 +168,6 @@ HitScore fast_score(const ScreenQuery& query, const matching::PackedSampleView& 
 HitScore fast_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options = {});
 
-/// Stage 1 of the entries [begin, end) of `library`, in parallel (TBB), in entry order.
-/// Throws FormatError for a damaged entry (Library::entry), InputError when the library is not
-/// of the query's kind (check_library_kind).
-std::vector<HitScore> fast_scores(const ScreenQuery& query, const Library& library,
-                                  std::size_t begin, std::size_t end,
-                                  const ScreenOptions& options = {});
-
-/// The entries stage 2 refines: each molecule's (the entries sharing name, source and record)
-/// `per_molecule` best entries by their stage-1 score, ties to the lower index, in entry order.
-/// `fast` holds one score per library entry.
-std::vector<std::size_t> entries_to_refine(const Library& library,
-                                           const std::vector<HitScore>& fast,
-                                           std::size_t per_molecule);
-
 /// Stage 2 of one entry (see the file comment), from its packed sample: the best of its starts'
 /// scores and their refinements (matching::PackedQuery::refine).
 HitScore refined_score(const ScreenQuery& query, const matching::PackedSampleView& entry,
@@ -176,26 +175,6 @@ HitScore refined_score(const ScreenQuery& query, const matching::PackedSampleVie
 /// Stage 2 of one decoded entry (its packed sample, packed now when it has none).
 HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
                        const ScreenOptions& options = {});
-
-/// An entry's score after stages 1 and 2.
-struct EntryScore {
-  HitScore score;           ///< the refined score where stage 2 refined the entry, else the fast
-  int stage = 1;            ///< 2 where stage 2 refined it
-  double fast_score = 0.0;  ///< its stage-1 score
-};
-
-/// One EntryScore per library entry: `fast`, with the scores of the `refined` entries (as
-/// entries_to_refine lists them, one score each) in their place, where they are not below the
-/// fast score (the two stages' arithmetic differs in the last digits). Throws InputError when
-/// the counts differ or an entry is outside the library.
-std::vector<EntryScore> merge_refined(const std::vector<HitScore>& fast,
-                                      const std::vector<std::size_t>& refined_entries,
-                                      const std::vector<HitScore>& refined);
-
-/// Each molecule's best entry by its score after stage 2, the molecules ordered by that score,
-/// best first; ties go to the lower entry index. `scores` holds one score per library entry.
-std::vector<std::size_t> best_entry_per_molecule(const Library& library,
-                                                 const std::vector<EntryScore>& scores);
 
 /// Stage 3 of one entry: the full match of the query with the entry's molecule, rebuilt (see
 /// ScreenOptions::read, surface; a site's structure described at its site, matched as binding
@@ -206,7 +185,7 @@ std::vector<std::size_t> best_entry_per_molecule(const Library& library,
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options = {});
 
-/// One row of a screen's result.
+/// One row of a screen's result: a molecule, by its best conformer.
 struct Hit {
   std::size_t entry = 0;  ///< 0-based library index of the molecule's best conformer
   int stage = 1;          ///< the stage whose score `score` is: 3 for the candidates
@@ -214,12 +193,79 @@ struct Hit {
   double fast_score = 0.0;  ///< its stage-1 score
 };
 
-/// The result rows: first the `full.size()` candidates (the first entries of `best`, their
+/// A library's molecules: runs of consecutive entries sharing name, source and record (a build
+/// writes a record's conformers together). Molecule m is the entries [starts[m], starts[m + 1]);
+/// the last element is library.size(). Reads only the index.
+std::vector<std::size_t> molecule_starts(const Library& library);
+
+/// One molecule's score against one query after stage 2, for a fused ranking.
+struct MoleculeScore {
+  std::size_t entry = 0;  ///< its best conformer
+  double score = 0.0;
+};
+
+/// What stages 1 and 2 leave of one query over a range of molecules.
+struct QueryScores {
+  /// Each molecule's best conformer (stage 2, or stage 1 with refine 0): a molecule's entries
+  /// get their fast scores, its `refine` best by fast score (ties to the lower index) their
+  /// refined scores where those are not lower, and its best entry (ties to the lower index)
+  /// stands for it. Only the kept_molecules() best molecules, best first (ties to the lower
+  /// entry).
+  std::vector<Hit> best;
+  /// With `every_molecule`: every molecule of the range in order, its best entry and score.
+  std::vector<MoleculeScore> all;
+};
+
+/// The molecules stages 1 and 2 keep per query: every one when options.top is 0, else
+/// max(options.top, options.candidates).
+std::size_t kept_molecules(const ScreenOptions& options);
+
+/// Stages 1 and 2 of some molecules against every query.
+struct StreamedScores {
+  std::vector<QueryScores> queries;  ///< one per query, in query order
+  double stage1_seconds = 0.0;       ///< wall-clock, summed over the blocks
+  double stage2_seconds = 0.0;
+};
+
+/// Stages 1 and 2 (see the file comment) of the molecules [first, last) of `starts`
+/// (molecule_starts of `library`) against every query, streamed: a block of molecules at a time
+/// is read once, its entries fast-scored against every query and each molecule's best refined,
+/// then its pages released (Library::release). Progress (options.progress) is reported as
+/// stage 1 over the range's entries. Throws InputError when the library is not of the queries'
+/// kind (check_library_kind) or the queries are of two kinds, FormatError for a damaged entry.
+StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
+                               const Library& library, const std::vector<std::size_t>& starts,
+                               std::size_t first, std::size_t last,
+                               const ScreenOptions& options = {}, bool every_molecule = false);
+
+/// The kept_molecules() best of several ranges' lists of one query (QueryScores::best), best
+/// first, ties to the lower entry: what one range of all the molecules would have kept.
+std::vector<Hit> merge_best(const std::vector<std::vector<Hit>>& parts,
+                            const ScreenOptions& options);
+
+/// The result rows: first the `full.size()` candidates (the first molecules of `best`, their
 /// stage-3 scores in `full`) by their stage-3 score, then the other molecules of `best` in
-/// their order after stage 2; at most `top` rows (0: all). Ties go to the lower entry index.
-std::vector<Hit> rank_hits(const std::vector<std::size_t>& best,
-                           const std::vector<EntryScore>& scores, const std::vector<HitScore>& full,
+/// their order; at most `top` rows (0: all). Ties go to the lower entry index.
+std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,
                            std::size_t top);
+
+/// One row of a fused ranking of several queries.
+struct FusedHit {
+  std::size_t entry = 0;  ///< the molecule's best conformer against its best query
+  std::size_t query = 0;  ///< 0-based: the query that scores the molecule highest (ties: first)
+  double score = 0.0;     ///< the fused score
+  std::vector<double> scores;  ///< the molecule's score against each query
+};
+
+/// The fused ranking: each molecule's final score against each query (its score in `all`, or
+/// its stage-3 score where it is a stage-3 row of that query's `ranked` hits) fused by `fusion`
+/// (max: the highest, mean: the mean over the queries), best first, ties to the lower molecule;
+/// at most `top` rows (0: all). `all` holds one list per query, each of every molecule of
+/// `starts` in order. Throws InputError when the lists disagree with `starts`.
+std::vector<FusedHit> fuse_scores(const std::vector<std::vector<MoleculeScore>>& all,
+                                  const std::vector<std::vector<Hit>>& ranked,
+                                  const std::vector<std::size_t>& starts, Fusion fusion,
+                                  std::size_t top);
 
 /// A screen's rows and its time.
 struct ScreenResult {
@@ -229,11 +275,30 @@ struct ScreenResult {
   double stage3_seconds = 0.0;  ///< wall-clock time of the full matches
 };
 
-/// The whole screen in this process: fast_scores of every entry, refined_score of the
-/// entries_to_refine (in parallel), merge_refined, best_entry_per_molecule, the first
-/// options.candidates of them through full_score (in parallel), rank_hits.
+/// The whole screen in this process: score_molecules over every molecule, the first
+/// options.candidates of the best through full_score (in parallel), rank_hits.
 ScreenResult screen(const ScreenQuery& query, const Library& library,
                     const ScreenOptions& options = {});
+
+/// A screen of several queries in one read of the library.
+struct MultiScreenResult {
+  std::vector<std::vector<Hit>> hits;  ///< per query: the rows screen() gives it alone
+  std::vector<FusedHit> fused;         ///< their fused ranking (options.fusion, options.top)
+  double stage1_seconds = 0.0;         ///< wall-clock times of the stages, as in ScreenResult
+  double stage2_seconds = 0.0;
+  double stage3_seconds = 0.0;
+};
+
+/// screen() of every query at once: the library read once for stages 1 and 2, each query's
+/// rows the same as its own screen's, and their fused ranking (fuse_scores). Throws as
+/// score_molecules.
+MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
+                                 const Library& library, const ScreenOptions& options = {});
+
+/// The fused ranking as CSV: a header row, then one row per molecule with the columns rank,
+/// entry (1-based), name, source, record, conformer, score (fused), query (1-based, the best
+/// query) and score_1..score_Q, each query's score.
+void write_fused_csv(std::ostream& out, const Library& library, const std::vector<FusedHit>& fused);
 
 /// The hits as CSV: a header row, then one row per hit with the columns rank, entry (1-based),
 /// name, source, record, conformer, score, stage, shape, chem, atoms, fast_score and the 16
