@@ -503,38 +503,28 @@ py::dict match(const py::object& reference, const py::object& probe, const py::d
   return match_dict(*compared);
 }
 
-py::list screen(const py::object& query, const std::string& library_path, const py::dict& keywords,
-                bool molecules) {
-  const auto settings = settings_from(screening::screen_option_table(), keywords);
-  const matching::MatchInputOptions query_options = screening::screen_query_options(settings);
-  const matching::MatchInput in =
-      screening::screen_query_input(input_of(query, query_options.input.read), settings);
-  matching::check_match_input(in, query_options, "QUERY");
-  std::optional<screening::Library> library;
-  screening::ScreenResult result;
-  {
-    py::gil_scoped_release release;
-    const auto limit = tools::limit_threads(settings.query.threads);
-    library.emplace(library_path);
-    screening::check_library_kind(*library, screening::is_site_query(settings));
-    matching::PreparedInput prepared = matching::prepare_input(in, query_options);
-    const screening::ScreenQuery screen_query = screening::make_screen_query(
-        std::move(prepared.descriptors), settings.screen, prepared.site,
-        prepared.molecule ? &*prepared.molecule : nullptr);
-    result = screening::screen(screen_query, *library, settings.screen);
-  }
-  py::list hits;
-  for (std::size_t k = 0; k < result.hits.size(); ++k) {
-    const screening::Hit& hit = result.hits[k];
-    const screening::LibraryEntryInfo& info = library->info(hit.entry);
+/// A row of a screen's table: its rank and its molecule's entry, as Hit and FusedHit begin.
+py::dict entry_row(const screening::Library& library, std::size_t rank, std::size_t entry) {
+  const screening::LibraryEntryInfo& info = library.info(entry);
+  py::dict d;
+  d["rank"] = rank;
+  d["entry"] = entry + 1;
+  d["name"] = info.name;
+  d["source"] = info.source;
+  d["record"] = info.record;
+  d["conformer"] = info.conformer;
+  return d;
+}
+
+/// One screen's rows as dicts (Hit's fields), with each hit's molecule moved onto the query
+/// ("aligned": its text and format) when `molecules`.
+py::list hit_list(const screening::Library& library, const std::vector<screening::Hit>& hits,
+                  const screening::QueryScreenOptions& settings, bool molecules) {
+  py::list rows;
+  for (std::size_t k = 0; k < hits.size(); ++k) {
+    const screening::Hit& hit = hits[k];
     Eigen::Matrix<double, 4, 4, Eigen::RowMajor> transform = hit.score.transform;
-    py::dict d;
-    d["rank"] = k + 1;
-    d["entry"] = hit.entry + 1;
-    d["name"] = info.name;
-    d["source"] = info.source;
-    d["record"] = info.record;
-    d["conformer"] = info.conformer;
+    py::dict d = entry_row(library, k + 1, hit.entry);
     d["score"] = hit.score.score;
     d["stage"] = hit.stage;
     d["shape"] = hit.score.shape;
@@ -545,13 +535,61 @@ py::list screen(const py::object& query, const std::string& library_path, const 
     if (molecules) {
       const bool site = screening::is_site_query(settings);
       d["aligned"] = py::make_tuple(
-          site ? screening::aligned_site_model(*library, hit, k + 1, settings.screen.read)
-               : screening::aligned_hit_record(*library, hit, k + 1),
+          site ? screening::aligned_site_model(library, hit, k + 1, settings.screen.read)
+               : screening::aligned_hit_record(library, hit, k + 1),
           site ? "pdb" : "sdf");
     }
-    hits.append(d);
+    rows.append(d);
   }
-  return hits;
+  return rows;
+}
+
+/// Every query of `queries` screened against the library in one pass: {"hits": one list of
+/// rows per query, "fused": the fused ranking's rows (several queries only)}.
+py::dict screen(const py::list& queries, const std::string& library_path, const py::dict& keywords,
+                bool molecules) {
+  const auto settings = settings_from(screening::screen_option_table(), keywords);
+  const matching::MatchInputOptions query_options = screening::screen_query_options(settings);
+  std::vector<matching::MatchInput> inputs;
+  for (const py::handle query : queries) {
+    inputs.push_back(
+        screening::screen_query_input(input_of(query, query_options.input.read), settings));
+    matching::check_match_input(inputs.back(), query_options, "QUERY");
+  }
+  std::optional<screening::Library> library;
+  screening::MultiScreenResult result;
+  {
+    py::gil_scoped_release release;
+    const auto limit = tools::limit_threads(settings.query.threads);
+    library.emplace(library_path);
+    screening::check_library_kind(*library, screening::is_site_query(settings));
+    std::vector<screening::ScreenQuery> prepared_queries;
+    for (const matching::MatchInput& in : inputs) {
+      matching::PreparedInput prepared = matching::prepare_input(in, query_options);
+      prepared_queries.push_back(screening::make_screen_query(
+          std::move(prepared.descriptors), settings.screen, prepared.site,
+          prepared.molecule ? &*prepared.molecule : nullptr));
+    }
+    std::vector<const screening::ScreenQuery*> pointers;
+    for (const screening::ScreenQuery& q : prepared_queries) pointers.push_back(&q);
+    result = screening::screen_queries(pointers, *library, settings.screen);
+  }
+  py::list per_query;
+  for (const std::vector<screening::Hit>& hits : result.hits)
+    per_query.append(hit_list(*library, hits, settings, molecules));
+  py::list fused;
+  for (std::size_t k = 0; k < result.fused.size(); ++k) {
+    const screening::FusedHit& hit = result.fused[k];
+    py::dict d = entry_row(*library, k + 1, hit.entry);
+    d["score"] = hit.score;
+    d["query"] = hit.query + 1;
+    d["scores"] = py::tuple(py::cast(hit.scores));
+    fused.append(d);
+  }
+  py::dict out;
+  out["hits"] = per_query;
+  out["fused"] = fused;
+  return out;
 }
 
 py::list option_table(const std::string& function) {

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import inspect
 import os
-from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Union
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -44,9 +44,10 @@ from ._surfcomp import Descriptors, Error, FileError, InputError, OptionError, S
 
 __all__ = [
     "Alignment", "CriticalPoints", "DescriptionParameters", "Descriptors", "Error", "FileError",
-    "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
-    "OverlayScore", "Patch", "Surface", "SurfaceMeasures", "build_surface", "describe",
-    "library_info", "load_descriptors", "match", "option_table", "screen",
+    "FusedHit", "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
+    "OverlayScore", "Patch", "Screens", "Surface", "SurfaceMeasures", "build_surface",
+    "describe", "library_info", "load_descriptors", "match", "option_table", "screen",
+    "screen_queries",
 ]
 __version__ = "0.1.0"
 
@@ -256,6 +257,46 @@ _documented(
              "query (a pocket hit: its structure), else None")
 
 
+class FusedHit(NamedTuple):
+    """One molecule of a fused ranking of several queries, best first."""
+
+    rank: int
+    entry: int
+    name: str
+    source: str
+    record: int
+    conformer: int
+    score: float
+    query: int
+    scores: Tuple[float, ...]
+
+
+_documented(
+    FusedHit,
+    rank="1-based position, best first",
+    entry="1-based library entry of the molecule's best conformer against its best query",
+    name="the molecule's name",
+    source="the file the molecule came from",
+    record="1-based record of that file",
+    conformer="that entry's conformer (0: the record's own coordinates)",
+    score="the fused score: the maximum or the mean of `scores` (the fusion option)",
+    query="1-based: the query that scores the molecule highest",
+    scores="the molecule's score against each query, in query order")
+
+
+class Screens(NamedTuple):
+    """Several queries screened in one pass."""
+
+    hits: List[List[Hit]]
+    fused: List[FusedHit]
+
+
+_documented(
+    Screens,
+    hits="per query, its hits as screen() gives them for that query alone",
+    fused="every molecule ranked by its fused score (empty for one query)")
+
+
 class CriticalPoints(NamedTuple):
     """The critical points of a description, one row per point."""
 
@@ -445,6 +486,19 @@ def match(ref, probe, *, report: Union[str, os.PathLike, None] = None, **options
     return result
 
 
+def _hits(rows, molecules):
+    """Hit tuples from the module's rows; with ``molecules``, their aligned texts as RDKit
+    molecules."""
+    if molecules:
+        from rdkit import Chem
+
+        for row in rows:
+            block, kind = row.pop("aligned")
+            row["molecule"] = (Chem.MolFromMolBlock(block, removeHs=False) if kind == "sdf"
+                               else Chem.MolFromPDBBlock(block, removeHs=False))
+    return [Hit(**row) for row in rows]
+
+
 @_keyword_options("screen")
 def screen(query, library, *, molecules: bool = False, **options) -> List[Hit]:
     """Ranks the molecules of a screening library (``surfcomp library build``) against ``query``
@@ -452,16 +506,19 @@ def screen(query, library, *, molecules: bool = False, **options) -> List[Hit]:
     binding site on a structure against a pocket library), as ``surfcomp screen`` does. With
     ``molecules``, each hit carries its molecule moved onto the query as an RDKit molecule
     (``Hit.molecule``; a pocket hit: its structure), written as ``screen --aligned-out``
-    writes it."""
-    hits = _surfcomp.screen(_input(query), os.fspath(library), options, molecules)
-    if molecules:
-        from rdkit import Chem
+    writes it. ``fusion`` applies to :func:`screen_queries`."""
+    result = _surfcomp.screen([_input(query)], os.fspath(library), options, molecules)
+    return _hits(result["hits"][0], molecules)
 
-        for hit in hits:
-            block, kind = hit.pop("aligned")
-            hit["molecule"] = (Chem.MolFromMolBlock(block, removeHs=False) if kind == "sdf"
-                               else Chem.MolFromPDBBlock(block, removeHs=False))
-    return [Hit(**h) for h in hits]
+
+@_keyword_options("screen")
+def screen_queries(queries, library, *, molecules: bool = False, **options) -> Screens:
+    """Screens several queries against a library in one pass, as ``surfcomp screen Q1 Q2 ...
+    LIB`` does: each query's hits (the rows :func:`screen` gives it alone) and, with more than
+    one query, every molecule ranked by the ``fusion`` of its scores against the queries."""
+    result = _surfcomp.screen([_input(q) for q in queries], os.fspath(library), options, molecules)
+    return Screens(hits=[_hits(rows, molecules) for rows in result["hits"]],
+                   fused=[FusedHit(**row) for row in result["fused"]])
 
 
 def library_info(path) -> LibraryInfo:

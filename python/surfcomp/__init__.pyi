@@ -153,6 +153,21 @@ class Hit(NamedTuple):
     transform: npt.NDArray[np.float64]
     molecule: Any = None  # with screen(..., molecules=True): an RDKit molecule
 
+class FusedHit(NamedTuple):
+    rank: int
+    entry: int
+    name: str
+    source: str
+    record: int
+    conformer: int
+    score: float
+    query: int
+    scores: Tuple[float, ...]
+
+class Screens(NamedTuple):
+    hits: List[List[Hit]]
+    fused: List[FusedHit]
+
 class LibraryEntry(NamedTuple):
     entry: int
     name: str
@@ -276,6 +291,7 @@ def screen(
     refine: int = 5,
     refine_starts: int = 0,
     candidates: int = 50,
+    fusion: str = "max",
     record: Optional[int] = None,
     site_ligand: Optional[str] = None,
     site_sphere: Optional[SiteSpheres] = None,
@@ -283,6 +299,24 @@ def screen(
     site_margin: float = 16.0,
     threads: int = 0,
 ) -> List[Hit]: ...
+
+def screen_queries(
+    queries: Sequence[Union[PathLike, Molecule, Descriptors]],
+    library: PathLike,
+    *,
+    molecules: bool = False,
+    top: int = 100,
+    refine: int = 5,
+    refine_starts: int = 0,
+    candidates: int = 50,
+    fusion: str = "max",
+    record: Optional[int] = None,
+    site_ligand: Optional[str] = None,
+    site_sphere: Optional[SiteSpheres] = None,
+    site_radius: float = 4.0,
+    site_margin: float = 16.0,
+    threads: int = 0,
+) -> Screens: ...
 
 def library_info(path: PathLike) -> LibraryInfo: ...
 def option_table(function: str) -> List[Dict[str, Any]]: ...

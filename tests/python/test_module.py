@@ -202,6 +202,25 @@ def test_a_screen_finds_its_query_first(program, cache, tmp_path):
     # The best hit is the query itself: moved onto it, its atoms sit on the query's.
     np.testing.assert_allclose(moved[0].molecule.GetConformer().GetPositions(),
                                query.GetConformer().GetPositions(), atol=0.05)
+    # Two queries in one pass: each query's hits are its own screen's; the fused ranking takes
+    # each molecule's best score (fusion max) or their mean.
+    other = Chem.SDMolSupplier(str(sdf), removeHs=False)[7]
+    alone = [surfcomp.screen(q, library, top=0, candidates=2) for q in (query, other)]
+    for fusion in ("max", "mean"):
+        both = surfcomp.screen_queries([query, other], library, top=0, candidates=2, fusion=fusion)
+        assert len(both.hits) == 2 and len(both.fused) == 10
+        for own, joint in zip(alone, both.hits):
+            assert [(h.entry, h.score, h.stage) for h in own] == [(h.entry, h.score, h.stage)
+                                                                  for h in joint]
+        by_name = [{h.name: h.score for h in own} for own in alone]
+        for row in both.fused:
+            assert row.scores == pytest.approx((by_name[0][row.name], by_name[1][row.name]))
+            expected = max(row.scores) if fusion == "max" else sum(row.scores) / 2
+            assert row.score == pytest.approx(expected)
+            assert row.query == 1 + row.scores.index(max(row.scores))
+        assert [r.score for r in both.fused] == sorted((r.score for r in both.fused), reverse=True)
+        if fusion == "max":  # each query finds itself, at about 1
+            assert {both.fused[0].entry, both.fused[1].entry} == {4, 8}
 
 
 def _help_defaults(program, subcommand):
