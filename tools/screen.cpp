@@ -200,8 +200,8 @@ int screen(const std::vector<std::string>& args) {
                        "): " + e.what());
     }
   }
-  std::vector<const screening::ScreenQuery*> query_list;
-  for (const screening::ScreenQuery& query : queries) query_list.push_back(&query);
+  std::vector<const screening::ScreenQuery*> query_list(queries.size());
+  for (std::size_t q = 0; q < queries.size(); ++q) query_list[q] = &queries[q];
   const double query_s = clock.elapsed_s();
 
   screening::MultiScreenResult result;

@@ -570,8 +570,8 @@ py::dict screen(const py::list& queries, const std::string& library_path, const 
           std::move(prepared.descriptors), settings.screen, prepared.site,
           prepared.molecule ? &*prepared.molecule : nullptr));
     }
-    std::vector<const screening::ScreenQuery*> pointers;
-    for (const screening::ScreenQuery& q : prepared_queries) pointers.push_back(&q);
+    std::vector<const screening::ScreenQuery*> pointers(prepared_queries.size());
+    for (std::size_t q = 0; q < pointers.size(); ++q) pointers[q] = &prepared_queries[q];
     result = screening::screen_queries(pointers, *library, settings.screen);
   }
   py::list per_query;
