@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
-#include <map>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -275,6 +274,17 @@ class MappedFile {
   }
   const std::uint8_t* data() const { return data_; }
   std::size_t size() const { return size_; }
+  /// Drops the resident pages wholly inside bytes [from, to) of the file (MADV_DONTNEED on the
+  /// read-only mapping): they are read again from the file if touched again.
+  void release(std::uint64_t from, std::uint64_t to) const {
+    static const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+    const std::uint64_t first_page = (from + page - 1) / page * page;  // the mapping starts on one
+    const std::uint64_t end_page = std::min<std::uint64_t>(to, size_) / page * page;
+    if (first_page < end_page) {
+      ::madvise(const_cast<std::uint8_t*>(data_) + first_page, end_page - first_page,
+                MADV_DONTNEED);
+    }
+  }
 
  private:
   const std::uint8_t* data_ = nullptr;
@@ -377,6 +387,11 @@ void LibraryFile::read_index() {
   // Each index record takes at least 44 bytes: a count beyond that is damage, not a reason to
   // reserve memory.
   if (count > r.remaining() / 44) r.fail("entry count " + std::to_string(count) + " too large");
+  for (auto* column : {&offsets, &sizes, &checksums}) column->reserve(count);
+  if (version >= 4) {
+    for (auto* column : {&sample_offsets, &sample_sizes, &sample_checksums}) column->reserve(count);
+  }
+  infos.reserve(count);
   // Records (the entries before format 4) follow each other from the header; format 4's samples
   // follow each other in the 64-byte-aligned region between the records and the index.
   std::uint64_t previous_end = kHeaderBytes;
@@ -423,6 +438,9 @@ void LibraryFile::read_index() {
     sizes.push_back(bytes);
     checksums.push_back(checksum);
     infos.push_back(std::move(info));
+    // The index's pages decoded so far go as the reading goes, so that they and the decoded
+    // index are not resident together (a million entries' index is about 150 MB of the file).
+    if (e % 8192 == 8191) file.release(index_offset, index_end - r.remaining());
   }
   const std::uint64_t entries_end = version >= 4 && count > 0 ? previous_sample_end : previous_end;
   if (version >= 4 && count > 0 && aligned(previous_end) != sample_offsets.front())
@@ -430,6 +448,7 @@ void LibraryFile::read_index() {
   if (entries_end != index_offset) fail("the entries do not end where the index begins");
   settings = r.string();
   if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes after the index");
+  file.release(index_offset, size);
 }
 
 matching::PackedSampleView LibraryFile::sample_view(std::size_t index) const {
@@ -546,18 +565,9 @@ void LibraryFile::verify(std::size_t index) const {
 
 void LibraryFile::release(std::size_t begin, std::size_t end) const {
   if (begin >= end) return;
-  static const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
-  // The mapping starts on a page: the pages wholly inside [from, to) of the file.
-  const auto drop = [&](std::uint64_t from, std::uint64_t to) {
-    const std::uint64_t first_page = (from + page - 1) / page * page;
-    const std::uint64_t end_page = to / page * page;
-    if (first_page < end_page) {
-      ::madvise(const_cast<std::uint8_t*>(file.data()) + first_page, end_page - first_page,
-                MADV_DONTNEED);
-    }
-  };
-  drop(offsets[begin], offsets[end - 1] + sizes[end - 1]);
-  if (version >= 4) drop(sample_offsets[begin], sample_offsets[end - 1] + sample_sizes[end - 1]);
+  file.release(offsets[begin], offsets[end - 1] + sizes[end - 1]);
+  if (version >= 4)
+    file.release(sample_offsets[begin], sample_offsets[end - 1] + sample_sizes[end - 1]);
 }
 
 }  // namespace
@@ -603,13 +613,10 @@ struct Library::Impl {
   std::vector<std::size_t> ends;  // entries in files[0..f]
   std::string settings;           // the file's, or the index's
   std::uint64_t bytes = 0;        // of the file, or of the index and the shards
-  std::multimap<std::string, std::size_t> by_name;
 
   /// Opens the shards the index `index` (mapped from `path`) lists.
   void open_shards(const MappedFile& index);
   void add(std::unique_ptr<LibraryFile> file) {
-    for (std::size_t e = 0; e < file->size(); ++e)
-      by_name.emplace(file->infos[e].name, file->first + e);
     ends.push_back(file->first + file->size());
     files.push_back(std::move(file));
   }
@@ -750,10 +757,15 @@ PackedEntry Library::packed(std::size_t index, double sigma) const {
 }
 
 std::vector<std::size_t> Library::find(const std::string& name) const {
+  // A scan of the index: no table by name is kept, whose nodes would cost a screen of millions
+  // of entries about 100 bytes each for a lookup it never makes.
   std::vector<std::size_t> found;
-  const auto [begin, end] = impl_->by_name.equal_range(name);
-  for (auto it = begin; it != end; ++it) found.push_back(it->second);
-  return found;  // a multimap keeps equal keys in insertion order: library order
+  for (const auto& file : impl_->files) {
+    for (std::size_t e = 0; e < file->size(); ++e) {
+      if (file->infos[e].name == name) found.push_back(file->first + e);
+    }
+  }
+  return found;
 }
 
 void Library::verify() const {

@@ -170,7 +170,8 @@ class Library {
   PackedEntry packed(std::size_t index, double sigma) const;
   /// The encoded size of entry `index`, bytes.
   std::uint64_t entry_bytes(std::size_t index) const;
-  /// The indices of the entries named `name`, in library order (empty when none is).
+  /// The indices of the entries named `name`, in library order (empty when none is): a scan of
+  /// the index, O(entries).
   std::vector<std::size_t> find(const std::string& name) const;
 
   /// Checks every entry's record and sample against their checksums, without decoding them:
