@@ -249,7 +249,8 @@ lib=$work/lib/trial.sclib
 out=$work/out
 rm -rf "${work:?}/lib" "$out"
 export SURFCOMP=$surfcomp INPUTS=$inputs QUERIES=$queries LIB=$lib OUT=$out
-export BUILD_OPTIONS="" SCREEN_OPTIONS="" FUSION=max
+# Shards of 20 records: the trial's library is built in shards across the job's processes.
+export BUILD_OPTIONS="--shard-records 20" SCREEN_OPTIONS="" FUSION=max
 # Show the nodes and slots mpirun takes from the allocation.
 export MPIRUN_OPTIONS="--display-allocation"
 
