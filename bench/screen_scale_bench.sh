@@ -8,7 +8,7 @@
 #   Runs, each under /usr/bin/time: QUERY1 with the default stages; QUERY1 and all the queries
 #   with --refine 0 (stage 1, then stage 3 of the candidates), in one process and under mpirun;
 #   and QUERY1 with the default stages under mpirun. SCREEN_RUNS="a b ..." picks some of
-#   one_default one_fast all_fast mpi_all_fast mpi_one_default.
+#   one_default one_fast all_fast mpi_one_fast mpi_all_fast mpi_one_default.
 set -euo pipefail
 lib=${1:?usage: screen_scale_bench.sh LIB WORKDIR SURFCOMP QUERY1 [QUERY2 ...]}
 work=${2:?usage}
@@ -19,7 +19,7 @@ queries=("$@")
 cores=$(nproc)
 mpirun=(mpirun --oversubscribe --bind-to none -np 2)
 [ "$(id -u)" -ne 0 ] || mpirun+=(--allow-run-as-root)
-runs=${SCREEN_RUNS:-one_default one_fast all_fast mpi_all_fast mpi_one_default}
+runs=${SCREEN_RUNS:-one_default one_fast all_fast mpi_one_fast mpi_all_fast mpi_one_default}
 mkdir -p "$work"
 echo "screen_scale_bench: $lib ($(du -h "$lib" | cut -f1)), $cores cores"
 
@@ -39,6 +39,10 @@ for run in $runs; do
                 --threads "$cores" --refine 0 ;;
     all_fast) screen all_fast "$surfcomp" screen "${queries[@]}" "$lib" -o "$work/all_fast.csv" \
                 --threads "$cores" --refine 0 ;;
+    mpi_one_fast) screen mpi_one_fast "${mpirun[@]}" /usr/bin/time -f "rank: peak RSS %M KB" \
+                    "$surfcomp" screen "${queries[0]}" "$lib" -o "$work/mpi_one_fast.csv" \
+                    --threads $((cores / 2)) --refine 0
+                  cmp "$work/mpi_one_fast.csv" "$work/one_fast.csv" && echo "    same table as one process" ;;
     mpi_all_fast) screen mpi_all_fast "${mpirun[@]}" /usr/bin/time -f "rank: peak RSS %M KB" \
                     "$surfcomp" screen "${queries[@]}" "$lib" -o "$work/mpi_all_fast.csv" \
                     --threads $((cores / 2)) --refine 0
