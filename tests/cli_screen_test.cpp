@@ -694,9 +694,9 @@ TEST(CliScreenMemory, PeakMemoryDoesNotGrowWithTheLibrary) {
   std::printf("peak RSS: %.1f MB with 1 entry, %.1f MB with %zu (library %.1f MB)\n",
               static_cast<double>(small_rss) / 1e6, static_cast<double>(large_rss) / 1e6, kCopies,
               static_cast<double>(library_bytes) / 1e6);
-  // Reading the whole mapping would add the library's size (measured: 65 MB more for 100.5 MB);
-  // with the pages released, a block of entries and the index add 6 MB, and AddressSanitizer's
-  // shadow of the bytes read an eighth of the library.
+  // Reading the whole mapping would add the library's size; with the pages released only a
+  // block of entries, the index and AddressSanitizer's shadow of the bytes read (an eighth of
+  // the library) are added.
   EXPECT_LT(large_rss - small_rss, library_bytes / 3)
       << "peak RSS " << large_rss << " B against " << small_rss << " B for one entry";
   // The copies all score as the query itself.

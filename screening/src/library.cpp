@@ -439,7 +439,7 @@ void LibraryFile::read_index() {
     checksums.push_back(checksum);
     infos.push_back(std::move(info));
     // The index's pages decoded so far go as the reading goes, so that they and the decoded
-    // index are not resident together (a million entries' index is about 150 MB of the file).
+    // index are not resident together (the index is about 150 bytes an entry).
     if (e % 8192 == 8191) file.release(index_offset, index_end - r.remaining());
   }
   const std::uint64_t entries_end = version >= 4 && count > 0 ? previous_sample_end : previous_end;
