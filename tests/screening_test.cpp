@@ -33,6 +33,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -466,33 +467,48 @@ TEST(Screen, StageTwoRefinesEachMoleculesBestConformersAndNeverLowersTheirScores
   std::vector<screening::HitScore> fast;
   for (std::size_t e = 0; e < library.size(); ++e)
     fast.push_back(screening::fast_score(query, library.entry(e), options));
-  const std::vector<std::size_t> starts = screening::molecule_starts(library);
-  ASSERT_EQ(starts.size(), 4u);  // three molecules, their conformers adjacent
+  // Three molecules, their conformers adjacent.
+  std::vector<std::size_t> starts{0};
+  while (starts.back() < library.size())
+    starts.push_back(screening::molecule_start_at(library, starts.back() + 1));
+  ASSERT_EQ(starts.size(), 4u);
+  EXPECT_EQ(screening::molecule_start_at(library, starts[1]), starts[1]);
 
   // With refine 2, a molecule's best is one of its two best conformers by fast score, at its
   // refined score (when that is not lower); with refine 0, its best conformer by fast score.
+  // Every molecule is kept (top 0): each one's best, by molecule.
+  const auto by_molecule = [&](const screening::StreamedScores& streamed) {
+    std::vector<screening::MoleculeScore> all(3);
+    for (const screening::Hit& hit : streamed.queries[0].best) {
+      const auto m = static_cast<std::size_t>(
+          std::upper_bound(starts.begin(), starts.end(), hit.entry) - starts.begin() - 1);
+      all[m] = {hit.entry, hit.score.score};
+    }
+    return all;
+  };
   options.refine = 2;
-  const screening::StreamedScores two =
-      screening::score_molecules({&query}, library, starts, 0, 3, options, true);
+  const screening::StreamedScores streamed_two =
+      screening::score_molecules({&query}, library, 0, library.size(), options);
+  ASSERT_EQ(streamed_two.queries[0].best.size(), 3u);
+  const std::vector<screening::MoleculeScore> two = by_molecule(streamed_two);
   options.refine = 0;
-  const screening::StreamedScores none =
-      screening::score_molecules({&query}, library, starts, 0, 3, options, true);
-  ASSERT_EQ(two.queries[0].all.size(), 3u);
+  const std::vector<screening::MoleculeScore> none =
+      by_molecule(screening::score_molecules({&query}, library, 0, library.size(), options));
   for (std::size_t m = 0; m < 3; ++m) {
     std::vector<std::size_t> order(starts[m + 1] - starts[m]);
     std::iota(order.begin(), order.end(), starts[m]);
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t x, std::size_t y) { return fast[x].score > fast[y].score; });
     if (order.size() == 1) order.push_back(order[0]);
-    const screening::MoleculeScore& refined = two.queries[0].all[m];
+    const screening::MoleculeScore& refined = two[m];
     EXPECT_TRUE(refined.entry == order[0] || refined.entry == order[1]) << "molecule " << m;
     const double expected =
         std::max({fast[order[0]].score, fast[order[1]].score,
                   screening::refined_score(query, library.entry(order[0]), options).score,
                   screening::refined_score(query, library.entry(order[1]), options).score});
     EXPECT_NEAR(refined.score, expected, 1e-12) << "molecule " << m;
-    EXPECT_EQ(none.queries[0].all[m].entry, order[0]);
-    EXPECT_EQ(none.queries[0].all[m].score, fast[order[0]].score);
+    EXPECT_EQ(none[m].entry, order[0]);
+    EXPECT_EQ(none[m].score, fast[order[0]].score);
   }
 
   // The refinement only climbs, and it does climb: the overlay from the principal axes alone is
@@ -517,6 +533,39 @@ TEST(Screen, StageTwoRefinesEachMoleculesBestConformersAndNeverLowersTheirScores
   options.refine = 0;
   for (const screening::Hit& hit : screening::screen(query, library, options).hits)
     EXPECT_EQ(hit.stage, 1);
+}
+
+// fuse_scores by hand: stage-3 rows replace their molecule's score against their query, max
+// takes the best query's (ties to the first), mean the mean, ties go to the lower molecule.
+TEST(Screen, FusedScoresAreTheMaximumOrMeanWithStageThreeScoresInTheirPlace) {
+  const std::vector<screening::MoleculeScores> molecules{{0, {{0, 0.5}, {1, 0.2}}},
+                                                         {2, {{2, 0.3}, {3, 0.9}}},
+                                                         {4, {{4, 0.6}, {4, 0.6}}},
+                                                         {6, {{6, 0.6}, {7, 0.6}}}};
+  screening::Hit full;
+  full.entry = 2;
+  full.stage = 3;
+  full.score.score = 0.95;
+  const std::vector<std::vector<screening::Hit>> ranked{{full}, {}};
+  const std::vector<screening::FusedHit> max =
+      screening::fuse_scores(molecules, ranked, screening::Fusion::max, 0);
+  ASSERT_EQ(max.size(), 4u);
+  const std::size_t max_entries[] = {2, 4, 6, 0}, max_queries[] = {0, 0, 0, 0};
+  const double max_scores[] = {0.95, 0.6, 0.6, 0.5};
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(max[i].entry, max_entries[i]) << i;
+    EXPECT_EQ(max[i].query, max_queries[i]) << i;
+    EXPECT_EQ(max[i].score, max_scores[i]) << i;
+  }
+  EXPECT_EQ(max[0].scores, (std::vector<double>{0.95, 0.9}));
+  const std::vector<screening::FusedHit> mean =
+      screening::fuse_scores(molecules, ranked, screening::Fusion::mean, 2);
+  ASSERT_EQ(mean.size(), 2u);
+  EXPECT_EQ(mean[0].entry, 2u);
+  EXPECT_DOUBLE_EQ(mean[0].score, (0.95 + 0.9) / 2);
+  EXPECT_EQ(mean[1].entry, 4u);  // 0.6 as molecule 6, which comes after it
+  EXPECT_THROW(screening::fuse_scores({{8, {{8, 0.1}}}}, ranked, screening::Fusion::max, 0),
+               InputError);
 }
 
 TEST(LibraryBuild, HsiFilesBecomeEntriesThatKeepTheirSurfaceAndFindThemselves) {
@@ -940,11 +989,17 @@ TEST(LibraryShards, AMissingCutOrDamagedShardIsRefusedNamingIt) {
   expect_refused<FileError>(open, shard, "no such file");
   std::ofstream(shard, std::ios::binary) << good.substr(0, good.size() - 100);
   expect_refused<FormatError>(open, shard, "the index " + index.string() + " lists");
-  // A flipped byte in the shard's own index: its index checksum fails.
+  // A flipped byte in the shard's own index: the library opens (a shard's index is read when
+  // the shard is), and reading an entry of the shard fails its index checksum.
   std::string damaged = good;
   damaged[damaged.size() - 40] = static_cast<char>(damaged[damaged.size() - 40] ^ 0x21);
   std::ofstream(shard, std::ios::binary | std::ios::trunc) << damaged;
-  expect_refused<FormatError>(open, shard, "checksum");
+  expect_refused<FormatError>(
+      [&index] {
+        const screening::Library library(index);
+        for (std::size_t e = 0; e < library.size(); ++e) library.info(e);
+      },
+      shard, "checksum");
   // A flipped byte in the index itself (its settings).
   std::ofstream(shard, std::ios::binary | std::ios::trunc) << good;
   const std::string index_bytes = read_bytes(index);
@@ -954,6 +1009,108 @@ TEST(LibraryShards, AMissingCutOrDamagedShardIsRefusedNamingIt) {
   expect_refused<FormatError>(open, index, "checksum");
   std::ofstream(index, std::ios::binary | std::ios::trunc) << index_bytes;
   EXPECT_NO_THROW(open());
+}
+
+// A sharded library keeps a few shards open however many it reads, and release() closes them;
+// a shard closed is opened again, reading the same.
+TEST(LibraryShards, OnlyAFewShardsStayOpenAndReleaseClosesThem) {
+  const test::TempDir dir;
+  screening::LibraryBuildOptions options = one_conformer(1);
+  screening::build_library(seven_records(), dir / "lib.sclib", options);
+  const screening::Library library(dir / "lib.sclib");
+  ASSERT_EQ(library.shards(), 5u);
+  EXPECT_EQ(library.open_shards(), 0u);  // opening reads no shard's index
+  std::vector<std::string> names;
+  for (std::size_t e = 0; e < library.size(); ++e) names.push_back(library.info(e).name);
+  EXPECT_EQ(library.open_shards(), 4u);
+  {
+    const screening::PackedEntry pinned = library.packed(0, matching::OverlayOptions{}.sigma);
+    library.release(0, library.size());
+    EXPECT_EQ(library.open_shards(), 0u);
+    EXPECT_GT(pinned.view.header.points, 0u);  // its shard stays mapped while it lives
+    EXPECT_GT(pinned.view.header.self_shape, 0.0);
+  }
+  library.release(1, 3);  // closed shards: nothing to do
+  for (std::size_t e = 0; e < library.size(); ++e) EXPECT_EQ(library.info(e).name, names[e]);
+  library.release(2, 3);  // shard 3 of one entry
+  EXPECT_EQ(library.open_shards(), 3u);
+  EXPECT_EQ(names, (std::vector<std::string>{"paracetamol", "salicylic_acid", "aspirin",
+                                             "ibuprofen", "caffeine"}));
+}
+
+// A screen of several queries keeps a bounded list of molecules for its fused ranking: with
+// fewer kept than the library's molecules, its rows are the first rows of the whole ranking.
+TEST(LibraryShards, ABoundedFusedRankingIsTheHeadOfTheWholeOne) {
+  const test::TempDir dir;
+  screening::build_library(seven_records(), dir / "lib.sclib", one_conformer(2));
+  const screening::Library library(dir / "lib.sclib");
+  ASSERT_EQ(library.size(), 5u);  // five molecules of one conformer
+  screening::ScreenOptions options;
+  options.candidates = 1;
+  const auto query_of = [&](std::size_t e) {
+    const Molecule molecule = io::read_record_molecule(library.entry(e).molecule);
+    return screening::make_screen_query(
+        harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options, {},
+        &molecule);
+  };
+  const screening::ScreenQuery paracetamol = query_of(0), ibuprofen = query_of(3);
+  // What stages 1 and 2 keep: the fused_molecules() best by fused score and each query's best.
+  options.top = 0;
+  const std::vector<screening::MoleculeScores> every =
+      screening::score_molecules({&paracetamol, &ibuprofen}, library, 0, 5, options).molecules;
+  ASSERT_EQ(every.size(), 5u);
+  for (const screening::Fusion fusion : {screening::Fusion::max, screening::Fusion::mean}) {
+    for (const std::size_t top : {1, 2}) {
+      options.fusion = fusion;
+      options.top = top;
+      const screening::StreamedScores kept =
+          screening::score_molecules({&paracetamol, &ibuprofen}, library, 0, 5, options);
+      std::vector<std::pair<double, std::size_t>> by_fused;  // (-fused score, molecule)
+      for (const screening::MoleculeScores& m : every) {
+        const double a = m.scores[0].score, b = m.scores[1].score;
+        by_fused.emplace_back(fusion == screening::Fusion::max ? -std::max(a, b) : -(a + b) / 2,
+                              m.molecule);
+      }
+      std::sort(by_fused.begin(), by_fused.end());
+      std::set<std::size_t> expected;
+      // The top, and each query's candidates after stage 3, can come from these.
+      const std::size_t fused_kept = top + 2 * options.candidates;
+      EXPECT_EQ(screening::fused_molecules(options, 2), fused_kept);
+      for (std::size_t i = 0; i < fused_kept; ++i) expected.insert(by_fused[i].second);
+      for (const screening::QueryScores& query : kept.queries) {
+        for (const screening::Hit& hit : query.best)
+          expected.insert(hit.entry);  // one conformer: the entry is the molecule
+      }
+      ASSERT_LT(expected.size(), 5u);
+      std::set<std::size_t> found;
+      for (const screening::MoleculeScores& m : kept.molecules) {
+        found.insert(m.molecule);
+        EXPECT_EQ(m.scores[0].score, every[m.molecule].scores[0].score);
+        EXPECT_EQ(m.scores[1].score, every[m.molecule].scores[1].score);
+      }
+      EXPECT_EQ(found, expected) << "top " << top;
+    }
+  }
+  for (const screening::Fusion fusion : {screening::Fusion::max, screening::Fusion::mean}) {
+    options.fusion = fusion;
+    options.top = 0;
+    const std::vector<screening::FusedHit> whole =
+        screening::screen_queries({&paracetamol, &ibuprofen}, library, options).fused;
+    ASSERT_EQ(whole.size(), 5u);
+    for (const std::size_t top : {1, 2}) {
+      options.top = top;
+      ASSERT_LT(screening::fused_molecules(options, 2), 5u);
+      const std::vector<screening::FusedHit> head =
+          screening::screen_queries({&paracetamol, &ibuprofen}, library, options).fused;
+      ASSERT_EQ(head.size(), top);
+      for (std::size_t i = 0; i < top; ++i) {
+        EXPECT_EQ(head[i].entry, whole[i].entry) << i;
+        EXPECT_EQ(head[i].query, whole[i].query) << i;
+        EXPECT_EQ(head[i].score, whole[i].score) << i;
+        EXPECT_EQ(head[i].scores, whole[i].scores) << i;
+      }
+    }
+  }
 }
 
 /// The resident size of this process's mapping of `file`, kB (/proc/self/smaps).

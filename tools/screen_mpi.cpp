@@ -118,18 +118,14 @@ DistributedScreen run(const std::vector<const screening::ScreenQuery*>& queries,
   matching::validate(screening::query_match_options(*queries.front(), options));
   const Stopwatch clock;
   const std::size_t q_count = queries.size();
-  const std::vector<std::size_t> starts = screening::molecule_starts(library);
   // Stages 1 and 2: a slice of whole molecules per rank, about n / ranks entries each.
   const auto slice_begin = [&](int r) {
-    const std::size_t entry =
-        library.size() * static_cast<std::size_t>(r) / static_cast<std::size_t>(ranks);
-    return static_cast<std::size_t>(std::lower_bound(starts.begin(), starts.end() - 1, entry) -
-                                    starts.begin());
+    return screening::molecule_start_at(
+        library, library.size() * static_cast<std::size_t>(r) / static_cast<std::size_t>(ranks));
   };
   const screening::StreamedScores mine = screening::score_molecules(
-      queries, library, starts, slice_begin(rank), slice_begin(rank + 1), options, q_count > 1);
+      queries, library, slice_begin(rank), slice_begin(rank + 1), options);
   std::vector<std::vector<screening::Hit>> best(q_count);
-  std::vector<std::vector<screening::MoleculeScore>> all(q_count);
   for (std::size_t q = 0; q < q_count; ++q) {
     const screening::QueryScores& local = mine.queries[q];
     std::vector<double> packed(local.best.size() * kHitDoubles);
@@ -140,15 +136,28 @@ DistributedScreen run(const std::vector<const screening::ScreenQuery*>& queries,
     for (std::size_t at = 0; at < gathered.size(); at += kHitDoubles)
       hits.push_back(unpack_hit(&gathered[at]));
     if (rank == 0) best[q] = screening::merge_best({hits}, options);
-    if (q_count == 1) continue;
-    std::vector<double> scores;
-    for (const screening::MoleculeScore& s : local.all) {
-      scores.push_back(static_cast<double>(s.entry));
-      scores.push_back(s.score);
+  }
+  // For the fused ranking, each rank's molecules that it may need (bounded lists), as the
+  // molecule then each query's entry and score.
+  std::vector<screening::MoleculeScores> molecules;
+  if (q_count > 1) {
+    std::vector<double> local;
+    for (const screening::MoleculeScores& m : mine.molecules) {
+      local.push_back(static_cast<double>(m.molecule));
+      for (const screening::MoleculeScore& s : m.scores) {
+        local.push_back(static_cast<double>(s.entry));
+        local.push_back(s.score);
+      }
     }
-    const std::vector<double> every = gather_any(scores, rank, ranks);
-    for (std::size_t at = 0; at < every.size(); at += 2)
-      all[q].push_back({static_cast<std::size_t>(every[at]), every[at + 1]});
+    const std::vector<double> every = gather_any(local, rank, ranks);
+    for (std::size_t at = 0; at < every.size(); at += 1 + 2 * q_count) {
+      screening::MoleculeScores m{static_cast<std::size_t>(every[at]), {}};
+      for (std::size_t q = 0; q < q_count; ++q) {
+        m.scores.push_back(
+            {static_cast<std::size_t>(every[at + 1 + 2 * q]), every[at + 2 + 2 * q]});
+      }
+      molecules.push_back(std::move(m));
+    }
   }
   const double stages12_seconds = clock.elapsed_s();
 
@@ -192,7 +201,7 @@ DistributedScreen run(const std::vector<const screening::ScreenQuery*>& queries,
   }
   if (q_count > 1) {
     result.result.fused =
-        screening::fuse_scores(all, result.result.hits, starts, options.fusion, options.top);
+        screening::fuse_scores(molecules, result.result.hits, options.fusion, options.top);
   }
   return result;
 }

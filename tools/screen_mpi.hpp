@@ -23,7 +23,8 @@ struct DistributedScreen {
 
 /// screening::screen_queries over the ranks of MPI_COMM_WORLD: each rank runs stages 1 and 2 on
 /// a contiguous slice of whole molecules (screening::score_molecules), rank 0 gathers each
-/// query's best molecules (and, for several queries, every molecule's scores) and merges them,
+/// query's best molecules (and, for several queries, the molecules their fused ranking may
+/// need: StreamedScores::molecules, bounded lists) and merges them,
 /// then picks each query's candidates, whose full matches (stage 3) are dealt out round-robin and
 /// gathered, and ranks the hits and fuses them: the same rows as one process. Initialises and
 /// finalises MPI; an error on one rank aborts the job after printing it. Every rank must give

@@ -505,7 +505,7 @@ py::dict match(const py::object& reference, const py::object& probe, const py::d
 
 /// A row of a screen's table: its rank and its molecule's entry, as Hit and FusedHit begin.
 py::dict entry_row(const screening::Library& library, std::size_t rank, std::size_t entry) {
-  const screening::LibraryEntryInfo& info = library.info(entry);
+  const screening::LibraryEntryInfo info = library.info(entry);
   py::dict d;
   d["rank"] = rank;
   d["entry"] = entry + 1;
@@ -778,7 +778,7 @@ PYBIND11_MODULE(_surfcomp, m) {
             surfcomp::screening::summarize_library(library);
         py::list entries;
         for (std::size_t i = 0; i < library.size(); ++i) {
-          const auto& info = library.info(i);
+          const surfcomp::screening::LibraryEntryInfo info = library.info(i);
           entries.append(py::dict(py::arg("entry") = i + 1, py::arg("name") = info.name,
                                   py::arg("source") = info.source, py::arg("record") = info.record,
                                   py::arg("conformer") = info.conformer,

@@ -6,9 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iomanip>
-#include <set>
 #include <sstream>
-#include <tuple>
 
 namespace surfcomp::screening {
 namespace {
@@ -90,14 +88,12 @@ LibrarySummary summarize_library(const Library& library) {
   LibrarySummary summary;
   summary.entries = library.size();
   summary.file_bytes = library.file_bytes();
-  std::set<std::tuple<std::string, std::uint32_t, std::string>> molecules;
   for (std::size_t e = 0; e < library.size(); ++e) {
-    const LibraryEntryInfo& info = library.info(e);
-    molecules.emplace(info.source, info.record, info.name);
+    const LibraryEntryInfo info = library.info(e);
+    if (molecule_start_at(library, e) == e) ++summary.molecules;
     ++summary.entries_per_source[info.source];
     summary.largest_entry_bytes = std::max(summary.largest_entry_bytes, library.entry_bytes(e));
   }
-  summary.molecules = molecules.size();
   return summary;
 }
 

@@ -96,31 +96,73 @@ bool better_hit(const Hit& x, const Hit& y) {
   return x.entry < y.entry;
 }
 
-/// The `capacity` best hits added (every one when capacity is 0), as a heap whose top is the
-/// worst kept.
-class BestMolecules {
+/// The `capacity` best items added (every one when capacity is 0) by `Better`, a strict order,
+/// as a heap whose top is the worst kept.
+template <class Item, class Better>
+class BestItems {
  public:
-  explicit BestMolecules(std::size_t capacity) : capacity_(capacity) {}
-  void add(const Hit& hit) {
+  explicit BestItems(std::size_t capacity) : capacity_(capacity) {}
+  void add(Item item) {
     if (capacity_ > 0 && heap_.size() == capacity_) {
-      if (!better_hit(hit, heap_.front())) return;
-      std::pop_heap(heap_.begin(), heap_.end(), better_hit);
-      heap_.back() = hit;
+      if (!Better()(item, heap_.front())) return;
+      std::pop_heap(heap_.begin(), heap_.end(), Better());
+      heap_.back() = std::move(item);
     } else {
-      heap_.push_back(hit);
+      heap_.push_back(std::move(item));
     }
-    std::push_heap(heap_.begin(), heap_.end(), better_hit);
+    std::push_heap(heap_.begin(), heap_.end(), Better());
   }
-  /// The hits kept, best first.
-  std::vector<Hit> sorted() const {
-    std::vector<Hit> hits = heap_;
-    std::sort(hits.begin(), hits.end(), better_hit);
-    return hits;
+  /// The items kept, best first.
+  std::vector<Item> sorted() const {
+    std::vector<Item> items = heap_;
+    std::sort(items.begin(), items.end(), Better());
+    return items;
   }
 
  private:
   std::size_t capacity_;
-  std::vector<Hit> heap_;
+  std::vector<Item> heap_;
+};
+
+struct BetterHit {
+  bool operator()(const Hit& x, const Hit& y) const { return better_hit(x, y); }
+};
+using BestMolecules = BestItems<Hit, BetterHit>;
+
+/// A molecule's best hit against one query and, with several queries, its scores against all.
+struct KeptHit {
+  Hit hit;
+  MoleculeScores all;
+};
+struct BetterKeptHit {
+  bool operator()(const KeptHit& x, const KeptHit& y) const { return better_hit(x.hit, y.hit); }
+};
+
+/// A molecule's scores fused by `fusion` (fuse_scores), and the query that scores it highest
+/// (ties to the first).
+std::pair<double, std::size_t> fused_score(const std::vector<MoleculeScore>& scores,
+                                           Fusion fusion) {
+  double sum = 0.0;
+  std::size_t best = 0;
+  for (std::size_t q = 0; q < scores.size(); ++q) {
+    sum += scores[q].score;
+    if (scores[q].score > scores[best].score) best = q;
+  }
+  const double fused =
+      fusion == Fusion::max ? scores[best].score : sum / static_cast<double>(scores.size());
+  return {fused, best};
+}
+
+/// A molecule by its fused score: the higher first, ties to the lower molecule.
+struct FusedMolecule {
+  double score = 0.0;
+  MoleculeScores all;
+};
+struct BetterFused {
+  bool operator()(const FusedMolecule& x, const FusedMolecule& y) const {
+    if (x.score != y.score) return x.score > y.score;
+    return x.all.molecule < y.all.molecule;
+  }
 };
 
 /// Entries a block of stage 1 scores before its molecules are refined and its pages released.
@@ -146,20 +188,24 @@ std::vector<std::size_t> best_by_fast(const std::vector<HitScore>& fast, std::si
   return entries;
 }
 
+/// Throws InputError unless entry `e` of `library` (its index record `info`) is a binding site
+/// when `site_query` and a molecule otherwise.
+void check_entry_kind(const Library& library, std::size_t e, const LibraryEntryInfo& info,
+                      bool site_query) {
+  const bool site_entry = info.site_spheres > 0;
+  if (site_entry == site_query) return;
+  throw InputError(library.path().string() + ": entry " + std::to_string(e + 1) + " (" + info.name +
+                   ") is " +
+                   (site_entry ? "a binding site: a pocket library needs a site query "
+                                 "(--site-ligand or --site-sphere)"
+                               : "a molecule: a site query needs a pocket library "
+                                 "(library build --sites)"));
+}
+
 }  // namespace
 
 void check_library_kind(const Library& library, bool site_query) {
-  for (std::size_t e = 0; e < library.size(); ++e) {
-    const bool site_entry = library.info(e).site_spheres > 0;
-    if (site_entry != site_query) {
-      throw InputError(library.path().string() + ": entry " + std::to_string(e + 1) + " (" +
-                       library.info(e).name + ") is " +
-                       (site_entry ? "a binding site: a pocket library needs a site query "
-                                     "(--site-ligand or --site-sphere)"
-                                   : "a molecule: a site query needs a pocket library "
-                                     "(library build --sites)"));
-    }
-  }
+  if (library.size() > 0) check_entry_kind(library, 0, library.info(0), site_query);
 }
 
 matching::MatchOptions query_match_options(const ScreenQuery& query, const ScreenOptions& options) {
@@ -268,45 +314,62 @@ HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
                        options);
 }
 
-std::vector<std::size_t> molecule_starts(const Library& library) {
-  std::vector<std::size_t> starts;
-  for (std::size_t e = 0; e < library.size(); ++e) {
-    const LibraryEntryInfo& info = library.info(e);
-    if (e == 0 || !same_molecule(library.info(e - 1), info)) starts.push_back(e);
+std::size_t molecule_start_at(const Library& library, std::size_t entry) {
+  if (entry == 0 || entry >= library.size()) return std::min(entry, library.size());
+  LibraryEntryInfo previous = library.info(entry - 1);
+  for (; entry < library.size(); ++entry) {
+    LibraryEntryInfo info = library.info(entry);
+    if (!same_molecule(previous, info)) break;
+    previous = std::move(info);
   }
-  starts.push_back(library.size());
-  return starts;
+  return entry;
 }
 
 std::size_t kept_molecules(const ScreenOptions& options) {
   return options.top == 0 ? 0 : std::max(options.top, options.candidates);
 }
 
+std::size_t fused_molecules(const ScreenOptions& options, std::size_t queries) {
+  return options.top == 0 ? 0 : options.top + queries * options.candidates;
+}
+
 StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
-                               const Library& library, const std::vector<std::size_t>& starts,
-                               std::size_t first, std::size_t last, const ScreenOptions& options,
-                               bool every_molecule) {
+                               const Library& library, std::size_t begin, std::size_t end,
+                               const ScreenOptions& options) {
   if (queries.empty()) throw InputError("score_molecules: no query");
   const bool sites = !queries.front()->site.empty();
   for (const ScreenQuery* query : queries) {
     if (query->site.empty() == sites)
       throw InputError("a screen's queries are all molecules or all binding sites");
   }
-  check_library_kind(library, sites);
-  if (starts.empty() || starts.back() != library.size() || last >= starts.size() || first > last)
-    throw InputError("score_molecules: molecules outside the library");
+  if (begin > end || end > library.size())
+    throw InputError("score_molecules: entries outside the library");
   const std::size_t q_count = queries.size();
+  const bool fusing = q_count > 1;
   const double sigma = overlay_options(*queries.front(), options).sigma;
-  const std::size_t keep = kept_molecules(options);
-  std::vector<BestMolecules> kept(q_count, BestMolecules(keep));
+  std::vector<BestItems<KeptHit, BetterKeptHit>> kept(
+      q_count, BestItems<KeptHit, BetterKeptHit>(kept_molecules(options)));
+  BestItems<FusedMolecule, BetterFused> fused(fused_molecules(options, q_count));
   StreamedScores result;
   result.queries.resize(q_count);
-  const auto total = static_cast<std::int64_t>(starts[last] - starts[first]);
-  std::int64_t done = 0;
-  for (std::size_t m0 = first; m0 < last;) {
-    std::size_t m1 = m0 + 1;
-    while (m1 < last && starts[m1] - starts[m0] < kBlockEntries) ++m1;
-    const std::size_t e0 = starts[m0], e1 = starts[m1];
+  const auto total = static_cast<std::int64_t>(end - begin);
+  for (std::size_t e0 = begin; e0 < end;) {
+    // The block: whole molecules from e0, until one would begin past kBlockEntries entries.
+    std::vector<std::size_t> starts{e0};  // its molecules', then its end
+    LibraryEntryInfo previous = library.info(e0);
+    check_entry_kind(library, e0, previous, sites);
+    std::size_t e1 = e0 + 1;
+    for (; e1 < end; ++e1) {
+      LibraryEntryInfo info = library.info(e1);
+      if (!same_molecule(previous, info)) {
+        if (e1 - e0 >= kBlockEntries) break;
+        starts.push_back(e1);
+      }
+      check_entry_kind(library, e1, info, sites);
+      previous = std::move(info);
+    }
+    starts.push_back(e1);
+    const std::size_t molecules = starts.size() - 1;
     Stopwatch clock;
     // Stage 1: every entry of the block against every query, the block read from the file
     // once. A thread takes a run of one query's entries, so that the query's packed sample and
@@ -323,7 +386,7 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
     // Stage 2: each molecule's best conformers by fast score, refined.
     std::vector<std::pair<std::size_t, std::size_t>> chosen;  // (query, entry)
     for (std::size_t q = 0; q < q_count; ++q) {
-      for (std::size_t m = m0; m < m1; ++m) {
+      for (std::size_t m = 0; m < molecules; ++m) {
         for (const std::size_t e :
              best_by_fast(fast, q, q_count, e0, starts[m], starts[m + 1], options.refine))
           chosen.emplace_back(q, e);
@@ -335,7 +398,7 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
       refined[i] = refined_score(*queries[q], library.packed(e, sigma).view, options);
     });
     // Each molecule's best entry: fast scores, refined ones in their place where not lower.
-    std::vector<Hit> scores((e1 - e0) * q_count);
+    std::vector<Hit> scores(block * q_count);
     for (std::size_t e = e0; e < e1; ++e) {
       for (std::size_t q = 0; q < q_count; ++q) {
         const HitScore& f = fast[(e - e0) * q_count + q];
@@ -348,24 +411,37 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
       if (refined[i].score >= hit.score.score) hit.score = refined[i];
       hit.stage = 2;
     }
-    for (std::size_t q = 0; q < q_count; ++q) {
-      for (std::size_t m = m0; m < m1; ++m) {
-        const Hit* best = nullptr;
+    for (std::size_t m = 0; m < molecules; ++m) {
+      std::vector<const Hit*> best(q_count, nullptr);
+      MoleculeScores all{starts[m], {}};
+      for (std::size_t q = 0; q < q_count; ++q) {
         for (std::size_t e = starts[m]; e < starts[m + 1]; ++e) {
           const Hit& hit = scores[(e - e0) * q_count + q];
-          if (best == nullptr || hit.score.score > best->score.score) best = &hit;
+          if (best[q] == nullptr || hit.score.score > best[q]->score.score) best[q] = &hit;
         }
-        kept[q].add(*best);
-        if (every_molecule) result.queries[q].all.push_back({best->entry, best->score.score});
+        if (fusing) all.scores.push_back({best[q]->entry, best[q]->score.score});
+      }
+      for (std::size_t q = 0; q < q_count; ++q) kept[q].add({*best[q], all});
+      if (fusing) {
+        const double score = fused_score(all.scores, options.fusion).first;
+        fused.add({score, std::move(all)});
       }
     }
     result.stage2_seconds += clock.elapsed_s();
     library.release(e0, e1);
-    done += static_cast<std::int64_t>(e1 - e0);
-    if (options.progress) options.progress(1, done, total);
-    m0 = m1;
+    if (options.progress) options.progress(1, static_cast<std::int64_t>(e1 - begin), total);
+    e0 = e1;
   }
-  for (std::size_t q = 0; q < q_count; ++q) result.queries[q].best = kept[q].sorted();
+  std::map<std::size_t, MoleculeScores> needed;  // by molecule: library order, each once
+  for (std::size_t q = 0; q < q_count; ++q) {
+    for (KeptHit& kept_hit : kept[q].sorted()) {
+      result.queries[q].best.push_back(kept_hit.hit);
+      if (fusing) needed.emplace(kept_hit.all.molecule, std::move(kept_hit.all));
+    }
+  }
+  for (FusedMolecule& molecule : fused.sorted())
+    needed.emplace(molecule.all.molecule, std::move(molecule.all));
+  for (auto& [molecule, all] : needed) result.molecules.push_back(std::move(all));
   return result;
 }
 
@@ -425,46 +501,44 @@ std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitSc
   return hits;
 }
 
-std::vector<FusedHit> fuse_scores(const std::vector<std::vector<MoleculeScore>>& all,
-                                  const std::vector<std::vector<Hit>>& ranked,
-                                  const std::vector<std::size_t>& starts, Fusion fusion,
+std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
+                                  const std::vector<std::vector<Hit>>& ranked, Fusion fusion,
                                   std::size_t top) {
-  const std::size_t molecules = starts.empty() ? 0 : starts.size() - 1;
-  if (all.size() != ranked.size() || all.empty())
-    throw InputError("fuse_scores: one list of scores and of rows per query needed");
-  std::vector<std::vector<MoleculeScore>> final_scores = all;
-  for (std::size_t q = 0; q < all.size(); ++q) {
-    if (all[q].size() != molecules) {
-      throw InputError("fuse_scores: " + std::to_string(all[q].size()) + " scores for " +
-                       std::to_string(molecules) + " molecules");
-    }
+  if (ranked.empty()) throw InputError("fuse_scores: no query");
+  // Each query's stage-3 scores by the entry they are of.
+  std::vector<std::map<std::size_t, double>> final_scores(ranked.size());
+  for (std::size_t q = 0; q < ranked.size(); ++q) {
     for (const Hit& hit : ranked[q]) {
-      if (hit.stage != 3) continue;
-      const auto m = static_cast<std::size_t>(
-          std::upper_bound(starts.begin(), starts.end(), hit.entry) - starts.begin() - 1);
-      final_scores[q][m] = {hit.entry, hit.score.score};
+      if (hit.stage == 3) final_scores[q][hit.entry] = hit.score.score;
     }
   }
-  std::vector<FusedHit> fused(molecules);
-  for (std::size_t m = 0; m < molecules; ++m) {
-    FusedHit& row = fused[m];
-    double sum = 0.0;
-    for (std::size_t q = 0; q < all.size(); ++q) {
-      const MoleculeScore& s = final_scores[q][m];
-      row.scores.push_back(s.score);
-      sum += s.score;
-      if (q == 0 || s.score > row.scores[row.query]) {
-        row.query = q;
-        row.entry = s.entry;
-      }
+  std::vector<FusedMolecule> rows;
+  for (const MoleculeScores& molecule : molecules) {
+    if (molecule.scores.size() != ranked.size()) {
+      throw InputError("fuse_scores: molecule " + std::to_string(molecule.molecule + 1) + " has " +
+                       std::to_string(molecule.scores.size()) + " scores for " +
+                       std::to_string(ranked.size()) + " queries");
     }
-    row.score =
-        fusion == Fusion::max ? row.scores[row.query] : sum / static_cast<double>(all.size());
+    FusedMolecule row{0.0, molecule};
+    for (std::size_t q = 0; q < ranked.size(); ++q) {
+      MoleculeScore& s = row.all.scores[q];
+      const auto full = final_scores[q].find(s.entry);
+      if (full != final_scores[q].end()) s.score = full->second;
+    }
+    row.score = fused_score(row.all.scores, fusion).first;
+    rows.push_back(std::move(row));
   }
-  // Molecules in library order, so that a stable sort breaks ties to the lower molecule.
-  std::stable_sort(fused.begin(), fused.end(),
-                   [](const FusedHit& x, const FusedHit& y) { return x.score > y.score; });
-  if (top > 0 && fused.size() > top) fused.resize(top);
+  std::sort(rows.begin(), rows.end(), BetterFused());
+  if (top > 0 && rows.size() > top) rows.resize(top);
+  std::vector<FusedHit> fused;
+  for (const FusedMolecule& row : rows) {
+    FusedHit hit;
+    hit.query = fused_score(row.all.scores, fusion).second;
+    hit.entry = row.all.scores[hit.query].entry;
+    hit.score = row.score;
+    for (const MoleculeScore& s : row.all.scores) hit.scores.push_back(s.score);
+    fused.push_back(std::move(hit));
+  }
   return fused;
 }
 
@@ -473,9 +547,7 @@ MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
   if (queries.empty()) throw InputError("screen: no query");
   matching::validate(query_match_options(*queries.front(), options));
   MultiScreenResult result;
-  const std::vector<std::size_t> starts = molecule_starts(library);
-  StreamedScores streamed =
-      score_molecules(queries, library, starts, 0, starts.size() - 1, options, queries.size() > 1);
+  StreamedScores streamed = score_molecules(queries, library, 0, library.size(), options);
   result.stage1_seconds = streamed.stage1_seconds;
   result.stage2_seconds = streamed.stage2_seconds;
   const Stopwatch clock;
@@ -498,11 +570,8 @@ MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
     at += k;
     result.hits.push_back(rank_hits(streamed.queries[q].best, mine, options.top));
   }
-  if (queries.size() > 1) {
-    std::vector<std::vector<MoleculeScore>> all;
-    for (QueryScores& scores : streamed.queries) all.push_back(std::move(scores.all));
-    result.fused = fuse_scores(all, result.hits, starts, options.fusion, options.top);
-  }
+  if (queries.size() > 1)
+    result.fused = fuse_scores(streamed.molecules, result.hits, options.fusion, options.top);
   return result;
 }
 
@@ -523,7 +592,7 @@ namespace {
 /// each followed by a comma.
 void write_entry_columns(std::ostream& out, const Library& library, std::size_t rank,
                          std::size_t entry) {
-  const LibraryEntryInfo& info = library.info(entry);
+  const LibraryEntryInfo info = library.info(entry);
   out << rank << ',' << entry + 1 << ',' << csv_field(info.name) << ',' << csv_field(info.source)
       << ',' << info.record << ',' << info.conformer << ',';
 }

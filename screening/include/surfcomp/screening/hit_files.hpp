@@ -43,7 +43,7 @@ void write_library_sdf(std::ostream& out, const Library& library);
 /// What `surfcomp library info` reports of a library.
 struct LibrarySummary {
   std::size_t entries = 0;                                ///< conformers (entries) of the library
-  std::size_t molecules = 0;                              ///< distinct (source, record, name)
+  std::size_t molecules = 0;                              ///< molecules (molecule_start_at)
   std::map<std::string, std::size_t> entries_per_source;  ///< input file -> its entries
   std::uint64_t file_bytes = 0;                           ///< the .sclib file's size, bytes
   std::uint64_t largest_entry_bytes = 0;                  ///< the largest encoded entry, bytes

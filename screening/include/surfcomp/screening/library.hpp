@@ -26,7 +26,10 @@
 //            separated), u64 entries, u64 file size, u64 the shard's index checksum (its
 //            trailer's); string settings
 //   trailer  u64 checksum of the body (FNV-1a 64), "SCSETEND"
-// The files are memory-mapped and entries are decoded on demand, by index or by name.
+// The files are memory-mapped and entries are decoded on demand, by index or by name. A library
+// file's index is decoded when it is opened (about 150 bytes an entry); a sharded library keeps
+// only a few shards open, mapped with their index decoded, so that its memory does not grow with
+// its entries.
 #pragma once
 
 #include "surfcomp/core/io/molecule_records.hpp"
@@ -94,6 +97,7 @@ struct LibraryEntry {
 struct PackedEntry {
   matching::PackedSampleView view;
   std::unique_ptr<matching::PackedSample> owned;  ///< what `view` shows when not the file
+  std::shared_ptr<const void> file;               ///< keeps the shard `view` points into mapped
 };
 
 /// Appends entries to a library being written to `out`; finish() writes the samples' region, the
@@ -142,25 +146,30 @@ void write_library_index(const std::filesystem::path& path,
                          const std::vector<std::filesystem::path>& shards,
                          const std::string& settings);
 
-/// A library opened for reading, one file or a sharded library's index and every shard it lists:
-/// memory-mapped, headers, indices and trailers checked on opening; entries are decoded (and
+/// A library opened for reading, one file or a sharded library's index and the shards it lists:
+/// memory-mapped, a file's header, index and trailer checked on opening; entries are decoded (and
 /// their checksums verified) when asked for. The entries of a sharded library are its shards'
-/// entries in the index's order, numbered from 0 across the shards. Thread-safe for reading.
+/// entries in the index's order, numbered from 0 across the shards. A shard is opened (mapped, its
+/// index decoded and checked) when one of its entries is read; at most a few stay open, the least
+/// recently read closed first, and release() closes those it covers. Thread-safe for reading.
 class Library {
  public:
   /// Opens and checks `path`, a library file or an index. Throws FileError (missing, unreadable,
   /// not a regular file) and FormatError naming the file for anything that is not a library of
   /// this version: a wrong magic, version, size or checksum, an index entry outside the entries'
-  /// region. For an index, the same for each shard, naming the shard: FileError for a missing
-  /// one, FormatError for one whose size, entry count or index checksum is not what the index
-  /// lists (a cut, replaced or rebuilt shard) or whose format version is not 4.
+  /// region. For an index, each shard is checked without reading its index, naming the shard:
+  /// FileError for a missing one, FormatError for one whose size, entry count or index checksum
+  /// (its trailer's) is not what the index lists (a cut, replaced or rebuilt shard) or whose
+  /// format version is not 4. A shard's own index is checked when the shard is opened: the
+  /// accessors below then throw FormatError naming it.
   explicit Library(const std::filesystem::path& path);
   Library(Library&&) noexcept;
   Library& operator=(Library&&) noexcept;
   ~Library();
 
   std::size_t size() const;  ///< entries
-  const LibraryEntryInfo& info(std::size_t index) const;
+  /// What the index says of entry `index`; std::out_of_range for an index >= size().
+  LibraryEntryInfo info(std::size_t index) const;
   /// Entry `index`, decoded. Throws FormatError naming the file and the entry when its bytes
   /// do not match their checksum or do not decode; std::out_of_range for an index >= size().
   LibraryEntry entry(std::size_t index) const;
@@ -181,9 +190,10 @@ class Library {
   /// Tells the kernel that the pages of entries [begin, end) (their records and samples, the
   /// pages wholly inside those regions) are not needed for now: MADV_DONTNEED on the read-only
   /// mapping, so that a reader streaming through a library larger than memory, releasing what
-  /// it has read, keeps its resident memory bounded. The entries stay readable: a page touched
-  /// again is read again from the file (or the page cache); views from packed() stay valid.
-  /// Throws std::out_of_range unless begin <= end <= size().
+  /// it has read, keeps its resident memory bounded; closes the shards wholly inside the range.
+  /// The entries stay readable: a page touched again is read again from the file (or the page
+  /// cache), a shard opened again; views from packed() stay valid. Throws std::out_of_range
+  /// unless begin <= end <= size().
   void release(std::size_t begin, std::size_t end) const;
 
   /// The format version of the file, or of the shards of a sharded library (4).
@@ -196,6 +206,9 @@ class Library {
   const std::filesystem::path& path() const;
   /// The files the entries are in: 1 for a library file, the shards an index lists.
   std::size_t shards() const;
+  /// The shards open now (mapped, their index decoded), beyond those a PackedEntry keeps: 1 for
+  /// a library file.
+  std::size_t open_shards() const;
 
  private:
   struct Impl;

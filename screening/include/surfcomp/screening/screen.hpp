@@ -12,10 +12,10 @@
 //     rebuilt from the stored molecule.
 // Stages 1 and 2 stream through the library a block of molecules at a time, every query scored
 // in the same read, and keep of each query only its best molecules (a bounded list) and, for a
-// fused ranking of several queries, one score per molecule: the memory held does not grow with
-// the library's bytes (Library::release drops the pages read). Every entry is scored
-// independently into its own slot (TBB): the hits do not depend on the thread count, and a
-// caller may split the molecules over processes (score_molecules on a range).
+// fused ranking of several queries, a bounded list of the best by fused score: the memory held
+// does not grow with the library (Library::release drops the pages read and the shards passed).
+// Every entry is scored independently into its own slot (TBB): the hits do not depend on the thread
+// count, and a caller may split the molecules over processes (score_molecules on a range).
 #pragma once
 
 #include "surfcomp/core/io/read_molecule.hpp"
@@ -143,9 +143,9 @@ inline constexpr std::size_t macromolecule_chain_residues = 30;
 /// `source` and what makes the query a macromolecule. Empty for any other query.
 std::string macromolecule_query_warning(const Molecule& query, const std::string& source);
 
-/// Throws InputError naming the library and its first entry of the other kind unless every
-/// entry of `library` is a binding site when `site_query` (a pocket library) and a molecule
-/// otherwise. Reads only the index.
+/// Throws InputError naming the library and its first entry unless that entry is a binding site
+/// when `site_query` (a pocket library) and a molecule otherwise: a check before any work, as a
+/// library is built of one kind. score_molecules checks every entry as it reads it.
 void check_library_kind(const Library& library, bool site_query);
 
 /// options.match with the mode the query asks for: MatchMode::binding_sites for a site query.
@@ -193,15 +193,22 @@ struct Hit {
   double fast_score = 0.0;  ///< its stage-1 score
 };
 
-/// A library's molecules: runs of consecutive entries sharing name, source and record (a build
-/// writes a record's conformers together). Molecule m is the entries [starts[m], starts[m + 1]);
-/// the last element is library.size(). Reads only the index.
-std::vector<std::size_t> molecule_starts(const Library& library);
+/// A library's molecules are runs of consecutive entries sharing name, source and record (a build
+/// writes a record's conformers together). The first entry at or after `entry` that begins a
+/// molecule, or library.size(): `entry` itself when it is 0, library.size() or of another
+/// molecule than entry - 1. Reads the index records of the entries it passes.
+std::size_t molecule_start_at(const Library& library, std::size_t entry);
 
 /// One molecule's score against one query after stage 2, for a fused ranking.
 struct MoleculeScore {
   std::size_t entry = 0;  ///< its best conformer
   double score = 0.0;
+};
+
+/// A molecule's scores against every query after stage 2.
+struct MoleculeScores {
+  std::size_t molecule = 0;           ///< its first entry
+  std::vector<MoleculeScore> scores;  ///< one per query, in query order
 };
 
 /// What stages 1 and 2 leave of one query over a range of molecules.
@@ -212,31 +219,39 @@ struct QueryScores {
   /// stands for it. Only the kept_molecules() best molecules, best first (ties to the lower
   /// entry).
   std::vector<Hit> best;
-  /// With `every_molecule`: every molecule of the range in order, its best entry and score.
-  std::vector<MoleculeScore> all;
 };
 
 /// The molecules stages 1 and 2 keep per query: every one when options.top is 0, else
 /// max(options.top, options.candidates).
 std::size_t kept_molecules(const ScreenOptions& options);
 
+/// The molecules stages 1 and 2 keep by fused score for a ranking of `queries` queries: every
+/// one when options.top is 0, else options.top + queries * options.candidates. Stage 3 changes
+/// the scores of at most queries * options.candidates molecules, so the options.top best after
+/// it are among these and the candidates.
+std::size_t fused_molecules(const ScreenOptions& options, std::size_t queries);
+
 /// Stages 1 and 2 of some molecules against every query.
 struct StreamedScores {
   std::vector<QueryScores> queries;  ///< one per query, in query order
-  double stage1_seconds = 0.0;       ///< wall-clock, summed over the blocks
+  /// With several queries, what their fused ranking needs (fuse_scores): the fused_molecules()
+  /// best molecules by their scores fused (options.fusion; ties to the lower molecule) and every
+  /// molecule of a query's `best`, each once, in library order. Empty for one query.
+  std::vector<MoleculeScores> molecules;
+  double stage1_seconds = 0.0;  ///< wall-clock, summed over the blocks
   double stage2_seconds = 0.0;
 };
 
-/// Stages 1 and 2 (see the file comment) of the molecules [first, last) of `starts`
-/// (molecule_starts of `library`) against every query, streamed: a block of molecules at a time
-/// is read once, its entries fast-scored against every query and each molecule's best refined,
-/// then its pages released (Library::release). Progress (options.progress) is reported as
-/// stage 1 over the range's entries. Throws InputError when the library is not of the queries'
-/// kind (check_library_kind) or the queries are of two kinds, FormatError for a damaged entry.
+/// Stages 1 and 2 (see the file comment) of the molecules of entries [begin, end) against every
+/// query, streamed: a block of whole molecules at a time is read once, its entries fast-scored
+/// against every query and each molecule's best refined, then released (Library::release).
+/// `begin` and `end` begin molecules (molecule_start_at). Progress (options.progress) is
+/// reported as stage 1 over the range's entries. Throws InputError when an entry is not of the
+/// queries' kind (as check_library_kind words it) or the queries are of two kinds, FormatError
+/// for a damaged entry.
 StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
-                               const Library& library, const std::vector<std::size_t>& starts,
-                               std::size_t first, std::size_t last,
-                               const ScreenOptions& options = {}, bool every_molecule = false);
+                               const Library& library, std::size_t begin, std::size_t end,
+                               const ScreenOptions& options = {});
 
 /// The kept_molecules() best of several ranges' lists of one query (QueryScores::best), best
 /// first, ties to the lower entry: what one range of all the molecules would have kept.
@@ -257,14 +272,14 @@ struct FusedHit {
   std::vector<double> scores;  ///< the molecule's score against each query
 };
 
-/// The fused ranking: each molecule's final score against each query (its score in `all`, or
-/// its stage-3 score where it is a stage-3 row of that query's `ranked` hits) fused by `fusion`
-/// (max: the highest, mean: the mean over the queries), best first, ties to the lower molecule;
-/// at most `top` rows (0: all). `all` holds one list per query, each of every molecule of
-/// `starts` in order. Throws InputError when the lists disagree with `starts`.
-std::vector<FusedHit> fuse_scores(const std::vector<std::vector<MoleculeScore>>& all,
-                                  const std::vector<std::vector<Hit>>& ranked,
-                                  const std::vector<std::size_t>& starts, Fusion fusion,
+/// The fused ranking of `molecules`: each one's final score against each query (its score in
+/// `molecules`, or its stage-3 score where its best conformer for that query is a stage-3 row of
+/// the query's `ranked` hits) fused by `fusion` (max: the highest, mean: the mean over the
+/// queries), best first, ties to the lower molecule; at most `top` rows (0: all). For the
+/// ranking of a whole screen, `molecules` holds StreamedScores::molecules (of one range, or of
+/// several ranges together). Throws InputError when a molecule has not one score per query.
+std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
+                                  const std::vector<std::vector<Hit>>& ranked, Fusion fusion,
                                   std::size_t top);
 
 /// A screen's rows and its time.
