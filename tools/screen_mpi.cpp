@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -53,7 +54,14 @@ std::vector<double> gather_any(const std::vector<double>& local, int rank, int r
   mpi().gather_doubles(count.data(), 1, counts.data(), ones.data(), at.data());
   std::vector<int> sizes(static_cast<std::size_t>(ranks)), displacements(sizes.size());
   int total = 0;
+  double sum = 0.0;  // MPI counts and offsets are ints
   for (std::size_t r = 0; r < counts.size(); ++r) {
+    sum += counts[r];
+    if (sum > std::numeric_limits<int>::max()) {
+      throw InputError("the processes' results (" +
+                       std::to_string(static_cast<std::uint64_t>(sum)) +
+                       " numbers and more) are too large for one MPI gather: give --top N");
+    }
     sizes[r] = static_cast<int>(counts[r]);
     displacements[r] = total;
     total += sizes[r];
@@ -191,18 +199,9 @@ DistributedScreen run(const std::vector<const screening::ScreenQuery*>& queries,
   result.result.stage2_seconds = stages12_seconds - result.result.stage1_seconds;
   result.result.stage3_seconds = clock.elapsed_s() - stages12_seconds;
   if (rank != 0) return result;
-  for (std::size_t q = 0, at = 0; q < q_count; ++q) {
-    const std::size_t k = std::min(options.candidates, best[q].size());
-    const std::vector<screening::HitScore> theirs(
-        full.begin() + static_cast<std::ptrdiff_t>(at),
-        full.begin() + static_cast<std::ptrdiff_t>(at + k));
-    at += k;
-    result.result.hits.push_back(screening::rank_hits(best[q], theirs, options.top));
-  }
-  if (q_count > 1) {
-    result.result.fused =
-        screening::fuse_scores(molecules, result.result.hits, options.fusion, options.top);
-  }
+  screening::MultiScreenResult ranked = screening::rank_and_fuse(best, full, molecules, options);
+  result.result.hits = std::move(ranked.hits);
+  result.result.fused = std::move(ranked.fused);
   return result;
 }
 

@@ -89,11 +89,11 @@ LibrarySummary summarize_library(const Library& library) {
   summary.entries = library.size();
   summary.file_bytes = library.file_bytes();
   for (std::size_t e = 0; e < library.size(); ++e) {
-    const LibraryEntryInfo info = library.info(e);
-    if (molecule_start_at(library, e) == e) ++summary.molecules;
-    ++summary.entries_per_source[info.source];
+    ++summary.entries_per_source[library.info(e).source];
     summary.largest_entry_bytes = std::max(summary.largest_entry_bytes, library.entry_bytes(e));
   }
+  for (std::size_t e = 0; e < library.size(); e = molecule_start_at(library, e + 1))
+    ++summary.molecules;
   return summary;
 }
 

@@ -657,8 +657,11 @@ void check_listed_shard(const ListedShard& shard, const std::string& index) {
     read_at(fd, name, 0, header.size(), header.data());
     read_at(fd, name, size - kTrailerBytes, trailer.size(), trailer.data());
     const std::uint64_t index_offset = io::BinaryReader(trailer.data(), 8, name).u64();
-    if (index_offset >= kHeaderBytes && index_offset + 8 <= size - kTrailerBytes)
-      read_at(fd, name, index_offset, count.size(), count.data());
+    if (index_offset < kHeaderBytes || index_offset > size - kTrailerBytes - count.size()) {
+      throw FormatError(name, "the trailer's index offset " + std::to_string(index_offset) +
+                                  " does not fit the file's " + std::to_string(size) + " bytes");
+    }
+    read_at(fd, name, index_offset, count.size(), count.data());
   } catch (...) {
     ::close(fd);
     throw;
@@ -729,9 +732,6 @@ struct Library::Impl {
 std::shared_ptr<const LibraryFile> Library::Impl::shard(std::size_t k) const {
   const std::lock_guard<std::mutex> lock(mutex);
   if (listed.empty()) return open.front();  // a library file stays open
-  const auto used = std::find(recent.begin(), recent.end(), k);
-  if (used != recent.end()) recent.erase(used);
-  recent.push_back(k);
   if (open[k] == nullptr) {
     const ListedShard& s = listed[k];
     auto file = std::make_shared<const LibraryFile>(s.path, s.first);
@@ -741,6 +741,9 @@ std::shared_ptr<const LibraryFile> Library::Impl::shard(std::size_t k) const {
       file->fail("changed since the library was opened");
     open[k] = std::move(file);
   }
+  const auto used = std::find(recent.begin(), recent.end(), k);
+  if (used != recent.end()) recent.erase(used);
+  recent.push_back(k);
   while (recent.size() > kOpenShards) {
     open[recent.front()].reset();
     recent.erase(recent.begin());
@@ -888,17 +891,19 @@ void Library::release(std::size_t begin, std::size_t end) const {
     throw std::out_of_range("library entries [" + std::to_string(begin) + ", " +
                             std::to_string(end) + ") of " + std::to_string(size()));
   }
+  if (begin == end) return;
   const std::lock_guard<std::mutex> lock(impl_->mutex);
-  for (std::size_t k = 0; k < impl_->ends.size(); ++k) {
+  const auto first_shard = static_cast<std::size_t>(
+      std::upper_bound(impl_->ends.begin(), impl_->ends.end(), begin) - impl_->ends.begin());
+  for (std::size_t k = first_shard; k < impl_->ends.size() && impl_->first_of(k) < end; ++k) {
     const std::size_t first = impl_->first_of(k), last = impl_->ends[k];
-    const std::size_t from = std::max(begin, first), to = std::min(end, last);
     std::shared_ptr<const LibraryFile>& file = impl_->open[k];
-    if (from >= to || file == nullptr) continue;
-    if (!impl_->listed.empty() && from == first && to == last) {  // the whole shard: close it
+    if (file == nullptr) continue;
+    if (!impl_->listed.empty() && last <= end) {  // its last entry released: a stream is past it
       file.reset();
       impl_->recent.erase(std::find(impl_->recent.begin(), impl_->recent.end(), k));
     } else {
-      file->release(from - first, to - first);
+      file->release(std::max(begin, first) - first, std::min(end, last) - first);
     }
   }
 }

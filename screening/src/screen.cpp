@@ -542,6 +542,29 @@ std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
   return fused;
 }
 
+MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
+                                const std::vector<HitScore>& full,
+                                const std::vector<MoleculeScores>& molecules,
+                                const ScreenOptions& options) {
+  MultiScreenResult result;
+  std::vector<std::vector<Hit>> rows;  // each query's every row: its every stage-3 score
+  for (std::size_t q = 0, at = 0; q < best.size(); ++q) {
+    const std::size_t k = std::min(options.candidates, best[q].size());
+    if (at + k > full.size())
+      throw InputError("rank_and_fuse: fewer stage-3 scores than candidates");
+    const std::vector<HitScore> mine(full.begin() + static_cast<std::ptrdiff_t>(at),
+                                     full.begin() + static_cast<std::ptrdiff_t>(at + k));
+    at += k;
+    rows.push_back(rank_hits(best[q], mine, 0));
+    const std::size_t shown =
+        options.top == 0 ? rows.back().size() : std::min(options.top, rows.back().size());
+    result.hits.emplace_back(rows.back().begin(),
+                             rows.back().begin() + static_cast<std::ptrdiff_t>(shown));
+  }
+  if (best.size() > 1) result.fused = fuse_scores(molecules, rows, options.fusion, options.top);
+  return result;
+}
+
 MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
                                  const Library& library, const ScreenOptions& options) {
   if (queries.empty()) throw InputError("screen: no query");
@@ -563,15 +586,11 @@ MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
                           options);
       });
   result.stage3_seconds = clock.elapsed_s();
-  for (std::size_t q = 0, at = 0; q < queries.size(); ++q) {
-    const std::size_t k = std::min(options.candidates, streamed.queries[q].best.size());
-    const std::vector<HitScore> mine(full.begin() + static_cast<std::ptrdiff_t>(at),
-                                     full.begin() + static_cast<std::ptrdiff_t>(at + k));
-    at += k;
-    result.hits.push_back(rank_hits(streamed.queries[q].best, mine, options.top));
-  }
-  if (queries.size() > 1)
-    result.fused = fuse_scores(streamed.molecules, result.hits, options.fusion, options.top);
+  std::vector<std::vector<Hit>> best;
+  for (QueryScores& scores : streamed.queries) best.push_back(std::move(scores.best));
+  MultiScreenResult ranked = rank_and_fuse(best, full, streamed.molecules, options);
+  result.hits = std::move(ranked.hits);
+  result.fused = std::move(ranked.fused);
   return result;
 }
 

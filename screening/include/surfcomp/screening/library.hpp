@@ -151,7 +151,8 @@ void write_library_index(const std::filesystem::path& path,
 /// their checksums verified) when asked for. The entries of a sharded library are its shards'
 /// entries in the index's order, numbered from 0 across the shards. A shard is opened (mapped, its
 /// index decoded and checked) when one of its entries is read; at most a few stay open, the least
-/// recently read closed first, and release() closes those it covers. Thread-safe for reading.
+/// recently read closed first, and release() closes those a stream has passed. Thread-safe (a
+/// shard being read stays mapped until its reader is done).
 class Library {
  public:
   /// Opens and checks `path`, a library file or an index. Throws FileError (missing, unreadable,
@@ -190,10 +191,10 @@ class Library {
   /// Tells the kernel that the pages of entries [begin, end) (their records and samples, the
   /// pages wholly inside those regions) are not needed for now: MADV_DONTNEED on the read-only
   /// mapping, so that a reader streaming through a library larger than memory, releasing what
-  /// it has read, keeps its resident memory bounded; closes the shards wholly inside the range.
-  /// The entries stay readable: a page touched again is read again from the file (or the page
-  /// cache), a shard opened again; views from packed() stay valid. Throws std::out_of_range
-  /// unless begin <= end <= size().
+  /// it has read, keeps its resident memory bounded; closes the shards whose last entry is in
+  /// the range (a reader streaming in order is past them). The entries stay readable: a page
+  /// touched again is read again from the file (or the page cache), a shard opened again; views
+  /// from packed() stay valid. Throws std::out_of_range unless begin <= end <= size().
   void release(std::size_t begin, std::size_t end) const;
 
   /// The format version of the file, or of the shards of a sharded library (4).

@@ -277,7 +277,9 @@ struct FusedHit {
 /// the query's `ranked` hits) fused by `fusion` (max: the highest, mean: the mean over the
 /// queries), best first, ties to the lower molecule; at most `top` rows (0: all). For the
 /// ranking of a whole screen, `molecules` holds StreamedScores::molecules (of one range, or of
-/// several ranges together). Throws InputError when a molecule has not one score per query.
+/// several ranges together) and `ranked` each query's every stage-3 row, also those past its
+/// table's `--top` (rank_and_fuse). Throws InputError when a molecule has not one score per
+/// query.
 std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
                                   const std::vector<std::vector<Hit>>& ranked, Fusion fusion,
                                   std::size_t top);
@@ -303,6 +305,17 @@ struct MultiScreenResult {
   double stage2_seconds = 0.0;
   double stage3_seconds = 0.0;
 };
+
+/// The rows and fused ranking of a screen from what its stages left: `best` each query's
+/// best molecules after stage 2 (merge_best of its ranges), `full` the stage-3 scores of each
+/// query's first min(options.candidates, its best) molecules, query after query, `molecules`
+/// the ranges' StreamedScores::molecules. Each query's rows are rank_hits(best, its scores,
+/// options.top); the fused ranking (several queries) is fuse_scores with every stage-3 score.
+/// Times are left 0. Throws InputError when `full` is short.
+MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
+                                const std::vector<HitScore>& full,
+                                const std::vector<MoleculeScores>& molecules,
+                                const ScreenOptions& options);
 
 /// screen() of every query at once: the library read once for stages 1 and 2, each query's
 /// rows the same as its own screen's, and their fused ranking (fuse_scores). Throws as
