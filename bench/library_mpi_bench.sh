@@ -22,8 +22,10 @@ threads=$(((cores + ranks - 1) / ranks))
 mpirun=(mpirun --oversubscribe --bind-to none -np "$ranks")
 [ "$(id -u)" -ne 0 ] || mpirun+=(--allow-run-as-root)
 
+# Each library in a folder of its own under one name: an index names its shard folder.
 mkdir -p "$work"
-rm -rf "$work"/one.sclib* "$work"/mpi.sclib* "$work"/resumed.sclib*
+rm -rf "$work"/one "$work"/mpi "$work"/resumed
+mkdir -p "$work"/one "$work"/mpi "$work"/resumed
 
 # Runs a command under /usr/bin/time -v; prints its wall time and peak RSS (of the largest
 # process: mpirun's children report theirs through their own time -v).
@@ -47,12 +49,12 @@ same_library() {
 }
 
 echo "library_mpi_bench: $input, $cores cores; one process x $cores threads against $ranks x $threads"
-timed one "$surfcomp" library build "$input" -o "$work/one.sclib" --threads "$cores" "${options[@]}"
+timed one "$surfcomp" library build "$input" -o "$work/one/lib.sclib" --threads "$cores" "${options[@]}"
 timed mpi "${mpirun[@]}" /usr/bin/time -f "mpi rank: peak RSS %M KB" \
-  "$surfcomp" library build "$input" -o "$work/mpi.sclib" --threads "$threads" "${options[@]}"
+  "$surfcomp" library build "$input" -o "$work/mpi/lib.sclib" --threads "$threads" "${options[@]}"
 grep "mpi rank:" "$work/mpi.err" | sed 's/^/    /'
-shards=$(find "$work/one.sclib.d" -name '*.sclib' 2>/dev/null | wc -l)
-if same_library "$work/one.sclib" "$work/mpi.sclib"; then
+shards=$(find "$work/one/lib.sclib.d" -name '*.sclib' 2>/dev/null | wc -l)
+if same_library "$work/one/lib.sclib" "$work/mpi/lib.sclib"; then
   echo "same bytes: one process and $ranks processes ($shards shards)"
 else
   echo "DIFFERENT bytes: one process and $ranks processes"
@@ -60,21 +62,21 @@ else
 fi
 
 # The build killed once half the shards are written, then resumed.
-"$surfcomp" library build "$input" -o "$work/resumed.sclib" --threads "$cores" "${options[@]}" \
+"$surfcomp" library build "$input" -o "$work/resumed/lib.sclib" --threads "$cores" "${options[@]}" \
   >"$work/killed.out" 2>"$work/killed.err" &
 pid=$!
 while kill -0 "$pid" 2>/dev/null; do
-  done_shards=$(find "$work/resumed.sclib.d" -name '*.sclib' 2>/dev/null | wc -l)
+  done_shards=$(find "$work/resumed/lib.sclib.d" -name '*.sclib' 2>/dev/null | wc -l)
   [ "$done_shards" -lt $((shards / 2)) ] || break
   sleep 0.2
 done
 kill -9 "$pid" 2>/dev/null || true
 wait "$pid" 2>/dev/null || true
-kept=$(find "$work/resumed.sclib.d" -name '*.sclib' 2>/dev/null | wc -l)
+kept=$(find "$work/resumed/lib.sclib.d" -name '*.sclib' 2>/dev/null | wc -l)
 echo "killed (SIGKILL) with $kept of $shards shards written"
-timed resumed "$surfcomp" library build "$input" -o "$work/resumed.sclib" --threads "$cores" \
+timed resumed "$surfcomp" library build "$input" -o "$work/resumed/lib.sclib" --threads "$cores" \
   --resume "${options[@]}"
-if same_library "$work/one.sclib" "$work/resumed.sclib"; then
+if same_library "$work/one/lib.sclib" "$work/resumed/lib.sclib"; then
   echo "same bytes: uninterrupted and resumed after SIGKILL"
 else
   echo "DIFFERENT bytes: uninterrupted and resumed"
