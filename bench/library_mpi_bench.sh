@@ -53,7 +53,7 @@ timed one "$surfcomp" library build "$input" -o "$work/one/lib.sclib" --threads 
 timed mpi "${mpirun[@]}" /usr/bin/time -f "mpi rank: peak RSS %M KB" \
   "$surfcomp" library build "$input" -o "$work/mpi/lib.sclib" --threads "$threads" "${options[@]}"
 grep "mpi rank:" "$work/mpi.err" | sed 's/^/    /'
-shards=$(find "$work/one/lib.sclib.d" -name '*.sclib' 2>/dev/null | wc -l)
+shards=$( (find "$work/one/lib.sclib.d" -name '*.sclib' 2>/dev/null || true) | wc -l)
 if same_library "$work/one/lib.sclib" "$work/mpi/lib.sclib"; then
   echo "same bytes: one process and $ranks processes ($shards shards)"
 else
@@ -66,13 +66,13 @@ fi
   >"$work/killed.out" 2>"$work/killed.err" &
 pid=$!
 while kill -0 "$pid" 2>/dev/null; do
-  done_shards=$(find "$work/resumed/lib.sclib.d" -name '*.sclib' 2>/dev/null | wc -l)
+  done_shards=$( (find "$work/resumed/lib.sclib.d" -name '*.sclib' 2>/dev/null || true) | wc -l)
   [ "$done_shards" -lt $((shards / 2)) ] || break
   sleep 0.2
 done
 kill -9 "$pid" 2>/dev/null || true
 wait "$pid" 2>/dev/null || true
-kept=$(find "$work/resumed/lib.sclib.d" -name '*.sclib' 2>/dev/null | wc -l)
+kept=$( (find "$work/resumed/lib.sclib.d" -name '*.sclib' 2>/dev/null || true) | wc -l)
 echo "killed (SIGKILL) with $kept of $shards shards written"
 timed resumed "$surfcomp" library build "$input" -o "$work/resumed/lib.sclib" --threads "$cores" \
   --resume "${options[@]}"
