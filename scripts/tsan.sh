@@ -67,8 +67,8 @@ cmake --build --preset tsan -j "$jobs" --target threaded_tests
 # sums: Potentials.ProteinSizedCaseAgreesWithASerialSum; critical points of thermolysin
 # ligands: Descriptors.ResultDoesNotDependOnTheThreadCount; a library of .hsi files:
 # LibraryBuild.ConformersShareTheirMolecule...), and the .hsi reader's tests, which read files
-# in one thread. Under ThreadSanitizer they took 358 of the suites' 626 s
-# (docs/benchmarks.md#threadsanitizer).
+# in one thread; what they cost under ThreadSanitizer is in
+# docs/benchmarks.md#threadsanitizer.
 slow='^(Ses\.AllThermolysinStructuresGiveClosedSurfaces|Match\.MovedCopyOfASurfaceRecoversTheMotion'
 slow+='|Match\.ThermolysinLigandsAlignFromRandomPoses|Match\.PrincipalAxesStartsJoinTheRefinedAlignments'
 slow+='|Match\.AnAllTrueMaskInWholeSurfaceModeChangesNothing|Match\.PolishedAlignmentsScoreAtLeastAsHighAndStayOrdered'
