@@ -33,6 +33,17 @@ while IFS=$'\t' read -r cache_path package member sha; do
   fi
   if [ ! -d "$work/$package" ]; then dpkg-deb -x "$deb" "$work/$package"; fi
   source_file="$work/$package/$member"
+  case "$member" in
+    *//*)  # a file inside a tarball of the package: TARBALL//PATH
+      tarball="${member%%//*}"
+      unpacked="$work/tar/$package/$tarball"
+      if [ ! -d "$unpacked" ]; then
+        mkdir -p "$unpacked"
+        tar -xzf "$work/$package/$tarball" -C "$unpacked"
+      fi
+      source_file="$unpacked/${member#*//}"
+      ;;
+  esac
   if [ ! -f "$source_file" ]; then
     echo "fetch: $package has no $member" >&2
     failed=1
@@ -40,6 +51,7 @@ while IFS=$'\t' read -r cache_path package member sha; do
   fi
   mkdir -p "$(dirname "$target")"
   case "$member" in
+    *//*) cp "$source_file" "$target.part" ;;
     *.gz) gzip -dc "$source_file" > "$target.part" ;;
     *) cp "$source_file" "$target.part" ;;
   esac

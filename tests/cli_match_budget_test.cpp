@@ -119,19 +119,29 @@ TEST(MatchBudgetCli, ImagesAboveTheByteLimitAreRefusedInOneLine) {
 
 // MaSIF's meshes carry 'charge', 'hbond' and 'hphob' but no 'esp' or 'lp': refused when read,
 // before either side's descriptors are computed, not after the graph.
-TEST(MatchBudgetCli, AMeshWithoutEspIsRefusedBeforeItIsDescribed) {
+TEST(MatchBudgetCli, AMeshWithoutEspIsMatchedByShapeAloneInAngstroms) {
   SURFCOMP_SHARED_OR_SKIP(mesh, "surfaces/masif/1EWY_A.ply");
   SURFCOMP_SHARED_OR_SKIP(ligand, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
   const test::TempDir dir;
   const fs::path out = dir / "result.json";
-  for (const std::string& pair :
-       {ligand.string() + " " + mesh.string(), mesh.string() + " " + ligand.string()}) {
-    const ProgramRun r = run("match " + pair + " -o " + out.string());
-    EXPECT_EQ(r.status, 1) << r.err;
-    EXPECT_EQ(lines(r.err), 1u) << r.err;
-    EXPECT_NE(r.err.find("1EWY_A.ply: the surface has no vertex property 'esp'"), std::string::npos)
-        << r.err;
-    EXPECT_FALSE(fs::exists(out));
+  const ProgramRun r = run("match " + ligand.string() + " " + mesh.string() + " -o " +
+                           out.string() + " --max-cliques 200");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(
+      r.err.find("note: " + mesh.string() + " carries no ESP and LP: matched by shape alone\n"),
+      std::string::npos)
+      << r.err;
+  std::ifstream in(out);
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  EXPECT_TRUE(doc["shape_only"].get<bool>());
+  // The ligand is a molecule: lengths stay in A however large the mesh is.
+  EXPECT_EQ(doc["scale"]["unit"].get<double>(), 1.0);
+  EXPECT_EQ(doc["scale"]["from"], "none");
+  EXPECT_EQ(doc["parameters"]["overlay_chem_weight"].get<double>(), 0.0);
+  ASSERT_FALSE(doc["alignments"].empty());
+  for (const auto& a : doc["alignments"]) {
+    EXPECT_EQ(a["overlay"]["chem"].get<double>(), 0.0);
+    EXPECT_EQ(a["r_chem"].get<double>(), 0.0);
   }
 }
 

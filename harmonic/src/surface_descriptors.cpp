@@ -1,9 +1,11 @@
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/mesh/topology.hpp"
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <sstream>
@@ -14,13 +16,29 @@ namespace surfcomp::harmonic {
 namespace {
 
 /// The patch, map and image of one critical point. Failures that belong to the patch's shape
-/// (no triangle left, a handle, an unsolvable map) become a status; anything else propagates.
+/// (no triangle left, a handle, the surface's own border reached, an unsolvable map) become a
+/// status; anything else propagates. `border` flags the surface's border vertices.
 void describe_point(const mesh::Surface& surface, const Eigen::VectorXd& image_values,
-                    const DescriptorOptions& options, CriticalPointDescriptor& out) {
+                    const std::vector<bool>& border, const DescriptorOptions& options,
+                    CriticalPointDescriptor& out) {
   try {
     out.patch = mesh::extract_patch(surface, out.point.vertex, options.patch);
   } catch (const TopologyError&) {
     out.status = PatchStatus::empty;
+    return;
+  }
+  for (const int v : out.patch.surface_vertex) {
+    if (border[static_cast<std::size_t>(v)]) {
+      out.status = PatchStatus::at_border;
+      return;
+    }
+  }
+  const auto on = [&out](const std::vector<int>& loop) {
+    return std::find(loop.begin(), loop.end(), out.patch.center) != loop.end();
+  };
+  if (on(out.patch.outer_boundary) ||
+      std::any_of(out.patch.holes.begin(), out.patch.holes.end(), on)) {
+    out.status = PatchStatus::at_border;
     return;
   }
   if (out.patch.genus > 0) {
@@ -51,10 +69,11 @@ std::vector<CriticalPointDescriptor> describe_points(const mesh::Surface& surfac
                                                      const std::vector<mesh::CriticalPoint>& points,
                                                      const DescriptorOptions& options) {
   const Eigen::VectorXd image_values = surface.property(options.image_property);
+  const std::vector<bool> border = mesh::border_vertices(surface);
   std::vector<CriticalPointDescriptor> out(points.size());
   tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
     out[i].point = points[i];
-    describe_point(surface, image_values, options, out[i]);
+    describe_point(surface, image_values, border, options, out[i]);
   });
   return out;
 }
@@ -64,7 +83,8 @@ CriticalPointDescriptor describe_point(const mesh::Surface& surface,
                                        const DescriptorOptions& options) {
   CriticalPointDescriptor out;
   out.point = point;
-  describe_point(surface, surface.property(options.image_property), options, out);
+  describe_point(surface, surface.property(options.image_property), mesh::border_vertices(surface),
+                 options, out);
   return out;
 }
 
@@ -78,6 +98,7 @@ SurfaceDescriptors describe_surface(
   const std::vector<mesh::CriticalPoint> points =
       mesh::detect_critical_points(surface, options.critical_points);
   const Eigen::VectorXd image_values = surface.property(options.image_property);
+  const std::vector<bool> border = mesh::border_vertices(surface);
   std::vector<bool> wanted(points.size(), true);
   std::int64_t count = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -102,7 +123,7 @@ SurfaceDescriptors describe_surface(
       result.critical_points[i].status = PatchStatus::skipped;
       return;
     }
-    describe_point(surface, image_values, options, result.critical_points[i]);
+    describe_point(surface, image_values, border, options, result.critical_points[i]);
     if (options.progress) options.progress(++done, count);
   });
   if (options.progress) options.progress(count, count);
@@ -132,6 +153,23 @@ SurfaceDescriptors describe_surface(
   return result;
 }
 
+void scale_descriptors(SurfaceDescriptors& descriptors, double factor) {
+  mesh::scale_surface(descriptors.surface, factor);  // checks the factor
+  const std::string& imaged = descriptors.options.image_property;
+  const bool image_is_curvature = imaged == mesh::property::cc1 || imaged == mesh::property::cc2 ||
+                                  imaged == mesh::property::curvedness;
+  for (CriticalPointDescriptor& cp : descriptors.critical_points) {
+    cp.point.position *= factor;
+    cp.point.cc1 /= factor;
+    cp.point.cc2 /= factor;
+    cp.point.curvedness /= factor;
+    cp.patch.positions *= factor;
+    cp.patch.distance *= factor;
+    if (image_is_curvature) cp.image.values /= factor;
+  }
+  for (SurfaceAtom& atom : descriptors.atoms) atom.position *= factor;
+}
+
 DescriptorCounts count_descriptors(const SurfaceDescriptors& descriptors) {
   DescriptorCounts counts;
   for (const auto& cp : descriptors.critical_points) {
@@ -157,6 +195,8 @@ const char* to_string(PatchStatus status) {
       return "map_failed";
     case PatchStatus::skipped:
       return "skipped";
+    case PatchStatus::at_border:
+      return "at_border";
   }
   return "unknown";
 }

@@ -29,6 +29,7 @@ const harmonic::CriticalPointDescriptor& imaged_point(const harmonic::SurfaceDes
 
 Eigen::VectorXd surface_property(const harmonic::SurfaceDescriptors& d, const std::string& name,
                                  const char* side) {
+  if (name.empty()) return Eigen::VectorXd::Zero(static_cast<Eigen::Index>(d.surface.n_vertices()));
   if (!d.surface.has_property(name)) {
     throw InputError(std::string("pair_correspondences: surface ") + side + " (" +
                      d.surface.source() + ") has no vertex property '" + name + "'");

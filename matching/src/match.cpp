@@ -248,7 +248,8 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
 
 }  // namespace
 
-OverlayOptions mode_overlay_options(const MatchOptions& options) {
+OverlayOptions mode_overlay_options(const MatchOptions& asked_options) {
+  const MatchOptions options = shape_only_options(asked_options);
   OverlayOptions overlay = options.overlay;
   if (options.mode == MatchMode::binding_sites) {
     overlay.chem_weight = options.site.chem_weight;
@@ -283,6 +284,17 @@ void validate(const MatchOptions& options) {
   detail::check_axes_start_count(site.principal_axes_starts, "site.principal_axes_starts", check);
 }
 
+MatchOptions shape_only_options(MatchOptions options) {
+  if (!options.shape_only) return options;
+  options.graph.fuzzy_filter = false;
+  options.correspondences.property.clear();
+  options.ranking.weight_chem = 0.0;
+  options.overlay.chem_weight = 0.0;
+  options.overlay.atom_weight = 0.0;
+  options.site.chem_weight = 0.0;
+  return options;
+}
+
 void require_match_properties(const mesh::Surface& surface) {
   for (const char* name : {mesh::property::esp, mesh::property::lp}) {
     if (surface.has_property(name)) continue;
@@ -293,10 +305,12 @@ void require_match_properties(const mesh::Surface& surface) {
 }
 
 MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
-                           const harmonic::SurfaceDescriptors& probe, const MatchOptions& options,
+                           const harmonic::SurfaceDescriptors& probe,
+                           const MatchOptions& asked_options,
                            const std::vector<bool>* reference_allowed,
                            const std::vector<bool>* probe_allowed) {
-  validate(options);
+  validate(asked_options);
+  const MatchOptions options = shape_only_options(asked_options);
   const auto& ga = reference.options.image;
   const auto& gb = probe.options.image;
   if (ga.rings != gb.rings || ga.sectors != gb.sectors) {
@@ -306,8 +320,10 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
                      std::to_string(gb.rings) + " rings x " + std::to_string(gb.sectors) +
                      " sectors); rebuild them with the same image grid");
   }
-  require_match_properties(reference.surface);
-  require_match_properties(probe.surface);
+  if (!options.shape_only) {
+    require_match_properties(reference.surface);
+    require_match_properties(probe.surface);
+  }
   MatchResult result;
   Stopwatch clock;
   const AssociationGraph graph =

@@ -4,9 +4,15 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
+#include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/mesh/molecular_surface.hpp"
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <tuple>
 #include <utility>
 
 namespace surfcomp::matching {
@@ -33,6 +39,9 @@ struct LoadedInput {
   std::optional<mesh::Surface> surface;
   std::optional<Molecule> molecule;
   std::vector<SiteSphere> site;
+  /// The surface still needs its curvature, computed once its length unit is known (a mesh
+  /// read without a molecule, or a surface in memory without curvature).
+  bool needs_curvature = false;
 };
 
 /// The surface of a molecule with a site: the site's structure (binding_site) surfaced around
@@ -110,13 +119,124 @@ LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& opti
   } else if (input.surface) {
     side.surface = *input.surface;
     side.molecule = input.molecule;
+    for (const char* name : {mesh::property::cc1, mesh::property::cc2, mesh::property::shape_index,
+                             mesh::property::curvedness}) {
+      if (!side.surface->has_property(name)) side.needs_curvature = true;
+    }
+  } else if (options.input.molecule_file.empty()) {
+    mesh::check_surface_input(input.path, options.input);
+    side.surface = mesh::io::read_mesh(input.path);
+    side.needs_curvature = true;
   } else {
     mesh::LoadedSurface loaded = mesh::load_surface(input.path, options.input);
     side.surface = std::move(loaded.surface);
     side.molecule = std::move(loaded.molecule);
   }
-  require_match_properties(*side.surface);
   return side;
+}
+
+/// The loaded side's surface: a stored description's or the one read or built.
+const mesh::Surface& surface_of(const LoadedInput& side) {
+  return side.descriptors ? side.descriptors->surface : *side.surface;
+}
+
+bool carries_chemistry(const LoadedInput& side) {
+  const mesh::Surface& surface = surface_of(side);
+  return surface.has_property(mesh::property::esp) && surface.has_property(mesh::property::lp);
+}
+
+/// True for a side whose coordinates are in A: a molecule, a stored description, a surface with
+/// ESP and LP, an MSMS mesh.
+bool is_molecular(const LoadedInput& side, const MatchInput& input) {
+  if (side.descriptors || side.molecule || carries_chemistry(side)) return true;
+  const std::string extension = input.path.extension().string();
+  return extension == ".vert" || extension == ".face";
+}
+
+/// The area-weighted RMS distance of a surface's triangle centroids from their centroid: its
+/// size, which noise and a partial view change less than its area.
+double rms_radius(const mesh::Surface& surface) {
+  const Eigen::MatrixX3d v = surface.positions();
+  const Eigen::MatrixX3i f = surface.faces();
+  Eigen::VectorXd area(f.rows());
+  Eigen::MatrixX3d centroid(f.rows(), 3);
+  for (Eigen::Index i = 0; i < f.rows(); ++i) {
+    const Eigen::RowVector3d a = v.row(f(i, 0)), b = v.row(f(i, 1)), c = v.row(f(i, 2));
+    area(i) = 0.5 * (b - a).cross(c - a).norm();
+    centroid.row(i) = (a + b + c) / 3.0;
+  }
+  const double total = area.sum();
+  if (!(total > 0.0)) return 0.0;
+  const Eigen::RowVector3d centre =
+      (centroid.array().colwise() * area.array()).colwise().sum() / total;
+  return std::sqrt((centroid.rowwise() - centre).rowwise().squaredNorm().dot(area) / total);
+}
+
+/// The length unit of a pair (MatchInputOptions::unit and scale) and how it was chosen.
+std::pair<double, std::string> length_unit(const LoadedInput& ref, const MatchInput& reference,
+                                           const LoadedInput& prb, const MatchInput& probe,
+                                           const MatchInputOptions& options) {
+  if (options.unit > 0.0) {
+    for (const LoadedInput* side : {&ref, &prb}) {
+      if (side->descriptors) {
+        throw OptionError(side->name +
+                          ": --unit applies to meshes and molecules, not to a stored "
+                          "description (its lengths were fixed when it was built)");
+      }
+    }
+    return {options.unit, "--unit"};
+  }
+  if (options.scale == LengthScale::none || is_molecular(ref, reference) ||
+      is_molecular(prb, probe)) {
+    return {1.0, "none"};
+  }
+  constexpr double kAutoRadius = 12.0;  // units, LengthScale::automatic
+  const double radius = std::max(rms_radius(*ref.surface), rms_radius(*prb.surface));
+  if (!(radius > 0.0) || !std::isfinite(radius)) {
+    throw InputError(ref.name + " and " + prb.name +
+                     ": the surfaces have no extent to take a length unit from (--scale auto); "
+                     "give --unit");
+  }
+  return {radius / kAutoRadius, "auto"};
+}
+
+/// The curvature of a side that still needs it (LoadedInput::needs_curvature), in the length
+/// unit its surface now has: over the molecular surface's neighbourhood, or for a pair of
+/// general meshes over 3 units, which noisy scans need (docs/decisions.md#mesh-scale).
+void complete(LoadedInput& side, const MatchInputOptions& options, bool general_meshes) {
+  if (!side.needs_curvature) return;
+  mesh::MolecularSurfaceOptions surface = options.input.surface;
+  constexpr double kGeneralMeshCurvatureRadius = 3.0;  // units
+  if (general_meshes) surface.curvature.radius = kGeneralMeshCurvatureRadius;
+  mesh::assign_surface_properties(*side.surface, nullptr, surface);
+  side.needs_curvature = false;
+}
+
+/// The side's surface and site spheres scaled by `factor` (a change of length unit); its
+/// curvature is computed again at the new unit.
+void scale_side(LoadedInput& side, double factor) {
+  mesh::scale_surface(*side.surface, factor);
+  side.needs_curvature = true;
+  for (SiteSphere& sphere : side.site) {
+    sphere.center *= factor;
+    sphere.radius *= factor;
+  }
+}
+
+/// A prepared side and the match result given back in the inputs' coordinates.
+void unscale(PreparedInput& side, double unit) {
+  harmonic::scale_descriptors(side.descriptors, unit);
+  for (SiteSphere& sphere : side.site) {
+    sphere.center *= unit;
+    sphere.radius *= unit;
+  }
+}
+
+void unscale(MatchResult& result, double unit) {
+  for (Alignment& a : result.alignments) {
+    a.transform.topRightCorner<3, 1>() *= unit;
+    a.rmsd *= unit;
+  }
 }
 
 PreparedInput describe_unlogged(LoadedInput side, const harmonic::DescriptorOptions& options);
@@ -251,7 +371,9 @@ PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& op
   MatchInputOptions built = options;
   built.site.surface_margin =
       site_surface_margin(options.site.surface_margin, options.descriptors.patch.radius);
-  return describe(load(input, built, "input"), options.descriptors, options, "input");
+  LoadedInput side = load(input, built, "input");
+  complete(side, options, false);
+  return describe(std::move(side), options.descriptors, options, "input");
 }
 
 InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
@@ -285,6 +407,22 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
       site_surface_margin(options.site.surface_margin, descriptors.patch.radius);
   if (!ref) ref = load(ref_read, built, "REF");
   if (!prb) prb = load(probe_read, built, "PROBE");
+  for (const LoadedInput* side : {&*ref, &*prb}) {
+    if (!match.shape_only && !carries_chemistry(*side)) {
+      match.shape_only = true;
+      out.notes.push_back(side->name + " carries no ESP and LP: matched by shape alone");
+    }
+  }
+  out.shape_only = match.shape_only;
+  std::tie(out.unit, out.unit_from) = length_unit(*ref, reference, *prb, probe, options);
+  if (out.unit != 1.0) {
+    scale_side(*ref, 1.0 / out.unit);
+    scale_side(*prb, 1.0 / out.unit);
+    log(options, "length unit " + std::to_string(out.unit) + " (" + out.unit_from + ")");
+  }
+  const bool general_meshes = !is_molecular(*ref, reference) && !is_molecular(*prb, probe);
+  complete(*ref, options, general_meshes);
+  complete(*prb, options, general_meshes);
   out.reference = describe(std::move(*ref), descriptors, options, "REF");
   out.probe = describe(std::move(*prb), descriptors, options, "PROBE");
   if (!same_parameters(out.reference.descriptors.options, out.probe.descriptors.options)) {
@@ -293,7 +431,8 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
                      "radius, patch radius, spring weights or image grid); rebuild one with the "
                      "other's");
   }
-  if (out.reference.site.empty() && out.probe.site.empty() && match.overlay.atom_weight > 0.0 &&
+  if (out.reference.site.empty() && out.probe.site.empty() && !match.shape_only &&
+      match.overlay.atom_weight > 0.0 &&
       out.reference.descriptors.atoms.empty() != out.probe.descriptors.atoms.empty()) {
     const PreparedInput& without =
         out.reference.descriptors.atoms.empty() ? out.reference : out.probe;
@@ -306,6 +445,11 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
       match_surfaces(out.reference.descriptors, out.probe.descriptors, match,
                      out.reference.site_points.empty() ? nullptr : &out.reference.site_points,
                      out.probe.site_points.empty() ? nullptr : &out.probe.site_points);
+  if (out.unit != 1.0) {
+    unscale(out.reference, out.unit);
+    unscale(out.probe, out.unit);
+    unscale(out.result, out.unit);
+  }
   out.match_ms = clock.elapsed_ms() - out.prepare_ms;
   out.warnings = match_warnings(out.result, match);
   log(options, "match: " + std::to_string(out.result.alignments.size()) + " alignments from " +

@@ -8,6 +8,11 @@ const options::Table<MatchOptions>& match_option_table() {
   const std::vector<std::string> start_counts = {"0", "4", "24"};
   static const options::Table<M> table = {
       options::field<M>(
+          {"shape-only", Kind::flag,
+           "match by shape alone, ESP, LP and atoms set aside (the default "
+           "for meshes that carry no ESP and LP)"},
+          [](auto& m) -> auto& { return m.shape_only; }),
+      options::field<M>(
           {"fuzzy-threshold", Kind::real, "fuzzy ESP/LP similarity threshold F", "", 0.0, 1.0},
           [](auto& m) -> auto& { return m.graph.fuzzy_threshold; }),
       options::field<M>(

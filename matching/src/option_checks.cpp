@@ -77,7 +77,6 @@ void check_clustering_options(const ClusteringOptions& options, const OptionChec
 void check_correspondence_options(const CorrespondenceOptions& options, const OptionCheck& check) {
   check.require(options.ring_step >= 1, "ring_step", options.ring_step, ">= 1");
   check.require(options.sector_step >= 1, "sector_step", options.sector_step, ">= 1");
-  check.require(!options.property.empty(), "property", "\"\"", "a vertex property name");
 }
 
 void check_ranking_options(const RankingOptions& options, const OptionCheck& check) {

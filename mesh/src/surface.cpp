@@ -330,6 +330,18 @@ void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
   }
 }
 
+void scale_surface(Surface& surface, double factor) {
+  if (!(factor > 0.0) || !std::isfinite(factor)) {
+    throw InputError(surface.source() + ": a length scale of " + std::to_string(factor) +
+                     ", expected a finite value > 0");
+  }
+  TriMesh& mesh = tri_mesh(surface);
+  for (auto v : mesh.vertices()) mesh.set_point(v, mesh.point(v) * factor);
+  for (const char* name : {property::cc1, property::cc2, property::curvedness}) {
+    if (surface.has_property(name)) surface.set_property(name, surface.property(name) / factor);
+  }
+}
+
 /// Barycentric vertex areas: a third of the area of every incident triangle, A^2.
 Eigen::VectorXd vertex_areas(const Surface& surface) {
   const TriMesh& mesh = tri_mesh(surface);

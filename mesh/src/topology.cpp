@@ -68,4 +68,11 @@ SurfaceComponents connected_components(const Surface& surface) {
   return out;
 }
 
+std::vector<bool> border_vertices(const Surface& surface) {
+  const TriMesh& mesh = tri_mesh(surface);
+  std::vector<bool> out(mesh.n_vertices(), false);
+  for (const auto v : mesh.vertices()) out[static_cast<std::size_t>(v.idx())] = mesh.is_boundary(v);
+  return out;
+}
+
 }  // namespace surfcomp::mesh

@@ -254,10 +254,29 @@ Molecule molecule_of(const MoleculeBlock& block, const io::MoleculeReadOptions& 
   return molecule;
 }
 
-/// A Python input (a path, a MoleculeBlock, a Surface, a Descriptors) as the library's.
+/// A mesh given as a (V, F) pair of arrays: #V by 3 positions and #F by 3 0-based triangles.
+mesh::Surface surface_of_arrays(const py::tuple& pair) {
+  const auto positions =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pair[0]);
+  const auto faces = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(pair[1]);
+  if (!positions || positions.ndim() != 2 || positions.shape(1) != 3 || !faces ||
+      faces.ndim() != 2 || faces.shape(1) != 3) {
+    throw InputError("a mesh as (V, F) needs V of shape (n, 3) and F of shape (m, 3)");
+  }
+  using Rows3d = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  using Rows3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  const Eigen::MatrixX3d v = Eigen::Map<const Rows3d>(positions.data(), positions.shape(0), 3);
+  const Eigen::MatrixX3i f = Eigen::Map<const Rows3i>(faces.data(), faces.shape(0), 3);
+  return mesh::Surface::from_arrays(v, f, "<(V, F) arrays>");
+}
+
+/// A Python input (a path, a MoleculeBlock, a Surface, a Descriptors, a (V, F) pair) as the
+/// library's.
 matching::MatchInput input_of(const py::handle& object, const io::MoleculeReadOptions& read) {
   matching::MatchInput input;
-  if (py::isinstance<py::str>(object)) {
+  if (py::isinstance<py::tuple>(object) && py::len(object) == 2) {
+    input.surface = surface_of_arrays(object.cast<py::tuple>());
+  } else if (py::isinstance<py::str>(object)) {
     input.path = object.cast<std::string>();
   } else if (py::isinstance<MoleculeBlock>(object)) {
     input.molecule = molecule_of(object.cast<const MoleculeBlock&>(), read);
@@ -268,8 +287,9 @@ matching::MatchInput input_of(const py::handle& object, const io::MoleculeReadOp
   } else if (py::isinstance<PyDescriptors>(object)) {
     input.descriptors = object.cast<const PyDescriptors&>().descriptors;
   } else {
-    throw py::type_error("expected a path, an RDKit molecule, a Surface or a Descriptors, got " +
-                         py::str(py::type::of(object)).cast<std::string>());
+    throw py::type_error(
+        "expected a path, an RDKit molecule, a Surface, a Descriptors or (V, F) arrays, got " +
+        py::str(py::type::of(object)).cast<std::string>());
   }
   return input;
 }
@@ -317,6 +337,8 @@ py::dict match_dict(const matching::InputMatch& compared) {
   d["timing_ms"] = timing;
   d["warnings"] = compared.warnings;
   d["notes"] = compared.notes;
+  d["shape_only"] = compared.shape_only;
+  d["unit"] = compared.unit;
   d["cliques"] = compared.result.cliques;
   d["cliques_complete"] = compared.result.cliques_complete;
   d["prepare_ms"] = compared.prepare_ms;

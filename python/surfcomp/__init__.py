@@ -68,9 +68,12 @@ def _partial_charges(mol) -> Optional[List[float]]:
 
 
 def _input(obj: Any):
-    """A path, Surface or Descriptors as is; an RDKit molecule as its MDL block."""
+    """A path, Surface or Descriptors as is; an RDKit molecule as its MDL block; a mesh given as
+    ``(V, F)`` (NumPy-like, V (n, 3) positions, F (m, 3) 0-based triangles) as a tuple."""
     if isinstance(obj, (Surface, Descriptors)):
         return obj
+    if isinstance(obj, (tuple, list)) and len(obj) == 2:
+        return tuple(obj)
     if isinstance(obj, (str, os.PathLike)):
         return os.fspath(obj)
     if _is_rdkit_molecule(obj):
@@ -81,7 +84,7 @@ def _input(obj: Any):
         name = obj.GetProp("_Name") if obj.HasProp("_Name") and obj.GetProp("_Name") else "mol"
         block = Chem.MolToMolBlock(obj, includeStereo=True, kekulize=True)
         return _surfcomp.MoleculeBlock(block, f"<rdkit Mol {name}>", _partial_charges(obj))
-    raise TypeError(f"expected a path, an RDKit molecule, a Surface or a Descriptors, "
+    raise TypeError(f"expected a path, an RDKit molecule, a Surface, a Descriptors or (V, F), "
                     f"got {type(obj).__name__}")
 
 
@@ -208,6 +211,11 @@ class MatchResult(list):
     warnings: List[str]
     #: What a reader may want to know, one line each.
     notes: List[str]
+    #: True when ESP, LP and atoms were set aside (asked, or a side carries no ESP and LP).
+    shape_only: bool
+    #: The length unit the match ran at, in the inputs' coordinates (1 for molecules; see the
+    #: ``scale`` and ``unit`` options). Transforms and RMSDs are in the inputs' coordinates.
+    unit: float
     #: Cliques found.
     cliques: int
     #: Whether the clique search finished within its budget.
@@ -480,8 +488,8 @@ def match(ref, probe, *, report: Union[str, os.PathLike, None] = None, **options
                           os.fspath(report) if report is not None else "")
     result = MatchResult(Alignment(**dict(a, overlay=OverlayScore(**a["overlay"])))
                          for a in raw["alignments"])
-    for key in ("trace", "timing_ms", "warnings", "notes", "cliques", "cliques_complete",
-                "prepare_ms", "match_ms"):
+    for key in ("trace", "timing_ms", "warnings", "notes", "shape_only", "unit", "cliques",
+                "cliques_complete", "prepare_ms", "match_ms"):
         setattr(result, key, raw[key])
     return result
 

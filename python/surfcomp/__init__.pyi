@@ -12,6 +12,8 @@ PathLike = Union[str, os.PathLike]
 #: A molecule: a path, an ``rdkit.Chem.Mol`` with a conformer.
 Molecule = Any
 #: One site sphere (x, y, z, r), its text "x,y,z,r", or a list of them.
+#: A general mesh: V (n, 3) positions and F (m, 3) 0-based triangles.
+MeshArrays = Tuple[npt.ArrayLike, npt.ArrayLike]
 SiteSpheres = Union[Sequence[float], str, List[Union[Sequence[float], str]]]
 
 __version__: str
@@ -132,6 +134,8 @@ class MatchResult(List[Alignment]):
     timing_ms: Dict[str, float]
     warnings: List[str]
     notes: List[str]
+    shape_only: bool
+    unit: float
     cliques: int
     cliques_complete: bool
     prepare_ms: float
@@ -204,7 +208,7 @@ def build_surface(
 ) -> Surface: ...
 
 def describe(
-    mol_or_surface: Union[PathLike, Molecule, Surface],
+    mol_or_surface: Union[PathLike, Molecule, Surface, MeshArrays],
     *,
     probe_radius: float = 1.4,
     density: float = 2.5,
@@ -232,8 +236,8 @@ def describe(
 def load_descriptors(path: PathLike) -> Descriptors: ...
 
 def match(
-    ref: Union[PathLike, Molecule, Surface, Descriptors],
-    probe: Union[PathLike, Molecule, Surface, Descriptors],
+    ref: Union[PathLike, Molecule, Surface, Descriptors, MeshArrays],
+    probe: Union[PathLike, Molecule, Surface, Descriptors, MeshArrays],
     *,
     report: Optional[PathLike] = None,
     probe_radius: float = 1.4,
@@ -251,6 +255,7 @@ def match(
     max_vertices: int = 20000000,
     patch_radius: float = 5.0,
     max_image_bytes: int = 1073741824,
+    shape_only: bool = False,
     fuzzy_threshold: float = 0.3,
     image_threshold: float = 0.5,
     distance_tolerance: float = 1.5,
@@ -271,6 +276,8 @@ def match(
     site_overlay_radius: float = 2.0,
     site_chem_weight: float = 0.25,
     site_principal_axes_starts: int = 24,
+    scale: str = 'auto',
+    unit: float = 0.0,
     site_ligand: Optional[str] = None,
     ref_site_ligand: Optional[str] = None,
     probe_site_ligand: Optional[str] = None,

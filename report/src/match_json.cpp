@@ -6,7 +6,10 @@ namespace surfcomp::report {
 namespace detail {
 
 nlohmann::json match_document(const matching::InputMatch& compared,
-                              const matching::MatchOptions& options) {
+                              const matching::MatchOptions& asked_options) {
+  matching::MatchOptions applied = asked_options;
+  applied.shape_only = compared.shape_only;
+  const matching::MatchOptions options = matching::shape_only_options(applied);
   const matching::MatchResult& result = compared.result;
   const matching::PreparedInput& ref = compared.reference;
   nlohmann::json alignments = nlohmann::json::array();
@@ -54,6 +57,9 @@ nlohmann::json match_document(const matching::InputMatch& compared,
             {"complete", result.cliques_complete},
             {"work", result.clique_work}}},
           {"warnings", compared.warnings},
+          {"notes", compared.notes},
+          {"shape_only", compared.shape_only},
+          {"scale", {{"unit", compared.unit}, {"from", compared.unit_from}}},
           {"parameters",
            {{"fuzzy_threshold", g.fuzzy_threshold},
             {"image_threshold", g.image_threshold},

@@ -236,6 +236,7 @@ std::string macromolecule_query_warning(const Molecule& query, const std::string
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               const ScreenOptions& options, std::vector<matching::SiteSphere> site,
                               const Molecule* molecule) {
+  matching::require_match_properties(descriptors.surface);  // the entries are compared by ESP/LP
   ScreenQuery query;
   query.site = std::move(site);
   const matching::OverlayOptions overlay =

@@ -2,6 +2,7 @@
 errors, the GIL, the type stubs against the command line's options, and the example script."""
 import ast
 import inspect
+import json
 import os
 import re
 import pathlib
@@ -330,3 +331,53 @@ def test_a_report_is_checked_before_the_work_and_never_lands_on_an_input(ligands
     result = surfcomp.match(ligands[0], ligands[1], report=tmp_path / "r.html", refine_top=2)
     page = (tmp_path / "r.html").read_text()
     assert page.startswith("<!DOCTYPE html>") and len(result) > 0
+
+
+def _mesh_cases():
+    sys.path.insert(0, str(SOURCE_DIR / "bench"))
+    import mesh_cases  # the registration benchmark's cases
+    return mesh_cases
+
+
+@pytest.fixture(scope="module")
+def elephant(cache):
+    mesh_cases = _mesh_cases()
+    path = cache / "cgal" / "meshes" / "elephant.off"
+    if not path.exists():
+        pytest.skip(f"{path} is not fetched (datasets/fetch.sh)")
+    vertices, faces = mesh_cases.read_off(path)
+    # A partial view (40 % of the area), remeshed (each triangle split in four), with noise of
+    # 0.5 % of the diagonal and a random rigid motion: the benchmark's case, fixed seed.
+    return path, vertices, faces, mesh_cases.make_case(vertices, faces, 2, fraction=0.4,
+                                                       noise=0.005)
+
+
+def test_numpy_meshes_are_matched_by_shape_alone(elephant):
+    _, vertices, faces, case = elephant
+    result = surfcomp.match((vertices, faces), (case.vertices, case.faces))
+    assert result.shape_only
+    assert result.notes == ["<(V, F) arrays> carries no ESP and LP: matched by shape alone"]
+    # The unit is 1/12 of the larger side's size: the original's.
+    areas = _mesh_cases().face_areas(vertices, faces)
+    centroids = vertices[faces].mean(1)
+    centre = areas @ centroids / areas.sum()
+    radius = np.sqrt(areas @ ((centroids - centre) ** 2).sum(1) / areas.sum())
+    assert result.unit == pytest.approx(radius / 12, rel=1e-9)
+    assert _mesh_cases().motion_error(case, result[0].transform) < 0.02
+    assert result[0].overlay.chem == 0.0 and result[0].overlay.atoms == 0.0
+
+
+def test_the_program_recovers_a_partial_copy_of_a_mesh(program, elephant, tmp_path):
+    path, vertices, faces, case = elephant
+    mesh_cases = _mesh_cases()
+    partial = tmp_path / "elephant_partial.off"
+    mesh_cases.write_off(partial, case.vertices, case.faces)
+    out = tmp_path / "result.json"
+    done = run([program, "match", partial, path, "-o", out])
+    assert done.returncode == 0, done.stderr
+    assert done.stderr == f"note: {partial} carries no ESP and LP: matched by shape alone\n"
+    document = json.loads(out.read_text())
+    assert document["shape_only"] and document["scale"]["from"] == "auto"
+    # REF is the partial copy: the transform moves the original into the copy's frame.
+    transform = np.linalg.inv(np.array(document["alignments"][0]["transform"]))
+    assert mesh_cases.motion_error(case, transform) < 0.02

@@ -402,7 +402,7 @@ SurfaceDescriptors decode_hsi(const std::uint8_t* data, std::size_t n_bytes,
   for (std::uint64_t k = 0; k < n_points; ++k) {
     CriticalPointDescriptor& cp = d.critical_points.emplace_back();
     cp.point = get_point(r, d.surface);
-    cp.status = get_enum<PatchStatus>(r, 4, "patch status");
+    cp.status = get_enum<PatchStatus>(r, 5, "patch status");
     if (cp.status != PatchStatus::ok) continue;
     cp.patch = get_patch(r, d.surface.n_vertices());
     const Eigen::MatrixXd uv = r.double_matrix();

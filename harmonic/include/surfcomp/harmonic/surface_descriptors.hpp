@@ -59,6 +59,10 @@ enum class PatchStatus : std::uint8_t {
   not_a_disk = 2,  ///< the patch has a handle (genus > 0); a harmonic map needs a disk
   map_failed = 3,  ///< the harmonic map could not be solved (degenerate patch geometry)
   skipped = 4,     ///< not asked for (outside a binding site, see describe_surface)
+  /// The patch reaches a border: the surface's own (a cut or partial mesh), so that its image
+  /// would be that of a truncated patch, or its refinement left the centre on the patch's
+  /// border (a folded or noisy mesh), so that the centre has no direction around it.
+  at_border = 5,
 };
 
 /// One critical point with its patch, map and image (the latter three empty unless status ok).
@@ -70,7 +74,7 @@ struct CriticalPointDescriptor {
   ShapeImage image;   ///< image_property resampled on the polar grid
 };
 
-/// "ok", "empty", "not_a_disk", "map_failed" or "skipped".
+/// "ok", "empty", "not_a_disk", "map_failed", "skipped" or "at_border".
 const char* to_string(PatchStatus status);
 
 /// A heavy atom of the molecule a surface was built from, kept with the description so that a
@@ -126,6 +130,14 @@ CriticalPointDescriptor describe_point(const mesh::Surface& surface,
 std::vector<CriticalPointDescriptor> describe_points(const mesh::Surface& surface,
                                                      const std::vector<mesh::CriticalPoint>& points,
                                                      const DescriptorOptions& options = {});
+
+/// Scales a description's geometry by `factor` (> 0, finite), as a change of length unit: the
+/// surface (mesh::scale_surface), the critical points' positions and curvatures (cc1, cc2,
+/// curvedness divided by it), the patches' positions and on-surface distances, the atoms, and
+/// the images' values when options.image_property is a curvature. The options (radii) stay as
+/// they were applied. Maps are on the unit disk and do not change. Throws InputError for
+/// another factor.
+void scale_descriptors(SurfaceDescriptors& descriptors, double factor);
 
 /// Counts of a description, for summaries.
 struct DescriptorCounts {

@@ -40,7 +40,8 @@ struct CorrespondenceOptions {
   /// the mesh spacing (the outer ring's 6-degree arc at radius ~5 A is ~0.5 A). Must be >= 1.
   int sector_step = 3;
   /// Default "esp". The vertex property interpolated at the corresponding points (R_chem, seed
-  /// 3.10); both surfaces must have it.
+  /// 3.10); both surfaces must have it. Empty: none (a shape-only match), every value 0 and
+  /// so R_chem 0.
   std::string property = mesh::property::esp;
 };
 

@@ -50,8 +50,13 @@ struct SiteMatchOptions {
 
 struct MatchOptions {
   MatchMode mode = MatchMode::whole_surfaces;  ///< whole surfaces or binding sites
-  GraphOptions graph;                          ///< filter thresholds F, R, t, d_min, j_tol
-  int min_clique_size = 2;                     ///< smaller cliques are not fitted; >= 1
+  /// Default false. Match by shape alone: no fuzzy ESP/LP filter, no R_chem in the ranking
+  /// (CorrespondenceOptions::property empty, RankingOptions::weight_chem 0), no ESP/LP or atom
+  /// term in the overlay; the surfaces need no "esp" or "lp". match_inputs sets it when a side
+  /// carries no ESP and LP (a general mesh). shape_only_options gives the options it stands for.
+  bool shape_only = false;
+  GraphOptions graph;       ///< filter thresholds F, R, t, d_min, j_tol
+  int min_clique_size = 2;  ///< smaller cliques are not fitted; >= 1
   /// Default CliqueOptions::max_work. The clique search stops after this much work
   /// (CliqueOptions, cliques.hpp), and the match goes on with the cliques found. > 0.
   std::int64_t max_clique_work = CliqueOptions{}.max_work;
@@ -136,14 +141,20 @@ struct MatchResult {
   std::vector<std::pair<std::string, double>> timing_ms;  ///< per stage, in order
 };
 
+/// `options` as match_surfaces applies them: with shape_only, the chemistry steps aside (the
+/// fuzzy filter off, R_chem's property none and its ranking weight 0, the overlay's and the
+/// site overlay's chem and atom weights 0); otherwise `options` as they are.
+MatchOptions shape_only_options(MatchOptions options);
+
 /// The overlay options a match in options.mode scores and refines with: options.overlay, or for
-/// binding sites the same with options.site.chem_weight and no atom term.
+/// binding sites the same with options.site.chem_weight and no atom term; without the chem and
+/// atom terms for a shape-only match.
 OverlayOptions mode_overlay_options(const MatchOptions& options);
 
 /// Throws InputError naming the surface's source when it lacks a vertex property the match
 /// needs: "esp" and "lp" (the fuzzy filter and the chemical correlation R_chem compare them).
 /// A surface built from a molecule has both; a mesh gets them from its file or from the
-/// molecule it is mapped from.
+/// molecule it is mapped from. A shape-only match (MatchOptions::shape_only) needs neither.
 void require_match_properties(const mesh::Surface& surface);
 
 /// Aligns `probe` onto `reference`. `reference_allowed` / `probe_allowed` (one flag per
@@ -151,7 +162,8 @@ void require_match_properties(const mesh::Surface& surface);
 /// points, a binding site's say (critical_points_in_site, site.hpp); options.mode says whether
 /// the overlay then compares the whole surfaces or the sites' pocket linings (MatchMode).
 /// Throws OptionError for options outside their domain (validate, before any work);
-/// InputError when a surface lacks "esp" or "lp" (require_match_properties), the two
+/// InputError when a surface lacks "esp" or "lp" (require_match_properties; not for a
+/// shape-only match), the two
 /// descriptions were built with different image grids (their images cannot be compared), a mask has
 /// the wrong size, or a site's pocket lining holds no vertex while alignments need scoring.
 MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,

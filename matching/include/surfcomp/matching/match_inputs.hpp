@@ -12,6 +12,7 @@
 #include "surfcomp/mesh/load_surface.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -40,6 +41,20 @@ struct MatchInput {
   std::string name() const;
 };
 
+/// How a pair match measures its inputs' lengths (MatchInputOptions::scale).
+enum class LengthScale {
+  /// "auto": 1 A for molecules, molecular meshes (with ESP and LP, or MSMS .vert/.face) and
+  /// stored descriptions; for two general meshes, R / 12 with R the larger of the two sides'
+  /// sizes (the area-weighted RMS distance of its triangles from its centre), so that a
+  /// typical closed mesh measures about 1500 unit^2 and a 5-unit patch covers a few per cent
+  /// of it; the curvature is then fitted over 3 units (docs/decisions.md#mesh-scale).
+  automatic,
+  none,  ///< "none": the coordinates are in A, whatever the input
+};
+
+/// The names of LengthScale's values, as --scale takes them.
+inline constexpr std::array<const char*, 2> length_scale_names = {"auto", "none"};
+
 /// How match_inputs and prepare_input read, build, describe and match their inputs.
 struct MatchInputOptions {
   mesh::SurfaceInputOptions input;  ///< how files and molecules become surfaces
@@ -50,6 +65,13 @@ struct MatchInputOptions {
   BindingSiteOptions site;  ///< spheres of 4 A around a site ligand, surface margin 16 A
   /// The match; its mode is set to MatchMode::binding_sites when either side has a site.
   MatchOptions match;
+  /// Default auto. How match_inputs measures lengths when `unit` is 0 (LengthScale).
+  LengthScale scale = LengthScale::automatic;
+  /// Default 0: from `scale`. The length, in the inputs' coordinates, that every length option
+  /// (patch and critical point radii, the distance filter, RMSD cut, overlay width and spacing)
+  /// counts as 1 A; match_inputs scales both sides by 1 / unit before describing them and gives
+  /// every result back in the inputs' coordinates. Finite, >= 0. prepare_input ignores it.
+  double unit = 0.0;
   /// Default 0: all cores. The worker threads the caller lets TBB use while this runs (the CLI
   /// and the Python module limit TBB's pool to it).
   int threads = 0;
@@ -115,7 +137,8 @@ void check_match_input(const MatchInput& input, const MatchInputOptions& options
 
 /// One side read or built and described as match_inputs does it (a site side: its surface
 /// built with site_surface_margin of options.descriptors' patch radius, described at its site's
-/// critical points only, matching::describe_site). Throws as check_match_input,
+/// critical points only, matching::describe_site); a mesh without curvature gets it at 1 A
+/// (the length unit of a single side is always 1). Throws as check_match_input,
 /// the readers, the surface construction and the description; InputError when a site holds no
 /// critical point.
 PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& options);
@@ -130,6 +153,14 @@ struct InputMatch {
   /// What a reader may want to know, one line each (a side carries no atoms, so poses are
   /// judged on the surfaces alone).
   std::vector<std::string> notes;
+  /// The length unit the match ran at (MatchInputOptions::unit): 1 for molecules. The
+  /// alignments, descriptions and sites above are in the inputs' coordinates whatever it is.
+  double unit = 1.0;
+  /// How `unit` was chosen: "none" (1), "auto" or "--unit".
+  std::string unit_from = "none";
+  /// True when the match set ESP, LP and atoms aside (MatchOptions::shape_only), asked or
+  /// because a side carries no ESP and LP.
+  bool shape_only = false;
   double prepare_ms = 0.0;  ///< reading, surfaces and descriptions
   double match_ms = 0.0;    ///< match_surfaces
 };
@@ -139,7 +170,9 @@ struct InputMatch {
 /// matched is refused before the reference's descriptors are computed; a stored description is
 /// read first, as its parameters are the other side's), described with common parameters, a
 /// site's surface built with site_surface_margin of their patch radius, their sites' critical
-/// points flagged, then match_surfaces. Throws OptionError
+/// points flagged, then match_surfaces. A side without ESP and LP makes the match shape-only
+/// (MatchOptions::shape_only), with a note; options.scale and options.unit set the length unit
+/// (InputMatch::unit). Throws OptionError
 /// for options outside their domain (before any work), InputError when two stored descriptions
 /// were built with different parameters, and what prepare_input and match_surfaces throw.
 InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,

@@ -109,6 +109,11 @@ class Surface {
 void transform_surface(Surface& surface, const Eigen::Matrix3d& rotation,
                        const Eigen::Vector3d& translation);
 
+/// Scales every vertex position by `factor` (> 0, finite), as a change of length unit:
+/// the curvature properties (cc1, cc2, curvedness: 1/length) are divided by it, the others
+/// (shape index, ESP, LP) stay. Throws InputError for another factor.
+void scale_surface(Surface& surface, double factor);
+
 /// The same surface (positions, normals, properties, value types, source) with its vertices in
 /// lexicographic order of position (x, then y, then z) and its faces in lexicographic order of
 /// their vertex indices, each face starting at its smallest index (orientation kept). What

@@ -30,4 +30,8 @@ struct SurfaceComponents {
 };
 SurfaceComponents connected_components(const Surface& surface);
 
+/// One flag per vertex: true for a vertex on the surface's own border (an edge of one
+/// triangle only), as on a cut or partial mesh; all false for a closed surface.
+std::vector<bool> border_vertices(const Surface& surface);
+
 }  // namespace surfcomp::mesh

@@ -125,7 +125,8 @@ struct ScreenQuery {
 /// matching::sample_molecule with options.surface); with `site` spheres, a binding-site query
 /// (descriptors from matching::describe_site) whose sample is its pocket lining
 /// (matching::pocket_lining, options.match.site.overlay_radius). Throws InputError when its
-/// surface (or lining) has no vertex.
+/// surface (or lining) has no vertex, or no ESP or LP (matching::require_match_properties:
+/// entries are compared on them).
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               const ScreenOptions& options = {},
                               std::vector<matching::SiteSphere> site = {},

@@ -1,0 +1,133 @@
+// General meshes (no ESP, no LP, any length unit): shape-only matching of a cut, moved copy
+// onto its original, the length unit taken from the meshes, and patches that reach a border.
+#include "surfcomp/harmonic/surface_descriptors.hpp"
+#include "surfcomp/matching/match_inputs.hpp"
+#include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/mesh/surface.hpp"
+#include "surfcomp/mesh/topology.hpp"
+
+#include "test_data.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace surfcomp {
+namespace {
+
+/// The faces of `full` whose centroids lie below the plane through its centroid with normal
+/// `normal` (about half the surface), as a mesh in the same frame.
+mesh::Surface cut(const mesh::Surface& full, const Eigen::Vector3d& normal) {
+  const Eigen::MatrixX3d v = full.positions();
+  const Eigen::MatrixX3i f = full.faces();
+  const Eigen::RowVector3d centre = v.colwise().mean();
+  std::vector<int> kept;
+  std::vector<int> index(static_cast<std::size_t>(v.rows()), -1);
+  for (Eigen::Index i = 0; i < f.rows(); ++i) {
+    const Eigen::RowVector3d centroid = (v.row(f(i, 0)) + v.row(f(i, 1)) + v.row(f(i, 2))) / 3;
+    if ((centroid - centre).dot(normal.transpose()) < 0.0) kept.push_back(static_cast<int>(i));
+  }
+  std::vector<Eigen::RowVector3d> points;
+  Eigen::MatrixX3i faces(static_cast<Eigen::Index>(kept.size()), 3);
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      int& at = index[static_cast<std::size_t>(f(kept[k], c))];
+      if (at < 0) {
+        at = static_cast<int>(points.size());
+        points.push_back(v.row(f(kept[k], c)));
+      }
+      faces(static_cast<Eigen::Index>(k), c) = at;
+    }
+  }
+  Eigen::MatrixX3d positions(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    positions.row(static_cast<Eigen::Index>(k)) = points[k];
+  return mesh::Surface::from_arrays(positions, faces, "cut copy");
+}
+
+double diagonal(const mesh::Surface& s) {
+  const Eigen::MatrixX3d v = s.positions();
+  return (v.colwise().maxCoeff() - v.colwise().minCoeff()).norm();
+}
+
+/// RMSE over `truth` (the copy's vertices in the original's frame) of transform(motion(x)) - x.
+double motion_error(const Eigen::MatrixX3d& truth, const Eigen::Isometry3d& motion,
+                    const Eigen::Matrix4d& transform) {
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < truth.rows(); ++i) {
+    const Eigen::Vector3d x = truth.row(i).transpose();
+    const Eigen::Vector3d back =
+        transform.topLeftCorner<3, 3>() * (motion * x) + transform.topRightCorner<3, 1>();
+    sum += (back - x).squaredNorm();
+  }
+  return std::sqrt(sum / static_cast<double>(truth.rows()));
+}
+
+TEST(MeshMatch, PatchesThatReachABorderAreNotImaged) {
+  SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
+  const mesh::Surface full = mesh::io::read_mesh(path);
+  mesh::Surface copy = cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
+  mesh::scale_surface(copy, 1.0 / 0.03);  // the elephant is 1 unit long; patches of 5 A
+  matching::MatchInputOptions options;
+  matching::MatchInput input;
+  input.surface = copy;
+  const matching::PreparedInput prepared = matching::prepare_input(input, options);
+  const std::vector<bool> border = mesh::border_vertices(prepared.descriptors.surface);
+  int at_border = 0, imaged = 0;
+  for (const auto& cp : prepared.descriptors.critical_points) {
+    const auto& patch = cp.patch;
+    const bool touches = std::any_of(patch.surface_vertex.begin(), patch.surface_vertex.end(),
+                                     [&](int v) { return border[static_cast<std::size_t>(v)]; });
+    if (cp.status == harmonic::PatchStatus::ok) {
+      ++imaged;
+      EXPECT_FALSE(touches) << "critical point at vertex " << cp.point.vertex;
+      EXPECT_EQ(std::count(patch.outer_boundary.begin(), patch.outer_boundary.end(), patch.center),
+                0);
+    }
+    if (cp.status == harmonic::PatchStatus::at_border) ++at_border;
+  }
+  EXPECT_GT(at_border, 0);
+  EXPECT_GT(imaged, 10);
+}
+
+TEST(MeshMatch, ACutMovedCopyIsRecoveredWhateverTheLengthUnit) {
+  SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
+  const mesh::Surface original = mesh::io::read_mesh(path);
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  motion.linear() = Eigen::AngleAxisd(2.0, Eigen::Vector3d(0.3, -0.5, 0.8).normalized()).matrix();
+  motion.translation() = Eigen::Vector3d(0.4, -0.2, 0.3);
+  std::vector<matching::InputMatch> matches;
+  for (const double scale : {1.0, 1000.0}) {
+    mesh::Surface full = original;
+    mesh::scale_surface(full, scale);
+    mesh::Surface copy = cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
+    const Eigen::MatrixX3d truth = copy.positions();
+    mesh::transform_surface(copy, motion.linear(), motion.translation() * scale);
+    matching::MatchInput reference, probe;
+    reference.surface = full;
+    probe.surface = copy;
+    matches.push_back(matching::match_inputs(reference, probe));
+    const matching::InputMatch& m = matches.back();
+    EXPECT_TRUE(m.shape_only);
+    EXPECT_EQ(m.unit_from, "auto");
+    ASSERT_FALSE(m.result.alignments.empty());
+    Eigen::Isometry3d scaled_motion = motion;
+    scaled_motion.translation() *= scale;
+    EXPECT_LT(motion_error(truth, scaled_motion, m.result.alignments.front().transform),
+              0.02 * diagonal(full))
+        << "scale " << scale;
+  }
+  // The same match at both scales: the unit follows the mesh, the answer is only rescaled.
+  EXPECT_NEAR(matches[1].unit / matches[0].unit, 1000.0, 1e-9);
+  const Eigen::Matrix4d& a = matches[0].result.alignments.front().transform;
+  const Eigen::Matrix4d& b = matches[1].result.alignments.front().transform;
+  EXPECT_LT((a.topLeftCorner<3, 3>() - b.topLeftCorner<3, 3>()).norm(), 1e-3);
+  EXPECT_LT((a.topRightCorner<3, 1>() * 1000.0 - b.topRightCorner<3, 1>()).norm(),
+            1e-3 * 1000.0 * diagonal(original));
+}
+
+}  // namespace
+}  // namespace surfcomp
