@@ -3,8 +3,11 @@
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/mesh/repair.hpp"
 #include "surfcomp/mesh/surface.hpp"
 #include "surfcomp/mesh/topology.hpp"
+
+#include "surfcomp/core/error.hpp"
 
 #include "test_data.hpp"
 
@@ -127,6 +130,61 @@ TEST(MeshMatch, ACutMovedCopyIsRecoveredWhateverTheLengthUnit) {
   EXPECT_LT((a.topLeftCorner<3, 3>() - b.topLeftCorner<3, 3>()).norm(), 1e-3);
   EXPECT_LT((a.topRightCorner<3, 1>() * 1000.0 - b.topRightCorner<3, 1>()).norm(),
             1e-3 * 1000.0 * diagonal(original));
+}
+
+TEST(MeshRepair, ATriangleSoupBecomesTheMeshItCameFrom) {
+  SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
+  const mesh::Surface original = mesh::io::read_mesh(path);
+  const Eigen::MatrixX3d v = original.positions();
+  const Eigen::MatrixX3i f = original.faces();
+  // As an STL file holds it: three vertices of its own per triangle, and five triangles twice.
+  const Eigen::Index n = f.rows();
+  Eigen::MatrixX3d soup(3 * n, 3);
+  Eigen::MatrixX3i faces(n + 5, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      soup.row(3 * i + c) = v.row(f(i, c));
+      faces(i, c) = static_cast<int>(3 * i + c);
+    }
+  }
+  faces.bottomRows(5) = faces.topRows(5);
+  EXPECT_THROW(mesh::Surface::from_arrays(soup, faces, "soup"), TopologyError);
+  const mesh::RepairedMesh repaired = mesh::repair_triangles(soup, faces, "soup");
+  EXPECT_EQ(repaired.report.merged_vertices, static_cast<std::size_t>(3 * n - v.rows()));
+  EXPECT_EQ(repaired.report.removed_faces, 5u);
+  EXPECT_EQ(repaired.report.dropped_components, 0u);
+  EXPECT_FALSE(repaired.report.reoriented);
+  EXPECT_EQ(repaired.surface.n_vertices(), original.n_vertices());
+  EXPECT_EQ(repaired.surface.n_faces(), original.n_faces());
+  const mesh::SurfaceMeasures before = mesh::measure_surface(original);
+  const mesh::SurfaceMeasures after = mesh::measure_surface(repaired.surface);
+  EXPECT_EQ(after.boundary_edges, 0u);
+  EXPECT_EQ(after.euler_characteristic, before.euler_characteristic);
+  EXPECT_NEAR(after.area, before.area, 1e-12 * before.area);
+  EXPECT_NEAR(after.volume, before.volume, 1e-9 * std::abs(before.volume));
+  EXPECT_EQ(repaired.report.summary(),
+            "merged " + std::to_string(3 * n - v.rows()) +
+                " duplicate vertices, removed 5 degenerate or duplicate faces");
+}
+
+TEST(MeshRepair, AnInsideOutMeshWithAStrayPieceIsTurnedAndTrimmed) {
+  SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
+  const mesh::Surface original = mesh::io::read_mesh(path);
+  Eigen::MatrixX3d v(original.n_vertices() + 3, 3);
+  v.topRows(static_cast<Eigen::Index>(original.n_vertices())) = original.positions();
+  const Eigen::Index s = static_cast<Eigen::Index>(original.n_vertices());
+  v.bottomRows(3) << 5, 5, 5, 6, 5, 5, 5, 6, 5;  // a lone triangle far away
+  Eigen::MatrixX3i f(original.n_faces() + 1, 3);
+  const Eigen::MatrixX3i faces = original.faces();
+  f.topRows(faces.rows()) = faces.rowwise().reverse();  // every face turned inside out
+  f.bottomRows(1) << static_cast<int>(s), static_cast<int>(s + 1), static_cast<int>(s + 2);
+  const mesh::RepairedMesh repaired = mesh::repair_triangles(v, f, "inside out");
+  EXPECT_TRUE(repaired.report.reoriented);
+  EXPECT_EQ(repaired.report.dropped_components, 1u);
+  EXPECT_EQ(repaired.surface.n_faces(), original.n_faces());
+  EXPECT_NEAR(mesh::measure_surface(repaired.surface).volume,
+              mesh::measure_surface(original).volume, 1e-9);
+  EXPECT_GT(mesh::measure_surface(repaired.surface).volume, 0.0);
 }
 
 }  // namespace

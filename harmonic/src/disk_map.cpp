@@ -412,9 +412,8 @@ int count_flipped_triangles(const Eigen::Ref<const Eigen::MatrixX2d>& uv,
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
     for (int c = 0; c < 3; ++c) {
       if (faces(f, c) < 0 || faces(f, c) >= uv.rows()) {
-        throw InputError("count_flipped_triangles: face " + std::to_string(f) +
-                         " has vertex index " + std::to_string(faces(f, c)) + ", expected " +
-                         vertex_range(uv.rows()));
+        throw InputError("map distortion: face " + std::to_string(f) + " has vertex index " +
+                         std::to_string(faces(f, c)) + ", expected " + vertex_range(uv.rows()));
       }
     }
     const Eigen::Vector2d a = uv.row(faces(f, 0)).transpose();

@@ -335,26 +335,26 @@ Eigen::Vector3d image_point_to_surface(const ShapeImage& image, int grid_index,
   const long long size = static_cast<long long>(image.rings) * image.sectors;
   if (grid_index < 0 || grid_index >= size || image.face.size() != size ||
       image.barycentric.rows() != size) {
-    throw InputError("image_point_to_surface: grid point " + std::to_string(grid_index) +
+    throw InputError("shape image: grid point " + std::to_string(grid_index) +
                      " is outside the image's grid of " + std::to_string(size) + " points");
   }
   const int face = image.face(grid_index);
   if (face < 0) {
-    throw InputError("image_point_to_surface: grid point " + std::to_string(grid_index) +
+    throw InputError("shape image: grid point " + std::to_string(grid_index) +
                      " is not valid (no triangle under it)");
   }
   if (face >= faces.rows()) {
-    throw InputError("image_point_to_surface: grid point " + std::to_string(grid_index) +
-                     " lies on face " + std::to_string(face) + " but the patch has " +
-                     std::to_string(faces.rows()) + " faces");
+    throw InputError("shape image: grid point " + std::to_string(grid_index) + " lies on face " +
+                     std::to_string(face) + " but the patch has " + std::to_string(faces.rows()) +
+                     " faces");
   }
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   for (int c = 0; c < 3; ++c) {
     const int v = faces(face, c);
     if (v < 0 || v >= positions.rows()) {
-      throw InputError("image_point_to_surface: face " + std::to_string(face) +
-                       " refers to vertex " + std::to_string(v) + " but there are " +
-                       std::to_string(positions.rows()) + " positions");
+      throw InputError("shape image: face " + std::to_string(face) + " refers to vertex " +
+                       std::to_string(v) + " but there are " + std::to_string(positions.rows()) +
+                       " positions");
     }
     point += image.barycentric(grid_index, c) * positions.row(v).transpose();
   }

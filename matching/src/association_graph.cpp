@@ -87,7 +87,7 @@ std::vector<PointPair> initial_pairs(const SurfaceDescriptors& a, const SurfaceD
   for (const auto& [d, allowed, name] :
        {std::tuple{&a, a_allowed, "A"}, std::tuple{&b, b_allowed, "B"}}) {
     if (allowed && allowed->size() != d->critical_points.size()) {
-      throw InputError(std::string("initial_pairs: the site restriction of surface ") + name +
+      throw InputError(std::string("association graph: the site restriction of surface ") + name +
                        " has " + std::to_string(allowed->size()) +
                        " entries, expected one per critical point (" +
                        std::to_string(d->critical_points.size()) + ")");
@@ -112,7 +112,7 @@ std::size_t count_complete_edges(const std::vector<PointPair>& nodes) {
   int max_a = -1, max_b = -1;
   for (const PointPair& node : nodes) {
     if (node.a < 0 || node.b < 0) {
-      throw InputError("count_complete_edges: a node pairs (" + std::to_string(node.a) + ", " +
+      throw InputError("association graph: a node pairs (" + std::to_string(node.a) + ", " +
                        std::to_string(node.b) + "), expected non-negative indices");
     }
     max_a = std::max(max_a, node.a);
@@ -231,7 +231,7 @@ std::vector<std::pair<int, int>> distance_filter(const std::vector<PointPair>& n
 double patch_bearing_degrees(const harmonic::CriticalPointDescriptor& from,
                              const mesh::CriticalPoint& to) {
   if (from.status != PatchStatus::ok) {
-    throw InputError("patch_bearing_degrees: the critical point at vertex " +
+    throw InputError("overlap filter: the critical point at vertex " +
                      std::to_string(from.point.vertex) + " has no harmonic map (status " +
                      std::to_string(static_cast<int>(from.status)) + "), expected status ok");
   }
@@ -253,7 +253,7 @@ double patch_bearing_degrees(const harmonic::CriticalPointDescriptor& from,
     }
   }
   if (target < 0 || target == patch.center) {
-    throw InputError("patch_bearing_degrees: the target vertex " + std::to_string(to.vertex) +
+    throw InputError("overlap filter: the target vertex " + std::to_string(to.vertex) +
                      " is the centre of the patch (or the patch has no border), expected "
                      "another point");
   }

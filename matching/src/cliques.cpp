@@ -166,7 +166,7 @@ CliqueResult maximal_cliques(const AssociationGraph& g, const CliqueOptions& opt
     const auto [i, j] = g.edges[e];
     if (i < 0 || j < 0 || static_cast<std::size_t>(i) >= n || static_cast<std::size_t>(j) >= n ||
         i == j) {
-      throw InputError("maximal_cliques: edge " + std::to_string(e) + " joins nodes " +
+      throw InputError("clique search: edge " + std::to_string(e) + " joins nodes " +
                        std::to_string(i) + " and " + std::to_string(j) +
                        ", expected two distinct indices in [0, " + std::to_string(n) + ")");
     }
@@ -206,7 +206,7 @@ std::vector<std::vector<int>> maximal_cliques(const AssociationGraph& g, int min
   options.min_size = min_size;
   CliqueResult result = maximal_cliques(g, options);
   if (!result.complete) {
-    throw InputError("maximal_cliques: the search stopped after " + std::to_string(result.work) +
+    throw InputError("clique search: the search stopped after " + std::to_string(result.work) +
                      " units of work and " + std::to_string(result.cliques.size()) +
                      " cliques (--max-clique-work, --max-cliques); the list would be "
                      "incomplete");

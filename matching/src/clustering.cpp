@@ -146,7 +146,7 @@ std::vector<Cluster> cluster_alignments(const std::vector<std::vector<MatchedPai
     Correspondences c = correspondences(MatchedPair{key.first, key.second, shift});
     if (c.b_points.cols() != c.a_points.cols() || c.a_property.size() != c.a_points.cols() ||
         c.b_property.size() != c.a_points.cols()) {
-      throw InputError("cluster_alignments: the correspondences of CP pair " +
+      throw InputError("clustering: the correspondences of CP pair " +
                        pair_text(MatchedPair{key.first, key.second, shift}) +
                        " have arrays of different lengths");
     }
@@ -159,8 +159,8 @@ std::vector<Cluster> cluster_alignments(const std::vector<std::vector<MatchedPai
   for (std::size_t c = 0; c < sorted.size(); ++c) {
     const std::size_t n = builder.count(sorted[c]);
     if (n < 3) {
-      throw InputError("cluster_alignments: clique " + std::to_string(c) + " has " +
-                       std::to_string(n) + " correspondences; a rigid fit needs at least 3");
+      throw InputError("clustering: clique " + std::to_string(c) + " has " + std::to_string(n) +
+                       " correspondences; a rigid fit needs at least 3");
     }
     Node node = builder.make(sorted[c]);
     if (node.cluster.fit.rmsd > options.rmsd_cut) continue;

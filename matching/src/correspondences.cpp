@@ -14,13 +14,13 @@ namespace {
 const harmonic::CriticalPointDescriptor& imaged_point(const harmonic::SurfaceDescriptors& d,
                                                       int index, const char* side) {
   if (index < 0 || static_cast<std::size_t>(index) >= d.critical_points.size()) {
-    throw InputError(std::string("pair_correspondences: critical point ") + std::to_string(index) +
+    throw InputError(std::string("correspondences: critical point ") + std::to_string(index) +
                      " of surface " + side + " (" + d.surface.source() + ") is outside its " +
                      std::to_string(d.critical_points.size()) + " critical points");
   }
   const auto& point = d.critical_points[static_cast<std::size_t>(index)];
   if (point.status != harmonic::PatchStatus::ok) {
-    throw InputError(std::string("pair_correspondences: critical point ") + std::to_string(index) +
+    throw InputError(std::string("correspondences: critical point ") + std::to_string(index) +
                      " of surface " + side + " (" + d.surface.source() +
                      ") has no shape image; expected a point with status ok");
   }
@@ -31,8 +31,8 @@ Eigen::VectorXd surface_property(const harmonic::SurfaceDescriptors& d, const st
                                  const char* side) {
   if (name.empty()) return Eigen::VectorXd::Zero(static_cast<Eigen::Index>(d.surface.n_vertices()));
   if (!d.surface.has_property(name)) {
-    throw InputError(std::string("pair_correspondences: surface ") + side + " (" +
-                     d.surface.source() + ") has no vertex property '" + name + "'");
+    throw InputError(std::string("correspondences: surface ") + side + " (" + d.surface.source() +
+                     ") has no vertex property '" + name + "'");
   }
   return d.surface.property(name);
 }
@@ -62,9 +62,9 @@ Correspondences pair_correspondences(const harmonic::SurfaceDescriptors& a,
   const harmonic::ShapeImage& ia = pa.image;
   const harmonic::ShapeImage& ib = pb.image;
   if (ia.rings != ib.rings || ia.sectors != ib.sectors) {
-    throw InputError("pair_correspondences: image grids of " + std::to_string(ia.rings) +
-                     " rings x " + std::to_string(ia.sectors) + " sectors (A, point " +
-                     std::to_string(pair.a) + ") and " + std::to_string(ib.rings) + " rings x " +
+    throw InputError("correspondences: image grids of " + std::to_string(ia.rings) + " rings x " +
+                     std::to_string(ia.sectors) + " sectors (A, point " + std::to_string(pair.a) +
+                     ") and " + std::to_string(ib.rings) + " rings x " +
                      std::to_string(ib.sectors) + " sectors (B, point " + std::to_string(pair.b) +
                      "); expected equal grids");
   }
@@ -114,7 +114,7 @@ Correspondences concatenate(const std::vector<const Correspondences*>& parts) {
     const Eigen::Index m = part->a_points.cols();
     if (part->b_points.cols() != m || part->a_property.size() != m ||
         part->b_property.size() != m) {
-      throw InputError("concatenate: a part has " + std::to_string(m) + " A points, " +
+      throw InputError("correspondences: a part has " + std::to_string(m) + " A points, " +
                        std::to_string(part->b_points.cols()) + " B points and " +
                        std::to_string(part->a_property.size()) + " / " +
                        std::to_string(part->b_property.size()) +
@@ -133,11 +133,11 @@ double property_correlation(const Correspondences& correspondences) {
   const Eigen::VectorXd& x = correspondences.a_property;
   const Eigen::VectorXd& y = correspondences.b_property;
   if (x.size() != y.size()) {
-    throw InputError("property_correlation: " + std::to_string(x.size()) + " and " +
-                     std::to_string(y.size()) + " property values; expected equal counts");
+    throw InputError("R_chem: " + std::to_string(x.size()) + " and " + std::to_string(y.size()) +
+                     " property values; expected equal counts");
   }
   if (!x.allFinite() || !y.allFinite()) {
-    throw InputError("property_correlation: a property value is not finite");
+    throw InputError("R_chem: a property value is not finite");
   }
   if (x.size() < 2) return 0.0;
   const Eigen::VectorXd dx = x.array() - x.mean();

@@ -9,7 +9,7 @@
 namespace surfcomp::matching {
 
 FuzzyMemberships fuzzy_memberships(double z) {
-  if (std::isnan(z)) throw InputError("fuzzy_memberships: the value is NaN, expected a number");
+  if (std::isnan(z)) throw InputError("fuzzy filter: the value is NaN, expected a number");
   FuzzyMemberships m{};
   if (z <= -2.0) {
     m[0] = 1.0;
@@ -51,7 +51,7 @@ std::vector<double> autoscaled_point_values(const harmonic::SurfaceDescriptors& 
                                             const std::string& property) {
   const bool esp = property == mesh::property::esp;
   if (!esp && property != mesh::property::lp) {
-    throw InputError("autoscaled_point_values: property '" + property +
+    throw InputError("fuzzy filter: property '" + property +
                      "' is not a fuzzy-filter property, expected 'esp' or 'lp'");
   }
   const std::size_t n = descriptors.critical_points.size();

@@ -42,6 +42,7 @@ struct LoadedInput {
   /// The surface still needs its curvature, computed once its length unit is known (a mesh
   /// read without a molecule, or a surface in memory without curvature).
   bool needs_curvature = false;
+  std::optional<mesh::RepairReport> repair;  ///< what --repair changed in a mesh file
 };
 
 /// The surface of a molecule with a site: the site's structure (binding_site) surfaced around
@@ -125,12 +126,20 @@ LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& opti
     }
   } else if (options.input.molecule_file.empty()) {
     mesh::check_surface_input(input.path, options.input);
-    side.surface = mesh::io::read_mesh(input.path);
+    if (options.input.repair) {
+      mesh::RepairedMesh repaired = mesh::repair_mesh_file(
+          input.path, static_cast<std::size_t>(options.input.surface.ses.max_vertices));
+      side.surface = std::move(repaired.surface);
+      side.repair = repaired.report;
+    } else {
+      side.surface = mesh::io::read_mesh(input.path);
+    }
     side.needs_curvature = true;
   } else {
     mesh::LoadedSurface loaded = mesh::load_surface(input.path, options.input);
     side.surface = std::move(loaded.surface);
     side.molecule = std::move(loaded.molecule);
+    side.repair = loaded.repair;
   }
   return side;
 }
@@ -407,6 +416,9 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
       site_surface_margin(options.site.surface_margin, descriptors.patch.radius);
   if (!ref) ref = load(ref_read, built, "REF");
   if (!prb) prb = load(probe_read, built, "PROBE");
+  for (const LoadedInput* side : {&*ref, &*prb}) {
+    if (side->repair) out.notes.push_back(side->name + ": repaired: " + side->repair->summary());
+  }
   for (const LoadedInput* side : {&*ref, &*prb}) {
     if (!match.shape_only && !carries_chemistry(*side)) {
       match.shape_only = true;

@@ -48,7 +48,7 @@ std::vector<RankedAlignment> rank_alignments(const std::vector<Cluster>& cluster
   for (std::size_t i = 0; i < n; ++i) {
     const Cluster& c = clusters[i];
     if (!std::isfinite(c.fit.rmsd) || !std::isfinite(c.r_chem)) {
-      throw InputError("rank_alignments: cluster " + std::to_string(i) + " has RMSD " +
+      throw InputError("ranking: cluster " + std::to_string(i) + " has RMSD " +
                        std::to_string(c.fit.rmsd) + " and R_chem " + std::to_string(c.r_chem) +
                        "; expected finite scores");
     }

@@ -52,11 +52,11 @@ RigidFit fit_rigid(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
                    const Eigen::Ref<const Eigen::Matrix3Xd>& to) {
   require_same_size(from, to, "fit_rigid");
   if (from.cols() < 3) {
-    throw InputError("fit_rigid: " + std::to_string(from.cols()) +
+    throw InputError("rigid fit: " + std::to_string(from.cols()) +
                      " corresponding points; a rigid fit needs at least 3");
   }
   if (!from.allFinite() || !to.allFinite()) {
-    throw InputError("fit_rigid: a coordinate is not finite; expected finite points (A)");
+    throw InputError("rigid fit: a coordinate is not finite; expected finite points (A)");
   }
   const Eigen::Vector3d from_centroid = from.rowwise().mean();
   const Eigen::Vector3d to_centroid = to.rowwise().mean();
@@ -73,7 +73,7 @@ RigidFit fit_rigid_weighted(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
                             const Eigen::Ref<const Eigen::Matrix3Xd>& to,
                             const Eigen::Ref<const Eigen::VectorXd>& weights) {
   if (from.cols() != to.cols() || from.cols() != weights.size()) {
-    throw InputError("fit_rigid_weighted: " + std::to_string(from.cols()) + " points, " +
+    throw InputError("rigid fit: " + std::to_string(from.cols()) + " points, " +
                      std::to_string(to.cols()) + " targets and " + std::to_string(weights.size()) +
                      " weights; expected one target and one weight per point");
   }
@@ -84,7 +84,7 @@ RigidFit fit_rigid_weighted(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
   }
   const double total = weights.sum();
   if (!(total > 0.0))
-    throw InputError("fit_rigid_weighted: the weights sum to zero; expected a positive sum");
+    throw InputError("rigid fit: the weights sum to zero; expected a positive sum");
   const Eigen::Vector3d from_centroid = from * weights / total;
   const Eigen::Vector3d to_centroid = to * weights / total;
   const Eigen::Matrix3d cross = (from.colwise() - from_centroid) * weights.asDiagonal() *
@@ -100,7 +100,7 @@ RigidFit fit_rigid_weighted(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
 double rmsd_under(const RigidTransform& transform, const Eigen::Ref<const Eigen::Matrix3Xd>& from,
                   const Eigen::Ref<const Eigen::Matrix3Xd>& to) {
   require_same_size(from, to, "rmsd_under");
-  if (from.cols() == 0) throw InputError("rmsd_under: no points; expected at least one");
+  if (from.cols() == 0) throw InputError("overlay: no points; expected at least one");
   const double sum = (transform.apply(from) - to).colwise().squaredNorm().sum();
   return std::sqrt(sum / static_cast<double>(from.cols()));
 }

@@ -668,12 +668,14 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
       case FitStatus::ok:
         continue;
       case FitStatus::no_normal:
-        throw NumericError(where + " has no defined normal (no triangle of non-zero area)");
+        throw NumericError(where +
+                           " has no defined normal (no triangle of non-zero area; --repair "
+                           "removes isolated vertices and degenerate faces)");
       case FitStatus::too_few_points:
-        throw TopologyError(where + " is connected to fewer than " +
-                            std::to_string(sphere_coefficients - 1) +
-                            " other vertices; the smallest fit (a sphere) needs " +
-                            std::to_string(sphere_coefficients) + " points");
+        throw TopologyError(
+            where + " is connected to fewer than " + std::to_string(sphere_coefficients - 1) +
+            " other vertices; the smallest fit (a sphere) needs " +
+            std::to_string(sphere_coefficients) + " points (--repair keeps the largest component)");
       case FitStatus::not_finite:
         throw NumericError(where + ": the local fit is degenerate (non-finite curvature)");
     }
@@ -684,9 +686,7 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
 Eigen::VectorXd angle_defects(const Surface& surface) {
   const TriMesh& mesh = tri_mesh(surface);
   if (mesh.n_faces() == 0) {
-    throw TopologyError(surface.source() +
-                        ": angle_defects needs a surface with triangles; "
-                        "this one has none");
+    throw TopologyError(surface.source() + ": the surface has no triangles");
   }
   Eigen::VectorXd angle_sum = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.n_vertices()));
   for (auto f : mesh.faces()) {

@@ -11,6 +11,7 @@ void check_surface_input(const std::filesystem::path& path, const SurfaceInputOp
       throw OptionError("--ligand applies to a molecule INPUT, not a mesh");
   } else if (surfcomp::io::is_molecule_file(path)) {
     if (!options.molecule_file.empty()) throw OptionError("--molecule applies to a mesh INPUT");
+    if (options.repair) throw OptionError("--repair applies to a mesh INPUT");
   } else {
     throw InputError(path.string() + ": unknown input format (" + surface_input_formats + ")");
   }
@@ -20,7 +21,14 @@ LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceInput
   check_surface_input(path, options);
   LoadedSurface loaded;
   if (io::is_mesh_file(path)) {
-    loaded.surface = io::read_mesh(path);
+    if (options.repair) {
+      RepairedMesh repaired =
+          repair_mesh_file(path, static_cast<std::size_t>(options.surface.ses.max_vertices));
+      loaded.surface = std::move(repaired.surface);
+      loaded.repair = repaired.report;
+    } else {
+      loaded.surface = io::read_mesh(path);
+    }
     if (!options.molecule_file.empty())
       loaded.molecule = surfcomp::io::read_molecule(options.molecule_file, options.read);
     assign_surface_properties(loaded.surface, loaded.molecule ? &*loaded.molecule : nullptr,

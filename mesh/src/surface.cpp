@@ -105,11 +105,13 @@ Surface Surface::from_arrays(const Eigen::Ref<const Eigen::MatrixX3d>& positions
       tri[static_cast<std::size_t>(k)] = handles[static_cast<std::size_t>(v)];
     }
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-      throw TopologyError(source + ": face " + std::to_string(f) + " repeats a vertex");
+      throw TopologyError(source + ": face " + std::to_string(f) +
+                          " repeats a vertex (--repair removes degenerate faces)");
     }
     if (!mesh.add_face(tri[0], tri[1], tri[2]).is_valid()) {
       throw TopologyError(source + ": face " + std::to_string(f) +
-                          " makes the mesh non-manifold (complex edge or vertex)");
+                          " makes the mesh non-manifold (complex edge or vertex; --repair "
+                          "splits such vertices and removes duplicate faces)");
     }
   }
   return surface;

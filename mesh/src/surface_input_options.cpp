@@ -70,6 +70,13 @@ const options::Table<SurfaceInputOptions>& surface_input_option_table() {
            true},
           [](auto& s) -> auto& { return s.molecule_file; }),
       options::field<S>(
+          {"repair", Kind::flag,
+           "mesh INPUT only: repair it first (CGAL: duplicate vertices merged, degenerate and "
+           "duplicate faces removed, non-manifold vertices split, borders stitched, the largest "
+           "component kept, faces turned outward) and say what changed; vertex properties "
+           "are not kept"},
+          [](auto& s) -> auto& { return s.repair; }),
+      options::field<S>(
           {"max-atoms", Kind::integer, "limit: atoms of a molecule INPUT", "", 1, 1e12},
           [](auto& s) -> auto& { return s.surface.ses.max_atoms; }),
       options::field<S>(

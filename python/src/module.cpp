@@ -254,8 +254,9 @@ Molecule molecule_of(const MoleculeBlock& block, const io::MoleculeReadOptions& 
   return molecule;
 }
 
-/// A mesh given as a (V, F) pair of arrays: #V by 3 positions and #F by 3 0-based triangles.
-mesh::Surface surface_of_arrays(const py::tuple& pair) {
+/// A mesh given as a (V, F) pair of arrays: #V by 3 positions and #F by 3 0-based triangles;
+/// repaired first (mesh::repair_triangles) when `repair`.
+mesh::Surface surface_of_arrays(const py::tuple& pair, bool repair) {
   const auto positions =
       py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pair[0]);
   const auto faces = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(pair[1]);
@@ -267,15 +268,18 @@ mesh::Surface surface_of_arrays(const py::tuple& pair) {
   using Rows3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
   const Eigen::MatrixX3d v = Eigen::Map<const Rows3d>(positions.data(), positions.shape(0), 3);
   const Eigen::MatrixX3i f = Eigen::Map<const Rows3i>(faces.data(), faces.shape(0), 3);
-  return mesh::Surface::from_arrays(v, f, "<(V, F) arrays>");
+  const char* source = "<(V, F) arrays>";
+  return repair ? mesh::repair_triangles(v, f, source).surface
+                : mesh::Surface::from_arrays(v, f, source);
 }
 
 /// A Python input (a path, a MoleculeBlock, a Surface, a Descriptors, a (V, F) pair) as the
 /// library's.
-matching::MatchInput input_of(const py::handle& object, const io::MoleculeReadOptions& read) {
+matching::MatchInput input_of(const py::handle& object, const mesh::SurfaceInputOptions& options) {
+  const io::MoleculeReadOptions& read = options.read;
   matching::MatchInput input;
   if (py::isinstance<py::tuple>(object) && py::len(object) == 2) {
-    input.surface = surface_of_arrays(object.cast<py::tuple>());
+    input.surface = surface_of_arrays(object.cast<py::tuple>(), options.repair);
   } else if (py::isinstance<py::str>(object)) {
     input.path = object.cast<std::string>();
   } else if (py::isinstance<MoleculeBlock>(object)) {
@@ -471,7 +475,7 @@ void save_surface(const mesh::Surface& surface, const std::filesystem::path& p, 
 
 PySurface build_surface(const py::object& input, const py::dict& keywords) {
   const auto settings = settings_from(mesh::surface_input_option_table(), keywords);
-  matching::MatchInput in = input_of(input, settings.read);
+  matching::MatchInput in = input_of(input, settings);
   py::gil_scoped_release release;
   PySurface out;
   if (in.molecule) {
@@ -489,7 +493,7 @@ PySurface build_surface(const py::object& input, const py::dict& keywords) {
 
 PyDescriptors describe(const py::object& input, const py::dict& keywords) {
   const auto settings = settings_from(matching::describe_option_table(), keywords);
-  const matching::MatchInput in = input_of(input, settings.input.read);
+  const matching::MatchInput in = input_of(input, settings.input);
   py::gil_scoped_release release;
   const auto limit = tools::limit_threads(settings.threads);
   PyDescriptors out;
@@ -501,9 +505,9 @@ py::dict match(const py::object& reference, const py::object& probe, const py::d
                const std::string& report_path) {
   const auto settings = settings_from(matching::pair_match_option_table(), keywords);
   const matching::MatchInput ref =
-      matching::with_site(input_of(reference, settings.inputs.input.read), settings.sites, true);
+      matching::with_site(input_of(reference, settings.inputs.input), settings.sites, true);
   const matching::MatchInput prb =
-      matching::with_site(input_of(probe, settings.inputs.input.read), settings.sites, false);
+      matching::with_site(input_of(probe, settings.inputs.input), settings.sites, false);
   matching::check_match_input(ref, settings.inputs, "REF",
                               matching::site_ligand_option(settings.sites, true));
   matching::check_match_input(prb, settings.inputs, "PROBE",
@@ -574,8 +578,7 @@ py::dict screen(const py::list& queries, const std::string& library_path, const 
   const matching::MatchInputOptions query_options = screening::screen_query_options(settings);
   std::vector<matching::MatchInput> inputs;
   for (const py::handle query : queries) {
-    inputs.push_back(
-        screening::screen_query_input(input_of(query, query_options.input.read), settings));
+    inputs.push_back(screening::screen_query_input(input_of(query, query_options.input), settings));
     matching::check_match_input(inputs.back(), query_options, "QUERY");
   }
   std::optional<screening::Library> library;

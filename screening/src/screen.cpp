@@ -337,14 +337,13 @@ std::size_t fused_molecules(const ScreenOptions& options, std::size_t queries) {
 StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
                                const Library& library, std::size_t begin, std::size_t end,
                                const ScreenOptions& options) {
-  if (queries.empty()) throw InputError("score_molecules: no query");
+  if (queries.empty()) throw InputError("screen: no query");
   const bool sites = !queries.front()->site.empty();
   for (const ScreenQuery* query : queries) {
     if (query->site.empty() == sites)
       throw InputError("a screen's queries are all molecules or all binding sites");
   }
-  if (begin > end || end > library.size())
-    throw InputError("score_molecules: entries outside the library");
+  if (begin > end || end > library.size()) throw InputError("screen: entries outside the library");
   const std::size_t q_count = queries.size();
   const bool fusing = q_count > 1;
   const double sigma = overlay_options(*queries.front(), options).sigma;
@@ -505,7 +504,7 @@ std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitSc
 std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
                                   const std::vector<std::vector<Hit>>& ranked, Fusion fusion,
                                   std::size_t top) {
-  if (ranked.empty()) throw InputError("fuse_scores: no query");
+  if (ranked.empty()) throw InputError("fusion: no query");
   // Each query's stage-3 scores by the entry they are of.
   std::vector<std::map<std::size_t, double>> final_scores(ranked.size());
   for (std::size_t q = 0; q < ranked.size(); ++q) {
@@ -516,7 +515,7 @@ std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
   std::vector<FusedMolecule> rows;
   for (const MoleculeScores& molecule : molecules) {
     if (molecule.scores.size() != ranked.size()) {
-      throw InputError("fuse_scores: molecule " + std::to_string(molecule.molecule + 1) + " has " +
+      throw InputError("fusion: molecule " + std::to_string(molecule.molecule + 1) + " has " +
                        std::to_string(molecule.scores.size()) + " scores for " +
                        std::to_string(ranked.size()) + " queries");
     }
@@ -551,8 +550,7 @@ MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
   std::vector<std::vector<Hit>> rows;  // each query's every row: its every stage-3 score
   for (std::size_t q = 0, at = 0; q < best.size(); ++q) {
     const std::size_t k = std::min(options.candidates, best[q].size());
-    if (at + k > full.size())
-      throw InputError("rank_and_fuse: fewer stage-3 scores than candidates");
+    if (at + k > full.size()) throw InputError("fusion: fewer stage-3 scores than candidates");
     const std::vector<HitScore> mine(full.begin() + static_cast<std::ptrdiff_t>(at),
                                      full.begin() + static_cast<std::ptrdiff_t>(at + k));
     at += k;

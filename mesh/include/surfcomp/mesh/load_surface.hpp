@@ -7,6 +7,7 @@
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/mesh/repair.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
 #include <filesystem>
@@ -21,6 +22,9 @@ struct SurfaceInputOptions {
   /// A mesh input: the molecule file whose ESP and LP are mapped onto the mesh; default none.
   /// Refused for a molecule input.
   std::string molecule_file;
+  /// Default false. A mesh input is repaired first (repair_mesh_file: its geometry only, vertex
+  /// properties not kept). Refused for a molecule input.
+  bool repair = false;
 };
 
 /// The user's options of SurfaceInputOptions: --probe-radius --density --voxel --charges --eps
@@ -32,6 +36,7 @@ const options::Table<SurfaceInputOptions>& surface_input_option_table();
 struct LoadedSurface {
   Surface surface;
   std::optional<Molecule> molecule;
+  std::optional<RepairReport> repair;  ///< what SurfaceInputOptions::repair changed
 };
 
 /// Extensions load_surface reads, for messages.

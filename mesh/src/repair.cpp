@@ -1,0 +1,172 @@
+// CGAL adapter: a triangle soup repaired with Polygon Mesh Processing. CGAL stays in this
+// translation unit.
+#include "surfcomp/mesh/repair.hpp"
+
+#include "surfcomp/core/error.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace surfcomp::mesh {
+namespace {
+
+namespace pmp = CGAL::Polygon_mesh_processing;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using CgalMesh = CGAL::Surface_mesh<Point>;
+using Polygons = std::vector<std::vector<std::size_t>>;
+
+std::string count(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+/// The soup repaired into a 2-manifold mesh, counting the changes.
+RepairedMesh repair_soup(std::vector<Point> points, Polygons polygons, const std::string& source) {
+  RepairedMesh out;
+  RepairReport& report = out.report;
+  const std::size_t points_read = points.size();
+  const std::size_t polygons_read = polygons.size();
+  pmp::repair_polygon_soup(points, polygons);
+  report.merged_vertices = points_read > points.size() ? points_read - points.size() : 0;
+  report.removed_faces = polygons_read - polygons.size();
+  if (polygons.empty()) throw InputError(source + ": no face is left after the repair");
+  const std::size_t before_orienting = points.size();
+  pmp::orient_polygon_soup(points, polygons);
+  report.split_vertices = points.size() - before_orienting;
+
+  CgalMesh mesh;
+  pmp::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  if (!CGAL::is_triangle_mesh(mesh)) pmp::triangulate_faces(mesh);
+  report.stitched_edges = pmp::stitch_borders(mesh);
+  const std::size_t faces_before = mesh.number_of_faces();
+  pmp::remove_degenerate_faces(mesh);
+  mesh.collect_garbage();
+  report.removed_faces += faces_before - mesh.number_of_faces();
+  report.dropped_components = pmp::keep_largest_connected_components(mesh, 1);
+  mesh.collect_garbage();
+  if (mesh.number_of_faces() == 0) throw InputError(source + ": no face is left after the repair");
+  if (CGAL::is_closed(mesh) && !pmp::is_outward_oriented(mesh)) {
+    pmp::reverse_face_orientations(mesh);
+    report.reoriented = true;
+  }
+
+  Eigen::MatrixX3d positions(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);
+  for (const auto v : mesh.vertices()) {
+    const Point& p = mesh.point(v);
+    positions.row(static_cast<Eigen::Index>(v.idx())) << p.x(), p.y(), p.z();
+  }
+  Eigen::MatrixX3i faces(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
+  for (const auto f : mesh.faces()) {
+    int k = 0;
+    for (const auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      faces(static_cast<Eigen::Index>(f.idx()), k++) = static_cast<int>(v.idx());
+  }
+  out.surface = Surface::from_arrays(positions, faces, source);
+  return out;
+}
+
+}  // namespace
+
+std::string RepairReport::summary() const {
+  std::vector<std::string> parts;
+  if (merged_vertices > 0)
+    parts.push_back("merged " + count(merged_vertices, "duplicate vertex", "duplicate vertices"));
+  if (removed_faces > 0) {
+    parts.push_back("removed " + count(removed_faces, "degenerate or duplicate face",
+                                       "degenerate or duplicate faces"));
+  }
+  if (split_vertices > 0) {
+    parts.push_back(
+        "split " + count(split_vertices, "non-manifold vertex copy", "non-manifold vertex copies"));
+  }
+  if (stitched_edges > 0)
+    parts.push_back("stitched " + count(stitched_edges, "border edge pair", "border edge pairs"));
+  if (dropped_components > 0) {
+    parts.push_back("dropped " + count(dropped_components, "small component", "small components") +
+                    " (the largest kept)");
+  }
+  if (reoriented) parts.emplace_back("turned the faces outward");
+  if (parts.empty()) return "nothing to repair";
+  std::string text = parts.front();
+  for (std::size_t i = 1; i < parts.size(); ++i) text += ", " + parts[i];
+  return text;
+}
+
+RepairedMesh repair_triangles(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                              const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                              const std::string& source) {
+  std::vector<Point> points;
+  points.reserve(static_cast<std::size_t>(positions.rows()));
+  for (Eigen::Index i = 0; i < positions.rows(); ++i) {
+    if (!positions.row(i).allFinite()) {
+      throw InputError(source + ": vertex " + std::to_string(i) + " has a non-finite coordinate");
+    }
+    points.emplace_back(positions(i, 0), positions(i, 1), positions(i, 2));
+  }
+  Polygons polygons(static_cast<std::size_t>(faces.rows()));
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const int v = faces(f, c);
+      if (v < 0 || v >= positions.rows()) {
+        throw InputError(source + ": face " + std::to_string(f) + " names vertex " +
+                         std::to_string(v) + ", outside 0.." +
+                         std::to_string(positions.rows() - 1));
+      }
+      polygons[static_cast<std::size_t>(f)].push_back(static_cast<std::size_t>(v));
+    }
+  }
+  return repair_soup(std::move(points), std::move(polygons), source);
+}
+
+RepairedMesh repair_mesh_file(const std::filesystem::path& path, std::size_t max_vertices) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension != ".off" && extension != ".obj" && extension != ".ply" && extension != ".stl") {
+    throw InputError(path.string() + ": --repair reads .off, .obj, .ply and .stl meshes");
+  }
+  std::vector<Point> points;
+  Polygons polygons;
+  bool read = false;
+  try {
+    read = CGAL::IO::read_polygon_soup(path.string(), points, polygons,
+                                       CGAL::parameters::verbose(false));
+  } catch (const std::exception&) {
+    read = false;
+  }
+  if (!read || points.empty() || polygons.empty()) {
+    throw InputError(path.string() + ": cannot be read as a polygon mesh for --repair");
+  }
+  if (points.size() > max_vertices) {
+    throw InputError(path.string() + ": " + std::to_string(points.size()) +
+                     " vertices, more than --max-vertices " + std::to_string(max_vertices));
+  }
+  for (const Point& p : points) {
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+      throw InputError(path.string() + ": a vertex has a non-finite coordinate");
+  }
+  for (const auto& polygon : polygons) {
+    for (const std::size_t v : polygon) {
+      if (v >= points.size())
+        throw InputError(path.string() + ": a face names a vertex that does not exist");
+    }
+  }
+  return repair_soup(std::move(points), std::move(polygons), path.string());
+}
+
+}  // namespace surfcomp::mesh
