@@ -353,5 +353,67 @@ TEST(MapDistortionTest, TheCgalComparisonAgreesOnASphereCap) {
   EXPECT_EQ(c.ours_distortion.flipped, 0);
 }
 
+TEST(Parameterizations, EachMethodHasItsKnownAnswerOnAPlanarDisk) {
+  const TestPatch disk = perturbed_planar_disk();
+  const Eigen::MatrixX2d expected = disk.positions.leftCols(2) / 2.0;
+  for (std::size_t m = 0; m < parameterization_names.size(); ++m) {
+    const auto method = static_cast<Parameterization>(m);
+    SCOPED_TRACE(parameterization_names[m]);
+    const Eigen::MatrixX2d uv = parameterize_patch(disk.positions, disk.faces, disk.outer_boundary,
+                                                   method, {SpringWeights::cotangent});
+    const MapDistortion d = map_distortion(disk.positions, disk.faces, uv);
+    std::cout << parameterization_names[m] << ": angle max " << d.angle_max_degrees
+              << " deg, area max " << d.area_max_log << ", flipped " << d.flipped << "\n";
+    EXPECT_EQ(d.flipped, 0);
+    switch (method) {
+      case Parameterization::harmonic:  // cotangent springs: linear precision
+      case Parameterization::mean_value:
+      case Parameterization::discrete_conformal:
+      case Parameterization::discrete_authalic:
+        EXPECT_LE(max_distance(uv, expected), 1e-9);
+        break;
+      case Parameterization::lscm:  // a planar patch is its own conformal / rigid map
+      case Parameterization::arap:
+        EXPECT_LE(d.angle_max_degrees, 1e-8);
+        EXPECT_LE(d.area_max_log, 1e-10);
+        break;
+      case Parameterization::tutte:  // uniform weights: no linear precision
+        EXPECT_GT(max_distance(uv, expected), 1e-3);
+        break;
+    }
+  }
+}
+
+TEST(Parameterizations, FixedBorderMethodsAreCgalsOwnMaps) {
+  // parameterize_patch runs CGAL's parameterizers; where one of them is also a spring kind of
+  // cgal_disk_map (the harmonic map's reference), both give the same map, and ours with those
+  // springs agrees with it.
+  const std::vector<std::pair<Parameterization, SpringWeights>> same = {
+      {Parameterization::tutte, SpringWeights::uniform},
+      {Parameterization::mean_value, SpringWeights::mean_value},
+      {Parameterization::discrete_conformal, SpringWeights::cotangent}};
+  for (const TestPatch& patch : analytic_patches()) {
+    for (const auto& [method, weights] : same) {
+      SCOPED_TRACE(patch.name + ", " + parameterization_names[static_cast<std::size_t>(method)]);
+      const Eigen::MatrixX2d uv =
+          parameterize_patch(patch.positions, patch.faces, patch.outer_boundary, method);
+      const DiskMap cgal =
+          cgal_disk_map(patch.positions, patch.faces, patch.outer_boundary, {weights});
+      const DiskMap ours =
+          harmonic_disk_map(patch.positions, patch.faces, patch.outer_boundary, {weights});
+      EXPECT_LE(max_distance(uv, cgal.uv), 1e-12);
+      EXPECT_LE(max_distance(uv, ours.uv), 1e-6);
+    }
+    // The free-border maps are CGAL's up to a mirror: on a curved patch they distort angles
+    // less than any fixed-border map, and never flip a triangle here.
+    const std::vector<ParameterizationResult> results = compare_parameterizations(
+        patch.positions, patch.faces, patch.outer_boundary,
+        {Parameterization::discrete_conformal, Parameterization::lscm, Parameterization::arap});
+    EXPECT_LT(results[1].distortion.angle_mean_degrees, results[0].distortion.angle_mean_degrees);
+    EXPECT_EQ(results[1].distortion.flipped, 0);
+    EXPECT_EQ(results[2].distortion.flipped, 0);
+  }
+}
+
 }  // namespace
 }  // namespace surfcomp::harmonic

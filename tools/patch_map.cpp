@@ -20,14 +20,19 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <sstream>
+#include <string>
 #include <system_error>
+#include <vector>
 
 namespace surfcomp::tools {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: surfcomp patch-map INPUT -o DIR [--cp I ... | --all] [--compare-cgal] [options]\n\n"
+    "usage: surfcomp patch-map INPUT -o DIR [--cp I ... | --all] [--compare-cgal]\n"
+    "                          [--methods M,M,...|all] [options]\n\n"
     "Writes, for each chosen critical point I (0-based, as cp-detect numbers them; --all: every\n"
     "one), its geodesic patch and harmonic map onto the unit disk (METHOD sections 3-4) into DIR\n"
     "(made if missing):\n"
@@ -39,7 +44,13 @@ constexpr const char* kUsage =
     "                 the comparison\n"
     "--compare-cgal also maps each patch with CGAL's Surface_mesh_parameterization (the same\n"
     "border and spring weights) and prints, per point, the largest and mean distance between\n"
-    "the two maps, the angle and area distortion and flipped triangles of both, and both times.\n\n"
+    "the two maps, the angle and area distortion and flipped triangles of both, and both times.\n"
+    "--methods maps each patch with each named method and prints, per point and method, the\n"
+    "angle distortion (mean and largest |angle difference|, degrees), the area distortion\n"
+    "(mean and largest |ln area ratio|), flipped triangles and the time, then each method's\n"
+    "medians over the points: harmonic (ours, --weights), and CGAL's tutte, mean-value,\n"
+    "discrete-conformal, discrete-authalic (unit circle border by arc length), lscm and arap\n"
+    "(free border); all: every one.\n\n"
     "INPUT  a molecule or mesh (as hsi-build), or a .hsi file (its stored patches and maps; the\n"
     "       description options then do not apply)";
 
@@ -69,6 +80,38 @@ std::vector<std::string> given_options(const boost::program_options::options_des
   return given;
 }
 
+/// The methods named in --methods: names from harmonic::parameterization_names, comma-separated,
+/// or "all".
+std::vector<harmonic::Parameterization> parameterizations(const std::string& text) {
+  const auto& names = harmonic::parameterization_names;
+  std::vector<harmonic::Parameterization> out;
+  std::string known;
+  for (const char* name : names) known += std::string(known.empty() ? "" : ", ") + name;
+  std::stringstream list(text);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    if (name == "all") {
+      for (std::size_t i = 0; i < names.size(); ++i)
+        out.push_back(static_cast<harmonic::Parameterization>(i));
+      continue;
+    }
+    const auto found = std::find(names.begin(), names.end(), name);
+    if (found == names.end())
+      throw OptionError("--methods " + text + ": unknown method '" + name + "' (" + known +
+                        ", all)");
+    out.push_back(static_cast<harmonic::Parameterization>(found - names.begin()));
+  }
+  if (out.empty()) throw OptionError("--methods: expected one or more of " + known + ", or all");
+  return out;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return std::nan("");
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2),
+                   values.end());
+  return values[values.size() / 2];
+}
+
 }  // namespace
 
 int patch_map(const std::vector<std::string>& args) {
@@ -85,7 +128,9 @@ int patch_map(const std::vector<std::string>& args) {
       ("cp", po::value(&chosen_indices)->composing(),
        "a critical point to write (0-based; repeatable)")
       ("all", po::bool_switch(), "write every critical point that has a patch")
-      ("compare-cgal", po::bool_switch(), "compare each map with CGAL's");
+      ("compare-cgal", po::bool_switch(), "compare each map with CGAL's")
+      ("methods", po::value<std::string>(),
+       "parameterizations to compare on each patch, comma-separated, or all");
   // clang-format on
   described.add(description_options);
   po::variables_map vm;
@@ -93,6 +138,9 @@ int patch_map(const std::vector<std::string>& args) {
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   const bool all = vm["all"].as<bool>(), compare = vm["compare-cgal"].as<bool>();
+  const std::vector<harmonic::Parameterization> methods =
+      vm.count("methods") ? parameterizations(vm["methods"].as<std::string>())
+                          : std::vector<harmonic::Parameterization>{};
   if (all == !chosen_indices.empty())
     throw OptionError("give --cp I (one or more) or --all, not both and not neither");
   for (const int i : chosen_indices)
@@ -203,6 +251,11 @@ int patch_map(const std::vector<std::string>& args) {
       console::summary("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s\n", "", "", "", "",
                        "ours deg", "CGAL deg", "ours", "CGAL", "ours", "CGAL");
     }
+    std::vector<std::vector<harmonic::ParameterizationResult>> by_point;
+    if (!methods.empty()) {
+      console::summary("%4s %-19s %10s %10s %10s %10s %7s %9s\n", "cp", "method", "angle deg",
+                       "angle max", "area", "area max", "flipped", "ms");
+    }
     for (const Chosen& c : chosen) {
       const std::string stem = "cp" + std::to_string(c.index);
       nlohmann::json entry = {{"index", c.index},
@@ -246,10 +299,59 @@ int patch_map(const std::vector<std::string>& args) {
             m.ours_distortion.area_mean_log, m.cgal_distortion.area_mean_log,
             m.ours_distortion.flipped, m.cgal_distortion.flipped, m.ours_ms, m.cgal_ms);
       }
+      if (!methods.empty()) {
+        const auto results =
+            harmonic::compare_parameterizations(patch.positions, patch.faces, patch.outer_boundary,
+                                                methods, settings.descriptors.disk_map);
+        nlohmann::json compared = nlohmann::json::array();
+        for (const harmonic::ParameterizationResult& r : results) {
+          const char* name = harmonic::parameterization_names[static_cast<std::size_t>(r.method)];
+          nlohmann::json one = distortion_json(r.distortion);
+          one["method"] = name;
+          one["ms"] = r.ms;
+          compared.push_back(one);
+          console::summary("%4zu %-19s %10.3f %10.3f %10.4f %10.4f %7d %9.3f\n", c.index, name,
+                           r.distortion.angle_mean_degrees, r.distortion.angle_max_degrees,
+                           r.distortion.area_mean_log, r.distortion.area_max_log,
+                           r.distortion.flipped, r.ms);
+        }
+        entry["methods"] = compared;
+        by_point.push_back(results);
+      }
       points.push_back(entry);
       ++written;
     }
-    const nlohmann::json document = {
+    nlohmann::json summary = nlohmann::json::array();
+    if (!methods.empty() && !by_point.empty()) {
+      console::summary("\nmedians over %zu patches:\n%-19s %10s %10s %10s %10s %7s %9s\n",
+                       by_point.size(), "method", "angle deg", "angle max", "area", "area max",
+                       "flipped", "ms");
+      for (std::size_t m = 0; m < methods.size(); ++m) {
+        std::vector<double> angle, angle_max, area, area_max, flipped, ms;
+        for (const auto& results : by_point) {
+          const harmonic::ParameterizationResult& r = results[m];
+          angle.push_back(r.distortion.angle_mean_degrees);
+          angle_max.push_back(r.distortion.angle_max_degrees);
+          area.push_back(r.distortion.area_mean_log);
+          area_max.push_back(r.distortion.area_max_log);
+          flipped.push_back(r.distortion.flipped);
+          ms.push_back(r.ms);
+        }
+        const char* name = harmonic::parameterization_names[static_cast<std::size_t>(methods[m])];
+        const std::vector<double> medians = {median(angle),    median(angle_max), median(area),
+                                             median(area_max), median(flipped),   median(ms)};
+        summary.push_back({{"method", name},
+                           {"angle_mean_degrees", medians[0]},
+                           {"angle_max_degrees", medians[1]},
+                           {"area_mean_log", medians[2]},
+                           {"area_max_log", medians[3]},
+                           {"flipped", medians[4]},
+                           {"ms", medians[5]}});
+        console::summary("%-19s %10.3f %10.3f %10.4f %10.4f %7.0f %9.3f\n", name, medians[0],
+                         medians[1], medians[2], medians[3], medians[4], medians[5]);
+      }
+    }
+    nlohmann::json document = {
         {"input", path.string()},
         {"critical_points", total},
         {"weights", harmonic::to_string(settings.descriptors.disk_map.weights)},
@@ -257,6 +359,7 @@ int patch_map(const std::vector<std::string>& args) {
         {"image_rings", settings.descriptors.image.rings},
         {"image_sectors", settings.descriptors.image.sectors},
         {"points", points}};
+    if (!methods.empty()) document["method_medians"] = summary;
     io::write_file_atomically(staging / "patch_maps.json",
                               [&](std::ostream& out) { out << json_text(document); });
     for (const std::string& name : names) std::filesystem::rename(staging / name, folder / name);

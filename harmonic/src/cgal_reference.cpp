@@ -5,12 +5,16 @@
 #include <CGAL/Eigen_solver_traits.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_parameterization/ARAP_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Barycentric_mapping_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Circular_border_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Discrete_authalic_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Discrete_conformal_map_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
 #include <CGAL/Surface_mesh_parameterization/Fixed_border_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/LSCM_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Mean_value_coordinates_parameterizer_3.h>
+#include <CGAL/Surface_mesh_parameterization/Two_vertices_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/parameterize.h>
 #include <Eigen/SparseLU>
 
@@ -53,15 +57,20 @@ smp::Error_code run(Mesh& mesh, HalfedgeDescriptor border_halfedge,
   return smp::parameterize(mesh, Parameterizer(), border_halfedge, uv);
 }
 
-}  // namespace
-
-DiskMap cgal_disk_map(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                      const Eigen::Ref<const Eigen::MatrixX3i>& faces,
-                      const std::vector<int>& outer_boundary, const DiskMapOptions& options) {
-  const std::string where = "cgal_disk_map: ";
-  check_disk_map_input(positions, faces, outer_boundary);
-
+/// The patch as a CGAL::Surface_mesh with its uv map and the border halfedge that leaves
+/// outer_boundary[0] (CGAL walks the border opposite to the faces).
+struct CgalPatch {
   Mesh mesh;
+  HalfedgeDescriptor border;
+  Mesh::Property_map<VertexDescriptor, Kernel::Point_2> uv;
+};
+
+CgalPatch cgal_patch(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                     const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                     const std::vector<int>& outer_boundary, const std::string& where) {
+  check_disk_map_input(positions, faces, outer_boundary);
+  CgalPatch out;
+  Mesh& mesh = out.mesh;
   mesh.reserve(static_cast<Mesh::size_type>(positions.rows()),
                static_cast<Mesh::size_type>(3 * faces.rows()),
                static_cast<Mesh::size_type>(faces.rows()));
@@ -78,52 +87,124 @@ DiskMap cgal_disk_map(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
     }
   }
   // The border halfedge leaving outer_boundary[0] runs to the last outer boundary vertex.
-  const HalfedgeDescriptor border_halfedge =
+  out.border =
       mesh.halfedge(Mesh::Vertex_index(static_cast<Mesh::size_type>(outer_boundary.front())),
                     Mesh::Vertex_index(static_cast<Mesh::size_type>(outer_boundary.back())));
-  if (border_halfedge == Mesh::null_halfedge() || !mesh.is_border(border_halfedge)) {
+  if (out.border == Mesh::null_halfedge() || !mesh.is_border(out.border)) {
     throw TopologyError(where + "no border halfedge runs from " +
                         std::to_string(outer_boundary.front()) + " to " +
                         std::to_string(outer_boundary.back()) +
                         ", expected the outer boundary counter-clockwise seen from outside");
   }
+  out.uv = mesh.add_property_map<VertexDescriptor, Kernel::Point_2>("v:surfcomp_uv").first;
+  return out;
+}
 
-  auto uv = mesh.add_property_map<VertexDescriptor, Kernel::Point_2>("v:surfcomp_uv").first;
-  smp::Error_code status = smp::OK;
-  switch (options.weights) {
-    case SpringWeights::inverse_length:
-      status = run<InverseLengthParameterizer>(mesh, border_halfedge, uv);
-      break;
-    case SpringWeights::uniform:
-      status = run<smp::Barycentric_mapping_parameterizer_3<Mesh, Border, Solver>>(
-          mesh, border_halfedge, uv);
-      break;
-    case SpringWeights::cotangent:
-      status = run<smp::Discrete_conformal_map_parameterizer_3<Mesh, Border, Solver>>(
-          mesh, border_halfedge, uv);
-      break;
-    case SpringWeights::mean_value:
-      status = run<smp::Mean_value_coordinates_parameterizer_3<Mesh, Border, Solver>>(
-          mesh, border_halfedge, uv);
-      break;
+/// The uv of every vertex, checked finite.
+Eigen::MatrixX2d uv_of(const CgalPatch& patch, Eigen::Index n, const std::string& where) {
+  Eigen::MatrixX2d uv(n, 2);
+  for (Eigen::Index v = 0; v < n; ++v) {
+    const Kernel::Point_2& p = patch.uv[Mesh::Vertex_index(static_cast<Mesh::size_type>(v))];
+    uv.row(v) << p.x(), p.y();
   }
-  if (status != smp::OK) {
-    throw NumericError(where + "CGAL's parameterizer failed: " + smp::get_error_message(status) +
-                       ", expected a solvable system");
-  }
-
-  DiskMap map;
-  map.uv.resize(positions.rows(), 2);
-  for (Eigen::Index v = 0; v < positions.rows(); ++v) {
-    const Kernel::Point_2& p = uv[Mesh::Vertex_index(static_cast<Mesh::size_type>(v))];
-    map.uv.row(v) << 2.0 * (p.x() - 0.5), 2.0 * (p.y() - 0.5);
-  }
-  if (!map.uv.allFinite()) {
+  if (!uv.allFinite()) {
     throw NumericError(where +
                        "CGAL's parameterization has non-finite coordinates, expected a "
                        "non-singular system");
   }
+  return uv;
+}
+
+void check_status(smp::Error_code status, const std::string& where) {
+  if (status != smp::OK) {
+    throw NumericError(where + "CGAL's parameterizer failed: " + smp::get_error_message(status) +
+                       ", expected a solvable system");
+  }
+}
+
+}  // namespace
+
+DiskMap cgal_disk_map(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                      const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                      const std::vector<int>& outer_boundary, const DiskMapOptions& options) {
+  const std::string where = "CGAL disk map: ";
+  CgalPatch patch = cgal_patch(positions, faces, outer_boundary, where);
+  smp::Error_code status = smp::OK;
+  switch (options.weights) {
+    case SpringWeights::inverse_length:
+      status = run<InverseLengthParameterizer>(patch.mesh, patch.border, patch.uv);
+      break;
+    case SpringWeights::uniform:
+      status = run<smp::Barycentric_mapping_parameterizer_3<Mesh, Border, Solver>>(
+          patch.mesh, patch.border, patch.uv);
+      break;
+    case SpringWeights::cotangent:
+      status = run<smp::Discrete_conformal_map_parameterizer_3<Mesh, Border, Solver>>(
+          patch.mesh, patch.border, patch.uv);
+      break;
+    case SpringWeights::mean_value:
+      status = run<smp::Mean_value_coordinates_parameterizer_3<Mesh, Border, Solver>>(
+          patch.mesh, patch.border, patch.uv);
+      break;
+  }
+  check_status(status, where);
+  DiskMap map;
+  map.uv = (uv_of(patch, positions.rows(), where).array() - 0.5) * 2.0;
   return map;
+}
+
+Eigen::MatrixX2d parameterize_patch(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                    const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                    const std::vector<int>& outer_boundary, Parameterization method,
+                                    const DiskMapOptions& options) {
+  const std::string where =
+      std::string(parameterization_names[static_cast<std::size_t>(method)]) + " map: ";
+  if (method == Parameterization::harmonic)
+    return harmonic_disk_map(positions, faces, outer_boundary, options).uv;
+  CgalPatch patch = cgal_patch(positions, faces, outer_boundary, where);
+  using FreeBorder = smp::Two_vertices_parameterizer_3<Mesh>;
+  smp::Error_code status = smp::OK;
+  switch (method) {
+    case Parameterization::harmonic:
+      break;
+    case Parameterization::tutte:
+      status = run<smp::Barycentric_mapping_parameterizer_3<Mesh, Border, Solver>>(
+          patch.mesh, patch.border, patch.uv);
+      break;
+    case Parameterization::mean_value:
+      status = run<smp::Mean_value_coordinates_parameterizer_3<Mesh, Border, Solver>>(
+          patch.mesh, patch.border, patch.uv);
+      break;
+    case Parameterization::discrete_conformal:
+      status = run<smp::Discrete_conformal_map_parameterizer_3<Mesh, Border, Solver>>(
+          patch.mesh, patch.border, patch.uv);
+      break;
+    case Parameterization::discrete_authalic:
+      status = run<smp::Discrete_authalic_parameterizer_3<Mesh, Border, Solver>>(
+          patch.mesh, patch.border, patch.uv);
+      break;
+    case Parameterization::lscm:
+      status = run<smp::LSCM_parameterizer_3<Mesh, FreeBorder>>(patch.mesh, patch.border, patch.uv);
+      break;
+    case Parameterization::arap:
+      status = run<smp::ARAP_parameterizer_3<Mesh, FreeBorder, Solver>>(patch.mesh, patch.border,
+                                                                        patch.uv);
+      break;
+  }
+  check_status(status, where);
+  Eigen::MatrixX2d uv = uv_of(patch, positions.rows(), where);
+  if (method == Parameterization::lscm || method == Parameterization::arap) {
+    double signed_area = 0.0;  // mirrored when the map turns the patch over
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      const Eigen::RowVector2d a = uv.row(faces(f, 0)), b = uv.row(faces(f, 1)),
+                               c = uv.row(faces(f, 2));
+      signed_area += (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    }
+    if (signed_area < 0.0) uv.col(0) = -uv.col(0);
+  } else {
+    uv = (uv.array() - 0.5) * 2.0;
+  }
+  return uv;
 }
 
 }  // namespace surfcomp::harmonic

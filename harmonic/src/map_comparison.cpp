@@ -42,4 +42,21 @@ DiskMapComparison compare_with_cgal(const Eigen::Ref<const Eigen::MatrixX3d>& po
   return out;
 }
 
+std::vector<ParameterizationResult> compare_parameterizations(
+    const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+    const Eigen::Ref<const Eigen::MatrixX3i>& faces, const std::vector<int>& outer_boundary,
+    const std::vector<Parameterization>& methods, const DiskMapOptions& options) {
+  std::vector<ParameterizationResult> out;
+  for (const Parameterization method : methods) {
+    ParameterizationResult result;
+    result.method = method;
+    Eigen::MatrixX2d uv;
+    result.ms = median_ms(
+        [&] { uv = parameterize_patch(positions, faces, outer_boundary, method, options); });
+    result.distortion = map_distortion(positions, faces, uv);
+    out.push_back(result);
+  }
+  return out;
+}
+
 }  // namespace surfcomp::harmonic

@@ -134,3 +134,29 @@ def test_bad_usage_is_refused_with_one_line(program, ligand, tmp_path):
     result = run([program, "patch-map", hsi, "-o", tmp_path / "b", "--all", "--weights",
                   "uniform"])
     assert result.returncode == 2 and "does not apply to a .hsi INPUT" in result.stderr
+
+
+def test_every_parameterization_is_tabled_per_patch_and_in_summary(program, ligand, tmp_path):
+    result = run([program, "patch-map", ligand, "--cp", "0", "--cp", "5", "--compare-cgal",
+                  "--methods", "all", "-o", tmp_path])
+    assert result.returncode == 0, result.stderr
+    document = json.loads((tmp_path / "patch_maps.json").read_text())
+    names = ["harmonic", "tutte", "mean-value", "discrete-conformal", "discrete-authalic",
+             "lscm", "arap"]
+    for point in document["points"]:
+        methods = {m["method"]: m for m in point["methods"]}
+        assert list(methods) == names
+        # The harmonic entry is the map patch-map writes, which --compare-cgal judges too.
+        for key in ("angle_mean_degrees", "area_mean_log", "flipped"):
+            assert methods["harmonic"][key] == pytest.approx(point["cgal"]["ours"][key], abs=1e-12)
+        assert methods["tutte"]["flipped"] == 0  # Tutte: a convex border gives an embedding
+        # The free-border maps preserve angles better than any map onto the circle.
+        assert methods["lscm"]["angle_mean_degrees"] < min(
+            methods[n]["angle_mean_degrees"] for n in names[:5])
+        assert all(m["ms"] > 0 for m in methods.values())
+    assert [m["method"] for m in document["method_medians"]] == names
+    assert "medians over 2 patches:" in result.stdout
+    bad = run([program, "patch-map", ligand, "--cp", "0", "--methods", "tutte,conformal",
+               "-o", tmp_path / "b"])
+    assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1
+    assert "unknown method 'conformal'" in bad.stderr and not (tmp_path / "b").exists()

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <vector>
 
 namespace surfcomp::harmonic {
@@ -53,5 +54,45 @@ DiskMapComparison compare_with_cgal(const Eigen::Ref<const Eigen::MatrixX3d>& po
                                     const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                     const std::vector<int>& outer_boundary,
                                     const DiskMapOptions& options = {});
+
+/// The parameterizations of a disk-like patch that patch-map --methods compares: ours
+/// (harmonic_disk_map) and those of CGAL 5.5's Surface_mesh_parameterization that map a disk
+/// with one border.
+enum class Parameterization {
+  harmonic,            ///< harmonic_disk_map with the description's spring weights
+  tutte,               ///< Barycentric_mapping (uniform weights), circular border
+  mean_value,          ///< Mean_value_coordinates, circular border
+  discrete_conformal,  ///< Discrete_conformal_map (cotangent weights), circular border
+  discrete_authalic,   ///< Discrete_authalic, circular border
+  lscm,                ///< LSCM, free border (two vertices pinned)
+  arap,                ///< ARAP (lambda 1000, 50 iterations), free border
+};
+
+/// The names of Parameterization's values, as patch-map --methods takes them.
+inline constexpr std::array<const char*, 7> parameterization_names = {
+    "harmonic", "tutte", "mean-value", "discrete-conformal", "discrete-authalic", "lscm", "arap"};
+
+/// The map of the patch (harmonic_disk_map's arguments) by `method`: #V by 2. Fixed-border
+/// methods put the border on the unit circle by arc length as cgal_disk_map does; free-border
+/// methods (lscm, arap) give CGAL's uv, mirrored when CGAL's orientation is the mirror image of
+/// the patch's (the distortion does not change). `options` applies to harmonic only.
+/// Throws what check_disk_map_input throws, NumericError when CGAL reports a failure.
+Eigen::MatrixX2d parameterize_patch(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                    const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                    const std::vector<int>& outer_boundary, Parameterization method,
+                                    const DiskMapOptions& options = {});
+
+/// One method's map of a patch, judged.
+struct ParameterizationResult {
+  Parameterization method = Parameterization::harmonic;
+  MapDistortion distortion;
+  double ms = 0.0;  ///< wall-clock time of one map, as DiskMapComparison's
+};
+
+/// Each of `methods` on the same patch (parameterize_patch), in their order.
+std::vector<ParameterizationResult> compare_parameterizations(
+    const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+    const Eigen::Ref<const Eigen::MatrixX3i>& faces, const std::vector<int>& outer_boundary,
+    const std::vector<Parameterization>& methods, const DiskMapOptions& options = {});
 
 }  // namespace surfcomp::harmonic
