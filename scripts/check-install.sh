@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Checks surfcomp as an installed package, the way a C++ user meets it: installs an existing
 # build into a temporary prefix, builds examples/ against it (find_package(surfcomp CONFIG)) and
-# runs align_two_ligands on ligand 1C9 of PDB 4i24 (PROBE) onto the one of PDB 4i23 (REF).
+# runs align_two_ligands on ligand 1C9 of PDB 4i24 (PROBE) onto the one of PDB 4i23 (REF), then
+# match_two_meshes on a mesh and a partial copy of it.
 # The two crystal ligands overlay with a known pose: their 22 shared atoms (same names) superpose
 # to 0.16 A RMSD after a 13-degree rotation, and lie 1.07 A apart as the files give them. The top
 # transform must move PROBE's shared atoms onto REF's to within 0.5 A RMSD.
@@ -74,3 +75,32 @@ awk -v out="$work/align.txt" -v ref="$ref" -v max_rmsd="$max_rmsd" '
       exit 1
     }
   }' "$work/align.txt" "$ref" "$probe"
+
+# match_two_meshes on CGAL's elephant and a partial copy of it (bench/mesh_cases.py: 40 % of the
+# area, subdivided, noise of 0.5 % of the diagonal, moved): the top transform must take the copy
+# back to within 2 % of the diagonal of where it came from.
+elephant=datasets/cache/cgal/meshes/elephant.off
+/usr/bin/python3 - "$elephant" "$work/partial.off" <<'PY'
+import sys
+sys.path.insert(0, "bench")
+import mesh_cases
+V, F = mesh_cases.read_off(sys.argv[1])
+case = mesh_cases.make_case(V, F, seed=2, fraction=0.4, noise=0.005)
+mesh_cases.write_off(sys.argv[2], case.vertices, case.faces)
+PY
+"$work/examples/match_two_meshes" "$elephant" "$work/partial.off" | tee "$work/meshes.txt"
+/usr/bin/python3 - "$elephant" "$work/meshes.txt" <<'PY'
+import sys
+import numpy as np
+sys.path.insert(0, "bench")
+import mesh_cases
+V, F = mesh_cases.read_off(sys.argv[1])
+case = mesh_cases.make_case(V, F, seed=2, fraction=0.4, noise=0.005)
+lines = open(sys.argv[2]).read().splitlines()
+at = lines.index("top transform (moves PROBE into REF's frame):")
+transform = np.array([[float(x) for x in line.split()] for line in lines[at + 1:at + 5]])
+error = mesh_cases.motion_error(case, transform)
+print(f"check-install: match_two_meshes puts the partial copy {100 * error:.2f} % of the "
+      f"diagonal from its true place (at most 2 %)")
+sys.exit(0 if error < 0.02 else "check-install: FAILED: the partial copy is not recovered")
+PY

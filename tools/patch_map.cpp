@@ -50,7 +50,8 @@ constexpr const char* kUsage =
     "(mean and largest |ln area ratio|), flipped triangles and the time, then each method's\n"
     "medians over the points: harmonic (ours, --weights), and CGAL's tutte, mean-value,\n"
     "discrete-conformal, discrete-authalic (unit circle border by arc length), lscm and arap\n"
-    "(free border); all: every one.\n\n"
+    "(free border); all: every one. A method that fails on a patch says so in its row and is\n"
+    "left out of its medians (failed: the count).\n\n"
     "INPUT  a molecule or mesh (as hsi-build), or a .hsi file (its stored patches and maps; the\n"
     "       description options then do not apply)";
 
@@ -306,6 +307,11 @@ int patch_map(const std::vector<std::string>& args) {
         nlohmann::json compared = nlohmann::json::array();
         for (const harmonic::ParameterizationResult& r : results) {
           const char* name = harmonic::parameterization_names[static_cast<std::size_t>(r.method)];
+          if (!r.failure.empty()) {
+            compared.push_back({{"method", name}, {"failure", r.failure}});
+            console::summary("%4zu %-19s failed: %s\n", c.index, name, r.failure.c_str());
+            continue;
+          }
           nlohmann::json one = distortion_json(r.distortion);
           one["method"] = name;
           one["ms"] = r.ms;
@@ -328,8 +334,13 @@ int patch_map(const std::vector<std::string>& args) {
                        "flipped", "ms");
       for (std::size_t m = 0; m < methods.size(); ++m) {
         std::vector<double> angle, angle_max, area, area_max, flipped, ms;
+        std::size_t failed = 0;
         for (const auto& results : by_point) {
           const harmonic::ParameterizationResult& r = results[m];
+          if (!r.failure.empty()) {
+            ++failed;
+            continue;
+          }
           angle.push_back(r.distortion.angle_mean_degrees);
           angle_max.push_back(r.distortion.angle_max_degrees);
           area.push_back(r.distortion.area_mean_log);
@@ -346,9 +357,11 @@ int patch_map(const std::vector<std::string>& args) {
                            {"area_mean_log", medians[2]},
                            {"area_max_log", medians[3]},
                            {"flipped", medians[4]},
-                           {"ms", medians[5]}});
-        console::summary("%-19s %10.3f %10.3f %10.4f %10.4f %7.0f %9.3f\n", name, medians[0],
-                         medians[1], medians[2], medians[3], medians[4], medians[5]);
+                           {"ms", medians[5]},
+                           {"failed", failed}});
+        console::summary("%-19s %10.3f %10.3f %10.4f %10.4f %7.0f %9.3f%s\n", name, medians[0],
+                         medians[1], medians[2], medians[3], medians[4], medians[5],
+                         failed > 0 ? (" (failed on " + std::to_string(failed) + ")").c_str() : "");
       }
     }
     nlohmann::json document = {

@@ -1,9 +1,11 @@
 // compare_with_cgal (cgal_reference.hpp): CGAL's headers stay in cgal_reference.cpp.
+#include "surfcomp/core/error.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/cgal_reference.hpp"
 
 #include <algorithm>
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace surfcomp::harmonic {
@@ -51,9 +53,20 @@ std::vector<ParameterizationResult> compare_parameterizations(
     ParameterizationResult result;
     result.method = method;
     Eigen::MatrixX2d uv;
-    result.ms = median_ms(
-        [&] { uv = parameterize_patch(positions, faces, outer_boundary, method, options); });
-    result.distortion = map_distortion(positions, faces, uv);
+    try {
+      result.ms = median_ms(
+          [&] { uv = parameterize_patch(positions, faces, outer_boundary, method, options); });
+      result.distortion = map_distortion(positions, faces, uv);
+    } catch (const NumericError& e) {
+      result.failure = e.what();
+    } catch (const TopologyError& e) {
+      result.failure = e.what();
+    }
+    if (!result.failure.empty()) {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      result.ms = nan;
+      result.distortion = {nan, nan, nan, nan, -1};
+    }
     out.push_back(result);
   }
   return out;

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace surfcomp::harmonic {
@@ -87,9 +88,13 @@ struct ParameterizationResult {
   Parameterization method = Parameterization::harmonic;
   MapDistortion distortion;
   double ms = 0.0;  ///< wall-clock time of one map, as DiskMapComparison's
+  /// Why the method gave no map (its NumericError or TopologyError), or empty; the distortion
+  /// and time are then NaN.
+  std::string failure;
 };
 
-/// Each of `methods` on the same patch (parameterize_patch), in their order.
+/// Each of `methods` on the same patch (parameterize_patch), in their order; a method that
+/// fails on the patch is reported in its result (ParameterizationResult::failure).
 std::vector<ParameterizationResult> compare_parameterizations(
     const Eigen::Ref<const Eigen::MatrixX3d>& positions,
     const Eigen::Ref<const Eigen::MatrixX3i>& faces, const std::vector<int>& outer_boundary,
