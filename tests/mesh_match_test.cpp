@@ -16,6 +16,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <regex>
+#include <string>
 #include <vector>
 
 namespace surfcomp {
@@ -185,6 +187,66 @@ TEST(MeshRepair, AnInsideOutMeshWithAStrayPieceIsTurnedAndTrimmed) {
   EXPECT_NEAR(mesh::measure_surface(repaired.surface).volume,
               mesh::measure_surface(original).volume, 1e-9);
   EXPECT_GT(mesh::measure_surface(repaired.surface).volume, 0.0);
+}
+
+/// The message of what `run` throws (a surfcomp::Error), or "" when it throws nothing.
+template <typename Run>
+std::string error_of(Run run) {
+  try {
+    run();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MeshRepair, BrokenMeshesAreRefusedInOneLineThatNamesRepair) {
+  SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
+  const mesh::Surface elephant = mesh::io::read_mesh(path);
+  const Eigen::MatrixX3d v = elephant.positions();
+  const Eigen::MatrixX3i f = elephant.faces();
+  struct Broken {
+    const char* name;
+    Eigen::MatrixX3d positions;
+    Eigen::MatrixX3i faces;
+    Eigen::Index faces_repaired;  ///< after repair_triangles; 0: nothing is left
+  };
+  std::vector<Broken> cases;
+  Eigen::MatrixX3i twice(f.rows() + 1, 3);  // a face given twice: a complex edge
+  twice << f, f.row(0);
+  cases.push_back({"duplicate face", v, twice, f.rows()});
+  Eigen::MatrixX3d lone(v.rows() + 1, 3);  // a vertex in no face: no normal
+  lone << v, Eigen::RowVector3d(9, 9, 9);
+  cases.push_back({"isolated vertex", lone, f, f.rows()});
+  Eigen::MatrixX3i repeated = f;  // a face that names one vertex twice
+  repeated(0, 1) = repeated(0, 0);
+  cases.push_back({"repeated vertex", v, repeated, f.rows() - 1});
+  Eigen::MatrixX3d flat = Eigen::MatrixX3d::Zero(v.rows(), 3);  // every vertex at one point
+  cases.push_back({"collapsed", flat, f, 0});
+  const std::regex function_name("[a-z]+_[a-z_]+: ");
+  for (const Broken& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string message = error_of([&] {
+      matching::MatchInput reference, probe;
+      reference.surface = mesh::Surface::from_arrays(c.positions, c.faces, "broken.off");
+      probe.surface = elephant;
+      matching::match_inputs(reference, probe);
+    });
+    EXPECT_EQ(message.rfind("broken.off: ", 0), 0u) << message;
+    EXPECT_NE(message.find("--repair"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_FALSE(std::regex_search(message, function_name)) << message;
+    // Repaired: the elephant again (less the degenerate face), or refused with nothing left.
+    const std::string repaired = error_of([&] {
+      const mesh::RepairedMesh r = mesh::repair_triangles(c.positions, c.faces, "broken.off");
+      EXPECT_EQ(static_cast<Eigen::Index>(r.surface.n_faces()), c.faces_repaired);
+    });
+    if (c.faces_repaired == 0) {
+      EXPECT_EQ(repaired, "broken.off: no face is left after the repair");
+    } else {
+      EXPECT_EQ(repaired, "");
+    }
+  }
 }
 
 }  // namespace
