@@ -63,7 +63,7 @@ int cp_detect(const std::vector<std::string>& args) {
     cp_options = stored.options.critical_points;
     n_vertices = stored.surface.n_vertices();
   } else {
-    const mesh::LoadedSurface loaded = mesh::load_surface(path, input);
+    const mesh::LoadedSurface loaded = load_noted(path, input);
     points = mesh::detect_critical_points(loaded.surface, cp_options);
     n_vertices = loaded.surface.n_vertices();
   }

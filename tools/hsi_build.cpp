@@ -5,6 +5,7 @@
 #include "console.hpp"
 #include "describe_settings.hpp"
 #include "options.hpp"
+#include "surface_input.hpp"
 
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
@@ -49,7 +50,7 @@ int hsi_build(const std::vector<std::string>& args) {
   const auto limit = limit_threads(settings.threads);
 
   Stopwatch clock;
-  mesh::LoadedSurface loaded = mesh::load_surface(path, input);
+  mesh::LoadedSurface loaded = load_noted(path, input);
   const double surface_ms = clock.elapsed_ms();
   const harmonic::SurfaceDescriptors descriptors =
       loaded.molecule

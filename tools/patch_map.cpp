@@ -7,6 +7,7 @@
 #include "describe_settings.hpp"
 #include "json_text.hpp"
 #include "options.hpp"
+#include "surface_input.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/stopwatch.hpp"
@@ -185,7 +186,7 @@ int patch_map(const std::vector<std::string>& args) {
         chosen.push_back({i, std::move(stored.critical_points[i])});
     }
   } else {
-    surface = mesh::load_surface(path, settings.input).surface;
+    surface = load_noted(path, settings.input).surface;
     const std::vector<mesh::CriticalPoint> points =
         mesh::detect_critical_points(surface, settings.descriptors.critical_points);
     total = points.size();

@@ -49,7 +49,7 @@ int surf_build(const std::vector<std::string>& args) {
                        {{"--output", output, {".ply", ".off", ".obj"}, ""}}});
 
   Stopwatch clock;
-  const mesh::LoadedSurface loaded = mesh::load_surface(path, input);
+  const mesh::LoadedSurface loaded = load_noted(path, input);
   const double elapsed = clock.elapsed_ms();
   if (io::lowercase_extension(output) == ".ply") {
     mesh::io::write_ply(loaded.surface, output,

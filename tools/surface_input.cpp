@@ -34,4 +34,11 @@ void show_potential_progress(mesh::MolecularSurfaceOptions& surface) {
   surface.lp.progress = potential_progress("LP");
 }
 
+mesh::LoadedSurface load_noted(const std::filesystem::path& path,
+                               const mesh::SurfaceInputOptions& options) {
+  mesh::LoadedSurface loaded = mesh::load_surface(path, options);
+  if (loaded.repair) console::note(path.string() + ": repaired: " + loaded.repair->summary());
+  return loaded;
+}
+
 }  // namespace surfcomp::tools

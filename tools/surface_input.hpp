@@ -7,6 +7,8 @@
 
 #include <boost/program_options.hpp>
 
+#include <filesystem>
+
 namespace surfcomp::tools {
 
 /// Adds the surface options: --probe-radius --density --voxel --charges --eps
@@ -16,6 +18,10 @@ void add_surface_options(boost::program_options::options_description& described)
 /// The surface options given on the command line (checked), with progress lines for the ESP and
 /// LP sums.
 mesh::SurfaceInputOptions surface_options_from(const boost::program_options::variables_map& vm);
+
+/// mesh::load_surface of `path`, with a note of what --repair changed.
+mesh::LoadedSurface load_noted(const std::filesystem::path& path,
+                               const mesh::SurfaceInputOptions& options);
 
 /// Progress lines for the ESP and LP sums of `surface` (console::ProgressLine), when shown.
 void show_potential_progress(mesh::MolecularSurfaceOptions& surface);
