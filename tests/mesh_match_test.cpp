@@ -165,8 +165,8 @@ TEST(MeshRepair, ATriangleSoupBecomesTheMeshItCameFrom) {
   EXPECT_NEAR(after.area, before.area, 1e-12 * before.area);
   EXPECT_NEAR(after.volume, before.volume, 1e-9 * std::abs(before.volume));
   EXPECT_EQ(repaired.report.summary(),
-            "merged " + std::to_string(3 * n - v.rows()) +
-                " duplicate vertices, removed 5 degenerate or duplicate faces");
+            "merged or dropped " + std::to_string(3 * n - v.rows()) +
+                " duplicate or unused vertices, removed 5 degenerate or duplicate faces");
 }
 
 TEST(MeshRepair, AnInsideOutMeshWithAStrayPieceIsTurnedAndTrimmed) {
@@ -187,6 +187,30 @@ TEST(MeshRepair, AnInsideOutMeshWithAStrayPieceIsTurnedAndTrimmed) {
   EXPECT_NEAR(mesh::measure_surface(repaired.surface).volume,
               mesh::measure_surface(original).volume, 1e-9);
   EXPECT_GT(mesh::measure_surface(repaired.surface).volume, 0.0);
+}
+
+TEST(MeshMatch, AnExplicitUnitIsForGeneralMeshesOnly) {
+  SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
+  SURFCOMP_FETCHED_OR_SKIP(ligand, "rdkit-data/4i23_1C9.pdb");
+  matching::MatchInput mesh_side, molecule_side;
+  mesh_side.path = path;
+  molecule_side.path = ligand;
+  matching::MatchInputOptions options;
+  options.unit = 0.03;
+  try {
+    matching::match_inputs(molecule_side, mesh_side, options);
+    ADD_FAILURE() << "a molecule with --unit was matched";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(std::string(e.what()), "--unit applies to general meshes; " + ligand.string() +
+                                         " is in A (a molecule, a mesh with --molecule, or a "
+                                         "stored description)");
+  }
+  // Two general meshes take it: the unit is the one given, the answer in their coordinates.
+  const matching::InputMatch m = matching::match_inputs(mesh_side, mesh_side, options);
+  EXPECT_EQ(m.unit, 0.03);
+  EXPECT_EQ(m.unit_from, "--unit");
+  ASSERT_FALSE(m.result.alignments.empty());
+  EXPECT_LT((m.result.alignments.front().transform - Eigen::Matrix4d::Identity()).norm(), 1e-3);
 }
 
 /// The message of what `run` throws (a surfcomp::Error), or "" when it throws nothing.

@@ -36,8 +36,8 @@ const options::Table<PairMatchOptions>& pair_match_option_table() {
         [](auto& p) -> auto& { return p.inputs.scale; }, length_scale_names));
     t.push_back(options::field<P>(
         {"unit", Kind::real,
-         "the length, in the inputs' coordinates, that every length option counts as 1 A "
-         "(0: from --scale)",
+         "two general meshes: the length, in their coordinates, that every length option "
+         "counts as 1 A (0: from --scale)",
          "", 0.0, 1e12},
         [](auto& p) -> auto& { return p.inputs.unit; }));
     const auto text = [](const char* name, const char* help) {

@@ -126,14 +126,9 @@ LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& opti
     }
   } else if (options.input.molecule_file.empty()) {
     mesh::check_surface_input(input.path, options.input);
-    if (options.input.repair) {
-      mesh::RepairedMesh repaired = mesh::repair_mesh_file(
-          input.path, static_cast<std::size_t>(options.input.surface.ses.max_vertices));
-      side.surface = std::move(repaired.surface);
-      side.repair = repaired.report;
-    } else {
-      side.surface = mesh::io::read_mesh(input.path);
-    }
+    mesh::LoadedSurface loaded = mesh::read_mesh_input(input.path, options.input);
+    side.surface = std::move(loaded.surface);
+    side.repair = loaded.repair;
     side.needs_curvature = true;
   } else {
     mesh::LoadedSurface loaded = mesh::load_surface(input.path, options.input);
@@ -186,11 +181,11 @@ std::pair<double, std::string> length_unit(const LoadedInput& ref, const MatchIn
                                            const LoadedInput& prb, const MatchInput& probe,
                                            const MatchInputOptions& options) {
   if (options.unit > 0.0) {
-    for (const LoadedInput* side : {&ref, &prb}) {
-      if (side->descriptors) {
-        throw OptionError(side->name +
-                          ": --unit applies to meshes and molecules, not to a stored "
-                          "description (its lengths were fixed when it was built)");
+    for (const auto& [side, input] : {std::pair{&ref, &reference}, std::pair{&prb, &probe}}) {
+      if (is_molecular(*side, *input)) {
+        throw OptionError("--unit applies to general meshes; " + side->name +
+                          " is in A (a molecule, a mesh with ESP and LP, or a stored "
+                          "description)");
       }
     }
     return {options.unit, "--unit"};
@@ -392,6 +387,19 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
   validate(match);
   check_match_input(reference, options, "REF");
   check_match_input(probe, options, "PROBE");
+  if (options.unit > 0.0) {  // before any work: what the names tell
+    for (const MatchInput* side : {&reference, &probe}) {
+      const bool molecule = side->molecule.has_value() || !side->site_ligand.empty() ||
+                            is_stored_description(*side) ||
+                            (!side->path.empty() && io::is_molecule_file(side->path)) ||
+                            (!side->path.empty() && !options.input.molecule_file.empty());
+      if (molecule) {
+        throw OptionError("--unit applies to general meshes; " + side->name() +
+                          " is in A (a molecule, a mesh with --molecule, or a stored "
+                          "description)");
+      }
+    }
+  }
 
   InputMatch out;
   const Stopwatch clock;
@@ -417,10 +425,11 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
   if (!ref) ref = load(ref_read, built, "REF");
   if (!prb) prb = load(probe_read, built, "PROBE");
   for (const LoadedInput* side : {&*ref, &*prb}) {
-    if (side->repair) out.notes.push_back(side->name + ": repaired: " + side->repair->summary());
+    if (side->repair) out.notes.push_back(mesh::repair_note(side->name, *side->repair));
   }
+  const bool asked_shape_only = match.shape_only;
   for (const LoadedInput* side : {&*ref, &*prb}) {
-    if (!match.shape_only && !carries_chemistry(*side)) {
+    if (!asked_shape_only && !carries_chemistry(*side)) {
       match.shape_only = true;
       out.notes.push_back(side->name + " carries no ESP and LP: matched by shape alone");
     }

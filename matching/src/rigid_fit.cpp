@@ -50,7 +50,7 @@ Eigen::Matrix3Xd RigidTransform::apply(const Eigen::Ref<const Eigen::Matrix3Xd>&
 
 RigidFit fit_rigid(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
                    const Eigen::Ref<const Eigen::Matrix3Xd>& to) {
-  require_same_size(from, to, "fit_rigid");
+  require_same_size(from, to, "rigid fit");
   if (from.cols() < 3) {
     throw InputError("rigid fit: " + std::to_string(from.cols()) +
                      " corresponding points; a rigid fit needs at least 3");
@@ -79,8 +79,7 @@ RigidFit fit_rigid_weighted(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
   }
   if (!from.allFinite() || !to.allFinite() || !weights.allFinite() ||
       (weights.array() < 0.0).any()) {
-    throw InputError(
-        "fit_rigid_weighted: a coordinate or weight is not finite or a weight is negative");
+    throw InputError("rigid fit: a coordinate or weight is not finite or a weight is negative");
   }
   const double total = weights.sum();
   if (!(total > 0.0))
@@ -99,7 +98,7 @@ RigidFit fit_rigid_weighted(const Eigen::Ref<const Eigen::Matrix3Xd>& from,
 
 double rmsd_under(const RigidTransform& transform, const Eigen::Ref<const Eigen::Matrix3Xd>& from,
                   const Eigen::Ref<const Eigen::Matrix3Xd>& to) {
-  require_same_size(from, to, "rmsd_under");
+  require_same_size(from, to, "overlay");
   if (from.cols() == 0) throw InputError("overlay: no points; expected at least one");
   const double sum = (transform.apply(from) - to).colwise().squaredNorm().sum();
   return std::sqrt(sum / static_cast<double>(from.cols()));

@@ -17,18 +17,25 @@ void check_surface_input(const std::filesystem::path& path, const SurfaceInputOp
   }
 }
 
+LoadedSurface read_mesh_input(const std::filesystem::path& path,
+                              const SurfaceInputOptions& options) {
+  LoadedSurface loaded;
+  if (options.repair) {
+    RepairedMesh repaired =
+        repair_mesh_file(path, static_cast<std::size_t>(options.surface.ses.max_vertices));
+    loaded.surface = std::move(repaired.surface);
+    loaded.repair = repaired.report;
+  } else {
+    loaded.surface = io::read_mesh(path);
+  }
+  return loaded;
+}
+
 LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceInputOptions& options) {
   check_surface_input(path, options);
   LoadedSurface loaded;
   if (io::is_mesh_file(path)) {
-    if (options.repair) {
-      RepairedMesh repaired =
-          repair_mesh_file(path, static_cast<std::size_t>(options.surface.ses.max_vertices));
-      loaded.surface = std::move(repaired.surface);
-      loaded.repair = repaired.report;
-    } else {
-      loaded.surface = io::read_mesh(path);
-    }
+    loaded = read_mesh_input(path, options);
     if (!options.molecule_file.empty())
       loaded.molecule = surfcomp::io::read_molecule(options.molecule_file, options.read);
     assign_surface_properties(loaded.surface, loaded.molecule ? &*loaded.molecule : nullptr,

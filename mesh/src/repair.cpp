@@ -43,7 +43,7 @@ RepairedMesh repair_soup(std::vector<Point> points, Polygons polygons, const std
   const std::size_t polygons_read = polygons.size();
   pmp::repair_polygon_soup(points, polygons);
   report.merged_vertices = points_read > points.size() ? points_read - points.size() : 0;
-  report.removed_faces = polygons_read - polygons.size();
+  report.removed_faces = polygons_read > polygons.size() ? polygons_read - polygons.size() : 0;
   if (polygons.empty()) throw InputError(source + ": no face is left after the repair");
   const std::size_t before_orienting = points.size();
   pmp::orient_polygon_soup(points, polygons);
@@ -56,7 +56,8 @@ RepairedMesh repair_soup(std::vector<Point> points, Polygons polygons, const std
   const std::size_t faces_before = mesh.number_of_faces();
   pmp::remove_degenerate_faces(mesh);
   mesh.collect_garbage();
-  report.removed_faces += faces_before - mesh.number_of_faces();
+  report.removed_faces +=
+      faces_before > mesh.number_of_faces() ? faces_before - mesh.number_of_faces() : 0;
   report.dropped_components = pmp::keep_largest_connected_components(mesh, 1);
   mesh.collect_garbage();
   if (mesh.number_of_faces() == 0) throw InputError(source + ": no face is left after the repair");
@@ -82,10 +83,16 @@ RepairedMesh repair_soup(std::vector<Point> points, Polygons polygons, const std
 
 }  // namespace
 
+std::string repair_note(const std::string& source, const RepairReport& report) {
+  return source + ": repaired: " + report.summary();
+}
+
 std::string RepairReport::summary() const {
   std::vector<std::string> parts;
-  if (merged_vertices > 0)
-    parts.push_back("merged " + count(merged_vertices, "duplicate vertex", "duplicate vertices"));
+  if (merged_vertices > 0) {
+    parts.push_back("merged or dropped " + count(merged_vertices, "duplicate or unused vertex",
+                                                 "duplicate or unused vertices"));
+  }
   if (removed_faces > 0) {
     parts.push_back("removed " + count(removed_faces, "degenerate or duplicate face",
                                        "degenerate or duplicate faces"));
@@ -137,8 +144,8 @@ RepairedMesh repair_mesh_file(const std::filesystem::path& path, std::size_t max
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension != ".off" && extension != ".obj" && extension != ".ply" && extension != ".stl") {
-    throw InputError(path.string() + ": --repair reads .off, .obj, .ply and .stl meshes");
+  if (extension != ".off" && extension != ".obj" && extension != ".ply") {
+    throw InputError(path.string() + ": --repair reads .off, .obj and .ply meshes");
   }
   std::vector<Point> points;
   Polygons polygons;

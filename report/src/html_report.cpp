@@ -62,7 +62,7 @@ nlohmann::json molecule_json(const matching::PreparedInput& side) {
 }
 
 nlohmann::json side_json(const matching::PreparedInput& side, const matching::MatchOptions& options,
-                         const HtmlReportOptions& report) {
+                         double unit, const HtmlReportOptions& report) {
   const mesh::Surface& surface = side.descriptors.surface;
   const mesh::DecimatedSurface shown = mesh::decimate(surface, report.max_display_vertices);
   mesh::Surface display = shown.surface;
@@ -88,7 +88,8 @@ nlohmann::json side_json(const matching::PreparedInput& side, const matching::Ma
   nlohmann::json lining = nullptr;
   if (!side.site.empty()) {
     const std::vector<bool> lined =
-        matching::pocket_lining(side.descriptors, &side.site_points, options.site.overlay_radius);
+        matching::pocket_lining(side.descriptors, &side.site_points,
+                                options.site.overlay_radius * unit);  // the inputs' coordinates
     lining = nlohmann::json::array();
     for (std::size_t v = 0; v < shown.original.size(); ++v) {
       if (lined[static_cast<std::size_t>(shown.original[v])]) lining.push_back(v);
@@ -191,8 +192,8 @@ std::string html_report(const matching::InputMatch& compared, const matching::Ma
   document["mode"] = sites ? "binding_sites" : "molecules";
   document["total_ms"] = {{"surfaces and descriptors", compared.prepare_ms},
                           {"match", compared.match_ms}};
-  document["reference"] = side_json(compared.reference, options, report);
-  document["probe"] = side_json(compared.probe, options, report);
+  document["reference"] = side_json(compared.reference, options, compared.unit, report);
+  document["probe"] = side_json(compared.probe, options, compared.unit, report);
   for (const std::string& note : compared.notes) document["warnings"].push_back(note);
 
   std::string page = detail::report_template;

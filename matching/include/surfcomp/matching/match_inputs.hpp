@@ -67,10 +67,13 @@ struct MatchInputOptions {
   MatchOptions match;
   /// Default auto. How match_inputs measures lengths when `unit` is 0 (LengthScale).
   LengthScale scale = LengthScale::automatic;
-  /// Default 0: from `scale`. The length, in the inputs' coordinates, that every length option
-  /// (patch and critical point radii, the distance filter, RMSD cut, overlay width and spacing)
-  /// counts as 1 A; match_inputs scales both sides by 1 / unit before describing them and gives
-  /// every result back in the inputs' coordinates. Finite, >= 0. prepare_input ignores it.
+  /// Default 0: from `scale`. For two general meshes, the length, in their coordinates, that
+  /// every length option (patch and critical point radii, the distance filter, RMSD cut,
+  /// overlay width and spacing) counts as 1 A; match_inputs scales both sides by 1 / unit
+  /// before describing them and gives every result back in the inputs' coordinates (the
+  /// result file's parameters stay in units). OptionError when a side is in A (a molecule, a
+  /// mesh with ESP and LP or --molecule, a stored description). Finite, >= 0. prepare_input
+  /// ignores it.
   double unit = 0.0;
   /// Default 0: all cores. The worker threads the caller lets TBB use while this runs (the CLI
   /// and the Python module limit TBB's pool to it).

@@ -48,6 +48,12 @@ inline constexpr const char* surface_input_formats =
 /// read.ligand on a mesh, molecule_file on a molecule).
 void check_surface_input(const std::filesystem::path& path, const SurfaceInputOptions& options);
 
+/// The mesh file `path` as it is (io::read_mesh) or, with options.repair, repaired
+/// (repair_mesh_file, bounded by options.surface.ses.max_vertices; LoadedSurface::repair says
+/// what changed): its geometry, without the curvature and potentials load_surface adds.
+LoadedSurface read_mesh_input(const std::filesystem::path& path,
+                              const SurfaceInputOptions& options);
+
 /// The SES of the molecule file `path` (io::read_molecule with options.read), or the mesh file
 /// `path` with its properties. Throws as check_surface_input, the readers and the surface
 /// construction.
