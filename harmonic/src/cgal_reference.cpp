@@ -161,35 +161,28 @@ Eigen::MatrixX2d parameterize_patch(const Eigen::Ref<const Eigen::MatrixX3d>& po
       std::string(parameterization_names[static_cast<std::size_t>(method)]) + " map: ";
   if (method == Parameterization::harmonic)
     return harmonic_disk_map(positions, faces, outer_boundary, options).uv;
+  // The fixed-border maps with spring weights of their own are cgal_disk_map's.
+  switch (method) {
+    case Parameterization::tutte:
+      return cgal_disk_map(positions, faces, outer_boundary, {SpringWeights::uniform}).uv;
+    case Parameterization::mean_value:
+      return cgal_disk_map(positions, faces, outer_boundary, {SpringWeights::mean_value}).uv;
+    case Parameterization::discrete_conformal:
+      return cgal_disk_map(positions, faces, outer_boundary, {SpringWeights::cotangent}).uv;
+    default:
+      break;
+  }
   CgalPatch patch = cgal_patch(positions, faces, outer_boundary, where);
   using FreeBorder = smp::Two_vertices_parameterizer_3<Mesh>;
   smp::Error_code status = smp::OK;
-  switch (method) {
-    case Parameterization::harmonic:
-      break;
-    case Parameterization::tutte:
-      status = run<smp::Barycentric_mapping_parameterizer_3<Mesh, Border, Solver>>(
-          patch.mesh, patch.border, patch.uv);
-      break;
-    case Parameterization::mean_value:
-      status = run<smp::Mean_value_coordinates_parameterizer_3<Mesh, Border, Solver>>(
-          patch.mesh, patch.border, patch.uv);
-      break;
-    case Parameterization::discrete_conformal:
-      status = run<smp::Discrete_conformal_map_parameterizer_3<Mesh, Border, Solver>>(
-          patch.mesh, patch.border, patch.uv);
-      break;
-    case Parameterization::discrete_authalic:
-      status = run<smp::Discrete_authalic_parameterizer_3<Mesh, Border, Solver>>(
-          patch.mesh, patch.border, patch.uv);
-      break;
-    case Parameterization::lscm:
-      status = run<smp::LSCM_parameterizer_3<Mesh, FreeBorder>>(patch.mesh, patch.border, patch.uv);
-      break;
-    case Parameterization::arap:
-      status = run<smp::ARAP_parameterizer_3<Mesh, FreeBorder, Solver>>(patch.mesh, patch.border,
-                                                                        patch.uv);
-      break;
+  if (method == Parameterization::discrete_authalic) {
+    status = run<smp::Discrete_authalic_parameterizer_3<Mesh, Border, Solver>>(
+        patch.mesh, patch.border, patch.uv);
+  } else if (method == Parameterization::lscm) {
+    status = run<smp::LSCM_parameterizer_3<Mesh, FreeBorder>>(patch.mesh, patch.border, patch.uv);
+  } else {
+    status = run<smp::ARAP_parameterizer_3<Mesh, FreeBorder, Solver>>(patch.mesh, patch.border,
+                                                                      patch.uv);
   }
   check_status(status, where);
   Eigen::MatrixX2d uv = uv_of(patch, positions.rows(), where);
