@@ -10,7 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev
   libboost-graph-dev libboost-iostreams-dev libboost-program-options-dev
-  libtbb-dev librdkit-dev libhwy-dev libxxhash-dev
+  libtbb-dev librdkit-dev libhwy-dev libxxhash-dev gemmi gemmi-dev tao-pegtl-dev
   openmpi-bin libopenmpi-dev
   nlohmann-json3-dev
   freesasa edtsurf

@@ -22,7 +22,8 @@ constexpr const char* kUsage =
     "Builds the solvent-excluded surface (SES) of a molecule, or reads a surface mesh, and\n"
     "writes it with per-vertex normals, ESP (kcal/(mol*e)), LP, principal curvatures cc1, cc2\n"
     "(1/A, convex negative), shape index and curvedness.\n\n"
-    "INPUT  a molecule (.sdf .mol .mol2 .pdb .ent .pqr) or a mesh (.ply .vert/.face .off .obj)\n"
+    "INPUT  a molecule (.sdf .mol .mol2 .pdb .ent .cif .cif.gz .pqr) or a mesh (.ply .vert/.face "
+    ".off .obj)\n"
     "Prints: input, atoms, vertices, faces, area (A^2), volume (A^3), Euler characteristic, time.";
 
 }  // namespace

@@ -355,9 +355,15 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& wh
     check_single_record(options.record, source);
     check_pdb_coordinates(whole_text, source);
   }
-  const std::string text = format == RdkitFormat::pdb
-                               ? whole_text
-                               : select_record(whole_text, format, options.record, source);
+  if (format != RdkitFormat::pdb && options.min_plddt > 0.0) {
+    throw OptionError(source +
+                      ": --min-plddt reads the B-factor column of a PDB or mmCIF structure; an "
+                      "SDF, MOL or MOL2 file has none");
+  }
+  const std::string text =
+      format != RdkitFormat::pdb ? select_record(whole_text, format, options.record, source)
+      : options.min_plddt > 0.0  ? drop_low_plddt_residues(whole_text, options.min_plddt, source)
+                                 : whole_text;
   if (format == RdkitFormat::mol2) check_mol2_structure(text, source);
   auto mol = parse(text, format, source);
   if (!mol) throw FormatError(source, "cannot parse the file: it holds no molecule");
@@ -401,7 +407,7 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& wh
   if (mol->getPropIfPresent(RDKit::common_properties::_Name, name) && !trimmed(name).empty()) {
     molecule.title = trimmed(name);
   } else {
-    molecule.title = path.stem().string();
+    molecule.title = structure_stem(path);
   }
 
   const std::string charge_type = format == RdkitFormat::mol2 ? mol2_charge_type(text) : "";

@@ -9,6 +9,8 @@ void check_surface_input(const std::filesystem::path& path, const SurfaceInputOp
   if (io::is_mesh_file(path)) {
     if (!options.read.ligand.empty())
       throw OptionError("--ligand applies to a molecule INPUT, not a mesh");
+    if (options.read.min_plddt > 0.0 && options.molecule_file.empty())
+      throw OptionError("--min-plddt applies to a PDB or mmCIF structure INPUT, not a mesh");
   } else if (surfcomp::io::is_molecule_file(path)) {
     if (!options.molecule_file.empty()) throw OptionError("--molecule applies to a mesh INPUT");
     if (options.repair) throw OptionError("--repair applies to a mesh INPUT");

@@ -59,6 +59,8 @@ const options::Table<SurfaceInputOptions>& surface_input_option_table() {
            true},
           [](auto& s) -> auto& { return s.read.record; }),
       options::field<S>(
+          surfcomp::io::min_plddt_spec(), [](auto& s) -> auto& { return s.read.min_plddt; }),
+      options::field<S>(
           {"molecule",
            Kind::text,
            "mesh INPUT only: molecule whose ESP and LP are mapped onto the mesh",

@@ -2,6 +2,10 @@
 
 #include "surfcomp/core/error.hpp"
 
+#include <boost/iostreams/device/array.hpp>
+#include <boost/iostreams/filter/gzip.hpp>
+#include <boost/iostreams/filtering_stream.hpp>
+
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -73,6 +77,31 @@ std::string read_input_file(const std::filesystem::path& path) {
   }
   data.resize(used);
   return data;
+}
+
+std::string read_gzip_input_file(const std::filesystem::path& path) {
+  const std::string compressed = read_input_file(path);
+  namespace bio = boost::iostreams;
+  std::string text;
+  try {
+    bio::filtering_istream in;
+    in.push(bio::gzip_decompressor());
+    in.push(bio::array_source(compressed.data(), compressed.size()));
+    char buffer[1 << 16];
+    while (in) {
+      in.read(buffer, sizeof buffer);
+      text.append(buffer, static_cast<std::size_t>(in.gcount()));
+      if (text.size() > max_input_file_bytes) {
+        throw FileError(path.string(), "decompresses to more than the limit of " +
+                                           std::to_string(max_input_file_bytes) + " bytes");
+      }
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw FileError(path.string(), std::string("cannot decompress (gzip): ") + e.what());
+  }
+  return text;
 }
 
 void check_read_position(const Eigen::Vector3d& position, const std::string& file,

@@ -6,11 +6,6 @@
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 
-#include <boost/iostreams/copy.hpp>
-#include <boost/iostreams/device/array.hpp>
-#include <boost/iostreams/filter/gzip.hpp>
-#include <boost/iostreams/filtering_stream.hpp>
-
 #include <algorithm>
 #include <cstdlib>
 #include <sstream>
@@ -28,32 +23,6 @@ bool is_gzipped_list(const std::filesystem::path& path) {
   std::transform(tail.begin(), tail.end(), tail.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return tail == ".dat.gz";
-}
-
-/// The decompressed content of a gzip file, at most max_input_file_bytes.
-std::string read_gzip_file(const std::filesystem::path& path) {
-  const std::string compressed = read_input_file(path);
-  namespace bio = boost::iostreams;
-  std::string text;
-  try {
-    bio::filtering_istream in;
-    in.push(bio::gzip_decompressor());
-    in.push(bio::array_source(compressed.data(), compressed.size()));
-    char buffer[1 << 16];
-    while (in) {
-      in.read(buffer, sizeof buffer);
-      text.append(buffer, static_cast<std::size_t>(in.gcount()));
-      if (text.size() > max_input_file_bytes) {
-        throw FileError(path.string(), "decompresses to more than the limit of " +
-                                           std::to_string(max_input_file_bytes) + " bytes");
-      }
-    }
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw FileError(path.string(), std::string("cannot decompress (gzip): ") + e.what());
-  }
-  return text;
 }
 
 std::vector<std::string> split(const std::string& line, char separator) {
@@ -164,16 +133,20 @@ bool is_record_file(const std::filesystem::path& path) {
 
 std::vector<MoleculeRecord> read_molecule_records(const std::filesystem::path& path) {
   const std::string extension = lowercase_extension(path);
-  if (is_gzipped_list(path)) return dat_records(path, read_gzip_file(path));
+  if (is_gzipped_list(path)) return dat_records(path, read_gzip_input_file(path));
   if (extension == ".dat") return dat_records(path, read_input_file(path));
   if (extension == ".smi") return smi_records(path, read_input_file(path));
-  if (extension == ".pdb" || extension == ".ent" || extension == ".pqr") {
+  if (extension == ".pdb" || extension == ".ent" || extension == ".pqr" || is_mmcif_file(path)) {
     MoleculeRecord record;
     record.source = path;
-    record.name = path.stem().string();
+    record.name = structure_stem(path);
     record.format = RecordFormat::structure;
-    const std::string text = read_input_file(path);  // readable now, not when the record is read
-    if (extension != ".pqr") record.text = text;
+    // Readable now, not when the record is read; mmCIF is kept as PDB text.
+    if (extension == ".pqr") {
+      read_input_file(path);
+    } else {
+      record.text = read_structure_text(path);
+    }
     return {record};
   }
   detail::RdkitFormat format;
@@ -185,9 +158,10 @@ std::vector<MoleculeRecord> read_molecule_records(const std::filesystem::path& p
     format = detail::RdkitFormat::mol2;
     record_format = RecordFormat::mol2;
   } else {
-    throw FormatError(path.string(),
-                      "unknown molecule list extension '" + extension +
-                          "' (expected .sdf .mol .mol2 .pdb .ent .pqr .smi .dat .dat.gz)");
+    throw FormatError(
+        path.string(),
+        "unknown molecule list extension '" + extension +
+            "' (expected .sdf .mol .mol2 .pdb .ent .cif .mmcif .cif.gz .pqr .smi .dat .dat.gz)");
   }
   std::vector<MoleculeRecord> records;
   for (std::string& text : detail::split_records(read_input_file(path), format)) {

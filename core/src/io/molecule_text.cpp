@@ -2,7 +2,9 @@
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/molecule.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <optional>
@@ -112,6 +114,59 @@ std::string first_alternate_locations(const std::string& text) {
     }
     line[16] = ' ';
     out += line;
+  }
+  return out;
+}
+
+std::string drop_low_plddt_residues(const std::string& text, double min_plddt,
+                                    const std::string& source) {
+  struct Mean {
+    double sum = 0.0;
+    std::size_t count = 0;
+  };
+  std::map<std::string, Mean> residues;
+  std::size_t begin = 0;
+  std::size_t line_number = 0;
+  while (begin < text.size()) {
+    const std::size_t end = line_end(text, begin);
+    const std::string line = text.substr(begin, end - begin);
+    begin = end;
+    ++line_number;
+    if (!is_atom_record(line)) continue;
+    const std::string field = line.size() > 60 ? trimmed(line.substr(60, 6)) : "";
+    char* parsed = nullptr;
+    const double b_factor = field.empty() ? 0.0 : std::strtod(field.c_str(), &parsed);
+    if (field.empty() || parsed != field.c_str() + field.size() || !std::isfinite(b_factor)) {
+      throw FormatError(source, line_number,
+                        "the B-factor (pLDDT, columns 61-66) is " +
+                            (field.empty() ? std::string("missing") : "'" + field + "'") +
+                            ", not a number, in this " + line.substr(0, 6) + " record");
+    }
+    Mean& mean = residues[line.substr(17, 10)];
+    mean.sum += b_factor;
+    ++mean.count;
+  }
+  std::string out;
+  out.reserve(text.size());
+  bool kept_any = false;
+  begin = 0;
+  while (begin < text.size()) {
+    const std::size_t end = line_end(text, begin);
+    const std::string line = text.substr(begin, end - begin);
+    begin = end;
+    if (is_atom_record(line)) {
+      const Mean& mean = residues.at(line.substr(17, 10));
+      if (mean.sum < min_plddt * static_cast<double>(mean.count)) continue;
+      if (line.size() < 20 || !is_water_residue(line.substr(17, 3))) kept_any = true;
+    }
+    out += line;
+  }
+  if (!kept_any) {
+    throw InputError(source + ": no residue has a pLDDT (B-factor) of at least " + [&] {
+      std::ostringstream number;
+      number << min_plddt;
+      return number.str();
+    }() + " (--min-plddt)");
   }
   return out;
 }

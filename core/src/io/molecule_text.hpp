@@ -22,6 +22,14 @@ std::string trimmed(const std::string& text);
 /// (microheterogeneity), only the first name's records stay. Each MODEL is treated alone.
 std::string first_alternate_locations(const std::string& text);
 
+/// `text` (PDB) without the ATOM/HETATM records of the residues whose records' mean B-factor
+/// (columns 61-66) is below `min_plddt` (MoleculeReadOptions::min_plddt); a residue is its
+/// name, chain, number and insertion code (columns 18-27). Other records stay. Throws
+/// FormatError for a record whose B-factor column is not a number, InputError naming `source`
+/// when no ATOM/HETATM record other than water is left.
+std::string drop_low_plddt_residues(const std::string& text, double min_plddt,
+                                    const std::string& source);
+
 /// The text of molecule `record` (1-based) of an SDF or MOL2 text; see
 /// MoleculeReadOptions::record. A file with one molecule (or none, for the parser to refuse)
 /// is returned whole.

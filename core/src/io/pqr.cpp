@@ -98,6 +98,11 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
                       ": a PQR file carries its own charges; only the 'file' charge "
                       "model applies");
   }
+  if (options.min_plddt > 0.0) {
+    throw OptionError(source +
+                      ": --min-plddt reads the B-factor column of a PDB or mmCIF structure; a "
+                      "PQR file holds radii there");
+  }
   const std::string text = read_input_file(path);
   detail::check_single_record(options.record, source);
   Molecule molecule;

@@ -65,22 +65,25 @@ void assign_bondi_radii(Molecule& molecule) {
 bool is_molecule_file(const std::filesystem::path& path) {
   const std::string extension = lowercase_extension(path);
   return extension == ".sdf" || extension == ".mol" || extension == ".mol2" ||
-         extension == ".pdb" || extension == ".ent" || extension == ".pqr";
+         extension == ".pdb" || extension == ".ent" || extension == ".pqr" || is_mmcif_file(path);
 }
 
 Molecule read_molecule(const std::filesystem::path& path, const MoleculeReadOptions& options) {
   const std::string extension = lowercase_extension(path);
   if (extension == ".pqr") return read_pqr(path, options);
+  if (extension == ".pdb" || extension == ".ent" || is_mmcif_file(path)) {
+    return detail::read_with_rdkit(path, read_structure_text(path), detail::RdkitFormat::pdb,
+                                   options);
+  }
   detail::RdkitFormat format;
   if (extension == ".sdf" || extension == ".mol") {
     format = detail::RdkitFormat::mdl;
   } else if (extension == ".mol2") {
     format = detail::RdkitFormat::mol2;
-  } else if (extension == ".pdb" || extension == ".ent") {
-    format = detail::RdkitFormat::pdb;
   } else {
-    throw FormatError(path.string(), "unknown molecule file extension '" + extension +
-                                         "' (expected .sdf .mol .mol2 .pdb .ent .pqr)");
+    throw FormatError(path.string(),
+                      "unknown molecule file extension '" + extension +
+                          "' (expected .sdf .mol .mol2 .pdb .ent .cif .mmcif .cif.gz .pqr)");
   }
   const std::string text = read_input_file(path);
   return detail::read_with_rdkit(path, text, format, options);

@@ -41,7 +41,8 @@ struct LoadedSurface {
 
 /// Extensions load_surface reads, for messages.
 inline constexpr const char* surface_input_formats =
-    "molecule: .sdf .mol .mol2 .pdb .ent .pqr; mesh: .ply .vert .face .off .obj";
+    "molecule: .sdf .mol .mol2 .pdb .ent .cif .mmcif .cif.gz .pqr; mesh: .ply .vert .face .off "
+    ".obj";
 
 /// Checks from the name alone, before any work, that `path` is a molecule or a mesh
 /// (InputError naming it and the formats) and that the options apply to it (OptionError:

@@ -31,6 +31,11 @@ inline constexpr double max_charge_magnitude = 10.0;
 /// for a writer. Every reader (molecules, meshes, .hsi) reads its input through this.
 std::string read_input_file(const std::filesystem::path& path);
 
+/// The decompressed content of the gzip file `path` (read with read_input_file), at most
+/// max_input_file_bytes: FileError "PATH: decompresses to more than the limit ..." beyond it,
+/// "PATH: cannot decompress (gzip): reason" for a damaged file.
+std::string read_gzip_input_file(const std::filesystem::path& path);
+
 /// Checks a position read from `file`: every coordinate finite and of magnitude at most
 /// max_coordinate_magnitude. `item` names what the position belongs to ("vertex 12",
 /// "atom 3 (C C1)"). Throws FormatError "FILE: ITEM has a non-finite coordinate" or

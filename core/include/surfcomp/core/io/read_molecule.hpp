@@ -3,6 +3,7 @@
 #pragma once
 
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/core/option_table.hpp"
 
 #include <array>
 #include <cstddef>
@@ -46,16 +47,40 @@ struct MoleculeReadOptions {
   /// selections) get Wildman-Crippen atom contributions from RDKit, whole structures the
   /// residue-atom table of protein_atom_lipophilicity().
   bool assign_lipophilicity = true;
+  /// Default 0: every residue. Whole-structure PDB/mmCIF: drop the residues (of any kind) whose
+  /// atoms' mean B-factor is below this, before anything else is read; for an AlphaFold model the
+  /// B-factor column holds pLDDT (0-100), so 70 keeps the residues modelled with confidence.
+  /// Refused (OptionError) for SDF/MOL/MOL2 and PQR, whose columns hold no B-factor. In [0, 100].
+  double min_plddt = 0.0;
 };
 
+/// What the user sees of --min-plddt (MoleculeReadOptions::min_plddt), wherever structures are
+/// read.
+options::Spec min_plddt_spec();
+
 /// True when `path` has a molecule extension read_molecule understands:
-/// .sdf .mol .mol2 .pdb .ent .pqr (case-insensitive).
+/// .sdf .mol .mol2 .pdb .ent .pqr .cif .mmcif .cif.gz (case-insensitive).
 bool is_molecule_file(const std::filesystem::path& path);
+
+/// True for a PDBx/mmCIF file: .cif, .mmcif or .cif.gz (case-insensitive).
+bool is_mmcif_file(const std::filesystem::path& path);
+
+/// The name of a structure file without its extensions: "1thl" for 1thl.pdb, 1THL.cif and
+/// 1thl.cif.gz; the stem for any other file.
+std::string structure_stem(const std::filesystem::path& path);
+
+/// The structure in `path` as PDB text: a PDB file's own text; for mmCIF (is_mmcif_file, gzipped
+/// or not, at most max_input_file_bytes once unpacked) the first model's atoms written by gemmi
+/// as PDB records (ATOM/HETATM as the file's group_PDB says, alternate locations, B-factors and
+/// chains kept; chain names longer than 2 characters shortened), so that every reader of PDB
+/// text reads mmCIF the same way. `models`, when given, receives the file's model count. Throws
+/// FileError, FormatError (gemmi's reason, with the file), InputError (no atom coordinates).
+std::string read_structure_text(const std::filesystem::path& path, std::size_t* models = nullptr);
 
 /// Reads the molecule in `path`, chosen by extension (see is_molecule_file):
 /// - SDF/MOL/MOL2: the molecule options.record (records end at "$$$$" lines, MOL2 molecules
-///   start at @<TRIPOS>MOLECULE); PDB: every model-1 atom (RDKit's reader with proximity
-///   bonding); PQR: read_pqr(). Hydrogens present in the file are kept.
+///   start at @<TRIPOS>MOLECULE); PDB and mmCIF (read_structure_text): every model-1 atom (RDKit's
+///   reader with proximity bonding); PQR: read_pqr(). Hydrogens present in the file are kept.
 /// - PDB alternate locations: one per atom. An atom without one is read; of an atom's
 ///   alternate locations the first in the file is read (usually 'A'), so an atom or residue
 ///   present only as 'B' is read too (the ATP of 1RDQ). An atom is its chain, residue number,
