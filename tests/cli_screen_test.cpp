@@ -407,7 +407,9 @@ TEST_F(CliScreen, AMacromoleculeQueryIsScreenedWithAWarningThatNamesTheSiteOptio
                        "chain of 30 amino-acid residues)"),
             std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("--site-ligand RES or --site-sphere x,y,z,r"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--site-ligand RES, --site-sphere x,y,z,r or --site-pocket N"),
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_EQ(lines_of(file_bytes(dir_ / "ala30_hits.csv")).size(), 4u);  // header, 3 molecules
   // A ligand query says nothing.

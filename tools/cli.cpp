@@ -32,6 +32,8 @@ constexpr std::array kCommands{
             &surfcomp::tools::screen},
     Command{"report", "REF PROBE -> a match as an HTML page to look at (3D viewer, tables)",
             &surfcomp::tools::report},
+    Command{"pockets", "structure -> its pockets, found without a ligand (JSON; PDB for viewing)",
+            &surfcomp::tools::pockets},
     Command{"patch-map", "surface -> each critical point's patch and harmonic map (OBJ, PLY, PNG)",
             &surfcomp::tools::patch_map},
 };

@@ -31,5 +31,6 @@ int library(const std::vector<std::string>& args);
 int screen(const std::vector<std::string>& args);
 int report(const std::vector<std::string>& args);
 int patch_map(const std::vector<std::string>& args);
+int pockets(const std::vector<std::string>& args);
 
 }  // namespace surfcomp::tools

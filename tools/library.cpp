@@ -37,6 +37,7 @@ constexpr const char* kUsage =
     "       mpirun -np R surfcomp library build INPUT... -o LIB.sclib ...   (shards over R\n"
     "                                                                     processes)\n"
     "       surfcomp library build --sites LIST -o POCKETS.sclib [--site-radius R] [--threads T]\n"
+    "       surfcomp library build --pockets STRUCTURE... -o POCKETS.sclib [--threads T]\n"
     "       surfcomp library info LIB.sclib\n"
     "       surfcomp library export LIB.sclib -o OUT.sdf\n\n"
     "build   reads every molecule of the INPUTs (SDF/MOL/MOL2 files of one or many records,\n"
@@ -59,6 +60,9 @@ constexpr const char* kUsage =
     "        continues with --resume (the same INPUTs and options): the finished shards are\n"
     "        checked and kept, the others built. Without --resume an existing LIB.sclib.d is\n"
     "        refused. A pocket library (--sites) is always one file.\n"
+    "        --pockets: the INPUTs are structures (PDB, mmCIF; folders of them): every pocket\n"
+    "        `surfcomp pockets` finds in each is one site entry, named STEM:pocketN (structures\n"
+    "        without a pocket are listed in the log).\n"
     "info    prints the library's version, entries, molecules, shards, sizes and build settings.\n"
     "export  writes every entry's molecule in its conformation, with the SD tags\n"
     "        surfcomp_entry (1-based), surfcomp_name and surfcomp_conformer.";
@@ -152,6 +156,53 @@ int build_sites(const boost::program_options::variables_map& vm, const std::stri
   return 0;
 }
 
+/// The INPUT paths, checked with the library `output` and its log that the build writes (an
+/// input named `role` in messages).
+std::vector<std::filesystem::path> checked_inputs(const boost::program_options::variables_map& vm,
+                                                  const std::string& output, const char* role) {
+  std::vector<std::filesystem::path> inputs;
+  for (const auto& input : vm["input"].as<std::vector<std::string>>()) inputs.emplace_back(input);
+  CommandFiles files;
+  for (const auto& input : inputs) files.inputs.push_back({role, input});
+  files.outputs.push_back({"--output", output, {".sclib"}, ""});
+  files.outputs.push_back({"the log", output + ".log", {}, ""});
+  check_command_files(files);
+  return inputs;
+}
+
+/// `library build --pockets STRUCTURE...`: a pocket library of every detected pocket.
+int build_pockets(const boost::program_options::variables_map& vm, const std::string& output,
+                  screening::LibraryBuildOptions options, int threads) {
+  if (!vm.count("input")) throw OptionError("--pockets needs STRUCTURE files or folders");
+  if (options.conformers) throw OptionError("--conformers does not apply to --pockets");
+  if (options.resume) throw OptionError("--resume does not apply to --pockets (one file)");
+  const std::vector<std::filesystem::path> inputs = checked_inputs(vm, output, "STRUCTURE");
+  const auto limit = limit_threads(threads);
+  const std::filesystem::path library = output;
+  const std::filesystem::path log = output + ".log";
+  const std::vector<std::filesystem::path> structures = screening::structure_files(inputs);
+  const Stopwatch clock;
+  std::vector<screening::SkippedRecord> skipped;
+  const std::vector<screening::SiteRequest> pockets =
+      screening::pocket_requests(structures, options, skipped);
+  console::step(std::to_string(structures.size()) +
+                " structures: " + std::to_string(pockets.size()) + " pockets found in " +
+                std::to_string(std::lround(clock.elapsed_ms())) + " ms");
+  if (pockets.empty()) {
+    throw InputError(output + ": no pocket found in " + std::to_string(structures.size()) +
+                     (structures.size() == 1 ? " structure" : " structures") +
+                     (skipped.empty()
+                          ? ""
+                          : " (" + skipped.front().source + ": " + skipped.front().reason + ")"));
+  }
+  options.progress = progress_line();
+  screening::LibraryBuildResult result = screening::build_site_library(pockets, library, options);
+  result.skipped.insert(result.skipped.begin(), skipped.begin(), skipped.end());
+  result.seconds = clock.elapsed_s();
+  write_log_and_summary(library, log, result);
+  return 0;
+}
+
 /// build_library over the ranks of an MPI job: rank 0 creates or checks the shard folder
 /// (ShardedLibraryBuild::prepare) before any rank builds, every rank builds its shards (k % ranks
 /// == rank) with its own threads, and rank 0, once every rank is done (the gather of their core
@@ -216,12 +267,15 @@ std::optional<screening::LibraryBuildResult> build_under_mpi(
 int build(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
   std::string output, sites;
+  bool pockets = false;
   po::options_description described("options");
   // clang-format off
   described.add_options()
       ("help,h", "print this help")
       ("output,o", po::value(&output)->required(), "output library (.sclib)")
-      ("sites", po::value(&sites), "build a pocket library from this site list (no INPUT)");
+      ("sites", po::value(&sites), "build a pocket library from this site list (no INPUT)")
+      ("pockets", po::bool_switch(&pockets),
+       "build a pocket library of every pocket `surfcomp pockets` finds in the INPUT structures");
   // clang-format on
   add_table_options(described, screening::library_build_option_table());
   add_threads_option(described);
@@ -230,18 +284,14 @@ int build(const std::vector<std::string>& args) {
   screening::LibraryBuildOptions options;
   apply_table_options(screening::library_build_option_table(), vm, options);
   const int threads = threads_from(vm);
+  if (!sites.empty() && pockets) throw OptionError("give --sites LIST or --pockets, not both");
   if (!sites.empty()) return build_sites(vm, sites, output, std::move(options), threads);
+  if (pockets) return build_pockets(vm, output, std::move(options), threads);
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
-  std::vector<std::filesystem::path> inputs;
-  for (const auto& input : vm["input"].as<std::vector<std::string>>()) inputs.emplace_back(input);
+  const std::vector<std::filesystem::path> inputs = checked_inputs(vm, output, "INPUT");
   const auto limit = limit_threads(threads);
   const std::filesystem::path library = output;
   const std::filesystem::path log = output + ".log";
-  CommandFiles files;
-  for (const auto& input : inputs) files.inputs.push_back({"INPUT", input});
-  files.outputs.push_back({"--output", library, {".sclib"}, ""});
-  files.outputs.push_back({"the log", log, {}, ""});
-  check_command_files(files);
   const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
 
   const std::vector<io::MoleculeRecord> records = screening::read_library_inputs(inputs);

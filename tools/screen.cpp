@@ -32,7 +32,7 @@ constexpr const char* kUsage =
     "K]\n"
     "                       [--fusion max|mean] [--aligned-out hits.sdf] [--threads T]\n"
     "       surfcomp screen STRUCTURE.pdb POCKETS.sclib --site-ligand RES | --site-sphere x,y,z,r\n"
-    "                       -o hits.csv [--aligned-out hits.pdb] ...\n"
+    "                       | --site-pocket N -o hits.csv [--aligned-out hits.pdb] ...\n"
     "       mpirun -np R surfcomp screen ...   (the library split over R processes)\n\n"
     "Ranks the molecules of a library (surfcomp library build) by how well their surfaces\n"
     "overlay QUERY's, in three stages: every conformer gets a fast score (the overlay score of\n"
@@ -49,8 +49,9 @@ constexpr const char* kUsage =
     "t00..t33, the transform moving the hit into QUERY's frame (row-major). The rows do not\n"
     "depend on --threads or on the number of MPI processes.\n\n"
     "QUERY  a molecule (.sdf .mol .mol2 .pdb) or a .hsi file built from one; with\n"
-    "       --site-ligand or --site-sphere, a binding site on a structure, screened against a\n"
-    "       pocket library (library build --sites): the overlays then compare pocket linings\n"
+    "       --site-ligand, --site-sphere or --site-pocket (a pocket `surfcomp pockets` finds), a\n"
+    "       binding site on a structure (PDB or mmCIF), screened against a pocket library\n"
+    "       (library build --sites or --pockets): the overlays then compare pocket linings\n"
     "       as `match` does for sites (all 24 axes orders in stages 1 and 2), and --aligned-out\n"
     "       writes the hits' structures moved onto QUERY (.pdb, one MODEL per hit).\n"
     "       Several QUERY files, or a file of several molecules (without --record, which picks\n"
@@ -187,7 +188,7 @@ int screen(const std::vector<std::string>& args) {
         if (!warning.empty()) {
           std::fprintf(stderr,
                        "surfcomp screen: warning: %s; to screen its binding site, give "
-                       "--site-ligand RES or --site-sphere x,y,z,r\n",
+                       "--site-ligand RES, --site-sphere x,y,z,r or --site-pocket N\n",
                        warning.c_str());
         }
       }

@@ -59,8 +59,21 @@ const options::Table<PairMatchOptions>& pair_match_option_table() {
     t.push_back(sphere_option<P>(
         {"probe-site-sphere", Kind::spheres, "site sphere on PROBE only", "A"},
         [](auto& p) -> auto& { return p.sites.probe_spheres; }));
+    t.push_back(options::field<P>(
+        site_pocket_spec(), [](auto& p) -> auto& { return p.sites.pocket; }));
+    const auto pocket = [](const char* name, const char* help) {
+      return options::Spec{name, Kind::integer, help, "", 1, 1e6, false, {}, true};
+    };
+    t.push_back(options::field<P>(
+        pocket("ref-site-pocket", "binding site of REF only: its pocket N"),
+        [](auto& p) -> auto& { return p.sites.reference_pocket; }));
+    t.push_back(options::field<P>(
+        pocket("probe-site-pocket", "binding site of PROBE only: its pocket N"),
+        [](auto& p) -> auto& { return p.sites.probe_pocket; }));
     options::append(
         t, binding_site_option_table(), [](auto& p) -> auto& { return p.inputs.site; });
+    options::append(
+        t, pocket_option_table(), [](auto& p) -> auto& { return p.inputs.pockets; });
     t.push_back(options::threads_option<P>([](auto& p) -> auto& { return p.inputs.threads; }));
     return t;
   }();
@@ -70,6 +83,8 @@ const options::Table<PairMatchOptions>& pair_match_option_table() {
 MatchInput with_site(MatchInput input, const PairSites& sites, bool reference) {
   const std::string& own = reference ? sites.reference_ligand : sites.probe_ligand;
   input.site_ligand = own.empty() ? sites.ligand : own;
+  const int own_pocket = reference ? sites.reference_pocket : sites.probe_pocket;
+  input.site_pocket = own_pocket != 0 ? own_pocket : sites.pocket;
   input.site_spheres.insert(input.site_spheres.end(), sites.spheres.begin(), sites.spheres.end());
   const auto& spheres = reference ? sites.reference_spheres : sites.probe_spheres;
   input.site_spheres.insert(input.site_spheres.end(), spheres.begin(), spheres.end());

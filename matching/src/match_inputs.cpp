@@ -50,7 +50,9 @@ struct LoadedInput {
 void load_site(LoadedInput& side, const Molecule& structure, const MatchInput& input,
                const MatchInputOptions& options) {
   BindingSite site =
-      input.site_ligand.empty()
+      input.site_pocket > 0
+          ? pocket_site(structure, input.site_pocket, options.pockets, options.site)
+      : input.site_ligand.empty()
           ? binding_site(structure, input.site_spheres, options.site)
           : binding_site(structure, LigandSelector{input.site_ligand, {}, {}}, options.site);
   if (!input.site_ligand.empty()) {  // spheres add to the ligand's
@@ -105,7 +107,8 @@ LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& opti
     side.descriptors = harmonic::io::read_hsi(input.path);
     return side;
   }
-  const bool has_site = !input.site_ligand.empty() || !input.site_spheres.empty();
+  const bool has_site =
+      !input.site_ligand.empty() || !input.site_spheres.empty() || input.site_pocket > 0;
   std::optional<Molecule> molecule;  // a molecule whose surface is built here
   if (input.molecule && !input.surface) {
     molecule = *input.molecule;
@@ -305,7 +308,7 @@ bool same_parameters(const harmonic::DescriptorOptions& x, const harmonic::Descr
 }
 
 bool has_site(const MatchInput& input) {
-  return !input.site_ligand.empty() || !input.site_spheres.empty();
+  return !input.site_ligand.empty() || !input.site_spheres.empty() || input.site_pocket > 0;
 }
 
 std::vector<std::string> match_warnings(const MatchResult& result, const MatchOptions& options) {
@@ -366,6 +369,24 @@ void check_match_input(const MatchInput& input, const MatchInputOptions& options
     if (!options.input.read.ligand.empty())
       throw OptionError("--ligand and --site-ligand cannot be combined");
   }
+  if (input.site_pocket != 0) {
+    if (input.site_pocket < 0) {
+      throw OptionError(name + ": --site-pocket " + std::to_string(input.site_pocket) +
+                        ": pockets are ranked from 1");
+    }
+    if (!input.site_ligand.empty() || !input.site_spheres.empty()) {
+      throw OptionError(name +
+                        ": --site-pocket is a whole site; it takes no --site-ligand or "
+                        "--site-sphere beside it");
+    }
+    const bool structure_file = !input.path.empty() && !harmonic::io::is_hsi_file(input.path) &&
+                                io::is_molecule_file(input.path);
+    if (!structure_file && !(input.molecule && !input.surface)) {
+      throw OptionError(name +
+                        ": --site-pocket needs a structure (a PDB or mmCIF file) to find "
+                        "pockets in");
+    }
+  }
   if (!input.path.empty() && !harmonic::io::is_hsi_file(input.path))
     mesh::check_surface_input(input.path, options.input);
 }
@@ -390,7 +411,7 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
   if (options.unit > 0.0) {  // before any work: what the names tell
     for (const MatchInput* side : {&reference, &probe}) {
       const bool molecule = side->molecule.has_value() || !side->site_ligand.empty() ||
-                            is_stored_description(*side) ||
+                            side->site_pocket > 0 || is_stored_description(*side) ||
                             (!side->path.empty() && io::is_molecule_file(side->path)) ||
                             (!side->path.empty() && !options.input.molecule_file.empty());
       if (molecule) {

@@ -12,6 +12,7 @@
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
+#include "surfcomp/matching/pockets.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
 #include "surfcomp/mesh/topology.hpp"
@@ -617,13 +618,36 @@ py::dict screen(const py::list& queries, const std::string& library_path, const 
   return out;
 }
 
+py::list pockets(const std::string& structure, const py::dict& keywords) {
+  const auto settings = settings_from(matching::pocket_search_option_table(), keywords);
+  matching::StructurePockets found;
+  {
+    py::gil_scoped_release release;
+    found = matching::find_pockets(structure, settings);
+  }
+  py::list out;
+  for (const matching::Pocket& pocket : found.pockets) {
+    py::list spheres;
+    for (const matching::SiteSphere& s : pocket.spheres) {
+      spheres.append(py::make_tuple(s.center.x(), s.center.y(), s.center.z(), s.radius));
+    }
+    out.append(py::dict(
+        py::arg("rank") = pocket.rank, py::arg("score") = pocket.score,
+        py::arg("volume") = pocket.volume, py::arg("buriedness") = pocket.buriedness,
+        py::arg("center") = py::make_tuple(pocket.center.x(), pocket.center.y(), pocket.center.z()),
+        py::arg("lining_residues") = pocket.lining_residues, py::arg("spheres") = spheres));
+  }
+  return out;
+}
+
 py::list option_table(const std::string& function) {
   if (function == "build_surface") return table_list(mesh::surface_input_option_table());
   if (function == "describe") return table_list(matching::describe_option_table());
   if (function == "match") return table_list(matching::pair_match_option_table());
   if (function == "screen") return table_list(screening::screen_option_table());
+  if (function == "pockets") return table_list(matching::pocket_search_option_table());
   throw py::value_error("no function '" + function +
-                        "' with options (build_surface, describe, match, screen)");
+                        "' with options (build_surface, describe, match, screen, pockets)");
 }
 
 /// The module's exception classes: Error, the base of all; InputError (also a ValueError) and
@@ -787,6 +811,7 @@ PYBIND11_MODULE(_surfcomp, m) {
         py::arg("report") = std::string());
   m.def("screen", &sp::screen, py::arg("query"), py::arg("library"), py::arg("options"),
         py::arg("molecules"));
+  m.def("pockets", &sp::pockets, py::arg("structure"), py::arg("options"));
   m.def("option_table", &sp::option_table, py::arg("function"));
   m.def(
       "run_command_line",

@@ -45,8 +45,8 @@ from ._surfcomp import Descriptors, Error, FileError, InputError, OptionError, S
 __all__ = [
     "Alignment", "CriticalPoints", "DescriptionParameters", "Descriptors", "Error", "FileError",
     "FusedHit", "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
-    "OverlayScore", "Patch", "Screens", "Surface", "SurfaceMeasures", "build_surface",
-    "describe", "library_info", "load_descriptors", "match", "option_table", "screen",
+    "OverlayScore", "Patch", "Pocket", "Screens", "Surface", "SurfaceMeasures", "build_surface",
+    "describe", "library_info", "load_descriptors", "match", "option_table", "pockets", "screen",
     "screen_queries",
 ]
 __version__ = "0.1.0"
@@ -414,6 +414,27 @@ _documented(LibraryEntry, entry="1-based entry number", name="the molecule's nam
             site_spheres="spheres of a pocket entry's site (0 for a molecule)")
 
 
+class Pocket(NamedTuple):
+    """A pocket of a protein structure, found without a ligand (:func:`pockets`)."""
+
+    rank: int
+    score: float
+    volume: float
+    buriedness: float
+    center: Tuple[float, float, float]
+    lining_residues: List[str]
+    spheres: List[Tuple[float, float, float, float]]
+
+
+_documented(Pocket, rank="1-based, by decreasing score",
+            score="the sum of its alpha spheres' buriedness",
+            volume="A^3, of its alpha spheres shrunk by 1.6 A",
+            buriedness="its alpha spheres' mean buriedness, 0 to 1",
+            center="the mean of its alpha sphere centres, A",
+            lining_residues='the residues its alpha spheres touch, "HIS142:A"',
+            spheres="its alpha spheres (x, y, z, r), A: a binding site's spheres")
+
+
 class LibraryInfo(NamedTuple):
     """A screening library's index, as ``surfcomp library info`` reports it."""
 
@@ -535,8 +556,16 @@ def library_info(path) -> LibraryInfo:
     return LibraryInfo(**dict(raw, entries=[LibraryEntry(**e) for e in raw["entries"]]))
 
 
+@_keyword_options("pockets")
+def pockets(structure, **options) -> List[Pocket]:
+    """The pockets of a protein structure (a PDB or mmCIF path), found from its ATOM records
+    alone as ``surfcomp pockets`` finds them, best first. A pocket's rank is what
+    ``match(..., site_pocket=N)`` and ``screen(..., site_pocket=N)`` take."""
+    return [Pocket(**p) for p in _surfcomp.pockets(os.fspath(structure), options)]
+
+
 def option_table(function: str) -> List[Dict[str, Any]]:
-    """The options of ``build_surface``, ``describe``, ``match`` or ``screen`` as the library
+    """The options of ``build_surface``, ``describe``, ``match``, ``screen`` or ``pockets`` as the library
     defines them, in order: ``name`` (the keyword), ``option`` (the command line's), ``kind``,
     ``default``, ``help`` (with unit and range), ``unit``, ``range`` and ``choices``."""
     return _surfcomp.option_table(function)

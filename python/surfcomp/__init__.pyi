@@ -181,6 +181,15 @@ class LibraryEntry(NamedTuple):
     heavy_atoms: int
     site_spheres: int
 
+class Pocket(NamedTuple):
+    rank: int
+    score: float
+    volume: float
+    buriedness: float
+    center: Tuple[float, float, float]
+    lining_residues: List[str]
+    spheres: List[Tuple[float, float, float, float]]
+
 class LibraryInfo(NamedTuple):
     version: int
     settings: str
@@ -200,6 +209,7 @@ def build_surface(
     eps_distance_dependent: bool = False,
     lp_kernel: str = 'fauchere',
     ligand: Optional[str] = None,
+    min_plddt: float = 0.0,
     record: Optional[int] = None,
     molecule: Optional[PathLike] = None,
     repair: bool = False,
@@ -219,6 +229,7 @@ def describe(
     eps_distance_dependent: bool = False,
     lp_kernel: str = 'fauchere',
     ligand: Optional[str] = None,
+    min_plddt: float = 0.0,
     record: Optional[int] = None,
     molecule: Optional[PathLike] = None,
     repair: bool = False,
@@ -250,6 +261,7 @@ def match(
     eps_distance_dependent: bool = False,
     lp_kernel: str = 'fauchere',
     ligand: Optional[str] = None,
+    min_plddt: float = 0.0,
     record: Optional[int] = None,
     molecule: Optional[PathLike] = None,
     repair: bool = False,
@@ -287,8 +299,15 @@ def match(
     site_sphere: Optional[SiteSpheres] = None,
     ref_site_sphere: Optional[SiteSpheres] = None,
     probe_site_sphere: Optional[SiteSpheres] = None,
+    site_pocket: Optional[int] = None,
+    ref_site_pocket: Optional[int] = None,
+    probe_site_pocket: Optional[int] = None,
     site_radius: float = 4.0,
     site_margin: float = 16.0,
+    pocket_min_radius: float = 3.2,
+    pocket_max_radius: float = 6.4,
+    pocket_buriedness: float = 0.6,
+    pocket_min_spheres: int = 12,
     threads: int = 0,
 ) -> MatchResult: ...
 
@@ -305,8 +324,13 @@ def screen(
     record: Optional[int] = None,
     site_ligand: Optional[str] = None,
     site_sphere: Optional[SiteSpheres] = None,
+    site_pocket: Optional[int] = None,
     site_radius: float = 4.0,
     site_margin: float = 16.0,
+    pocket_min_radius: float = 3.2,
+    pocket_max_radius: float = 6.4,
+    pocket_buriedness: float = 0.6,
+    pocket_min_spheres: int = 12,
     threads: int = 0,
 ) -> List[Hit]: ...
 
@@ -323,10 +347,26 @@ def screen_queries(
     record: Optional[int] = None,
     site_ligand: Optional[str] = None,
     site_sphere: Optional[SiteSpheres] = None,
+    site_pocket: Optional[int] = None,
     site_radius: float = 4.0,
     site_margin: float = 16.0,
+    pocket_min_radius: float = 3.2,
+    pocket_max_radius: float = 6.4,
+    pocket_buriedness: float = 0.6,
+    pocket_min_spheres: int = 12,
     threads: int = 0,
 ) -> Screens: ...
+
+def pockets(
+    structure: PathLike,
+    *,
+    min_plddt: float = 0.0,
+    max_atoms: int = 2000000,
+    pocket_min_radius: float = 3.2,
+    pocket_max_radius: float = 6.4,
+    pocket_buriedness: float = 0.6,
+    pocket_min_spheres: int = 12,
+) -> List[Pocket]: ...
 
 def library_info(path: PathLike) -> LibraryInfo: ...
 def option_table(function: str) -> List[Dict[str, Any]]: ...

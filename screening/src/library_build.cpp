@@ -3,7 +3,9 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/binary_stream.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
@@ -143,9 +145,10 @@ std::vector<io::MoleculeRecord> read_library_inputs(
     } else if (is_library_input(input)) {
       append(input);
     } else {
-      throw InputError(input.string() +
-                       ": not a molecule file or list (.sdf .mol .mol2 .pdb .ent .pqr .smi .dat "
-                       ".dat.gz), a .hsi file nor a directory");
+      throw InputError(
+          input.string() +
+          ": not a molecule file or list (.sdf .mol .mol2 .pdb .ent .cif .cif.gz .pqr .smi .dat "
+          ".dat.gz), a .hsi file nor a directory");
     }
   }
   if (records.empty()) {
@@ -701,8 +704,78 @@ std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {
   return sites;
 }
 
+std::vector<std::filesystem::path> structure_files(
+    const std::vector<std::filesystem::path>& inputs) {
+  const auto is_structure = [](const std::filesystem::path& path) {
+    const std::string extension = io::lowercase_extension(path);
+    return extension == ".pdb" || extension == ".ent" || io::is_mmcif_file(path);
+  };
+  std::vector<std::filesystem::path> files;
+  for (const std::filesystem::path& input : inputs) {
+    if (std::filesystem::is_directory(input)) {
+      std::vector<std::filesystem::path> inside;
+      for (const auto& item : std::filesystem::directory_iterator(input)) {
+        if (item.is_regular_file() && is_structure(item.path())) inside.push_back(item.path());
+      }
+      std::sort(inside.begin(), inside.end());
+      files.insert(files.end(), inside.begin(), inside.end());
+    } else if (is_structure(input)) {
+      files.push_back(input);
+    } else {
+      throw InputError(input.string() +
+                       ": not a structure file (.pdb .ent .cif .mmcif .cif.gz) nor a directory");
+    }
+  }
+  if (files.empty()) {
+    std::string names;
+    for (const std::filesystem::path& input : inputs)
+      names += (names.empty() ? "" : ", ") + input.string();
+    throw FileError(names,
+                    inputs.size() == 1 ? "holds no structure file" : "hold no structure file");
+  }
+  return files;
+}
+
+std::vector<SiteRequest> pocket_requests(const std::vector<std::filesystem::path>& structures,
+                                         const LibraryBuildOptions& options,
+                                         std::vector<SkippedRecord>& skipped) {
+  struct Found {
+    std::vector<matching::Pocket> pockets;
+    std::string error;
+  };
+  std::vector<Found> found(structures.size());
+  tbb::parallel_for(std::size_t{0}, structures.size(), [&](std::size_t k) {
+    try {
+      found[k].pockets =
+          matching::detect_pockets(io::read_molecule(structures[k], options.read), options.pockets);
+      if (found[k].pockets.empty()) found[k].error = "no pocket found";
+    } catch (const Error& e) {
+      found[k].error = e.what();
+    }
+  });
+  std::vector<SiteRequest> requests;
+  for (std::size_t k = 0; k < structures.size(); ++k) {
+    const std::string stem = io::structure_stem(structures[k]);
+    if (!found[k].error.empty()) {
+      skipped.push_back({structures[k].string(), 0, stem, found[k].error});
+      continue;
+    }
+    for (matching::Pocket& pocket : found[k].pockets) {
+      SiteRequest request;
+      request.line = static_cast<std::size_t>(pocket.rank);
+      request.structure = structures[k];
+      request.spheres = std::move(pocket.spheres);
+      request.name = stem + ":pocket" + std::to_string(pocket.rank);
+      request.pocket = true;
+      requests.push_back(std::move(request));
+    }
+  }
+  return requests;
+}
+
 LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOptions& options) {
-  const Molecule structure = io::read_molecule(request.structure, options.read);
+  Molecule structure = io::read_molecule(request.structure, options.read);
+  if (request.pocket) structure = matching::pocket_structure(structure);
   matching::BindingSite site =
       request.ligand ? matching::binding_site(structure, *request.ligand, options.site)
                      : matching::binding_site(structure, request.spheres, options.site);

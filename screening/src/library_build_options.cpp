@@ -43,8 +43,12 @@ const options::Table<LibraryBuildOptions>& library_build_option_table() {
              "and options, keeping its finished shards"},
             [](auto& l) -> auto& { return l.resume; }),
     };
+    t.push_back(options::field<L>(
+        io::min_plddt_spec(), [](auto& l) -> auto& { return l.read.min_plddt; }));
     options::append(
         t, matching::binding_site_option_table(), [](auto& l) -> auto& { return l.site; });
+    options::append(
+        t, matching::pocket_option_table(), [](auto& l) -> auto& { return l.pockets; });
     return t;
   }();
   return table;

@@ -37,12 +37,16 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
             matching::site_ligand_spec(), [](auto& q) -> auto& { return q.site_ligand; }),
         matching::sphere_option<Q>(
             matching::site_sphere_spec(), [](auto& q) -> auto& { return q.site_spheres; }),
+        options::field<Q>(
+            matching::site_pocket_spec(), [](auto& q) -> auto& { return q.site_pocket; }),
     };
     options::append(
         t, options::pick(mesh::surface_input_option_table(), {"record"}),
         [](auto& q) -> auto& { return q.query.input; });
     options::append(
         t, matching::binding_site_option_table(), [](auto& q) -> auto& { return q.screen.site; });
+    options::append(
+        t, matching::pocket_option_table(), [](auto& q) -> auto& { return q.query.pockets; });
     t.push_back(options::threads_option<Q>([](auto& q) -> auto& { return q.query.threads; }));
     return t;
   }();
@@ -50,12 +54,13 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
 }
 
 bool is_site_query(const QueryScreenOptions& options) {
-  return !options.site_ligand.empty() || !options.site_spheres.empty();
+  return !options.site_ligand.empty() || !options.site_spheres.empty() || options.site_pocket > 0;
 }
 
 matching::MatchInput screen_query_input(matching::MatchInput query,
                                         const QueryScreenOptions& options) {
   query.site_ligand = options.site_ligand;
+  query.site_pocket = options.site_pocket;
   query.site_spheres.insert(query.site_spheres.end(), options.site_spheres.begin(),
                             options.site_spheres.end());
   return query;

@@ -236,6 +236,7 @@ def _help_defaults(program, subcommand):
     ("describe", "hsi-build", {"output", "help"}),
     ("match", "match", {"output", "aligned_out", "report", "top", "trace", "help"}),
     ("screen", "screen", {"output", "aligned_out", "aligned_top", "help"}),
+    ("pockets", "pockets", {"output", "pdb_out", "help"}),
 ])
 def test_signatures_and_help_come_from_one_option_table(program, function, subcommand, own):
     signature = inspect.signature(getattr(surfcomp, function))
@@ -257,7 +258,7 @@ def test_signatures_and_help_come_from_one_option_table(program, function, subco
 def test_the_stubs_match_the_module():
     tree = ast.parse((SOURCE_DIR / "python" / "surfcomp" / "__init__.pyi").read_text())
     functions = {f.name: f for f in tree.body if isinstance(f, ast.FunctionDef)}
-    for name in ("build_surface", "describe", "match", "screen"):
+    for name in ("build_surface", "describe", "match", "screen", "pockets"):
         arguments = functions[name].args
         stub = {a.arg: ast.literal_eval(d) for a, d in zip(arguments.kwonlyargs,
                                                             arguments.kw_defaults)}
@@ -271,7 +272,7 @@ def test_the_stubs_match_the_module():
 def test_every_field_of_every_result_class_is_documented():
     for cls in (surfcomp.Alignment, surfcomp.Hit, surfcomp.OverlayScore, surfcomp.CriticalPoints,
                 surfcomp.Patch, surfcomp.SurfaceMeasures, surfcomp.DescriptionParameters,
-                surfcomp.LibraryEntry, surfcomp.LibraryInfo):
+                surfcomp.LibraryEntry, surfcomp.LibraryInfo, surfcomp.Pocket):
         for field in cls._fields:
             doc = getattr(cls, field).__doc__
             assert doc and not doc.startswith("Alias for field"), (cls.__name__, field)
@@ -382,3 +383,20 @@ def test_the_program_recovers_a_partial_copy_of_a_mesh(program, elephant, tmp_pa
     # REF is the partial copy: the transform moves the original into the copy's frame.
     transform = np.linalg.inv(np.array(document["alignments"][0]["transform"]))
     assert mesh_cases.motion_error(case, transform) < 0.02
+
+
+def test_pockets_are_the_programs_and_a_pocket_is_a_site(program, shared, tmp_path):
+    pdb = shared / "thermolysin" / "1THL.pdb"
+    if not pdb.exists():
+        pytest.skip(f"{pdb} is absent")
+    found = surfcomp.pockets(pdb)
+    cli = run([program, "pockets", pdb, "-o", tmp_path / "p.json"])
+    assert cli.returncode == 0, cli.stderr
+    import json
+    written = json.loads((tmp_path / "p.json").read_text())["pockets"]
+    assert [p.rank for p in found] == [p["rank"] for p in written]
+    assert [list(p.center) for p in found] == [p["center"] for p in written]
+    assert [p.lining_residues for p in found] == [p["lining_residues"] for p in written]
+    with pytest.raises(surfcomp.InputError,
+                       match=f"has {len(found)} pockets; pocket {len(found) + 1} was asked for"):
+        surfcomp.match(pdb, pdb, site_pocket=len(found) + 1)

@@ -8,6 +8,7 @@
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
+#include "surfcomp/matching/pockets.hpp"
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/load_surface.hpp"
 #include "surfcomp/mesh/surface.hpp"
@@ -25,7 +26,8 @@ namespace surfcomp::matching {
 /// `descriptors`, `surface`, `molecule` is the input; `molecule` may also come with `surface`
 /// as the molecule the surface was built from (its heavy atoms are kept with the description).
 struct MatchInput {
-  /// A molecule (.sdf .mol .mol2 .pdb .ent .pqr), a mesh (.ply .vert .off .obj) or a .hsi file.
+  /// A molecule (.sdf .mol .mol2 .pdb .ent .cif .cif.gz .pqr), a mesh (.ply .vert .off .obj) or a
+  /// .hsi file.
   std::filesystem::path path;
   std::optional<harmonic::SurfaceDescriptors> descriptors;  ///< a description in memory
   std::optional<mesh::Surface> surface;  ///< a surface in memory, with its esp and lp
@@ -35,6 +37,10 @@ struct MatchInput {
   std::string site_ligand;
   /// Spheres of a binding site (with site_ligand: more spheres), any input.
   std::vector<SiteSphere> site_spheres;
+  /// Default 0: none. The binding site is pocket N (1-based) of detect_pockets
+  /// (MatchInputOptions::pockets): its alpha spheres on the structure's ATOM records
+  /// (pocket_site). A molecule input only; not with site_ligand or site_spheres.
+  int site_pocket = 0;
 
   /// The side's name in messages: the path, the molecule's or surface's source, or the
   /// description's surface source.
@@ -63,6 +69,7 @@ struct MatchInputOptions {
   /// (all but max_image_bytes), so that the two sides' images compare.
   harmonic::DescriptorOptions descriptors;
   BindingSiteOptions site;  ///< spheres of 4 A around a site ligand, surface margin 16 A
+  PocketOptions pockets;    ///< how a site_pocket's pockets are detected
   /// The match; its mode is set to MatchMode::binding_sites when either side has a site.
   MatchOptions match;
   /// Default auto. How match_inputs measures lengths when `unit` is 0 (LengthScale).
@@ -97,6 +104,9 @@ struct PairSites {
   std::vector<SiteSphere> spheres;            ///< on both sides
   std::vector<SiteSphere> reference_spheres;  ///< on REF only, after `spheres`
   std::vector<SiteSphere> probe_spheres;      ///< on PROBE only, after `spheres`
+  int pocket = 0;                             ///< both sides' site pocket (0: none)
+  int reference_pocket = 0;                   ///< REF's, instead of `pocket`
+  int probe_pocket = 0;                       ///< PROBE's, instead of `pocket`
 };
 
 /// A pair match as a user asks for it: how the sides are read, described and matched, and

@@ -12,6 +12,7 @@
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/overlay.hpp"
+#include "surfcomp/matching/pockets.hpp"
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/screening/library.hpp"
@@ -57,6 +58,8 @@ struct LibraryBuildOptions {
   /// Sites: the pocket lining sampled is the vertices within this distance of the site's
   /// critical points (default as `surfcomp match --site-overlay-radius`). Finite, > 0.
   double lining_radius = matching::SiteMatchOptions{}.overlay_radius;
+  /// Pockets (build_pocket_requests): how each structure's pockets are detected.
+  matching::PocketOptions pockets;
   /// Default 64. Most records in flight (being built or waiting for their turn to be written):
   /// bounds the memory a build holds. >= 1.
   std::size_t batch = 64;
@@ -133,8 +136,27 @@ struct SiteRequest {
   /// The site ligand (residue name, chain if given), or none when the site is `spheres`.
   std::optional<LigandSelector> ligand;
   std::vector<matching::SiteSphere> spheres;
-  std::string name;  ///< "<structure's stem>:<ligand>[:<chain>]" or "<stem>:spheres<line>"
+  /// "<structure's stem>:<ligand>[:<chain>]", "<stem>:spheres<line>" or, for a pocket,
+  /// "<stem>:pocket<rank>"
+  std::string name;
+  /// The spheres are a detected pocket's (pocket_requests): the site's structure is the
+  /// structure's ATOM records (matching::pocket_structure), as the pocket was found on them.
+  bool pocket = false;
 };
+
+/// The structure files of `inputs` (PDB .pdb .ent, mmCIF .cif .mmcif .cif.gz); a directory
+/// stands for those directly inside it, in name order. Throws InputError for a path that is
+/// neither, FileError naming the inputs when they hold none.
+std::vector<std::filesystem::path> structure_files(
+    const std::vector<std::filesystem::path>& inputs);
+
+/// The pockets of every structure (options.read; matching::detect_pockets with
+/// options.pockets; in parallel, the order that of `structures` then the pockets' ranks) as
+/// sites: one SiteRequest per pocket, named "<stem>:pocket<rank>", `line` its rank. A structure
+/// that cannot be read, or holds no pocket, is added to `skipped` (record 0) and left out.
+std::vector<SiteRequest> pocket_requests(const std::vector<std::filesystem::path>& structures,
+                                         const LibraryBuildOptions& options,
+                                         std::vector<SkippedRecord>& skipped);
 
 /// The sites of a site list: one per line, `STRUCTURE LIGAND [CHAIN]` or
 /// `STRUCTURE x,y,z,r [x,y,z,r ...]` (whitespace-separated; blank lines and lines starting with

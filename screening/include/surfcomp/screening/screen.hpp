@@ -84,13 +84,15 @@ struct QueryScreenOptions {
   matching::MatchInputOptions query;
   std::string site_ligand;                         ///< a site query: its ligand residue
   std::vector<matching::SiteSphere> site_spheres;  ///< a site query: its spheres (A)
+  int site_pocket = 0;  ///< a site query: its structure's pocket N (0: none)
 };
 
 /// The user's options of a screen, each defined once: --top --refine --refine-starts
-/// --candidates --record --site-ligand --site-sphere --site-radius --site-margin --threads.
+/// --candidates --record --site-ligand --site-sphere --site-pocket --site-radius --site-margin,
+/// the pocket detection's options (matching::pocket_option_table) and --threads.
 const options::Table<QueryScreenOptions>& screen_option_table();
 
-/// Whether `options` ask for a binding-site query (a site ligand or spheres).
+/// Whether `options` ask for a binding-site query (a site ligand, spheres or a pocket).
 bool is_site_query(const QueryScreenOptions& options);
 
 /// `query` with the site `options` ask for, and the options it is read and described with

@@ -1,0 +1,147 @@
+// `surfcomp pockets`, `library build --pockets` and `--site-pocket` as a user runs them: the
+// JSON and the PDB of 1THL's pockets agree; a structure without a pocket gives an empty list and
+// exit 0, one without protein atoms or a --min-plddt that removes everything one line naming the
+// file and no output; a pocket library of three structures screens the query's own pocket
+// first; a pocket match of a structure onto its mmCIF copy is the identity.
+#include "pocket_cut.hpp"
+#include "program_run.hpp"
+#include "test_data.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace surfcomp {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::file_bytes;
+using test::ProgramRun;
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+class CliPockets : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("surfcomp_cli_pockets_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  ProgramRun run(const std::string& arguments) const {
+    return test::run_program(arguments, {dir_, ""});
+  }
+  fs::path dir_;
+};
+
+TEST_F(CliPockets, JsonAndPdbDescribeTheSamePockets) {
+  SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/1THL.pdb");
+  const ProgramRun r = run("pockets " + pdb.string() + " -o p.json --pdb-out p.pdb");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("pockets"), std::string::npos) << r.out;
+  const nlohmann::json document = nlohmann::json::parse(file_bytes(dir_ / "p.json"));
+  const auto& pockets = document.at("pockets");
+  ASSERT_GE(pockets.size(), 3u);
+  std::size_t spheres = 0;
+  for (std::size_t k = 0; k < pockets.size(); ++k) {
+    EXPECT_EQ(pockets[k].at("rank").get<int>(), static_cast<int>(k + 1));
+    if (k > 0)
+      EXPECT_LE(pockets[k].at("score").get<double>(), pockets[k - 1].at("score").get<double>());
+    EXPECT_GT(pockets[k].at("volume").get<double>(), 0.0);
+    EXPECT_FALSE(pockets[k].at("lining_residues").empty());
+    spheres += pockets[k].at("spheres").size();
+  }
+  std::size_t records = 0;
+  for (const std::string& line : lines_of(file_bytes(dir_ / "p.pdb")))
+    records += line.rfind("HETATM", 0) == 0 ? 1 : 0;
+  EXPECT_EQ(records, spheres);
+  std::size_t atom_records = 0;
+  for (const std::string& line : lines_of(file_bytes(pdb)))
+    atom_records += line.rfind("ATOM  ", 0) == 0 ? 1 : 0;
+  EXPECT_EQ(document.at("protein_atoms").get<std::size_t>(), atom_records);
+}
+
+TEST_F(CliPockets, EmptyAndRefusedStructures) {
+  SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/1THL.pdb");
+  SURFCOMP_SHARED_OR_SKIP(ligand, "thermolysin/ligand1THL.pdb");
+  // Three residues of 1THL: no pocket, an empty list and exit 0.
+  std::ofstream(dir_ / "few.pdb") << [&] {
+    std::string kept;
+    for (const std::string& line : lines_of(file_bytes(pdb))) {
+      if (line.rfind("ATOM  ", 0) == 0 && std::stoi(line.substr(22, 4)) <= 3) kept += line + "\n";
+    }
+    return kept;
+  }();
+  const ProgramRun none = run("pockets few.pdb -o none.json");
+  ASSERT_EQ(none.status, 0) << none.err;
+  EXPECT_NE(none.out.find("no pocket found"), std::string::npos) << none.out;
+  EXPECT_TRUE(nlohmann::json::parse(file_bytes(dir_ / "none.json")).at("pockets").empty());
+
+  for (const auto& [arguments, words] : std::vector<std::pair<std::string, std::string>>{
+           {"pockets " + ligand.string() + " -o x.json", "no protein atom"},
+           {"pockets " + pdb.string() + " -o x.json --min-plddt 99", "no residue has a pLDDT"},
+           {"pockets few.sdf -o x.json", "not a structure file"},
+           {"pockets " + pdb.string() + " -o x.json --pocket-min-radius 7", "--pocket-max-radius"},
+           {"pockets " + pdb.string() + " -o x.json --max-atoms 100", "--max-atoms"}}) {
+    const ProgramRun r = run(arguments);
+    EXPECT_NE(r.status, 0) << arguments;
+    EXPECT_EQ(lines_of(r.err).size(), 1u) << arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << arguments << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.json")) << arguments;
+  }
+}
+
+TEST_F(CliPockets, APocketLibraryOfThreeStructuresScreensItsOwnPocketFirst) {
+  SURFCOMP_SHARED_OR_SKIP(pdb_1thl, "thermolysin/1THL.pdb");
+  SURFCOMP_SHARED_OR_SKIP(pdb_4tmn, "thermolysin/4TMN.pdb");
+  SURFCOMP_SHARED_OR_SKIP(pdb_1a0i, "kahraman-dev/pdb/1A0I.pdb");
+  // Each structure cut to its ligand's neighbourhood, so that its pockets surface in seconds.
+  test::write_pocket(pdb_1thl, "0DB", 12.0, dir_ / "therm_a.pdb");
+  test::write_pocket(pdb_4tmn, "0PK", 12.0, dir_ / "therm_b.pdb");
+  test::write_pocket(pdb_1a0i, "ATP", 12.0, dir_ / "ligase.pdb");
+  const ProgramRun built =
+      run("library build --pockets therm_a.pdb therm_b.pdb ligase.pdb -o pockets.sclib "
+          "--pocket-min-spheres 30 --threads 2");
+  ASSERT_EQ(built.status, 0) << built.err;
+  const ProgramRun screened =
+      run("screen therm_b.pdb pockets.sclib --site-pocket 1 --pocket-min-spheres 30 -o hits.csv");
+  ASSERT_EQ(screened.status, 0) << screened.err;
+  const std::vector<std::string> rows = lines_of(file_bytes(dir_ / "hits.csv"));
+  ASSERT_GE(rows.size(), 4u);  // a header and a pocket of each structure at least
+  std::vector<std::string> first;
+  std::istringstream row(rows[1]);
+  for (std::string field; std::getline(row, field, ',');) first.push_back(field);
+  EXPECT_EQ(first[2], "therm_b:pocket1");
+  EXPECT_NEAR(std::stod(first[6]), 1.0, 1e-3);  // the pocket overlays itself
+}
+
+TEST_F(CliPockets, APocketMatchOntoTheMmcifCopyIsTheIdentity) {
+  SURFCOMP_SHARED_OR_SKIP(pdb_4tmn, "thermolysin/4TMN.pdb");
+  test::write_pocket(pdb_4tmn, "0PK", 12.0, dir_ / "site.pdb");
+  // The mmCIF copy, written by gemmi's own converter from the PDB file.
+  ASSERT_EQ(std::system(("gemmi convert " + (dir_ / "site.pdb").string() + " " +
+                         (dir_ / "site.cif").string())
+                            .c_str()),
+            0);
+  const ProgramRun r = run("match site.pdb site.cif --site-pocket 1 -o m.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json result = nlohmann::json::parse(file_bytes(dir_ / "m.json"));
+  const auto& top = result.at("alignments").at(0);
+  EXPECT_NEAR(top.at("rmsd").get<double>(), 0.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace surfcomp
