@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # Sets everything up on a fresh Debian bookworm machine and runs the test suite, in stages:
 #   1. everything built with AddressSanitizer + UndefinedBehaviorSanitizer (`asan` preset:
-#      optimised, warnings as errors; the benchmarks are left to the release build) and the
-#      whole suite run on it;
+#      optimised, warnings as errors, benchmarks compiled) and the whole suite run on it;
 #   2. the suites labelled `threaded` under ThreadSanitizer, against a oneTBB built with it
 #      (scripts/tsan.sh);
 #   3. clang-format and clang-tidy over the sources (scripts/lint.sh);
