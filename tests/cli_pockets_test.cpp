@@ -58,8 +58,9 @@ TEST_F(CliPockets, JsonAndPdbDescribeTheSamePockets) {
   std::size_t spheres = 0;
   for (std::size_t k = 0; k < pockets.size(); ++k) {
     EXPECT_EQ(pockets[k].at("rank").get<int>(), static_cast<int>(k + 1));
-    if (k > 0)
+    if (k > 0) {
       EXPECT_LE(pockets[k].at("score").get<double>(), pockets[k - 1].at("score").get<double>());
+    }
     EXPECT_GT(pockets[k].at("volume").get<double>(), 0.0);
     EXPECT_FALSE(pockets[k].at("lining_residues").empty());
     spheres += pockets[k].at("spheres").size();
