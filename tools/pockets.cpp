@@ -52,19 +52,19 @@ int pockets(const std::vector<std::string>& args) {
                        {{"--output", output, {}, ""}, {"--pdb-out", pdb_out, {".pdb"}, ""}}});
 
   Stopwatch clock;
-  const matching::StructurePockets found = matching::find_pockets(path, options);
+  const report::PocketSet set{path.string(), options.pockets,
+                              matching::find_pockets(path, options)};
+  const matching::StructurePockets& found = set.found;
   if (found.models > 1) {
     console::note(path.string() + ": holds " + std::to_string(found.models) +
                   " models; the first is read");
   }
-  const report::PocketSet set{path.string(), found.models, found.protein_atoms, options.pockets,
-                              found.pockets};
   const double elapsed = clock.elapsed_ms();
 
   // The JSON goes last; if it cannot be written, the PDB file written before it is removed.
   if (!pdb_out.empty()) {
     surfcomp::io::write_file_atomically(
-        pdb_out, [&](std::ostream& out) { report::write_pockets_pdb(set.pockets, out); });
+        pdb_out, [&](std::ostream& out) { report::write_pockets_pdb(found.pockets, out); });
   }
   try {
     surfcomp::io::write_file_atomically(
@@ -73,15 +73,15 @@ int pockets(const std::vector<std::string>& args) {
     if (!pdb_out.empty()) std::filesystem::remove(pdb_out);
     throw;
   }
-  if (set.pockets.empty()) {
+  if (found.pockets.empty()) {
     console::summary("%s: no pocket found (%zu protein atoms), %.0f ms -> %s\n",
-                     path.string().c_str(), set.protein_atoms, elapsed, output.c_str());
+                     path.string().c_str(), found.protein_atoms, elapsed, output.c_str());
   } else {
-    const matching::Pocket& top = set.pockets.front();
+    const matching::Pocket& top = found.pockets.front();
     console::summary(
         "%s: %zu pockets (%zu protein atoms); pocket 1: score %.1f, %.0f A^3, %zu "
         "residues; %.0f ms -> %s\n",
-        path.string().c_str(), set.pockets.size(), set.protein_atoms, top.score, top.volume,
+        path.string().c_str(), found.pockets.size(), found.protein_atoms, top.score, top.volume,
         top.lining_residues.size(), elapsed, output.c_str());
   }
   return 0;

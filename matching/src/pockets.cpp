@@ -1,7 +1,7 @@
 #include "surfcomp/matching/pockets.hpp"
 
 #include "surfcomp/core/error.hpp"
-#include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/mesh/spatial_grid.hpp"
 
@@ -192,6 +192,17 @@ std::string residue_label(const Atom& atom) {
 
 bool is_hydrogen(const Atom& atom) { return atom.element == "H" || atom.element == "D"; }
 
+/// An atom pockets are found on: an ATOM record other than water.
+bool is_pocket_atom(const Atom& atom) {
+  return !atom.hetero && !is_water_residue(atom.residue_name);
+}
+
+[[noreturn]] void refuse_without_protein(const Molecule& structure) {
+  throw InputError(structure.source +
+                   ": no protein atom (ATOM record) to find pockets on; the structure holds "
+                   "only HETATM records or water");
+}
+
 }  // namespace
 
 const options::Table<PocketOptions>& pocket_option_table() {
@@ -242,27 +253,24 @@ Molecule pocket_structure(const Molecule& structure) {
   protein.charge_source = structure.charge_source;
   protein.lipophilicity_assigned = structure.lipophilicity_assigned;
   for (const Atom& atom : structure.atoms) {
-    if (!atom.hetero && !is_water_residue(atom.residue_name)) protein.atoms.push_back(atom);
+    if (is_pocket_atom(atom)) protein.atoms.push_back(atom);
   }
-  if (protein.atoms.empty()) {
-    throw InputError(structure.source +
-                     ": no protein atom (ATOM record) to find pockets on; the structure holds "
-                     "only HETATM records or water");
-  }
+  if (protein.atoms.empty()) refuse_without_protein(structure);
   return protein;
 }
 
 std::vector<Pocket> detect_pockets(const Molecule& structure, const PocketOptions& options) {
   check_options(options);
-  const Molecule protein = pocket_structure(structure);
   // Indices into `structure` of the protein's heavy atoms, in order.
   std::vector<std::size_t> atom_of;
+  bool protein = false;
   for (std::size_t i = 0; i < structure.atoms.size(); ++i) {
     const Atom& atom = structure.atoms[i];
-    if (!atom.hetero && !is_water_residue(atom.residue_name) && !is_hydrogen(atom)) {
-      atom_of.push_back(i);
-    }
+    if (!is_pocket_atom(atom)) continue;
+    protein = true;
+    if (!is_hydrogen(atom)) atom_of.push_back(i);
   }
+  if (!protein) refuse_without_protein(structure);
   if (atom_of.size() < 4) return {};
   Eigen::Matrix3Xd positions(3, static_cast<Eigen::Index>(atom_of.size()));
   for (std::size_t i = 0; i < atom_of.size(); ++i) {
@@ -339,14 +347,16 @@ const options::Table<PocketSearchOptions>& pocket_search_option_table() {
 
 StructurePockets find_pockets(const std::filesystem::path& structure,
                               const PocketSearchOptions& options) {
-  const std::string extension = io::lowercase_extension(structure);
-  if (!(extension == ".pdb" || extension == ".ent" || io::is_mmcif_file(structure))) {
+  if (!io::is_structure_file(structure)) {
     throw InputError(structure.string() +
                      ": not a structure file (expected .pdb .ent .cif .mmcif .cif.gz)");
   }
   StructurePockets found;
-  io::read_structure_text(structure, &found.models);
-  const Molecule molecule = io::read_molecule(structure, options.input.read);
+  io::MoleculeRecord record;  // the file read and converted once, its models counted
+  record.source = structure;
+  record.format = io::RecordFormat::structure;
+  record.text = io::read_structure_text(structure, &found.models);
+  const Molecule molecule = io::read_record_molecule(record, options.input.read);
   const auto max_atoms = static_cast<std::size_t>(options.input.surface.ses.max_atoms);
   if (molecule.atoms.size() > max_atoms) {
     throw InputError(structure.string() + ": " + std::to_string(molecule.atoms.size()) +

@@ -10,7 +10,7 @@ namespace surfcomp::report {
 
 std::string pockets_json(const PocketSet& set) {
   nlohmann::json list = nlohmann::json::array();
-  for (const matching::Pocket& pocket : set.pockets) {
+  for (const matching::Pocket& pocket : set.found.pockets) {
     nlohmann::json spheres = nlohmann::json::array();
     for (const matching::SiteSphere& s : pocket.spheres) {
       spheres.push_back({s.center.x(), s.center.y(), s.center.z(), s.radius});
@@ -29,8 +29,8 @@ std::string pockets_json(const PocketSet& set) {
   const matching::PocketOptions& o = set.options;
   const nlohmann::json document = {
       {"input", set.input},
-      {"models", set.models},
-      {"protein_atoms", set.protein_atoms},
+      {"models", set.found.models},
+      {"protein_atoms", set.found.protein_atoms},
       {"parameters",
        {{"method", "alpha spheres (CGAL 3D Delaunay), buriedness, single linkage"},
         {"min_sphere_radius", o.min_sphere_radius},

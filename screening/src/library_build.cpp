@@ -3,7 +3,6 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/binary_stream.hpp"
-#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
@@ -706,20 +705,17 @@ std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {
 
 std::vector<std::filesystem::path> structure_files(
     const std::vector<std::filesystem::path>& inputs) {
-  const auto is_structure = [](const std::filesystem::path& path) {
-    const std::string extension = io::lowercase_extension(path);
-    return extension == ".pdb" || extension == ".ent" || io::is_mmcif_file(path);
-  };
   std::vector<std::filesystem::path> files;
   for (const std::filesystem::path& input : inputs) {
     if (std::filesystem::is_directory(input)) {
       std::vector<std::filesystem::path> inside;
       for (const auto& item : std::filesystem::directory_iterator(input)) {
-        if (item.is_regular_file() && is_structure(item.path())) inside.push_back(item.path());
+        if (item.is_regular_file() && io::is_structure_file(item.path()))
+          inside.push_back(item.path());
       }
       std::sort(inside.begin(), inside.end());
       files.insert(files.end(), inside.begin(), inside.end());
-    } else if (is_structure(input)) {
+    } else if (io::is_structure_file(input)) {
       files.push_back(input);
     } else {
       throw InputError(input.string() +

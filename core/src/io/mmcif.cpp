@@ -61,6 +61,11 @@ bool is_mmcif_file(const std::filesystem::path& path) {
   return has_suffix(name, ".cif") || has_suffix(name, ".mmcif") || has_suffix(name, ".cif.gz");
 }
 
+bool is_structure_file(const std::filesystem::path& path) {
+  const std::string extension = lowercase_extension(path);
+  return extension == ".pdb" || extension == ".ent" || is_mmcif_file(path);
+}
+
 std::string structure_stem(const std::filesystem::path& path) {
   std::filesystem::path name = path.filename();
   if (has_suffix(lowercase_name(path), ".cif.gz")) name = name.stem();

@@ -136,7 +136,7 @@ std::vector<MoleculeRecord> read_molecule_records(const std::filesystem::path& p
   if (is_gzipped_list(path)) return dat_records(path, read_gzip_input_file(path));
   if (extension == ".dat") return dat_records(path, read_input_file(path));
   if (extension == ".smi") return smi_records(path, read_input_file(path));
-  if (extension == ".pdb" || extension == ".ent" || extension == ".pqr" || is_mmcif_file(path)) {
+  if (extension == ".pqr" || is_structure_file(path)) {
     MoleculeRecord record;
     record.source = path;
     record.name = structure_stem(path);

@@ -157,7 +157,7 @@ std::string drop_low_plddt_residues(const std::string& text, double min_plddt,
     if (is_atom_record(line)) {
       const Mean& mean = residues.at(line.substr(17, 10));
       if (mean.sum < min_plddt * static_cast<double>(mean.count)) continue;
-      if (line.size() < 20 || !is_water_residue(line.substr(17, 3))) kept_any = true;
+      if (!is_water_residue(line.substr(17, 3))) kept_any = true;
     }
     out += line;
   }

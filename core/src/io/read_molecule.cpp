@@ -65,13 +65,13 @@ void assign_bondi_radii(Molecule& molecule) {
 bool is_molecule_file(const std::filesystem::path& path) {
   const std::string extension = lowercase_extension(path);
   return extension == ".sdf" || extension == ".mol" || extension == ".mol2" ||
-         extension == ".pdb" || extension == ".ent" || extension == ".pqr" || is_mmcif_file(path);
+         extension == ".pqr" || is_structure_file(path);
 }
 
 Molecule read_molecule(const std::filesystem::path& path, const MoleculeReadOptions& options) {
   const std::string extension = lowercase_extension(path);
   if (extension == ".pqr") return read_pqr(path, options);
-  if (extension == ".pdb" || extension == ".ent" || is_mmcif_file(path)) {
+  if (is_structure_file(path)) {
     return detail::read_with_rdkit(path, read_structure_text(path), detail::RdkitFormat::pdb,
                                    options);
   }

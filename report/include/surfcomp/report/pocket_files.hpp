@@ -14,11 +14,9 @@ namespace surfcomp::report {
 
 /// The pockets of one structure and how they were found.
 struct PocketSet {
-  std::string input;                      ///< the structure's name (a path)
-  std::size_t models = 1;                 ///< models in the file (the first is read)
-  std::size_t protein_atoms = 0;          ///< ATOM records the pockets were found on
-  matching::PocketOptions options;        ///< the detection's parameters
-  std::vector<matching::Pocket> pockets;  ///< by rank
+  std::string input;                 ///< the structure's name (a path)
+  matching::PocketOptions options;   ///< the detection's parameters
+  matching::StructurePockets found;  ///< its models, protein atoms and pockets
 };
 
 /// The JSON document, indented by two spaces, ending with a newline: input, models,

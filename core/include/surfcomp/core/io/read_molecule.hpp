@@ -65,6 +65,10 @@ bool is_molecule_file(const std::filesystem::path& path);
 /// True for a PDBx/mmCIF file: .cif, .mmcif or .cif.gz (case-insensitive).
 bool is_mmcif_file(const std::filesystem::path& path);
 
+/// True for a structure file read_structure_text reads: .pdb, .ent or is_mmcif_file
+/// (case-insensitive).
+bool is_structure_file(const std::filesystem::path& path);
+
 /// The name of a structure file without its extensions: "1thl" for 1thl.pdb, 1THL.cif and
 /// 1thl.cif.gz; the stem for any other file.
 std::string structure_stem(const std::filesystem::path& path);
