@@ -1,8 +1,9 @@
 // `surfcomp pockets`, `library build --pockets` and `--site-pocket` as a user runs them: the
 // JSON and the PDB of 1THL's pockets agree; a structure without a pocket gives an empty list and
 // exit 0, one without protein atoms or a --min-plddt that removes everything one line naming the
-// file and no output; a pocket library of three structures screens the query's own pocket
-// first; a pocket match of a structure onto its mmCIF copy is the identity.
+// file and no output; a pocket library of three structures, sharded, built alike by one process
+// and by two under mpirun, screens the query's own pocket first; a pocket match of a structure onto
+// its mmCIF copy is the identity.
 #include "pocket_cut.hpp"
 #include "program_run.hpp"
 #include "test_data.hpp"
@@ -13,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,6 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::file_bytes;
+using test::files_under;
 using test::ProgramRun;
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -113,10 +116,27 @@ TEST_F(CliPockets, APocketLibraryOfThreeStructuresScreensItsOwnPocketFirst) {
   test::write_pocket(pdb_1thl, "0DB", 12.0, dir_ / "therm_a.pdb");
   test::write_pocket(pdb_4tmn, "0PK", 12.0, dir_ / "therm_b.pdb");
   test::write_pocket(pdb_1a0i, "ATP", 12.0, dir_ / "ligase.pdb");
-  const ProgramRun built =
-      run("library build --pockets therm_a.pdb therm_b.pdb ligase.pdb -o pockets.sclib "
-          "--pocket-min-spheres 30 --threads 2");
+  // Two structures per shard: an index and two shards, which the screen reads as one library.
+  const std::string build =
+      "library build --pockets ../therm_a.pdb ../therm_b.pdb ../ligase.pdb -o pockets.sclib "
+      "--pocket-min-spheres 30 --shard-records 2 ";
+  fs::create_directories(dir_ / "serial");
+  const ProgramRun built = test::run_program(build + "--threads 2", {dir_ / "serial", ""});
   ASSERT_EQ(built.status, 0) << built.err;
+  EXPECT_NE(built.out.find("in 2 shards"), std::string::npos) << built.out;
+  const std::map<std::string, std::string> serial = files_under(dir_ / "serial");
+  EXPECT_EQ(serial.size(), 7u);  // index, log, manifest, two shards and their logs
+#ifdef SURFCOMP_MPIEXEC
+  // Under mpirun the processes share the shards, to the same bytes.
+  fs::create_directories(dir_ / "mpi");
+  const ProgramRun shared = test::run_program(
+      build + "--threads 1", {dir_ / "mpi", std::string(SURFCOMP_MPIEXEC) +
+                                                " --allow-run-as-root --oversubscribe -np 2 "});
+  ASSERT_EQ(shared.status, 0) << shared.err;
+  EXPECT_TRUE(files_under(dir_ / "mpi") == serial) << "2 processes differ";
+#endif
+  fs::rename(dir_ / "serial/pockets.sclib", dir_ / "pockets.sclib");
+  fs::rename(dir_ / "serial/pockets.sclib.d", dir_ / "pockets.sclib.d");
   const ProgramRun screened =
       run("screen therm_b.pdb pockets.sclib --site-pocket 1 --pocket-min-spheres 30 -o hits.csv");
   ASSERT_EQ(screened.status, 0) << screened.err;

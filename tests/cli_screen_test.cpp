@@ -721,17 +721,8 @@ namespace library_shards {
 namespace fs = std::filesystem;
 
 using test::file_bytes;
+using test::files_under;
 using test::ProgramRun;
-
-/// Every file under `folder` (relative name -> bytes).
-std::map<std::string, std::string> files_under(const fs::path& folder) {
-  std::map<std::string, std::string> files;
-  for (const auto& item : fs::recursive_directory_iterator(folder)) {
-    if (item.is_regular_file())
-      files[fs::relative(item.path(), folder).string()] = file_bytes(item.path());
-  }
-  return files;
-}
 
 std::vector<std::string> names_of(const std::map<std::string, std::string>& files) {
   std::vector<std::string> names;

@@ -38,6 +38,8 @@ constexpr const char* kUsage =
     "                                                                     processes)\n"
     "       surfcomp library build --sites LIST -o POCKETS.sclib [--site-radius R] [--threads T]\n"
     "       surfcomp library build --pockets STRUCTURE... -o POCKETS.sclib [--threads T]\n"
+    "       mpirun -np R surfcomp library build --pockets STRUCTURE... -o POCKETS.sclib\n"
+    "                                            --shard-records N ...\n"
     "       surfcomp library info LIB.sclib\n"
     "       surfcomp library export LIB.sclib -o OUT.sdf\n\n"
     "build   reads every molecule of the INPUTs (SDF/MOL/MOL2 files of one or many records,\n"
@@ -59,10 +61,13 @@ constexpr const char* kUsage =
     "        the index and shards do not depend on R or --threads. A build that was stopped\n"
     "        continues with --resume (the same INPUTs and options): the finished shards are\n"
     "        checked and kept, the others built. Without --resume an existing LIB.sclib.d is\n"
-    "        refused. A pocket library (--sites) is always one file.\n"
-    "        --pockets: the INPUTs are structures (PDB, mmCIF; folders of them): every pocket\n"
-    "        `surfcomp pockets` finds in each is one site entry, named STEM:pocketN (structures\n"
-    "        without a pocket are listed in the log).\n"
+    "        refused.\n"
+    "        --sites: each line of LIST is a site (STRUCTURE LIGAND [CHAIN] or STRUCTURE\n"
+    "        x,y,z,r ...) and one entry. --pockets: the INPUTs are structures (PDB, mmCIF;\n"
+    "        folders of them): every pocket `surfcomp pockets` finds in each is one site entry,\n"
+    "        named STEM:pocketN (structures without a pocket are listed in the log). Both shard,\n"
+    "        resume and share out under mpirun as above, a site or a structure counting as one\n"
+    "        record.\n"
     "info    prints the library's version, entries, molecules, shards, sizes and build settings.\n"
     "export  writes every entry's molecule in its conformation, with the SD tags\n"
     "        surfcomp_entry (1-based), surfcomp_name and surfcomp_conformer.";
@@ -137,83 +142,19 @@ void write_log_and_summary(const std::filesystem::path& library, const std::file
   }
 }
 
-/// `library build --sites LIST`: a pocket library.
-int build_sites(const boost::program_options::variables_map& vm, const std::string& list,
-                const std::string& output, screening::LibraryBuildOptions options, int threads) {
-  if (vm.count("input")) throw OptionError("--sites takes no INPUT: the sites are in its list");
-  if (options.conformers) throw OptionError("--conformers does not apply to --sites");
-  if (options.resume) throw OptionError("--resume does not apply to --sites (one file)");
-  const auto limit = limit_threads(threads);
-  const std::filesystem::path library = output;
-  const std::filesystem::path log = output + ".log";
-  check_command_files(
-      {{{"--sites", list}}, {{"--output", library, {".sclib"}, ""}, {"the log", log, {}, ""}}});
-  options.progress = progress_line();
-  const std::vector<screening::SiteRequest> sites = screening::read_site_list(list);
-  const screening::LibraryBuildResult result =
-      screening::build_site_library(sites, library, options);
-  write_log_and_summary(library, log, result);
-  return 0;
-}
+/// Makes the plan of a build (ShardedLibraryBuild) in `plan`, with the options given.
+using BuildPlan = std::function<void(std::optional<screening::ShardedLibraryBuild>& plan,
+                                     screening::LibraryBuildOptions options)>;
 
-/// The INPUT paths, checked with the library `output` and its log that the build writes (an
-/// input named `role` in messages).
-std::vector<std::filesystem::path> checked_inputs(const boost::program_options::variables_map& vm,
-                                                  const std::string& output, const char* role) {
-  std::vector<std::filesystem::path> inputs;
-  for (const auto& input : vm["input"].as<std::vector<std::string>>()) inputs.emplace_back(input);
-  CommandFiles files;
-  for (const auto& input : inputs) files.inputs.push_back({role, input});
-  files.outputs.push_back({"--output", output, {".sclib"}, ""});
-  files.outputs.push_back({"the log", output + ".log", {}, ""});
-  check_command_files(files);
-  return inputs;
-}
-
-/// `library build --pockets STRUCTURE...`: a pocket library of every detected pocket.
-int build_pockets(const boost::program_options::variables_map& vm, const std::string& output,
-                  screening::LibraryBuildOptions options, int threads) {
-  if (!vm.count("input")) throw OptionError("--pockets needs STRUCTURE files or folders");
-  if (options.conformers) throw OptionError("--conformers does not apply to --pockets");
-  if (options.resume) throw OptionError("--resume does not apply to --pockets (one file)");
-  const std::vector<std::filesystem::path> inputs = checked_inputs(vm, output, "STRUCTURE");
-  const auto limit = limit_threads(threads);
-  const std::filesystem::path library = output;
-  const std::filesystem::path log = output + ".log";
-  const std::vector<std::filesystem::path> structures = screening::structure_files(inputs);
-  const Stopwatch clock;
-  std::vector<screening::SkippedRecord> skipped;
-  const std::vector<screening::SiteRequest> pockets =
-      screening::pocket_requests(structures, options, skipped);
-  console::step(std::to_string(structures.size()) +
-                " structures: " + std::to_string(pockets.size()) + " pockets found in " +
-                std::to_string(std::lround(clock.elapsed_ms())) + " ms");
-  if (pockets.empty()) {
-    throw InputError(output + ": no pocket found in " + std::to_string(structures.size()) +
-                     (structures.size() == 1 ? " structure" : " structures") +
-                     (skipped.empty()
-                          ? ""
-                          : " (" + skipped.front().source + ": " + skipped.front().reason + ")"));
-  }
-  options.progress = progress_line();
-  screening::LibraryBuildResult result = screening::build_site_library(pockets, library, options);
-  result.skipped.insert(result.skipped.begin(), skipped.begin(), skipped.end());
-  result.seconds = clock.elapsed_s();
-  write_log_and_summary(library, log, result);
-  return 0;
-}
-
-/// build_library over the ranks of an MPI job: rank 0 creates or checks the shard folder
-/// (ShardedLibraryBuild::prepare) before any rank builds, every rank builds its shards (k % ranks
-/// == rank) with its own threads, and rank 0, once every rank is done (the gather of their core
-/// times is the barrier), writes the index (finish). Inputs of one shard make one library file,
-/// built by rank 0. Returns the build's result on rank 0, none on the others. A refusal on rank 0
-/// (an existing folder, another build's manifest, a damaged shard) is thrown there after every
-/// rank has finalised MPI, so that it ends the job with one line; any other error prints its
-/// rank and aborts the job.
+/// ShardedLibraryBuild over the ranks of an MPI job: rank 0 creates or checks the shard folder
+/// (prepare) before any rank builds, every rank builds its shards (k % ranks == rank) with its own
+/// threads, and rank 0, once every rank is done (the gather of their core times is the barrier),
+/// writes the index (finish). Inputs of one shard make one library file, built by rank 0. Returns
+/// the build's result on rank 0, none on the others. A refusal on rank 0 (an existing folder,
+/// another build's manifest, a damaged shard) is thrown there after every rank has finalised MPI,
+/// so that it ends the job with one line; any other error prints its rank and aborts the job.
 std::optional<screening::LibraryBuildResult> build_under_mpi(
-    const std::vector<io::MoleculeRecord>& records, const std::filesystem::path& library,
-    screening::LibraryBuildOptions options) {
+    const BuildPlan& make_plan, screening::LibraryBuildOptions options) {
   int rank = 0, ranks = 1;
   mpi().init(&rank, &ranks);
   const Stopwatch clock;
@@ -223,7 +164,7 @@ std::optional<screening::LibraryBuildResult> build_under_mpi(
   std::optional<screening::ShardedLibraryBuild> build;
   std::exception_ptr refused;
   try {
-    build.emplace(records, library, options);
+    make_plan(build, options);
     if (rank == 0 && build->shards() > 1) build->prepare();
   } catch (const std::exception&) {
     refused = std::current_exception();
@@ -241,7 +182,7 @@ std::optional<screening::LibraryBuildResult> build_under_mpi(
     if (build->shards() > 1) {
       built = build->build(static_cast<std::size_t>(rank), static_cast<std::size_t>(ranks));
     } else if (rank == 0) {
-      built = screening::build_library(records, library, options);
+      built = build->run();
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "surfcomp library: rank %d: error: %s\n", rank, e.what());
@@ -262,6 +203,38 @@ std::optional<screening::LibraryBuildResult> build_under_mpi(
   }
   result.seconds = clock.elapsed_s();
   return result;
+}
+
+/// Runs the build `make_plan` plans, under MPI when mpirun started this process (`under_mpi`),
+/// then writes its log and says what it made.
+int run_build(const BuildPlan& make_plan, const std::filesystem::path& library,
+              screening::LibraryBuildOptions options, bool under_mpi) {
+  const std::filesystem::path log = library.string() + ".log";
+  if (under_mpi) {
+    const std::optional<screening::LibraryBuildResult> result =
+        build_under_mpi(make_plan, std::move(options));
+    if (result) write_log_and_summary(library, log, *result);
+    return 0;
+  }
+  options.progress = progress_line();
+  std::optional<screening::ShardedLibraryBuild> build;
+  make_plan(build, std::move(options));
+  write_log_and_summary(library, log, build->run());
+  return 0;
+}
+
+/// The INPUT paths, checked with the library `output` and its log that the build writes (an
+/// input named `role` in messages).
+std::vector<std::filesystem::path> checked_inputs(const boost::program_options::variables_map& vm,
+                                                  const std::string& output, const char* role) {
+  std::vector<std::filesystem::path> inputs;
+  for (const auto& input : vm["input"].as<std::vector<std::string>>()) inputs.emplace_back(input);
+  CommandFiles files;
+  for (const auto& input : inputs) files.inputs.push_back({role, input});
+  files.outputs.push_back({"--output", output, {".sclib"}, ""});
+  files.outputs.push_back({"the log", output + ".log", {}, ""});
+  check_command_files(files);
+  return inputs;
 }
 
 int build(const std::vector<std::string>& args) {
@@ -285,14 +258,35 @@ int build(const std::vector<std::string>& args) {
   apply_table_options(screening::library_build_option_table(), vm, options);
   const int threads = threads_from(vm);
   if (!sites.empty() && pockets) throw OptionError("give --sites LIST or --pockets, not both");
-  if (!sites.empty()) return build_sites(vm, sites, output, std::move(options), threads);
-  if (pockets) return build_pockets(vm, output, std::move(options), threads);
-  if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
-  const std::vector<std::filesystem::path> inputs = checked_inputs(vm, output, "INPUT");
-  const auto limit = limit_threads(threads);
+  if ((!sites.empty() || pockets) && options.conformers)
+    throw OptionError(std::string("--conformers does not apply to ") +
+                      (pockets ? "--pockets" : "--sites"));
   const std::filesystem::path library = output;
-  const std::filesystem::path log = output + ".log";
+  if (!sites.empty()) {
+    if (vm.count("input")) throw OptionError("--sites takes no INPUT: the sites are in its list");
+    check_command_files(
+        {{{"--sites", sites}},
+         {{"--output", library, {".sclib"}, ""}, {"the log", output + ".log", {}, ""}}});
+    const auto limit = limit_threads(threads);
+    const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
+    const std::vector<screening::SiteRequest> requests = screening::read_site_list(sites);
+    return run_build([&](auto& plan, auto settings) { plan.emplace(requests, library, settings); },
+                     library, std::move(options), under_mpi);
+  }
+  if (!vm.count("input")) {
+    throw OptionError(pockets ? "--pockets needs STRUCTURE files or folders"
+                              : "missing INPUT (see --help)");
+  }
+  const std::vector<std::filesystem::path> inputs =
+      checked_inputs(vm, output, pockets ? "STRUCTURE" : "INPUT");
+  const auto limit = limit_threads(threads);
   const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
+  if (pockets) {
+    const screening::PocketStructures structures{screening::structure_files(inputs)};
+    return run_build(
+        [&](auto& plan, auto settings) { plan.emplace(structures, library, settings); }, library,
+        std::move(options), under_mpi);
+  }
 
   const std::vector<io::MoleculeRecord> records = screening::read_library_inputs(inputs);
   if (!options.conformers) {
@@ -303,16 +297,8 @@ int build(const std::vector<std::string>& args) {
       }
     }
   }
-  if (under_mpi) {
-    const std::optional<screening::LibraryBuildResult> result =
-        build_under_mpi(records, library, std::move(options));
-    if (result) write_log_and_summary(library, log, *result);
-    return 0;
-  }
-  options.progress = progress_line();
-  const screening::LibraryBuildResult result = screening::build_library(records, library, options);
-  write_log_and_summary(library, log, result);
-  return 0;
+  return run_build([&](auto& plan, auto settings) { plan.emplace(records, library, settings); },
+                   library, std::move(options), under_mpi);
 }
 
 int info(const std::vector<std::string>& args) {

@@ -19,11 +19,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace surfcomp::screening {
 namespace {
@@ -254,14 +257,32 @@ struct ItemOrigin {
   std::string name;
 };
 
-/// Builds the entries of `count` items with `build_item(index)` in parallel and writes them in
-/// item order to `output` atomically; an item whose build throws is skipped and listed.
-LibraryBuildResult build_in_order(
-    std::size_t count,
-    const std::function<std::vector<LibraryEntry>(std::size_t, BuildTimes&)>& build_item,
-    const std::function<ItemOrigin(std::size_t)>& origin, const std::filesystem::path& output,
-    const std::string& settings, const LibraryBuildOptions& options) {
+}  // namespace
+
+/// What a build is made of: `count` items in order (molecule records, the sites of a list, or
+/// structures and their pockets), each built into its entries.
+struct BuildItems {
+  std::size_t count = 0;
+  /// The entries of item i. An entry the item leaves out (one pocket of a structure) is added
+  /// to `skipped`; a failure of the whole item throws.
+  std::function<std::vector<LibraryEntry>(std::size_t, BuildTimes&, std::vector<SkippedRecord>&)>
+      build;
+  std::function<ItemOrigin(std::size_t)> origin;
+  /// Writes what item i is built from, for a shard's input hash.
+  std::function<void(std::size_t, io::BinaryWriter&)> identity;
+  std::string settings;         ///< build_settings of the build
+  const char* noun = "record";  ///< an item, in messages
+};
+
+namespace {
+
+/// Builds the entries of items [begin, end) in parallel and writes them in item order to
+/// `output` atomically; an item whose build throws is skipped and listed.
+LibraryBuildResult build_in_order(const BuildItems& items, std::size_t begin, std::size_t end,
+                                  const std::filesystem::path& output, const std::string& settings,
+                                  const LibraryBuildOptions& options) {
   const Stopwatch clock;
+  const std::size_t count = end - begin;
   LibraryBuildResult result;
   result.records = count;
   // A pipeline: items go out in order, are built in parallel and are written in order, at
@@ -269,6 +290,7 @@ LibraryBuildResult build_in_order(
   struct Built {
     std::size_t index = 0;
     std::vector<LibraryEntry> entries;
+    std::vector<SkippedRecord> skipped;
     BuildTimes times;
     std::string error;
   };
@@ -293,7 +315,7 @@ LibraryBuildResult build_in_order(
                     auto built = std::make_shared<Built>();
                     built->index = index;
                     try {
-                      built->entries = build_item(index, built->times);
+                      built->entries = items.build(begin + index, built->times, built->skipped);
                     } catch (const std::bad_alloc&) {
                       built->error = "out of memory";
                     } catch (const std::exception& e) {
@@ -306,8 +328,10 @@ LibraryBuildResult build_in_order(
                   tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<Built>& built) {
                     result.times.conformers += built->times.conformers;
                     result.times.entries += built->times.entries;
+                    result.skipped.insert(result.skipped.end(), built->skipped.begin(),
+                                          built->skipped.end());
                     if (!built->error.empty()) {
-                      ItemOrigin o = origin(built->index);
+                      ItemOrigin o = items.origin(begin + built->index);
                       result.skipped.push_back(
                           {std::move(o.source), o.record, std::move(o.name), built->error});
                     } else {
@@ -329,24 +353,36 @@ LibraryBuildResult build_in_order(
   return result;
 }
 
-}  // namespace
+/// The items of a build of molecule records: one per record, its entries build_entries'.
+BuildItems record_items(const std::vector<io::MoleculeRecord>& records,
+                        const LibraryBuildOptions& options) {
+  BuildItems items;
+  items.count = records.size();
+  items.build = [&records, &options](std::size_t i, BuildTimes& times,
+                                     std::vector<SkippedRecord>&) {
+    return build_entries(records[i], options, &times);
+  };
+  items.origin = [&records](std::size_t i) {
+    return ItemOrigin{records[i].source.string(), records[i].record, records[i].name};
+  };
+  items.identity = [&records](std::size_t i, io::BinaryWriter& bytes) {
+    bytes.string(records[i].source.string());
+    bytes.u64(records[i].record);
+    bytes.string(records[i].name);
+    bytes.u8(static_cast<std::uint8_t>(records[i].format));
+    bytes.string(records[i].text);
+  };
+  items.settings = build_settings(options);
+  items.noun = "molecule record";
+  return items;
+}
 
-namespace {
-
-/// build_in_order of records [begin, end) into `output`.
-LibraryBuildResult build_records(const std::vector<io::MoleculeRecord>& records, std::size_t begin,
-                                 std::size_t end, const std::filesystem::path& output,
-                                 const std::string& settings, const LibraryBuildOptions& options) {
-  return build_in_order(
-      end - begin,
-      [&](std::size_t i, BuildTimes& times) {
-        return build_entries(records[begin + i], options, &times);
-      },
-      [&](std::size_t i) {
-        const io::MoleculeRecord& record = records[begin + i];
-        return ItemOrigin{record.source.string(), record.record, record.name};
-      },
-      output, settings, options);
+/// What a file is for an input hash: its path and size (its bytes are read when it is built).
+void file_identity(const std::filesystem::path& file, io::BinaryWriter& bytes) {
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  bytes.string(file.string());
+  bytes.u64(error ? 0 : static_cast<std::uint64_t>(size));
 }
 
 /// What a build's log (write_build_log) says: records, entries and the skipped records. Throws
@@ -389,18 +425,10 @@ std::string hex64(std::uint64_t value) {
   return text;
 }
 
-/// The 64-bit hash of what records [begin, end) are: each one's source, record number, name,
-/// format and text.
-std::uint64_t input_hash(const std::vector<io::MoleculeRecord>& records, std::size_t begin,
-                         std::size_t end) {
+/// The 64-bit hash of what items [begin, end) are built from (BuildItems::identity).
+std::uint64_t input_hash(const BuildItems& items, std::size_t begin, std::size_t end) {
   io::BinaryWriter bytes;
-  for (std::size_t i = begin; i < end; ++i) {
-    bytes.string(records[i].source.string());
-    bytes.u64(records[i].record);
-    bytes.string(records[i].name);
-    bytes.u8(static_cast<std::uint8_t>(records[i].format));
-    bytes.string(records[i].text);
-  }
+  for (std::size_t i = begin; i < end; ++i) items.identity(i, bytes);
   return io::xxh3_64(bytes.bytes().data(), bytes.bytes().size());
 }
 
@@ -420,16 +448,7 @@ void write_build_log(std::ostream& out, const std::filesystem::path& library,
 LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
                                  const std::filesystem::path& output,
                                  const LibraryBuildOptions& options) {
-  ShardedLibraryBuild sharded(records, output, options);
-  if (sharded.shards() == 1)
-    return build_records(records, 0, records.size(), output, build_settings(options), options);
-  const Stopwatch clock;
-  sharded.prepare();
-  const LibraryBuildResult built = sharded.build();
-  LibraryBuildResult result = sharded.finish();
-  result.times = built.times;
-  result.seconds = clock.elapsed_s();
-  return result;
+  return ShardedLibraryBuild(records, output, options).run();
 }
 
 std::filesystem::path shard_folder(const std::filesystem::path& output) {
@@ -437,21 +456,25 @@ std::filesystem::path shard_folder(const std::filesystem::path& output) {
 }
 
 struct ShardedLibraryBuild::Impl {
-  Impl(const std::vector<io::MoleculeRecord>& records_, std::filesystem::path output_,
-       LibraryBuildOptions options_)
-      : records(records_), output(std::move(output_)), options(std::move(options_)) {}
+  Impl(std::filesystem::path output_, LibraryBuildOptions options_)
+      : output(std::move(output_)), options(std::move(options_)) {}
 
-  const std::vector<io::MoleculeRecord>& records;
+  /// Plans the build of `items_` (made with this object's options): checks the options, cuts
+  /// the items into shards and hashes each shard's inputs. Throws OptionError for options
+  /// outside their domain, InputError when there is no item.
+  void plan(BuildItems items_);
+
+  BuildItems items;
   std::filesystem::path output, folder;
   LibraryBuildOptions options;
-  std::string settings;   // build_settings(options): the index's, and each shard's first lines
-  std::size_t count = 0;  // shards
+  std::string settings;               // items.settings: the index's, and each shard's first lines
+  std::size_t count = 0;              // shards
   std::vector<std::uint64_t> hashes;  // input_hash of each shard (more than one shard)
   std::size_t resumed = 0, resumed_entries = 0;
 
   std::size_t begin(std::size_t k) const { return k * options.shard_records; }
   std::size_t end(std::size_t k) const {
-    return std::min(records.size(), (k + 1) * options.shard_records);
+    return std::min(items.count, (k + 1) * options.shard_records);
   }
   std::filesystem::path file(std::size_t k, const char* extension) const {
     char name[32];
@@ -466,11 +489,11 @@ struct ShardedLibraryBuild::Impl {
   std::string shard_settings(std::size_t k) const {
     return settings + "shard " + std::to_string(k + 1) + " of " + std::to_string(count) +
            ": records " + std::to_string(begin(k) + 1) + "-" + std::to_string(end(k)) + " of " +
-           std::to_string(records.size()) + ", inputs " + hex64(hashes[k]) + "\n";
+           std::to_string(items.count) + ", inputs " + hex64(hashes[k]) + "\n";
   }
   std::string manifest() const {
     std::ostringstream text;
-    text << "surfcomp library build manifest 1\nrecords " << records.size() << "\nshard-records "
+    text << "surfcomp library build manifest 1\nrecords " << items.count << "\nshard-records "
          << options.shard_records << "\nshards " << count << "\n";
     std::istringstream lines(settings);
     for (std::string line; std::getline(lines, line);) text << "settings " << line << "\n";
@@ -536,21 +559,24 @@ void ShardedLibraryBuild::Impl::verify_shards() const {
   }
 }
 
+void ShardedLibraryBuild::Impl::plan(BuildItems items_) {
+  check_options(options);
+  items = std::move(items_);
+  if (items.count == 0)
+    throw InputError(output.string() + ": no " + items.noun + " to build it from");
+  folder = shard_folder(output);
+  settings = items.settings;
+  count = (items.count + options.shard_records - 1) / options.shard_records;
+  if (count == 1) return;  // one library file: no shard to name
+  hashes.resize(count);
+  tbb::parallel_for(std::size_t{0}, count,
+                    [&](std::size_t k) { hashes[k] = input_hash(items, begin(k), end(k)); });
+}
+
 ShardedLibraryBuild::ShardedLibraryBuild(const std::vector<io::MoleculeRecord>& records,
                                          std::filesystem::path output, LibraryBuildOptions options)
-    : impl_(std::make_unique<Impl>(records, std::move(output), std::move(options))) {
-  Impl& m = *impl_;
-  check_options(m.options);
-  if (records.empty())
-    throw InputError(m.output.string() + ": no molecule record to build it from");
-  m.folder = shard_folder(m.output);
-  m.settings = build_settings(m.options);
-  m.count = (records.size() + m.options.shard_records - 1) / m.options.shard_records;
-  if (m.count == 1) return;  // one library file: no shard to name
-  m.hashes.resize(m.count);
-  tbb::parallel_for(std::size_t{0}, m.count, [&](std::size_t k) {
-    m.hashes[k] = input_hash(records, m.begin(k), m.end(k));
-  });
+    : impl_(std::make_unique<Impl>(std::move(output), std::move(options))) {
+  impl_->plan(record_items(records, impl_->options));
 }
 
 ShardedLibraryBuild::~ShardedLibraryBuild() = default;
@@ -616,7 +642,7 @@ LibraryBuildResult ShardedLibraryBuild::build(std::size_t rank, std::size_t rank
     }
     const std::filesystem::path file = m.library_file(k);
     const LibraryBuildResult shard =
-        build_records(m.records, m.begin(k), m.end(k), file, m.shard_settings(k), options);
+        build_in_order(m.items, m.begin(k), m.end(k), file, m.shard_settings(k), options);
     io::write_file_atomically(m.log_file(k),
                               [&](std::ostream& out) { write_build_log(out, file, shard); });
     result.records += shard.records;
@@ -633,7 +659,7 @@ LibraryBuildResult ShardedLibraryBuild::build(std::size_t rank, std::size_t rank
 LibraryBuildResult ShardedLibraryBuild::finish() const {
   const Impl& m = *impl_;
   LibraryBuildResult result;
-  result.records = m.records.size();
+  result.records = m.items.count;
   result.shards = m.count;
   result.shards_resumed = m.resumed;
   result.entries_resumed = m.resumed_entries;
@@ -653,6 +679,19 @@ LibraryBuildResult ShardedLibraryBuild::finish() const {
   result.bytes = std::filesystem::file_size(m.output);
   for (const std::filesystem::path& shard : listed)
     result.bytes += std::filesystem::file_size(m.output.parent_path() / shard);
+  return result;
+}
+
+LibraryBuildResult ShardedLibraryBuild::run() {
+  Impl& m = *impl_;
+  if (m.count == 1)
+    return build_in_order(m.items, 0, m.items.count, m.output, m.settings, m.options);
+  const Stopwatch clock;
+  prepare();
+  const LibraryBuildResult built = build();
+  LibraryBuildResult result = finish();
+  result.times = built.times;
+  result.seconds = clock.elapsed_s();
   return result;
 }
 
@@ -732,46 +771,12 @@ std::vector<std::filesystem::path> structure_files(
   return files;
 }
 
-std::vector<SiteRequest> pocket_requests(const std::vector<std::filesystem::path>& structures,
-                                         const LibraryBuildOptions& options,
-                                         std::vector<SkippedRecord>& skipped) {
-  struct Found {
-    std::vector<matching::Pocket> pockets;
-    std::string error;
-  };
-  std::vector<Found> found(structures.size());
-  tbb::parallel_for(std::size_t{0}, structures.size(), [&](std::size_t k) {
-    try {
-      found[k].pockets =
-          matching::detect_pockets(io::read_molecule(structures[k], options.read), options.pockets);
-      if (found[k].pockets.empty()) found[k].error = "no pocket found";
-    } catch (const Error& e) {
-      found[k].error = e.what();
-    }
-  });
-  std::vector<SiteRequest> requests;
-  for (std::size_t k = 0; k < structures.size(); ++k) {
-    const std::string stem = io::structure_stem(structures[k]);
-    if (!found[k].error.empty()) {
-      skipped.push_back({structures[k].string(), 0, stem, found[k].error});
-      continue;
-    }
-    for (matching::Pocket& pocket : found[k].pockets) {
-      SiteRequest request;
-      request.line = static_cast<std::size_t>(pocket.rank);
-      request.structure = structures[k];
-      request.spheres = std::move(pocket.spheres);
-      request.name = stem + ":pocket" + std::to_string(pocket.rank);
-      request.pocket = true;
-      requests.push_back(std::move(request));
-    }
-  }
-  return requests;
-}
+namespace {
 
-LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOptions& options) {
-  Molecule structure = io::read_molecule(request.structure, options.read);
-  if (request.pocket) structure = matching::pocket_structure(structure);
+/// The entry of site `request` on `structure`, read from request.structure (for a pocket, its
+/// pocket_structure).
+LibraryEntry site_entry(const Molecule& structure, const SiteRequest& request,
+                        const LibraryBuildOptions& options) {
   matching::BindingSite site =
       request.ligand ? matching::binding_site(structure, *request.ligand, options.site)
                      : matching::binding_site(structure, request.spheres, options.site);
@@ -805,24 +810,128 @@ LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOpti
   return entry;
 }
 
+/// The items of a pocket library from a site list: one per site.
+BuildItems site_items(const std::vector<SiteRequest>& sites, const LibraryBuildOptions& options) {
+  BuildItems items;
+  items.count = sites.size();
+  items.build = [&sites, &options](std::size_t i, BuildTimes& times, std::vector<SkippedRecord>&) {
+    const Stopwatch clock;
+    std::vector<LibraryEntry> entries{build_site_entry(sites[i], options)};
+    times.entries += clock.elapsed_s();
+    return entries;
+  };
+  items.origin = [&sites](std::size_t i) {
+    return ItemOrigin{sites[i].structure.string(), sites[i].line, sites[i].name};
+  };
+  items.identity = [&sites](std::size_t i, io::BinaryWriter& bytes) {
+    const SiteRequest& site = sites[i];
+    file_identity(site.structure, bytes);
+    bytes.u64(site.line);
+    bytes.string(site.name);
+    bytes.string(site.ligand ? site.ligand->residue_name + ":" + site.ligand->chain.value_or("")
+                             : "");
+    for (const matching::SiteSphere& sphere : site.spheres) {
+      bytes.f64(sphere.center.x());
+      bytes.f64(sphere.center.y());
+      bytes.f64(sphere.center.z());
+      bytes.f64(sphere.radius);
+    }
+  };
+  items.settings = build_settings(options, true);
+  items.noun = "site";
+  return items;
+}
+
+/// The items of a pocket library of structures: one per structure, an entry per pocket
+/// detect_pockets finds in it (built in parallel). A structure without a pocket fails as an item;
+/// a pocket whose entry cannot be built is skipped alone (record: its rank).
+BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
+                        const LibraryBuildOptions& options) {
+  BuildItems items;
+  items.count = structures.size();
+  items.build = [&structures, &options](std::size_t i, BuildTimes& times,
+                                        std::vector<SkippedRecord>& skipped) {
+    const Stopwatch clock;
+    const std::filesystem::path& file = structures[i];
+    const Molecule structure = matching::pocket_structure(io::read_molecule(file, options.read));
+    std::vector<matching::Pocket> pockets = matching::detect_pockets(structure, options.pockets);
+    if (pockets.empty()) throw InputError("no pocket found");
+    const std::string stem = io::structure_stem(file);
+    std::vector<SiteRequest> requests(pockets.size());
+    std::vector<std::optional<LibraryEntry>> built(pockets.size());
+    std::vector<std::string> errors(pockets.size());
+    tbb::parallel_for(std::size_t{0}, pockets.size(), [&](std::size_t k) {
+      SiteRequest& request = requests[k];
+      request.line = static_cast<std::size_t>(pockets[k].rank);
+      request.structure = file;
+      request.spheres = std::move(pockets[k].spheres);
+      request.name = stem + ":pocket" + std::to_string(pockets[k].rank);
+      request.pocket = true;
+      try {
+        built[k] = site_entry(structure, request, options);
+      } catch (const Error& e) {
+        errors[k] = one_line(e.what());
+      }
+    });
+    std::vector<LibraryEntry> entries;
+    for (std::size_t k = 0; k < built.size(); ++k) {
+      if (built[k]) {
+        entries.push_back(std::move(*built[k]));
+      } else {
+        skipped.push_back({file.string(), requests[k].line, requests[k].name, errors[k]});
+      }
+    }
+    if (entries.empty()) throw InputError("no pocket's entry could be built (" + errors[0] + ")");
+    times.entries += clock.elapsed_s();
+    return entries;
+  };
+  items.origin = [&structures](std::size_t i) {
+    return ItemOrigin{structures[i].string(), 0, io::structure_stem(structures[i])};
+  };
+  items.identity = [&structures](std::size_t i, io::BinaryWriter& bytes) {
+    file_identity(structures[i], bytes);
+  };
+  items.settings = build_settings(options, true);
+  items.noun = "structure";
+  return items;
+}
+
+void check_site_options(const LibraryBuildOptions& options) {
+  if (options.conformers) throw OptionError("--conformers does not apply to sites or pockets");
+}
+
+}  // namespace
+
+ShardedLibraryBuild::ShardedLibraryBuild(const std::vector<SiteRequest>& sites,
+                                         std::filesystem::path output, LibraryBuildOptions options)
+    : impl_(std::make_unique<Impl>(std::move(output), std::move(options))) {
+  check_site_options(impl_->options);
+  impl_->plan(site_items(sites, impl_->options));
+}
+
+ShardedLibraryBuild::ShardedLibraryBuild(const PocketStructures& structures,
+                                         std::filesystem::path output, LibraryBuildOptions options)
+    : impl_(std::make_unique<Impl>(std::move(output), std::move(options))) {
+  check_site_options(impl_->options);
+  impl_->plan(pocket_items(structures.files, impl_->options));
+}
+
+LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOptions& options) {
+  Molecule structure = io::read_molecule(request.structure, options.read);
+  if (request.pocket) structure = matching::pocket_structure(structure);
+  return site_entry(structure, request, options);
+}
+
 LibraryBuildResult build_site_library(const std::vector<SiteRequest>& sites,
                                       const std::filesystem::path& output,
                                       const LibraryBuildOptions& options) {
-  check_options(options);
-  if (options.conformers) throw OptionError("--conformers does not apply to sites (--sites)");
-  if (sites.empty()) throw InputError(output.string() + ": no site to build it from");
-  return build_in_order(
-      sites.size(),
-      [&](std::size_t i, BuildTimes& times) {
-        const Stopwatch clock;
-        std::vector<LibraryEntry> entries{build_site_entry(sites[i], options)};
-        times.entries += clock.elapsed_s();
-        return entries;
-      },
-      [&](std::size_t i) {
-        return ItemOrigin{sites[i].structure.string(), sites[i].line, sites[i].name};
-      },
-      output, build_settings(options, true), options);
+  return ShardedLibraryBuild(sites, output, options).run();
+}
+
+LibraryBuildResult build_pocket_library(const PocketStructures& structures,
+                                        const std::filesystem::path& output,
+                                        const LibraryBuildOptions& options) {
+  return ShardedLibraryBuild(structures, output, options).run();
 }
 
 }  // namespace surfcomp::screening

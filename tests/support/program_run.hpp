@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -41,6 +42,17 @@ inline std::string file_bytes(const std::filesystem::path& path) {
   std::stringstream bytes;
   bytes << in.rdbuf();
   return bytes.str();
+}
+
+/// Every file under `folder` (recursively) by its path relative to it, with its bytes: what a
+/// run wrote, to compare with another run's.
+inline std::map<std::string, std::string> files_under(const std::filesystem::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& item : std::filesystem::recursive_directory_iterator(folder)) {
+    if (item.is_regular_file())
+      files[std::filesystem::relative(item.path(), folder).string()] = file_bytes(item.path());
+  }
+  return files;
 }
 
 /// Runs `PREFIX surfcomp ARGUMENTS` through the shell (ARGUMENTS as a user types them) and

@@ -2,8 +2,9 @@
 // generated), its surface built and sampled as `surfcomp match` does, in parallel (TBB), the
 // entries written in input order whatever the thread count. A build of many records is cut into
 // shards of consecutive records, which several processes can build (ShardedLibraryBuild) and an
-// interrupted build can resume. A pocket library is built the same way from a site list: each
-// site's structure surfaced and its pocket lining sampled as a binding-site match does.
+// interrupted build can resume. A pocket library is built the same way from a site list, or from
+// structures whose every detected pocket is a site: each site's structure surfaced and its
+// pocket lining sampled as a binding-site match does.
 #pragma once
 
 #include "surfcomp/core/conformers.hpp"
@@ -58,7 +59,7 @@ struct LibraryBuildOptions {
   /// Sites: the pocket lining sampled is the vertices within this distance of the site's
   /// critical points (default as `surfcomp match --site-overlay-radius`). Finite, > 0.
   double lining_radius = matching::SiteMatchOptions{}.overlay_radius;
-  /// Pockets (build_pocket_requests): how each structure's pockets are detected.
+  /// Pockets (build_pocket_library): how each structure's pockets are detected.
   matching::PocketOptions pockets;
   /// Default 64. Most records in flight (being built or waiting for their turn to be written):
   /// bounds the memory a build holds. >= 1.
@@ -139,8 +140,8 @@ struct SiteRequest {
   /// "<structure's stem>:<ligand>[:<chain>]", "<stem>:spheres<line>" or, for a pocket,
   /// "<stem>:pocket<rank>"
   std::string name;
-  /// The spheres are a detected pocket's (pocket_requests): the site's structure is the
-  /// structure's ATOM records (matching::pocket_structure), as the pocket was found on them.
+  /// The spheres are a detected pocket's: the site's structure is the structure's ATOM records
+  /// (matching::pocket_structure), as the pocket was found on them.
   bool pocket = false;
 };
 
@@ -150,13 +151,11 @@ struct SiteRequest {
 std::vector<std::filesystem::path> structure_files(
     const std::vector<std::filesystem::path>& inputs);
 
-/// The pockets of every structure (options.read; matching::detect_pockets with
-/// options.pockets; in parallel, the order that of `structures` then the pockets' ranks) as
-/// sites: one SiteRequest per pocket, named "<stem>:pocket<rank>", `line` its rank. A structure
-/// that cannot be read, or holds no pocket, is added to `skipped` (record 0) and left out.
-std::vector<SiteRequest> pocket_requests(const std::vector<std::filesystem::path>& structures,
-                                         const LibraryBuildOptions& options,
-                                         std::vector<SkippedRecord>& skipped);
+/// The structures of a pocket library: every pocket matching::detect_pockets finds in each (on
+/// its ATOM records, options.pockets) is one site entry, named "<stem>:pocket<rank>".
+struct PocketStructures {
+  std::vector<std::filesystem::path> files;  ///< structure_files' order
+};
 
 /// The sites of a site list: one per line, `STRUCTURE LIGAND [CHAIN]` or
 /// `STRUCTURE x,y,z,r [x,y,z,r ...]` (whitespace-separated; blank lines and lines starting with
@@ -175,10 +174,20 @@ LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOpti
 
 /// build_library for a pocket library: one entry per site, in list order; a site whose entry
 /// cannot be built is skipped and listed (SkippedRecord::source the structure, record the
-/// list's line, name the site's name).
+/// list's line, name the site's name). More sites than options.shard_records make a sharded
+/// library, as build_library.
 LibraryBuildResult build_site_library(const std::vector<SiteRequest>& sites,
                                       const std::filesystem::path& output,
                                       const LibraryBuildOptions& options = {});
+
+/// build_library for a pocket library of structures: the entries of each structure's pockets in
+/// rank order, the structures in order (a structure is one record: options.shard_records counts
+/// structures). A structure that cannot be read or holds no pocket is skipped and listed (record
+/// 0, name its stem), as is a pocket whose entry cannot be built (record its rank, name its
+/// site's name).
+LibraryBuildResult build_pocket_library(const PocketStructures& structures,
+                                        const std::filesystem::path& output,
+                                        const LibraryBuildOptions& options = {});
 
 /// The `settings` text a build with `options` stores in its library.
 std::string build_settings(const LibraryBuildOptions& options, bool sites = false);
@@ -199,7 +208,8 @@ LibraryBuildResult build_library(const std::vector<io::MoleculeRecord>& records,
 /// it (target.sclib -> target.sclib.d).
 std::filesystem::path shard_folder(const std::filesystem::path& output);
 
-/// A build cut into shards of options.shard_records consecutive records, shard k (0-based)
+/// A build cut into shards of options.shard_records consecutive records (molecule records, sites
+/// or structures), shard k (0-based)
 /// holding records [k N, (k + 1) N): a format-4 library file in shard_folder(output) named by
 /// its 1-based number (000001.sclib ...), with a log of its skipped records beside it
 /// (000001.log), written once the shard is complete. A shard whose records were all skipped has
@@ -207,8 +217,9 @@ std::filesystem::path shard_folder(const std::filesystem::path& output);
 /// (write_library_index). A shard's bytes do not depend on which process built it, on the number
 /// of processes or on the thread count: its settings are the build's settings and its number,
 /// records and input hash (a 64-bit hash of its records' source, record number, name, format and
-/// text). A manifest (manifest.txt in the folder: the settings, the shard size and count, the
-/// record count and each shard's input hash) records what the folder is being built from.
+/// text; of a site's structure path and size, line, name, ligand and spheres; of a structure's
+/// path and size). A manifest (manifest.txt in the folder: the settings, the shard size and count,
+/// the record count and each shard's input hash) records what the folder is being built from.
 ///
 /// One process calls prepare(), then build() on every process (each building its share of the
 /// shards), then, once all have returned, finish() on the process that called prepare().
@@ -218,6 +229,14 @@ class ShardedLibraryBuild {
   /// `output`. Reads and writes nothing. Throws OptionError for options outside their domain,
   /// InputError for no record.
   ShardedLibraryBuild(const std::vector<io::MoleculeRecord>& records, std::filesystem::path output,
+                      LibraryBuildOptions options);
+  /// The plan of a pocket library of `sites` (kept by reference), as build_site_library. Throws
+  /// OptionError as above and for options.conformers, InputError for no site.
+  ShardedLibraryBuild(const std::vector<SiteRequest>& sites, std::filesystem::path output,
+                      LibraryBuildOptions options);
+  /// The plan of a pocket library of `structures` (kept by reference), as build_pocket_library.
+  /// Throws as the sites' plan, InputError for no structure.
+  ShardedLibraryBuild(const PocketStructures& structures, std::filesystem::path output,
                       LibraryBuildOptions options);
   ShardedLibraryBuild(const ShardedLibraryBuild&) = delete;
   ShardedLibraryBuild& operator=(const ShardedLibraryBuild&) = delete;
@@ -248,6 +267,9 @@ class ShardedLibraryBuild {
   /// Throws FileError naming the log of a shard that is not finished, and what
   /// write_library_index throws.
   LibraryBuildResult finish() const;
+  /// The whole build in this process: one library file at the output when there is one shard,
+  /// else prepare(), build() and finish(), with the builders' times and the wall-clock.
+  LibraryBuildResult run();
 
  private:
   struct Impl;
