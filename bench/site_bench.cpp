@@ -6,17 +6,19 @@
 // unordered pair of sites is then matched (REF = the earlier entry) and scored from its top-1
 // alignment; the ROC AUC of each score separates same-ligand pairs from different-ligand pairs.
 // Targets: AUC >= 0.8, a site pair <= 10 s. The similarity score the project documents is
-// overlay: the top-1 alignment's overlay score of the two pocket linings, (shape + w chem) /
-// (1 + w) with w = MatchOptions::site.chem_weight.
+// site: the top-1 alignment's overlay score of the two pocket linings, (shape + w chem) /
+// (1 + w) with w = MatchOptions::site.chem_weight, with the lining residues' composition
+// (matching::site_score, w = MatchOptions::site.lining_weight). Issue 31's figures: each
+// score's AUC beside the size baseline's, on all pairs and on the size-matched ones.
 //
 // The match runs with each parameter set of variants(); the sites are built once.
 //
 //   ./build/r/bench/site_bench [entries.txt [PREFIX [VARIANTS [MARGIN]]]]
 // entries.txt defaults to ../shared/datasets/kahraman-dev/entries.txt; PREFIX, when given and not
 // "-", makes PREFIX.<variant>.csv with one row per pair (sites, same type, top-1 pairs, points,
-// r_chem, overlay scores, imaged CPs, ms); VARIANTS, a comma-separated list (or "-" for all),
-// runs those only; MARGIN (A) is the site surface's margin (BindingSiteOptions::surface_margin;
-// 0 = the surface of the whole structure).
+// r_chem, overlay scores, imaged CPs, ms, the top-1 transform as t00..t23); VARIANTS, a
+// comma-separated list (or "-" for all), runs those only; MARGIN (A) is the site surface's margin
+// (BindingSiteOptions::surface_margin; 0 = the surface of the whole structure).
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
@@ -79,10 +81,11 @@ struct Site {
   std::string chains;  ///< the chains kept
   std::size_t atoms = 0, ligand_atoms = 0;
   harmonic::SurfaceDescriptors descriptors;
-  std::vector<bool> in_site;  ///< one flag per critical point: inside the site
-  std::size_t site_cps = 0;   ///< critical points inside the site
-  std::size_t imaged = 0;     ///< site critical points with an image
-  double build_ms = 0;        ///< read, surface, critical points and site descriptors
+  std::vector<bool> in_site;             ///< one flag per critical point: inside the site
+  std::size_t site_cps = 0;              ///< critical points inside the site
+  std::size_t imaged = 0;                ///< site critical points with an image
+  matching::LiningComposition lining{};  ///< its lining residues' composition
+  double build_ms = 0;                   ///< read, surface, critical points and site descriptors
 };
 
 /// Builds the site of `entry` from `pdb`: the binding site of the entry's ligand copy (residue
@@ -113,6 +116,7 @@ Site build_site(const Entry& entry, const fs::path& pdb, double margin,
   site.site_cps =
       static_cast<std::size_t>(std::count(site.in_site.begin(), site.in_site.end(), true));
   site.imaged = harmonic::count_descriptors(site.descriptors).imaged;
+  site.lining = matching::lining_composition(binding_site.structure, binding_site.spheres);
   site.build_ms = start.elapsed_ms();
   return site;
 }
@@ -124,8 +128,9 @@ struct PairResult {
   std::size_t alignments = 0;  ///< alignments found (cliques' and principal axes')
   /// Critical-point pairs of the top-1 alignment (0: none, or from the axes).
   std::size_t pairs = 0;
-  std::size_t points = 0;          ///< its corresponding surface points
-  double r_chem = 0;               ///< its ESP correlation at those points
+  std::size_t points = 0;                                   ///< its corresponding surface points
+  Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  ///< top-1: b into a's frame
+  double r_chem = 0;                                        ///< its ESP correlation at those points
   matching::OverlayScore overlay;  ///< its whole-site overlay scores (0 when not refined)
   double match_ms = 0;
 };
@@ -270,14 +275,16 @@ void print_size_matched(const std::vector<PairResult>& results, const std::vecto
   }
 }
 
-/// Pocket search, leave one out: each site queried against the other sites, ranked by the
-/// overlay score (ties by entry order); how often the first, or one of the first three, binds
-/// the same ligand type.
-void print_pocket_search(const std::vector<PairResult>& results, const std::vector<Site>& sites) {
+/// Pocket search, leave one out: each site queried against the other sites, ranked by `score`
+/// (ties by entry order); how often the first, or one of the first three, binds the same ligand
+/// type.
+void print_pocket_search(const std::vector<PairResult>& results, const std::vector<Site>& sites,
+                         const Score& score) {
   std::vector<std::vector<std::pair<double, std::size_t>>> ranked(sites.size());
   for (const auto& r : results) {
-    ranked[r.a].emplace_back(r.overlay.score, r.b);
-    ranked[r.b].emplace_back(r.overlay.score, r.a);
+    const double value = score.value(r, sites[r.a], sites[r.b]);
+    ranked[r.a].emplace_back(value, r.b);
+    ranked[r.b].emplace_back(value, r.a);
   }
   std::size_t top1 = 0, top3 = 0;
   for (std::size_t query = 0; query < sites.size(); ++query) {
@@ -291,10 +298,8 @@ void print_pocket_search(const std::vector<PairResult>& results, const std::vect
     top1 += same(0) ? 1 : 0;
     top3 += (same(0) || same(1) || same(2)) ? 1 : 0;
   }
-  std::printf(
-      "pocket search, leave one out by overlay: top-1 same ligand type %zu/%zu, top-3 "
-      "%zu/%zu\n",
-      top1, sites.size(), top3, sites.size());
+  std::printf("pocket search, leave one out by %s: top-1 same ligand type %zu/%zu, top-3 %zu/%zu\n",
+              score.name, top1, sites.size(), top3, sites.size());
 }
 
 int main(int argc, char** argv) {
@@ -366,6 +371,7 @@ int main(int argc, char** argv) {
             r.points = top.n_points;
             r.r_chem = top.r_chem;
             r.overlay = top.overlay;
+            r.transform = top.transform;
           }
           results.push_back(r);
         }
@@ -407,17 +413,33 @@ int main(int argc, char** argv) {
            }},
           {"size", "baseline: -|imaged_a - imaged_b|, the sites' critical-point counts",
            [](const PairResult&, const Site& x, const Site& y) { return -size_gap(x, y); }},
+          {"lining", "lining_similarity of the lining residues' compositions",
+           [](const PairResult&, const Site& x, const Site& y) {
+             return matching::lining_similarity(x.lining, y.lining);
+           }},
+          {"site",
+           "site_score: (overlay + w lining) / (1 + w), w = site.lining_weight (the documented "
+           "site similarity)",
+           [w = match_options.site.lining_weight](const PairResult& r, const Site& x,
+                                                  const Site& y) {
+             return matching::site_score(r.overlay.score,
+                                         matching::lining_similarity(x.lining, y.lining), w);
+           }},
       };
       if (argc > 2 && std::string(argv[2]) != "-") {
         std::ofstream csv(std::string(argv[2]) + "." + variant.name + ".csv");
         if (!csv) throw FileError(argv[2], "cannot write the pairs table");
         csv << "a,b,same,pairs,points,r_chem,overlay,overlay_shape,overlay_chem,imaged_a,imaged_b,"
-               "match_ms\n";
+               "match_ms,t00,t01,t02,t03,t10,t11,t12,t13,t20,t21,t22,t23\n";
         for (const auto& r : results) {
           csv << sites[r.a].entry.pdb << ',' << sites[r.b].entry.pdb << ',' << r.same << ','
               << r.pairs << ',' << r.points << ',' << r.r_chem << ',' << r.overlay.score << ','
               << r.overlay.shape << ',' << r.overlay.chem << ',' << sites[r.a].imaged << ','
-              << sites[r.b].imaged << ',' << r.match_ms << '\n';
+              << sites[r.b].imaged << ',' << r.match_ms;
+          for (int row = 0; row < 3; ++row) {
+            for (int col = 0; col < 4; ++col) csv << ',' << r.transform(row, col);
+          }
+          csv << '\n';
         }
       }
       std::vector<bool> positive;
@@ -448,14 +470,16 @@ int main(int argc, char** argv) {
                     score.definition);
       }
       print_size_matched(results, sites, scores);
-      print_pocket_search(results, sites);
-      const auto [low, high] = site_bootstrap_auc(
-          results, sites.size(), [](const PairResult& r) { return r.overlay.score; }, 20261122u,
-          300);
-      std::printf(
-          "AUC overlay, 95 %% interval over 300 site resamples (seed 20261122): "
-          "%.3f - %.3f\n",
-          low, high);
+      for (const Score& score : scores) {
+        if (std::string(score.name) != "overlay" && std::string(score.name) != "site") continue;
+        print_pocket_search(results, sites, score);
+        const auto [low, high] = site_bootstrap_auc(
+            results, sites.size(),
+            [&](const PairResult& r) { return score.value(r, sites[r.a], sites[r.b]); }, 20261122u,
+            300);
+        std::printf("AUC %s, 95 %% interval over 300 site resamples (seed 20261122): %.3f - %.3f\n",
+                    score.name, low, high);
+      }
       std::printf("site build (read, surface, site descriptors): median %.0f ms, max %.0f ms\n",
                   test::median(build_ms), *std::max_element(build_ms.begin(), build_ms.end()));
       std::printf("match per pair (descriptors built): median %.1f ms, max %.1f ms\n",

@@ -162,6 +162,13 @@ TEST_F(CliPockets, APocketMatchOntoTheMmcifCopyIsTheIdentity) {
   const nlohmann::json result = nlohmann::json::parse(file_bytes(dir_ / "m.json"));
   const auto& top = result.at("alignments").at(0);
   EXPECT_NEAR(top.at("rmsd").get<double>(), 0.0, 1e-6);
+  // The same lining residues on both sides: lining similarity 1, and the site score is the
+  // overlay's and the lining's weighted mean.
+  const auto& site = result.at("site");
+  EXPECT_DOUBLE_EQ(site.at("lining").get<double>(), 1.0);
+  const double w = site.at("lining_weight").get<double>();
+  EXPECT_NEAR(site.at("score").get<double>(),
+              (top.at("overlay").at("score").get<double>() + w) / (1.0 + w), 1e-12);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Binding sites and the one ligand selection behind them: which copy of a ligand select_ligand
 // takes (and read_molecule's `ligand` option with it), what a site built from that copy or from
-// spheres holds, which chains the contact pruning keeps, and which critical points a site
-// flags and describes.
+// spheres holds, which chains the contact pruning keeps, which critical points a site flags
+// and describes, and what its lining residues' composition and the site score are.
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
@@ -414,6 +414,42 @@ TEST(SiteSurface, TheMarginGrowsWithThePatchRadiusTheOtherSideFixes) {
       matching::binding_site(*site.molecule, LigandSelector{"0PK", {}, {}});  // margin 16
   EXPECT_GT(stored.descriptors.surface.n_vertices(),
             matching::build_site_surface(narrow).n_vertices());
+}
+
+// Lining composition by hand: the residues with a heavy atom within a sphere's radius + 1 A,
+// counted once each by chain, number and name, as class fractions; hydrogens, hetero residues
+// and non-standard names are not lining residues.
+TEST(LiningComposition, CountsEachLiningResidueOnceByClass) {
+  Molecule structure;
+  structure.atoms = {atom("N", {0, 0, 0}, "LYS", 1, "A", false),
+                     atom("C", {0.5, 0, 0}, "LYS", 1, "A", false),  // the same residue
+                     atom("C", {4.9, 0, 0}, "GLY", 2, "A", false),  // inside r + 1
+                     atom("C", {0, 4.5, 0}, "GLY", 2, "B", false),  // another chain: another
+                     atom("C", {5.1, 0, 0}, "ASP", 3, "A", false),  // just beyond r + 1
+                     atom("H", {0, 0, 1}, "ALA", 4, "A", false),    // a hydrogen only
+                     atom("C", {0, 0, -1}, "HEM", 5, "A", true),    // not an amino acid
+                     atom("C", {0, -1, 0}, "MSE", 6, "A", false)};  // not a standard one
+  const std::vector<matching::SiteSphere> spheres{{Eigen::Vector3d::Zero(), 4.0}};
+  const matching::LiningComposition lining = matching::lining_composition(structure, spheres);
+  matching::LiningComposition expected{};
+  expected[3] = 1.0 / 3.0;  // basic: LYS
+  expected[6] = 2.0 / 3.0;  // GLY, in chains A and B
+  for (std::size_t k = 0; k < matching::lining_classes; ++k)
+    EXPECT_DOUBLE_EQ(lining[k], expected[k]) << "class " << k;
+  // A longer reach takes the ASP in: basic 1/4, acidic 1/4, GLY 1/2.
+  const matching::LiningComposition wider = matching::lining_composition(structure, spheres, 1.2);
+  EXPECT_DOUBLE_EQ(wider[4], 0.25);
+  EXPECT_DOUBLE_EQ(wider[6], 0.5);
+  // The histogram intersection: 1 with itself, the shared fractions otherwise, symmetric, and 0
+  // against an empty lining.
+  EXPECT_DOUBLE_EQ(matching::lining_similarity(lining, lining), 1.0);
+  EXPECT_DOUBLE_EQ(matching::lining_similarity(lining, wider), 0.25 + 0.5);
+  EXPECT_DOUBLE_EQ(matching::lining_similarity(wider, lining), 0.75);
+  const matching::LiningComposition none =
+      matching::lining_composition(structure, {{Eigen::Vector3d(50, 0, 0), 4.0}});
+  EXPECT_DOUBLE_EQ(matching::lining_similarity(lining, none), 0.0);
+  EXPECT_DOUBLE_EQ(matching::site_score(0.4, 0.75, 0.3), (0.4 + 0.3 * 0.75) / 1.3);
+  EXPECT_DOUBLE_EQ(matching::site_score(0.4, 0.75, 0.0), 0.4);
 }
 
 }  // namespace

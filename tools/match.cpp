@@ -118,6 +118,12 @@ int match(const std::vector<std::string>& args) {
   console::summary("%s vs %s: %zu alignments, surfaces and images %.0f ms, match %.0f ms\n",
                    ref_path.string().c_str(), probe_path.string().c_str(), result.alignments.size(),
                    compared.prepare_ms, compared.match_ms);
+  if (compared.site_score) {
+    const double w = settings.inputs.match.site.lining_weight;
+    console::summary("site score %.3f: (overlay %.3f + %.2f x lining %.3f) / %.2f\n",
+                     *compared.site_score, result.alignments.front().overlay.score, w,
+                     *compared.lining, 1.0 + w);
+  }
   if (!result.alignments.empty()) {
     console::summary("%5s %-7s %8s %8s %8s %9s %8s %6s %7s  %s\n", "rank", "from", "rmsd", "points",
                      "r_chem", "consensus", "overlay", "pairs", "parent",

@@ -281,6 +281,8 @@ void validate(const MatchOptions& options) {
                 "site.overlay_radius", site.overlay_radius, "a finite value > 0 A");
   check.require(std::isfinite(site.chem_weight) && site.chem_weight >= 0.0, "site.chem_weight",
                 site.chem_weight, "a finite value >= 0");
+  check.require(std::isfinite(site.lining_weight) && site.lining_weight >= 0.0,
+                "site.lining_weight", site.lining_weight, "a finite value >= 0");
   detail::check_axes_start_count(site.principal_axes_starts, "site.principal_axes_starts", check);
 }
 
@@ -292,6 +294,7 @@ MatchOptions shape_only_options(MatchOptions options) {
   options.overlay.chem_weight = 0.0;
   options.overlay.atom_weight = 0.0;
   options.site.chem_weight = 0.0;
+  options.site.lining_weight = 0.0;
   return options;
 }
 

@@ -482,6 +482,11 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
                         " carries no atoms (a mesh, or a .hsi file of format version 1): poses "
                         "are judged on the surfaces alone");
   }
+  if (!match.shape_only && out.reference.molecule && out.probe.molecule &&
+      !out.reference.site.empty() && !out.probe.site.empty()) {
+    out.lining = lining_similarity(lining_composition(*out.reference.molecule, out.reference.site),
+                                   lining_composition(*out.probe.molecule, out.probe.site));
+  }
   out.prepare_ms = clock.elapsed_ms();
   out.result =
       match_surfaces(out.reference.descriptors, out.probe.descriptors, match,
@@ -491,6 +496,10 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
     unscale(out.reference, out.unit);
     unscale(out.probe, out.unit);
     unscale(out.result, out.unit);
+  }
+  if (out.lining && !out.result.alignments.empty()) {
+    out.site_score = site_score(out.result.alignments.front().overlay.score, *out.lining,
+                                match.site.lining_weight);
   }
   out.match_ms = clock.elapsed_ms() - out.prepare_ms;
   out.warnings = match_warnings(out.result, match);

@@ -110,6 +110,12 @@ const options::Table<MatchOptions>& match_option_table() {
            "site matches: --overlay-chem-weight for the pocket overlay", "", 0.0, 100.0},
           [](auto& m) -> auto& { return m.site.chem_weight; }),
       options::field<M>(
+          {"site-lining-weight", Kind::real,
+           "site matches: weight of the lining residues' composition in the site score "
+           "(overlay + w lining) / (1 + w)",
+           "", 0.0, 100.0},
+          [](auto& m) -> auto& { return m.site.lining_weight; }),
+      options::field<M>(
           {"site-principal-axes-starts", Kind::integer,
            "site matches: --principal-axes-starts for the pocket overlay", "", 0, 24, false,
            start_counts},

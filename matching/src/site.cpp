@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace surfcomp::matching {
@@ -242,6 +245,51 @@ harmonic::SurfaceDescriptors describe_site(mesh::Surface surface, const Molecule
   return harmonic::describe_surface(
       std::move(surface), molecule, options,
       [&spheres](const mesh::CriticalPoint& point) { return inside(point.position, spheres); });
+}
+
+namespace {
+
+/// The lining class of a standard amino acid (the order of LiningComposition), or none.
+std::optional<std::size_t> lining_class(const std::string& residue) {
+  static const std::map<std::string, std::size_t> classes = {
+      {"ALA", 0}, {"VAL", 0}, {"LEU", 0}, {"ILE", 0}, {"MET", 0}, {"PHE", 1}, {"TRP", 1},
+      {"TYR", 1}, {"HIS", 2}, {"LYS", 3}, {"ARG", 3}, {"ASP", 4}, {"GLU", 4}, {"SER", 5},
+      {"THR", 5}, {"ASN", 5}, {"GLN", 5}, {"GLY", 6}, {"PRO", 7}, {"CYS", 8}};
+  const auto found = classes.find(residue_key(residue));
+  if (found == classes.end()) return std::nullopt;
+  return found->second;
+}
+
+}  // namespace
+
+LiningComposition lining_composition(const Molecule& structure,
+                                     const std::vector<SiteSphere>& spheres, double reach) {
+  std::map<std::tuple<std::string, int, std::string>, std::size_t> lining;
+  for (const Atom& atom : structure.atoms) {
+    if (atom.element == "H") continue;
+    const std::optional<std::size_t> kind = lining_class(atom.residue_name);
+    if (!kind) continue;
+    const bool near = std::any_of(spheres.begin(), spheres.end(), [&](const SiteSphere& sphere) {
+      return (atom.position - sphere.center).norm() < sphere.radius + reach;
+    });
+    if (near)
+      lining.emplace(std::make_tuple(atom.chain, atom.residue_number, atom.residue_name), *kind);
+  }
+  LiningComposition composition{};
+  for (const auto& [residue, kind] : lining) composition[kind] += 1.0;
+  for (double& fraction : composition)
+    fraction /= std::max<double>(1.0, static_cast<double>(lining.size()));
+  return composition;
+}
+
+double lining_similarity(const LiningComposition& a, const LiningComposition& b) {
+  double shared = 0.0;
+  for (std::size_t k = 0; k < lining_classes; ++k) shared += std::min(a[k], b[k]);
+  return shared;
+}
+
+double site_score(double overlay_score, double lining, double weight) {
+  return (overlay_score + weight * lining) / (1.0 + weight);
 }
 
 }  // namespace surfcomp::matching

@@ -343,6 +343,13 @@ py::dict match_dict(const matching::InputMatch& compared) {
   d["warnings"] = compared.warnings;
   d["notes"] = compared.notes;
   d["shape_only"] = compared.shape_only;
+  d["site"] = compared.lining
+                  ? py::object(py::dict(
+                        py::arg("lining") = *compared.lining,
+                        py::arg("score") = compared.site_score
+                                               ? py::object(py::float_(*compared.site_score))
+                                               : py::object(py::none())))
+                  : py::object(py::none());
   d["unit"] = compared.unit;
   d["cliques"] = compared.result.cliques;
   d["cliques_complete"] = compared.result.cliques_complete;

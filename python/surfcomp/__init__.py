@@ -213,6 +213,9 @@ class MatchResult(list):
     notes: List[str]
     #: True when ESP, LP and atoms were set aside (asked, or a side carries no ESP and LP).
     shape_only: bool
+    #: Two sites on structures: {"lining": the lining residues' similarity, "score": the site
+    #: score, (top overlay score + w lining) / (1 + w)}; None otherwise.
+    site: Optional[Dict[str, Any]]
     #: The length unit the match ran at, in the inputs' coordinates (1 for molecules; see the
     #: ``scale`` and ``unit`` options). Transforms and RMSDs are in the inputs' coordinates.
     unit: float
@@ -509,8 +512,8 @@ def match(ref, probe, *, report: Union[str, os.PathLike, None] = None, **options
                           os.fspath(report) if report is not None else "")
     result = MatchResult(Alignment(**dict(a, overlay=OverlayScore(**a["overlay"])))
                          for a in raw["alignments"])
-    for key in ("trace", "timing_ms", "warnings", "notes", "shape_only", "unit", "cliques",
-                "cliques_complete", "prepare_ms", "match_ms"):
+    for key in ("trace", "timing_ms", "warnings", "notes", "shape_only", "site", "unit",
+                "cliques", "cliques_complete", "prepare_ms", "match_ms"):
         setattr(result, key, raw[key])
     return result
 

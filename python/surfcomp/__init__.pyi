@@ -135,6 +135,7 @@ class MatchResult(List[Alignment]):
     warnings: List[str]
     notes: List[str]
     shape_only: bool
+    site: Optional[Dict[str, Any]]
     unit: float
     cliques: int
     cliques_complete: bool
@@ -290,6 +291,7 @@ def match(
     principal_axes_starts: int = 24,
     site_overlay_radius: float = 2.0,
     site_chem_weight: float = 0.25,
+    site_lining_weight: float = 0.3,
     site_principal_axes_starts: int = 24,
     scale: str = 'auto',
     unit: float = 0.0,

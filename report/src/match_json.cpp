@@ -47,6 +47,13 @@ nlohmann::json match_document(const matching::InputMatch& compared,
   nlohmann::json timing = nlohmann::json::object();
   for (const auto& [stage, ms] : result.timing_ms) timing[stage] = ms;
   const auto& g = options.graph;
+  nlohmann::json site = nullptr;  // two sites on structures: their similarity
+  if (compared.lining) {
+    site = {{"lining", *compared.lining},
+            {"lining_weight", options.site.lining_weight},
+            {"score",
+             compared.site_score ? nlohmann::json(*compared.site_score) : nlohmann::json(nullptr)}};
+  }
   return {{"reference", ref.name},
           {"probe", compared.probe.name},
           {"alignments", alignments},
@@ -59,6 +66,7 @@ nlohmann::json match_document(const matching::InputMatch& compared,
           {"warnings", compared.warnings},
           {"notes", compared.notes},
           {"shape_only", compared.shape_only},
+          {"site", site},
           {"scale", {{"unit", compared.unit}, {"from", compared.unit_from}}},
           {"parameters",
            {{"fuzzy_threshold", g.fuzzy_threshold},
@@ -82,6 +90,7 @@ nlohmann::json match_document(const matching::InputMatch& compared,
             {"principal_axes_starts", options.principal_axes_starts},
             {"site_overlay_radius", options.site.overlay_radius},
             {"site_chem_weight", options.site.chem_weight},
+            {"site_lining_weight", options.site.lining_weight},
             {"site_principal_axes_starts", options.site.principal_axes_starts},
             {"critical_point_radius", ref.descriptors.options.critical_points.radius},
             {"patch_radius", ref.descriptors.options.patch.radius},

@@ -44,6 +44,10 @@ struct SiteMatchOptions {
   /// (docs/decisions.md#site-matches). The overlay's chem_weight for sites (the atom term takes
   /// no part). Finite, >= 0.
   double chem_weight = 0.25;
+  /// Default 0.3. The site score of two sites is (overlay + w lining) / (1 + w) with the
+  /// lining_similarity of their lining residues' compositions (site.hpp): a chemistry term
+  /// independent of the sites' sizes (docs/decisions.md#site-score). Finite, >= 0.
+  double lining_weight = 0.3;
   /// Default 24. principal_axes_starts for sites: 0, 4 or 24.
   int principal_axes_starts = 24;
 };

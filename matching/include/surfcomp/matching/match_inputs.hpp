@@ -174,6 +174,12 @@ struct InputMatch {
   /// True when the match set ESP, LP and atoms aside (MatchOptions::shape_only), asked or
   /// because a side carries no ESP and LP.
   bool shape_only = false;
+  /// Two sites on structures, matched with chemistry: the lining_similarity of their lining
+  /// residues (site.hpp); none otherwise.
+  std::optional<double> lining;
+  /// With `lining` and an alignment: the sites' similarity, site_score of the top alignment's
+  /// overlay score and `lining` (MatchOptions::site.lining_weight).
+  std::optional<double> site_score;
   double prepare_ms = 0.0;  ///< reading, surfaces and descriptions
   double match_ms = 0.0;    ///< match_surfaces
 };

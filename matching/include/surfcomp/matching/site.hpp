@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -138,5 +140,31 @@ harmonic::SurfaceDescriptors describe_site(mesh::Surface surface,
 harmonic::SurfaceDescriptors describe_site(mesh::Surface surface, const Molecule& molecule,
                                            const std::vector<SiteSphere>& spheres,
                                            const harmonic::DescriptorOptions& options = {});
+
+/// The residue classes of a pocket lining's composition: aliphatic (ALA VAL LEU ILE MET),
+/// aromatic (PHE TRP TYR), HIS, basic (LYS ARG), acidic (ASP GLU), polar (SER THR ASN GLN), GLY,
+/// PRO and CYS.
+inline constexpr std::size_t lining_classes = 9;
+using LiningComposition = std::array<double, lining_classes>;
+
+/// Default 1 A: a residue lines a site when one of its heavy atoms lies within a sphere's radius
+/// plus this of its centre (within 5 A of a ligand atom for spheres of 4 A around it).
+inline constexpr double lining_reach = 1.0;
+
+/// The fraction of the site's lining residues (the 20 standard amino acids of `structure`, by
+/// chain, number and name, with a heavy atom within a sphere's radius + `reach` of its centre)
+/// in each class; all 0 when no residue lines the site.
+LiningComposition lining_composition(const Molecule& structure,
+                                     const std::vector<SiteSphere>& spheres,
+                                     double reach = lining_reach);
+
+/// How alike two linings' compositions are: the histogram intersection, the sum over the
+/// classes of the smaller fraction, in [0, 1] (1 for equal compositions); 0 when either lining
+/// is empty. Independent of the sites' sizes.
+double lining_similarity(const LiningComposition& a, const LiningComposition& b);
+
+/// The similarity of two sites: (overlay_score + weight lining) / (1 + weight), the top
+/// alignment's overlay score of the pocket linings with their lining_similarity.
+double site_score(double overlay_score, double lining, double weight);
 
 }  // namespace surfcomp::matching

@@ -23,6 +23,7 @@
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/matching/packed_overlay.hpp"
+#include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/screening/library.hpp"
 
@@ -34,6 +35,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -117,6 +119,8 @@ struct ScreenQuery {
   /// for a molecule.
   std::vector<matching::SiteSphere> site;
   std::vector<bool> site_points;
+  /// A site on a structure: its lining residues' composition (matching::lining_composition).
+  std::optional<matching::LiningComposition> lining;
   /// The two samples packed and indexed once for stages 1 and 2 (matching::PackedQuery):
   /// `packed` for `sample`, atom_packed for atom_sample.
   std::shared_ptr<const matching::PackedQuery> packed, atom_packed;
@@ -126,7 +130,8 @@ struct ScreenQuery {
 /// a .hsi file) and, for a molecule, the molecule itself (its screening sample,
 /// matching::sample_molecule with options.surface); with `site` spheres, a binding-site query
 /// (descriptors from matching::describe_site) whose sample is its pocket lining
-/// (matching::pocket_lining, options.match.site.overlay_radius). Throws InputError when its
+/// (matching::pocket_lining, options.match.site.overlay_radius), and with its structure as
+/// `molecule` the composition of its lining residues. Throws InputError when its
 /// surface (or lining) has no vertex, or no ESP or LP (matching::require_match_properties:
 /// entries are compared on them).
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
@@ -156,7 +161,9 @@ matching::MatchOptions query_match_options(const ScreenQuery& query, const Scree
 
 /// A score of one entry against the query.
 struct HitScore {
-  double score = 0.0;  ///< the overlay score (OverlayScore::score)
+  /// The overlay score (OverlayScore::score); for a site's full match (stage 3) the site score
+  /// (matching::site_score) of that overlay and the two linings' residues.
+  double score = 0.0;
   double shape = 0.0;  ///< its terms
   double chem = 0.0;
   double atoms = 0.0;
