@@ -6,8 +6,9 @@ library build --pockets`, every pocket `surfcomp pockets` finds, no ligand used)
 its ligand defines it (spheres of 4 A around the ligand's heavy atoms, on the structure without
 its HETATM records), is then screened against that library (`surfcomp screen --site-sphere`,
 every row). A pocket holds a ligand type when its centre lies within 4 A of a heavy atom of the
-structure's listed ligand (DCA, as pocket_detection_bench.py). Reported, with the query's own
-structure left out of its ranking:
+structure's listed ligand (DCA) or at least half that ligand's heavy atoms lie inside its alpha
+spheres (coverage; both as pocket_detection_bench.py). Reported, with the query's own structure
+left out of its ranking:
   - top-1 and top-3: how often the first (first three) pocket holds the query's ligand type;
   - AUC over pockets: per query, the ROC AUC of the screen's ranking for the pockets holding the
     query's ligand type against every other pocket, then the mean over the queries, and the same
@@ -15,11 +16,12 @@ structure left out of its ranking:
   - times: the library build and each screen.
 
     /usr/bin/python3 bench/pocket_search_bench.py --surfcomp build/release/tools/surfcomp \\
-        [--shared ../shared/datasets] [--library pockets.sclib] [--work DIR] [--json out.json] \\
-        [screen options...]
+        [--shared ../shared/datasets] [--library pockets.sclib] [--work DIR] [--reuse] \\
+        [--json out.json] [screen options...]
 
 --library reuses a library built before (its pockets must be those of the default detection);
-options after the known ones go to `surfcomp screen` unchanged.
+--reuse keeps the screens' tables already in --work (a rerun of the figures); options after the
+known ones go to `surfcomp screen` unchanged.
 """
 
 import argparse
@@ -32,7 +34,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pocket_detection_bench import distance, ligand_atoms  # noqa: E402
+from pocket_detection_bench import covered, distance, ligand_atoms  # noqa: E402
 
 
 def entries(shared):
@@ -74,6 +76,7 @@ def main():
                                                          "shared", "datasets"))
     parser.add_argument("--library")
     parser.add_argument("--work")
+    parser.add_argument("--reuse", action="store_true")
     parser.add_argument("--json")
     args, extra = parser.parse_known_args()
     if not os.path.isdir(os.path.join(args.shared, "kahraman-dev")):
@@ -94,11 +97,13 @@ def main():
     holds = {}
     for site in sites:
         out = os.path.join(work, site["code"] + ".pockets.json")
-        subprocess.run([args.surfcomp, "pockets", site["pdb"], "-o", out], check=True,
-                       capture_output=True)
+        if not (args.reuse and os.path.exists(out)):
+            subprocess.run([args.surfcomp, "pockets", site["pdb"], "-o", out], check=True,
+                           capture_output=True)
         for pocket in json.load(open(out))["pockets"]:
             dca = min(distance(a, pocket["center"]) for a in site["atoms"])
-            holds[f"{site['code']}:pocket{pocket['rank']}"] = site["ligand"] if dca <= 4.0 else None
+            inside = dca <= 4.0 or covered(site["atoms"], pocket) >= 0.5
+            holds[f"{site['code']}:pocket{pocket['rank']}"] = site["ligand"] if inside else None
 
     rows = []
     for site in sites:
@@ -108,10 +113,12 @@ def main():
         for a in site["atoms"]:
             spheres += ["--site-sphere", f"{a[0]:.3f},{a[1]:.3f},{a[2]:.3f},4"]
         hits = os.path.join(work, site["code"] + ".hits.csv")
-        start = time.perf_counter()
-        subprocess.run([args.surfcomp, "screen", query, library, "-o", hits, "--top", "0"] +
-                       spheres + extra, check=True, capture_output=True)
-        seconds = time.perf_counter() - start
+        seconds = None  # a table kept from an earlier run (--reuse) was not timed here
+        if not (args.reuse and os.path.exists(hits)):
+            start = time.perf_counter()
+            subprocess.run([args.surfcomp, "screen", query, library, "-o", hits, "--top", "0"] +
+                           spheres + extra, check=True, capture_output=True)
+            seconds = time.perf_counter() - start
         ranked = [r["name"] for r in csv.DictReader(open(hits))
                   if not r["name"].startswith(site["code"] + ":")]
         positive = [k + 1 for k, name in enumerate(ranked) if holds.get(name) == site["ligand"]]
@@ -125,18 +132,21 @@ def main():
         r = rows[-1]
         print(f"{site['code']} {site['ligand']}: first same-type pocket at rank {r['first']} of "
               f"{len(ranked)}, AUC {r['auc']:.3f} (ligand sites {r['auc_ligand_sites']:.3f}), "
-              f"top 3 {r['top']}, {seconds:.0f} s", flush=True)
+              f"top 3 {r['top']}" + (f", {seconds:.0f} s" if seconds is not None else ""),
+              flush=True)
 
     n = len(rows)
     top1 = sum(1 for r in rows if r["first"] == 1)
     top3 = sum(1 for r in rows if r["first"] is not None and r["first"] <= 3)
     mean_auc = sum(r["auc"] for r in rows if r["auc"] is not None) / n
     mean_ligand = sum(r["auc_ligand_sites"] for r in rows if r["auc_ligand_sites"] is not None) / n
-    seconds = sorted(r["seconds"] for r in rows)
+    seconds = sorted(r["seconds"] for r in rows if r["seconds"] is not None)
+    times = (f"; screen median {seconds[len(seconds) // 2]:.0f} s, max {seconds[-1]:.0f} s"
+             if seconds else "")
     print(f"{n} queries, {len(holds)} pockets ({sum(1 for v in holds.values() if v)} hold their "
           f"structure's ligand): top-1 same ligand type {top1}/{n}, top-3 {top3}/{n}; mean AUC "
           f"{mean_auc:.3f} against every other pocket, {mean_ligand:.3f} against the other "
-          f"ligand-holding pockets; screen median {seconds[n // 2]:.0f} s, max {seconds[-1]:.0f} s")
+          f"ligand-holding pockets{times}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)

@@ -37,6 +37,14 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
+/// The comma-separated fields of a CSV row (no quoted fields in these tables).
+std::vector<std::string> fields_of(const std::string& row) {
+  std::vector<std::string> fields;
+  std::istringstream in(row);
+  for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+  return fields;
+}
+
 class CliPockets : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -142,11 +150,22 @@ TEST_F(CliPockets, APocketLibraryOfThreeStructuresScreensItsOwnPocketFirst) {
   ASSERT_EQ(screened.status, 0) << screened.err;
   const std::vector<std::string> rows = lines_of(file_bytes(dir_ / "hits.csv"));
   ASSERT_GE(rows.size(), 4u);  // a header and a pocket of each structure at least
-  std::vector<std::string> first;
-  std::istringstream row(rows[1]);
-  for (std::string field; std::getline(row, field, ',');) first.push_back(field);
+  const std::vector<std::string> first = fields_of(rows[1]);
   EXPECT_EQ(first[2], "therm_b:pocket1");
   EXPECT_NEAR(std::stod(first[6]), 1.0, 1e-3);  // the pocket overlays itself
+
+  // A site list's `STRUCTURE pocket N` is the same site: the query finds it at the same score.
+  std::ofstream(dir_ / "list.txt") << "therm_a.pdb 0DB\ntherm_b.pdb pocket 1\n";
+  ASSERT_EQ(run("library build --sites list.txt -o listed.sclib --pocket-min-spheres 30").status,
+            0);
+  ASSERT_EQ(run("screen therm_b.pdb listed.sclib --site-pocket 1 --pocket-min-spheres 30 -o "
+                "listed.csv")
+                .status,
+            0);
+  const std::vector<std::string> listed = lines_of(file_bytes(dir_ / "listed.csv"));
+  ASSERT_EQ(listed.size(), 3u);
+  EXPECT_EQ(fields_of(listed[1])[2], "therm_b:pocket1");
+  EXPECT_EQ(fields_of(listed[1])[6], first[6]);
 }
 
 TEST_F(CliPockets, APocketMatchOntoTheMmcifCopyIsTheIdentity) {

@@ -638,16 +638,17 @@ TEST(LibraryBuild, HsiFilesBecomeEntriesThatKeepTheirSurfaceAndFindThemselves) {
       << refused.skipped[0].reason;
 }
 
-TEST(SiteList, LinesGiveLigandsOrSpheresAndABadLineIsNamed) {
+TEST(SiteList, LinesGiveLigandsSpheresOrPocketsAndABadLineIsNamed) {
   const test::TempDir dir;
   const fs::path list = dir.write("sites.txt",
                                   "# pockets\n"
                                   "\n"
                                   "a.pdb ATP\n"
                                   "b.pdb HEM B\n"
-                                  "/abs/c.pdb 1,2,3,4 -1,0.5,2,3.5\n");
+                                  "/abs/c.pdb 1,2,3,4 -1,0.5,2,3.5\n"
+                                  "d.cif.gz Pocket 2\n");
   const std::vector<screening::SiteRequest> sites = screening::read_site_list(list);
-  ASSERT_EQ(sites.size(), 3u);
+  ASSERT_EQ(sites.size(), 4u);
   EXPECT_EQ(sites[0].structure, dir / "a.pdb");  // relative to the list's folder
   EXPECT_EQ(sites[0].line, 3u);
   ASSERT_TRUE(sites[0].ligand);
@@ -663,9 +664,13 @@ TEST(SiteList, LinesGiveLigandsOrSpheresAndABadLineIsNamed) {
   EXPECT_EQ(sites[2].spheres[1].center, Eigen::Vector3d(-1, 0.5, 2));
   EXPECT_EQ(sites[2].spheres[1].radius, 3.5);
   EXPECT_EQ(sites[2].name, "c:spheres5");
+  EXPECT_EQ(sites[3].pocket_rank, 2);
+  EXPECT_TRUE(sites[3].pocket && !sites[3].ligand && sites[3].spheres.empty());
+  EXPECT_EQ(sites[3].name, "d:pocket2");
 
   for (const char* bad :
-       {"a.pdb\n", "a.pdb 1,2,3,0\n", "a.pdb 1,2,3,4 ATP\n", "a.pdb ATP A extra\n"}) {
+       {"a.pdb\n", "a.pdb 1,2,3,0\n", "a.pdb 1,2,3,4 ATP\n", "a.pdb ATP A extra\n",
+        "a.pdb pocket\n", "a.pdb pocket 0\n", "a.pdb pocket 2x\n", "a.pdb pocket 1 2\n"}) {
     const fs::path bad_list = dir.write("bad.txt", std::string("# x\n") + bad);
     try {
       screening::read_site_list(bad_list);

@@ -714,8 +714,18 @@ std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {
     site.line = number;
     site.structure = words[0];
     if (site.structure.is_relative()) site.structure = list.parent_path() / site.structure;
-    const std::string stem = std::filesystem::path(words[0]).stem().string();
-    if (words[1].find(',') != std::string::npos) {
+    const std::string stem = io::structure_stem(words[0]);
+    if (residue_key(words[1]) == "POCKET") {  // no residue name is six letters long
+      char* end = nullptr;
+      const long rank = words.size() == 3 ? std::strtol(words[2].c_str(), &end, 10) : 0;
+      if (words.size() != 3 || end == words[2].c_str() || *end != '\0' || rank < 1 ||
+          rank > 1000000) {
+        throw InputError(where + "expected 'STRUCTURE pocket N' with N a pocket rank >= 1");
+      }
+      site.pocket_rank = static_cast<int>(rank);
+      site.pocket = true;
+      site.name = stem + ":pocket" + std::to_string(rank);
+    } else if (words[1].find(',') != std::string::npos) {
       for (std::size_t w = 1; w < words.size(); ++w) {
         const std::optional<matching::SiteSphere> sphere = matching::parse_site_sphere(words[w]);
         if (!sphere) {
@@ -918,6 +928,13 @@ ShardedLibraryBuild::ShardedLibraryBuild(const PocketStructures& structures,
 
 LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOptions& options) {
   Molecule structure = io::read_molecule(request.structure, options.read);
+  if (request.pocket_rank > 0) {
+    SiteRequest found = request;
+    found.spheres =
+        matching::pocket_site(structure, request.pocket_rank, options.pockets, options.site)
+            .spheres;
+    return site_entry(matching::pocket_structure(structure), found, options);
+  }
   if (request.pocket) structure = matching::pocket_structure(structure);
   return site_entry(structure, request, options);
 }

@@ -143,6 +143,9 @@ struct SiteRequest {
   /// The spheres are a detected pocket's: the site's structure is the structure's ATOM records
   /// (matching::pocket_structure), as the pocket was found on them.
   bool pocket = false;
+  /// A site list's `STRUCTURE pocket N`: pocket N of the structure (matching::pocket_site with
+  /// LibraryBuildOptions::pockets), found when the entry is built; 0 otherwise.
+  int pocket_rank = 0;
 };
 
 /// The structure files of `inputs` (PDB .pdb .ent, mmCIF .cif .mmcif .cif.gz); a directory
@@ -157,11 +160,12 @@ struct PocketStructures {
   std::vector<std::filesystem::path> files;  ///< structure_files' order
 };
 
-/// The sites of a site list: one per line, `STRUCTURE LIGAND [CHAIN]` or
-/// `STRUCTURE x,y,z,r [x,y,z,r ...]` (whitespace-separated; blank lines and lines starting with
-/// '#' are skipped). Throws FileError when the list cannot be read or lists no site, and
-/// InputError naming the list and line for a line of neither form or with a sphere whose radius
-/// is not > 0; the structures are read only when their entries are built.
+/// The sites of a site list: one per line, `STRUCTURE LIGAND [CHAIN]`,
+/// `STRUCTURE x,y,z,r [x,y,z,r ...]` or `STRUCTURE pocket N` (the structure's pocket N, named
+/// "<stem>:pocketN"; whitespace-separated; blank lines and lines starting with '#' are skipped).
+/// Throws FileError when the list cannot be read or lists no site, and InputError naming the list
+/// and line for a line of neither form or with a sphere whose radius is not > 0; the structures are
+/// read only when their entries are built.
 std::vector<SiteRequest> read_site_list(const std::filesystem::path& list);
 
 /// The entry of one site: its structure read (`options.read`), the site built
