@@ -3,7 +3,7 @@
 // exit 0, one without protein atoms or a --min-plddt that removes everything one line naming the
 // file and no output; a pocket library of three structures, sharded, built alike by one process
 // and by two under mpirun, screens the query's own pocket first; a pocket match of a structure onto
-// its mmCIF copy is the identity.
+// its mmCIF copy is the identity, in match and in the report.
 #include "pocket_cut.hpp"
 #include "program_run.hpp"
 #include "test_data.hpp"
@@ -188,6 +188,16 @@ TEST_F(CliPockets, APocketMatchOntoTheMmcifCopyIsTheIdentity) {
   const double w = site.at("lining_weight").get<double>();
   EXPECT_NEAR(site.at("score").get<double>(),
               (top.at("overlay").at("score").get<double>() + w) / (1.0 + w), 1e-12);
+  // The report takes the pocket as match does: its page holds the same site figures and marks
+  // the pocket linings.
+  const ProgramRun report = run("report site.pdb site.cif --site-pocket 1 -o r.html");
+  ASSERT_EQ(report.status, 0) << report.err;
+  const std::string page = file_bytes(dir_ / "r.html");
+  const std::string key = "\"site\":{\"lining\":";
+  const std::size_t at = page.find(key);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NEAR(std::stod(page.substr(at + key.size(), 24)), 1.0, 1e-12);
+  EXPECT_NE(page.find("\"site_lining\":["), std::string::npos);
 }
 
 }  // namespace
