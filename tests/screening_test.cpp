@@ -738,12 +738,29 @@ TEST(Screen, SiteQueryFindsItsOwnPocketFirstAndKindsDoNotMix) {
   const screening::ScreenQuery query = screening::make_screen_query(
       matching::describe_site(mesh::build_molecular_surface(site.structure), site.structure,
                               site.spheres),
-      options, site.spheres);
+      options, site.spheres, &site.structure);
   const std::vector<screening::Hit> hits = screening::screen(query, library, options).hits;
   ASSERT_EQ(hits.size(), 2u);
   // The stored pocket is the query's own (its structure written and read back as PDB).
   expect_found_itself_first(hits, 1);
   EXPECT_LT(hits[1].score.score, hits[0].score.score);
+  // The other pocket's full-match score is the site score: its overlay's (the score without the
+  // lining term, the same pose) with the two linings' composition.
+  ASSERT_EQ(hits[1].stage, 3);
+  screening::ScreenOptions overlay_only = options;
+  overlay_only.match.site.lining_weight = 0.0;
+  const std::vector<screening::Hit> overlay_hits =
+      screening::screen(query, library, overlay_only).hits;
+  const screening::LibraryEntry other = library.entry(hits[1].entry);
+  const double lining = matching::lining_similarity(
+      matching::lining_composition(site.structure, site.spheres),
+      matching::lining_composition(io::read_record_molecule(other.molecule), other.site));
+  ASSERT_EQ(overlay_hits[1].entry, hits[1].entry);
+  EXPECT_GT(lining, 0.0);
+  EXPECT_NEAR(
+      hits[1].score.score,
+      matching::site_score(overlay_hits[1].score.score, lining, options.match.site.lining_weight),
+      1e-12);
 
   // A molecule query against a pocket library, and a site query against a molecule library.
   const fs::path sdf = dir.write("three.sdf", three_molecule_sdf());

@@ -21,6 +21,7 @@
 #include <exception>
 #include <functional>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -377,12 +378,15 @@ BuildItems record_items(const std::vector<io::MoleculeRecord>& records,
   return items;
 }
 
-/// What a file is for an input hash: its path and size (its bytes are read when it is built).
+/// What a file is for an input hash: its path, size and modification time (its bytes are read
+/// when it is built).
 void file_identity(const std::filesystem::path& file, io::BinaryWriter& bytes) {
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(file, error);
   bytes.string(file.string());
   bytes.u64(error ? 0 : static_cast<std::uint64_t>(size));
+  const auto modified = std::filesystem::last_write_time(file, error);
+  bytes.u64(error ? 0 : static_cast<std::uint64_t>(modified.time_since_epoch().count()));
 }
 
 /// What a build's log (write_build_log) says: records, entries and the skipped records. Throws
@@ -708,7 +712,8 @@ std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {
     const std::string where = list.string() + ":" + std::to_string(number) + ": ";
     if (words.size() < 2) {
       throw InputError(where +
-                       "expected 'STRUCTURE LIGAND [CHAIN]' or 'STRUCTURE x,y,z,r [x,y,z,r ...]'");
+                       "expected 'STRUCTURE LIGAND [CHAIN]', 'STRUCTURE x,y,z,r [x,y,z,r ...]' or "
+                       "'STRUCTURE pocket N'");
     }
     SiteRequest site;
     site.line = number;
@@ -820,6 +825,21 @@ LibraryEntry site_entry(const Molecule& structure, const SiteRequest& request,
   return entry;
 }
 
+/// The settings lines a pocket library adds to build_settings: the structures' pLDDT cut and,
+/// when pockets are detected, how (a resumed build must detect them the same way).
+std::string site_settings(const LibraryBuildOptions& options, bool detects_pockets) {
+  std::ostringstream text;
+  text << "min_plddt " << options.read.min_plddt << "\n";
+  if (detects_pockets) {
+    const matching::PocketOptions& p = options.pockets;
+    text << "pockets (min_sphere_radius " << p.min_sphere_radius << ", max_sphere_radius "
+         << p.max_sphere_radius << ", min_buriedness " << p.min_buriedness << ", buried_distance "
+         << p.buried_distance << ", cluster_distance " << p.cluster_distance << ", min_spheres "
+         << p.min_spheres << ")\n";
+  }
+  return text.str();
+}
+
 /// The items of a pocket library from a site list: one per site.
 BuildItems site_items(const std::vector<SiteRequest>& sites, const LibraryBuildOptions& options) {
   BuildItems items;
@@ -847,7 +867,9 @@ BuildItems site_items(const std::vector<SiteRequest>& sites, const LibraryBuildO
       bytes.f64(sphere.radius);
     }
   };
-  items.settings = build_settings(options, true);
+  const bool detects_pockets = std::any_of(
+      sites.begin(), sites.end(), [](const SiteRequest& site) { return site.pocket_rank > 0; });
+  items.settings = build_settings(options, true) + site_settings(options, detects_pockets);
   items.noun = "site";
   return items;
 }
@@ -866,11 +888,14 @@ BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
     const Molecule structure = matching::pocket_structure(io::read_molecule(file, options.read));
     std::vector<matching::Pocket> pockets = matching::detect_pockets(structure, options.pockets);
     if (pockets.empty()) throw InputError("no pocket found");
+    const double detection_seconds = clock.elapsed_s();
     const std::string stem = io::structure_stem(file);
     std::vector<SiteRequest> requests(pockets.size());
     std::vector<std::optional<LibraryEntry>> built(pockets.size());
     std::vector<std::string> errors(pockets.size());
+    std::vector<double> seconds(pockets.size(), 0.0);
     tbb::parallel_for(std::size_t{0}, pockets.size(), [&](std::size_t k) {
+      const Stopwatch pocket_clock;
       SiteRequest& request = requests[k];
       request.line = static_cast<std::size_t>(pockets[k].rank);
       request.structure = file;
@@ -879,9 +904,12 @@ BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
       request.pocket = true;
       try {
         built[k] = site_entry(structure, request, options);
-      } catch (const Error& e) {
+      } catch (const std::bad_alloc&) {
+        errors[k] = "out of memory";
+      } catch (const std::exception& e) {
         errors[k] = one_line(e.what());
       }
+      seconds[k] = pocket_clock.elapsed_s();
     });
     std::vector<LibraryEntry> entries;
     for (std::size_t k = 0; k < built.size(); ++k) {
@@ -892,7 +920,8 @@ BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
       }
     }
     if (entries.empty()) throw InputError("no pocket's entry could be built (" + errors[0] + ")");
-    times.entries += clock.elapsed_s();
+    // The detection's time, then each pocket's: core time, as the other builds count it.
+    times.entries += detection_seconds + std::accumulate(seconds.begin(), seconds.end(), 0.0);
     return entries;
   };
   items.origin = [&structures](std::size_t i) {
@@ -901,7 +930,7 @@ BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
   items.identity = [&structures](std::size_t i, io::BinaryWriter& bytes) {
     file_identity(structures[i], bytes);
   };
-  items.settings = build_settings(options, true);
+  items.settings = build_settings(options, true) + site_settings(options, true);
   items.noun = "structure";
   return items;
 }

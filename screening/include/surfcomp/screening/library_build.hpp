@@ -221,9 +221,10 @@ std::filesystem::path shard_folder(const std::filesystem::path& output);
 /// (write_library_index). A shard's bytes do not depend on which process built it, on the number
 /// of processes or on the thread count: its settings are the build's settings and its number,
 /// records and input hash (a 64-bit hash of its records' source, record number, name, format and
-/// text; of a site's structure path and size, line, name, ligand and spheres; of a structure's
-/// path and size). A manifest (manifest.txt in the folder: the settings, the shard size and count,
-/// the record count and each shard's input hash) records what the folder is being built from.
+/// text; of a site's structure path, size and modification time, line, name, ligand and
+/// spheres; of a structure's path, size and modification time). A manifest (manifest.txt in the
+/// folder: the settings, the shard size and count, the record count and each shard's input hash)
+/// records what the folder is being built from.
 ///
 /// One process calls prepare(), then build() on every process (each building its share of the
 /// shards), then, once all have returned, finish() on the process that called prepare().
@@ -242,6 +243,12 @@ class ShardedLibraryBuild {
   /// Throws as the sites' plan, InputError for no structure.
   ShardedLibraryBuild(const PocketStructures& structures, std::filesystem::path output,
                       LibraryBuildOptions options);
+  // The inputs are kept by reference: a temporary would not outlive the plan.
+  ShardedLibraryBuild(std::vector<io::MoleculeRecord>&&, std::filesystem::path,
+                      LibraryBuildOptions) = delete;
+  ShardedLibraryBuild(std::vector<SiteRequest>&&, std::filesystem::path,
+                      LibraryBuildOptions) = delete;
+  ShardedLibraryBuild(PocketStructures&&, std::filesystem::path, LibraryBuildOptions) = delete;
   ShardedLibraryBuild(const ShardedLibraryBuild&) = delete;
   ShardedLibraryBuild& operator=(const ShardedLibraryBuild&) = delete;
   ~ShardedLibraryBuild();
