@@ -98,6 +98,14 @@ TEST_F(Cli, MatchWritesTheResultContract) {
   EXPECT_EQ(doc["parameters"]["overlay_atom_weight"], 14.0);
   EXPECT_EQ(doc["parameters"]["overlay_tolerance"], 0.1);
   EXPECT_EQ(doc["parameters"]["polish_top"], 5);
+  EXPECT_EQ(doc["parameters"]["atom_polish_sigma"], 0.5);
+  EXPECT_EQ(doc["parameters"]["atom_polish_weight"], 1.0);
+  // The scored alignments go by overlay score + weight atom fit.
+  EXPECT_GT(alignments[0]["atom_fit"].get<double>(), 0.0);
+  EXPECT_LE(alignments[0]["atom_fit"].get<double>(), 1.0);
+  EXPECT_GE(
+      alignments[0]["overlay"]["score"].get<double>() + alignments[0]["atom_fit"].get<double>(),
+      alignments[1]["overlay"]["score"].get<double>() + alignments[1]["atom_fit"].get<double>());
   EXPECT_EQ(doc["parameters"]["principal_axes_starts"], 24);
   EXPECT_EQ(doc["parameters"]["site_principal_axes_starts"], 24);
   EXPECT_TRUE(doc["parameters"]["site_overlay_radius"].is_number());

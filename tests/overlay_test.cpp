@@ -2,9 +2,12 @@
 // surface on itself (also moved) and symmetric in the two surfaces, two points overlap by the
 // Gaussian of their distance, same-element heteroatoms tell apart poses the surface cannot,
 // refinement climbs back to a known motion, the weighted rigid fit ignores what has no weight,
-// and overlays sharing one indexed reference give the pair's numbers.
+// and overlays sharing one indexed reference give the pair's numbers. The atom fit of the atom
+// polish is 1 for a molecule on itself and the Gaussian of a distance for two atoms, pairs like
+// elements only, and its polish takes a moved copy back to the identity.
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/matching/atom_polish.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
 #include "analytic_meshes.hpp"
@@ -450,6 +453,112 @@ TEST(Overlay, RejectsBadOptionsAndEmptySamples) {
                InputError);
   const std::vector<bool> wrong_size(3, true);
   EXPECT_THROW(matching::sample_surface(surface, 1.0, &wrong_size), InputError);
+}
+
+}  // namespace
+}  // namespace surfcomp
+
+namespace surfcomp {
+namespace {
+
+/// Heavy atoms from (element, x, y, z) rows.
+std::vector<harmonic::SurfaceAtom> heavy_atoms(
+    const std::vector<std::pair<std::string, Eigen::Vector3d>>& rows) {
+  std::vector<harmonic::SurfaceAtom> list;
+  for (const auto& [element, position] : rows) list.push_back({element, position});
+  return list;
+}
+
+/// A small rigid molecule with no symmetry: a bent chain of carbons with an O, an N and a Cl.
+std::vector<harmonic::SurfaceAtom> chiral_molecule() {
+  return heavy_atoms({{"C", {0.0, 0.0, 0.0}},
+                      {"C", {1.52, 0.0, 0.0}},
+                      {"C", {2.03, 1.43, 0.0}},
+                      {"O", {3.45, 1.50, 0.21}},
+                      {"N", {-0.52, -1.37, 0.35}},
+                      {"C", {1.45, 2.31, 1.10}},
+                      {"Cl", {-0.70, 0.91, -1.42}}});
+}
+
+std::vector<harmonic::SurfaceAtom> moved_atoms(std::vector<harmonic::SurfaceAtom> atoms,
+                                               const RigidTransform& t) {
+  for (harmonic::SurfaceAtom& atom : atoms)
+    atom.position = t.rotation * atom.position + t.translation;
+  return atoms;
+}
+
+// Two lone atoms of one element at distance d fit by g / (2 - g), g = exp(-d^2 / (2 sigma^2)),
+// at any distance (no cutoff); atoms of two elements never pair. A molecule on itself fits 1 at
+// the identity and less anywhere else.
+TEST(AtomPolish, TheFitIsTheTanimotoOfLikeAtomGaussians) {
+  for (double sigma : {0.5, 0.35}) {
+    const matching::AtomOverlap two(heavy_atoms({{"N", Eigen::Vector3d::Zero()}}),
+                                    heavy_atoms({{"N", Eigen::Vector3d::Zero()}}), sigma);
+    for (double d : {0.0, 0.1, 0.4, 0.9, 1.4, 2.0}) {
+      const double g = std::exp(-d * d / (2.0 * sigma * sigma));
+      EXPECT_NEAR(two.fit(motion(0.0, Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0.0, d, 0.0))),
+                  g / (2.0 - g), 1e-12)
+          << "sigma " << sigma << ", d " << d;
+    }
+    const matching::AtomOverlap unlike(heavy_atoms({{"N", Eigen::Vector3d::Zero()}}),
+                                       heavy_atoms({{"O", Eigen::Vector3d::Zero()}}), sigma);
+    EXPECT_EQ(unlike.fit(RigidTransform{}), 0.0);
+  }
+  const matching::AtomOverlap self(chiral_molecule(), chiral_molecule(), 0.5);
+  EXPECT_NEAR(self.fit(RigidTransform{}), 1.0, 1e-12);
+  EXPECT_LT(self.fit(motion(5.0, Eigen::Vector3d(1.0, 2.0, 0.5), Eigen::Vector3d::Zero())), 0.99);
+}
+
+// A molecule against a moved copy of itself: from poses up to 0.6 A and 15 degrees off, the
+// polish ends at the motion to 1e-4 A. The surface overlay beside it, of two lone points more
+// than its 3 A cutoff apart at every pose tried, scores 0: the atoms alone decide.
+TEST(AtomPolish, APolishTakesAMovedCopyBackToTheMotion) {
+  const std::vector<harmonic::SurfaceAtom> reference = chiral_molecule();
+  const RigidTransform truth =
+      motion(80.0, Eigen::Vector3d(0.3, -1.0, 0.7), Eigen::Vector3d(4.0, 1.0, -6.0));
+  const std::vector<harmonic::SurfaceAtom> probe = moved_atoms(reference, truth);
+  const RigidTransform answer = inverse(truth);
+  const matching::AtomOverlap atoms(reference, probe, 0.5);
+  const matching::SurfaceOverlay overlay(one_point(Eigen::Vector3d::Zero()),
+                                         one_point(Eigen::Vector3d::Zero()));
+  for (const RigidTransform& error :
+       {motion(15.0, Eigen::Vector3d(0.0, 1.0, 1.0), Eigen::Vector3d(0.3, 0.2, -0.1)),
+        motion(-6.0, Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(-0.4, 0.4, 0.2))}) {
+    RigidTransform start;
+    start.rotation = error.rotation * answer.rotation;
+    start.translation = error.rotation * answer.translation + error.translation;
+    const RigidTransform polished = atoms.polish(overlay, start, {});
+    double worst = 0.0;
+    for (const harmonic::SurfaceAtom& atom : probe) {
+      worst = std::max(worst, ((polished.rotation * atom.position + polished.translation) -
+                               (answer.rotation * atom.position + answer.translation))
+                                  .norm());
+    }
+    std::printf("[ polish   ] fit %.4f -> %.6f, farthest atom from the answer %.2e A\n",
+                atoms.fit(start), atoms.fit(polished), worst);
+    EXPECT_EQ(overlay.score(polished).score, 0.0);
+    EXPECT_LT(worst, 1e-4);
+    EXPECT_NEAR(atoms.fit(polished), 1.0, 1e-8);
+  }
+}
+
+TEST(AtomPolish, RejectsBadWidthsWeightsAndAtoms) {
+  const auto molecule = chiral_molecule();
+  EXPECT_THROW(matching::AtomOverlap(molecule, molecule, 0.0), OptionError);
+  EXPECT_THROW(matching::AtomOverlap(molecule, molecule, std::nan("")), OptionError);
+  EXPECT_THROW(matching::AtomOverlap(molecule, {}, 0.5), InputError);
+  auto broken = molecule;
+  broken[3].position.x() = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(matching::AtomOverlap(molecule, broken, 0.5), InputError);
+  const matching::AtomOverlap atoms(molecule, molecule, 0.5);
+  const matching::SurfaceOverlay overlay(one_point(Eigen::Vector3d::Zero()),
+                                         one_point(Eigen::Vector3d::Zero()));
+  matching::AtomPolishOptions negative;
+  negative.weight = -1.0;
+  EXPECT_THROW(atoms.polish(overlay, RigidTransform{}, negative), OptionError);
+  negative = {};
+  negative.iterations = -1;
+  EXPECT_THROW(atoms.polish(overlay, RigidTransform{}, negative), OptionError);
 }
 
 }  // namespace

@@ -27,6 +27,7 @@ struct Placed {
   RigidTransform transform;
   bool refined = false;
   OverlayScore overlay;
+  double atom_fit = 0.0;  ///< AtomOverlap::fit, where the atom polish is on
 };
 
 /// The clusters in the consensus order, with the clusters' fits as their transforms.
@@ -167,12 +168,14 @@ struct Ordered {
   std::size_t distinct = 0;
 };
 
-/// `all` by overlay score, then the repeats (a pose within kRepeatDistance of a better one);
-/// a principal-axes pose that repeats a better one is dropped (it has no merge-tree place to
-/// keep). Ties keep the order given: first the consensus order, then the axes starts.
-Ordered order_distinct_then_repeats(std::vector<Placed> all, const SurfaceOverlay& overlay) {
-  std::stable_sort(all.begin(), all.end(), [](const Placed& x, const Placed& y) {
-    return x.overlay.score > y.overlay.score;
+/// `all` by overlay score + fit_weight atom fit, then the repeats (a pose within
+/// kRepeatDistance of a better one); a principal-axes pose that repeats a better one is dropped
+/// (it has no merge-tree place to keep). Ties keep the order given: first the consensus order,
+/// then the axes starts.
+Ordered order_distinct_then_repeats(std::vector<Placed> all, const SurfaceOverlay& overlay,
+                                    double fit_weight = 0.0) {
+  std::stable_sort(all.begin(), all.end(), [&](const Placed& x, const Placed& y) {
+    return x.overlay.score + fit_weight * x.atom_fit > y.overlay.score + fit_weight * y.atom_fit;
   });
   Ordered out;
   std::vector<Placed> repeats;
@@ -212,6 +215,24 @@ Ordered polish(Ordered ordered, int polish_top, const SurfaceOverlay& overlay) {
   return order_distinct_then_repeats(std::move(ordered.list), overlay);
 }
 
+/// The first `polish_top` distinct poses of `ordered` polished on the two molecules' heavy atoms
+/// (AtomOverlap::polish), in parallel (TBB), and scored again; every distinct pose given its atom
+/// fit, and the list ordered again by overlay score + weight atom fit.
+Ordered polish_on_atoms(Ordered ordered, const MatchOptions& options, const AtomOverlap& atoms,
+                        const SurfaceOverlay& overlay) {
+  const std::size_t n =
+      std::min(ordered.distinct, static_cast<std::size_t>(std::max(options.polish_top, 0)));
+  tbb::parallel_for(std::size_t{0}, ordered.distinct, [&](std::size_t k) {
+    Placed& p = ordered.list[k];
+    if (k < n) {
+      p.transform = atoms.polish(overlay, p.transform, options.atom_polish);
+      p.overlay = overlay.score(p.transform);
+    }
+    p.atom_fit = atoms.fit(p.transform);
+  });
+  return order_distinct_then_repeats(std::move(ordered.list), overlay, options.atom_polish.weight);
+}
+
 /// The consensus order with its first options.refine_top alignments refined on the overlay
 /// (refine_consensus_head) and moved ahead together with the refined principal-axes starts
 /// (refine_axes_starts), best overlay score first, repeats after the distinct ones
@@ -241,6 +262,11 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
   Ordered ordered = order_distinct_then_repeats(std::move(candidates), overlay);
   if (overlay.uses_atoms() && options.polish_top > 0)
     ordered = polish(std::move(ordered), options.polish_top, overlay);
+  if (options.mode == MatchMode::whole_surfaces && options.atom_polish.sigma > 0.0 &&
+      !reference.atoms.empty() && !probe.atoms.empty()) {
+    const AtomOverlap atoms(reference.atoms, probe.atoms, options.atom_polish.sigma);
+    ordered = polish_on_atoms(std::move(ordered), options, atoms, overlay);
+  }
   ordered.list.insert(ordered.list.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined),
                       placed.end());
   return ordered.list;
@@ -275,6 +301,16 @@ void validate(const MatchOptions& options) {
   check.require(options.refine_top >= 0, "refine_top", options.refine_top, ">= 0");
   detail::check_axes_start_count(options.principal_axes_starts, "principal_axes_starts", check);
   check.require(options.polish_top >= 0, "polish_top", options.polish_top, ">= 0");
+  const AtomPolishOptions& atom_polish = options.atom_polish;
+  check.require(
+      atom_polish.sigma == 0.0 || (std::isfinite(atom_polish.sigma) && atom_polish.sigma > 0.0),
+      "atom_polish.sigma", atom_polish.sigma, "0 (off) or a finite value > 0 A");
+  check.require(std::isfinite(atom_polish.weight) && atom_polish.weight >= 0.0,
+                "atom_polish.weight", atom_polish.weight, "a finite value >= 0");
+  check.require(atom_polish.iterations >= 0, "atom_polish.iterations", atom_polish.iterations,
+                ">= 0");
+  check.require(atom_polish.tolerance >= 0.0, "atom_polish.tolerance", atom_polish.tolerance,
+                "a value >= 0 A");
   detail::check_overlay_options(options.overlay, {caller, "overlay."});
   const SiteMatchOptions& site = options.site;
   check.require(std::isfinite(site.overlay_radius) && site.overlay_radius > 0.0,
@@ -295,6 +331,7 @@ MatchOptions shape_only_options(MatchOptions options) {
   options.overlay.atom_weight = 0.0;
   options.site.chem_weight = 0.0;
   options.site.lining_weight = 0.0;
+  options.atom_polish.sigma = 0.0;
   return options;
 }
 
@@ -383,6 +420,7 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
     a.consensus = p.consensus;
     a.refined = p.refined;
     a.overlay = p.overlay;
+    a.atom_fit = p.atom_fit;
     if (p.cluster >= 0) {
       const Cluster& c = clusters[static_cast<std::size_t>(p.cluster)];
       a.rmsd = c.fit.rmsd;

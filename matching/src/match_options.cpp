@@ -88,6 +88,19 @@ const options::Table<MatchOptions>& match_option_table() {
            "", 0, 1e6},
           [](auto& m) -> auto& { return m.polish_top; }),
       options::field<M>(
+          {"atom-polish-sigma", Kind::real,
+           "where both inputs are molecules, polish the first --polish-top alignments last "
+           "on their heavy atoms, Gaussians of this width, like elements overlapping "
+           "(0: no atom polish; not for site matches)",
+           "A", 0.0, 5.0},
+          [](auto& m) -> auto& { return m.atom_polish.sigma; }),
+      options::field<M>(
+          {"atom-polish-weight", Kind::real,
+           "weight of the heavy-atom fit beside the overlay score in the atom polish and "
+           "in the order of the polished alignments",
+           "", 0.0, 100.0},
+          [](auto& m) -> auto& { return m.atom_polish.weight; }),
+      options::field<M>(
           {"overlay-tolerance", Kind::real,
            "a refinement stops when a step moves no sampled probe point farther "
            "than this",

@@ -320,6 +320,7 @@ py::dict alignment_dict(const matching::Alignment& a) {
   d["refined"] = a.refined;
   d["overlay"] = py::dict(py::arg("score") = a.overlay.score, py::arg("shape") = a.overlay.shape,
                           py::arg("chem") = a.overlay.chem, py::arg("atoms") = a.overlay.atoms);
+  d["atom_fit"] = a.atom_fit;
   d["cp_pairs"] = owned_array(std::move(pairs));
   d["parent"] = a.parent > 0 ? py::object(py::int_(a.parent)) : py::object(py::none());
   d["children"] = a.children;

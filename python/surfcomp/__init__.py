@@ -155,6 +155,7 @@ class Alignment(NamedTuple):
     consensus: float
     refined: bool
     overlay: OverlayScore
+    atom_fit: float
     cp_pairs: np.ndarray
     parent: Optional[int]
     children: List[int]
@@ -194,6 +195,9 @@ _documented(
     consensus="the consensus ranking's value",
     refined="whether the overlay refinement moved this pose",
     overlay="the overlay score of the pose and its terms (OverlayScore)",
+    atom_fit="two molecules: the heavy-atom Tanimoto of the atom polish (like elements, "
+             "Gaussians of atom_polish_sigma), 0-1; the scored alignments go by "
+             "overlay.score + atom_polish_weight * atom_fit. 0 otherwise",
     cp_pairs="(k, 2) (reference, probe) critical-point indices of the clique",
     parent="rank of the alignment this one was merged into, or None",
     children="ranks of the alignments merged into this one")

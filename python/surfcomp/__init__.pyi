@@ -121,6 +121,7 @@ class Alignment(NamedTuple):
     consensus: float
     refined: bool
     overlay: OverlayScore
+    atom_fit: float
     cp_pairs: npt.NDArray[np.int32]  # (k, 2): reference, probe critical-point indices
     parent: Optional[int]
     children: List[int]
@@ -287,6 +288,8 @@ def match(
     overlay_chem_weight: float = 6.0,
     overlay_atom_weight: float = 14.0,
     polish_top: int = 5,
+    atom_polish_sigma: float = 0.5,
+    atom_polish_weight: float = 1.0,
     overlay_tolerance: float = 0.1,
     principal_axes_starts: int = 24,
     site_overlay_radius: float = 2.0,

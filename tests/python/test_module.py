@@ -87,6 +87,15 @@ def test_a_self_match_gives_the_identity(ligands):
     np.testing.assert_allclose(best.transform, np.eye(4), atol=1e-3)
     assert best.overlay_score == pytest.approx(1.0, abs=1e-6)
     assert result.trace[0]["stage"] == "critical points" and result.cliques_complete
+    assert best.atom_fit == pytest.approx(1.0, abs=1e-9)  # the atom polish's fit on itself
+
+
+def test_the_atom_polish_is_a_keyword_and_orders_the_poses(ligands):
+    polished = surfcomp.match(ligands[2], ligands[3])
+    unpolished = surfcomp.match(ligands[2], ligands[3], atom_polish_sigma=0)
+    keys = [a.overlay_score + a.atom_fit for a in polished[:5]]
+    assert keys == sorted(keys, reverse=True) and 0 < polished[0].atom_fit <= 1
+    assert all(a.atom_fit == 0 for a in unpolished)
 
 
 def test_the_alignment_moves_an_rdkit_molecule_onto_its_crystal_pose(ligands):

@@ -6,6 +6,7 @@
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/association_graph.hpp"
+#include "surfcomp/matching/atom_polish.hpp"
 #include "surfcomp/matching/cliques.hpp"
 #include "surfcomp/matching/clustering.hpp"
 #include "surfcomp/matching/correspondences.hpp"
@@ -85,6 +86,11 @@ struct MatchOptions {
   /// polish_top distinct refined alignments are refined again on the whole score, heteroatoms
   /// pulled too, and ordered again. 0 leaves them as refined. >= 0.
   int polish_top = 5;
+  /// Where both sides are molecules (SurfaceDescriptors::atoms) and the mode is whole surfaces,
+  /// the first polish_top distinct scored alignments are polished last on their heavy atoms
+  /// (AtomOverlap::polish, atom_polish.hpp) and scored again, and the scored alignments are
+  /// ordered by overlay score + weight atom fit. sigma 0 turns it off (as shape_only does).
+  AtomPolishOptions atom_polish;
   OverlayOptions overlay;  ///< sigma 1 A, spacing 1.5 A, chemistry weight 6, atom weight 14
   SiteMatchOptions site;   ///< used with MatchMode::binding_sites
 };
@@ -131,6 +137,10 @@ struct Alignment {
                               ///< the pocket linings of a site match), for the first
                               ///< refine_top of the consensus ranking and the axes
                               ///< starts; 0 for the others
+  /// The heavy-atom fit of the transform (AtomOverlap::fit, width MatchOptions::atom_polish
+  /// sigma), [0, 1], where the atom polish took part (two molecules, whole surfaces): the
+  /// scored alignments are ordered by overlay.score + atom_polish.weight atom_fit. 0 otherwise.
+  double atom_fit = 0.0;
 };
 
 struct MatchResult {
