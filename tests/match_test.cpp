@@ -416,8 +416,10 @@ TEST(Match, SiteMatchWithoutCliquesStillAlignsFromThePrincipalAxes) {
       matching::match_surfaces(reference, probe, options, &all_reference, &all_probe);
   EXPECT_EQ(result.cliques, 0u);
   ASSERT_FALSE(result.alignments.empty());
-  for (const auto& a : result.alignments)
+  for (const auto& a : result.alignments) {
     EXPECT_EQ(a.source, matching::AlignmentSource::principal_axes);
+    EXPECT_EQ(a.atom_fit, 0.0);  // sites keep their overlay: no atom polish
+  }
   // Site poses rank on (shape + w chem) / (1 + w), w = site.chem_weight, without the atoms.
   const matching::OverlayScore& top = result.alignments[0].overlay;
   const double w = options.site.chem_weight;

@@ -48,13 +48,14 @@ void typed_atoms(const std::vector<harmonic::SurfaceAtom>& atoms, const char* si
 AtomOverlap::AtomOverlap(const std::vector<harmonic::SurfaceAtom>& reference,
                          const std::vector<harmonic::SurfaceAtom>& probe, double sigma)
     : sigma_(sigma) {
-  detail::OptionCheck{"atom polish", ""}.require(std::isfinite(sigma) && sigma > 0.0, "sigma",
-                                                 sigma, "a finite value > 0 A");
+  detail::OptionCheck{"atom polish", ""}.require(
+      std::isfinite(sigma) && sigma >= min_atom_polish_sigma, "sigma", sigma,
+      "a finite value >= 0.05 A");
   std::map<std::string, int> type_of;
   typed_atoms(reference, "reference", type_of, reference_, reference_types_);
   typed_atoms(probe, "probe", type_of, probe_, probe_types_);
-  self_ = self_overlap(reference_, reference_types_, sigma) +
-          self_overlap(probe_, probe_types_, sigma);
+  self_ =
+      self_overlap(reference_, reference_types_, sigma) + self_overlap(probe_, probe_types_, sigma);
 }
 
 double AtomOverlap::overlap(const RigidTransform& transform, Eigen::Matrix3Xd* targets,
@@ -83,8 +84,7 @@ double AtomOverlap::overlap(const RigidTransform& transform, Eigen::Matrix3Xd* t
 }
 
 double AtomOverlap::fit(const RigidTransform& transform) const {
-  const double h = overlap(transform, nullptr, nullptr);
-  return h / (self_ - h);
+  return tanimoto(overlap(transform, nullptr, nullptr));
 }
 
 RigidTransform AtomOverlap::polish(const SurfaceOverlay& overlay, const RigidTransform& start,
@@ -99,7 +99,7 @@ RigidTransform AtomOverlap::polish(const SurfaceOverlay& overlay, const RigidTra
                         Eigen::VectorXd& weights) {
     const double h = overlap(t, &targets, &weights);
     OverlayScore climbed;
-    climbed.score = overlay.score(t).score + options.weight * h / (self_ - h);
+    climbed.score = overlay.score(t).score + options.weight * tanimoto(h);
     return climbed;
   };
   OverlayOptions climb;

@@ -216,17 +216,19 @@ Ordered polish(Ordered ordered, int polish_top, const SurfaceOverlay& overlay) {
 }
 
 /// The first `polish_top` distinct poses of `ordered` polished on the two molecules' heavy atoms
-/// (AtomOverlap::polish), in parallel (TBB), and scored again; every distinct pose given its atom
-/// fit, and the list ordered again by overlay score + weight atom fit.
+/// (AtomOverlap::polish; a pose scored where it started counts as refined once moved), in
+/// parallel (TBB), and scored again; every pose of the list, repeats too, given its atom fit, and
+/// the list ordered again by overlay score + weight atom fit.
 Ordered polish_on_atoms(Ordered ordered, const MatchOptions& options, const AtomOverlap& atoms,
                         const SurfaceOverlay& overlay) {
   const std::size_t n =
       std::min(ordered.distinct, static_cast<std::size_t>(std::max(options.polish_top, 0)));
-  tbb::parallel_for(std::size_t{0}, ordered.distinct, [&](std::size_t k) {
+  tbb::parallel_for(std::size_t{0}, ordered.list.size(), [&](std::size_t k) {
     Placed& p = ordered.list[k];
     if (k < n) {
       p.transform = atoms.polish(overlay, p.transform, options.atom_polish);
       p.overlay = overlay.score(p.transform);
+      p.refined = true;
     }
     p.atom_fit = atoms.fit(p.transform);
   });
@@ -302,11 +304,8 @@ void validate(const MatchOptions& options) {
   detail::check_axes_start_count(options.principal_axes_starts, "principal_axes_starts", check);
   check.require(options.polish_top >= 0, "polish_top", options.polish_top, ">= 0");
   const AtomPolishOptions& atom_polish = options.atom_polish;
-  check.require(
-      atom_polish.sigma == 0.0 || (std::isfinite(atom_polish.sigma) && atom_polish.sigma > 0.0),
-      "atom_polish.sigma", atom_polish.sigma, "0 (off) or a finite value > 0 A");
-  check.require(std::isfinite(atom_polish.weight) && atom_polish.weight >= 0.0,
-                "atom_polish.weight", atom_polish.weight, "a finite value >= 0");
+  check.require(atom_polish.sigma == 0.0 || atom_polish.sigma >= min_atom_polish_sigma,
+                "atom_polish.sigma", atom_polish.sigma, "0 (off) or a value >= 0.05 A");
   check.require(atom_polish.iterations >= 0, "atom_polish.iterations", atom_polish.iterations,
                 ">= 0");
   check.require(atom_polish.tolerance >= 0.0, "atom_polish.tolerance", atom_polish.tolerance,

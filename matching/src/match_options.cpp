@@ -61,7 +61,8 @@ const options::Table<MatchOptions>& match_option_table() {
       options::field<M>(
           {"refine-top", Kind::integer,
            "refine this many alignments on the whole surfaces and rank them by their "
-           "overlay score (0: the seed's consensus ranking alone)",
+           "overlay score (+ --atom-polish-weight x atom fit between molecules; 0: the "
+           "seed's consensus ranking alone)",
            "", 0, 1e6},
           [](auto& m) -> auto& { return m.refine_top; }),
       options::field<M>(
@@ -91,13 +92,13 @@ const options::Table<MatchOptions>& match_option_table() {
           {"atom-polish-sigma", Kind::real,
            "where both inputs are molecules, polish the first --polish-top alignments last "
            "on their heavy atoms, Gaussians of this width, like elements overlapping "
-           "(0: no atom polish; not for site matches)",
+           "(0: no atom polish; else at least 0.05; not for site matches)",
            "A", 0.0, 5.0},
           [](auto& m) -> auto& { return m.atom_polish.sigma; }),
       options::field<M>(
           {"atom-polish-weight", Kind::real,
            "weight of the heavy-atom fit beside the overlay score in the atom polish and "
-           "in the order of the polished alignments",
+           "in the order of the scored alignments (between molecules)",
            "", 0.0, 100.0},
           [](auto& m) -> auto& { return m.atom_polish.weight; }),
       options::field<M>(

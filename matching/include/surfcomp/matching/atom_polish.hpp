@@ -26,14 +26,17 @@
 
 namespace surfcomp::matching {
 
+/// The narrowest atom Gaussian accepted, A: narrower ones underflow in the overlap sums.
+inline constexpr double min_atom_polish_sigma = 0.05;
+
 struct AtomPolishOptions {
   /// Default 0.5 A. Width of the atom Gaussians. 0 turns the polish off (match_surfaces);
-  /// AtomOverlap needs a finite value > 0.
+  /// otherwise finite and >= min_atom_polish_sigma (0.05 A).
   double sigma = 0.5;
   /// Default 1. Weight of the atom fit beside the overlay score, in the polish and in the order
-  /// of the polished poses. Finite, >= 0.
+  /// of the scored poses (match_surfaces). Finite, >= 0.
   double weight = 1.0;
-  /// Default 100. Most steps per pose. >= 0.
+  /// Default 1000. Most steps per pose (the climb stops at `tolerance` first). >= 0.
   int iterations = 1000;
   /// Default 1e-5 A. The polish stops when a step moves no probe atom by more than this. >= 0.
   double tolerance = 1e-5;
@@ -45,8 +48,8 @@ struct AtomPolishOptions {
 class AtomOverlap {
  public:
   /// `reference` and `probe` are heavy atoms (SurfaceDescriptors::atoms). Throws OptionError
-  /// unless sigma is finite and > 0; InputError when either side has no atoms or an atom's
-  /// position is not finite.
+  /// unless sigma is finite and >= min_atom_polish_sigma; InputError when either side has no atoms
+  /// or an atom's position is not finite.
   AtomOverlap(const std::vector<harmonic::SurfaceAtom>& reference,
               const std::vector<harmonic::SurfaceAtom>& probe, double sigma);
 
@@ -54,14 +57,17 @@ class AtomOverlap {
   double fit(const RigidTransform& transform) const;
 
   /// A transform near `start` with a higher overlay.score(T).score + options.weight fit(T) (see
-  /// the file comment); `start` itself when no step raises that sum. `overlay` must be the overlay of the same two molecules' surfaces. Throws
-  /// OptionError for options outside their domain.
+  /// the file comment); `start` itself when no step raises that sum. `overlay` must be the
+  /// overlay of the same two molecules' surfaces. The width is the constructor's: options.sigma
+  /// is not read. Throws OptionError for a weight, iterations or tolerance outside its domain.
   RigidTransform polish(const SurfaceOverlay& overlay, const RigidTransform& start,
                         const AtomPolishOptions& options) const;
 
  private:
   double overlap(const RigidTransform& transform, Eigen::Matrix3Xd* targets,
                  Eigen::VectorXd* weights) const;
+  /// The fit of an overlap h: h / (H_AA + H_BB - h).
+  double tanimoto(double h) const { return h / (self_ - h); }
 
   Eigen::Matrix3Xd reference_;
   std::vector<int> reference_types_;

@@ -73,7 +73,8 @@ struct MatchOptions {
   ClusteringOptions clustering;           ///< RMSD cut 4 A, merge cut 4 A
   RankingOptions ranking;                 ///< rank-by-rank, weights 1
   /// Default 10. The first refine_top alignments of the consensus ranking are refined on the
-  /// overlay (SurfaceOverlay::refine) and ranked by their overlay score ahead of the others,
+  /// overlay (SurfaceOverlay::refine) and ranked by their overlay score (between molecules, +
+  /// atom_polish.weight atom fit: atom_polish) ahead of the others,
   /// a pose that repeats a better one's (every sampled probe point within 0.5 A) after the
   /// distinct ones. 0 ranks by the consensus alone (the seed). >= 0.
   int refine_top = 10;
