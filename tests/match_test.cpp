@@ -162,7 +162,8 @@ PosedMatch match_random_pose(const harmonic::SurfaceDescriptors& reference, cons
 // The crystal overlays of issue 4 from random probe poses, with the defaults: 1THL <- 4TMN, and
 // 3TMN <- 4TMN, the pair whose true pose the surface score alone ranked below a wrong one (the
 // dipeptide 3TMN covers part of 4TMN); the heteroatom term puts it first. 1THL's bound is its
-// polished RMSD (0.50-0.52 A) plus 0.1 A: the atom polish leaves it there from every pose.
+// printed RMSD plus 0.1 A, tighter than the rule above: the atom polish ends every pose at about
+// the same place.
 TEST(Match, ThermolysinLigandsAlignFromRandomPoses) {
   for (const auto& [code, bound] : {std::pair{"1THL", 0.6}, std::pair{"3TMN", 1.2}}) {
     SURFCOMP_SHARED_OR_SKIP(ref_file, std::string(kLigands) + code + "_ligand.sdf");
@@ -183,9 +184,8 @@ TEST(Match, ThermolysinLigandsAlignFromRandomPoses) {
   }
 }
 
-// The atom polish (issue 32): a ligand matched onto a copy of itself in any of 20 random poses
-// ends at its true pose, to 0.01 A heavy-atom RMSD (the surface overlay alone left up to 0.11 A),
-// and the top alignment's atom fit is 1.
+// The atom polish: a ligand matched onto a copy of itself in any of 20 random poses ends at its
+// true pose, to 0.01 A heavy-atom RMSD, and the top alignment's atom fit is 1.
 TEST(Match, ASelfMatchEndsAtTheTruePoseFromAnyOfTwentyPoses) {
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "3TMN_ligand.sdf");
   const Molecule truth = io::read_molecule(file);
