@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 
 namespace surfcomp {
 namespace {
@@ -106,6 +108,20 @@ TEST_F(Cli, MatchWritesTheResultContract) {
   EXPECT_GE(
       alignments[0]["overlay"]["score"].get<double>() + alignments[0]["atom_fit"].get<double>(),
       alignments[1]["overlay"]["score"].get<double>() + alignments[1]["atom_fit"].get<double>());
+  // The table's first row shows the same atom fit in its column of that name.
+  std::istringstream table(r.out);
+  std::vector<std::string> header, first;
+  for (std::string line; std::getline(table, line);) {
+    std::istringstream words(line);
+    std::vector<std::string> row{std::istream_iterator<std::string>(words), {}};
+    if (!row.empty() && row[0] == "rank") header = row;
+    if (!header.empty() && !row.empty() && row[0] == "1") first = row;
+  }
+  const auto column = std::find(header.begin(), header.end(), "atom_fit");
+  ASSERT_NE(column, header.end()) << r.out;
+  const auto index = static_cast<std::size_t>(column - header.begin());
+  ASSERT_GT(first.size(), index) << r.out;
+  EXPECT_NEAR(std::stod(first[index]), alignments[0]["atom_fit"].get<double>(), 5e-4);
   EXPECT_EQ(doc["parameters"]["principal_axes_starts"], 24);
   EXPECT_EQ(doc["parameters"]["site_principal_axes_starts"], 24);
   EXPECT_TRUE(doc["parameters"]["site_overlay_radius"].is_number());

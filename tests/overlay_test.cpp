@@ -8,6 +8,7 @@
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/atom_polish.hpp"
+#include "surfcomp/matching/match.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
 #include "analytic_meshes.hpp"
@@ -559,6 +560,28 @@ TEST(AtomPolish, RejectsBadWidthsWeightsAndAtoms) {
   negative = {};
   negative.iterations = -1;
   EXPECT_THROW(atoms.polish(overlay, RigidTransform{}, negative), OptionError);
+  negative = {};
+  negative.tolerance = std::nan("");
+  EXPECT_THROW(atoms.polish(overlay, RigidTransform{}, negative), OptionError);
+  negative = {};
+  negative.sigma = 0.01;
+  EXPECT_THROW(atoms.polish(overlay, RigidTransform{}, negative), OptionError);
+}
+
+TEST(AtomPolish, MatchOptionsNameTheBadPolishField) {
+  matching::MatchOptions options;
+  options.atom_polish.iterations = -2;
+  try {
+    matching::validate(options);
+    ADD_FAILURE() << "atom_polish.iterations -2 was accepted";
+  } catch (const OptionError& error) {
+    EXPECT_NE(std::string(error.what()).find("match options: atom_polish.iterations = -2"),
+              std::string::npos)
+        << error.what();
+  }
+  options = {};
+  options.atom_polish.weight = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(matching::validate(options), OptionError);
 }
 
 }  // namespace

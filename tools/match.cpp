@@ -37,7 +37,8 @@ constexpr const char* kUsage =
     "same way (column 'from': axes). Where both inputs are molecules (or .hsi files built from\n"
     "molecules), a refined pose's score also weighs the overlap of same-element heteroatoms\n"
     "(--overlay-atom-weight), and the first --polish-top poses are refined again on that whole\n"
-    "score.\n\n"
+    "score plus --atom-polish-weight x the like-element Gaussian overlap of all heavy atoms\n"
+    "(--atom-polish-sigma; column 'atom_fit', a Tanimoto); the poses go by that sum.\n\n"
     "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .cif .cif.gz .pqr), a mesh (.ply .vert\n"
     "            .off .obj) or a .hsi file from hsi-build (two .hsi files must have been\n"
     "            built with the same parameters)\n"
@@ -125,25 +126,32 @@ int match(const std::vector<std::string>& args) {
                      *compared.lining, 1.0 + w);
   }
   if (!result.alignments.empty()) {
-    console::summary("%5s %-7s %8s %8s %8s %9s %8s %6s %7s  %s\n", "rank", "from", "rmsd", "points",
-                     "r_chem", "consensus", "overlay", "pairs", "parent",
+    console::summary("%5s %-7s %8s %8s %8s %9s %8s %8s %6s %7s  %s\n", "rank", "from", "rmsd",
+                     "points", "r_chem", "consensus", "overlay", "atom_fit", "pairs", "parent",
                      "rotation (deg) / translation (A)");
   }
+  // The atom fit is scored between two molecules only: "-" elsewhere.
+  const bool atom_fitted =
+      std::any_of(result.alignments.begin(), result.alignments.end(),
+                  [](const matching::Alignment& a) { return a.atom_fit > 0.0; });
   for (const auto& a : result.alignments) {
     if (a.rank > top) break;
     const Eigen::Matrix3d r = a.transform.topLeftCorner<3, 3>();
     const double angle = std::acos(std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
+    char fit[16] = "-";
+    if (atom_fitted) std::snprintf(fit, sizeof fit, "%.3f", a.atom_fit);
     if (a.source == matching::AlignmentSource::cliques) {
       console::summary(
-          "%5d %-7s %8.3f %8zu %8.3f %9.3f %7.3f%s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank,
-          "cliques", a.rmsd, a.n_points, a.r_chem, a.consensus, a.overlay.score,
-          a.refined ? "*" : " ", a.cp_pairs.size(),
+          "%5d %-7s %8.3f %8zu %8.3f %9.3f %7.3f%s %8s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n",
+          a.rank, "cliques", a.rmsd, a.n_points, a.r_chem, a.consensus, a.overlay.score,
+          a.refined ? "*" : " ", fit, a.cp_pairs.size(),
           a.parent > 0 ? std::to_string(a.parent).c_str() : "-", angle, a.transform(0, 3),
           a.transform(1, 3), a.transform(2, 3));
     } else {  // no CP correspondences behind it: no fit RMSD, points, R_chem, consensus or tree
-      console::summary("%5d %-7s %8s %8s %8s %9s %7.3f%s %6s %7s  %.1f / (%.2f, %.2f, %.2f)\n",
+      console::summary("%5d %-7s %8s %8s %8s %9s %7.3f%s %8s %6s %7s  %.1f / (%.2f, %.2f, %.2f)\n",
                        a.rank, "axes", "-", "-", "-", "-", a.overlay.score, a.refined ? "*" : " ",
-                       "-", "-", angle, a.transform(0, 3), a.transform(1, 3), a.transform(2, 3));
+                       fit, "-", "-", angle, a.transform(0, 3), a.transform(1, 3),
+                       a.transform(2, 3));
     }
   }
   // Outputs last, each atomic; a failure of a later one removes the earlier ones.

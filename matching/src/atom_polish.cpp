@@ -89,11 +89,7 @@ double AtomOverlap::fit(const RigidTransform& transform) const {
 
 RigidTransform AtomOverlap::polish(const SurfaceOverlay& overlay, const RigidTransform& start,
                                    const AtomPolishOptions& options) const {
-  const detail::OptionCheck check{"atom polish", ""};
-  check.require(std::isfinite(options.weight) && options.weight >= 0.0, "weight", options.weight,
-                "a finite value >= 0");
-  check.require(options.iterations >= 0, "iterations", options.iterations, ">= 0");
-  check.require(options.tolerance >= 0.0, "tolerance", options.tolerance, "a value >= 0 A");
+  detail::check_atom_polish_options(options, {"atom polish", ""});
   // The sum climbed at `t`, and each probe atom's EM target and weight there.
   const auto step = [&](const RigidTransform& t, Eigen::Matrix3Xd& targets,
                         Eigen::VectorXd& weights) {

@@ -303,13 +303,7 @@ void validate(const MatchOptions& options) {
   check.require(options.refine_top >= 0, "refine_top", options.refine_top, ">= 0");
   detail::check_axes_start_count(options.principal_axes_starts, "principal_axes_starts", check);
   check.require(options.polish_top >= 0, "polish_top", options.polish_top, ">= 0");
-  const AtomPolishOptions& atom_polish = options.atom_polish;
-  check.require(atom_polish.sigma == 0.0 || atom_polish.sigma >= min_atom_polish_sigma,
-                "atom_polish.sigma", atom_polish.sigma, "0 (off) or a value >= 0.05 A");
-  check.require(atom_polish.iterations >= 0, "atom_polish.iterations", atom_polish.iterations,
-                ">= 0");
-  check.require(atom_polish.tolerance >= 0.0, "atom_polish.tolerance", atom_polish.tolerance,
-                "a value >= 0 A");
+  detail::check_atom_polish_options(options.atom_polish, {caller, "atom_polish."});
   detail::check_overlay_options(options.overlay, {caller, "overlay."});
   const SiteMatchOptions& site = options.site;
   check.require(std::isfinite(site.overlay_radius) && site.overlay_radius > 0.0,

@@ -111,4 +111,13 @@ void check_axes_start_count(int n, const std::string& name, const OptionCheck& c
   check.require(is_axes_start_count(n), name, n, "0, 4 or 24");
 }
 
+void check_atom_polish_options(const AtomPolishOptions& options, const OptionCheck& check) {
+  check.require(options.sigma == 0.0 || finite_at_least(options.sigma, min_atom_polish_sigma),
+                "sigma", options.sigma, "0 (off) or a finite value >= 0.05 A");
+  check.require(finite_at_least(options.weight, 0.0), "weight", options.weight,
+                "a finite value >= 0");
+  check.require(options.iterations >= 0, "iterations", options.iterations, ">= 0");
+  check.require(options.tolerance >= 0.0, "tolerance", options.tolerance, "a value >= 0 A");
+}
+
 }  // namespace surfcomp::matching::detail

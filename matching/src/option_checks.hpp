@@ -6,6 +6,7 @@
 #pragma once
 
 #include "surfcomp/matching/association_graph.hpp"
+#include "surfcomp/matching/atom_polish.hpp"
 #include "surfcomp/matching/cliques.hpp"
 #include "surfcomp/matching/clustering.hpp"
 #include "surfcomp/matching/correspondences.hpp"
@@ -41,5 +42,6 @@ void check_ranking_options(const RankingOptions& options, const OptionCheck& che
 void check_overlay_spacing(double spacing, const OptionCheck& check);
 void check_overlay_options(const OverlayOptions& options, const OptionCheck& check);
 void check_axes_start_count(int n, const std::string& name, const OptionCheck& check);
+void check_atom_polish_options(const AtomPolishOptions& options, const OptionCheck& check);
 
 }  // namespace surfcomp::matching::detail
