@@ -116,7 +116,8 @@ Site build_site(const Entry& entry, const fs::path& pdb, double margin,
   site.site_cps =
       static_cast<std::size_t>(std::count(site.in_site.begin(), site.in_site.end(), true));
   site.imaged = harmonic::count_descriptors(site.descriptors).imaged;
-  site.lining = matching::lining_composition(binding_site.structure, binding_site.spheres);
+  site.lining = matching::lining_composition(binding_site.structure, binding_site.spheres)
+                    .value_or(matching::LiningComposition{});  // none: similarity 0
   site.build_ms = start.elapsed_ms();
   return site;
 }

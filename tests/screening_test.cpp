@@ -753,8 +753,8 @@ TEST(Screen, SiteQueryFindsItsOwnPocketFirstAndKindsDoNotMix) {
       screening::screen(query, library, overlay_only).hits;
   const screening::LibraryEntry other = library.entry(hits[1].entry);
   const double lining = matching::lining_similarity(
-      matching::lining_composition(site.structure, site.spheres),
-      matching::lining_composition(io::read_record_molecule(other.molecule), other.site));
+      matching::lining_composition(site.structure, site.spheres).value(),
+      matching::lining_composition(io::read_record_molecule(other.molecule), other.site).value());
   ASSERT_EQ(overlay_hits[1].entry, hits[1].entry);
   EXPECT_GT(lining, 0.0);
   EXPECT_NEAR(

@@ -430,24 +430,26 @@ TEST(LiningComposition, CountsEachLiningResidueOnceByClass) {
                      atom("C", {0, 0, -1}, "HEM", 5, "A", true),    // not an amino acid
                      atom("C", {0, -1, 0}, "MSE", 6, "A", false)};  // not a standard one
   const std::vector<matching::SiteSphere> spheres{{Eigen::Vector3d::Zero(), 4.0}};
-  const matching::LiningComposition lining = matching::lining_composition(structure, spheres);
+  const matching::LiningComposition lining =
+      matching::lining_composition(structure, spheres).value();
   matching::LiningComposition expected{};
   expected[3] = 1.0 / 3.0;  // basic: LYS
   expected[6] = 2.0 / 3.0;  // GLY, in chains A and B
   for (std::size_t k = 0; k < matching::lining_classes; ++k)
     EXPECT_DOUBLE_EQ(lining[k], expected[k]) << "class " << k;
   // A longer reach takes the ASP in: basic 1/4, acidic 1/4, GLY 1/2.
-  const matching::LiningComposition wider = matching::lining_composition(structure, spheres, 1.2);
+  const matching::LiningComposition wider =
+      matching::lining_composition(structure, spheres, 1.2).value();
   EXPECT_DOUBLE_EQ(wider[4], 0.25);
   EXPECT_DOUBLE_EQ(wider[6], 0.5);
   // The histogram intersection: 1 with itself, the shared fractions otherwise, symmetric, and 0
-  // against an empty lining.
+  // against an empty composition.
   EXPECT_DOUBLE_EQ(matching::lining_similarity(lining, lining), 1.0);
   EXPECT_DOUBLE_EQ(matching::lining_similarity(lining, wider), 0.25 + 0.5);
   EXPECT_DOUBLE_EQ(matching::lining_similarity(wider, lining), 0.75);
-  const matching::LiningComposition none =
-      matching::lining_composition(structure, {{Eigen::Vector3d(50, 0, 0), 4.0}});
-  EXPECT_DOUBLE_EQ(matching::lining_similarity(lining, none), 0.0);
+  EXPECT_DOUBLE_EQ(matching::lining_similarity(lining, matching::LiningComposition{}), 0.0);
+  // Spheres no residue reaches have no composition.
+  EXPECT_FALSE(matching::lining_composition(structure, {{Eigen::Vector3d(50, 0, 0), 4.0}}));
   EXPECT_DOUBLE_EQ(matching::site_score(0.4, 0.75, 0.3), (0.4 + 0.3 * 0.75) / 1.3);
   EXPECT_DOUBLE_EQ(matching::site_score(0.4, 0.75, 0.0), 0.4);
 }

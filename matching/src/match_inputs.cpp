@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numeric>
 #include <tuple>
 #include <utility>
 
@@ -485,14 +484,10 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
   }
   if (!match.shape_only && out.reference.molecule && out.probe.molecule &&
       !out.reference.site.empty() && !out.probe.site.empty()) {
-    const LiningComposition ref_lining =
-        lining_composition(*out.reference.molecule, out.reference.site);
-    const LiningComposition probe_lining = lining_composition(*out.probe.molecule, out.probe.site);
-    // A site that no amino acid lines (a nucleic-acid site) has no composition to compare: its
-    // score stays the overlay's.
-    if (std::accumulate(ref_lining.begin(), ref_lining.end(), 0.0) > 0.0 &&
-        std::accumulate(probe_lining.begin(), probe_lining.end(), 0.0) > 0.0)
-      out.lining = lining_similarity(ref_lining, probe_lining);
+    const auto ref_lining = lining_composition(*out.reference.molecule, out.reference.site);
+    const auto probe_lining = lining_composition(*out.probe.molecule, out.probe.site);
+    // A site that no amino acid lines has no composition: its score stays the overlay's.
+    if (ref_lining && probe_lining) out.lining = lining_similarity(*ref_lining, *probe_lining);
   }
   out.prepare_ms = clock.elapsed_ms();
   out.result =

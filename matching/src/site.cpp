@@ -262,8 +262,9 @@ std::optional<std::size_t> lining_class(const std::string& residue) {
 
 }  // namespace
 
-LiningComposition lining_composition(const Molecule& structure,
-                                     const std::vector<SiteSphere>& spheres, double reach) {
+std::optional<LiningComposition> lining_composition(const Molecule& structure,
+                                                    const std::vector<SiteSphere>& spheres,
+                                                    double reach) {
   std::map<std::tuple<std::string, int, std::string>, std::size_t> lining;
   for (const Atom& atom : structure.atoms) {
     if (atom.element == "H") continue;
@@ -275,10 +276,10 @@ LiningComposition lining_composition(const Molecule& structure,
     if (near)
       lining.emplace(std::make_tuple(atom.chain, atom.residue_number, atom.residue_name), *kind);
   }
+  if (lining.empty()) return std::nullopt;
   LiningComposition composition{};
   for (const auto& [residue, kind] : lining) composition[kind] += 1.0;
-  for (double& fraction : composition)
-    fraction /= std::max<double>(1.0, static_cast<double>(lining.size()));
+  for (double& fraction : composition) fraction /= static_cast<double>(lining.size());
   return composition;
 }
 

@@ -327,7 +327,7 @@ py::dict alignment_dict(const matching::Alignment& a) {
   return d;
 }
 
-py::dict match_dict(const matching::InputMatch& compared) {
+py::dict match_dict(const matching::InputMatch& compared, double lining_weight) {
   py::list alignments;
   for (const auto& a : compared.result.alignments) alignments.append(alignment_dict(a));
   py::list trace;
@@ -344,13 +344,14 @@ py::dict match_dict(const matching::InputMatch& compared) {
   d["warnings"] = compared.warnings;
   d["notes"] = compared.notes;
   d["shape_only"] = compared.shape_only;
-  d["site"] = compared.lining
-                  ? py::object(py::dict(
-                        py::arg("lining") = *compared.lining,
-                        py::arg("score") = compared.site_score
-                                               ? py::object(py::float_(*compared.site_score))
-                                               : py::object(py::none())))
-                  : py::object(py::none());
+  d["site"] =
+      compared.lining
+          ? py::object(py::dict(
+                py::arg("lining") = *compared.lining, py::arg("lining_weight") = lining_weight,
+                py::arg("score") = compared.site_score
+                                       ? py::object(py::float_(*compared.site_score))
+                                       : py::object(py::none())))
+          : py::object(py::none());
   d["unit"] = compared.unit;
   d["cliques"] = compared.result.cliques;
   d["cliques_complete"] = compared.result.cliques_complete;
@@ -535,7 +536,7 @@ py::dict match(const py::object& reference, const py::object& probe, const py::d
     if (!report_path.empty())
       report::write_html_report(report_path, *compared, settings.inputs.match, report_options);
   }
-  return match_dict(*compared);
+  return match_dict(*compared, settings.inputs.match.site.lining_weight);
 }
 
 /// A row of a screen's table: its rank and its molecule's entry, as Hit and FusedHit begin.

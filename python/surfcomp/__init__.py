@@ -217,8 +217,8 @@ class MatchResult(list):
     notes: List[str]
     #: True when ESP, LP and atoms were set aside (asked, or a side carries no ESP and LP).
     shape_only: bool
-    #: Two sites on structures: {"lining": the lining residues' similarity, "score": the site
-    #: score, (top overlay score + w lining) / (1 + w)}; None otherwise.
+    #: Two sites on structures: {"lining": the lining residues' similarity, "lining_weight": w,
+    #: "score": the site score, (top overlay score + w lining) / (1 + w)}; None otherwise.
     site: Optional[Dict[str, Any]]
     #: The length unit the match ran at, in the inputs' coordinates (1 for molecules; see the
     #: ``scale`` and ``unit`` options). Transforms and RMSDs are in the inputs' coordinates.

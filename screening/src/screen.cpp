@@ -249,12 +249,8 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
     const std::vector<bool> lining =
         matching::pocket_lining(descriptors, &query.site_points, options.match.site.overlay_radius);
     query.sample = matching::sample_surface(descriptors.surface, overlay.spacing, &lining);
-    if (molecule != nullptr) {
-      const matching::LiningComposition residues =
-          matching::lining_composition(*molecule, query.site);
-      // A site that no amino acid lines is scored by its overlay alone.
-      if (std::accumulate(residues.begin(), residues.end(), 0.0) > 0.0) query.lining = residues;
-    }
+    // A site that no amino acid lines is scored by its overlay alone.
+    if (molecule != nullptr) query.lining = matching::lining_composition(*molecule, query.site);
   }
   if (query.sample.size() == 0) {
     throw InputError(descriptors.surface.source() + (query.site.empty()
@@ -489,14 +485,12 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
     const std::vector<bool> in_site = matching::critical_points_in_site(described, entry.site);
     result =
         matching::match_surfaces(query.descriptors, described, match, &query.site_points, &in_site);
-    const matching::LiningComposition lining =
-        matching::lining_composition(site.structure, entry.site);
-    if (!result.alignments.empty() && query.lining &&
-        std::accumulate(lining.begin(), lining.end(), 0.0) > 0.0) {
+    const auto lining = matching::lining_composition(site.structure, entry.site);
+    if (!result.alignments.empty() && query.lining && lining) {
       const matching::Alignment& top = result.alignments.front();
       HitScore hit = from_overlay(top.overlay, top.transform);
       hit.score = matching::site_score(top.overlay.score,
-                                       matching::lining_similarity(*query.lining, lining),
+                                       matching::lining_similarity(*query.lining, *lining),
                                        matching::shape_only_options(match).site.lining_weight);
       return hit;
     }

@@ -412,4 +412,5 @@ def test_pockets_are_the_programs_and_a_pocket_is_a_site(program, shared, tmp_pa
     # A pocket onto itself: the same lining residues, and the site score weighs them as asked.
     itself = surfcomp.match(pdb, pdb, site_pocket=1, site_lining_weight=0.5)
     assert itself.site["lining"] == 1.0
+    assert itself.site["lining_weight"] == 0.5
     assert itself.site["score"] == pytest.approx((itself[0].overlay.score + 0.5) / 1.5, abs=1e-12)

@@ -153,10 +153,11 @@ inline constexpr double lining_reach = 1.0;
 
 /// The fraction of the site's lining residues (the 20 standard amino acids of `structure`, by
 /// chain, number and name, with a heavy atom within a sphere's radius + `reach` of its centre)
-/// in each class; all 0 when no residue lines the site.
-LiningComposition lining_composition(const Molecule& structure,
-                                     const std::vector<SiteSphere>& spheres,
-                                     double reach = lining_reach);
+/// in each class; none when no residue lines the site (a nucleic-acid site, or spheres away
+/// from the protein), which then has no composition to compare.
+std::optional<LiningComposition> lining_composition(const Molecule& structure,
+                                                    const std::vector<SiteSphere>& spheres,
+                                                    double reach = lining_reach);
 
 /// How alike two linings' compositions are: the histogram intersection, the sum over the
 /// classes of the smaller fraction, in [0, 1] (1 for equal compositions); 0 when either lining
