@@ -159,6 +159,7 @@ Molecule convert_atoms(const RDKit::ROMol& mol, const std::string& source) {
     const RDGeom::Point3D& p = conformer.getAtomPos(rd_atom->getIdx());
     atom.position = Eigen::Vector3d(p.x, p.y, p.z);
     atom.element = rd_atom->getAtomicNum() > 0 ? rd_atom->getSymbol() : "";
+    atom.formal_charge = rd_atom->getFormalCharge();
     if (const auto* info =
             dynamic_cast<const RDKit::AtomPDBResidueInfo*>(rd_atom->getMonomerInfo())) {
       atom.name = trimmed(info->getName());

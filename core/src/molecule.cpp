@@ -104,6 +104,24 @@ std::string describe_atom(const Molecule& molecule, std::size_t index) {
   return text + ")";
 }
 
+bool carries_ionic_group(const Molecule& molecule) {
+  const std::vector<Atom>& atoms = molecule.atoms;
+  bool formal = false;
+  for (const Atom& atom : atoms) {
+    if (atom.formal_charge == 0) continue;
+    formal = true;
+    const bool balanced = std::any_of(atoms.begin(), atoms.end(), [&](const Atom& other) {
+      return other.formal_charge * atom.formal_charge < 0 &&
+             (other.position - atom.position).norm() < charge_pair_bond_length;
+    });
+    if (!balanced) return true;
+  }
+  if (formal) return false;
+  double net = 0.0;
+  for (const Atom& atom : atoms) net += atom.charge;
+  return std::abs(net) >= 0.5;
+}
+
 void validate_molecule(const Molecule& molecule) {
   const std::string& file = molecule.source.empty() ? std::string("<molecule>") : molecule.source;
   if (molecule.atoms.empty()) throw InputError(file + ": the molecule has no atoms");

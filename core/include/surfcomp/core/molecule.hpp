@@ -18,7 +18,8 @@ struct Atom {
   std::string element;                                 ///< capitalised symbol, "C", "Cl", "Zn"
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< A
   double charge = 0.0;                                 ///< partial charge, e
-  double radius = 0.0;         ///< van der Waals radius, A (Bondi by default)
+  int formal_charge = 0;  ///< formal charge, e, as the file gives it (SDF, MOL2, PDB via RDKit)
+  double radius = 0.0;    ///< van der Waals radius, A (Bondi by default)
   double lipophilicity = 0.0;  ///< logP increment f_i
   std::string name;            ///< PDB atom name, "" when unknown
   std::string residue_name;    ///< PDB residue name, "" when unknown
@@ -68,6 +69,17 @@ struct LigandSelector {
 /// to ten HETATM residue names present) or when no copy of it is in the chain and number asked
 /// for (listing the copies present).
 std::vector<std::size_t> select_ligand(const Molecule& molecule, const LigandSelector& selector);
+
+/// Within this of an atom of opposite formal charge, a charged atom is taken as bonded to it
+/// (nitro N-O 1.2 A, sulfonium ylide C-S 1.8 A; a salt bridge's closest approach is about
+/// 2.6 A).
+inline constexpr double charge_pair_bond_length = 2.0;
+
+/// Whether `molecule` carries an ionic group: an atom whose formal charge no bonded atom of
+/// the opposite charge balances (a carboxylate, an ammonium, an amidinium; not a nitro group
+/// or an N-oxide). Without any formal charge in the file, whether its partial charges sum to
+/// a net charge of at least 0.5 e in size (a PQR file's ion).
+bool carries_ionic_group(const Molecule& molecule);
 
 /// "atom N (element name residue numberchain)" for messages; N is 1-based.
 std::string describe_atom(const Molecule& molecule, std::size_t index);
