@@ -4,7 +4,8 @@
 // self-overlay's score and the identity; stage 2 refines each molecule's best conformers and
 // only raises their scores. Pocket libraries: a site list is read line by line; a
 // site entry keeps its spheres; a site query finds its own pocket first, and a library of the
-// other kind is refused. A .hsi file becomes an entry keeping its surface and heavy atoms.
+// other kind is refused. A .hsi file becomes an entry keeping its surface and heavy atoms. A
+// query without an ionic group screens by shape alone unless asked otherwise.
 #include "analytic_meshes.hpp"
 #include "pocket_cut.hpp"
 #include "test_data.hpp"
@@ -14,6 +15,7 @@
 #include "surfcomp/core/io/binary_stream.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/molecule.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/site.hpp"
@@ -26,6 +28,7 @@
 
 #include "surfcomp/screening/hit_files.hpp"
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -413,13 +416,22 @@ TEST(LibraryBuild, BadRecordIsSkippedAndListedWhileTheOthersBuild) {
   EXPECT_EQ(result.bytes, fs::file_size(output));
 }
 
-TEST(Screen, QueryInTheLibraryFindsItselfFirstWithTheIdentity) {
+/// three_molecule_sdf() built into a library in a temporary folder, with its records.
+struct ThreeMoleculeLibrary {
+  static fs::path built(const std::vector<io::MoleculeRecord>& records, const fs::path& path) {
+    screening::build_library(records, path);
+    return path;
+  }
   const test::TempDir dir;
-  const fs::path input = dir.write("three.sdf", three_molecule_sdf());
-  const std::vector<io::MoleculeRecord> records = screening::read_library_inputs({input});
-  const fs::path path = dir / "three.sclib";
-  screening::build_library(records, path);
-  const screening::Library library(path);
+  const std::vector<io::MoleculeRecord> records =
+      screening::read_library_inputs({dir.write("three.sdf", three_molecule_sdf())});
+  const screening::Library library{built(records, dir / "three.sclib")};
+};
+
+TEST(Screen, QueryInTheLibraryFindsItselfFirstWithTheIdentity) {
+  const ThreeMoleculeLibrary three;
+  const std::vector<io::MoleculeRecord>& records = three.records;
+  const screening::Library& library = three.library;
 
   const Molecule molecule = io::read_record_molecule(records[1]);
   screening::ScreenOptions options;
@@ -533,6 +545,88 @@ TEST(Screen, StageTwoRefinesEachMoleculesBestConformersAndNeverLowersTheirScores
   options.refine = 0;
   for (const screening::Hit& hit : screening::screen(query, library, options).hits)
     EXPECT_EQ(hit.stage, 1);
+}
+
+/// The molecule of `smiles` in one ETKDG conformer, read as a query file would be.
+Molecule conformer_of(const std::string& smiles, const std::string& name) {
+  ConformerOptions one;
+  one.count = 1;
+  one.seed = 3;
+  return io::read_record_molecule(
+      io::MoleculeRecord{name + ".sdf", 1, name, io::RecordFormat::mdl,
+                         generate_conformers(smiles_record(smiles, name, 1), one).front()});
+}
+
+TEST(IonicGroups, AFormalChargeCountsUnlessABondedAtomBalancesIt) {
+  EXPECT_TRUE(carries_ionic_group(conformer_of("[O-]C(=O)c1ccccc1O", "salicylate")));
+  EXPECT_TRUE(carries_ionic_group(conformer_of("C[NH3+]", "methylammonium")));
+  EXPECT_TRUE(carries_ionic_group(conformer_of("[NH3+]CC(=O)[O-]", "glycine_zwitterion")));
+  EXPECT_FALSE(carries_ionic_group(conformer_of("OC(=O)c1ccccc1O", "salicylic_acid")));
+  EXPECT_FALSE(carries_ionic_group(conformer_of("[O-][N+](=O)c1ccccc1", "nitrobenzene")));
+  EXPECT_FALSE(carries_ionic_group(conformer_of("C[N+]1([O-])CCCCC1", "n_oxide")));
+  // Without formal charges (a PQR file), the partial charges' sum decides.
+  Molecule pqr;
+  pqr.atoms.resize(2);
+  pqr.atoms[1].position.x() = 1.5;
+  pqr.atoms[0].charge = -0.7;
+  pqr.atoms[1].charge = -0.3;
+  EXPECT_TRUE(carries_ionic_group(pqr));
+  pqr.atoms[1].charge = 0.7;
+  EXPECT_FALSE(carries_ionic_group(pqr));
+}
+
+TEST(Screen, ANeutralQueryScreensByShapeAloneAndAnIonicOneWithItsChemistry) {
+  const ThreeMoleculeLibrary three;
+  const std::vector<io::MoleculeRecord>& records = three.records;
+  const screening::Library& library = three.library;
+  screening::ScreenOptions options;
+  options.candidates = 1;
+  options.top = 0;
+  const auto query_of = [&](const Molecule& molecule, screening::QueryChemistry chemistry) {
+    screening::ScreenOptions asked = options;
+    asked.chemistry = chemistry;
+    return screening::make_screen_query(
+        harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), asked, {},
+        &molecule);
+  };
+  const Molecule acid = io::read_record_molecule(records[1]);  // salicylic acid, neutral
+  const Molecule salicylate = conformer_of("[O-]C(=O)c1ccccc1O", "salicylate");
+  using screening::QueryChemistry;
+  EXPECT_TRUE(query_of(acid, QueryChemistry::automatic).by_shape);
+  EXPECT_FALSE(query_of(acid, QueryChemistry::on).by_shape);
+  EXPECT_FALSE(query_of(salicylate, QueryChemistry::automatic).by_shape);
+  EXPECT_TRUE(query_of(salicylate, QueryChemistry::off).by_shape);
+
+  // By shape alone every stage's score is the shape Tanimoto (stage 3's of the full match's
+  // pose); with chemistry it is not.
+  const screening::ScreenQuery by_shape = query_of(acid, QueryChemistry::automatic);
+  const std::vector<screening::Hit> shape_hits = screening::screen(by_shape, library, options).hits;
+  ASSERT_EQ(shape_hits.size(), 3u);
+  expect_found_itself_first(shape_hits, 1);
+  for (const screening::Hit& hit : shape_hits) EXPECT_EQ(hit.score.score, hit.score.shape);
+  const screening::ScreenQuery chemical = query_of(acid, QueryChemistry::on);
+  const std::vector<screening::Hit> chemical_hits =
+      screening::screen(chemical, library, options).hits;
+  ASSERT_EQ(chemical_hits.size(), 3u);
+  expect_found_itself_first(chemical_hits, 1);
+  EXPECT_GT(std::abs(chemical_hits[1].score.score - chemical_hits[1].score.shape), 1e-3);
+
+  // Several queries agree: one with chemistry gives it to all of them; mixed ones are refused.
+  std::vector<screening::ScreenQuery> queries;
+  queries.push_back(query_of(acid, QueryChemistry::automatic));
+  queries.push_back(query_of(salicylate, QueryChemistry::automatic));
+  EXPECT_THROW(
+      screening::score_molecules({&queries[0], &queries[1]}, library, 0, library.size(), options),
+      InputError);
+  screening::agree_on_chemistry(queries);
+  EXPECT_FALSE(queries[0].by_shape);
+  EXPECT_FALSE(queries[1].by_shape);
+  queries.clear();
+  queries.push_back(query_of(acid, QueryChemistry::automatic));
+  queries.push_back(query_of(acid, QueryChemistry::automatic));
+  screening::agree_on_chemistry(queries);
+  EXPECT_TRUE(queries[0].by_shape);
+  EXPECT_TRUE(queries[1].by_shape);
 }
 
 // fuse_scores by hand: stage-3 rows replace their molecule's score against their query, max

@@ -47,7 +47,9 @@ constexpr const char* kUsage =
     "the fast score, with --refine 0); the columns\n"
     "rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,fast_score and\n"
     "t00..t33, the transform moving the hit into QUERY's frame (row-major). The rows do not\n"
-    "depend on --threads or on the number of MPI processes.\n\n"
+    "depend on --threads or on the number of MPI processes. The score weighs ESP, LP and\n"
+    "heteroatoms beside shape when the query carries an ionic group (--chemistry auto): a\n"
+    "query without one is ranked by shape alone, its poses still found with chemistry.\n\n"
     "QUERY  a molecule (.sdf .mol .mol2 .pdb) or a .hsi file built from one; with\n"
     "       --site-ligand, --site-sphere or --site-pocket (a pocket `surfcomp pockets` finds), a\n"
     "       binding site on a structure (PDB or mmCIF), screened against a pocket library\n"
@@ -57,7 +59,8 @@ constexpr const char* kUsage =
     "       Several QUERY files, or a file of several molecules (without --record, which picks\n"
     "       one), are several queries screened in one pass: each query's rows go to\n"
     "       hits.queryK.csv (K = 1, 2, ... in the order given; the same rows as a screen of that\n"
-    "       query alone) and hits.csv ranks the molecules by their fused score (--top rows),\n"
+    "       query alone, all with chemistry when one query carries an ionic group) and\n"
+    "       hits.csv ranks the molecules by their fused score (--top rows),\n"
     "       --fusion max (the best of its scores against the queries) or mean, with the columns\n"
     "       rank,entry,name,source,record,conformer,score,query (the best query) and\n"
     "       score_1..score_K. Every query is read and described before the library is: a\n"
@@ -201,6 +204,7 @@ int screen(const std::vector<std::string>& args) {
                        "): " + e.what());
     }
   }
+  screening::agree_on_chemistry(queries);
   std::vector<const screening::ScreenQuery*> query_list(queries.size());
   for (std::size_t q = 0; q < queries.size(); ++q) query_list[q] = &queries[q];
   const double query_s = clock.elapsed_s();
@@ -246,6 +250,15 @@ int screen(const std::vector<std::string>& args) {
   } catch (...) {
     for (const std::filesystem::path& path : written) std::filesystem::remove(path);
     throw;
+  }
+  if (!queries.empty() && queries.front().by_shape) {
+    console::summary(
+        "%s: scored by shape alone (%s; --chemistry on weighs ESP, LP and "
+        "heteroatoms too)\n",
+        several ? "the queries" : specs.front().label().c_str(),
+        options.chemistry == screening::QueryChemistry::off
+            ? "--chemistry off"
+            : (several ? "none carries an ionic group" : "no ionic group"));
   }
   const std::size_t rows = several ? result.fused.size() : result.hits.front().size();
   console::summary(

@@ -605,6 +605,7 @@ py::dict screen(const py::list& queries, const std::string& library_path, const 
           std::move(prepared.descriptors), settings.screen, prepared.site,
           prepared.molecule ? &*prepared.molecule : nullptr));
     }
+    screening::agree_on_chemistry(prepared_queries);
     std::vector<const screening::ScreenQuery*> pointers(prepared_queries.size());
     for (std::size_t q = 0; q < pointers.size(); ++q) pointers[q] = &prepared_queries[q];
     result = screening::screen_queries(pointers, *library, settings.screen);

@@ -74,9 +74,16 @@ const matching::PackedQuery& packed_query(const ScreenQuery& query, matching::Sa
   return kind == matching::SampleKind::atoms ? *query.atom_packed : *query.packed;
 }
 
-/// The overlay options of the query's mode.
+/// The overlay options of stages 1 and 2: the query's mode's, without chemistry and atoms for
+/// a query screened by shape.
 matching::OverlayOptions overlay_options(const ScreenQuery& query, const ScreenOptions& options) {
-  return matching::mode_overlay_options(query_match_options(query, options));
+  matching::OverlayOptions overlay =
+      matching::mode_overlay_options(query_match_options(query, options));
+  if (query.by_shape) {
+    overlay.chem_weight = 0.0;
+    overlay.atom_weight = 0.0;
+  }
+  return overlay;
 }
 
 /// An entry's packed sample, or `sample` and `atoms` packed now.
@@ -267,7 +274,20 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
   query.atom_packed = std::make_shared<const matching::PackedQuery>(matching::PackedSample(
       query.atom_sample, query.atoms, overlay.sigma, matching::SampleKind::atoms));
   query.descriptors = std::move(descriptors);
+  query.by_shape = query.site.empty() && (options.chemistry == QueryChemistry::off ||
+                                          (options.chemistry == QueryChemistry::automatic &&
+                                           molecule != nullptr && !carries_ionic_group(*molecule)));
   return query;
+}
+
+void agree_on_chemistry(std::vector<ScreenQuery>& queries) {
+  const bool mixed =
+      std::adjacent_find(queries.begin(), queries.end(), [](const auto& a, const auto& b) {
+        return a.by_shape != b.by_shape;
+      }) != queries.end();
+  if (mixed) {
+    for (ScreenQuery& query : queries) query.by_shape = false;
+  }
 }
 
 HitScore fast_score(const ScreenQuery& query, const matching::PackedSampleView& entry,
@@ -344,6 +364,10 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
   for (const ScreenQuery* query : queries) {
     if (query->site.empty() == sites)
       throw InputError("a screen's queries are all molecules or all binding sites");
+    if (query->by_shape != queries.front()->by_shape)
+      throw InputError(
+          "a screen's queries are all scored by shape alone or all with chemistry "
+          "(agree_on_chemistry)");
   }
   if (begin > end || end > library.size()) throw InputError("screen: entries outside the library");
   const std::size_t q_count = queries.size();
@@ -497,7 +521,9 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
   }
   if (result.alignments.empty()) return {};
   const matching::Alignment& top = result.alignments.front();
-  return from_overlay(top.overlay, top.transform);
+  HitScore hit = from_overlay(top.overlay, top.transform);
+  if (query.by_shape) hit.score = hit.shape;
+  return hit;
 }
 
 std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,

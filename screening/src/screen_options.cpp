@@ -33,6 +33,13 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
              "with several queries, how a molecule's scores make the fused ranking: max "
              "(the best query's score) or mean"},
             [](auto& q) -> auto& { return q.screen.fusion; }, fusion_names),
+        options::choice<Q>(
+            {"chemistry", Kind::choice,
+             "how a molecule query's hits are scored: auto (ESP, LP and heteroatoms beside "
+             "shape when the query carries an ionic group, a formal charge that no bonded atom "
+             "balances, as a nitro group's is; shape alone otherwise; several queries all with "
+             "chemistry when one has it), on, or off (shape alone)"},
+            [](auto& q) -> auto& { return q.screen.chemistry; }, query_chemistry_names),
         options::field<Q>(
             matching::site_ligand_spec(), [](auto& q) -> auto& { return q.site_ligand; }),
         matching::sphere_option<Q>(

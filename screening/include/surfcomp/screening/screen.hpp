@@ -47,6 +47,15 @@ enum class Fusion { max, mean };
 /// The names of the fusion rules, indexed by Fusion (as --fusion spells them).
 inline constexpr std::array<const char*, 2> fusion_names = {"max", "mean"};
 
+/// Whether a molecule query's screen scores ESP, LP and heteroatoms beside shape: `automatic`
+/// when the query carries an ionic group (carries_ionic_group; a .hsi query, which has no
+/// formal charges, always), `on` always, `off` never. Without them, stages 1 and 2 overlay and
+/// rank by shape alone and a stage-3 hit's score is the shape Tanimoto of the pose the full
+/// match finds (with its chemistry and atom polish as ever). Site queries keep their own score.
+enum class QueryChemistry { automatic, on, off };
+/// The names of the chemistry rules, indexed by QueryChemistry (as --chemistry spells them).
+inline constexpr std::array<const char*, 3> query_chemistry_names = {"auto", "on", "off"};
+
 struct ScreenOptions {
   /// Default 5. The conformers of each molecule, best fast score first, whose overlay stage 2
   /// refines. 0: no refinement.
@@ -61,6 +70,8 @@ struct ScreenOptions {
   std::size_t top = 100;
   /// Default Fusion::max. How the scores of several queries make one ranking (fuse_scores).
   Fusion fusion = Fusion::max;
+  /// Default QueryChemistry::automatic: a neutral molecule query screens by shape alone.
+  QueryChemistry chemistry = QueryChemistry::automatic;
   /// The full match of stage 3, whose overlay options (sigma, spacing, chemistry and atom
   /// weights, refinement steps) stages 1 and 2 score and refine with too; default as
   /// `surfcomp match`.
@@ -124,6 +135,8 @@ struct ScreenQuery {
   /// The two samples packed and indexed once for stages 1 and 2 (matching::PackedQuery):
   /// `packed` for `sample`, atom_packed for atom_sample.
   std::shared_ptr<const matching::PackedQuery> packed, atom_packed;
+  /// Whether the screen ranks this query's hits by shape alone (ScreenOptions::chemistry).
+  bool by_shape = false;
 };
 
 /// The query of a screen from its descriptors (describe_surface of its molecule's surface, or
@@ -131,13 +144,20 @@ struct ScreenQuery {
 /// matching::sample_molecule with options.surface); with `site` spheres, a binding-site query
 /// (descriptors from matching::describe_site) whose sample is its pocket lining
 /// (matching::pocket_lining, options.match.site.overlay_radius), and with its structure as
-/// `molecule` the composition of its lining residues. Throws InputError when its
+/// `molecule` the composition of its lining residues. by_shape follows options.chemistry; a
+/// molecule query without `molecule` keeps its chemistry under `automatic`. Throws InputError
+/// when its
 /// surface (or lining) has no vertex, or no ESP or LP (matching::require_match_properties:
 /// entries are compared on them).
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               const ScreenOptions& options = {},
                               std::vector<matching::SiteSphere> site = {},
                               const Molecule* molecule = nullptr);
+
+/// Several queries are fused on one scale: when some would screen by shape alone and others not,
+/// all of them keep their chemistry (by_shape false). Callers of screen_queries (and of
+/// score_molecules with several queries) call this on the queries first.
+void agree_on_chemistry(std::vector<ScreenQuery>& queries);
 
 /// Heavy atoms, and amino-acid residues in one chain, from which a whole-molecule query is a
 /// macromolecule (macromolecule_query_warning).
@@ -257,7 +277,8 @@ struct StreamedScores {
 /// against every query and each molecule's best refined, then released (Library::release).
 /// `begin` and `end` begin molecules (molecule_start_at). Progress (options.progress) is
 /// reported as stage 1 over the range's entries. Throws InputError when an entry is not of the
-/// queries' kind (as check_library_kind words it) or the queries are of two kinds, FormatError
+/// queries' kind (as check_library_kind words it) or the queries are of two kinds (sites and
+/// molecules, or by shape alone and with chemistry: agree_on_chemistry), FormatError
 /// for a damaged entry.
 StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
                                const Library& library, std::size_t begin, std::size_t end,
