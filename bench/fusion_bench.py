@@ -30,6 +30,8 @@ def parse_args():
                         help="comma-separated targets (folders of WORK)")
     parser.add_argument("--threads", type=int, default=2, help="surfcomp's --threads (default 2)")
     parser.add_argument("--json", type=Path, default=None, help="write every figure to this JSON file")
+    parser.add_argument("--screen-args", default="",
+                        help='more options for every surfcomp screen, e.g. "--chemistry on"')
     return parser.parse_args()
 
 
@@ -59,7 +61,7 @@ def fuse_target(args, target):
         log(f"{target}: {len(queries)} queries in one pass, --fusion {fusion}")
         start = time.monotonic()
         run_command([args.surfcomp, "screen", *queries, target_dir / "library.sclib", "-o", table,
-                     "--top", 0, "--fusion", fusion, "--threads", args.threads])
+                     "--top", 0, "--fusion", fusion, "--threads", args.threads, *args.screen_args.split()])
         figures[f"screen_s_{fusion}"] = time.monotonic() - start
         figures[fusion] = evaluate(order_scores(table), names, actives)
         if fusion == "max":
