@@ -51,7 +51,8 @@ inline constexpr std::array<const char*, 2> fusion_names = {"max", "mean"};
 /// when the query carries an ionic group (carries_ionic_group; a .hsi query, which has no
 /// formal charges, always), `on` always, `off` never. Without them, stages 1 and 2 overlay and
 /// rank by shape alone and a stage-3 hit's score is the shape Tanimoto of the pose the full
-/// match finds (with its chemistry and atom polish as ever). Site queries keep their own score.
+/// match finds, that pose still chosen with chemistry and the atom polish. Site queries keep
+/// their own score.
 enum class QueryChemistry { automatic, on, off };
 /// The names of the chemistry rules, indexed by QueryChemistry (as --chemistry spells them).
 inline constexpr std::array<const char*, 3> query_chemistry_names = {"auto", "on", "off"};
