@@ -597,19 +597,50 @@ TEST(Screen, ANeutralQueryScreensByShapeAloneAndAnIonicOneWithItsChemistry) {
   EXPECT_FALSE(query_of(salicylate, QueryChemistry::automatic).by_shape);
   EXPECT_TRUE(query_of(salicylate, QueryChemistry::off).by_shape);
 
-  // By shape alone every stage's score is the shape Tanimoto (stage 3's of the full match's
-  // pose); with chemistry it is not.
+  // Ranked by shape, every row's score is its shape Tanimoto (stage 3's of the full match's
+  // pose) and the rows after the candidates go by it; with chemistry the score is not the
+  // shape. The stages overlay with chemistry either way: the same molecules get the full match,
+  // and every molecule the same conformer, pose and shape term.
   const screening::ScreenQuery by_shape = query_of(acid, QueryChemistry::automatic);
   const std::vector<screening::Hit> shape_hits = screening::screen(by_shape, library, options).hits;
   ASSERT_EQ(shape_hits.size(), 3u);
   expect_found_itself_first(shape_hits, 1);
   for (const screening::Hit& hit : shape_hits) EXPECT_EQ(hit.score.score, hit.score.shape);
+  EXPECT_GE(shape_hits[1].score.shape, shape_hits[2].score.shape);
   const screening::ScreenQuery chemical = query_of(acid, QueryChemistry::on);
   const std::vector<screening::Hit> chemical_hits =
       screening::screen(chemical, library, options).hits;
   ASSERT_EQ(chemical_hits.size(), 3u);
   expect_found_itself_first(chemical_hits, 1);
   EXPECT_GT(std::abs(chemical_hits[1].score.score - chemical_hits[1].score.shape), 1e-3);
+  for (const screening::Hit& hit : shape_hits) {
+    const auto same = std::find_if(chemical_hits.begin(), chemical_hits.end(),
+                                   [&](const screening::Hit& h) { return h.entry == hit.entry; });
+    ASSERT_NE(same, chemical_hits.end()) << "entry " << hit.entry;
+    EXPECT_EQ(same->stage, hit.stage) << "entry " << hit.entry;
+    EXPECT_EQ(same->score.shape, hit.score.shape) << "entry " << hit.entry;
+    EXPECT_EQ(same->score.transform, hit.score.transform) << "entry " << hit.entry;
+  }
+
+  // Fewer rows than molecules: the candidates are kept by score and the other rows by shape, so
+  // the rows are the head of all of them, from one range of the library or merged from two.
+  screening::ScreenOptions bounded = options;
+  bounded.top = 2;
+  const std::vector<screening::Hit> head = screening::screen(by_shape, library, bounded).hits;
+  ASSERT_EQ(head.size(), 2u);
+  for (std::size_t i = 0; i < head.size(); ++i) {
+    EXPECT_EQ(head[i].entry, shape_hits[i].entry) << "row " << i + 1;
+    EXPECT_EQ(head[i].score.score, shape_hits[i].score.score) << "row " << i + 1;
+  }
+  const std::size_t middle = screening::molecule_start_at(library, 1);
+  const auto best_of = [&](std::size_t begin, std::size_t end) {
+    return screening::score_molecules({&by_shape}, library, begin, end, bounded).queries[0].best;
+  };
+  const std::vector<screening::Hit> whole = best_of(0, library.size());
+  const std::vector<screening::Hit> merged =
+      screening::merge_best({best_of(0, middle), best_of(middle, library.size())}, bounded, true);
+  ASSERT_EQ(merged.size(), whole.size());
+  for (std::size_t i = 0; i < whole.size(); ++i) EXPECT_EQ(merged[i].entry, whole[i].entry);
 
   // Several queries agree: one with chemistry gives it to all of them; mixed ones are refused.
   std::vector<screening::ScreenQuery> queries;
@@ -627,6 +658,54 @@ TEST(Screen, ANeutralQueryScreensByShapeAloneAndAnIonicOneWithItsChemistry) {
   screening::agree_on_chemistry(queries);
   EXPECT_TRUE(queries[0].by_shape);
   EXPECT_TRUE(queries[1].by_shape);
+}
+
+// merge_best and rank_hits by hand: for a query ranked by shape, the candidates are the best by
+// score and the rows after them the best of the others by shape, scored by it.
+TEST(Screen, AQueryRankedByShapeKeepsItsCandidatesByScoreAndItsOtherRowsByShape) {
+  const auto hit = [](std::size_t entry, double score, double shape) {
+    screening::Hit h;
+    h.entry = entry;
+    h.stage = 2;
+    h.score.score = score;
+    h.score.shape = shape;
+    return h;
+  };
+  // Two ranges' lists: by score the order is 0 1 2 3, by shape 3 1 2 0.
+  const std::vector<std::vector<screening::Hit>> parts = {{hit(0, 0.9, 0.5), hit(2, 0.7, 0.6)},
+                                                          {hit(1, 0.8, 0.9), hit(3, 0.6, 0.95)}};
+  screening::ScreenOptions options;
+  options.candidates = 1;
+  options.top = 3;
+  const auto entries = [](const std::vector<screening::Hit>& hits) {
+    std::vector<std::size_t> e;
+    for (const screening::Hit& h : hits) e.push_back(h.entry);
+    return e;
+  };
+  EXPECT_EQ(entries(screening::merge_best(parts, options, false)),
+            (std::vector<std::size_t>{0, 1, 2}));
+  const std::vector<screening::Hit> best = screening::merge_best(parts, options, true);
+  EXPECT_EQ(entries(best), (std::vector<std::size_t>{0, 3, 1}));
+  EXPECT_EQ(best[1].score.score, 0.6);  // merge_best keeps the overlay score
+
+  screening::HitScore full;
+  full.score = 0.55;
+  full.shape = 0.55;
+  const std::vector<screening::Hit> rows = screening::rank_hits(best, {full}, 0, true);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].stage, 3);
+  EXPECT_EQ(rows[0].score.score, 0.55);
+  EXPECT_EQ(rows[1].score.score, 0.95);
+  EXPECT_EQ(rows[2].score.score, 0.9);
+  EXPECT_EQ(rows[1].score.shape, 0.95);
+  const std::vector<screening::Hit> scored = screening::rank_hits(best, {full}, 2, false);
+  ASSERT_EQ(scored.size(), 2u);
+  EXPECT_EQ(scored[1].score.score, 0.6);
+
+  // Every molecule kept (top 0): the same candidate, then all the others by shape.
+  options.top = 0;
+  EXPECT_EQ(entries(screening::merge_best(parts, options, true)),
+            (std::vector<std::size_t>{0, 3, 1, 2}));
 }
 
 // fuse_scores by hand: stage-3 rows replace their molecule's score against their query, max

@@ -48,8 +48,9 @@ constexpr const char* kUsage =
     "rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,fast_score and\n"
     "t00..t33, the transform moving the hit into QUERY's frame (row-major). The rows do not\n"
     "depend on --threads or on the number of MPI processes. The score weighs ESP, LP and\n"
-    "heteroatoms beside shape when the query carries an ionic group (--chemistry auto): a\n"
-    "query without one is ranked by shape alone, its poses still found with chemistry.\n\n"
+    "heteroatoms beside shape when the query carries an ionic group (--chemistry auto): the\n"
+    "hits of a query without one are found and posed with chemistry all the same, but ranked\n"
+    "by the shape Tanimoto of their pose (the score column).\n\n"
     "QUERY  a molecule (.sdf .mol .mol2 .pdb) or a .hsi file built from one; with\n"
     "       --site-ligand, --site-sphere or --site-pocket (a pocket `surfcomp pockets` finds), a\n"
     "       binding site on a structure (PDB or mmCIF), screened against a pocket library\n"
@@ -253,8 +254,8 @@ int screen(const std::vector<std::string>& args) {
   }
   if (!queries.empty() && queries.front().by_shape) {
     console::summary(
-        "%s: scored by shape alone (%s; --chemistry on weighs ESP, LP and "
-        "heteroatoms too)\n",
+        "%s: hits ranked by the shape of their pose (%s; --chemistry on ranks by the "
+        "score with ESP, LP and heteroatoms)\n",
         several ? "the queries" : specs.front().label().c_str(),
         options.chemistry == screening::QueryChemistry::off
             ? "--chemistry off"

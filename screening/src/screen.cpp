@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <string>
 #include <tuple>
@@ -74,16 +75,9 @@ const matching::PackedQuery& packed_query(const ScreenQuery& query, matching::Sa
   return kind == matching::SampleKind::atoms ? *query.atom_packed : *query.packed;
 }
 
-/// The overlay options of stages 1 and 2: the query's mode's, without chemistry and atoms for
-/// a query screened by shape.
+/// The overlay options of stages 1 and 2: the query's mode's.
 matching::OverlayOptions overlay_options(const ScreenQuery& query, const ScreenOptions& options) {
-  matching::OverlayOptions overlay =
-      matching::mode_overlay_options(query_match_options(query, options));
-  if (query.by_shape) {
-    overlay.chem_weight = 0.0;
-    overlay.atom_weight = 0.0;
-  }
-  return overlay;
+  return matching::mode_overlay_options(query_match_options(query, options));
 }
 
 /// An entry's packed sample, or `sample` and `atoms` packed now.
@@ -97,9 +91,15 @@ bool same_molecule(const LibraryEntryInfo& a, const LibraryEntryInfo& b) {
   return a.record == b.record && a.name == b.name && a.source == b.source;
 }
 
-/// Ranks hits: the higher score first, ties to the lower entry.
-bool better_hit(const Hit& x, const Hit& y) {
-  if (x.score.score != y.score.score) return x.score.score > y.score.score;
+/// What ranks a hit: its score, or its shape term for a query ranked by shape.
+double ranking_score(const HitScore& score, bool by_shape) {
+  return by_shape ? score.shape : score.score;
+}
+
+/// Ranks hits: the higher ranking_score first, ties to the lower entry.
+bool better_hit(const Hit& x, const Hit& y, bool by_shape = false) {
+  const double a = ranking_score(x.score, by_shape), b = ranking_score(y.score, by_shape);
+  if (a != b) return a > b;
   return x.entry < y.entry;
 }
 
@@ -108,41 +108,83 @@ bool better_hit(const Hit& x, const Hit& y) {
 template <class Item, class Better>
 class BestItems {
  public:
-  explicit BestItems(std::size_t capacity) : capacity_(capacity) {}
+  explicit BestItems(std::size_t capacity, Better better = {})
+      : capacity_(capacity), better_(better) {}
   void add(Item item) {
     if (capacity_ > 0 && heap_.size() == capacity_) {
-      if (!Better()(item, heap_.front())) return;
-      std::pop_heap(heap_.begin(), heap_.end(), Better());
+      if (!better_(item, heap_.front())) return;
+      std::pop_heap(heap_.begin(), heap_.end(), better_);
       heap_.back() = std::move(item);
     } else {
       heap_.push_back(std::move(item));
     }
-    std::push_heap(heap_.begin(), heap_.end(), Better());
+    std::push_heap(heap_.begin(), heap_.end(), better_);
   }
   /// The items kept, best first.
   std::vector<Item> sorted() const {
     std::vector<Item> items = heap_;
-    std::sort(items.begin(), items.end(), Better());
+    std::sort(items.begin(), items.end(), better_);
     return items;
   }
 
  private:
   std::size_t capacity_;
+  Better better_;
   std::vector<Item> heap_;
 };
-
-struct BetterHit {
-  bool operator()(const Hit& x, const Hit& y) const { return better_hit(x, y); }
-};
-using BestMolecules = BestItems<Hit, BetterHit>;
 
 /// A molecule's best hit against one query and, with several queries, its scores against all.
 struct KeptHit {
   Hit hit;
   MoleculeScores all;
 };
-struct BetterKeptHit {
-  bool operator()(const KeptHit& x, const KeptHit& y) const { return better_hit(x.hit, y.hit); }
+
+const Hit& hit_of(const Hit& hit) { return hit; }
+const Hit& hit_of(const KeptHit& kept) { return kept.hit; }
+
+/// better_hit of items that are or hold hits.
+struct BetterHit {
+  bool by_shape = false;
+  template <class Item>
+  bool operator()(const Item& x, const Item& y) const {
+    return better_hit(hit_of(x), hit_of(y), by_shape);
+  }
+};
+
+/// A query's best molecules (QueryScores::best) of those added, each once: the
+/// kept_molecules() best by score, and for a query ranked by shape the first options.candidates
+/// of them followed by the others best by their shape term.
+template <class Item>
+class KeptMolecules {
+ public:
+  KeptMolecules(const ScreenOptions& options, bool by_shape)
+      : candidates_(options.candidates),
+        capacity_(kept_molecules(options)),
+        by_score_(capacity_, BetterHit{false}) {
+    if (by_shape) by_shape_.emplace(capacity_, BetterHit{true});
+  }
+  void add(const Item& item) {
+    by_score_.add(item);
+    if (by_shape_) by_shape_->add(item);
+  }
+  std::vector<Item> sorted() const {
+    std::vector<Item> items = by_score_.sorted();
+    if (!by_shape_) return items;
+    items.resize(std::min(candidates_, items.size()));
+    std::set<std::size_t> candidates;
+    for (const Item& item : items) candidates.insert(hit_of(item).entry);
+    for (Item& item : by_shape_->sorted()) {
+      if (capacity_ > 0 && items.size() == capacity_) break;
+      if (candidates.count(hit_of(item).entry) == 0) items.push_back(std::move(item));
+    }
+    return items;
+  }
+
+ private:
+  std::size_t candidates_;
+  std::size_t capacity_;
+  BestItems<Item, BetterHit> by_score_;
+  std::optional<BestItems<Item, BetterHit>> by_shape_;
 };
 
 /// A molecule's scores fused by `fusion` (fuse_scores), and the query that scores it highest
@@ -366,15 +408,15 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
       throw InputError("a screen's queries are all molecules or all binding sites");
     if (query->by_shape != queries.front()->by_shape)
       throw InputError(
-          "a screen's queries are all scored by shape alone or all with chemistry "
+          "a screen's queries are all ranked by shape or all by their score "
           "(agree_on_chemistry)");
   }
   if (begin > end || end > library.size()) throw InputError("screen: entries outside the library");
   const std::size_t q_count = queries.size();
   const bool fusing = q_count > 1;
+  const bool by_shape = queries.front()->by_shape;
   const double sigma = overlay_options(*queries.front(), options).sigma;
-  std::vector<BestItems<KeptHit, BetterKeptHit>> kept(
-      q_count, BestItems<KeptHit, BetterKeptHit>(kept_molecules(options)));
+  std::vector<KeptMolecules<KeptHit>> kept(q_count, KeptMolecules<KeptHit>(options, by_shape));
   BestItems<FusedMolecule, BetterFused> fused(fused_molecules(options, q_count));
   StreamedScores result;
   result.queries.resize(q_count);
@@ -445,7 +487,7 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
           const Hit& hit = scores[(e - e0) * q_count + q];
           if (best[q] == nullptr || hit.score.score > best[q]->score.score) best[q] = &hit;
         }
-        if (fusing) all.scores.push_back({best[q]->entry, best[q]->score.score});
+        if (fusing) all.scores.push_back({best[q]->entry, ranking_score(best[q]->score, by_shape)});
       }
       for (std::size_t q = 0; q < q_count; ++q) kept[q].add({*best[q], all});
       if (fusing) {
@@ -472,8 +514,8 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
 }
 
 std::vector<Hit> merge_best(const std::vector<std::vector<Hit>>& parts,
-                            const ScreenOptions& options) {
-  BestMolecules kept(kept_molecules(options));
+                            const ScreenOptions& options, bool by_shape) {
+  KeptMolecules<Hit> kept(options, by_shape);
   for (const std::vector<Hit>& part : parts) {
     for (const Hit& hit : part) kept.add(hit);
   }
@@ -527,13 +569,16 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
 }
 
 std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,
-                           std::size_t top) {
+                           std::size_t top, bool by_shape) {
   const std::size_t k = std::min(full.size(), best.size());
   std::vector<Hit> hits;
   for (std::size_t i = 0; i < k; ++i)
     hits.push_back({best[i].entry, 3, full[i], best[i].fast_score});
-  std::sort(hits.begin(), hits.end(), better_hit);
-  hits.insert(hits.end(), best.begin() + static_cast<std::ptrdiff_t>(k), best.end());
+  std::sort(hits.begin(), hits.end(), [](const Hit& x, const Hit& y) { return better_hit(x, y); });
+  for (std::size_t i = k; i < best.size(); ++i) {
+    hits.push_back(best[i]);
+    hits.back().score.score = ranking_score(best[i].score, by_shape);
+  }
   if (top > 0 && hits.size() > top) hits.resize(top);
   return hits;
 }
@@ -582,7 +627,7 @@ std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
 MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
                                 const std::vector<HitScore>& full,
                                 const std::vector<MoleculeScores>& molecules,
-                                const ScreenOptions& options) {
+                                const ScreenOptions& options, bool by_shape) {
   MultiScreenResult result;
   std::vector<std::vector<Hit>> rows;  // each query's every row: its every stage-3 score
   for (std::size_t q = 0, at = 0; q < best.size(); ++q) {
@@ -591,7 +636,7 @@ MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
     const std::vector<HitScore> mine(full.begin() + static_cast<std::ptrdiff_t>(at),
                                      full.begin() + static_cast<std::ptrdiff_t>(at + k));
     at += k;
-    rows.push_back(rank_hits(best[q], mine, 0));
+    rows.push_back(rank_hits(best[q], mine, 0, by_shape));
     const std::size_t shown =
         options.top == 0 ? rows.back().size() : std::min(options.top, rows.back().size());
     result.hits.emplace_back(rows.back().begin(),
@@ -624,7 +669,8 @@ MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
   result.stage3_seconds = clock.elapsed_s();
   std::vector<std::vector<Hit>> best;
   for (QueryScores& scores : streamed.queries) best.push_back(std::move(scores.best));
-  MultiScreenResult ranked = rank_and_fuse(best, full, streamed.molecules, options);
+  MultiScreenResult ranked =
+      rank_and_fuse(best, full, streamed.molecules, options, queries.front()->by_shape);
   result.hits = std::move(ranked.hits);
   result.fused = std::move(ranked.fused);
   return result;

@@ -35,10 +35,11 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
             [](auto& q) -> auto& { return q.screen.fusion; }, fusion_names),
         options::choice<Q>(
             {"chemistry", Kind::choice,
-             "how a molecule query's hits are scored: auto (ESP, LP and heteroatoms beside "
-             "shape when the query carries an ionic group, a formal charge that no bonded atom "
-             "balances, as a nitro group's is; shape alone otherwise; several queries all with "
-             "chemistry when one has it), on, or off (shape alone)"},
+             "how a molecule query's hits are ranked, all found and posed with ESP, LP and "
+             "heteroatoms beside shape: auto (by that score when the query carries an ionic "
+             "group, a formal charge that no bonded atom balances, as a nitro group's is; by "
+             "the shape Tanimoto of their pose otherwise; several queries all by the score when "
+             "one has it), on (by the score), or off (by shape)"},
             [](auto& q) -> auto& { return q.screen.chemistry; }, query_chemistry_names),
         options::field<Q>(
             matching::site_ligand_spec(), [](auto& q) -> auto& { return q.site_ligand; }),

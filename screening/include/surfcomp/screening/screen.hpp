@@ -47,12 +47,13 @@ enum class Fusion { max, mean };
 /// The names of the fusion rules, indexed by Fusion (as --fusion spells them).
 inline constexpr std::array<const char*, 2> fusion_names = {"max", "mean"};
 
-/// Whether a molecule query's screen scores ESP, LP and heteroatoms beside shape: `automatic`
-/// when the query carries an ionic group (carries_ionic_group; a .hsi query, which has no
-/// formal charges, always), `on` always, `off` never. Without them, stages 1 and 2 overlay and
-/// rank by shape alone and a stage-3 hit's score is the shape Tanimoto of the pose the full
-/// match finds, that pose still chosen with chemistry and the atom polish. Site queries keep
-/// their own score.
+/// Whether a molecule query's hits are ranked by the overlay score, which weighs ESP, LP and
+/// heteroatoms beside shape: `automatic` when the query carries an ionic group
+/// (carries_ionic_group; a .hsi query, which has no formal charges, always), `on` always, `off`
+/// never. Otherwise they are ranked by the shape Tanimoto of their pose. Either way every stage
+/// overlays with chemistry and picks the candidates of stage 3 by the overlay score, so the
+/// poses and the molecules given the full match do not change. Site queries keep their own
+/// score.
 enum class QueryChemistry { automatic, on, off };
 /// The names of the chemistry rules, indexed by QueryChemistry (as --chemistry spells them).
 inline constexpr std::array<const char*, 3> query_chemistry_names = {"auto", "on", "off"};
@@ -71,7 +72,7 @@ struct ScreenOptions {
   std::size_t top = 100;
   /// Default Fusion::max. How the scores of several queries make one ranking (fuse_scores).
   Fusion fusion = Fusion::max;
-  /// Default QueryChemistry::automatic: a neutral molecule query screens by shape alone.
+  /// Default QueryChemistry::automatic: a molecule query without an ionic group ranks by shape.
   QueryChemistry chemistry = QueryChemistry::automatic;
   /// The full match of stage 3, whose overlay options (sigma, spacing, chemistry and atom
   /// weights, refinement steps) stages 1 and 2 score and refine with too; default as
@@ -136,7 +137,7 @@ struct ScreenQuery {
   /// The two samples packed and indexed once for stages 1 and 2 (matching::PackedQuery):
   /// `packed` for `sample`, atom_packed for atom_sample.
   std::shared_ptr<const matching::PackedQuery> packed, atom_packed;
-  /// Whether the screen ranks this query's hits by shape alone (ScreenOptions::chemistry).
+  /// Whether the screen ranks this query's hits by their shape term (ScreenOptions::chemistry).
   bool by_shape = false;
 };
 
@@ -155,8 +156,8 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               std::vector<matching::SiteSphere> site = {},
                               const Molecule* molecule = nullptr);
 
-/// Several queries are fused on one scale: when some would screen by shape alone and others not,
-/// all of them keep their chemistry (by_shape false). Callers of screen_queries (and of
+/// Several queries are fused on one scale: when some would rank by shape and others not,
+/// all of them rank by their score (by_shape false). Callers of screen_queries (and of
 /// score_molecules with several queries) call this on the queries first.
 void agree_on_chemistry(std::vector<ScreenQuery>& queries);
 
@@ -210,7 +211,8 @@ HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
 /// Stage 3 of one entry: the full match of the query with the entry's molecule, rebuilt (see
 /// ScreenOptions::read, surface; a site's structure described at its site, matched as binding
 /// sites, its surface that of the atoms within the site's margin, as matching::build_site_surface
-/// builds it); the top alignment's overlay score and transform. An entry
+/// builds it); the top alignment's overlay score (its shape term for a query ranked by shape)
+/// and transform. An entry
 /// without any alignment scores 0 with the identity. Throws what reading the molecule,
 /// building its surface or matching throws.
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
@@ -233,7 +235,7 @@ std::size_t molecule_start_at(const Library& library, std::size_t entry);
 /// One molecule's score against one query after stage 2, for a fused ranking.
 struct MoleculeScore {
   std::size_t entry = 0;  ///< its best conformer
-  double score = 0.0;
+  double score = 0.0;     ///< what ranks it: the shape term for a query ranked by shape
 };
 
 /// A molecule's scores against every query after stage 2.
@@ -248,7 +250,8 @@ struct QueryScores {
   /// get their fast scores, its `refine` best by fast score (ties to the lower index) their
   /// refined scores where those are not lower, and its best entry (ties to the lower index)
   /// stands for it. Only the kept_molecules() best molecules, best first (ties to the lower
-  /// entry).
+  /// entry); for a query ranked by shape (ScreenQuery::by_shape), the options.candidates best
+  /// by score first, then the others by their shape term. The scores are overlay scores.
   std::vector<Hit> best;
 };
 
@@ -279,22 +282,23 @@ struct StreamedScores {
 /// `begin` and `end` begin molecules (molecule_start_at). Progress (options.progress) is
 /// reported as stage 1 over the range's entries. Throws InputError when an entry is not of the
 /// queries' kind (as check_library_kind words it) or the queries are of two kinds (sites and
-/// molecules, or by shape alone and with chemistry: agree_on_chemistry), FormatError
+/// molecules, or ranked by shape and by score: agree_on_chemistry), FormatError
 /// for a damaged entry.
 StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
                                const Library& library, std::size_t begin, std::size_t end,
                                const ScreenOptions& options = {});
 
-/// The kept_molecules() best of several ranges' lists of one query (QueryScores::best), best
-/// first, ties to the lower entry: what one range of all the molecules would have kept.
+/// The kept_molecules() best of several ranges' lists of one query (QueryScores::best), in
+/// its order, ties to the lower entry: what one range of all the molecules would have kept.
 std::vector<Hit> merge_best(const std::vector<std::vector<Hit>>& parts,
-                            const ScreenOptions& options);
+                            const ScreenOptions& options, bool by_shape);
 
 /// The result rows: first the `full.size()` candidates (the first molecules of `best`, their
 /// stage-3 scores in `full`) by their stage-3 score, then the other molecules of `best` in
-/// their order; at most `top` rows (0: all). Ties go to the lower entry index.
+/// their order, each scored by its shape term when `by_shape`; at most `top` rows (0: all).
+/// Ties go to the lower entry index.
 std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,
-                           std::size_t top);
+                           std::size_t top, bool by_shape);
 
 /// One row of a fused ranking of several queries.
 struct FusedHit {
@@ -341,13 +345,14 @@ struct MultiScreenResult {
 /// The rows and fused ranking of a screen from what its stages left: `best` each query's
 /// best molecules after stage 2 (merge_best of its ranges), `full` the stage-3 scores of each
 /// query's first min(options.candidates, its best) molecules, query after query, `molecules`
-/// the ranges' StreamedScores::molecules. Each query's rows are rank_hits(best, its scores,
-/// options.top); the fused ranking (several queries) is fuse_scores with every stage-3 score.
-/// Times are left 0. Throws InputError when `full` is short.
+/// the ranges' StreamedScores::molecules, `by_shape` the queries' ScreenQuery::by_shape. Each
+/// query's rows are rank_hits(best, its scores, options.top, by_shape); the fused ranking
+/// (several queries) is fuse_scores with every stage-3 score. Times are left 0. Throws
+/// InputError when `full` is short.
 MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
                                 const std::vector<HitScore>& full,
                                 const std::vector<MoleculeScores>& molecules,
-                                const ScreenOptions& options);
+                                const ScreenOptions& options, bool by_shape);
 
 /// screen() of every query at once: the library read once for stages 1 and 2, each query's
 /// rows the same as its own screen's, and their fused ranking (fuse_scores). Throws as
