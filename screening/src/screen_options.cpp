@@ -52,6 +52,10 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
         t, options::pick(mesh::surface_input_option_table(), {"record"}),
         [](auto& q) -> auto& { return q.query.input; });
     options::append(
+        t,
+        options::pick(matching::match_option_table(), {"atom-polish-sigma", "atom-polish-weight"}),
+        [](auto& q) -> auto& { return q.screen.match; });
+    options::append(
         t, matching::binding_site_option_table(), [](auto& q) -> auto& { return q.screen.site; });
     options::append(
         t, matching::pocket_option_table(), [](auto& q) -> auto& { return q.query.pockets; });

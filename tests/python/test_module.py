@@ -207,6 +207,15 @@ def test_a_screen_finds_its_query_first(program, cache, tmp_path):
     for hit in (h for h in hits if h.entry in posed):
         assert hit.shape == posed[hit.entry].shape
         np.testing.assert_array_equal(hit.transform, posed[hit.entry].transform)
+    # The atom polish is the full match's last step: without it the stage-3 poses of the other
+    # molecules move, and the other rows do not.
+    unpolished = {h.entry: h for h in surfcomp.screen(query, library, top=5, candidates=3,
+                                                      atom_polish_sigma=0)}
+    moved = [h for h in hits if h.stage == 3 and h.entry != 4
+             and np.abs(h.transform - unpolished[h.entry].transform).max() > 1e-3]
+    assert moved
+    for hit in (h for h in hits if h.stage == 2 and h.entry in unpolished):
+        np.testing.assert_array_equal(hit.transform, unpolished[hit.entry].transform)
     # molecules=True: each hit moved onto the query as the CLI's --aligned-out writes it.
     moved = surfcomp.screen(query, library, top=3, candidates=3, molecules=True)
     aligned = tmp_path / "hits.sdf"
