@@ -624,23 +624,34 @@ TEST(Screen, ANeutralQueryScreensByShapeAloneAndAnIonicOneWithItsChemistry) {
 
   // Fewer rows than molecules: the candidates are kept by score and the other rows by shape, so
   // the rows are the head of all of them, from one range of the library or merged from two.
-  screening::ScreenOptions bounded = options;
-  bounded.top = 2;
-  const std::vector<screening::Hit> head = screening::screen(by_shape, library, bounded).hits;
-  ASSERT_EQ(head.size(), 2u);
-  for (std::size_t i = 0; i < head.size(); ++i) {
-    EXPECT_EQ(head[i].entry, shape_hits[i].entry) << "row " << i + 1;
-    EXPECT_EQ(head[i].score.score, shape_hits[i].score.score) << "row " << i + 1;
-  }
   const std::size_t middle = screening::molecule_start_at(library, 1);
-  const auto best_of = [&](std::size_t begin, std::size_t end) {
-    return screening::score_molecules({&by_shape}, library, begin, end, bounded).queries[0].best;
-  };
-  const std::vector<screening::Hit> whole = best_of(0, library.size());
-  const std::vector<screening::Hit> merged =
-      screening::merge_best({best_of(0, middle), best_of(middle, library.size())}, bounded, true);
-  ASSERT_EQ(merged.size(), whole.size());
-  for (std::size_t i = 0; i < whole.size(); ++i) EXPECT_EQ(merged[i].entry, whole[i].entry);
+  for (const auto& [top, candidates] :
+       {std::pair<std::size_t, std::size_t>{2, 1}, {1, 2}, {2, 0}, {1, 0}}) {
+    SCOPED_TRACE("top " + std::to_string(top) + ", candidates " + std::to_string(candidates));
+    screening::ScreenOptions bounded = options;
+    bounded.candidates = candidates;
+    bounded.top = 0;
+    const std::vector<screening::Hit> all = screening::screen(by_shape, library, bounded).hits;
+    bounded.top = top;
+    const std::vector<screening::Hit> head = screening::screen(by_shape, library, bounded).hits;
+    ASSERT_EQ(head.size(), top);
+    for (std::size_t i = 0; i < top; ++i) {
+      EXPECT_EQ(head[i].entry, all[i].entry) << "row " << i + 1;
+      EXPECT_EQ(head[i].stage, all[i].stage) << "row " << i + 1;
+      EXPECT_EQ(head[i].score.score, all[i].score.score) << "row " << i + 1;
+    }
+    const auto best_of = [&](std::size_t begin, std::size_t end) {
+      return screening::score_molecules({&by_shape}, library, begin, end, bounded).queries[0].best;
+    };
+    const std::vector<screening::Hit> whole = best_of(0, library.size());
+    const std::vector<screening::Hit> merged =
+        screening::merge_best({best_of(0, middle), best_of(middle, library.size())}, bounded, true);
+    ASSERT_EQ(merged.size(), whole.size());
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      EXPECT_EQ(merged[i].entry, whole[i].entry) << i;
+      EXPECT_EQ(merged[i].score.score, whole[i].score.score) << i;
+    }
+  }
 
   // Several queries agree: one with chemistry gives it to all of them; mixed ones are refused.
   std::vector<screening::ScreenQuery> queries;
@@ -706,6 +717,19 @@ TEST(Screen, AQueryRankedByShapeKeepsItsCandidatesByScoreAndItsOtherRowsByShape)
   options.top = 0;
   EXPECT_EQ(entries(screening::merge_best(parts, options, true)),
             (std::vector<std::size_t>{0, 3, 1, 2}));
+
+  // Two candidates whose full matches' score and shape disagree go by shape.
+  screening::HitScore high_score, high_shape;
+  high_score.score = 0.9;
+  high_score.shape = 0.5;
+  high_shape.score = 0.6;
+  high_shape.shape = 0.8;
+  const std::vector<screening::Hit> two =
+      screening::rank_hits(best, {high_score, high_shape}, 0, true);
+  EXPECT_EQ(entries(two), (std::vector<std::size_t>{3, 0, 1}));
+  EXPECT_EQ(two[0].score.score, 0.8);
+  EXPECT_EQ(entries(screening::rank_hits(best, {high_score, high_shape}, 0, false)),
+            (std::vector<std::size_t>{0, 3, 1}));
 }
 
 // fuse_scores by hand: stage-3 rows replace their molecule's score against their query, max
@@ -1294,26 +1318,33 @@ TEST(LibraryShards, ABoundedFusedRankingIsTheHeadOfTheWholeOne) {
     }
   }
   // The fused table against the whole one, also with more candidates than rows (their full
-  // matches count where their rows are not shown).
-  for (const screening::Fusion fusion : {screening::Fusion::max, screening::Fusion::mean}) {
-    for (const auto& [top, candidates] :
-         {std::pair<std::size_t, std::size_t>{1, 1}, {2, 1}, {1, 2}}) {
-      options.fusion = fusion;
-      options.candidates = candidates;
-      options.top = 0;
-      const std::vector<screening::FusedHit> whole =
-          screening::screen_queries({&paracetamol, &ibuprofen}, library, options).fused;
-      ASSERT_EQ(whole.size(), 5u);
-      options.top = top;
-      const std::vector<screening::FusedHit> head =
-          screening::screen_queries({&paracetamol, &ibuprofen}, library, options).fused;
-      ASSERT_EQ(head.size(), top);
-      for (std::size_t i = 0; i < top; ++i) {
-        SCOPED_TRACE("top " + std::to_string(top) + ", candidates " + std::to_string(candidates));
-        EXPECT_EQ(head[i].entry, whole[i].entry) << i;
-        EXPECT_EQ(head[i].query, whole[i].query) << i;
-        EXPECT_EQ(head[i].score, whole[i].score) << i;
-        EXPECT_EQ(head[i].scores, whole[i].scores) << i;
+  // matches count where their rows are not shown), ranked by score and by shape.
+  for (const screening::QueryChemistry chemistry :
+       {screening::QueryChemistry::on, screening::QueryChemistry::off}) {
+    options.chemistry = chemistry;
+    const screening::ScreenQuery first = query_of(0), second = query_of(3);
+    ASSERT_EQ(first.by_shape, chemistry == screening::QueryChemistry::off);
+    for (const screening::Fusion fusion : {screening::Fusion::max, screening::Fusion::mean}) {
+      for (const auto& [top, candidates] :
+           {std::pair<std::size_t, std::size_t>{1, 1}, {2, 1}, {1, 2}}) {
+        options.fusion = fusion;
+        options.candidates = candidates;
+        options.top = 0;
+        const std::vector<screening::FusedHit> whole =
+            screening::screen_queries({&first, &second}, library, options).fused;
+        ASSERT_EQ(whole.size(), 5u);
+        options.top = top;
+        const std::vector<screening::FusedHit> head =
+            screening::screen_queries({&first, &second}, library, options).fused;
+        ASSERT_EQ(head.size(), top);
+        for (std::size_t i = 0; i < top; ++i) {
+          SCOPED_TRACE("top " + std::to_string(top) + ", candidates " + std::to_string(candidates) +
+                       (first.by_shape ? ", by shape" : ", by score"));
+          EXPECT_EQ(head[i].entry, whole[i].entry) << i;
+          EXPECT_EQ(head[i].query, whole[i].query) << i;
+          EXPECT_EQ(head[i].score, whole[i].score) << i;
+          EXPECT_EQ(head[i].scores, whole[i].scores) << i;
+        }
       }
     }
   }

@@ -90,9 +90,9 @@ const options::Table<MatchOptions>& match_option_table() {
           [](auto& m) -> auto& { return m.polish_top; }),
       options::field<M>(
           {"atom-polish-sigma", Kind::real,
-           "where both inputs are molecules, polish the first --polish-top alignments last "
-           "on their heavy atoms, Gaussians of this width, like elements overlapping "
-           "(0: no atom polish; else at least 0.05; not for site matches)",
+           "where both inputs are molecules, polish the best alignments (match: the first "
+           "--polish-top) last on their heavy atoms, Gaussians of this width, like elements "
+           "overlapping (0: no atom polish; else at least 0.05; not for site matches)",
            "A", 0.0, 5.0},
           [](auto& m) -> auto& { return m.atom_polish.sigma; }),
       options::field<M>(

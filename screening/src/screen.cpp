@@ -572,13 +572,12 @@ std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitSc
                            std::size_t top, bool by_shape) {
   const std::size_t k = std::min(full.size(), best.size());
   std::vector<Hit> hits;
-  for (std::size_t i = 0; i < k; ++i)
-    hits.push_back({best[i].entry, 3, full[i], best[i].fast_score});
-  std::sort(hits.begin(), hits.end(), [](const Hit& x, const Hit& y) { return better_hit(x, y); });
-  for (std::size_t i = k; i < best.size(); ++i) {
-    hits.push_back(best[i]);
-    hits.back().score.score = ranking_score(best[i].score, by_shape);
+  for (std::size_t i = 0; i < best.size(); ++i) {
+    hits.push_back(i < k ? Hit{best[i].entry, 3, full[i], best[i].fast_score} : best[i]);
+    hits.back().score.score = ranking_score(hits.back().score, by_shape);
   }
+  std::sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(k),
+            [](const Hit& x, const Hit& y) { return better_hit(x, y); });
   if (top > 0 && hits.size() > top) hits.resize(top);
   return hits;
 }
