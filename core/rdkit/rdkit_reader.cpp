@@ -18,9 +18,12 @@
 #include <GraphMol/MolOps.h>
 #include <GraphMol/MonomerInfo.h>
 #include <GraphMol/PartialCharges/GasteigerCharges.h>
+#include <GraphMol/SmilesParse/SmilesParse.h>
+#include <GraphMol/Substruct/SubstructMatch.h>
 #include <RDGeneral/RDLog.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
@@ -28,6 +31,7 @@
 #include <memory>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -343,6 +347,44 @@ std::vector<double> tripos_charges(const RDKit::ROMol& mol, const std::string& s
   return charges;
 }
 
+// Acid and base groups that a file may draw neutral but that are ionised at pH 7, as SMARTS
+// whose first atom is the one that takes the charge: carboxylic, phosphonic or phosphoric, and
+// sulfonic or sulfuric acids; 1H- and 2H-tetrazoles; aliphatic amines (not on an aromatic
+// ring, a carbonyl, thiocarbonyl, imine, vinyl, sulfonyl or nitrile carbon, nor on N, O or S);
+// amidines and guanidines outside aromatic rings, not on an aromatic ring's atom nor acylated
+// or sulfonylated.
+constexpr std::array<const char*, 7> ionisable_group_smarts = {
+    "[OX2H1]-[CX3]=O",
+    "[OX2H1]-[PX4]=O",
+    "[OX2H1]-[SX4](=O)=O",
+    "[#7H1]1:[#6]:[#7]:[#7]:[#7]:1",
+    "[#7H1]1:[#7]:[#6]:[#7]:[#7]:1",
+    "[NX3;!$(N-a);!$(N-[#6,#15,#16]=[#6,#7,#8,#16]);!$(N-[#7,#8,#16]);!$(N-C#N)]-[#6]",
+    "[NX2;!a;!$(N-a);!$(N-[#7,#8]);!$(N-C=O);!$(N-S(=O)=O)]=[CX3;!a]-[NX3;!$(N-a);!$(N-C=O);"
+    "!$(N-S(=O)=O)]",
+};
+
+// Molecule::ionisable_atoms of a sanitised molecule. The patterns are parsed per thread: a
+// recursive SMARTS query is not shared between threads.
+std::vector<std::size_t> ionisable_atoms(const RDKit::ROMol& mol) {
+  thread_local const std::vector<std::unique_ptr<RDKit::RWMol>> patterns = [] {
+    std::vector<std::unique_ptr<RDKit::RWMol>> parsed;
+    parsed.reserve(ionisable_group_smarts.size());
+    for (const char* smarts : ionisable_group_smarts)
+      parsed.emplace_back(RDKit::SmartsToMol(smarts));
+    return parsed;
+  }();
+  std::set<std::size_t> atoms;
+  for (const std::unique_ptr<RDKit::RWMol>& pattern : patterns) {
+    for (const RDKit::MatchVectType& match : RDKit::SubstructMatch(mol, *pattern)) {
+      for (const auto& [query_atom, atom] : match) {
+        if (query_atom == 0) atoms.insert(static_cast<std::size_t>(atom));
+      }
+    }
+  }
+  return {atoms.begin(), atoms.end()};
+}
+
 Molecule read_unguarded(const std::filesystem::path& path, const std::string& whole_text,
                         RdkitFormat format, const MoleculeReadOptions& options) {
   const std::string source = path.string();
@@ -403,6 +445,11 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& wh
                       "PDB file lacks; use the residue charges (charges 'file') or a PQR file");
   }
   if (!protein) sanitize(mol, format, source);
+  // A PDB file has no bond orders: its amides and anilines would read as amines.
+  if (format != RdkitFormat::pdb) {
+    molecule.ionisable_atoms =
+        rdkit_call(source, "find ionisable groups", [&]() { return ionisable_atoms(*mol); });
+  }
 
   std::string name;
   if (mol->getPropIfPresent(RDKit::common_properties::_Name, name) && !trimmed(name).empty()) {

@@ -105,6 +105,7 @@ std::string describe_atom(const Molecule& molecule, std::size_t index) {
 }
 
 bool carries_ionic_group(const Molecule& molecule) {
+  if (!molecule.ionisable_atoms.empty()) return true;
   const std::vector<Atom>& atoms = molecule.atoms;
   bool formal = false;
   for (const Atom& atom : atoms) {

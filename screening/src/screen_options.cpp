@@ -37,7 +37,8 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
             {"chemistry", Kind::choice,
              "how a molecule query's hits are ranked, all found and posed with ESP, LP and "
              "heteroatoms beside shape: auto (by that score when the query carries an ionic "
-             "group, a formal charge that no bonded atom balances, as a nitro group's is; by "
+             "group at pH 7, a formal charge that no bonded atom balances (as a nitro group's "
+             "is) or an acid or base drawn neutral (a carboxylic acid, an aliphatic amine...); by "
              "the shape Tanimoto of their pose otherwise; several queries all by the score when "
              "one has it), on (by the score), or off (by shape)"},
             [](auto& q) -> auto& { return q.screen.chemistry; }, query_chemistry_names),

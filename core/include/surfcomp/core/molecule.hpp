@@ -36,6 +36,13 @@ struct Molecule {
   std::string source;  ///< file it was read from, for messages
   std::string title;   ///< title line / molecule name
   std::vector<Atom> atoms;
+  /// The atoms of acid and base groups that the file draws neutral but that are ionised at
+  /// pH 7, as the RDKit reader finds them: the acidic hydroxyl oxygen of a carboxylic,
+  /// phosphonic, phosphoric, sulfonic or sulfuric acid, the N-H nitrogen of a tetrazole, the
+  /// nitrogen of an aliphatic amine and the imine nitrogen of an amidine or guanidine. Indices
+  /// into `atoms`, ascending; read from SDF, MOL and MOL2 files (a PDB file has no bond
+  /// orders), empty from the other formats.
+  std::vector<std::size_t> ionisable_atoms;
   ChargeSource charge_source = ChargeSource::none;
   bool lipophilicity_assigned = false;  ///< f_i were set (Crippen or the residue table)
 };
@@ -75,10 +82,12 @@ std::vector<std::size_t> select_ligand(const Molecule& molecule, const LigandSel
 /// 2.6 A).
 inline constexpr double charge_pair_bond_length = 2.0;
 
-/// Whether `molecule` carries an ionic group: an atom whose formal charge no bonded atom of
-/// the opposite charge balances (a carboxylate, an ammonium, an amidinium; not a nitro group
-/// or an N-oxide). Without any formal charge in the file, whether its partial charges sum to
-/// a net charge of at least 0.5 e in size (a PQR file's ion).
+/// Whether `molecule` carries an ionic group at pH 7: an atom whose formal charge no bonded
+/// atom of the opposite charge balances (a carboxylate, an ammonium, an amidinium; not a nitro
+/// group or an N-oxide), or a group drawn neutral that ionises (Molecule::ionisable_atoms: a
+/// carboxylic acid, an aliphatic amine...). Without any of them or any formal charge in the
+/// file, whether its partial charges sum to a net charge of at least 0.5 e in size (a PQR
+/// file's ion).
 bool carries_ionic_group(const Molecule& molecule);
 
 /// "atom N (element name residue numberchain)" for messages; N is 1-based.
