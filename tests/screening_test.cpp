@@ -604,7 +604,7 @@ TEST(IonicGroups, AnAcidOrBaseDrawnNeutralCountsAtTheAtomThatIonises) {
   }
 }
 
-TEST(Screen, ANeutralQueryScreensByShapeAloneAndAnIonicOneWithItsChemistry) {
+TEST(Screen, ANeutralQueryRanksByShapeAndAnIonicOneByItsScore) {
   const ThreeMoleculeLibrary three;
   const std::vector<io::MoleculeRecord>& records = three.records;
   const screening::Library& library = three.library;

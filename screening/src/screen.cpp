@@ -563,9 +563,7 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
   }
   if (result.alignments.empty()) return {};
   const matching::Alignment& top = result.alignments.front();
-  HitScore hit = from_overlay(top.overlay, top.transform);
-  if (query.by_shape) hit.score = hit.shape;
-  return hit;
+  return from_overlay(top.overlay, top.transform);
 }
 
 std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,
@@ -576,8 +574,7 @@ std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitSc
     hits.push_back(i < k ? Hit{best[i].entry, 3, full[i], best[i].fast_score} : best[i]);
     hits.back().score.score = ranking_score(hits.back().score, by_shape);
   }
-  std::sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(k),
-            [](const Hit& x, const Hit& y) { return better_hit(x, y); });
+  std::sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(k), BetterHit{});
   if (top > 0 && hits.size() > top) hits.resize(top);
   return hits;
 }

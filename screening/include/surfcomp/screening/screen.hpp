@@ -211,8 +211,7 @@ HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
 /// Stage 3 of one entry: the full match of the query with the entry's molecule, rebuilt (see
 /// ScreenOptions::read, surface; a site's structure described at its site, matched as binding
 /// sites, its surface that of the atoms within the site's margin, as matching::build_site_surface
-/// builds it); the top alignment's overlay score (its shape term for a query ranked by shape)
-/// and transform. An entry
+/// builds it); the top alignment's overlay score and transform. An entry
 /// without any alignment scores 0 with the identity. Throws what reading the molecule,
 /// building its surface or matching throws.
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
