@@ -631,7 +631,8 @@ TEST(MeshIoDispatch, ReadMeshChoosesTheReaderByExtension) {
   EXPECT_TRUE(io::is_mesh_file("x.face"));
   EXPECT_TRUE(io::is_mesh_file("x.Off"));
   EXPECT_TRUE(io::is_mesh_file("x.obj"));
-  EXPECT_FALSE(io::is_mesh_file("x.stl"));
+  EXPECT_TRUE(io::is_mesh_file("x.stl"));
+  EXPECT_FALSE(io::is_mesh_file("x.xyz"));
   EXPECT_FALSE(io::is_mesh_file("ply"));
   EXPECT_FALSE(io::is_mesh_file("x.pdb"));
 
@@ -652,12 +653,12 @@ TEST(MeshIoDispatch, ReadMeshChoosesTheReaderByExtension) {
   EXPECT_EQ(io::read_mesh(dir / "t.face").n_faces(), 1u);
   EXPECT_EQ(io::read_mesh(dir / "t.vert").n_vertices(), 3u);
 
-  write_text(dir / "t.stl", "solid t\n");
+  write_text(dir / "t.abc", "solid t\n");
   try {
-    io::read_mesh(dir / "t.stl");
+    io::read_mesh(dir / "t.abc");
     FAIL() << "expected FormatError";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("found '.stl'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("found '.abc'"), std::string::npos) << e.what();
   }
   EXPECT_THROW(io::write_mesh(s, dir / "t.xyz"), FormatError);
   EXPECT_FALSE(fs::exists(dir / "t.xyz"));

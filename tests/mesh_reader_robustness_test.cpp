@@ -6,6 +6,7 @@
 #include "surfcomp/mesh/io/obj.hpp"
 #include "surfcomp/mesh/io/off.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
+#include "surfcomp/mesh/io/stl.hpp"
 #include "surfcomp/mesh/surface.hpp"
 #include "test_data.hpp"
 
@@ -14,7 +15,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -183,6 +186,44 @@ std::string obj_bytes(const Surface& s) {
     }
     out << '\n';
   }
+  return out.str();
+}
+
+/// Binary STL (little-endian, as the test machines are): a header starting with "solid", as many
+/// binary writers make it, and one 50-byte record per triangle.
+std::string stl_binary_bytes(const Surface& s) {
+  const Eigen::MatrixX3d p = s.positions();
+  const Eigen::MatrixX3i f = s.faces();
+  std::string out = "solid sphere (binary)";
+  out.resize(80, ' ');
+  const auto count = static_cast<std::uint32_t>(f.rows());
+  out.append(reinterpret_cast<const char*>(&count), sizeof(count));
+  for (Eigen::Index i = 0; i < f.rows(); ++i) {
+    float values[12] = {0, 0, 1};
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      for (Eigen::Index c = 0; c < 3; ++c)
+        values[3 + 3 * k + c] = static_cast<float>(p(f(i, k), c));
+    }
+    out.append(reinterpret_cast<const char*>(values), sizeof(values));
+    out.append(2, '\0');
+  }
+  return out;
+}
+
+std::string stl_ascii_bytes(const Surface& s) {
+  const Eigen::MatrixX3d p = s.positions();
+  const Eigen::MatrixX3i f = s.faces();
+  std::ostringstream out;
+  out.precision(9);
+  out << "solid sphere\n";
+  for (Eigen::Index i = 0; i < f.rows(); ++i) {
+    out << "facet normal 0 0 1\n outer loop\n";
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      out << "  vertex " << p(f(i, k), 0) << ' ' << p(f(i, k), 1) << ' ' << p(f(i, k), 2) << '\n';
+    }
+    out << " endloop\nendfacet\n";
+  }
+  out << "endsolid sphere\n";
   return out.str();
 }
 
@@ -397,6 +438,36 @@ TEST(MeshReaderRobustness, PlyBinarySmall) {
     EXPECT_EQ(t.truncations_rejected, t.truncations);  // binary data has no slack
     EXPECT_GT(t.truncations, 0);
   }
+}
+
+TEST(MeshReaderRobustness, PlyTriangleStrips) {
+  // An octahedron as three strips (one turned by a repeated vertex) beside one face.
+  const std::string text =
+      "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+      "property float z\nelement tristrips 1\nproperty list int int vertex_indices\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "1.5 0 0\n-1.5 0 0\n0 1.5 0\n0 -1.5 0\n0 0 1.5\n0 0 -1.5\n"
+      "14 0 2 4 1 3 -1 2 0 5 3 1 1 5 2\n3 3 0 4\n";
+  const Tally t = fuzz(ply_input(text), iterations, base_seed() + 5);
+  EXPECT_EQ(t.read + t.rejected, iterations);
+  EXPECT_GT(t.rejected, iterations / 4);
+}
+
+TEST(MeshReaderRobustness, StlBinary) {
+  const Input input{{{"mesh.stl", stl_binary_bytes(uv_sphere())}},
+                    [](const TempDir& d) { return io::read_stl(d / "mesh.stl"); }};
+  const Tally t = fuzz(input, iterations, base_seed() + 50);
+  EXPECT_EQ(t.read + t.rejected, iterations);
+  EXPECT_EQ(t.truncations_rejected, t.truncations);  // the size must match the count
+  EXPECT_GT(t.truncations, 0);
+}
+
+TEST(MeshReaderRobustness, StlAscii) {
+  const Input input{{{"mesh.stl", stl_ascii_bytes(uv_sphere())}},
+                    [](const TempDir& d) { return io::read_stl(d / "mesh.stl"); }};
+  const Tally t = fuzz(input, iterations, base_seed() + 51);
+  EXPECT_EQ(t.read + t.rejected, iterations);
+  EXPECT_GT(t.rejected, iterations / 4);
 }
 
 TEST(MeshReaderRobustness, MasifPlyAscii) {

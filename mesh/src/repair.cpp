@@ -2,7 +2,10 @@
 // translation unit.
 #include "surfcomp/mesh/repair.hpp"
 
+#include "io/stl_soup.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/mesh/io/formats.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
@@ -17,8 +20,6 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -53,11 +54,16 @@ RepairedMesh repair_soup(std::vector<Point> points, Polygons polygons, const std
   pmp::polygon_soup_to_polygon_mesh(points, polygons, mesh);
   if (!CGAL::is_triangle_mesh(mesh)) pmp::triangulate_faces(mesh);
   report.stitched_edges = pmp::stitch_borders(mesh);
+  // A degenerate face goes by a collapse (the face count drops) or by an edge flip that makes
+  // two proper triangles of it and a neighbour (the count stays): count whichever is more.
   const std::size_t faces_before = mesh.number_of_faces();
+  std::size_t degenerate = 0;
+  for (const auto f : mesh.faces()) degenerate += pmp::is_degenerate_triangle_face(f, mesh);
   pmp::remove_degenerate_faces(mesh);
   mesh.collect_garbage();
-  report.removed_faces +=
+  const std::size_t collapsed =
       faces_before > mesh.number_of_faces() ? faces_before - mesh.number_of_faces() : 0;
+  report.removed_faces += std::max(collapsed, degenerate);
   report.dropped_components = pmp::keep_largest_connected_components(mesh, 1);
   mesh.collect_garbage();
   if (mesh.number_of_faces() == 0) throw InputError(source + ": no face is left after the repair");
@@ -140,15 +146,25 @@ RepairedMesh repair_triangles(const Eigen::Ref<const Eigen::MatrixX3d>& position
   return repair_soup(std::move(points), std::move(polygons), source);
 }
 
-RepairedMesh repair_mesh_file(const std::filesystem::path& path, std::size_t max_vertices) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension != ".off" && extension != ".obj" && extension != ".ply") {
-    throw InputError(path.string() + ": --repair reads .off, .obj and .ply meshes");
+namespace {
+
+/// The polygon soup of `path`: STL through surfcomp's own reader (its messages name the file
+/// and what is wrong), the other formats through CGAL's.
+void read_soup(const std::filesystem::path& path, const io::MeshFormat& format,
+               std::vector<Point>& points, Polygons& polygons) {
+  if (format.extension == ".stl") {
+    const io::detail::StlSoup soup =
+        io::detail::read_stl_soup(surfcomp::io::read_input_file(path), path.string());
+    for (std::size_t i = 0; i < soup.positions.size(); i += 3) {
+      points.emplace_back(soup.positions[i], soup.positions[i + 1], soup.positions[i + 2]);
+    }
+    for (std::size_t t = 0; t < soup.triangles.size(); t += 3) {
+      polygons.push_back({static_cast<std::size_t>(soup.triangles[t]),
+                          static_cast<std::size_t>(soup.triangles[t + 1]),
+                          static_cast<std::size_t>(soup.triangles[t + 2])});
+    }
+    return;
   }
-  std::vector<Point> points;
-  Polygons polygons;
   bool read = false;
   try {
     read = CGAL::IO::read_polygon_soup(path.string(), points, polygons,
@@ -156,16 +172,32 @@ RepairedMesh repair_mesh_file(const std::filesystem::path& path, std::size_t max
   } catch (const std::exception&) {
     read = false;
   }
-  if (!read || points.empty() || polygons.empty()) {
+  if (!read) throw InputError(path.string() + ": cannot be read as a polygon mesh for --repair");
+}
+
+}  // namespace
+
+RepairedMesh repair_mesh_file(const std::filesystem::path& path, std::size_t max_vertices) {
+  const io::MeshFormat* format = io::find_mesh_format(path);
+  if (format == nullptr || !format->repairable) {
+    throw InputError(path.string() + ": --repair reads " +
+                     io::mesh_extensions(io::MeshUse::repair) + " meshes, found '" +
+                     path.extension().string() + "'");
+  }
+  std::vector<Point> points;
+  Polygons polygons;
+  read_soup(path, *format, points, polygons);
+  if (points.empty() || polygons.empty()) {
     throw InputError(path.string() + ": cannot be read as a polygon mesh for --repair");
   }
   if (points.size() > max_vertices) {
     throw InputError(path.string() + ": " + std::to_string(points.size()) +
                      " vertices, more than --max-vertices " + std::to_string(max_vertices));
   }
-  for (const Point& p : points) {
-    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
-      throw InputError(path.string() + ": a vertex has a non-finite coordinate");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point& p = points[i];
+    surfcomp::io::check_read_position(Eigen::Vector3d(p.x(), p.y(), p.z()), path.string(),
+                                      "vertex " + std::to_string(i));
   }
   for (const auto& polygon : polygons) {
     for (const std::size_t v : polygon) {

@@ -69,6 +69,7 @@ Surface read_obj(const std::filesystem::path& path) {
       }
     }
   }
+  detail::check_has_triangles(positions.size() / 3, triangles.size() / 3, name);
   const Eigen::MatrixX3d vertex_positions =
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
           positions.data(), static_cast<Eigen::Index>(positions.size() / 3), 3);

@@ -104,6 +104,7 @@ Surface read_off(const std::filesystem::path& path) {
                       "expected the end of the file after " + std::to_string(n_faces) +
                           " faces, found " + quote(tokens[0]));
   }
+  detail::check_has_triangles(static_cast<std::size_t>(n_vertices), triangles.size() / 3, name);
   const Eigen::MatrixX3i faces =
       Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(
           triangles.data(), static_cast<Eigen::Index>(triangles.size() / 3), 3);

@@ -35,9 +35,11 @@ constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
 
 // What the reader does with each element and property.
 struct Roles {
-  std::size_t vertex = none;        // index of element "vertex"
-  std::size_t face = none;          // index of element "face", if any
-  std::size_t face_indices = none;  // index of vertex_indices within the face element
+  std::size_t vertex = none;         // index of element "vertex"
+  std::size_t face = none;           // index of element "face", if any
+  std::size_t face_indices = none;   // index of vertex_indices within the face element
+  std::size_t strips = none;         // index of element "tristrips", if any
+  std::size_t strip_indices = none;  // index of vertex_indices within the tristrips element
   std::array<std::size_t, 3> position{none, none, none};
   std::array<std::size_t, 3> normal{none, none, none};
   bool has_normals = false;
@@ -51,11 +53,32 @@ std::size_t find_property(const PlyElement& element, const std::string& name) {
   return none;
 }
 
+/// The index of the list property vertex_indices (or vertex_index) of element `e` (a face or
+/// tristrips element), or none when there is no such element.
+std::size_t index_list(const PlyHeader& header, std::size_t e, const std::string& name) {
+  if (e == none) return none;
+  const PlyElement& element = header.elements[e];
+  std::size_t k = find_property(element, "vertex_indices");
+  if (k == none) k = find_property(element, "vertex_index");
+  if (k == none) {
+    throw FormatError(
+        name, element.line,
+        "expected a list property 'vertex_indices' in element '" + element.name + "'");
+  }
+  const PlyProperty& indices = element.properties[k];
+  if (!indices.is_list || !is_integer(indices.type)) {
+    throw FormatError(name, element.line,
+                      "expected '" + indices.name + "' to be a list of an integer type");
+  }
+  return k;
+}
+
 Roles assign_roles(const PlyHeader& header, const std::string& name) {
   Roles roles;
   for (std::size_t e = 0; e < header.elements.size(); ++e) {
     if (header.elements[e].name == "vertex") roles.vertex = e;
     if (header.elements[e].name == "face") roles.face = e;
+    if (header.elements[e].name == "tristrips") roles.strips = e;
   }
   if (roles.vertex == none) {
     throw FormatError(name, header.data_line - 1, "expected an element 'vertex' in the header");
@@ -81,19 +104,13 @@ Roles assign_roles(const PlyHeader& header, const std::string& name) {
     return k != none && !vertex.properties[k].is_list;
   });
   if (!roles.has_normals) roles.normal = {none, none, none};
-  if (roles.face != none) {
-    const PlyElement& face = header.elements[roles.face];
-    roles.face_indices = find_property(face, "vertex_indices");
-    if (roles.face_indices == none) roles.face_indices = find_property(face, "vertex_index");
-    if (roles.face_indices == none) {
-      throw FormatError(name, face.line,
-                        "expected a list property 'vertex_indices' in element 'face'");
-    }
-    const PlyProperty& indices = face.properties[roles.face_indices];
-    if (!indices.is_list || !is_integer(indices.type)) {
-      throw FormatError(name, face.line,
-                        "expected '" + indices.name + "' to be a list of an integer type");
-    }
+  roles.face_indices = index_list(header, roles.face, name);
+  roles.strip_indices = index_list(header, roles.strips, name);
+  const auto count_of = [&](std::size_t e) {
+    return e == none ? std::uint64_t{0} : header.elements[e].count;
+  };
+  if (count_of(roles.face) == 0 && count_of(roles.strips) == 0) {
+    detail::check_has_triangles(vertex.count, 0, name);
   }
   return roles;
 }
@@ -286,6 +303,36 @@ struct PlyData {
   std::vector<int> triangles;                       // 3 per triangle
 };
 
+/// Reads one tristrips item of `count` indices (RPly's convention: -1 ends a strip and starts
+/// the next) and appends its triangles: in a strip s0 s1 s2 s3 ..., triangle j is
+/// (sj, sj+1, sj+2) for even j and (sj+1, sj, sj+2) for odd j, so that all keep one
+/// orientation; a triangle that repeats a vertex (a strip's way of turning) is skipped.
+template <class Source>
+void read_strip(Source& source, const PlyProperty& p, std::uint64_t count, int n_vertices,
+                std::vector<int>& triangles) {
+  std::array<int, 3> last{};  // the strip's last three vertices, oldest first
+  std::size_t length = 0;     // vertices in the current strip so far
+  for (std::uint64_t j = 0; j < count; ++j) {
+    const std::int64_t index = source.list_index(p);
+    if (index == -1) {
+      length = 0;
+      continue;
+    }
+    if (index < 0 || index >= n_vertices) {
+      source.fail("expected a vertex index in 0.." + std::to_string(n_vertices - 1) +
+                  " or -1 (a new strip), found " + std::to_string(index));
+    }
+    last = {last[1], last[2], static_cast<int>(index)};
+    if (++length < 3) continue;
+    if (last[0] == last[1] || last[1] == last[2] || last[0] == last[2]) continue;
+    if (length % 2 == 1) {  // triangle j = length - 3 is even
+      triangles.insert(triangles.end(), {last[0], last[1], last[2]});
+    } else {
+      triangles.insert(triangles.end(), {last[1], last[0], last[2]});
+    }
+  }
+}
+
 template <class Source>
 PlyData read_data(const PlyHeader& header, const Roles& roles, Source& source) {
   PlyData out;
@@ -302,6 +349,7 @@ PlyData read_data(const PlyHeader& header, const Roles& roles, Source& source) {
     if (element.properties.empty()) continue;  // an item without properties has no bytes
     const bool is_vertex = e == roles.vertex;
     const bool is_face = e == roles.face;
+    const bool is_strip = e == roles.strips;
     if (is_vertex) {
       for (std::size_t k = 0; k < element.properties.size(); ++k) {
         if (!element.properties[k].is_list) out.vertex_columns[k].reserve(element.count);
@@ -324,6 +372,10 @@ PlyData read_data(const PlyHeader& header, const Roles& roles, Source& source) {
           continue;
         }
         const std::uint64_t count = source.list_count(p);
+        if (is_strip && k == roles.strip_indices) {
+          read_strip(source, p, count, roles.n_vertices, out.triangles);
+          continue;
+        }
         if (!is_face || k != roles.face_indices) {
           source.skip_list(p, count);
           continue;
@@ -381,6 +433,7 @@ Surface read_ply_data(std::string_view data, const std::string& name) {
     for (Eigen::Index i = 0; i < n; ++i) positions(i, c) = column[static_cast<std::size_t>(i)];
   }
   const auto n_triangles = static_cast<Eigen::Index>(ply.triangles.size() / 3);
+  detail::check_has_triangles(vertex.count, ply.triangles.size() / 3, name);
   const Eigen::MatrixX3i faces =
       Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(ply.triangles.data(),
                                                                                n_triangles, 3);

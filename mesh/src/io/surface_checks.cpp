@@ -1,5 +1,6 @@
 #include "surface_checks.hpp"
 
+#include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 
 namespace surfcomp::mesh::io::detail {
@@ -24,6 +25,17 @@ void check_read_surface(const Surface& surface, const std::string& file) {
       surfcomp::io::check_read_value(values(i), file, vertex(i), "property '" + name + "'");
     }
   }
+}
+
+void check_has_triangles(std::size_t n_vertices, std::size_t n_triangles, const std::string& file) {
+  if (n_triangles > 0) return;
+  if (n_vertices == 0) {
+    throw FormatError(file, "no vertices and no faces; surfcomp needs a triangle mesh");
+  }
+  throw FormatError(file, "a point cloud (" + std::to_string(n_vertices) +
+                              (n_vertices == 1 ? " vertex" : " vertices") +
+                              ", no faces); surfcomp needs a triangle mesh: reconstruct a "
+                              "surface first (e.g. Poisson or ball pivoting)");
 }
 
 }  // namespace surfcomp::mesh::io::detail

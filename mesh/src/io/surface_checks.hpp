@@ -3,6 +3,7 @@
 
 #include "surfcomp/mesh/surface.hpp"
 
+#include <cstddef>
 #include <string>
 
 namespace surfcomp::mesh::io::detail {
@@ -12,5 +13,10 @@ namespace surfcomp::mesh::io::detail {
 /// value finite. Throws FormatError naming `file`, the vertex (0-based) and, for a property,
 /// its name ("x.ply: vertex 12 has a non-finite property 'charge' (nan)").
 void check_read_surface(const Surface& surface, const std::string& file);
+
+/// Checks that `file` gave triangles: throws FormatError "FILE: a point cloud (N vertices, no
+/// faces); surfcomp needs a triangle mesh: ..." when it gave vertices and no triangle, and
+/// "FILE: no vertices and no faces; ..." when it gave neither.
+void check_has_triangles(std::size_t n_vertices, std::size_t n_triangles, const std::string& file);
 
 }  // namespace surfcomp::mesh::io::detail

@@ -46,10 +46,13 @@ RepairedMesh repair_triangles(const Eigen::Ref<const Eigen::MatrixX3d>& position
                               const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                               const std::string& source);
 
-/// Reads the geometry of a mesh file (.off .obj .ply; polygons triangulated; vertex
-/// properties are not kept) as a soup with CGAL's reader and repairs it (repair_triangles).
+/// Reads the geometry of a mesh file (io::mesh_extensions(io::MeshUse::repair): .ply .stl .off
+/// .obj; polygons triangulated; vertex properties are not kept) as a soup (STL with
+/// io::read_stl's reader, the others with CGAL's) and repairs it (repair_triangles).
 /// Throws InputError naming the file when it cannot be read as one, holds more than
-/// `max_vertices` points, or has another extension.
+/// `max_vertices` points, or has another extension; FormatError ("FILE: vertex I has coordinate
+/// ...") for a coordinate beyond surfcomp::io::max_coordinate_magnitude or not finite, and for a
+/// malformed STL file.
 RepairedMesh repair_mesh_file(const std::filesystem::path& path, std::size_t max_vertices);
 
 }  // namespace surfcomp::mesh

@@ -14,10 +14,10 @@ namespace surfcomp::mesh::io {
 /// Either file may start with MSMS's header: comment lines beginning with '#' followed by one
 /// count line (`count n_spheres density probe_radius`); the count must then equal the number of
 /// data lines. Blank lines are skipped.
-/// Throws FileError if a file cannot be read; FormatError ("file:line: expected ..., found
-/// ...") for a malformed line, a non-finite coordinate or normal, a vertex number outside
-/// 1..#V, or a header count that disagrees with the data; TopologyError from
-/// Surface::from_arrays for faces that do not form a manifold mesh.
+/// Throws FileError if a file cannot be read; FormatError for an X.face without faces ("a
+/// point cloud"), or ("file:line: expected ..., found ...") for a malformed line, a non-finite
+/// coordinate or normal, a vertex number outside 1..#V, or a header count that disagrees with the
+/// data; TopologyError from Surface::from_arrays for faces that do not form a manifold mesh.
 Surface read_msms(const std::filesystem::path& path);
 
 }  // namespace surfcomp::mesh::io

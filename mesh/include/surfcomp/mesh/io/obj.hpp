@@ -13,9 +13,10 @@ namespace surfcomp::mesh::io {
 /// three corners is split into a fan of triangles (a1, ak, ak+1); fewer than three is an error.
 /// Every other statement (vn, vt, g, o, s, usemtl, mtllib, l, p...) and '#' comments are
 /// ignored.
-/// Throws FileError if the file cannot be read; FormatError ("file:line: expected ..., found
-/// ...") for a malformed v or f line, a non-finite coordinate or a vertex number out of range;
-/// TopologyError from Surface::from_arrays for a non-manifold mesh.
+/// Throws FileError if the file cannot be read; FormatError ("FILE: a point cloud (N vertices,
+/// no faces); ...") for vertices without faces, and ("file:line: expected ..., found ...") for a
+/// malformed v or f line, a non-finite coordinate or a vertex number out of range; TopologyError
+/// from Surface::from_arrays for a non-manifold mesh.
 Surface read_obj(const std::filesystem::path& path);
 
 /// Writes positions (shortest text that reads back to the same double) and triangles of `s`

@@ -11,9 +11,10 @@ namespace surfcomp::mesh::io {
 /// `#V #F #E`, #V lines `x y z` (A), #F lines `n i1 ... in [colour...]` with 0-based indices.
 /// A polygon with n > 3 is split into a fan of triangles (i1, ik, ik+1); n < 3 is an error.
 /// '#' starts a comment; blank lines are skipped; nothing but comments may follow the faces.
-/// Throws FileError if the file cannot be read; FormatError ("file:line: expected ..., found
-/// ...") for a malformed line, counts the file cannot hold, a non-finite coordinate or an index
-/// out of range; TopologyError from Surface::from_arrays for a non-manifold mesh.
+/// Throws FileError if the file cannot be read; FormatError ("FILE: a point cloud (N vertices,
+/// no faces); ...") for vertices without faces, and ("file:line: expected ..., found ...") for a
+/// malformed line, counts the file cannot hold, a non-finite coordinate or an index out of range;
+/// TopologyError from Surface::from_arrays for a non-manifold mesh.
 Surface read_off(const std::filesystem::path& path);
 
 /// Writes positions (shortest text that reads back to the same double) and triangles of `s`

@@ -25,12 +25,19 @@ enum class PlyFormat { ascii, binary_little_endian, binary_big_endian };
 ///   count and index types, 0-based. A polygon with more than three vertices is split into a
 ///   fan of triangles (v0, vk, vk+1); fewer than three vertices is a FormatError. Other face
 ///   properties are skipped.
+/// - Triangle strip element ("tristrips", alone or beside "face"): the list property
+///   vertex_indices (or vertex_index), RPly's convention: -1 ends one strip and starts the
+///   next; in a strip s0 s1 s2 s3 ... triangle j is (sj, sj+1, sj+2) for even j and
+///   (sj+1, sj, sj+2) for odd j, and a triangle that repeats a vertex is skipped. Strip
+///   triangles follow the face triangles when the face element comes first, and precede them
+///   otherwise (file order).
 /// - Every other element (edges, materials...) is skipped, in ascii and binary. comment and
 ///   obj_info lines are ignored. ascii data is read one element item per line (blank lines are
 ///   skipped). A float property written as text is rounded to float, as its binary form would.
 /// Throws FileError if the file cannot be read; FormatError ("file:line: expected ..., found
-/// ...", line 0 for binary data, which names the byte offset instead) for a malformed header,
-/// an element count the remaining bytes cannot hold, truncated data, an unparsable or
+/// ...", line 0 for binary data, which names the byte offset instead) for a point cloud
+/// (vertices and no triangle: "FILE: a point cloud (N vertices, no faces); ..."), a malformed
+/// header, an element count the remaining bytes cannot hold, truncated data, an unparsable or
 /// out-of-range value, a non-finite position or normal, or a vertex index out of range;
 /// TopologyError from Surface::from_arrays for faces that do not form a manifold mesh.
 Surface read_ply(const std::filesystem::path& path);
