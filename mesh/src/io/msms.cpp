@@ -139,7 +139,7 @@ Surface read_msms(const std::filesystem::path& path) {
   const std::filesystem::path face = base.string() + ".face";
   const MsmsVertices vertices = read_vert(vert);
   const std::vector<int> triangles = read_face(face, vertices.positions.size() / 3);
-  detail::check_has_triangles(vertices.positions.size() / 3, triangles.size() / 3, face.string());
+  detail::check_has_triangles(vertices.positions.size() / 3, triangles.size() / 3, path.string());
   const auto n = static_cast<Eigen::Index>(vertices.positions.size() / 3);
   using RowMajor3d = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
   using RowMajor3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
