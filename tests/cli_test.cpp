@@ -12,10 +12,13 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <sstream>
+#include <vector>
 
 namespace surfcomp {
 namespace {
@@ -414,6 +417,94 @@ TEST_F(Cli, QuietSaysNothingAndVerboseSaysEachStep) {
   const ProgramRun both = run("match " + pair + " -q -v");
   EXPECT_NE(both.status, 0);
   EXPECT_NE(both.err.find("cannot be combined"), std::string::npos) << both.err;
+}
+
+/// A bumpy closed mesh `size` across about 2, as an OFF file: an octahedron subdivided `levels`
+/// times onto the sphere, its radius modulated by smooth waves (peaks and valleys).
+void write_blob_off(const fs::path& path, double size, int levels) {
+  std::vector<Eigen::Vector3d> v = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                    {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+  std::vector<Eigen::Vector3i> f = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> middle;
+    const auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      const auto found = middle.find(key);
+      if (found != middle.end()) return found->second;
+      v.push_back((v[static_cast<std::size_t>(a)] + v[static_cast<std::size_t>(b)]).normalized());
+      return middle[key] = static_cast<int>(v.size()) - 1;
+    };
+    std::vector<Eigen::Vector3i> next;
+    for (const Eigen::Vector3i& t : f) {
+      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      next.insert(next.end(), {{t[0], ab, ca}, {ab, t[1], bc}, {ca, bc, t[2]}, {ab, bc, ca}});
+    }
+    f = next;
+  }
+  std::ofstream out(path);
+  out.precision(17);
+  out << "OFF\n" << v.size() << " " << f.size() << " 0\n";
+  for (const Eigen::Vector3d& p : v) {
+    const double r = 1.0 + 0.18 * std::sin(3.0 * p.x() + 0.4) * std::cos(2.0 * p.y() - 0.3) +
+                     0.12 * std::cos(4.0 * p.z() + 1.3 * p.x() + 0.2 * p.y());
+    out << size * r * p.x() << " " << size * r * p.y() << " " << size * r * p.z() << "\n";
+  }
+  for (const Eigen::Vector3i& t : f) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+}
+
+TEST_F(Cli, StageToolsDescribeAMeshAtItsOwnScale) {
+  // The same mesh in metres and in millimetres: the same critical points (vertices), with
+  // positions in each file's coordinates, and the unit in the JSON.
+  std::vector<std::vector<int>> vertices;
+  std::vector<double> units, first_x;
+  for (const double size : {0.05, 50.0}) {
+    const fs::path off = scratch("blob" + std::to_string(vertices.size()) + ".off");
+    const fs::path json = scratch("cps" + std::to_string(vertices.size()) + ".json");
+    write_blob_off(off, size, 5);
+    const ProgramRun r = run("cp-detect " + off.string() + " -o " + json.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("units of"), std::string::npos) << r.out;
+    std::ifstream in(json);
+    const nlohmann::json document = nlohmann::json::parse(in);
+    std::vector<int> found;
+    for (const auto& point : document["critical_points"]) found.push_back(point["vertex"]);
+    vertices.push_back(found);
+    units.push_back(document["parameters"]["length_unit"]);
+    const auto& position = document["critical_points"][0]["position"];
+    first_x.push_back(std::hypot(double(position[0]), double(position[1]), double(position[2])));
+
+    const ProgramRun built = run("surf-build " + off.string() + " -o " + scratch("s.ply").string());
+    ASSERT_EQ(built.status, 0) << built.err;
+    EXPECT_NE(built.out.find("length unit"), std::string::npos) << built.out;
+    EXPECT_EQ(built.out.find("A^2"), std::string::npos)
+        << "a general mesh is not in A: " << built.out;
+  }
+  ASSERT_GE(vertices.front().size(), 4u);
+  EXPECT_EQ(vertices.front(), vertices.back());
+  EXPECT_NEAR(units.back() / units.front(), 1000.0, 1e-6);
+  EXPECT_NEAR(first_x.back() / first_x.front(), 1000.0, 1e-6);
+
+  // --unit takes a positive length; hsi-build and patch-map describe the mesh as cp-detect does.
+  const fs::path off = scratch("blob0.off");
+  for (const char* unit : {"0", "nan", "-1"}) {
+    const ProgramRun r =
+        run("cp-detect " + off.string() + " --unit " + unit + " -o " + scratch("u.json").string());
+    EXPECT_EQ(r.status, 2) << unit;
+    EXPECT_NE(r.err.find("--unit"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(scratch("u.json")));
+  }
+  const ProgramRun hsi = run("hsi-build " + off.string() + " -o " + scratch("b.hsi").string());
+  ASSERT_EQ(hsi.status, 0) << hsi.err;
+  const harmonic::SurfaceDescriptors stored = harmonic::io::read_hsi(scratch("b.hsi"));
+  EXPECT_NEAR(stored.length_unit, units.front(), 1e-12 * units.front());
+  std::vector<int> described;
+  for (const auto& cp : stored.critical_points) described.push_back(cp.point.vertex);
+  EXPECT_EQ(described, vertices.front());
+  const ProgramRun maps =
+      run("patch-map " + off.string() + " --cp 0 -o " + scratch("maps").string() + "/");
+  ASSERT_EQ(maps.status, 0) << maps.err;
+  EXPECT_TRUE(fs::exists(scratch("maps") / "patch_maps.json"));
 }
 
 }  // namespace

@@ -240,12 +240,12 @@ TEST(HsiFile, CorruptTruncatedAndOtherVersionFilesAreRejected) {
   EXPECT_EQ(rejected, 200) << "every truncation and every flipped byte must be detected";
 
   auto other_version = bytes;
-  other_version[8] = 3;  // the version field follows the 8-byte magic
+  other_version[8] = 4;  // the version field follows the 8-byte magic
   try {
-    harmonic::io::decode_hsi(other_version, "v3.hsi");
-    FAIL() << "a version-3 file was accepted";
+    harmonic::io::decode_hsi(other_version, "v4.hsi");
+    FAIL() << "a version-4 file was accepted";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("version 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("version 4"), std::string::npos) << e.what();
   }
   EXPECT_THROW(harmonic::io::decode_hsi({'P', 'L', 'Y'}, "x.hsi"), FormatError);
   EXPECT_THROW(harmonic::io::read_hsi("/nonexistent/x.hsi"), FileError);

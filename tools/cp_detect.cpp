@@ -19,12 +19,19 @@
 namespace surfcomp::tools {
 namespace {
 
+std::string format_length(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
 constexpr const char* kUsage =
     "usage: surfcomp cp-detect INPUT -o CPS.json [--points-out CPS.pdb|CPS.ply] [options]\n\n"
     "Finds the shape critical points of a surface (seed 3.2): peaks, convex vertices whose |cc1|\n"
     "is the largest within the on-surface radius; valleys, concave vertices whose cc1 is the\n"
     "largest within it. Each comes with its position, normal, curvature and the shape index,\n"
-    "ESP and LP averaged over a small geodesic disc.\n\n"
+    "ESP and LP averaged over a small geodesic disc. A general mesh is searched in its length\n"
+    "unit (--scale, --unit: the radii count in it) and its points given in its coordinates.\n\n"
     "INPUT  a molecule or mesh (as surf-build) or a .hsi file (its stored critical points)";
 
 }  // namespace
@@ -57,21 +64,24 @@ int cp_detect(const std::vector<std::string>& args) {
   Stopwatch clock;
   std::vector<mesh::CriticalPoint> points;
   std::size_t n_vertices = 0;
+  mesh::LengthUnit unit;
   if (from_hsi) {
     const harmonic::SurfaceDescriptors stored = harmonic::io::read_hsi(path);
+    if (stored.length_unit != 1.0) unit = {stored.length_unit, "stored"};
     for (const auto& cp : stored.critical_points) points.push_back(cp.point);
     cp_options = stored.options.critical_points;
     n_vertices = stored.surface.n_vertices();
   } else {
     const mesh::LoadedSurface loaded = load_noted(path, input);
-    points = mesh::detect_critical_points(loaded.surface, cp_options);
+    points = mesh::detect_critical_points_in_unit(loaded.surface, loaded.unit.value, cp_options);
     n_vertices = loaded.surface.n_vertices();
+    unit = loaded.unit;
   }
   const double elapsed = clock.elapsed_ms();
   std::size_t peaks = 0;
   for (const auto& p : points) peaks += p.type == mesh::CriticalPointType::peak ? 1 : 0;
 
-  const report::CriticalPointSet set{path.string(), cp_options, n_vertices, points};
+  const report::CriticalPointSet set{path.string(), cp_options, n_vertices, points, unit.value};
   // The JSON goes last; if it cannot be written, the points file written before it is removed,
   // so a failure leaves no output at all.
   if (!points_out.empty()) report::write_critical_points(points_out, set);
@@ -82,9 +92,11 @@ int cp_detect(const std::vector<std::string>& args) {
     if (!points_out.empty()) std::filesystem::remove(points_out);
     throw;
   }
-  console::summary("%s: %zu vertices, %zu peaks, %zu valleys (r_cp %.2f A), %.0f ms -> %s\n",
+  const std::string radius_unit =
+      unit.value == 1.0 ? "A" : "units of " + format_length(unit.value) + " (" + unit.from + ")";
+  console::summary("%s: %zu vertices, %zu peaks, %zu valleys (r_cp %.2f %s), %.0f ms -> %s\n",
                    path.string().c_str(), n_vertices, peaks, points.size() - peaks,
-                   cp_options.radius, elapsed, output.c_str());
+                   cp_options.radius, radius_unit.c_str(), elapsed, output.c_str());
   return 0;
 }
 

@@ -43,28 +43,27 @@ int hsi_build(const std::vector<std::string>& args) {
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   const matching::MatchInputOptions settings = describe_options_from(vm);
   const mesh::SurfaceInputOptions& input = settings.input;
-  const harmonic::DescriptorOptions& options = settings.descriptors;
   mesh::check_surface_input(path, input);
   check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
                        {{"--output", output, {".hsi"}, ""}}});
   const auto limit = limit_threads(settings.threads);
 
   Stopwatch clock;
-  mesh::LoadedSurface loaded = load_noted(path, input);
-  const double surface_ms = clock.elapsed_ms();
-  const harmonic::SurfaceDescriptors descriptors =
-      loaded.molecule
-          ? harmonic::describe_surface(std::move(loaded.surface), *loaded.molecule, options)
-          : harmonic::describe_surface(std::move(loaded.surface), options);
+  matching::MatchInput input_file;
+  input_file.path = path;
+  const matching::PreparedInput prepared = matching::prepare_input(input_file, settings);
+  for (const std::string& note : prepared.notes) console::note(note);
+  const harmonic::SurfaceDescriptors& descriptors = prepared.descriptors;
   const double total_ms = clock.elapsed_ms();
   harmonic::io::write_hsi(descriptors, output);
 
   const harmonic::DescriptorCounts counts = harmonic::count_descriptors(descriptors);
-  console::summary(
-      "%s: %zu vertices, %zu peaks, %zu valleys, %zu images, surface %.0f ms, "
-      "images %.0f ms -> %s\n",
-      path.string().c_str(), descriptors.surface.n_vertices(), counts.peaks, counts.valleys,
-      counts.imaged, surface_ms, total_ms - surface_ms, output.c_str());
+  console::summary("%s: %zu vertices, %zu peaks, %zu valleys, %zu images, ", path.string().c_str(),
+                   descriptors.surface.n_vertices(), counts.peaks, counts.valleys, counts.imaged);
+  if (prepared.unit.value != 1.0) {
+    console::summary("length unit %.6g (%s), ", prepared.unit.value, prepared.unit.from.c_str());
+  }
+  console::summary("%.0f ms -> %s\n", total_ms, output.c_str());
   return 0;
 }
 

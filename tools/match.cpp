@@ -39,9 +39,8 @@ constexpr const char* kUsage =
     "(--overlay-atom-weight), and the first --polish-top poses are refined again on that whole\n"
     "score plus --atom-polish-weight x the like-element Gaussian overlap of all heavy atoms\n"
     "(--atom-polish-sigma; column 'atom_fit', a Tanimoto); the poses go by that sum.\n\n"
-    "REF, PROBE  a molecule (.sdf .mol .mol2 .pdb .cif .cif.gz .pqr), a mesh (.ply .vert\n"
-    "            .off .obj) or a .hsi file from hsi-build (two .hsi files must have been\n"
-    "            built with the same parameters)\n"
+    "REF, PROBE  a molecule or a mesh (%s), or a .hsi file from\n"
+    "            hsi-build (two .hsi files must have been built with the same parameters)\n"
     "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand\n"
     "build the protein's surface without water and without one copy of that HETATM residue (the\n"
     "lowest chain, then residue number) and keep the critical points within --site-radius of\n"
@@ -78,7 +77,7 @@ int match(const std::vector<std::string>& args) {
   // clang-format on
   add_match_options(described);
   po::variables_map vm;
-  if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
+  if (!parse_command_line(args, described, 2, with_formats(kUsage).c_str(), vm)) return 0;
   const auto inputs =
       vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
   if (inputs.size() != 2) throw OptionError("expected REF and PROBE (see --help)");

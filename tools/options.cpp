@@ -1,5 +1,7 @@
 #include "options.hpp"
 
+#include "surfcomp/mesh/load_surface.hpp"
+
 #include "console.hpp"
 
 #include <iostream>
@@ -142,6 +144,13 @@ int threads_from(const boost::program_options::variables_map& vm) {
   int threads = 0;
   apply_table_options(threads_table(), vm, threads);
   return threads;
+}
+
+std::string with_formats(const char* usage) {
+  std::string text = usage;
+  const std::size_t at = text.find("%s");
+  if (at != std::string::npos) text.replace(at, 2, mesh::surface_input_formats());
+  return text;
 }
 
 void require_in_range(const char* name, double value, double lo, double hi) {

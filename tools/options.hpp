@@ -26,6 +26,10 @@ bool parse_command_line(const std::vector<std::string>& args,
                         const boost::program_options::options_description& options, int max_inputs,
                         const char* usage, boost::program_options::variables_map& vm);
 
+/// `usage` with its one "%s" replaced by the input formats a surface is read from
+/// (mesh::surface_input_formats), so that help texts list them from the one registry.
+std::string with_formats(const char* usage);
+
 /// An option value stored in `*target`, with default `fallback`. --help shows a floating-point
 /// default in its shortest exact form (1.4, not 1.3999999999999999).
 template <class T>

@@ -159,7 +159,11 @@ int patch_map(const std::vector<std::string>& args) {
   } else {
     mesh::check_surface_input(path, settings.input);
   }
-  const std::filesystem::path folder = output;
+  // "maps/" names the folder "maps", as a shell's completion writes it.
+  const std::filesystem::path folder = std::filesystem::path(output).has_filename()
+                                           ? std::filesystem::path(output)
+                                           : std::filesystem::path(output).parent_path();
+  if (folder.empty()) throw OptionError("--output: expected a folder, got '" + output + "'");
   std::error_code error;
   if (std::filesystem::exists(folder, error) && !std::filesystem::is_directory(folder, error))
     throw FileError(folder.string(), "exists and is not a folder");
@@ -186,9 +190,15 @@ int patch_map(const std::vector<std::string>& args) {
         chosen.push_back({i, std::move(stored.critical_points[i])});
     }
   } else {
-    surface = load_noted(path, settings.input).surface;
+    // Described in the input's length unit, as hsi-build and match describe it; the files are
+    // written in its own coordinates.
+    mesh::LoadedSurface loaded = load_noted(path, settings.input);
+    const double unit = loaded.unit.value;
+    surface = std::move(loaded.surface);
+    mesh::Surface in_units = surface;
+    if (unit != 1.0) mesh::scale_surface(in_units, 1.0 / unit);
     const std::vector<mesh::CriticalPoint> points =
-        mesh::detect_critical_points(surface, settings.descriptors.critical_points);
+        mesh::detect_critical_points(in_units, settings.descriptors.critical_points);
     total = points.size();
     std::vector<std::size_t> indices;
     std::vector<mesh::CriticalPoint> picked;
@@ -199,7 +209,11 @@ int patch_map(const std::vector<std::string>& args) {
       }
     }
     std::vector<harmonic::CriticalPointDescriptor> descriptions =
-        harmonic::describe_points(surface, picked, settings.descriptors);
+        harmonic::describe_points(in_units, picked, settings.descriptors);
+    if (unit != 1.0) {
+      for (harmonic::CriticalPointDescriptor& d : descriptions)
+        harmonic::scale_point_descriptor(d, unit, settings.descriptors.image_property);
+    }
     for (std::size_t k = 0; k < indices.size(); ++k)
       chosen.push_back({indices[k], std::move(descriptions[k])});
   }

@@ -21,10 +21,12 @@ constexpr const char* kUsage =
     "usage: surfcomp surf-build INPUT -o OUT.ply [options]\n\n"
     "Builds the solvent-excluded surface (SES) of a molecule, or reads a surface mesh, and\n"
     "writes it with per-vertex normals, ESP (kcal/(mol*e)), LP, principal curvatures cc1, cc2\n"
-    "(1/A, convex negative), shape index and curvedness.\n\n"
-    "INPUT  a molecule (.sdf .mol .mol2 .pdb .ent .cif .cif.gz .pqr) or a mesh (.ply .vert/.face "
-    ".off .obj)\n"
-    "Prints: input, atoms, vertices, faces, area (A^2), volume (A^3), Euler characteristic, time.";
+    "(1/A, convex negative), shape index and curvedness. A general mesh (no ESP and LP) keeps its\n"
+    "coordinates; its curvature is fitted over 3 of its length units (--scale, --unit) and given\n"
+    "per length of its coordinates.\n\n"
+    "INPUT  a molecule or a mesh (%s)\n"
+    "Prints: input, atoms, vertices, faces, area (A^2; a general mesh's in its coordinates'\n"
+    "units), volume, a general mesh's length unit, Euler characteristic, time.";
 
 }  // namespace
 
@@ -41,7 +43,7 @@ int surf_build(const std::vector<std::string>& args) {
   // clang-format on
   add_surface_options(described);
   po::variables_map vm;
-  if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
+  if (!parse_command_line(args, described, 1, with_formats(kUsage).c_str(), vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   const mesh::SurfaceInputOptions input = surface_options_from(vm);
@@ -61,13 +63,24 @@ int surf_build(const std::vector<std::string>& args) {
   }
 
   const mesh::SurfaceMeasures m = mesh::measure_surface(loaded.surface);
-  console::summary("%s: %zu atoms, %zu vertices, %zu faces, area %.1f A^2, ", path.string().c_str(),
+  console::summary("%s: %zu atoms, %zu vertices, %zu faces, ", path.string().c_str(),
                    loaded.molecule ? loaded.molecule->atoms.size() : std::size_t{0},
-                   loaded.surface.n_vertices(), loaded.surface.n_faces(), m.area);
-  if (m.boundary_edges == 0) {
-    console::summary("volume %.1f A^3, ", m.volume);
+                   loaded.surface.n_vertices(), loaded.surface.n_faces());
+  // A general mesh's lengths are in its own coordinates' units, whatever they are.
+  if (loaded.general_mesh) {
+    console::summary("area %.6g, ", m.area);
   } else {
+    console::summary("area %.1f A^2, ", m.area);
+  }
+  if (m.boundary_edges != 0) {
     console::summary("volume n/a (open, %zu boundary edges), ", m.boundary_edges);
+  } else if (loaded.general_mesh) {
+    console::summary("volume %.6g, ", m.volume);
+  } else {
+    console::summary("volume %.1f A^3, ", m.volume);
+  }
+  if (loaded.general_mesh) {
+    console::summary("length unit %.6g (%s), ", loaded.unit.value, loaded.unit.from.c_str());
   }
   console::summary("Euler %d, %.0f ms -> %s\n", m.euler_characteristic, elapsed, output.c_str());
   return 0;

@@ -37,7 +37,7 @@ void show_potential_progress(mesh::MolecularSurfaceOptions& surface) {
 mesh::LoadedSurface load_noted(const std::filesystem::path& path,
                                const mesh::SurfaceInputOptions& options) {
   mesh::LoadedSurface loaded = mesh::load_surface(path, options);
-  if (loaded.repair) console::note(mesh::repair_note(path.string(), *loaded.repair));
+  for (const std::string& note : loaded.notes) console::note(note);
   return loaded;
 }
 

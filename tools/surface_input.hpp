@@ -19,7 +19,8 @@ void add_surface_options(boost::program_options::options_description& described)
 /// LP sums.
 mesh::SurfaceInputOptions surface_options_from(const boost::program_options::variables_map& vm);
 
-/// mesh::load_surface of `path`, with a note of what --repair changed.
+/// mesh::load_surface of `path`, with its notes (what --repair changed, what the reader
+/// dropped or found) printed.
 mesh::LoadedSurface load_noted(const std::filesystem::path& path,
                                const mesh::SurfaceInputOptions& options);
 

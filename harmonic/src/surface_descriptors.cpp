@@ -155,19 +155,21 @@ SurfaceDescriptors describe_surface(
 
 void scale_descriptors(SurfaceDescriptors& descriptors, double factor) {
   mesh::scale_surface(descriptors.surface, factor);  // checks the factor
-  const std::string& imaged = descriptors.options.image_property;
-  const bool image_is_curvature = imaged == mesh::property::cc1 || imaged == mesh::property::cc2 ||
-                                  imaged == mesh::property::curvedness;
-  for (CriticalPointDescriptor& cp : descriptors.critical_points) {
-    cp.point.position *= factor;
-    cp.point.cc1 /= factor;
-    cp.point.cc2 /= factor;
-    cp.point.curvedness /= factor;
-    cp.patch.positions *= factor;
-    cp.patch.distance *= factor;
-    if (image_is_curvature) cp.image.values /= factor;
-  }
+  for (CriticalPointDescriptor& cp : descriptors.critical_points)
+    scale_point_descriptor(cp, factor, descriptors.options.image_property);
   for (SurfaceAtom& atom : descriptors.atoms) atom.position *= factor;
+  descriptors.length_unit *= factor;
+}
+
+void scale_point_descriptor(CriticalPointDescriptor& descriptor, double factor,
+                            const std::string& image_property) {
+  mesh::scale_critical_point(descriptor.point, factor);
+  descriptor.patch.positions *= factor;
+  descriptor.patch.distance *= factor;
+  const bool image_is_curvature = image_property == mesh::property::cc1 ||
+                                  image_property == mesh::property::cc2 ||
+                                  image_property == mesh::property::curvedness;
+  if (image_is_curvature) descriptor.image.values /= factor;
 }
 
 DescriptorCounts count_descriptors(const SurfaceDescriptors& descriptors) {

@@ -29,17 +29,6 @@ const options::Table<PairMatchOptions>& pair_match_option_table() {
         {"critical-point-radius", "disc-radius", "image-rings", "image-sectors", "weights"});
     options::append(
         t, match_option_table(), [](auto& p) -> auto& { return p.inputs.match; });
-    t.push_back(options::choice<P>(
-        {"scale", Kind::choice,
-         "length unit of the length options: auto (1 A for molecules; for two meshes "
-         "without ESP and LP, 1/12 of the larger one's RMS radius) or none (1)"},
-        [](auto& p) -> auto& { return p.inputs.scale; }, length_scale_names));
-    t.push_back(options::field<P>(
-        {"unit", Kind::real,
-         "two general meshes: the length, in their coordinates, that every length option "
-         "counts as 1 A (0: from --scale)",
-         "", 0.0, 1e12},
-        [](auto& p) -> auto& { return p.inputs.unit; }));
     const auto text = [](const char* name, const char* help) {
       return options::Spec{name, Kind::text, help, "", 0, 0, false, {}, true};
     };

@@ -1,6 +1,7 @@
 #include "surfcomp/matching/match_inputs.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
@@ -43,6 +44,7 @@ struct LoadedInput {
   /// read without a molecule, or a surface in memory without curvature).
   bool needs_curvature = false;
   std::optional<mesh::RepairReport> repair;  ///< what --repair changed in a mesh file
+  std::vector<std::string> notes;            ///< mesh::LoadedSurface::notes
 };
 
 /// The surface of a molecule with a site: the site's structure (binding_site) surfaced around
@@ -132,12 +134,14 @@ LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& opti
     mesh::LoadedSurface loaded = mesh::read_mesh_input(input.path, options.input);
     side.surface = std::move(loaded.surface);
     side.repair = loaded.repair;
+    side.notes = std::move(loaded.notes);
     side.needs_curvature = true;
   } else {
     mesh::LoadedSurface loaded = mesh::load_surface(input.path, options.input);
     side.surface = std::move(loaded.surface);
     side.molecule = std::move(loaded.molecule);
     side.repair = loaded.repair;
+    side.notes = std::move(loaded.notes);
   }
   return side;
 }
@@ -155,73 +159,70 @@ bool carries_chemistry(const LoadedInput& side) {
 /// True for a side whose coordinates are in A: a molecule, a stored description, a surface with
 /// ESP and LP, an MSMS mesh.
 bool is_molecular(const LoadedInput& side, const MatchInput& input) {
-  if (side.descriptors || side.molecule || carries_chemistry(side)) return true;
-  const std::string extension = input.path.extension().string();
-  return extension == ".vert" || extension == ".face";
+  if (side.descriptors) return side.descriptors->length_unit == 1.0;
+  if (side.molecule) return true;
+  return mesh::is_molecular_mesh(*side.surface, io::lowercase_extension(input.path));
 }
 
-/// The area-weighted RMS distance of a surface's triangle centroids from their centroid: its
-/// size, which noise and a partial view change less than its area.
-double rms_radius(const mesh::Surface& surface) {
-  const Eigen::MatrixX3d v = surface.positions();
-  const Eigen::MatrixX3i f = surface.faces();
-  Eigen::VectorXd area(f.rows());
-  Eigen::MatrixX3d centroid(f.rows(), 3);
-  for (Eigen::Index i = 0; i < f.rows(); ++i) {
-    const Eigen::RowVector3d a = v.row(f(i, 0)), b = v.row(f(i, 1)), c = v.row(f(i, 2));
-    area(i) = 0.5 * (b - a).cross(c - a).norm();
-    centroid.row(i) = (a + b + c) / 3.0;
-  }
-  const double total = area.sum();
-  if (!(total > 0.0)) return 0.0;
-  const Eigen::RowVector3d centre =
-      (centroid.array().colwise() * area.array()).colwise().sum() / total;
-  return std::sqrt((centroid.rowwise() - centre).rowwise().squaredNorm().dot(area) / total);
-}
-
-/// The length unit of a pair (MatchInputOptions::unit and scale) and how it was chosen.
-std::pair<double, std::string> length_unit(const LoadedInput& ref, const MatchInput& reference,
-                                           const LoadedInput& prb, const MatchInput& probe,
-                                           const MatchInputOptions& options) {
-  if (options.unit > 0.0) {
-    for (const auto& [side, input] : {std::pair{&ref, &reference}, std::pair{&prb, &probe}}) {
-      if (is_molecular(*side, *input)) {
+/// The length unit of a pair (SurfaceInputOptions::scale and unit) and how it was chosen.
+mesh::LengthUnit length_unit(const LoadedInput& ref, const MatchInput& reference,
+                             const LoadedInput& prb, const MatchInput& probe,
+                             const MatchInputOptions& options) {
+  const mesh::SurfaceInputOptions& input = options.input;
+  if (input.unit > 0.0) {
+    for (const auto& [side, given] : {std::pair{&ref, &reference}, std::pair{&prb, &probe}}) {
+      if (is_molecular(*side, *given)) {
         throw OptionError("--unit applies to general meshes; " + side->name +
                           " is in A (a molecule, a mesh with ESP and LP, or a stored "
                           "description)");
       }
     }
-    return {options.unit, "--unit"};
   }
-  if (options.scale == LengthScale::none || is_molecular(ref, reference) ||
-      is_molecular(prb, probe)) {
-    return {1.0, "none"};
+  if (is_molecular(ref, reference) || is_molecular(prb, probe)) return {};
+  // A general mesh's stored description brings the unit it was described in.
+  std::optional<double> stored;
+  for (const LoadedInput* side : {&ref, &prb}) {
+    if (!side->descriptors) continue;
+    const double unit = side->descriptors->length_unit;
+    if (stored && *stored != unit) {
+      throw InputError(ref.name + " and " + prb.name +
+                       ": the .hsi files were described in different length units (" +
+                       std::to_string(*stored) + " and " + std::to_string(unit) +
+                       "); rebuild one with the other's --unit");
+    }
+    stored = unit;
   }
-  constexpr double kAutoRadius = 12.0;  // units, LengthScale::automatic
-  const double radius = std::max(rms_radius(*ref.surface), rms_radius(*prb.surface));
-  if (!(radius > 0.0) || !std::isfinite(radius)) {
-    throw InputError(ref.name + " and " + prb.name +
-                     ": the surfaces have no extent to take a length unit from (--scale auto); "
-                     "give --unit");
+  if (stored) {
+    if (input.unit > 0.0 && input.unit != *stored) {
+      throw OptionError("--unit " + std::to_string(input.unit) + ": the stored description is in " +
+                        std::to_string(*stored) + "; give that unit or none");
+    }
+    return {*stored, "stored"};
   }
-  return {radius / kAutoRadius, "auto"};
+  return mesh::general_mesh_unit({&*ref.surface, &*prb.surface}, input.scale, input.unit,
+                                 ref.name + " and " + prb.name);
 }
 
 /// The curvature of a side that still needs it (LoadedInput::needs_curvature), in the length
-/// unit its surface now has: over the molecular surface's neighbourhood, or for a pair of
-/// general meshes over 3 units, which noisy scans need (docs/decisions.md#mesh-scale).
-void complete(LoadedInput& side, const MatchInputOptions& options, bool general_meshes) {
+/// unit its surface now has: over the molecular surface's neighbourhood, or for a general mesh
+/// as mesh::assign_general_mesh_curvature fits it.
+void complete(LoadedInput& side, const MatchInputOptions& options, bool general_mesh) {
   if (!side.needs_curvature) return;
-  mesh::MolecularSurfaceOptions surface = options.input.surface;
-  constexpr double kGeneralMeshCurvatureRadius = 3.0;  // units
-  if (general_meshes) surface.curvature.radius = kGeneralMeshCurvatureRadius;
-  mesh::assign_surface_properties(*side.surface, nullptr, surface);
+  if (general_mesh) {
+    mesh::assign_general_mesh_curvature(*side.surface, 1.0, options.input.surface.curvature);
+  } else {
+    mesh::assign_surface_properties(*side.surface, nullptr, options.input.surface);
+  }
   side.needs_curvature = false;
 }
 
 /// The side's surface and site spheres scaled by `factor` (a change of length unit); its
 /// curvature is computed again at the new unit.
 void scale_side(LoadedInput& side, double factor) {
+  if (side.descriptors) {
+    harmonic::scale_descriptors(*side.descriptors, factor);
+    return;
+  }
   mesh::scale_surface(*side.surface, factor);
   side.needs_curvature = true;
   for (SiteSphere& sphere : side.site) {
@@ -267,6 +268,7 @@ PreparedInput describe(LoadedInput side, const harmonic::DescriptorOptions& desc
 PreparedInput describe_unlogged(LoadedInput side, const harmonic::DescriptorOptions& options) {
   PreparedInput prepared;
   prepared.name = std::move(side.name);
+  prepared.notes = std::move(side.notes);
   prepared.site = std::move(side.site);
   prepared.molecule = std::move(side.molecule);
   if (side.descriptors) {
@@ -397,8 +399,27 @@ PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& op
   built.site.surface_margin =
       site_surface_margin(options.site.surface_margin, options.descriptors.patch.radius);
   LoadedInput side = load(input, built, "input");
-  complete(side, options, false);
-  return describe(std::move(side), options.descriptors, options, "input");
+  if (side.descriptors) {  // as it was stored, in its own unit
+    const double stored = side.descriptors->length_unit;
+    PreparedInput prepared = describe(std::move(side), options.descriptors, options, "input");
+    prepared.unit = stored == 1.0 ? mesh::LengthUnit{} : mesh::LengthUnit{stored, "stored"};
+    return prepared;
+  }
+  const bool general_mesh = !is_molecular(side, input);
+  if (!general_mesh && options.input.unit > 0.0) {
+    throw OptionError("--unit applies to general meshes; " + side.name +
+                      " is in A (a molecule, a mesh with ESP and LP, or a stored description)");
+  }
+  const mesh::LengthUnit unit = general_mesh
+                                    ? mesh::general_mesh_unit({&*side.surface}, options.input.scale,
+                                                              options.input.unit, side.name)
+                                    : mesh::LengthUnit{};
+  if (unit.value != 1.0) scale_side(side, 1.0 / unit.value);
+  complete(side, options, general_mesh);
+  PreparedInput prepared = describe(std::move(side), options.descriptors, options, "input");
+  if (unit.value != 1.0) unscale(prepared, unit.value);
+  prepared.unit = unit;
+  return prepared;
 }
 
 InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
@@ -408,16 +429,15 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
   validate(match);
   check_match_input(reference, options, "REF");
   check_match_input(probe, options, "PROBE");
-  if (options.unit > 0.0) {  // before any work: what the names tell
+  if (options.input.unit > 0.0) {  // before any work: what the names tell
     for (const MatchInput* side : {&reference, &probe}) {
       const bool molecule = side->molecule.has_value() || !side->site_ligand.empty() ||
-                            side->site_pocket > 0 || is_stored_description(*side) ||
+                            side->site_pocket > 0 ||
                             (!side->path.empty() && io::is_molecule_file(side->path)) ||
                             (!side->path.empty() && !options.input.molecule_file.empty());
       if (molecule) {
         throw OptionError("--unit applies to general meshes; " + side->name() +
-                          " is in A (a molecule, a mesh with --molecule, or a stored "
-                          "description)");
+                          " is in A (a molecule, or a mesh with --molecule)");
       }
     }
   }
@@ -445,9 +465,8 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
       site_surface_margin(options.site.surface_margin, descriptors.patch.radius);
   if (!ref) ref = load(ref_read, built, "REF");
   if (!prb) prb = load(probe_read, built, "PROBE");
-  for (const LoadedInput* side : {&*ref, &*prb}) {
-    if (side->repair) out.notes.push_back(mesh::repair_note(side->name, *side->repair));
-  }
+  for (const LoadedInput* side : {&*ref, &*prb})
+    out.notes.insert(out.notes.end(), side->notes.begin(), side->notes.end());
   const bool asked_shape_only = match.shape_only;
   for (const LoadedInput* side : {&*ref, &*prb}) {
     if (!asked_shape_only && !carries_chemistry(*side)) {
@@ -456,7 +475,9 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
     }
   }
   out.shape_only = match.shape_only;
-  std::tie(out.unit, out.unit_from) = length_unit(*ref, reference, *prb, probe, options);
+  const mesh::LengthUnit unit = length_unit(*ref, reference, *prb, probe, options);
+  out.unit = unit.value;
+  out.unit_from = unit.from;
   if (out.unit != 1.0) {
     scale_side(*ref, 1.0 / out.unit);
     scale_side(*prb, 1.0 / out.unit);
@@ -494,6 +515,8 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
       match_surfaces(out.reference.descriptors, out.probe.descriptors, match,
                      out.reference.site_points.empty() ? nullptr : &out.reference.site_points,
                      out.probe.site_points.empty() ? nullptr : &out.probe.site_points);
+  out.reference.unit = unit;
+  out.probe.unit = unit;
   if (out.unit != 1.0) {
     unscale(out.reference, out.unit);
     unscale(out.probe, out.unit);

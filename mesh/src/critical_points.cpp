@@ -193,4 +193,21 @@ const options::Table<CriticalPointOptions>& critical_point_option_table() {
   return table;
 }
 
+std::vector<CriticalPoint> detect_critical_points_in_unit(const Surface& surface, double unit,
+                                                          const CriticalPointOptions& options) {
+  if (unit == 1.0) return detect_critical_points(surface, options);
+  Surface in_units = surface;
+  scale_surface(in_units, 1.0 / unit);  // checks the unit
+  std::vector<CriticalPoint> points = detect_critical_points(in_units, options);
+  for (CriticalPoint& point : points) scale_critical_point(point, unit);
+  return points;
+}
+
+void scale_critical_point(CriticalPoint& point, double factor) {
+  point.position *= factor;
+  point.cc1 /= factor;
+  point.cc2 /= factor;
+  point.curvedness /= factor;
+}
+
 }  // namespace surfcomp::mesh

@@ -73,6 +73,10 @@ void check_options(const CurvatureOptions& o) {
                       "; the fit determines " + std::to_string(coefficients) +
                       " coefficients and needs at least as many points");
   }
+  if (o.max_points < o.min_points || o.max_points > 100000) {
+    throw OptionError(caller + std::string("max_points is ") + std::to_string(o.max_points) +
+                      "; expected min_points (" + std::to_string(o.min_points) + ") to 100000");
+  }
 }
 
 /// Vertex adjacency in compressed rows: the neighbours of v are
@@ -125,6 +129,10 @@ struct Scratch {
   std::vector<int> next;
 };
 
+/// A neighbourhood grows by whole rings until it has visited this many times
+/// CurvatureOptions::max_points vertices (whatever its radius), then is sampled down to it.
+constexpr std::size_t max_visited_factor = 4;
+
 /// The vertices whose points are fitted at `vertex`, the vertex itself first (CGAL's jet
 /// fitting puts its origin at the first point). Layers are added whole, in a fixed order.
 void collect_neighbourhood(int vertex, const Adjacency& adj, const Eigen::MatrixX3d& positions,
@@ -140,7 +148,9 @@ void collect_neighbourhood(int vertex, const Adjacency& adj, const Eigen::Matrix
   const double radius2 = options.radius * options.radius;
   const bool by_radius = options.radius > 0.0;
   const auto min_points = static_cast<std::size_t>(options.min_points);
-  for (int ring = 1;; ++ring) {
+  const auto max_points = static_cast<std::size_t>(options.max_points);
+  const std::size_t max_visited = max_visited_factor * max_points;
+  for (int ring = 1; s.members.size() < max_visited; ++ring) {
     const bool grow_freely = by_radius ? false : ring <= options.rings;
     s.next.clear();
     for (int u : s.layer) {
@@ -172,6 +182,14 @@ void collect_neighbourhood(int vertex, const Adjacency& adj, const Eigen::Matrix
     }
     if (s.next.empty()) break;
     s.members.insert(s.members.end(), s.next.begin(), s.next.end());
+  }
+  // Too many: an even sample of them in their order (ring by ring), the vertex itself first, so
+  // that the fit keeps the neighbourhood's extent at a bounded cost.
+  if (s.members.size() > max_points) {
+    const std::size_t others = s.members.size() - 1;
+    for (std::size_t k = 1; k < max_points; ++k)
+      s.members[k] = s.members[1 + (k - 1) * others / (max_points - 1)];
+    s.members.resize(max_points);
   }
 }
 

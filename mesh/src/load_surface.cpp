@@ -1,9 +1,16 @@
 #include "surfcomp/mesh/load_surface.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/mesh/io/formats.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
 
 namespace surfcomp::mesh {
+
+std::string surface_input_formats() {
+  return "molecule: .sdf .mol .mol2 .pdb .ent .cif .mmcif .cif.gz .pqr; mesh: " +
+         io::mesh_extensions(io::MeshUse::read);
+}
 
 void check_surface_input(const std::filesystem::path& path, const SurfaceInputOptions& options) {
   if (io::is_mesh_file(path)) {
@@ -11,11 +18,17 @@ void check_surface_input(const std::filesystem::path& path, const SurfaceInputOp
       throw OptionError("--ligand applies to a molecule INPUT, not a mesh");
     if (options.read.min_plddt > 0.0 && options.molecule_file.empty())
       throw OptionError("--min-plddt applies to a PDB or mmCIF structure INPUT, not a mesh");
+    if (options.unit > 0.0 && !options.molecule_file.empty())
+      throw OptionError("--unit applies to general meshes; " + path.string() +
+                        " is in A (a mesh with --molecule)");
   } else if (surfcomp::io::is_molecule_file(path)) {
     if (!options.molecule_file.empty()) throw OptionError("--molecule applies to a mesh INPUT");
     if (options.repair) throw OptionError("--repair applies to a mesh INPUT");
+    if (options.unit > 0.0)
+      throw OptionError("--unit applies to general meshes; " + path.string() +
+                        " is in A (a molecule)");
   } else {
-    throw InputError(path.string() + ": unknown input format (" + surface_input_formats + ")");
+    throw InputError(path.string() + ": unknown input format (" + surface_input_formats() + ")");
   }
 }
 
@@ -27,9 +40,55 @@ LoadedSurface read_mesh_input(const std::filesystem::path& path,
         repair_mesh_file(path, static_cast<std::size_t>(options.surface.ses.max_vertices));
     loaded.surface = std::move(repaired.surface);
     loaded.repair = repaired.report;
+    loaded.notes.push_back(repair_note(path.string(), repaired.report));
   } else {
-    loaded.surface = io::read_mesh(path);
+    loaded.surface = io::read_mesh(path, &loaded.notes);
   }
+  return loaded;
+}
+
+void assign_general_mesh_curvature(Surface& surface, double unit, CurvatureOptions curvature) {
+  if (!surface.has_normals()) surface.compute_normals();
+  curvature.radius = general_mesh_curvature_radius;
+  Surface in_units = surface;
+  if (unit != 1.0) scale_surface(in_units, 1.0 / unit);
+  const PrincipalCurvatures k = principal_curvatures(in_units, curvature);
+  surface.set_property(property::cc1, k.cc1 / unit);
+  surface.set_property(property::cc2, k.cc2 / unit);
+  surface.set_property(property::shape_index, k.shape_index);
+  surface.set_property(property::curvedness, k.curvedness / unit);
+}
+
+namespace {
+
+/// `loaded`'s mesh given its properties: a molecular one's (is_molecular_mesh of `extension`,
+/// or a --molecule's potentials) over options.surface.curvature in A, a general one's in its
+/// length unit.
+void complete_mesh(LoadedSurface& loaded, const std::string& extension,
+                   const SurfaceInputOptions& options) {
+  const std::string& name = loaded.surface.source();
+  if (!options.molecule_file.empty() || is_molecular_mesh(loaded.surface, extension)) {
+    if (options.unit > 0.0) {
+      throw OptionError("--unit applies to general meshes; " + name +
+                        " is in A (a mesh with ESP and LP, or an MSMS surface)");
+    }
+    if (!options.molecule_file.empty())
+      loaded.molecule = surfcomp::io::read_molecule(options.molecule_file, options.read);
+    assign_surface_properties(loaded.surface, loaded.molecule ? &*loaded.molecule : nullptr,
+                              options.surface);
+    return;
+  }
+  loaded.general_mesh = true;
+  loaded.unit = general_mesh_unit({&loaded.surface}, options.scale, options.unit, name);
+  assign_general_mesh_curvature(loaded.surface, loaded.unit.value, options.surface.curvature);
+}
+
+}  // namespace
+
+LoadedSurface load_mesh_surface(Surface surface, const SurfaceInputOptions& options) {
+  LoadedSurface loaded;
+  loaded.surface = std::move(surface);
+  complete_mesh(loaded, "", options);
   return loaded;
 }
 
@@ -38,10 +97,7 @@ LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceInput
   LoadedSurface loaded;
   if (io::is_mesh_file(path)) {
     loaded = read_mesh_input(path, options);
-    if (!options.molecule_file.empty())
-      loaded.molecule = surfcomp::io::read_molecule(options.molecule_file, options.read);
-    assign_surface_properties(loaded.surface, loaded.molecule ? &*loaded.molecule : nullptr,
-                              options.surface);
+    complete_mesh(loaded, surfcomp::io::lowercase_extension(path), options);
   } else {
     loaded.molecule = surfcomp::io::read_molecule(path, options.read);
     loaded.surface = build_molecular_surface(*loaded.molecule, options.surface);

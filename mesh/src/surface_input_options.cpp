@@ -78,6 +78,24 @@ const options::Table<SurfaceInputOptions>& surface_input_option_table() {
            "component kept, faces turned outward) and say what changed; vertex properties "
            "are not kept"},
           [](auto& s) -> auto& { return s.repair; }),
+      options::choice<S>(
+          {"scale", Kind::choice,
+           "length unit of a general mesh (no ESP and LP), in which every length option counts: "
+           "auto (1/12 of its RMS radius; of the larger mesh in a match) or none (its own "
+           "coordinates, taken as A); molecules are always in A"},
+          [](auto& s) -> auto& { return s.scale; }, length_scale_names),
+      options::field<S>(
+          {"unit",
+           Kind::real,
+           "a general mesh's length, in its coordinates, that every length option counts as 1 A "
+           "(default: from --scale)",
+           "",
+           0.0,
+           1e12,
+           true,
+           {},
+           true},
+          [](auto& s) -> auto& { return s.unit; }),
       options::field<S>(
           {"max-atoms", Kind::integer, "limit: atoms of a molecule INPUT", "", 1, 1e12},
           [](auto& s) -> auto& { return s.surface.ses.max_atoms; }),

@@ -53,6 +53,8 @@ struct MoleculeBlock {
 struct PySurface {
   mesh::Surface surface;
   std::optional<Molecule> molecule;
+  /// The length unit its curvature was fitted in (mesh::LoadedSurface::unit): 1 in A.
+  double length_unit = 1.0;
 };
 
 struct PyDescriptors {
@@ -463,7 +465,8 @@ void write_critical_points(const harmonic::SurfaceDescriptors& d,
   report::CriticalPointSet set{d.surface.source(),
                                d.options.critical_points,
                                static_cast<std::size_t>(d.surface.n_vertices()),
-                               {}};
+                               {},
+                               d.length_unit};
   for (const harmonic::CriticalPointDescriptor& cp : d.critical_points)
     set.points.push_back(cp.point);
   report::write_critical_points(path, set);
@@ -491,12 +494,13 @@ PySurface build_surface(const py::object& input, const py::dict& keywords) {
   if (in.molecule) {
     out.surface = mesh::build_molecular_surface(*in.molecule, settings.surface);
     out.molecule = std::move(in.molecule);
-  } else if (!in.path.empty()) {
-    mesh::LoadedSurface loaded = mesh::load_surface(in.path, settings);
+  } else {
+    mesh::LoadedSurface loaded = in.surface
+                                     ? mesh::load_mesh_surface(std::move(*in.surface), settings)
+                                     : mesh::load_surface(in.path, settings);
     out.surface = std::move(loaded.surface);
     out.molecule = std::move(loaded.molecule);
-  } else {
-    throw InputError("build_surface: expected a molecule (a path or an RDKit molecule) or a mesh");
+    out.length_unit = loaded.unit.value;
   }
   return out;
 }
@@ -743,6 +747,7 @@ PYBIND11_MODULE(_surfcomp, m) {
       .def_property_readonly("n_faces", [](const sp::PySurface& s) { return s.surface.n_faces(); })
       .def_property_readonly("has_molecule",
                              [](const sp::PySurface& s) { return s.molecule.has_value(); })
+      .def_property_readonly("length_unit", [](const sp::PySurface& s) { return s.length_unit; })
       .def("_measures",
            [](const sp::PySurface& s) {
              const surfcomp::mesh::SurfaceMeasures measures =
@@ -760,10 +765,13 @@ PYBIND11_MODULE(_surfcomp, m) {
           py::arg("path"), py::arg("ascii") = false);
 
   py::class_<sp::PyDescriptors>(m, "Descriptors")
-      .def_property_readonly("surface",
-                             [](const sp::PyDescriptors& d) {
-                               return sp::PySurface{d.descriptors.surface, std::nullopt};
-                             })
+      .def_property_readonly(
+          "surface",
+          [](const sp::PyDescriptors& d) {
+            return sp::PySurface{d.descriptors.surface, std::nullopt, d.descriptors.length_unit};
+          })
+      .def_property_readonly("length_unit",
+                             [](const sp::PyDescriptors& d) { return d.descriptors.length_unit; })
       .def("_critical_points",
            [](const sp::PyDescriptors& d) { return sp::critical_points_dict(d.descriptors); })
       .def_property_readonly(

@@ -488,17 +488,20 @@ Surface.measures = _measures
 
 @_keyword_options("build_surface")
 def build_surface(mol, **options) -> Surface:
-    """The solvent-excluded surface of ``mol`` (or a mesh file with its properties) with per-vertex
-    normals, ``esp``, ``lp``, ``cc1``, ``cc2``, ``shape_index`` and ``curvedness``, as
-    ``surfcomp surf-build`` builds it."""
+    """The solvent-excluded surface of ``mol``, or a mesh (a file or ``(V, F)`` arrays) with its
+    properties: per-vertex normals, ``esp``, ``lp``, ``cc1``, ``cc2``, ``shape_index`` and
+    ``curvedness``, as ``surfcomp surf-build`` builds it. A general mesh (no ESP and LP) keeps
+    its coordinates; its curvature is fitted in its length unit (``scale=``, ``unit=``;
+    ``Surface.length_unit``)."""
     return _surfcomp.build_surface(_input(mol), options)
 
 
 @_keyword_options("describe")
 def describe(mol_or_surface, **options) -> Descriptors:
     """The critical points of a surface and, for each, its patch, harmonic map and harmonic shape
-    image, as ``surfcomp hsi-build`` describes it. ``mol_or_surface`` is a molecule, a mesh, a
-    ``.hsi`` file or a :class:`Surface`."""
+    image, as ``surfcomp hsi-build`` describes it. ``mol_or_surface`` is a molecule, a mesh (a
+    file or ``(V, F)`` arrays), a ``.hsi`` file or a :class:`Surface`. A general mesh is
+    described in its length unit (``scale=``, ``unit=``) and given back in its coordinates."""
     return _surfcomp.describe(_input(mol_or_surface), options)
 
 

@@ -48,6 +48,8 @@ class Surface:
     def n_faces(self) -> int: ...
     @property
     def has_molecule(self) -> bool: ...
+    @property
+    def length_unit(self) -> float: ...  # a general mesh's length unit (scale=, unit=); 1 in A
     def measures(self) -> SurfaceMeasures: ...
     def save(self, path: PathLike, ascii: bool = ...) -> None: ...  # .ply, .off or .obj
 
@@ -64,6 +66,8 @@ class Descriptors:
     def options(self) -> DescriptionParameters: ...
     @property
     def atoms(self) -> Tuple[List[str], npt.NDArray[np.float64]]: ...  # heavy atoms: elements, (a, 3)
+    @property
+    def length_unit(self) -> float: ...  # the unit its options' radii count in; 1 in A
     def save(self, path: PathLike) -> None: ...  # .hsi
     def write_critical_points(self, path: PathLike) -> None: ...  # .json, .pdb or .ply
 
@@ -215,6 +219,8 @@ def build_surface(
     record: Optional[int] = None,
     molecule: Optional[PathLike] = None,
     repair: bool = False,
+    scale: str = 'auto',
+    unit: Optional[float] = None,
     max_atoms: int = 2000000,
     max_grid_cells: float = 200000000.0,
     max_vertices: int = 20000000,
@@ -235,6 +241,8 @@ def describe(
     record: Optional[int] = None,
     molecule: Optional[PathLike] = None,
     repair: bool = False,
+    scale: str = 'auto',
+    unit: Optional[float] = None,
     max_atoms: int = 2000000,
     max_grid_cells: float = 200000000.0,
     max_vertices: int = 20000000,
@@ -267,6 +275,8 @@ def match(
     record: Optional[int] = None,
     molecule: Optional[PathLike] = None,
     repair: bool = False,
+    scale: str = 'auto',
+    unit: Optional[float] = None,
     max_atoms: int = 2000000,
     max_grid_cells: float = 200000000.0,
     max_vertices: int = 20000000,
@@ -296,8 +306,6 @@ def match(
     site_chem_weight: float = 0.25,
     site_lining_weight: float = 0.3,
     site_principal_axes_starts: int = 24,
-    scale: str = 'auto',
-    unit: float = 0.0,
     site_ligand: Optional[str] = None,
     ref_site_ligand: Optional[str] = None,
     probe_site_ligand: Optional[str] = None,

@@ -31,7 +31,7 @@ std::string critical_points_json(const CriticalPointSet& set) {
                     {"esp", p.esp},
                     {"lp", p.lp}});
   }
-  const nlohmann::json document = {
+  nlohmann::json document = {
       {"input", set.input},
       {"parameters",
        {{"radius", set.options.radius}, {"disc_radius", set.options.property_disc_radius}}},
@@ -39,6 +39,7 @@ std::string critical_points_json(const CriticalPointSet& set) {
       {"peaks", peaks},
       {"valleys", set.points.size() - peaks},
       {"critical_points", list}};
+  if (set.length_unit != 1.0) document["parameters"]["length_unit"] = set.length_unit;
   return detail::json_text(document, 2) + "\n";
 }
 

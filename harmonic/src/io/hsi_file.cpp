@@ -341,9 +341,20 @@ std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& d) {
     payload.string(atom.element);
     put_vector3(payload, atom.position);
   }
+  // A description in A is written as version 2, which older readers take; one of a general
+  // mesh in a unit of its own adds the unit (version 3).
+  const bool in_angstrom = d.length_unit == 1.0;
+  if (!in_angstrom) {
+    if (!(std::isfinite(d.length_unit) && d.length_unit > 0.0 &&
+          d.length_unit <= max_stored_unit)) {
+      throw InputError(d.surface.source() + ": length unit " + std::to_string(d.length_unit) +
+                       " is not in (0, 1e12]; no .hsi written");
+    }
+    payload.f64(d.length_unit);
+  }
   BinaryWriter file;
   for (char c : kMagic) file.u8(static_cast<std::uint8_t>(c));
-  file.u32(hsi_format_version);
+  file.u32(in_angstrom ? 2 : hsi_format_version);
   file.u32(kByteOrderMark);
   file.u64(payload.bytes().size());
   file.u64(surfcomp::io::fnv1a64(payload.bytes().data(), payload.bytes().size()));
@@ -429,9 +440,17 @@ SurfaceDescriptors decode_hsi(const std::uint8_t* data, std::size_t n_bytes,
       if (!atom.position.allFinite()) r.fail("atom position is not finite");
     }
   }
+  if (version >= 3) {
+    d.length_unit = r.f64();
+    if (!(std::isfinite(d.length_unit) && d.length_unit > 0.0 &&
+          d.length_unit <= max_stored_unit)) {
+      r.fail("length unit " + std::to_string(d.length_unit) + " is not in (0, 1e12]");
+    }
+  }
   if (r.remaining() != 0)
-    r.fail("unexpected bytes after the " +
-           std::string(version >= 2 ? "atoms" : "last critical point"));
+    r.fail("unexpected bytes after the " + std::string(version >= 3   ? "length unit"
+                                                       : version >= 2 ? "atoms"
+                                                                      : "last critical point"));
   return d;
 }
 

@@ -92,6 +92,10 @@ struct SurfaceDescriptors {
   /// The heavy atoms of the molecule the surface was built from (surface_atoms); empty when
   /// the surface came from a mesh without a molecule (describe_surface without a molecule).
   std::vector<SurfaceAtom> atoms;
+  /// The length, in the surface's coordinates, that `options`' radii count as 1 A: 1 for a
+  /// molecule, a general mesh's length unit (mesh::general_mesh_unit) when it was described in
+  /// one and given back in its own coordinates. Finite, > 0.
+  double length_unit = 1.0;
 };
 
 /// The heavy (non-hydrogen) atoms of `molecule`, in its order.
@@ -135,9 +139,15 @@ std::vector<CriticalPointDescriptor> describe_points(const mesh::Surface& surfac
 /// surface (mesh::scale_surface), the critical points' positions and curvatures (cc1, cc2,
 /// curvedness divided by it), the patches' positions and on-surface distances, the atoms, and
 /// the images' values when options.image_property is a curvature. The options (radii) stay as
-/// they were applied. Maps are on the unit disk and do not change. Throws InputError for
-/// another factor.
+/// they were applied, so length_unit is multiplied by `factor`. Maps are on the unit disk and
+/// do not change. Throws InputError for another factor.
 void scale_descriptors(SurfaceDescriptors& descriptors, double factor);
+
+/// One critical point's description scaled as scale_descriptors scales each: its point, its
+/// patch and, when `image_property` (DescriptorOptions::image_property) is a curvature, its
+/// image's values. `factor` is not checked.
+void scale_point_descriptor(CriticalPointDescriptor& descriptor, double factor,
+                            const std::string& image_property);
 
 /// Counts of a description, for summaries.
 struct DescriptorCounts {

@@ -47,23 +47,13 @@ struct MatchInput {
   std::string name() const;
 };
 
-/// How a pair match measures its inputs' lengths (MatchInputOptions::scale).
-enum class LengthScale {
-  /// "auto": 1 A for molecules, molecular meshes (with ESP and LP, or MSMS .vert/.face) and
-  /// stored descriptions; for two general meshes, R / 12 with R the larger of the two sides'
-  /// sizes (the area-weighted RMS distance of its triangles from its centre), so that a
-  /// typical closed mesh measures about 1500 unit^2 and a 5-unit patch covers a few per cent
-  /// of it; the curvature is then fitted over 3 units (docs/decisions.md#mesh-scale).
-  automatic,
-  none,  ///< "none": the coordinates are in A, whatever the input
-};
-
-/// The names of LengthScale's values, as --scale takes them.
-inline constexpr std::array<const char*, 2> length_scale_names = {"auto", "none"};
-
 /// How match_inputs and prepare_input read, build, describe and match their inputs.
 struct MatchInputOptions {
-  mesh::SurfaceInputOptions input;  ///< how files and molecules become surfaces
+  /// How files and molecules become surfaces. Its scale and unit set the length unit of general
+  /// meshes: of one side alone in prepare_input, of both together in match_inputs (the larger
+  /// side's size under --scale auto), which describes them in it and gives every result back in
+  /// the inputs' coordinates (a result file's parameters stay in units).
+  mesh::SurfaceInputOptions input;
   /// How a side that is not a description already is described. When the other side is a
   /// stored description (a .hsi file or descriptors in memory), its parameters are used instead
   /// (all but max_image_bytes), so that the two sides' images compare.
@@ -72,16 +62,6 @@ struct MatchInputOptions {
   PocketOptions pockets;    ///< how a site_pocket's pockets are detected
   /// The match; its mode is set to MatchMode::binding_sites when either side has a site.
   MatchOptions match;
-  /// Default auto. How match_inputs measures lengths when `unit` is 0 (LengthScale).
-  LengthScale scale = LengthScale::automatic;
-  /// Default 0: from `scale`. For two general meshes, the length, in their coordinates, that
-  /// every length option (patch and critical point radii, the distance filter, RMSD cut,
-  /// overlay width and spacing) counts as 1 A; match_inputs scales both sides by 1 / unit
-  /// before describing them and gives every result back in the inputs' coordinates (the
-  /// result file's parameters stay in units). OptionError when a side is in A (a molecule, a
-  /// mesh with ESP and LP or --molecule, a stored description). Finite, >= 0. prepare_input
-  /// ignores it.
-  double unit = 0.0;
   /// Default 0: all cores. The worker threads the caller lets TBB use while this runs (the CLI
   /// and the Python module limit TBB's pool to it).
   int threads = 0;
@@ -137,6 +117,11 @@ struct PreparedInput {
   std::optional<Molecule> molecule;
   std::vector<SiteSphere> site;   ///< the site's spheres; empty for a whole surface
   std::vector<bool> site_points;  ///< critical_points_in_site; empty without a site
+  /// The length unit it was described in; its descriptions are given back in its own
+  /// coordinates, their parameters (DescriptorOptions) stay in units.
+  mesh::LengthUnit unit;
+  /// What a reader may want to know of reading it, one line each (mesh::LoadedSurface::notes).
+  std::vector<std::string> notes;
 };
 
 /// Checks from names and options alone, before any work, that `input` can be read as asked:
@@ -150,8 +135,11 @@ void check_match_input(const MatchInput& input, const MatchInputOptions& options
 
 /// One side read or built and described as match_inputs does it (a site side: its surface
 /// built with site_surface_margin of options.descriptors' patch radius, described at its site's
-/// critical points only, matching::describe_site); a mesh without curvature gets it at 1 A
-/// (the length unit of a single side is always 1). Throws as check_match_input,
+/// critical points only, matching::describe_site); a general mesh is described in its own length
+/// unit (mesh::general_mesh_unit of options.input's scale and unit; its curvature fitted as
+/// mesh::assign_general_mesh_curvature does) and given back in its coordinates, so that it gets
+/// the critical points, patches and images that mesh::load_surface's curvature and
+/// describe_surface give in that unit. Throws as check_match_input,
 /// the readers, the surface construction and the description; InputError when a site holds no
 /// critical point.
 PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& options);
@@ -166,7 +154,7 @@ struct InputMatch {
   /// What a reader may want to know, one line each (a side carries no atoms, so poses are
   /// judged on the surfaces alone).
   std::vector<std::string> notes;
-  /// The length unit the match ran at (MatchInputOptions::unit): 1 for molecules. The
+  /// The length unit the match ran at (SurfaceInputOptions::unit): 1 for molecules. The
   /// alignments, descriptions and sites above are in the inputs' coordinates whatever it is.
   double unit = 1.0;
   /// How `unit` was chosen: "none" (1), "auto" or "--unit".
@@ -190,10 +178,10 @@ struct InputMatch {
 /// read first, as its parameters are the other side's), described with common parameters, a
 /// site's surface built with site_surface_margin of their patch radius, their sites' critical
 /// points flagged, then match_surfaces. A side without ESP and LP makes the match shape-only
-/// (MatchOptions::shape_only), with a note; options.scale and options.unit set the length unit
-/// (InputMatch::unit). Throws OptionError
-/// for options outside their domain (before any work), InputError when two stored descriptions
-/// were built with different parameters, and what prepare_input and match_surfaces throw.
+/// (MatchOptions::shape_only), with a note; options.input.scale and options.input.unit set the
+/// length unit (InputMatch::unit). Throws OptionError for options outside their domain (before any
+/// work), InputError when two stored descriptions were built with different parameters, and what
+/// prepare_input and match_surfaces throw.
 InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
                         const MatchInputOptions& options = {});
 

@@ -67,4 +67,15 @@ struct CriticalPoint {
 std::vector<CriticalPoint> detect_critical_points(const Surface& surface,
                                                   const CriticalPointOptions& options = {});
 
+/// detect_critical_points of `surface` described in the length unit `unit` (> 0; the length of
+/// its coordinates that options' radii count as 1 A, mesh::general_mesh_unit): found on its
+/// copy scaled by 1 / unit and given back in its coordinates (scale_critical_point). The same
+/// points as describe_surface finds on a general mesh in that unit.
+std::vector<CriticalPoint> detect_critical_points_in_unit(const Surface& surface, double unit,
+                                                          const CriticalPointOptions& options = {});
+
+/// Scales a critical point by `factor`, as a change of length unit: its position times it, its
+/// curvatures (cc1, cc2, curvedness) divided by it. `factor` is not checked.
+void scale_critical_point(CriticalPoint& point, double factor);
+
 }  // namespace surfcomp::mesh

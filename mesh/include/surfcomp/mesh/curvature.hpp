@@ -51,6 +51,12 @@ struct CurvatureOptions {
   /// number of fitted coefficients: 9 for quadric, (jet_degree+1)(jet_degree+2)/2 for jet. A
   /// component with fewer vertices is fitted by a sphere (see principal_curvatures).
   int min_points = 12;
+  /// Default 1024. The most points a fit uses, which bounds its cost whatever the radius and the
+  /// mesh's resolution: a neighbourhood grows by whole rings until it has visited 4 times this
+  /// many vertices (so a radius far larger than the mesh's detail stops there), and one holding
+  /// more is sampled evenly, ring by ring, down to this many, its extent kept. min_points to
+  /// 100000.
+  int max_points = 1024;
 };
 
 /// Principal curvatures and derived descriptors, one value per vertex (#V each).

@@ -20,11 +20,15 @@ struct CriticalPointSet {
   mesh::CriticalPointOptions options;       ///< r_cp and the property disc radius used
   std::size_t surface_vertices = 0;         ///< vertices of the surface they lie on
   std::vector<mesh::CriticalPoint> points;  ///< in detection order (their indices)
+  /// The length of the input's coordinates that the radii count as 1 A (a general mesh's
+  /// length unit); written as parameters.length_unit when not 1.
+  double length_unit = 1.0;
 };
 
 /// The JSON document, indented by two spaces, ending with a newline: input, parameters (radius,
-/// disc_radius, A), surface_vertices, peaks, valleys and critical_points (index, type, vertex,
-/// position, normal, cc1, cc2, shape_index, curvedness, esp, lp).
+/// disc_radius, in A or in units of length_unit), surface_vertices, peaks, valleys and
+/// critical_points (index, type, vertex, position, normal, cc1, cc2, shape_index, curvedness, esp,
+/// lp).
 std::string critical_points_json(const CriticalPointSet& set);
 
 /// HETATM records, one per point (name PK or VL, residue CPK or CVL, B-factor = cc1), then END.

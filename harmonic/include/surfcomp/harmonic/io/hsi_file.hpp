@@ -9,7 +9,9 @@
 //   u64       FNV-1a 64 checksum of the payload
 //   payload   parameters, surface (positions, normals, faces, named properties with their
 //             stored types), critical points, then per point: status, patch, map, image;
-//             from version 2, then the heavy atoms (count, then element and position each)
+//             from version 2, then the heavy atoms (count, then element and position each);
+//             from version 3, then the length unit (f64) of a general mesh described in one
+//             (written only then: a description in A is written as version 2)
 // The file is a pure function of the SurfaceDescriptors: byte-identical for identical input.
 #pragma once
 
@@ -21,8 +23,12 @@
 
 namespace surfcomp::harmonic::io {
 
-/// The version written. Version 1 files (no atoms) are still read, with no atoms.
-inline constexpr std::uint32_t hsi_format_version = 2;
+/// The newest version, written for a description whose length_unit is not 1 (version 2
+/// otherwise). Version 1 files (no atoms) are still read, with no atoms.
+inline constexpr std::uint32_t hsi_format_version = 3;
+
+/// Largest stored length unit.
+inline constexpr double max_stored_unit = 1e12;
 
 /// Encodes `descriptors` as the bytes of a .hsi file.
 std::vector<std::uint8_t> encode_hsi(const SurfaceDescriptors& descriptors);
@@ -34,7 +40,7 @@ inline constexpr double max_stored_length = 1000.0;
 inline constexpr int max_stored_rings = 1024;
 inline constexpr int max_stored_sectors = 4096;
 
-/// Decodes the bytes of a .hsi file (version 1 or 2). Throws FormatError naming `source` for a
+/// Decodes the bytes of a .hsi file (version 1, 2 or 3). Throws FormatError naming `source` for a
 /// wrong magic, a byte-swapped or unknown-version file, a size or checksum mismatch (truncated or
 /// corrupt), any count that cannot fit in the bytes left (checked before allocating), any index
 /// outside its array, a parameter out of range (see the limits above), a non-finite stored
