@@ -127,20 +127,22 @@ TEST(MeshScale, AStoredDescriptionKeepsItsUnitAndMatchesItsMesh) {
   EXPECT_EQ(read.length_unit, unit);
   EXPECT_EQ(harmonic::io::encode_hsi(read), harmonic::io::encode_hsi(prepared.descriptors));
 
-  // Matched against the mesh it came from, the stored unit is the pair's and the best pose puts
-  // the mesh back onto itself, in the mesh's coordinates (about 0.06 in radius), with an overlay
-  // score near 1. The stored side differs from the mesh's by the rounding of a change of unit
-  // and back, so the pose is the overlay refinement's, not an exact clique fit: 1.5 degrees
-  // off, 3.7 % of the size at the farthest vertex (the self-match of the mesh in memory is
-  // exact).
+  // Matched against the mesh it came from, the stored unit is the pair's, the mesh is described
+  // as the stored side was (the same critical points), and the best pose puts the mesh back
+  // onto itself, in its own coordinates (about 0.06 in radius).
   matching::MatchInput stored;
   stored.descriptors = read;
   const matching::InputMatch m = matching::match_inputs(stored, input, {});
   EXPECT_EQ(m.unit, unit);
   EXPECT_EQ(m.unit_from, "stored");
+  ASSERT_EQ(m.probe.descriptors.critical_points.size(), read.critical_points.size());
+  for (std::size_t k = 0; k < read.critical_points.size(); ++k) {
+    EXPECT_EQ(m.probe.descriptors.critical_points[k].point.vertex,
+              read.critical_points[k].point.vertex);
+  }
   ASSERT_FALSE(m.result.alignments.empty());
   const matching::Alignment& best = m.result.alignments.front();
-  EXPECT_GT(best.overlay.score, 0.99);
+  EXPECT_GT(best.overlay.score, 0.999);
   const Eigen::MatrixX3d v = blob(0.05).positions();
   double worst = 0.0;
   for (Eigen::Index i = 0; i < v.rows(); ++i) {
@@ -149,7 +151,16 @@ TEST(MeshScale, AStoredDescriptionKeepsItsUnitAndMatchesItsMesh) {
         best.transform.topLeftCorner<3, 3>() * p + best.transform.topRightCorner<3, 1>();
     worst = std::max(worst, (moved - p).norm());
   }
-  EXPECT_LT(worst, 0.05 * 0.05);
+  EXPECT_LT(worst, 1e-6 * 0.05);
+
+  // Matched with a molecule, it is refused: its radii count in its unit, not in A.
+  matching::MatchInput sphere_in_angstrom;
+  sphere_in_angstrom.surface = test::icosphere(3.0, 8);
+  Eigen::VectorXd zeros =
+      Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sphere_in_angstrom.surface->n_vertices()));
+  sphere_in_angstrom.surface->set_property(mesh::property::esp, zeros);
+  sphere_in_angstrom.surface->set_property(mesh::property::lp, zeros);
+  EXPECT_THROW(matching::match_inputs(stored, sphere_in_angstrom, {}), InputError);
 
   // A description in A is still written as version 2.
   matching::MatchInput sphere;

@@ -13,7 +13,7 @@ void add_describe_options(boost::program_options::options_description& described
 matching::MatchInputOptions describe_options_from(const boost::program_options::variables_map& vm) {
   matching::MatchInputOptions options;
   apply_table_options(matching::describe_option_table(), vm, options);
-  show_potential_progress(options.input.surface);
+  show_surface_progress(options.input.surface);
   options.descriptors.progress = describe_progress();
   return options;
 }

@@ -23,6 +23,8 @@ constexpr const char* kUsage =
     "each, the geodesic patch around it, the patch's harmonic map onto the unit disk and its\n"
     "harmonic shape image of the shape index on a polar grid; writes them, the surface and the\n"
     "parameters to a versioned, checksummed binary file (byte-identical for any --threads).\n\n"
+    "A general mesh (no ESP and LP) is described in its length unit (--scale, --unit; the radii\n"
+    "count in it) and stored in its own coordinates with that unit (file format version 3).\n\n"
     "INPUT  a molecule or mesh (as surf-build)";
 
 }  // namespace

@@ -14,7 +14,7 @@ void add_match_options(boost::program_options::options_description& described) {
 matching::PairMatchOptions match_options_from(const boost::program_options::variables_map& vm) {
   matching::PairMatchOptions options;
   apply_table_options(matching::pair_match_option_table(), vm, options);
-  show_potential_progress(options.inputs.input.surface);
+  show_surface_progress(options.inputs.input.surface);
   options.inputs.descriptors.progress = describe_progress();
   if (console::level() == console::Level::verbose) options.inputs.log = &console::step;
   return options;

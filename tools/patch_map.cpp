@@ -36,7 +36,8 @@ constexpr const char* kUsage =
     "                          [--methods M,M,...|all] [options]\n\n"
     "Writes, for each chosen critical point I (0-based, as cp-detect numbers them; --all: every\n"
     "one), its geodesic patch and harmonic map onto the unit disk (METHOD sections 3-4) into DIR\n"
-    "(made if missing):\n"
+    "(made if missing; a general mesh described in its length unit, --scale and --unit, with\n"
+    "the files in its own coordinates):\n"
     "  cpI.obj        the patch with the map as texture coordinates: vt = ((u+1)/2, (v+1)/2)\n"
     "  cpI.ply        the patch's vertices with the surface's properties, u, v and distance\n"
     "  cpI_image.png  the harmonic shape image as a polar plot with a colour bar\n"
@@ -180,9 +181,11 @@ int patch_map(const std::vector<std::string>& args) {
   std::vector<Chosen> chosen;
   mesh::Surface surface;
   std::size_t total = 0;
+  double length_unit = 1.0;  // the unit the radii count in, in the input's coordinates
   if (from_hsi) {
     harmonic::SurfaceDescriptors stored = harmonic::io::read_hsi(path);
     surface = std::move(stored.surface);
+    length_unit = stored.length_unit;
     total = stored.critical_points.size();
     settings.descriptors = stored.options;
     for (std::size_t i = 0; i < total; ++i) {
@@ -194,6 +197,7 @@ int patch_map(const std::vector<std::string>& args) {
     // written in its own coordinates.
     mesh::LoadedSurface loaded = load_noted(path, settings.input);
     const double unit = loaded.unit.value;
+    length_unit = unit;
     surface = std::move(loaded.surface);
     mesh::Surface in_units = surface;
     if (unit != 1.0) mesh::scale_surface(in_units, 1.0 / unit);
@@ -387,6 +391,7 @@ int patch_map(const std::vector<std::string>& args) {
         {"image_rings", settings.descriptors.image.rings},
         {"image_sectors", settings.descriptors.image.sectors},
         {"points", points}};
+    if (length_unit != 1.0) document["length_unit"] = length_unit;
     if (!methods.empty()) document["method_medians"] = summary;
     io::write_file_atomically(staging / "patch_maps.json",
                               [&](std::ostream& out) { out << json_text(document); });

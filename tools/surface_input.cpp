@@ -4,15 +4,16 @@
 #include "options.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 namespace surfcomp::tools {
 namespace {
 
-/// A progress line for an ESP or LP sum (console::ProgressLine), or none.
-mesh::PotentialProgress potential_progress(const char* what) {
+/// A progress line for a step counting `unit`s (console::ProgressLine), or none.
+std::function<void(std::int64_t, std::int64_t)> progress_line(const char* what, const char* unit) {
   if (!console::progress_shown()) return {};
-  auto line = std::make_shared<console::ProgressLine>(what, "points");
+  auto line = std::make_shared<console::ProgressLine>(what, unit);
   return [line](std::int64_t done, std::int64_t total) { (*line)(done, total); };
 }
 
@@ -25,13 +26,14 @@ void add_surface_options(boost::program_options::options_description& described)
 mesh::SurfaceInputOptions surface_options_from(const boost::program_options::variables_map& vm) {
   mesh::SurfaceInputOptions input;
   apply_table_options(mesh::surface_input_option_table(), vm, input);
-  show_potential_progress(input.surface);
+  show_surface_progress(input.surface);
   return input;
 }
 
-void show_potential_progress(mesh::MolecularSurfaceOptions& surface) {
-  surface.esp.progress = potential_progress("ESP");
-  surface.lp.progress = potential_progress("LP");
+void show_surface_progress(mesh::MolecularSurfaceOptions& surface) {
+  surface.esp.progress = progress_line("ESP", "points");
+  surface.lp.progress = progress_line("LP", "points");
+  surface.curvature.progress = progress_line("curvature", "vertices");
 }
 
 mesh::LoadedSurface load_noted(const std::filesystem::path& path,

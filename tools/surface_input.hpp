@@ -24,7 +24,8 @@ mesh::SurfaceInputOptions surface_options_from(const boost::program_options::var
 mesh::LoadedSurface load_noted(const std::filesystem::path& path,
                                const mesh::SurfaceInputOptions& options);
 
-/// Progress lines for the ESP and LP sums of `surface` (console::ProgressLine), when shown.
-void show_potential_progress(mesh::MolecularSurfaceOptions& surface);
+/// Progress lines for the ESP and LP sums and the curvature fits of `surface`
+/// (console::ProgressLine), when shown.
+void show_surface_progress(mesh::MolecularSurfaceOptions& surface);
 
 }  // namespace surfcomp::tools

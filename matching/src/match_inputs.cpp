@@ -164,6 +164,16 @@ bool is_molecular(const LoadedInput& side, const MatchInput& input) {
   return mesh::is_molecular_mesh(*side.surface, io::lowercase_extension(input.path));
 }
 
+/// `value` with every digit, so that a user may copy it from a message.
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+/// True for two length units equal but for the rounding of a file or a message (1e-9).
+bool same_unit(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(a, b); }
+
 /// The length unit of a pair (SurfaceInputOptions::scale and unit) and how it was chosen.
 mesh::LengthUnit length_unit(const LoadedInput& ref, const MatchInput& reference,
                              const LoadedInput& prb, const MatchInput& probe,
@@ -178,24 +188,36 @@ mesh::LengthUnit length_unit(const LoadedInput& ref, const MatchInput& reference
       }
     }
   }
-  if (is_molecular(ref, reference) || is_molecular(prb, probe)) return {};
+  const bool ref_in_angstrom = is_molecular(ref, reference);
+  const bool probe_in_angstrom = is_molecular(prb, probe);
+  for (const auto& [stored_side, other_in_angstrom] :
+       {std::pair{&ref, probe_in_angstrom}, std::pair{&prb, ref_in_angstrom}}) {
+    if (other_in_angstrom && stored_side->descriptors &&
+        stored_side->descriptors->length_unit != 1.0) {
+      throw InputError(stored_side->name + ": a general mesh's description in a unit of " +
+                       number_text(stored_side->descriptors->length_unit) +
+                       " cannot be matched with an input in A; rebuild it with --scale none");
+    }
+  }
+  if (ref_in_angstrom || probe_in_angstrom) return {};
   // A general mesh's stored description brings the unit it was described in.
   std::optional<double> stored;
   for (const LoadedInput* side : {&ref, &prb}) {
     if (!side->descriptors) continue;
     const double unit = side->descriptors->length_unit;
-    if (stored && *stored != unit) {
+    if (stored && !same_unit(*stored, unit)) {
       throw InputError(ref.name + " and " + prb.name +
                        ": the .hsi files were described in different length units (" +
-                       std::to_string(*stored) + " and " + std::to_string(unit) +
+                       number_text(*stored) + " and " + number_text(unit) +
                        "); rebuild one with the other's --unit");
     }
     stored = unit;
   }
   if (stored) {
-    if (input.unit > 0.0 && input.unit != *stored) {
-      throw OptionError("--unit " + std::to_string(input.unit) + ": the stored description is in " +
-                        std::to_string(*stored) + "; give that unit or none");
+    if (input.unit > 0.0 && !same_unit(input.unit, *stored)) {
+      throw OptionError("--unit " + number_text(input.unit) +
+                        ": the stored description is in a unit of " + number_text(*stored) +
+                        "; give that unit or leave --unit out");
     }
     return {*stored, "stored"};
   }
@@ -478,12 +500,13 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
   const mesh::LengthUnit unit = length_unit(*ref, reference, *prb, probe, options);
   out.unit = unit.value;
   out.unit_from = unit.from;
+  // Decided before the change of unit, which takes a stored description's unit to 1.
+  const bool general_meshes = !is_molecular(*ref, reference) && !is_molecular(*prb, probe);
   if (out.unit != 1.0) {
     scale_side(*ref, 1.0 / out.unit);
     scale_side(*prb, 1.0 / out.unit);
     log(options, "length unit " + std::to_string(out.unit) + " (" + out.unit_from + ")");
   }
-  const bool general_meshes = !is_molecular(*ref, reference) && !is_molecular(*prb, probe);
   complete(*ref, options, general_meshes);
   complete(*prb, options, general_meshes);
   out.reference = describe(std::move(*ref), descriptors, options, "REF");

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -639,7 +640,11 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
     return s;
   });
 
+  std::atomic<std::int64_t> fitted{0};
   tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, n, 64), [&](const auto& range) {
+    if (options.progress) {
+      options.progress(fitted.fetch_add(static_cast<std::int64_t>(range.size())), n);
+    }
     Scratch& scratch = scratches.local();
     for (Eigen::Index v = range.begin(); v != range.end(); ++v) {
       const auto vi = static_cast<std::size_t>(v);
@@ -679,6 +684,7 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
     }
   });
 
+  if (options.progress) options.progress(n, n);
   // Report the lowest failing vertex, whatever the thread schedule was.
   for (std::size_t v = 0; v < status.size(); ++v) {
     const std::string where = surface.source() + ": curvature: vertex " + std::to_string(v);

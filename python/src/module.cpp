@@ -506,7 +506,12 @@ PySurface build_surface(const py::object& input, const py::dict& keywords) {
 }
 
 PyDescriptors describe(const py::object& input, const py::dict& keywords) {
-  const auto settings = settings_from(matching::describe_option_table(), keywords);
+  auto settings = settings_from(matching::describe_option_table(), keywords);
+  // A Surface built in a unit of its own is described in it unless another is asked for.
+  if (py::isinstance<PySurface>(input) && settings.input.unit == 0.0 &&
+      input.cast<const PySurface&>().length_unit != 1.0) {
+    settings.input.unit = input.cast<const PySurface&>().length_unit;
+  }
   const matching::MatchInput in = input_of(input, settings.input);
   py::gil_scoped_release release;
   const auto limit = tools::limit_threads(settings.threads);

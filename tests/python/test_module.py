@@ -433,3 +433,44 @@ def test_pockets_are_the_programs_and_a_pocket_is_a_site(program, shared, tmp_pa
     assert itself.site["lining"] == 1.0
     assert itself.site["lining_weight"] == 0.5
     assert itself.site["score"] == pytest.approx((itself[0].overlay.score + 0.5) / 1.5, abs=1e-12)
+
+
+def _sphere_arrays(radius, levels):
+    """An octahedron subdivided `levels` times onto the sphere of `radius`: (V, F)."""
+    vertices = [np.array(v, float) for v in
+                [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]]
+    faces = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
+    for _ in range(levels):
+        middle = {}
+
+        def mid(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in middle:
+                point = vertices[a] + vertices[b]
+                vertices.append(point / np.linalg.norm(point))
+                middle[key] = len(vertices) - 1
+            return middle[key]
+
+        split = []
+        for a, b, c in faces:
+            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            split += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+        faces = split
+    return radius * np.array(vertices), np.array(faces, dtype=np.int32)
+
+
+@pytest.mark.parametrize("radius", [0.01, 1.0, 100.0])
+def test_numpy_arrays_are_a_mesh_at_its_own_scale(radius):
+    vertices, faces = _sphere_arrays(radius, 5)
+    surface = surfcomp.build_surface((vertices, faces))
+    # A sphere's curvature, per length of its own coordinates (convex negative), at any scale.
+    assert surface.length_unit == pytest.approx(radius / 12, rel=2e-3)
+    assert np.allclose(surface.properties["cc1"], -1 / radius, rtol=1e-3)
+    assert np.allclose(surface.properties["shape_index"], 1.0, atol=1e-6)
+    described = surfcomp.describe((vertices, faces))
+    assert described.length_unit == pytest.approx(surface.length_unit, rel=1e-12)
+    assert np.allclose(described.surface.vertices, vertices, rtol=1e-12, atol=1e-15 * radius)
+    # The Surface carries its unit into describe.
+    chosen = surfcomp.build_surface((vertices, faces), unit=radius / 5)
+    assert chosen.length_unit == pytest.approx(radius / 5)
+    assert surfcomp.describe(chosen).length_unit == pytest.approx(radius / 5)

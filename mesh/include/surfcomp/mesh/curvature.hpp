@@ -7,6 +7,9 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
+#include <functional>
+
 namespace surfcomp::mesh {
 
 /// The local surface model fitted at each vertex.
@@ -57,6 +60,9 @@ struct CurvatureOptions {
   /// more is sampled evenly, ring by ring, down to this many, its extent kept. min_points to
   /// 100000.
   int max_points = 1024;
+  /// Default none. Called as vertices are fitted (done, total), from the worker threads (it
+  /// must be thread-safe), and once with done == total at the end.
+  std::function<void(std::int64_t done, std::int64_t total)> progress;
 };
 
 /// Principal curvatures and derived descriptors, one value per vertex (#V each).

@@ -40,8 +40,9 @@ double rms_radius(const Surface& surface);
 
 /// A length unit and how it was chosen.
 struct LengthUnit {
-  double value = 1.0;         ///< the coordinates' length that counts as 1 A (> 0)
-  std::string from = "none";  ///< "none" (1), "auto" (from the size) or "--unit" (given)
+  double value = 1.0;  ///< the coordinates' length that counts as 1 A (> 0)
+  /// "none" (1), "auto" (from the size), "--unit" (given) or "stored" (a .hsi file's).
+  std::string from = "none";
 };
 
 /// The unit of general meshes compared together (one for a single mesh): `unit` when > 0, else
