@@ -85,16 +85,7 @@ std::string ascii_stl(const Eigen::MatrixX3d& p, const Eigen::MatrixX3i& f) {
   return out.str();
 }
 
-/// The message of the surfcomp::Error that `run` throws, or "" when it throws none.
-template <class Run>
-std::string error_of(Run run) {
-  try {
-    run();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 /// The octahedron as an STL reader welds it: vertices in order of first appearance in the
 /// triangles (0 2 4 1 3 5 of octahedron_positions), the faces renumbered to match.

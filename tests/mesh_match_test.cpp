@@ -210,20 +210,11 @@ TEST(MeshMatch, AnExplicitUnitIsForGeneralMeshesOnly) {
   EXPECT_EQ(m.unit_from, "--unit");
   ASSERT_FALSE(m.result.alignments.empty());
   // The clique search stops at its budget on this pair, so the best pose is a refined clique
-  // fit, not the exact identity the principal-axes start gives at the automatic unit: 1.5e-3.
+  // fit, not the exact identity the principal-axes start gives at the automatic unit.
   EXPECT_LT((m.result.alignments.front().transform - Eigen::Matrix4d::Identity()).norm(), 2e-3);
 }
 
-/// The message of what `run` throws (a surfcomp::Error), or "" when it throws nothing.
-template <typename Run>
-std::string error_of(Run run) {
-  try {
-    run();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 TEST(MeshRepair, BrokenMeshesAreRefusedInOneLineThatNamesRepair) {
   SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");

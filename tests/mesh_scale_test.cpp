@@ -183,13 +183,13 @@ TEST(MeshScale, AFineSphereInTinyCoordinatesGetsItsCurvatureAtABoundedCost) {
   EXPECT_EQ(loaded.unit.value, 1.0);
   const Eigen::VectorXd cc1 = loaded.surface.property(mesh::property::cc1);
   const Eigen::VectorXd cc2 = loaded.surface.property(mesh::property::cc2);
-  // A height quadric over 40 % of a sphere is biased (2.4 % at most here), not lost: every
-  // vertex is convex with about the sphere's curvature.
+  // A height quadric over 40 % of a sphere is biased, not lost: every vertex is convex with
+  // the sphere's curvature to 3 %.
   EXPECT_NEAR(cc1.minCoeff(), -1.0 / radius, 0.03 / radius);
   EXPECT_NEAR(cc1.maxCoeff(), -1.0 / radius, 0.03 / radius);
   EXPECT_NEAR(cc2.maxCoeff(), -1.0 / radius, 0.03 / radius);
   // Where the 3 A neighbourhood holds fewer than 4096 vertices nothing is sampled: a sphere of
-  // 3 A gets its curvature to 0.1 % (measured 0.07 %).
+  // 3 A gets its curvature to 0.1 %.
   const mesh::LoadedSurface coarse = mesh::load_mesh_surface(test::icosphere(3.0, 16), options);
   EXPECT_NEAR(coarse.surface.property(mesh::property::cc1).maxCoeff(), -1.0 / 3.0, 1e-3 / 3.0);
 

@@ -2,6 +2,8 @@
 // says so, and the median they report. Free of GoogleTest and Google Benchmark, so both use it.
 #pragma once
 
+#include "surfcomp/core/error.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -62,6 +64,17 @@ inline double median(std::vector<double> values) {
   const std::size_t n = values.size();
   std::sort(values.begin(), values.end());
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/// The message of the surfcomp::Error that `run` throws, or "" when it throws none.
+template <class Run>
+std::string error_of(Run run) {
+  try {
+    run();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace surfcomp::test
