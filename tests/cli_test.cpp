@@ -42,13 +42,55 @@ class Cli : public ::testing::Test {
   const test::TempDir dir_;
 };
 
+TEST_F(Cli, MatchWritesTheFirstDistinctPosesWithTheirCoverage) {
+  SURFCOMP_SHARED_OR_SKIP(ref, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/4TMN_ligand.sdf");
+  const fs::path some = scratch("top.json"), all = scratch("all.json");
+  const std::string pair = "match " + ref.string() + " " + probe.string();
+  const ProgramRun r = run(pair + " --top 3 -o " + some.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(run(pair + " --all-alignments -o " + all.string()).status, 0);
+  std::ifstream some_in(some), all_in(all);
+  const nlohmann::json top = nlohmann::json::parse(some_in);
+  const nlohmann::json every = nlohmann::json::parse(all_in);
+  // The first three alignments that repeat no better one, as the whole list marks them.
+  std::vector<nlohmann::json> distinct;
+  for (const auto& a : every["alignments"]) {
+    if (!a["repeat_of"].is_null()) {
+      EXPECT_LT(a["repeat_of"].get<int>(), a["rank"].get<int>());
+      EXPECT_TRUE(every["alignments"][a["repeat_of"].get<int>() - 1]["repeat_of"].is_null());
+    } else if (distinct.size() < 3) {
+      distinct.push_back(a);
+    }
+  }
+  ASSERT_EQ(top["alignments"].size(), 3u);
+  EXPECT_EQ(top["alignments_found"], every["alignments_found"]);
+  EXPECT_LT(every["alignments_found"]["distinct"].get<std::size_t>(), every["alignments"].size());
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto& a = top["alignments"][k];
+    EXPECT_EQ(a["rank"], distinct[k]["rank"]);
+    EXPECT_EQ(a["transform"], distinct[k]["transform"]);
+    // Scored poses are measured: fractions of area.
+    for (const char* key : {"score", "reference", "probe"}) {
+      EXPECT_GT(a["coverage"][key].get<double>(), 0.0) << key;
+      EXPECT_LE(a["coverage"][key].get<double>(), 1.0) << key;
+    }
+    // The critical points the pairs index are in the file.
+    for (const auto& p : a["cp_pairs"]) {
+      EXPECT_LT(p[0].get<std::size_t>(), top["critical_points"]["reference"].size());
+      EXPECT_LT(p[1].get<std::size_t>(), top["critical_points"]["probe"].size());
+    }
+  }
+  EXPECT_EQ(top["critical_points"]["reference"][0]["type"].get<std::string>().empty(), false);
+}
+
 TEST_F(Cli, MatchWritesTheResultContract) {
   SURFCOMP_SHARED_OR_SKIP(ref, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
   SURFCOMP_SHARED_OR_SKIP(probe, "thermolysin/ligands-common-frame/4TMN_ligand.sdf");
   const fs::path json = scratch("result.json");
   const fs::path aligned = scratch("aligned.sdf");
   const ProgramRun r = run("match " + ref.string() + " " + probe.string() + " -o " + json.string() +
-                           " --aligned-out " + aligned.string() + " --trace");
+                           " --aligned-out " + aligned.string() + " --trace --all-alignments");
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(json);
   const nlohmann::json doc = nlohmann::json::parse(in);

@@ -134,6 +134,57 @@ TEST(MeshMatch, ACutMovedCopyIsRecoveredWhateverTheLengthUnit) {
             1e-3 * 1000.0 * diagonal(original));
 }
 
+TEST(MeshMatch, ACutCopyLiesWhollyOnItsOriginalAndIcpMakesItsPoseExact) {
+  SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
+  SURFCOMP_FETCHED_OR_SKIP(other_path, "cgal/meshes/cow.off");
+  const mesh::Surface full = mesh::io::read_mesh(path);
+  mesh::Surface copy = cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
+  const double area_fraction = mesh::measure_surface(copy).area / mesh::measure_surface(full).area;
+  const Eigen::MatrixX3d truth = copy.positions();
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  motion.linear() = Eigen::AngleAxisd(2.0, Eigen::Vector3d(0.3, -0.5, 0.8).normalized()).matrix();
+  motion.translation() = Eigen::Vector3d(0.4, -0.2, 0.3);
+  mesh::transform_surface(copy, motion.linear(), motion.translation());
+  matching::MatchInput reference, probe;
+  reference.surface = full;
+  probe.surface = copy;
+  matching::MatchInputOptions options;
+  options.match.icp_top = 1;
+  const matching::InputMatch m = matching::match_inputs(reference, probe, options);
+  ASSERT_FALSE(m.result.alignments.empty());
+  const matching::Alignment& top = m.result.alignments.front();
+  EXPECT_EQ(top.repeat_of, 0);
+  EXPECT_TRUE(top.icp);
+  // The cut is a piece of the original: all of it lies on it, and it covers its share and the
+  // band within the distance (one unit) beyond its cut edge.
+  EXPECT_GT(top.coverage.score, 0.99);
+  EXPECT_EQ(top.coverage.score, top.coverage.probe);
+  EXPECT_GT(top.coverage.reference, area_fraction - 0.01);
+  EXPECT_LT(top.coverage.reference, area_fraction + 0.06);
+  // ICP on the exact geometry leaves the pose at the precision of the meshes' coordinates.
+  EXPECT_LT(motion_error(truth, motion, top.transform), 1e-4 * diagonal(full));
+  // Repeats point at a better distinct pose.
+  std::size_t distinct = 0;
+  for (const matching::Alignment& a : m.result.alignments) {
+    if (a.repeat_of == 0) {
+      ++distinct;
+      continue;
+    }
+    ASSERT_LT(a.repeat_of, a.rank);
+    EXPECT_EQ(m.result.alignments[static_cast<std::size_t>(a.repeat_of - 1)].repeat_of, 0);
+  }
+  EXPECT_LT(distinct, m.result.alignments.size());
+
+  // The same cut on another shape of the same size lies on it far less.
+  mesh::Surface other = mesh::io::read_mesh(other_path);
+  mesh::scale_surface(other, diagonal(full) / diagonal(other));
+  reference.surface = other;
+  const matching::InputMatch wrong = matching::match_inputs(reference, probe, options);
+  ASSERT_FALSE(wrong.result.alignments.empty());
+  EXPECT_LT(wrong.result.alignments.front().coverage.score, 0.8)
+      << wrong.result.alignments.front().coverage.score;
+}
+
 TEST(MeshRepair, ATriangleSoupBecomesTheMeshItCameFrom) {
   SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
   const mesh::Surface original = mesh::io::read_mesh(path);

@@ -38,7 +38,12 @@ constexpr const char* kUsage =
     "molecules), a refined pose's score also weighs the overlap of same-element heteroatoms\n"
     "(--overlay-atom-weight), and the first --polish-top poses are refined again on that whole\n"
     "score plus --atom-polish-weight x the like-element Gaussian overlap of all heavy atoms\n"
-    "(--atom-polish-sigma; column 'atom_fit', a Tanimoto); the poses go by that sum.\n\n"
+    "(--atom-polish-sigma; column 'atom_fit', a Tanimoto); the poses go by that sum.\n"
+    "Poses that repeat a better one are left out (--all-alignments keeps them). The first\n"
+    "--refine-top distinct poses get their coverage (column 'coverage'): the larger of the\n"
+    "fractions of each surface within --coverage-distance of the other, near 1 for a true\n"
+    "partial match (a scan of part of a mesh) where the overlay score stays low. --icp-top N\n"
+    "polishes the first N distinct poses last by point-to-plane ICP on the whole surfaces.\n\n"
     "REF, PROBE  a molecule or a mesh (%s), or a .hsi file from\n"
     "            hsi-build (two .hsi files must have been built with the same parameters)\n"
     "Binding sites: --site-ligand RES (both sides) or --ref-site-ligand/--probe-site-ligand\n"
@@ -72,7 +77,11 @@ int match(const std::vector<std::string>& args) {
        "or .ply; with no alignment, a warning and no file")
       ("report", po::value(&report_out),
        "also write the HTML report (.html) of the match, as `surfcomp report` does")
-      ("top", defaulted(&top), "alignments shown in the table")
+      ("top", defaulted(&top),
+       "distinct alignments shown in the table and written to the result file (a pose that "
+       "repeats a better one, no sampled point moved by more than 0.5 A, is left out)")
+      ("all-alignments", po::bool_switch(),
+       "write every alignment to the result file: the whole merge tree and the repeats")
       ("trace", po::bool_switch(), "print the association graph's nodes and edges after each stage");
   // clang-format on
   add_match_options(described);
@@ -115,9 +124,14 @@ int match(const std::vector<std::string>& args) {
     }
     console::summary("%zu maximal cliques\n\n", result.cliques);
   }
-  console::summary("%s vs %s: %zu alignments, surfaces and images %.0f ms, match %.0f ms\n",
-                   ref_path.string().c_str(), probe_path.string().c_str(), result.alignments.size(),
-                   compared.prepare_ms, compared.match_ms);
+  const auto distinct =
+      std::count_if(result.alignments.begin(), result.alignments.end(),
+                    [](const matching::Alignment& a) { return a.repeat_of == 0; });
+  console::summary(
+      "%s vs %s: %ld distinct poses of %zu alignments, surfaces and images %.0f ms, match %.0f "
+      "ms\n",
+      ref_path.string().c_str(), probe_path.string().c_str(), static_cast<long>(distinct),
+      result.alignments.size(), compared.prepare_ms, compared.match_ms);
   if (compared.site_score) {
     const double w = settings.inputs.match.site.lining_weight;
     console::summary("site score %.3f: (overlay %.3f + %.2f x lining %.3f) / %.2f\n",
@@ -125,32 +139,37 @@ int match(const std::vector<std::string>& args) {
                      *compared.lining, 1.0 + w);
   }
   if (!result.alignments.empty()) {
-    console::summary("%5s %-7s %8s %8s %8s %9s %8s %8s %6s %7s  %s\n", "rank", "from", "rmsd",
-                     "points", "r_chem", "consensus", "overlay", "atom_fit", "pairs", "parent",
-                     "rotation (deg) / translation (A)");
+    console::summary("%5s %-7s %8s %8s %8s %9s %8s %8s %8s %6s %7s  %s\n", "rank", "from", "rmsd",
+                     "points", "r_chem", "consensus", "overlay", "coverage", "atom_fit", "pairs",
+                     "parent", "rotation (deg) / translation (A)");
   }
   // The atom fit is scored between two molecules only: "-" elsewhere.
   const bool atom_fitted =
       std::any_of(result.alignments.begin(), result.alignments.end(),
                   [](const matching::Alignment& a) { return a.atom_fit > 0.0; });
+  int shown = 0;
   for (const auto& a : result.alignments) {
-    if (a.rank > top) break;
+    if (a.repeat_of != 0) continue;
+    if (shown++ == top) break;
     const Eigen::Matrix3d r = a.transform.topLeftCorner<3, 3>();
     const double angle = std::acos(std::clamp((r.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
     char fit[16] = "-";
     if (atom_fitted) std::snprintf(fit, sizeof fit, "%.3f", a.atom_fit);
+    char coverage[16] = "-";  // only the scored alignments are measured
+    if (a.coverage.score > 0.0 || a.refined)
+      std::snprintf(coverage, sizeof coverage, "%.3f", a.coverage.score);
     if (a.source == matching::AlignmentSource::cliques) {
       console::summary(
-          "%5d %-7s %8.3f %8zu %8.3f %9.3f %7.3f%s %8s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n",
+          "%5d %-7s %8.3f %8zu %8.3f %9.3f %7.3f%s %8s %8s %6zu %7s  %.1f / (%.2f, %.2f, %.2f)\n",
           a.rank, "cliques", a.rmsd, a.n_points, a.r_chem, a.consensus, a.overlay.score,
-          a.refined ? "*" : " ", fit, a.cp_pairs.size(),
+          a.refined ? "*" : " ", coverage, fit, a.cp_pairs.size(),
           a.parent > 0 ? std::to_string(a.parent).c_str() : "-", angle, a.transform(0, 3),
           a.transform(1, 3), a.transform(2, 3));
     } else {  // no CP correspondences behind it: no fit RMSD, points, R_chem, consensus or tree
-      console::summary("%5d %-7s %8s %8s %8s %9s %7.3f%s %8s %6s %7s  %.1f / (%.2f, %.2f, %.2f)\n",
-                       a.rank, "axes", "-", "-", "-", "-", a.overlay.score, a.refined ? "*" : " ",
-                       fit, "-", "-", angle, a.transform(0, 3), a.transform(1, 3),
-                       a.transform(2, 3));
+      console::summary(
+          "%5d %-7s %8s %8s %8s %9s %7.3f%s %8s %8s %6s %7s  %.1f / (%.2f, %.2f, %.2f)\n", a.rank,
+          "axes", "-", "-", "-", "-", a.overlay.score, a.refined ? "*" : " ", coverage, fit, "-",
+          "-", angle, a.transform(0, 3), a.transform(1, 3), a.transform(2, 3));
     }
   }
   // Outputs last, each atomic; a failure of a later one removes the earlier ones.
@@ -165,7 +184,9 @@ int match(const std::vector<std::string>& args) {
       written.emplace_back(aligned_out);
     }
     if (!output.empty()) {
-      const std::string document = report::match_json(compared, settings.inputs.match);
+      const std::string document =
+          report::match_json(compared, settings.inputs.match,
+                             vm["all-alignments"].as<bool>() ? 0 : static_cast<std::size_t>(top));
       surfcomp::io::write_file_atomically(output, [&](std::ostream& out) { out << document; });
       written.emplace_back(output);
     }

@@ -28,6 +28,8 @@ struct Placed {
   bool refined = false;
   OverlayScore overlay;
   double atom_fit = 0.0;  ///< AtomOverlap::fit, where the atom polish is on
+  CoverageScore coverage;
+  bool icp = false;  ///< polished by ICP
 };
 
 /// The clusters in the consensus order, with the clusters' fits as their transforms.
@@ -49,6 +51,9 @@ std::vector<Placed> consensus_order(const std::vector<RankedAlignment>& ranking,
 struct Refinement {
   SurfaceOverlay overlay;
   std::vector<RigidTransform> axes_starts;
+  /// The surfaces (or linings) indexed for the coverage and the ICP polish; none when neither
+  /// is asked for, or when a site's lining keeps no whole triangle.
+  std::optional<SurfaceFit> fit;
 };
 
 /// The Refinement of a match in options.mode: the whole surfaces with options.overlay, the
@@ -85,11 +90,20 @@ std::optional<Refinement> prepare_refinement(const harmonic::SurfaceDescriptors&
   std::vector<RigidTransform> axes_starts;
   if (n_axes_starts > 0)
     axes_starts = principal_axes_starts(reference_sample, probe_sample, n_axes_starts == 24);
+  std::optional<SurfaceFit> fit;
+  if (options.coverage_distance > 0.0 || options.icp_top > 0) {
+    try {
+      fit.emplace(reference.surface, probe.surface, site ? &reference_lining : nullptr,
+                  site ? &probe_lining : nullptr);
+    } catch (const InputError&) {
+      if (!site) throw;  // a lining of scattered vertices holds no whole triangle: no coverage
+    }
+  }
   return Refinement{
       SurfaceOverlay(std::move(reference_sample), std::move(probe_sample), overlay_options,
                      site ? AtomSample{} : sample_atoms(reference.atoms),
                      site ? AtomSample{} : sample_atoms(probe.atoms)),
-      std::move(axes_starts)};
+      std::move(axes_starts), std::move(fit)};
 }
 
 /// The largest distance between a sampled probe point moved by `x` and moved by `y`, A.
@@ -235,24 +249,50 @@ Ordered polish_on_atoms(Ordered ordered, const MatchOptions& options, const Atom
   return order_distinct_then_repeats(std::move(ordered.list), overlay, options.atom_polish.weight);
 }
 
+/// The first options.icp_top distinct poses of `ordered` polished by ICP (SurfaceFit::icp) and
+/// scored again, in place (the order stays), and the first options.refine_top distinct poses
+/// given their coverage, in parallel (TBB, one slot each).
+void polish_and_cover(Ordered& ordered, const MatchOptions& options, const SurfaceFit& fit,
+                      const SurfaceOverlay& overlay) {
+  const std::size_t n_icp =
+      std::min(ordered.distinct, static_cast<std::size_t>(std::max(options.icp_top, 0)));
+  const std::size_t n_covered =
+      std::min(ordered.distinct, static_cast<std::size_t>(options.refine_top));
+  tbb::parallel_for(std::size_t{0}, std::max(n_icp, n_covered), [&](std::size_t k) {
+    Placed& p = ordered.list[k];
+    if (k < n_icp) {
+      p.transform = fit.icp(p.transform, options.icp);
+      p.overlay = overlay.score(p.transform);
+      p.icp = true;
+    }
+    if (options.coverage_distance > 0.0 && k < n_covered)
+      p.coverage = fit.coverage(p.transform, options.coverage_distance);
+  });
+}
+
 /// The consensus order with its first options.refine_top alignments refined on the overlay
 /// (refine_consensus_head) and moved ahead together with the refined principal-axes starts
 /// (refine_axes_starts), best overlay score first, repeats after the distinct ones
 /// (order_distinct_then_repeats), the first polish_top of them polished where the overlay
-/// uses atoms (polish); the rest follow in the consensus order, unscored.
-std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking,
-                                     const std::vector<Cluster>& clusters,
-                                     const harmonic::SurfaceDescriptors& reference,
-                                     const harmonic::SurfaceDescriptors& probe,
-                                     const MatchOptions& options,
-                                     const std::vector<bool>* reference_allowed,
-                                     const std::vector<bool>* probe_allowed) {
+/// uses atoms (polish), polished by ICP and given their coverage (polish_and_cover); the rest
+/// follow in the consensus order, unscored. `probe_points` is set to the probe points the poses
+/// are compared on (the overlay's sample).
+std::vector<Placed> refine_and_order(
+    const std::vector<RankedAlignment>& ranking, const std::vector<Cluster>& clusters,
+    const harmonic::SurfaceDescriptors& reference, const harmonic::SurfaceDescriptors& probe,
+    const MatchOptions& options, const std::vector<bool>* reference_allowed,
+    const std::vector<bool>* probe_allowed, Eigen::Matrix3Xd& probe_points) {
   std::vector<Placed> placed = consensus_order(ranking, clusters);
-  if (options.refine_top == 0) return placed;
-  const std::optional<Refinement> refinement = prepare_refinement(
-      reference, probe, options, reference_allowed, probe_allowed, !placed.empty());
-  if (!refinement) return placed;
+  const std::optional<Refinement> refinement =
+      options.refine_top == 0 ? std::nullopt
+                              : prepare_refinement(reference, probe, options, reference_allowed,
+                                                   probe_allowed, !placed.empty());
+  if (!refinement) {  // the poses are told apart on the whole probe surface
+    probe_points = sample_surface(probe.surface, mode_overlay_options(options).spacing).points;
+    return placed;
+  }
   const SurfaceOverlay& overlay = refinement->overlay;
+  probe_points = overlay.probe_points();
   const std::size_t n_refined =
       std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
   refine_consensus_head(placed, n_refined, overlay);
@@ -269,9 +309,39 @@ std::vector<Placed> refine_and_order(const std::vector<RankedAlignment>& ranking
     const AtomOverlap atoms(reference.atoms, probe.atoms, options.atom_polish.sigma);
     ordered = polish_on_atoms(std::move(ordered), options, atoms, overlay);
   }
+  if (refinement->fit) polish_and_cover(ordered, options, *refinement->fit, overlay);
   ordered.list.insert(ordered.list.end(), placed.begin() + static_cast<std::ptrdiff_t>(n_refined),
                       placed.end());
   return ordered.list;
+}
+
+/// For each of `placed`, the index + 1 of the first earlier pose that it repeats (no point of
+/// `points` moves more than kRepeatDistance between the two), 0 for a distinct one. Four points
+/// (the centroid and three of the sample) are compared first: a cheap test that rules most
+/// pairs out, since no point moves farther than the farthest.
+std::vector<int> repeats(const std::vector<Placed>& placed, const Eigen::Matrix3Xd& points) {
+  std::vector<int> repeat_of(placed.size(), 0);
+  if (points.cols() == 0) return repeat_of;
+  Eigen::Matrix3Xd keys(3, 4);
+  keys << points.rowwise().mean(), points.col(0), points.col(points.cols() / 3),
+      points.col(2 * points.cols() / 3);
+  std::vector<Eigen::Matrix3Xd> moved_keys;
+  moved_keys.reserve(placed.size());
+  for (const Placed& p : placed) moved_keys.push_back(p.transform.apply(keys));
+  std::vector<std::size_t> distinct;
+  for (std::size_t k = 0; k < placed.size(); ++k) {
+    for (std::size_t j : distinct) {
+      if ((moved_keys[j] - moved_keys[k]).colwise().norm().maxCoeff() > kRepeatDistance) continue;
+      const Eigen::Matrix3Xd a = placed[j].transform.apply(points);
+      const Eigen::Matrix3Xd b = placed[k].transform.apply(points);
+      if ((a - b).colwise().norm().maxCoeff() <= kRepeatDistance) {
+        repeat_of[k] = static_cast<int>(j) + 1;
+        break;
+      }
+    }
+    if (repeat_of[k] == 0) distinct.push_back(k);
+  }
+  return repeat_of;
 }
 
 }  // namespace
@@ -303,6 +373,14 @@ void validate(const MatchOptions& options) {
   check.require(options.refine_top >= 0, "refine_top", options.refine_top, ">= 0");
   detail::check_axes_start_count(options.principal_axes_starts, "principal_axes_starts", check);
   check.require(options.polish_top >= 0, "polish_top", options.polish_top, ">= 0");
+  check.require(std::isfinite(options.coverage_distance) && options.coverage_distance >= 0.0,
+                "coverage_distance", options.coverage_distance, "a finite value >= 0");
+  check.require(options.icp_top >= 0, "icp_top", options.icp_top, ">= 0");
+  check.require(std::isfinite(options.icp.max_distance) && options.icp.max_distance > 0.0,
+                "icp.max_distance", options.icp.max_distance, "a finite value > 0");
+  check.require(options.icp.iterations >= 1, "icp.iterations", options.icp.iterations, ">= 1");
+  check.require(std::isfinite(options.icp.tolerance) && options.icp.tolerance >= 0.0,
+                "icp.tolerance", options.icp.tolerance, "a finite value >= 0");
   detail::check_atom_polish_options(options.atom_polish, {caller, "atom_polish."});
   detail::check_overlay_options(options.overlay, {caller, "overlay."});
   const SiteMatchOptions& site = options.site;
@@ -397,8 +475,10 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
   result.timing_ms.emplace_back("ranking", clock.elapsed_ms());
 
   clock.restart();
-  const std::vector<Placed> placed = refine_and_order(ranking, clusters, reference, probe, options,
-                                                      reference_allowed, probe_allowed);
+  Eigen::Matrix3Xd probe_points;
+  const std::vector<Placed> placed = refine_and_order(
+      ranking, clusters, reference, probe, options, reference_allowed, probe_allowed, probe_points);
+  const std::vector<int> repeat_of = repeats(placed, probe_points);
   std::vector<int> rank_of(clusters.size(), 0);
   for (std::size_t k = 0; k < placed.size(); ++k) {
     if (placed[k].cluster >= 0)
@@ -414,6 +494,9 @@ MatchResult match_surfaces(const harmonic::SurfaceDescriptors& reference,
     a.refined = p.refined;
     a.overlay = p.overlay;
     a.atom_fit = p.atom_fit;
+    a.coverage = p.coverage;
+    a.icp = p.icp;
+    a.repeat_of = repeat_of[k];
     if (p.cluster >= 0) {
       const Cluster& c = clusters[static_cast<std::size_t>(p.cluster)];
       a.rmsd = c.fit.rmsd;

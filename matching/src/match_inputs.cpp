@@ -335,18 +335,20 @@ bool has_site(const MatchInput& input) {
   return !input.site_ligand.empty() || !input.site_spheres.empty() || input.site_pocket > 0;
 }
 
-std::vector<std::string> match_warnings(const MatchResult& result, const MatchOptions& options) {
-  std::vector<std::string> warnings;
-  if (!result.cliques_complete) {
-    warnings.push_back(result.cliques >= options.max_cliques
-                           ? "clique search stopped at " + std::to_string(result.cliques) +
-                                 " cliques (--max-cliques); alignments may be missing"
-                           : "clique search stopped after " + std::to_string(result.clique_work) +
-                                 " units of work (--max-clique-work " +
-                                 std::to_string(options.max_clique_work) +
-                                 "); alignments may be missing");
+/// What the clique search's stop means for the match: reaching the clique budget
+/// (--max-cliques) is the budget at work, told as a note; running out of work
+/// (--max-clique-work) cut a search that had no end in sight, a warning.
+void tell_clique_stop(const MatchResult& result, const MatchOptions& options, InputMatch& out) {
+  if (result.cliques_complete) return;
+  if (result.cliques >= options.max_cliques) {
+    out.notes.push_back("the clique budget took the first " + std::to_string(result.cliques) +
+                        " cliques the search found (--max-cliques)");
+  } else {
+    out.warnings.push_back("clique search stopped after " + std::to_string(result.clique_work) +
+                           " units of work (--max-clique-work " +
+                           std::to_string(options.max_clique_work) +
+                           "); alignments may be missing");
   }
-  return warnings;
 }
 
 }  // namespace
@@ -550,7 +552,7 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
                                 match.site.lining_weight);
   }
   out.match_ms = clock.elapsed_ms() - out.prepare_ms;
-  out.warnings = match_warnings(out.result, match);
+  tell_clique_stop(out.result, match, out);
   log(options, "match: " + std::to_string(out.result.alignments.size()) + " alignments from " +
                    std::to_string(out.result.cliques) + " cliques (" + milliseconds(out.match_ms) +
                    ")");

@@ -45,8 +45,9 @@ const options::Table<MatchOptions>& match_option_table() {
           [](auto& m) -> auto& { return m.max_clique_work; }),
       options::field<M>(
           {"max-cliques", Kind::integer,
-           "stop the clique search rather than report more cliques than this; each "
-           "is fitted and merged, in time quadratic in their number",
+           "the clique budget: fit at most this many cliques, the first the search finds "
+           "(each is fitted and merged, in time quadratic in their number); a match that "
+           "reaches it says so in its notes",
            "", 1, 1e15},
           [](auto& m) -> auto& { return m.max_cliques; }),
       options::field<M>(
@@ -107,6 +108,23 @@ const options::Table<MatchOptions>& match_option_table() {
            "than this",
            "A", 0.0, 10.0},
           [](auto& m) -> auto& { return m.overlay.tolerance; }),
+      options::field<M>(
+          {"coverage-distance", Kind::real,
+           "a scored alignment's coverage is the larger of the fractions of each surface "
+           "that lie within this distance of the other, the part's in a partial match "
+           "(0: not computed)",
+           "A", 0.0, 100.0},
+          [](auto& m) -> auto& { return m.coverage_distance; }),
+      options::field<M>(
+          {"icp-top", Kind::integer,
+           "polish the first N distinct alignments last by point-to-plane ICP on the whole "
+           "surfaces (0: no ICP)",
+           "", 0, 1e6},
+          [](auto& m) -> auto& { return m.icp_top; }),
+      options::field<M>(
+          {"icp-max-distance", Kind::real, "the ICP polish pairs points no farther apart than this",
+           "A", 0.01, 100.0},
+          [](auto& m) -> auto& { return m.icp.max_distance; }),
       options::field<M>(
           {"principal-axes-starts", Kind::integer,
            "also refine this many principal-axes superpositions of the whole "

@@ -323,11 +323,18 @@ py::dict alignment_dict(const matching::Alignment& a) {
   d["overlay"] = py::dict(py::arg("score") = a.overlay.score, py::arg("shape") = a.overlay.shape,
                           py::arg("chem") = a.overlay.chem, py::arg("atoms") = a.overlay.atoms);
   d["atom_fit"] = a.atom_fit;
+  d["coverage"] =
+      py::dict(py::arg("score") = a.coverage.score, py::arg("reference") = a.coverage.reference,
+               py::arg("probe") = a.coverage.probe);
+  d["icp"] = a.icp;
+  d["repeat_of"] = a.repeat_of > 0 ? py::object(py::int_(a.repeat_of)) : py::object(py::none());
   d["cp_pairs"] = owned_array(std::move(pairs));
   d["parent"] = a.parent > 0 ? py::object(py::int_(a.parent)) : py::object(py::none());
   d["children"] = a.children;
   return d;
 }
+
+py::dict critical_points_dict(const harmonic::SurfaceDescriptors& d);
 
 py::dict match_dict(const matching::InputMatch& compared, double lining_weight) {
   py::list alignments;
@@ -357,6 +364,8 @@ py::dict match_dict(const matching::InputMatch& compared, double lining_weight) 
   d["unit"] = compared.unit;
   d["cliques"] = compared.result.cliques;
   d["cliques_complete"] = compared.result.cliques_complete;
+  d["reference_critical_points"] = critical_points_dict(compared.reference.descriptors);
+  d["probe_critical_points"] = critical_points_dict(compared.probe.descriptors);
   d["prepare_ms"] = compared.prepare_ms;
   d["match_ms"] = compared.match_ms;
   return d;

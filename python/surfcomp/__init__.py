@@ -43,9 +43,10 @@ from . import _surfcomp
 from ._surfcomp import Descriptors, Error, FileError, InputError, OptionError, Surface
 
 __all__ = [
-    "Alignment", "CriticalPoints", "DescriptionParameters", "Descriptors", "Error", "FileError",
-    "FusedHit", "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
-    "OverlayScore", "Patch", "Pocket", "Screens", "Surface", "SurfaceMeasures", "build_surface",
+    "Alignment", "CoverageScore", "CriticalPoints", "DescriptionParameters", "Descriptors",
+    "Error", "FileError", "FusedHit", "Hit", "InputError", "LibraryEntry", "LibraryInfo",
+    "MatchResult", "OptionError", "OverlayScore", "Patch", "Pocket", "Screens", "Surface",
+    "SurfaceMeasures", "build_surface",
     "describe", "library_info", "load_descriptors", "match", "option_table", "pockets", "screen",
     "screen_queries",
 ]
@@ -143,6 +144,21 @@ _documented(OverlayScore,
             atoms="same-element heteroatom Tanimoto (0 where either side has no atoms)")
 
 
+class CoverageScore(NamedTuple):
+    """How much of each surface lies on the other under an alignment (fractions of area)."""
+
+    score: float
+    reference: float
+    probe: float
+
+
+_documented(CoverageScore,
+            score="the larger of reference and probe: the part's fraction in a partial match, "
+                  "near 1 for a true one",
+            reference="the fraction of the reference within coverage_distance of the moved probe",
+            probe="the fraction of the moved probe within coverage_distance of the reference")
+
+
 class Alignment(NamedTuple):
     """One rigid alignment of the probe onto the reference, best first by ``rank``."""
 
@@ -156,6 +172,9 @@ class Alignment(NamedTuple):
     refined: bool
     overlay: OverlayScore
     atom_fit: float
+    coverage: CoverageScore
+    icp: bool
+    repeat_of: Optional[int]
     cp_pairs: np.ndarray
     parent: Optional[int]
     children: List[int]
@@ -198,14 +217,30 @@ _documented(
     atom_fit="two molecules: the heavy-atom Tanimoto of the atom polish (like elements, "
              "Gaussians of atom_polish_sigma), 0-1; the scored alignments go by "
              "overlay.score + atom_polish_weight * atom_fit. 0 otherwise",
-    cp_pairs="(k, 2) (reference, probe) critical-point indices of the clique",
+    coverage="how much of each surface lies on the other under the pose (CoverageScore); "
+             "measured for the first refine_top distinct poses, 0 for the others",
+    icp="whether the ICP polish (icp_top) moved this pose",
+    repeat_of="rank of a better alignment whose pose this one repeats (no sampled probe point "
+              "moved by more than 0.5 A), or None for a distinct pose",
+    cp_pairs="(k, 2) (reference, probe) critical-point indices of the clique, rows of "
+             "MatchResult.reference_critical_points and probe_critical_points",
     parent="rank of the alignment this one was merged into, or None",
     children="ranks of the alignments merged into this one")
 
 
 class MatchResult(list):
-    """The alignments of a match, best first (a list of :class:`Alignment`), with what the match
-    did."""
+    """The alignments of a match, best first (a list of :class:`Alignment`: every cluster of the
+    merge tree, repeats marked by ``repeat_of``), with what the match did."""
+
+    #: Each side's critical points, as the alignments' ``cp_pairs`` index them (in the inputs'
+    #: coordinates).
+    reference_critical_points: "CriticalPoints"
+    probe_critical_points: "CriticalPoints"
+
+    def distinct(self, top: Optional[int] = 10) -> List[Alignment]:
+        """The first ``top`` distinct poses (``repeat_of`` None), best first; all with None."""
+        poses = [a for a in self if a.repeat_of is None]
+        return poses if top is None else poses[:top]
 
     #: The association graph after each filter: dicts of stage, nodes, edges, ms.
     trace: List[Dict[str, Any]]
@@ -517,11 +552,14 @@ def match(ref, probe, *, report: Union[str, os.PathLike, None] = None, **options
     ``(x, y, z, r)`` or a list of them."""
     raw = _surfcomp.match(_input(ref), _input(probe), options,
                           os.fspath(report) if report is not None else "")
-    result = MatchResult(Alignment(**dict(a, overlay=OverlayScore(**a["overlay"])))
+    result = MatchResult(Alignment(**dict(a, overlay=OverlayScore(**a["overlay"]),
+                                          coverage=CoverageScore(**a["coverage"])))
                          for a in raw["alignments"])
     for key in ("trace", "timing_ms", "warnings", "notes", "shape_only", "site", "unit",
                 "cliques", "cliques_complete", "prepare_ms", "match_ms"):
         setattr(result, key, raw[key])
+    result.reference_critical_points = CriticalPoints(**raw["reference_critical_points"])
+    result.probe_critical_points = CriticalPoints(**raw["probe_critical_points"])
     return result
 
 

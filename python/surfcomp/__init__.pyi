@@ -115,6 +115,11 @@ class OverlayScore(NamedTuple):
     chem: float
     atoms: float
 
+class CoverageScore(NamedTuple):
+    score: float
+    reference: float
+    probe: float
+
 class Alignment(NamedTuple):
     rank: int
     source: str
@@ -126,6 +131,9 @@ class Alignment(NamedTuple):
     refined: bool
     overlay: OverlayScore
     atom_fit: float
+    coverage: CoverageScore
+    icp: bool
+    repeat_of: Optional[int]
     cp_pairs: npt.NDArray[np.int32]  # (k, 2): reference, probe critical-point indices
     parent: Optional[int]
     children: List[int]
@@ -146,6 +154,9 @@ class MatchResult(List[Alignment]):
     cliques_complete: bool
     prepare_ms: float
     match_ms: float
+    reference_critical_points: CriticalPoints
+    probe_critical_points: CriticalPoints
+    def distinct(self, top: Optional[int] = ...) -> List[Alignment]: ...
 
 class Hit(NamedTuple):
     rank: int
@@ -301,6 +312,9 @@ def match(
     atom_polish_sigma: float = 0.5,
     atom_polish_weight: float = 1.0,
     overlay_tolerance: float = 0.1,
+    coverage_distance: float = 1.0,
+    icp_top: int = 0,
+    icp_max_distance: float = 1.5,
     principal_axes_starts: int = 24,
     site_overlay_radius: float = 2.0,
     site_chem_weight: float = 0.25,

@@ -5,15 +5,36 @@
 namespace surfcomp::report {
 namespace detail {
 
+namespace {
+
+/// Each critical point of a description, as the alignments' cp_pairs index them: its vertex,
+/// type, position (the input's coordinates) and patch status.
+nlohmann::json critical_point_list(const harmonic::SurfaceDescriptors& descriptors) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const harmonic::CriticalPointDescriptor& d : descriptors.critical_points) {
+    const mesh::CriticalPoint& p = d.point;
+    list.push_back({{"vertex", p.vertex},
+                    {"type", mesh::type_name(p.type)},
+                    {"position", {p.position.x(), p.position.y(), p.position.z()}},
+                    {"patch", harmonic::to_string(d.status)}});
+  }
+  return list;
+}
+
+}  // namespace
+
 nlohmann::json match_document(const matching::InputMatch& compared,
-                              const matching::MatchOptions& asked_options) {
+                              const matching::MatchOptions& asked_options, std::size_t top) {
   matching::MatchOptions applied = asked_options;
   applied.shape_only = compared.shape_only;
   const matching::MatchOptions options = matching::shape_only_options(applied);
   const matching::MatchResult& result = compared.result;
   const matching::PreparedInput& ref = compared.reference;
   nlohmann::json alignments = nlohmann::json::array();
+  std::size_t distinct = 0;
+  for (const auto& a : result.alignments) distinct += a.repeat_of == 0 ? 1 : 0;
   for (const auto& a : result.alignments) {
+    if (top > 0 && (a.repeat_of != 0 || alignments.size() >= top)) continue;
     nlohmann::json transform = nlohmann::json::array();
     for (int r = 0; r < 4; ++r) {
       transform.push_back(
@@ -37,6 +58,12 @@ nlohmann::json match_document(const matching::InputMatch& compared,
            {"chem", a.overlay.chem},
            {"atoms", a.overlay.atoms}}},
          {"atom_fit", a.atom_fit},
+         {"coverage",
+          {{"score", a.coverage.score},
+           {"reference", a.coverage.reference},
+           {"probe", a.coverage.probe}}},
+         {"icp", a.icp},
+         {"repeat_of", a.repeat_of > 0 ? nlohmann::json(a.repeat_of) : nlohmann::json(nullptr)},
          {"cp_pairs", pairs},
          {"parent", a.parent > 0 ? nlohmann::json(a.parent) : nlohmann::json(nullptr)},
          {"children", a.children}});
@@ -58,6 +85,10 @@ nlohmann::json match_document(const matching::InputMatch& compared,
   return {{"reference", ref.name},
           {"probe", compared.probe.name},
           {"alignments", alignments},
+          {"alignments_found", {{"all", result.alignments.size()}, {"distinct", distinct}}},
+          {"critical_points",
+           {{"reference", critical_point_list(ref.descriptors)},
+            {"probe", critical_point_list(compared.probe.descriptors)}}},
           {"trace", trace},
           {"timing_ms", timing},
           {"cliques",
@@ -91,6 +122,9 @@ nlohmann::json match_document(const matching::InputMatch& compared,
             {"atom_polish_weight", options.atom_polish.weight},
             {"overlay_tolerance", options.overlay.tolerance},
             {"principal_axes_starts", options.principal_axes_starts},
+            {"coverage_distance", options.coverage_distance},
+            {"icp_top", options.icp_top},
+            {"icp_max_distance", options.icp.max_distance},
             {"site_overlay_radius", options.site.overlay_radius},
             {"site_chem_weight", options.site.chem_weight},
             {"site_lining_weight", options.site.lining_weight},
@@ -107,9 +141,9 @@ std::string json_text(const nlohmann::json& document, int indent) {
 
 }  // namespace detail
 
-std::string match_json(const matching::InputMatch& compared,
-                       const matching::MatchOptions& options) {
-  return detail::json_text(detail::match_document(compared, options), 2) + "\n";
+std::string match_json(const matching::InputMatch& compared, const matching::MatchOptions& options,
+                       std::size_t top) {
+  return detail::json_text(detail::match_document(compared, options, top), 2) + "\n";
 }
 
 }  // namespace surfcomp::report

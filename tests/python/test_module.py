@@ -262,7 +262,8 @@ def _help_defaults(program, subcommand):
 @pytest.mark.parametrize("function,subcommand,own", [
     ("build_surface", "surf-build", {"ascii", "output", "help"}),
     ("describe", "hsi-build", {"output", "help"}),
-    ("match", "match", {"output", "aligned_out", "report", "top", "trace", "help"}),
+    ("match", "match", {"output", "aligned_out", "report", "top", "all_alignments", "trace",
+                        "help"}),
     ("screen", "screen", {"output", "aligned_out", "aligned_top", "help"}),
     ("pockets", "pockets", {"output", "pdb_out", "help"}),
 ])
@@ -394,6 +395,22 @@ def test_numpy_meshes_are_matched_by_shape_alone(elephant):
     assert result.unit == pytest.approx(radius / 12, rel=1e-9)
     assert _mesh_cases().motion_error(case, result[0].transform) < 0.02
     assert result[0].overlay.chem == 0.0 and result[0].overlay.atoms == 0.0
+    # The part lies on the whole: nearly all of the noisy copy (noise 0.5 % of the diagonal,
+    # the distance 1 unit, about 3 % of it), and about its share of the original.
+    assert result[0].repeat_of is None
+    assert result[0].coverage.score == result[0].coverage.probe > 0.95
+    assert result[0].coverage.reference == pytest.approx(case.area_fraction, abs=0.08)
+    # Distinct poses only, best first; repeats point at a better distinct one.
+    poses = result.distinct(None)
+    assert poses[0] is result[0] and len(poses) < len(result)
+    assert all(result[a.repeat_of - 1].repeat_of is None for a in result if a.repeat_of)
+    assert len(result.distinct()) == min(10, len(poses))
+    # The critical points the pairs index, in each input's coordinates, on its vertices.
+    ref_cps, probe_cps = result.reference_critical_points, result.probe_critical_points
+    for cps, points in ((ref_cps, vertices), (probe_cps, case.vertices)):
+        assert np.allclose(cps.position, points[cps.vertex], atol=1e-9 * np.ptp(points))
+    pairs = np.vstack([a.cp_pairs for a in result if len(a.cp_pairs)])
+    assert pairs[:, 0].max() < len(ref_cps.vertex) and pairs[:, 1].max() < len(probe_cps.vertex)
 
 
 def test_the_program_recovers_a_partial_copy_of_a_mesh(program, elephant, tmp_path):

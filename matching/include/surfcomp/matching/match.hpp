@@ -12,6 +12,7 @@
 #include "surfcomp/matching/correspondences.hpp"
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/matching/ranking.hpp"
+#include "surfcomp/matching/surface_fit.hpp"
 
 #include <Eigen/Core>
 
@@ -94,6 +95,16 @@ struct MatchOptions {
   AtomPolishOptions atom_polish;
   OverlayOptions overlay;  ///< sigma 1 A, spacing 1.5 A, chemistry weight 6, atom weight 14
   SiteMatchOptions site;   ///< used with MatchMode::binding_sites
+  /// Default 1 A (a general mesh: 1 unit). The first refine_top distinct alignments get their
+  /// coverage (CoverageScore, surface_fit.hpp): the fraction of each surface within this
+  /// distance of the other (of the pocket linings in a site match). 0: no coverage. Finite,
+  /// >= 0.
+  double coverage_distance = 1.0;
+  /// Default 0: none. The first icp_top distinct scored alignments are polished last by
+  /// point-to-plane ICP on the whole surfaces (SurfaceFit::icp, with `icp`), then scored again;
+  /// the order stays. >= 0.
+  int icp_top = 0;
+  IcpOptions icp;  ///< how the ICP polish pairs points and when it stops
 };
 
 /// Throws OptionError, naming the option, its value and its domain, for the first option of
@@ -142,11 +153,21 @@ struct Alignment {
   /// sigma), [0, 1], where the atom polish took part (two molecules, whole surfaces): the
   /// scored alignments are ordered by overlay.score + atom_polish.weight atom_fit. 0 otherwise.
   double atom_fit = 0.0;
+  /// How much of each surface lies on the other under the transform (MatchOptions::
+  /// coverage_distance), for the first refine_top distinct alignments; 0 for the others.
+  CoverageScore coverage;
+  /// 0 for a distinct pose; else the rank of a better alignment whose pose this one repeats
+  /// (no sampled probe point moves more than 0.5 A between the two; 0.5 units for a general
+  /// mesh). The merge tree keeps every cluster; a reader that wants distinct poses skips these.
+  int repeat_of = 0;
+  /// Whether the ICP polish moved it (MatchOptions::icp_top).
+  bool icp = false;
 };
 
 struct MatchResult {
   std::vector<Alignment> alignments;  ///< every cluster of the tree and each distinct
-                                      ///< principal-axes pose, best first
+                                      ///< principal-axes pose, best first; repeats marked
+                                      ///< (Alignment::repeat_of)
   std::vector<TraceStage> trace;      ///< nodes and edges after each graph stage
   std::size_t cliques = 0;            ///< maximal cliques of at least min_clique_size
   /// False when the clique search stopped at max_clique_work or max_cliques: the alignments

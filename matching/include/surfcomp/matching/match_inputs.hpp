@@ -148,11 +148,11 @@ PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& op
 struct InputMatch {
   PreparedInput reference, probe;
   MatchResult result;
-  /// What the match cut, one line each (the clique search stopped early: alignments may be
-  /// missing); empty when nothing was.
+  /// What the match cut, one line each (the clique search ran out of --max-clique-work:
+  /// alignments may be missing); empty when nothing was.
   std::vector<std::string> warnings;
   /// What a reader may want to know, one line each (a side carries no atoms, so poses are
-  /// judged on the surfaces alone).
+  /// judged on the surfaces alone; the clique budget was reached).
   std::vector<std::string> notes;
   /// The length unit the match ran at (SurfaceInputOptions::unit): 1 for molecules. The
   /// alignments, descriptions and sites above are in the inputs' coordinates whatever it is.

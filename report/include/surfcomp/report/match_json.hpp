@@ -10,7 +10,9 @@
 namespace surfcomp::report {
 
 /// The result document of `compared` (matched with `options`), as JSON text indented by two
-/// spaces, ending with a newline.
-std::string match_json(const matching::InputMatch& compared, const matching::MatchOptions& options);
+/// spaces, ending with a newline: its first `top` distinct alignments (Alignment::repeat_of 0),
+/// or with top 0 every alignment, the whole merge tree and the repeats.
+std::string match_json(const matching::InputMatch& compared, const matching::MatchOptions& options,
+                       std::size_t top = 0);
 
 }  // namespace surfcomp::report
