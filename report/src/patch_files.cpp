@@ -382,7 +382,7 @@ void write_methods_png(const mesh::Patch& patch, const std::vector<MethodMap>& m
     bar.insert(bar.end(), c.begin(), c.end());
   }
   const std::string lo = "0", mid = number(options.angle_top_degrees / 2),
-                    hi = number(options.angle_top_degrees) + " or more";
+                    hi = number(options.angle_top_degrees) + "+";
   detail::PanelGrid grid;
   grid.columns = columns;
   grid.panel = p;

@@ -124,10 +124,16 @@ PngStatus pixels(int width, int height, const std::uint8_t* rgb, PngSink sink, v
   return write_png(surface.get(), sink, closure);
 }
 
-/// Shows `text` with its horizontal centre at x, its baseline at y.
-void show_centred(cairo_t* cr, double x, double y, const char* text) {
+/// Shows `text` with its horizontal centre at x, its baseline at y, in the font size `size`,
+/// or smaller so that it is at most `width` pixels wide.
+void show_centred(cairo_t* cr, double x, double y, const char* text, double size, double width) {
+  cairo_set_font_size(cr, size);
   cairo_text_extents_t extents;
   cairo_text_extents(cr, text, &extents);
+  if (extents.x_advance > width && extents.x_advance > 0) {
+    cairo_set_font_size(cr, size * width / extents.x_advance);
+    cairo_text_extents(cr, text, &extents);
+  }
   cairo_move_to(cr, x - extents.width / 2 - extents.x_bearing, y);
   cairo_show_text(cr, text);
 }
@@ -161,13 +167,14 @@ PngStatus panel_grid(const PanelGrid* grid, PngSink sink, void* closure) {
 
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
-  cairo_set_font_size(cr, 13);
-  for (int c = 0; c < grid->columns; ++c) show_centred(cr, c * p + p / 2.0, 17, grid->titles[c]);
+  for (int c = 0; c < grid->columns; ++c)
+    show_centred(cr, c * p + p / 2.0, 17, grid->titles[c], 13, p - 6);
   cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   for (int c = 0; c < grid->columns; ++c) {
     if (grid->notes[c][0] == '\0') continue;
-    for (int row = 0; row < 2; ++row)
-      show_centred(cr, c * p + p / 2.0, kTitles + row * p + p / 2.0 + 4, grid->notes[c]);
+    for (int row = 0; row < 2; ++row) {
+      show_centred(cr, c * p + p / 2.0, kTitles + row * p + p / 2.0 + 4, grid->notes[c], 13, p - 6);
+    }
   }
 
   // The colour bar, lo at the left; its samples without antialiasing keep exact colours.
@@ -185,16 +192,16 @@ PngStatus panel_grid(const PanelGrid* grid, PngSink sink, void* closure) {
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_rectangle(cr, bar_x, bar_y, bar_length, bar_height);
   cairo_stroke(cr);
-  cairo_set_font_size(cr, 12);
   const double labels_y = bar_y + bar_height + 14;
+  cairo_set_font_size(cr, 12);
   cairo_text_extents_t extents;
   cairo_move_to(cr, bar_x, labels_y);
   cairo_show_text(cr, grid->lo_text);
-  show_centred(cr, bar_x + bar_length / 2, labels_y, grid->mid_text);
   cairo_text_extents(cr, grid->hi_text, &extents);
   cairo_move_to(cr, bar_x + bar_length - extents.width - extents.x_bearing, labels_y);
   cairo_show_text(cr, grid->hi_text);
-  show_centred(cr, width / 2.0, labels_y + 18, grid->caption);
+  show_centred(cr, bar_x + bar_length / 2, labels_y, grid->mid_text, 12, bar_length / 4);
+  show_centred(cr, width / 2.0, labels_y + 18, grid->caption, 12, width - 8);
   return write_png(surface.get(), sink, closure);
 }
 
