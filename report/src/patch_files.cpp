@@ -96,7 +96,7 @@ std::string number(double value) {
   return text;
 }
 
-/// The colour of `value` on viridis from 0 (dark blue) to `top` (yellow), as 8-bit RGB;
+/// The colour of `value` on viridis from 0 (dark purple) to `top` (yellow), as 8-bit RGB;
 /// values beyond the range are clamped.
 std::array<std::uint8_t, 3> viridis_colour(double value, double top) {
   // Viridis at 0, 1/4, 1/2, 3/4 and 1, linearly between.

@@ -105,7 +105,7 @@ struct MethodsPngOptions {
 ///   show as such.
 /// - Bottom row: each map triangle coloured by its angle distortion, the mean over its corners
 ///   of |angle in the map - angle on the patch| (harmonic::corner_angle_distortion), on one
-///   scale for every column, from 0 to angle_top_degrees (viridis: dark blue to yellow).
+///   scale for every column, from 0 to angle_top_degrees (viridis: dark purple to yellow).
 /// A failed map's column is empty and labelled "failed". Below the panels, the colour bar.
 /// Size: maps.size() * panel by 2 * panel + 84 pixels. Throws OptionError for options outside
 /// their domains, InputError for no maps or a map without one finite point per patch vertex,
