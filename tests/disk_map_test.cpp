@@ -342,6 +342,27 @@ TEST(MapDistortionTest, SimilaritiesStretchesAndMirrorsHaveTheirKnownDistortion)
   EXPECT_THROW(map_distortion(positions, faces, Eigen::MatrixX2d::Zero(3, 2)), InputError);
 }
 
+// The per-corner terms are those map_distortion sums: a stretch by 2 along u turns a right angle
+// between the axes into a right angle, and the corners of a triangle together lose nothing.
+TEST(MapDistortionTest, CornerTermsAreTheDistortionsTerms) {
+  const mesh::Surface plane = test::disk(2.0, 6);
+  const Eigen::MatrixX3d positions = plane.positions();
+  const Eigen::MatrixX3i faces = plane.faces();
+  Eigen::MatrixX2d stretched = positions.leftCols<2>();
+  stretched.col(0) *= 2.0;
+  const Eigen::MatrixX3d corners = corner_angle_distortion(positions, faces, stretched);
+  ASSERT_EQ(corners.rows(), faces.rows());
+  const MapDistortion d = map_distortion(positions, faces, stretched);
+  EXPECT_NEAR(corners.mean(), d.angle_mean_degrees, 1e-12);
+  EXPECT_EQ(corners.maxCoeff(), d.angle_max_degrees);
+  EXPECT_GE(corners.minCoeff(), 0.0);
+  // A triangle's angles sum to 180 degrees before and after: its signed changes cancel, so its
+  // largest change is at most the sum of the other two.
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    EXPECT_LE(2.0 * corners.row(f).maxCoeff(), corners.row(f).sum() + 1e-9) << f;
+  EXPECT_THROW(corner_angle_distortion(positions, faces, Eigen::MatrixX2d::Zero(3, 2)), InputError);
+}
+
 // compare_with_cgal on a sphere cap: the two maps agree, and both are measured.
 TEST(MapDistortionTest, TheCgalComparisonAgreesOnASphereCap) {
   const test::TestPatch patch = test::sphere_cap_patch();

@@ -2,6 +2,7 @@
 // reader (the reader MeshLab-like tools share the format with) takes the patch with one texture
 // coordinate per vertex equal to the map, and our PLY reader takes u, v and the properties back.
 #include "analytic_meshes.hpp"
+#include "program_run.hpp"
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
@@ -102,6 +103,45 @@ TEST(PatchFiles, BadImagesAndRangesAreRefused) {
   EXPECT_EQ(report::diverging_colour(0.0, -1.0, 1.0), (std::array<std::uint8_t, 3>{255, 255, 255}));
   EXPECT_EQ(report::diverging_colour(5.0, -1.0, 1.0), (std::array<std::uint8_t, 3>{178, 24, 43}));
   EXPECT_EQ(report::diverging_colour(-1.0, -1.0, 1.0), (std::array<std::uint8_t, 3>{33, 102, 172}));
+}
+
+TEST(PatchFiles, AFreeBorderMapIsFittedIntoTheDisksSquareKeepingItsShape) {
+  Eigen::MatrixX2d uv(3, 2);
+  uv << 2, 1, 6, 1, 2, 3;  // a box 4 by 2 centred at (4, 2)
+  const Eigen::MatrixX2d fitted = report::fit_to_disk_square(uv);
+  Eigen::MatrixX2d expected(3, 2);
+  expected << -1, -0.5, 1, -0.5, -1, 0.5;
+  EXPECT_LT((fitted - expected).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_THROW(report::fit_to_disk_square(Eigen::MatrixX2d(0, 2)), InputError);
+  EXPECT_THROW(report::fit_to_disk_square(Eigen::MatrixX2d::Ones(3, 2)), InputError);
+  uv(1, 0) = std::nan("");
+  EXPECT_THROW(report::fit_to_disk_square(uv), InputError);
+}
+
+TEST(PatchFiles, TheMethodsFigureHasAColumnPerMapAndRefusesBadMaps) {
+  mesh::Surface surface;
+  const harmonic::CriticalPointDescriptor cp = a_described_point(surface);
+  const test::TempDir dir;
+  const fs::path png = dir / "methods.png";
+  report::MethodsPngOptions options;
+  options.panel = 96;
+  report::write_methods_png(cp.patch, {{"harmonic", cp.map.uv}, {"arap", {}}}, png, options);
+  const auto [width, height] = test::png_size(png);
+  EXPECT_EQ(width, 2u * 96);        // two columns, the failed one among them
+  EXPECT_EQ(height, 2u * 96 + 84);  // two rows, the titles and the colour bar
+
+  const fs::path refused = dir / "refused.png";
+  const Eigen::MatrixX2d short_map = cp.map.uv.topRows(3);
+  EXPECT_THROW(report::write_methods_png(cp.patch, {{"tutte", short_map}}, refused), InputError);
+  EXPECT_THROW(report::write_methods_png(cp.patch, {}, refused), InputError);
+  options.panel = 10;
+  EXPECT_THROW(report::write_methods_png(cp.patch, {{"harmonic", cp.map.uv}}, refused, options),
+               OptionError);
+  options.panel = 96;
+  options.angle_top_degrees = 0.0;
+  EXPECT_THROW(report::write_methods_png(cp.patch, {{"harmonic", cp.map.uv}}, refused, options),
+               OptionError);
+  EXPECT_FALSE(fs::exists(refused));
 }
 
 }  // namespace

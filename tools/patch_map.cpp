@@ -31,6 +31,8 @@
 namespace surfcomp::tools {
 namespace {
 
+/// The usage text; %d and %g are report::MethodsPngOptions' checker_squares and
+/// angle_top_degrees (usage()).
 constexpr const char* kUsage =
     "usage: surfcomp patch-map INPUT -o DIR [--cp I ... | --all] [--compare-cgal]\n"
     "                          [--methods M,M,...|all] [options]\n\n"
@@ -43,7 +45,7 @@ constexpr const char* kUsage =
     "  cpI_image.png  the harmonic shape image as a polar plot with a colour bar\n"
     "  cpI_grid.png   the image's grid, one pixel per grid point (sectors x rings)\n"
     "  patch_maps.json  every critical point written, with its files and, with --compare-cgal,\n"
-    "                 the comparison\n"
+    "                 the comparison; with --methods, each method's figures and file\n"
     "--compare-cgal also maps each patch with CGAL's Surface_mesh_parameterization (the same\n"
     "border and spring weights) and prints, per point, the largest and mean distance between\n"
     "the two maps, the angle and area distortion and flipped triangles of both, and both times.\n"
@@ -53,9 +55,31 @@ constexpr const char* kUsage =
     "medians over the points: harmonic (ours, --weights), and CGAL's tutte, mean-value,\n"
     "discrete-conformal, discrete-authalic (unit circle border by arc length), lscm and arap\n"
     "(free border); all: every one. A method that fails on a patch says so in its row and is\n"
-    "left out of its medians (failed: the count).\n\n"
+    "left out of its medians (failed: the count). It also writes, per point:\n"
+    "  cpI_M.obj      the patch with method M's map as texture coordinates, as cpI.obj; a\n"
+    "                 free-border map (lscm, arap) moved and scaled by one factor so that its\n"
+    "                 longer side spans the unit square, centred, its aspect ratio kept.\n"
+    "                 cpI_harmonic.obj holds cpI.obj's map. None for a method that failed.\n"
+    "  cpI_methods.png  the maps side by side, a column per method (empty and labelled\n"
+    "                 \"failed\" for one that failed). Top row: a checkerboard laid on the\n"
+    "                 patch (squares of 1/%d of its diameter, in its best-fit plane) seen\n"
+    "                 through the map: a map that keeps angles shows squares, of whatever\n"
+    "                 size; shear and stretch show as such. Bottom row: each triangle's angle\n"
+    "                 distortion (mean |angle in the map - angle on the patch| at its corners)\n"
+    "                 on one colour scale for every method, 0 to %g degrees or more.\n\n"
     "INPUT  a molecule or mesh (as hsi-build), or a .hsi file (its stored patches and maps; the\n"
     "       description options then do not apply)";
+
+/// kUsage with the figure's defaults, from the one place that sets them.
+std::string usage() {
+  const report::MethodsPngOptions figure;
+  const int length =
+      std::snprintf(nullptr, 0, kUsage, figure.checker_squares, figure.angle_top_degrees);
+  std::string text(static_cast<std::size_t>(length) + 1, '\0');
+  std::snprintf(text.data(), text.size(), kUsage, figure.checker_squares, figure.angle_top_degrees);
+  text.pop_back();
+  return text;
+}
 
 struct Chosen {
   std::size_t index = 0;
@@ -104,8 +128,18 @@ std::vector<harmonic::Parameterization> parameterizations(const std::string& tex
                         ", all)");
     out.push_back(static_cast<harmonic::Parameterization>(found - names.begin()));
   }
+  // A method named twice ("all,lscm") is compared once, where it is first named: each has one
+  // column and one file.
+  std::vector<harmonic::Parameterization> once;
+  for (const harmonic::Parameterization method : out)
+    if (std::find(once.begin(), once.end(), method) == once.end()) once.push_back(method);
+  out = once;
   if (out.empty()) throw OptionError("--methods: expected one or more of " + known + ", or all");
   return out;
+}
+
+const char* method_name(harmonic::Parameterization method) {
+  return harmonic::parameterization_names[static_cast<std::size_t>(method)];
 }
 
 double median(std::vector<double> values) {
@@ -137,7 +171,7 @@ int patch_map(const std::vector<std::string>& args) {
   // clang-format on
   described.add(description_options);
   po::variables_map vm;
-  if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
+  if (!parse_command_line(args, described, 1, usage().c_str(), vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   const bool all = vm["all"].as<bool>(), compare = vm["compare-cgal"].as<bool>();
@@ -238,6 +272,9 @@ int patch_map(const std::vector<std::string>& args) {
     const std::string stem = "cp" + std::to_string(c.index);
     for (const char* suffix : {".obj", ".ply", "_image.png", "_grid.png"})
       names.push_back(stem + suffix);
+    for (const harmonic::Parameterization method : methods)
+      names.push_back(stem + "_" + method_name(method) + ".obj");
+    if (!methods.empty()) names.push_back(stem + "_methods.png");
   }
   names.emplace_back("patch_maps.json");
   for (const std::string& name : names) {
@@ -262,6 +299,7 @@ int patch_map(const std::vector<std::string>& args) {
   std::filesystem::create_directory(staging, error);
   if (error) throw FileError(staging.string(), "cannot make the folder (" + error.message() + ")");
   std::size_t written = 0;
+  std::vector<std::string> staged;  // the files written into the staging folder, in order
   try {
     nlohmann::json points = nlohmann::json::array();
     if (compare) {
@@ -301,8 +339,11 @@ int patch_map(const std::vector<std::string>& args) {
       report::write_image_grid_png(c.descriptor.image, files[3]);
       entry["patch_vertices"] = patch.positions.rows();
       entry["patch_faces"] = patch.faces.rows();
-      entry["files"] = {files[0].filename().string(), files[1].filename().string(),
-                        files[2].filename().string(), files[3].filename().string()};
+      entry["files"] = nlohmann::json::array();
+      for (const std::filesystem::path& file : files) {
+        staged.push_back(file.filename().string());
+        entry["files"].push_back(staged.back());
+      }
       if (compare) {
         const harmonic::DiskMapComparison m = harmonic::compare_with_cgal(
             patch.positions, patch.faces, patch.outer_boundary, settings.descriptors.disk_map);
@@ -324,22 +365,44 @@ int patch_map(const std::vector<std::string>& args) {
             harmonic::compare_parameterizations(patch.positions, patch.faces, patch.outer_boundary,
                                                 methods, settings.descriptors.disk_map);
         nlohmann::json compared = nlohmann::json::array();
+        std::vector<report::MethodMap> figure;
         for (const harmonic::ParameterizationResult& r : results) {
-          const char* name = harmonic::parameterization_names[static_cast<std::size_t>(r.method)];
+          const char* name = method_name(r.method);
           if (!r.failure.empty()) {
             compared.push_back({{"method", name}, {"failure", r.failure}});
+            figure.push_back({name, {}});
             console::summary("%4zu %-19s failed: %s\n", c.index, name, r.failure.c_str());
             continue;
           }
+          // The harmonic column is the description's map, the one cpI.obj holds (the
+          // comparison recomputes it from the same patch and options).
+          harmonic::DiskMap map;
+          map.uv = r.method == harmonic::Parameterization::harmonic ? c.descriptor.map.uv
+                   : harmonic::has_free_border(r.method) ? report::fit_to_disk_square(r.uv)
+                                                         : r.uv;
+          const std::string file = stem + "_" + name + ".obj";
+          report::write_patch_obj(
+              patch, map, staging / file,
+              std::string(name) + (harmonic::has_free_border(r.method)
+                                       ? " map, fitted into the unit disk's square,"
+                                       : " map onto the unit disk"));
+          staged.push_back(file);
+          entry["files"].push_back(file);
+          figure.push_back({name, map.uv});
           nlohmann::json one = distortion_json(r.distortion);
           one["method"] = name;
           one["ms"] = r.ms;
+          one["file"] = file;
           compared.push_back(one);
           console::summary("%4zu %-19s %10.3f %10.3f %10.4f %10.4f %7d %9.3f\n", c.index, name,
                            r.distortion.angle_mean_degrees, r.distortion.angle_max_degrees,
                            r.distortion.area_mean_log, r.distortion.area_max_log,
                            r.distortion.flipped, r.ms);
         }
+        const std::string side_by_side = stem + "_methods.png";
+        report::write_methods_png(patch, figure, staging / side_by_side);
+        staged.push_back(side_by_side);
+        entry["files"].push_back(side_by_side);
         entry["methods"] = compared;
         by_point.push_back(results);
       }
@@ -367,7 +430,7 @@ int patch_map(const std::vector<std::string>& args) {
           flipped.push_back(r.distortion.flipped);
           ms.push_back(r.ms);
         }
-        const char* name = harmonic::parameterization_names[static_cast<std::size_t>(methods[m])];
+        const char* name = method_name(methods[m]);
         const std::vector<double> medians = {median(angle),    median(angle_max), median(area),
                                              median(area_max), median(flipped),   median(ms)};
         summary.push_back({{"method", name},
@@ -395,7 +458,8 @@ int patch_map(const std::vector<std::string>& args) {
     if (!methods.empty()) document["method_medians"] = summary;
     io::write_file_atomically(staging / "patch_maps.json",
                               [&](std::ostream& out) { out << json_text(document); });
-    for (const std::string& name : names) std::filesystem::rename(staging / name, folder / name);
+    staged.emplace_back("patch_maps.json");
+    for (const std::string& name : staged) std::filesystem::rename(staging / name, folder / name);
     std::filesystem::remove(staging);
   } catch (...) {
     std::filesystem::remove_all(staging, error);

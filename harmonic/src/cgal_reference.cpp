@@ -186,7 +186,7 @@ Eigen::MatrixX2d parameterize_patch(const Eigen::Ref<const Eigen::MatrixX3d>& po
   }
   check_status(status, where);
   Eigen::MatrixX2d uv = uv_of(patch, positions.rows(), where);
-  if (method == Parameterization::lscm || method == Parameterization::arap) {
+  if (has_free_border(method)) {
     double signed_area = 0.0;  // mirrored when the map turns the patch over
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {
       const Eigen::RowVector2d a = uv.row(faces(f, 0)), b = uv.row(faces(f, 1)),

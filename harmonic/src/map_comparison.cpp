@@ -52,11 +52,11 @@ std::vector<ParameterizationResult> compare_parameterizations(
   for (const Parameterization method : methods) {
     ParameterizationResult result;
     result.method = method;
-    Eigen::MatrixX2d uv;
     try {
-      result.ms = median_ms(
-          [&] { uv = parameterize_patch(positions, faces, outer_boundary, method, options); });
-      result.distortion = map_distortion(positions, faces, uv);
+      result.ms = median_ms([&] {
+        result.uv = parameterize_patch(positions, faces, outer_boundary, method, options);
+      });
+      result.distortion = map_distortion(positions, faces, result.uv);
     } catch (const NumericError& e) {
       result.failure = e.what();
     } catch (const TopologyError& e) {
@@ -66,6 +66,7 @@ std::vector<ParameterizationResult> compare_parameterizations(
       const double nan = std::numeric_limits<double>::quiet_NaN();
       result.ms = nan;
       result.distortion = {nan, nan, nan, nan, -1};
+      result.uv.resize(0, 2);
     }
     out.push_back(result);
   }

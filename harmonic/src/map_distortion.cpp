@@ -23,11 +23,10 @@ double corner_angle(const Point& a, const Point& b, const Point& c) {
   return std::acos(std::clamp(u.dot(v) / norms, -1.0, 1.0));
 }
 
-}  // namespace
-
-MapDistortion map_distortion(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
-                             const Eigen::Ref<const Eigen::MatrixX3i>& faces,
-                             const Eigen::Ref<const Eigen::MatrixX2d>& uv) {
+/// Throws InputError unless `uv` has a point per patch vertex and every face index is a vertex.
+void check_map_input(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                     const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                     const Eigen::Ref<const Eigen::MatrixX2d>& uv) {
   if (uv.rows() != positions.rows()) {
     throw InputError("map distortion: " + std::to_string(uv.rows()) + " map points for " +
                      std::to_string(positions.rows()) + " patch vertices");
@@ -38,6 +37,35 @@ MapDistortion map_distortion(const Eigen::Ref<const Eigen::MatrixX3d>& positions
       if (faces(f, k) < 0 || faces(f, k) >= n)
         throw InputError("map distortion: face " + std::to_string(f) + " has a vertex index " +
                          std::to_string(faces(f, k)) + " outside [0, " + std::to_string(n) + ")");
+}
+
+}  // namespace
+
+Eigen::MatrixX3d corner_angle_distortion(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                         const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                         const Eigen::Ref<const Eigen::MatrixX2d>& uv) {
+  check_map_input(positions, faces, uv);
+  Eigen::MatrixX3d out(faces.rows(), 3);
+  for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+    std::array<Eigen::Vector3d, 3> p;
+    std::array<Eigen::Vector2d, 3> q;
+    for (int k = 0; k < 3; ++k) {
+      p[static_cast<std::size_t>(k)] = positions.row(faces(f, k)).transpose();
+      q[static_cast<std::size_t>(k)] = uv.row(faces(f, k)).transpose();
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t b = (k + 1) % 3, c = (k + 2) % 3;
+      out(f, static_cast<Eigen::Index>(k)) =
+          std::abs(corner_angle(q[k], q[b], q[c]) - corner_angle(p[k], p[b], p[c])) * 180.0 / M_PI;
+    }
+  }
+  return out;
+}
+
+MapDistortion map_distortion(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                             const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                             const Eigen::Ref<const Eigen::MatrixX2d>& uv) {
+  const Eigen::MatrixX3d angles = corner_angle_distortion(positions, faces, uv);
   MapDistortion out;
   out.flipped = count_flipped_triangles(uv, faces);
   std::vector<double> patch_area(static_cast<std::size_t>(faces.rows()));
@@ -49,13 +77,8 @@ MapDistortion map_distortion(const Eigen::Ref<const Eigen::MatrixX3d>& positions
     for (int k = 0; k < 3; ++k) {
       p[static_cast<std::size_t>(k)] = positions.row(faces(f, k)).transpose();
       q[static_cast<std::size_t>(k)] = uv.row(faces(f, k)).transpose();
-    }
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::size_t b = (k + 1) % 3, c = (k + 2) % 3;
-      const double difference =
-          std::abs(corner_angle(q[k], q[b], q[c]) - corner_angle(p[k], p[b], p[c])) * 180.0 / M_PI;
-      angle_sum += difference;
-      out.angle_max_degrees = std::max(out.angle_max_degrees, difference);
+      angle_sum += angles(f, k);
+      out.angle_max_degrees = std::max(out.angle_max_degrees, angles(f, k));
     }
     const double a3 = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm();
     const Eigen::Vector2d e1 = q[1] - q[0], e2 = q[2] - q[0];

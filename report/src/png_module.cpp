@@ -97,10 +97,12 @@ PngStatus polar_plot(const PolarPlot* plot, PngSink sink, void* closure) {
   return write_png(surface.get(), sink, closure);
 }
 
-PngStatus pixels(int width, int height, const std::uint8_t* rgb, PngSink sink, void* closure) {
-  const SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height),
-                           &cairo_surface_destroy);
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return PngStatus::no_image;
+/// A cairo image of `width` by `height` pixels holding `rgb` (row after row of RGB triples);
+/// its status is not success when cairo cannot make it.
+SurfacePtr image_of(int width, int height, const std::uint8_t* rgb) {
+  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height),
+                     &cairo_surface_destroy);
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return surface;
   cairo_surface_flush(surface.get());
   unsigned char* data = cairo_image_surface_get_data(surface.get());
   const int stride = cairo_image_surface_get_stride(surface.get());
@@ -113,6 +115,93 @@ PngStatus pixels(int width, int height, const std::uint8_t* rgb, PngSink sink, v
     }
   }
   cairo_surface_mark_dirty(surface.get());
+  return surface;
+}
+
+PngStatus pixels(int width, int height, const std::uint8_t* rgb, PngSink sink, void* closure) {
+  const SurfacePtr surface = image_of(width, height, rgb);
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return PngStatus::no_image;
+  return write_png(surface.get(), sink, closure);
+}
+
+/// Shows `text` with its horizontal centre at x, its baseline at y, in the font size `size`,
+/// or smaller so that it is at most `width` pixels wide.
+void show_centred(cairo_t* cr, double x, double y, const char* text, double size, double width) {
+  cairo_set_font_size(cr, size);
+  cairo_text_extents_t extents;
+  cairo_text_extents(cr, text, &extents);
+  if (extents.x_advance > width && extents.x_advance > 0) {
+    cairo_set_font_size(cr, size * width / extents.x_advance);
+    cairo_text_extents(cr, text, &extents);
+  }
+  cairo_move_to(cr, x - extents.width / 2 - extents.x_bearing, y);
+  cairo_show_text(cr, text);
+}
+
+PngStatus panel_grid(const PanelGrid* grid, PngSink sink, void* closure) {
+  constexpr double kTitles = 24;  // the strip of titles over the panels
+  const int p = grid->panel, width = grid->columns * p, height = 2 * p + 84;
+  const SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height),
+                           &cairo_surface_destroy);
+  const SurfacePtr panels = image_of(width, 2 * p, grid->panel_rgb);
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS ||
+      cairo_surface_status(panels.get()) != CAIRO_STATUS_SUCCESS)
+    return PngStatus::no_image;
+  const ContextPtr context(cairo_create(surface.get()), &cairo_destroy);
+  cairo_t* cr = context.get();
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_set_source_surface(cr, panels.get(), 0, kTitles);
+  cairo_paint(cr);
+
+  // Thin grey lines between the columns and between the rows.
+  cairo_set_source_rgb(cr, 0.75, 0.75, 0.75);
+  cairo_set_line_width(cr, 1);
+  for (int c = 1; c < grid->columns; ++c) {
+    cairo_move_to(cr, c * p + 0.5, 0);
+    cairo_line_to(cr, c * p + 0.5, kTitles + 2 * p);
+  }
+  cairo_move_to(cr, 0, kTitles + p + 0.5);
+  cairo_line_to(cr, width, kTitles + p + 0.5);
+  cairo_stroke(cr);
+
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+  for (int c = 0; c < grid->columns; ++c)
+    show_centred(cr, c * p + p / 2.0, 17, grid->titles[c], 13, p - 6);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  for (int c = 0; c < grid->columns; ++c) {
+    if (grid->notes[c][0] == '\0') continue;
+    for (int row = 0; row < 2; ++row) {
+      show_centred(cr, c * p + p / 2.0, kTitles + row * p + p / 2.0 + 4, grid->notes[c], 13, p - 6);
+    }
+  }
+
+  // The colour bar, lo at the left; its samples without antialiasing keep exact colours.
+  const double bar_x = 20, bar_y = kTitles + 2 * p + 8, bar_length = width - 40, bar_height = 12;
+  cairo_save(cr);
+  cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
+  for (int i = 0; i < grid->bar_samples; ++i) {
+    const double x0 = bar_x + bar_length * i / grid->bar_samples;
+    const double x1 = bar_x + bar_length * (i + 1) / grid->bar_samples;
+    set_colour(cr, grid->bar_colours + 3 * static_cast<std::ptrdiff_t>(i));
+    cairo_rectangle(cr, x0, bar_y, x1 - x0, bar_height);
+    cairo_fill(cr);
+  }
+  cairo_restore(cr);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_rectangle(cr, bar_x, bar_y, bar_length, bar_height);
+  cairo_stroke(cr);
+  const double labels_y = bar_y + bar_height + 14;
+  cairo_set_font_size(cr, 12);
+  cairo_text_extents_t extents;
+  cairo_move_to(cr, bar_x, labels_y);
+  cairo_show_text(cr, grid->lo_text);
+  cairo_text_extents(cr, grid->hi_text, &extents);
+  cairo_move_to(cr, bar_x + bar_length - extents.width - extents.x_bearing, labels_y);
+  cairo_show_text(cr, grid->hi_text);
+  show_centred(cr, bar_x + bar_length / 2, labels_y, grid->mid_text, 12, bar_length / 4);
+  show_centred(cr, width / 2.0, labels_y + 18, grid->caption, 12, width - 8);
   return write_png(surface.get(), sink, closure);
 }
 
@@ -120,5 +209,6 @@ PngStatus pixels(int width, int height, const std::uint8_t* rgb, PngSink sink, v
 }  // namespace surfcomp::report::detail
 
 extern "C" __attribute__((visibility("default")))
-const surfcomp::report::detail::PngModule surfcomp_png_module_1 = {
-    &surfcomp::report::detail::polar_plot, &surfcomp::report::detail::pixels};
+const surfcomp::report::detail::PngModule surfcomp_png_module_2 = {
+    &surfcomp::report::detail::polar_plot, &surfcomp::report::detail::pixels,
+    &surfcomp::report::detail::panel_grid};

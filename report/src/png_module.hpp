@@ -9,9 +9,10 @@
 
 namespace surfcomp::report::detail {
 
-/// The module file and its one exported symbol, a `const PngModule`.
+/// The module file and its one exported symbol, a `const PngModule`. The symbol's number
+/// changes with PngModule's layout, so that a module of another layout is not found.
 constexpr const char* kPngModuleFile = "libsurfcomp_png.so";
-constexpr const char* kPngModuleSymbol = "surfcomp_png_module_1";
+constexpr const char* kPngModuleSymbol = "surfcomp_png_module_2";
 
 /// Takes the next `length` bytes of the PNG file; returns false when they cannot be written.
 /// It must not throw: the module calls it from inside cairo.
@@ -33,6 +34,27 @@ struct PolarPlot {
   const char* caption = "";   ///< below the bar
 };
 
+/// What write_methods_png draws (patch_files.hpp describes the picture): a strip of titles
+/// 24 pixels high, two rows of `columns` square panels, and a strip of 60 pixels with the colour
+/// bar, its labels and its caption; columns * panel by 2 * panel + 84 pixels in all.
+struct PanelGrid {
+  int columns = 0;
+  int panel = 0;  ///< side of one panel, pixels
+  /// The two rows of panels, drawn already: 2 * panel rows of columns * panel RGB triples each,
+  /// from the top.
+  const std::uint8_t* panel_rgb = nullptr;
+  const char* const* titles = nullptr;  ///< `columns` texts, one over each column
+  const char* const* notes =
+      nullptr;  ///< `columns` texts ("" for none), in each panel of its column
+  int bar_samples = 0;
+  /// `bar_samples` RGB triples: the colour bar from its left end (lo) to its right end (hi).
+  const std::uint8_t* bar_colours = nullptr;
+  const char* lo_text = "";   ///< below the bar's left end
+  const char* mid_text = "";  ///< below its middle
+  const char* hi_text = "";   ///< below its right end
+  const char* caption = "";   ///< below the labels, centred
+};
+
 /// The outcome of a drawing.
 enum class PngStatus : int { ok = 0, no_image = 1, write_failed = 2 };
 
@@ -42,6 +64,8 @@ struct PngModule {
   PngStatus (*polar_plot)(const PolarPlot* plot, PngSink sink, void* closure);
   /// A PNG of `width` by `height` pixels, row after row of RGB triples from `rgb`, to `sink`.
   PngStatus (*pixels)(int width, int height, const std::uint8_t* rgb, PngSink sink, void* closure);
+  /// The panels with their titles, notes and colour bar as a PNG, to `sink`.
+  PngStatus (*panel_grid)(const PanelGrid* grid, PngSink sink, void* closure);
 };
 
 }  // namespace surfcomp::report::detail

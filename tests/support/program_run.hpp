@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <sstream>
 #include <string>
 #include <system_error>
+#include <utility>
 
 namespace surfcomp::test {
 
@@ -42,6 +44,20 @@ inline std::string file_bytes(const std::filesystem::path& path) {
   std::stringstream bytes;
   bytes << in.rdbuf();
   return bytes.str();
+}
+
+/// The width and height of the PNG file at `path`, from its IHDR chunk (bytes 16 to 23,
+/// big-endian); {0, 0} when it does not start as a PNG file does.
+inline std::pair<std::uint32_t, std::uint32_t> png_size(const std::filesystem::path& path) {
+  const std::string bytes = file_bytes(path);
+  if (bytes.size() < 24 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0) return {0, 0};
+  const auto word = [&](std::size_t at) {
+    std::uint32_t value = 0;
+    for (std::size_t k = 0; k < 4; ++k)
+      value = (value << 8) | static_cast<unsigned char>(bytes[at + k]);
+    return value;
+  };
+  return {word(16), word(20)};
 }
 
 /// Every file under `folder` (recursively) by its path relative to it, with its bytes: what a

@@ -73,6 +73,12 @@ enum class Parameterization {
 inline constexpr std::array<const char*, 7> parameterization_names = {
     "harmonic", "tutte", "mean-value", "discrete-conformal", "discrete-authalic", "lscm", "arap"};
 
+/// Whether `method` leaves the patch's border free (lscm, arap): its map has the scale and
+/// position CGAL gives it, not the unit disk's.
+constexpr bool has_free_border(Parameterization method) {
+  return method == Parameterization::lscm || method == Parameterization::arap;
+}
+
 /// The map of the patch (harmonic_disk_map's arguments) by `method`: #V by 2. Fixed-border
 /// methods put the border on the unit circle by arc length as cgal_disk_map does; free-border
 /// methods (lscm, arap) give CGAL's uv, mirrored when CGAL's orientation is the mirror image of
@@ -88,6 +94,8 @@ struct ParameterizationResult {
   Parameterization method = Parameterization::harmonic;
   MapDistortion distortion;
   double ms = 0.0;  ///< wall-clock time of one map, as DiskMapComparison's
+  /// The map (parameterize_patch), #V by 2; 0 by 2 when the method failed.
+  Eigen::MatrixX2d uv;
   /// Why the method gave no map (its NumericError or TopologyError), or empty; the distortion
   /// and time are then NaN.
   std::string failure;

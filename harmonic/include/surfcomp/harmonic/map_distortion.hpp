@@ -30,4 +30,12 @@ MapDistortion map_distortion(const Eigen::Ref<const Eigen::MatrixX3d>& positions
                              const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                              const Eigen::Ref<const Eigen::MatrixX2d>& uv);
 
+/// |angle in the map - angle on the patch| at every corner, degrees: #F by 3, entry (f, k) the
+/// corner at vertex faces(f, k); the terms whose mean and largest value map_distortion reports.
+/// A corner with an edge of zero length has angle 0 on that side. Arguments and throws as
+/// map_distortion.
+Eigen::MatrixX3d corner_angle_distortion(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                                         const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                                         const Eigen::Ref<const Eigen::MatrixX2d>& uv);
+
 }  // namespace surfcomp::harmonic
