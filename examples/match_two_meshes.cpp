@@ -1,7 +1,8 @@
 // Matches two general triangle meshes by shape alone, as a mesh researcher would: reads REF and
 // PROBE (.off .obj .ply; e.g. a mesh and a partial scan of it), takes a common length unit from
 // them, describes both (critical points, geodesic patches, harmonic maps, shape images), matches
-// PROBE onto REF and prints the top alignment, in the meshes' own coordinates.
+// PROBE onto REF, polishes the best pose by ICP and prints it, in the meshes' own coordinates,
+// with its coverage: how much of the part lies on the whole.
 // usage: match_two_meshes REF PROBE [--repair]
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
     probe.path = argv[2];
     matching::MatchInputOptions options;  // --scale auto: the unit comes from the meshes
     options.input.repair = argc == 4;     // CGAL's repair of non-manifold, duplicate, stray parts
+    options.match.icp_top = 1;            // the best pose polished by point-to-plane ICP
     const matching::InputMatch m = matching::match_inputs(reference, probe, options);
     for (const std::string& note : m.notes) std::printf("note: %s\n", note.c_str());
     summarise(m.reference);
@@ -53,6 +55,9 @@ int main(int argc, char** argv) {
     }
     std::printf("overlay score %.4f from %zu critical-point pairs\n", top.overlay.score,
                 top.cp_pairs.size());
+    std::printf("coverage %.3f (of REF %.3f, of PROBE %.3f within %.3g of the other)\n",
+                top.coverage.score, top.coverage.reference, top.coverage.probe,
+                options.match.coverage_distance * m.unit);
     return 0;
   } catch (const Error& e) {  // surfcomp's errors name the file and the problem
     std::fprintf(stderr, "match_two_meshes: error: %s\n", e.what());
