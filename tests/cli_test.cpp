@@ -547,6 +547,21 @@ TEST_F(Cli, StageToolsDescribeAMeshAtItsOwnScale) {
       run("patch-map " + off.string() + " --cp 0 -o " + scratch("maps").string() + "/");
   ASSERT_EQ(maps.status, 0) << maps.err;
   EXPECT_TRUE(fs::exists(scratch("maps") / "patch_maps.json"));
+
+  // A mesh over the stated vertex limit is refused in one line, with or without --repair.
+  const std::size_t n_vertices = harmonic::io::read_hsi(scratch("b.hsi")).surface.n_vertices();
+  for (const char* repair : {"", " --repair"}) {
+    const ProgramRun over =
+        run("cp-detect " + off.string() + " --max-vertices " + std::to_string(n_vertices - 1) +
+            repair + " -o " + scratch("over.json").string());
+    EXPECT_EQ(over.status, 1) << over.err;
+    EXPECT_NE(over.err.find(off.string() + ": " + std::to_string(n_vertices) +
+                            " vertices, more than --max-vertices"),
+              std::string::npos)
+        << over.err;
+    EXPECT_EQ(std::count(over.err.begin(), over.err.end(), '\n'), 1) << over.err;
+    EXPECT_FALSE(fs::exists(scratch("over.json")));
+  }
 }
 
 }  // namespace

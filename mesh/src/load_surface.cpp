@@ -67,6 +67,13 @@ namespace {
 void complete_mesh(LoadedSurface& loaded, const std::string& extension,
                    const SurfaceInputOptions& options) {
   const std::string& name = loaded.surface.source();
+  // A mesh read is held to the limit of a surface built: every step after this is linear or
+  // worse in its vertices.
+  const auto limit = static_cast<std::size_t>(options.surface.ses.max_vertices);
+  if (loaded.surface.n_vertices() > limit) {
+    throw InputError(name + ": " + std::to_string(loaded.surface.n_vertices()) +
+                     " vertices, more than --max-vertices " + std::to_string(limit));
+  }
   if (!options.molecule_file.empty() || is_molecular_mesh(loaded.surface, extension)) {
     if (options.unit > 0.0) {
       throw OptionError("--unit applies to general meshes; " + name +
