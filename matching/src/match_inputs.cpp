@@ -123,6 +123,7 @@ LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& opti
     side.surface = mesh::build_molecular_surface(*molecule, options.input.surface);
     side.molecule = std::move(molecule);
   } else if (input.surface) {
+    mesh::check_vertex_limit(*input.surface, options.input);
     side.surface = *input.surface;
     side.molecule = input.molecule;
     for (const char* name : {mesh::property::cc1, mesh::property::cc2, mesh::property::shape_index,

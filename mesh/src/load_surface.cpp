@@ -32,6 +32,14 @@ void check_surface_input(const std::filesystem::path& path, const SurfaceInputOp
   }
 }
 
+void check_vertex_limit(const Surface& surface, const SurfaceInputOptions& options) {
+  const auto limit = static_cast<std::size_t>(options.surface.ses.max_vertices);
+  if (surface.n_vertices() > limit) {
+    throw InputError(surface.source() + ": " + std::to_string(surface.n_vertices()) +
+                     " vertices, more than --max-vertices " + std::to_string(limit));
+  }
+}
+
 LoadedSurface read_mesh_input(const std::filesystem::path& path,
                               const SurfaceInputOptions& options) {
   LoadedSurface loaded;
@@ -43,6 +51,7 @@ LoadedSurface read_mesh_input(const std::filesystem::path& path,
     loaded.notes.push_back(repair_note(path.string(), repaired.report));
   } else {
     loaded.surface = io::read_mesh(path, &loaded.notes);
+    check_vertex_limit(loaded.surface, options);
   }
   return loaded;
 }
@@ -67,13 +76,6 @@ namespace {
 void complete_mesh(LoadedSurface& loaded, const std::string& extension,
                    const SurfaceInputOptions& options) {
   const std::string& name = loaded.surface.source();
-  // A mesh read is held to the limit of a surface built: every step after this is linear or
-  // worse in its vertices.
-  const auto limit = static_cast<std::size_t>(options.surface.ses.max_vertices);
-  if (loaded.surface.n_vertices() > limit) {
-    throw InputError(name + ": " + std::to_string(loaded.surface.n_vertices()) +
-                     " vertices, more than --max-vertices " + std::to_string(limit));
-  }
   if (!options.molecule_file.empty() || is_molecular_mesh(loaded.surface, extension)) {
     if (options.unit > 0.0) {
       throw OptionError("--unit applies to general meshes; " + name +
@@ -93,6 +95,7 @@ void complete_mesh(LoadedSurface& loaded, const std::string& extension,
 }  // namespace
 
 LoadedSurface load_mesh_surface(Surface surface, const SurfaceInputOptions& options) {
+  check_vertex_limit(surface, options);
   LoadedSurface loaded;
   loaded.surface = std::move(surface);
   complete_mesh(loaded, "", options);

@@ -32,6 +32,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -713,19 +714,33 @@ void add_error_classes(py::module_& m) {
   m.attr("FileError") = py::handle(c.file);
 }
 
+/// A library message as a Python user reads it: the options it names as the command line
+/// spells them (--max-vertices) become the keyword arguments (max_vertices).
+std::string python_message(const char* what) {
+  static const std::regex flag(R"((^|[\s(,;'"])--([a-z][a-z0-9]*(?:-[a-z0-9]+)*))");
+  std::string out;
+  std::string text = what;
+  std::smatch m;
+  while (std::regex_search(text, m, flag)) {
+    out += m.prefix().str() + m[1].str() + options::python_name(m[2].str());
+    text = m.suffix().str();
+  }
+  return out + text;
+}
+
 // pybind11 calls translators as void(std::exception_ptr).
 void translate(std::exception_ptr error) {  // NOLINT(performance-unnecessary-value-param)
   const ErrorClasses& c = error_classes();
   try {
     if (error) std::rethrow_exception(error);
   } catch (const FileError& e) {
-    PyErr_SetString(c.file, e.what());
+    PyErr_SetString(c.file, python_message(e.what()).c_str());
   } catch (const OptionError& e) {
-    PyErr_SetString(c.option, e.what());
+    PyErr_SetString(c.option, python_message(e.what()).c_str());
   } catch (const InputError& e) {
-    PyErr_SetString(c.input, e.what());
+    PyErr_SetString(c.input, python_message(e.what()).c_str());
   } catch (const Error& e) {
-    PyErr_SetString(c.error, e.what());
+    PyErr_SetString(c.error, python_message(e.what()).c_str());
   }
 }
 

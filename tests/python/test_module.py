@@ -487,6 +487,12 @@ def test_numpy_arrays_are_a_mesh_at_its_own_scale(radius):
     described = surfcomp.describe((vertices, faces))
     assert described.length_unit == pytest.approx(surface.length_unit, rel=1e-12)
     assert np.allclose(described.surface.vertices, vertices, rtol=1e-12, atol=1e-15 * radius)
+    # Errors name the keyword arguments, not the command line's options.
+    with pytest.raises(surfcomp.OptionError, match=r"^unit: value nan is outside") as refused:
+        surfcomp.build_surface((vertices, faces), unit=float("nan"))
+    with pytest.raises(surfcomp.InputError, match=r"more than max_vertices 10$"):
+        surfcomp.describe((vertices, faces), max_vertices=10)
+    assert "--" not in str(refused.value)
     # The Surface carries its unit into describe.
     chosen = surfcomp.build_surface((vertices, faces), unit=radius / 5)
     assert chosen.length_unit == pytest.approx(radius / 5)

@@ -65,10 +65,17 @@ std::string surface_input_formats();
 void check_surface_input(const std::filesystem::path& path, const SurfaceInputOptions& options);
 
 /// The mesh file `path` as it is (io::read_mesh) or, with options.repair, repaired
-/// (repair_mesh_file, bounded by options.surface.ses.max_vertices; LoadedSurface::repair says
-/// what changed): its geometry, without the curvature and potentials load_surface adds.
+/// (repair_mesh_file; LoadedSurface::repair says what changed), held to
+/// options.surface.ses.max_vertices (check_vertex_limit): its geometry, without the curvature
+/// and potentials load_surface adds.
 LoadedSurface read_mesh_input(const std::filesystem::path& path,
                               const SurfaceInputOptions& options);
+
+/// Throws InputError naming the surface's source when it has more vertices than
+/// options.surface.ses.max_vertices (--max-vertices), the limit a surface built is held to:
+/// every step after reading a mesh is linear or worse in its vertices. read_mesh_input and
+/// load_mesh_surface check it; a caller holding a mesh of its own calls it.
+void check_vertex_limit(const Surface& surface, const SurfaceInputOptions& options);
 
 /// The curvature properties (cc1, cc2, shape_index, curvedness) of a general mesh, fitted over
 /// general_mesh_curvature_radius units on its copy in `unit` (the other curvature options from
@@ -77,8 +84,8 @@ void assign_general_mesh_curvature(Surface& surface, double unit, CurvatureOptio
 
 /// A mesh made elsewhere (from arrays, say) given the properties load_surface gives a mesh
 /// file's: with ESP and LP (or options.molecule_file's potentials) it is in A, else a general
-/// mesh described in its length unit. Throws as assign_surface_properties and general_mesh_unit;
-/// OptionError for options.unit on a mesh in A.
+/// mesh described in its length unit. Throws as check_vertex_limit, assign_surface_properties
+/// and general_mesh_unit; OptionError for options.unit on a mesh in A.
 LoadedSurface load_mesh_surface(Surface surface, const SurfaceInputOptions& options = {});
 
 /// The SES of the molecule file `path` (io::read_molecule with options.read), or the mesh file
