@@ -30,6 +30,10 @@ Eigen::Vector3d to_eigen(const Kernel::Point_3& p) { return {p.x(), p.y(), p.z()
 struct Side {
   Triangles triangles;
   std::vector<Eigen::Vector3d> unit_normals;  ///< of the triangles, by the faces' orientation
+  /// The unit vertex normals at each triangle's corners, for a normal that varies smoothly
+  /// over the surface (closest points often fall on an edge or a corner, which two or more
+  /// triangles share).
+  std::vector<Eigen::Matrix3d> corner_normals;
   Tree tree;
   Eigen::Matrix3Xd points;   ///< the measured vertices
   Eigen::Matrix3Xd normals;  ///< their unit normals
@@ -46,6 +50,9 @@ struct Side {
     const auto kept = [&](int v) { return !mask || (*mask)[static_cast<std::size_t>(v)]; };
     const Eigen::MatrixX3d positions = surface.positions();
     const Eigen::MatrixX3i faces = surface.faces();
+    mesh::Surface with_normals = surface;
+    if (!with_normals.has_normals()) with_normals.compute_normals();
+    const Eigen::MatrixX3d vertex_normals = with_normals.normals();
     for (Eigen::Index f = 0; f < faces.rows(); ++f) {
       if (!kept(faces(f, 0)) || !kept(faces(f, 1)) || !kept(faces(f, 2))) continue;
       const Eigen::Vector3d a = positions.row(faces(f, 0)).transpose();
@@ -56,6 +63,9 @@ struct Side {
       if (!(norm > 0.0)) continue;  // a degenerate triangle has no plane to measure to
       triangles.emplace_back(to_cgal(a), to_cgal(b), to_cgal(c));
       unit_normals.push_back(cross / norm);
+      Eigen::Matrix3d corners;
+      for (int k = 0; k < 3; ++k) corners.col(k) = vertex_normals.row(faces(f, k)).transpose();
+      corner_normals.push_back(corners);
       area += 0.5 * norm;
     }
     if (triangles.empty()) {
@@ -67,9 +77,6 @@ struct Side {
     tree.accelerate_distance_queries();
     (void)tree.squared_distance(triangles.front()[0]);  // builds the search tree before threads
 
-    mesh::Surface with_normals = surface;
-    if (!with_normals.has_normals()) with_normals.compute_normals();
-    const Eigen::MatrixX3d vertex_normals = with_normals.normals();
     const Eigen::VectorXd areas = mesh::vertex_areas(surface);
     std::vector<int> vertices;
     for (int v = 0; v < static_cast<int>(n); ++v) {
@@ -98,6 +105,21 @@ struct Side {
     const double reach = distance * (1.0 + 1e-9);
     const Kernel::Point_3 hint = to_cgal(x + Eigen::Vector3d(reach, 0.0, 0.0));
     return tree.squared_distance(to_cgal(x), hint) <= distance * distance;
+  }
+
+  /// The unit normal at `q`, a point of triangle `face`: its corners' vertex normals
+  /// interpolated barycentrically, or the triangle's own where they cancel.
+  Eigen::Vector3d normal_at(std::size_t face, const Eigen::Vector3d& q) const {
+    const Kernel::Triangle_3& t = triangles[face];
+    const Eigen::Vector3d a = to_eigen(t[0]), b = to_eigen(t[1]), c = to_eigen(t[2]);
+    const Eigen::Vector3d& n = unit_normals[face];
+    const double total = (b - a).cross(c - a).dot(n);
+    const Eigen::Vector3d barycentric((b - q).cross(c - q).dot(n) / total,
+                                      (c - q).cross(a - q).dot(n) / total,
+                                      (a - q).cross(b - q).dot(n) / total);
+    const Eigen::Vector3d blended = corner_normals[face] * barycentric;
+    const double length = blended.norm();
+    return length > 1e-12 ? Eigen::Vector3d(blended / length) : n;
   }
 
   /// The fraction of the measured weight whose points, moved by `transform`, lie within
@@ -185,7 +207,7 @@ RigidTransform SurfaceFit::icp(const RigidTransform& start, const IcpOptions& op
       const Eigen::Vector3d q = to_eigen(nearest);
       if ((x - q).squaredNorm() > limit) continue;
       const auto face = static_cast<std::size_t>(triangle - reference.triangles.begin());
-      const Eigen::Vector3d& n = reference.unit_normals[face];
+      const Eigen::Vector3d n = reference.normal_at(face, q);
       if (n.dot(pose.rotation * probe.normals.col(k)) <= 0.0) continue;  // facing away
       kept.push_back(k);
       planes.push_back(n);

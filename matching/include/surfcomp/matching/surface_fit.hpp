@@ -69,8 +69,9 @@ class SurfaceFit {
   /// `start` polished by point-to-plane ICP (Chen and Medioni 1992): each step pairs every
   /// sampled probe vertex, moved, with the nearest point of the reference's triangles, keeps the
   /// pairs within options.max_distance whose normals agree (the moved vertex normal and the
-  /// triangle's point the same way), and takes the area-weighted least-squares rigid motion that
-  /// brings each vertex onto its pair's tangent plane (linearised about the pairs' centroid).
+  /// reference's normal there, its corners' vertex normals interpolated, point the same way),
+  /// and takes the area-weighted least-squares rigid motion that brings each vertex onto the
+  /// plane through its pair with that normal (linearised about the pairs' centroid).
   /// Gives `start` when fewer than six pairs are kept. Throws OptionError for options outside
   /// their domain.
   RigidTransform icp(const RigidTransform& start, const IcpOptions& options = {}) const;
