@@ -535,10 +535,11 @@ def _flat_disk(rings):
 
 
 def _bumpy_sphere(radius):
-    """A sphere of `radius` with smooth bumps (about 10 % of the radius): peaks and valleys."""
+    """A sphere of `radius` with smooth bumps (up to 36 % of the radius), no mirror symmetry
+    (whose ties rounding would break): peaks and valleys."""
     vertices, faces = _sphere_arrays(1.0, 4)
     x, y, z = vertices.T
-    bumps = 1 + 0.1 * np.sin(3 * x + 1) * np.cos(2 * y) + 0.08 * np.sin(4 * z - 0.5)
+    bumps = 1 + 0.2 * np.sin(3 * x + 1) * np.cos(2 * y + 0.3) + 0.16 * np.sin(4 * z - 0.5)
     return radius * vertices * bumps[:, None], faces
 
 
@@ -551,17 +552,19 @@ def _signed_areas(uv, faces):
 def test_a_spheres_curvature_is_minus_one_over_its_radius_at_any_scale(radius):
     vertices, faces = _sphere_arrays(radius, 5)
     k = surfcomp.curvatures((vertices, faces))
-    # Convex negative, per length of the mesh's own coordinates; measured rel. error ~1e-6.
+    # Convex negative, per length of the mesh's own coordinates (measured at both scales:
+    # relative error 2e-8, shape index within 1e-8 of 1).
     assert k.length_unit == pytest.approx(radius / 12, rel=2e-3)
     for cc in (k.cc1, k.cc2):
-        assert cc.shape == (len(vertices),) and np.allclose(cc, -1 / radius, rtol=1e-4)
-    assert np.allclose(k.shape_index, 1.0, atol=1e-6)
-    assert np.allclose(k.curvedness, 1 / radius, rtol=1e-4)
+        assert cc.shape == (len(vertices),) and np.allclose(cc, -1 / radius, rtol=1e-7, atol=0)
+    assert np.allclose(k.shape_index, 1.0, rtol=0, atol=1e-7)
+    assert np.allclose(k.curvedness, 1 / radius, rtol=1e-7, atol=0)
     # A Surface gives the curvature build_surface fitted; unit= fits it again.
     surface = surfcomp.build_surface((vertices, faces))
     assert np.array_equal(surfcomp.curvatures(surface).cc1, surface.properties["cc1"])
     refit = surfcomp.curvatures(surface, unit=radius / 6)
-    assert refit.length_unit == radius / 6 and np.allclose(refit.cc1, -1 / radius, rtol=1e-4)
+    assert refit.length_unit == radius / 6
+    assert np.allclose(refit.cc1, -1 / radius, rtol=1e-6, atol=0)
 
 
 def test_geodesic_distances_on_a_sphere_are_radius_times_angle():
@@ -570,12 +573,12 @@ def test_geodesic_distances_on_a_sphere_are_radius_times_angle():
     angle = np.arccos(np.clip(vertices @ vertices[0] / radius ** 2, -1, 1))
     d = surfcomp.geodesic_distances((vertices, faces), 0)
     assert d.shape == (len(vertices),) and d[0] == 0.0
-    # Fast marching: within 2 % of the great circle (measured: 1.2 % at most).
+    # Fast marching: within 2 % of the great circle (measured: 1.4 % at most).
     assert np.all(np.abs(d - radius * angle) <= 0.02 * radius * angle + 1e-12)
-    # Dijkstra along the edges is never shorter than the great circle, and longer than fast
-    # marching on average.
+    # Dijkstra along the edges is never shorter than fast marching (which also crosses
+    # triangles), and zig-zags: 7.6 % longer on average here.
     edges = surfcomp.geodesic_distances((vertices, faces), 0, method="dijkstra")
-    assert np.all(edges >= radius * angle - 1e-9) and edges.mean() > d.mean()
+    assert np.all(edges >= d - 1e-12) and edges.mean() > 1.05 * d.mean()
     # A bound: the same distances within it, inf beyond it (never NaN).
     bounded = surfcomp.geodesic_distances((vertices, faces), 0, max_distance=2.0)
     inside = d <= 2.0
@@ -596,17 +599,19 @@ def test_a_flat_disks_harmonic_map_is_near_the_identity():
     assert uv.shape == (len(vertices), 2)
     r = np.linalg.norm(vertices[:, :2], axis=1)
     assert np.allclose(np.linalg.norm(uv, axis=1)[r > 0.999], 1.0, atol=1e-12)
-    assert np.abs(uv - vertices[:, :2]).max() < 0.02  # measured 0.006
+    # The seed's weights, 1 / edge length, do not reproduce linear maps: measured 0.052.
+    assert np.abs(uv - vertices[:, :2]).max() < 0.08
     # A patch of it: |uv| against r / R_patch, up to a rotation.
     piece = surfcomp.patch((vertices, faces), 0, radius=0.6)
     assert piece.surface_vertex[piece.center] == 0 and piece.genus == 0 and not piece.holes
-    assert np.array_equal(piece.positions, vertices[piece.surface_vertex])
+    # Cut in the mesh's length unit and given back: its positions to rounding.
+    assert np.allclose(piece.positions, vertices[piece.surface_vertex], rtol=0, atol=1e-15)
     assert np.allclose(piece.distance, np.linalg.norm(piece.positions, axis=1), atol=1e-12)
     assert piece.radius == 0.6 and piece.distance.max() <= 0.6 * 1.05 + 1e-12
     uv = surfcomp.disk_map(piece)
     r = np.linalg.norm(piece.positions[:, :2], axis=1)
     r_patch = r[piece.outer_boundary].mean()
-    assert np.abs(np.linalg.norm(uv, axis=1) - r / r_patch).max() < 0.08  # measured 0.04
+    assert np.abs(np.linalg.norm(uv, axis=1) - r / r_patch).max() < 0.08  # measured 0.051
     assert (_signed_areas(uv, piece.faces) > 0).all()
 
 
@@ -621,9 +626,10 @@ def test_every_method_maps_a_flat_disk_without_flips():
         else:
             assert np.linalg.norm(uv, axis=1).max() <= 1 + 1e-12, method
         assert (_signed_areas(uv, faces) > 0).all(), method
-    # Conformal maps of a flat disk onto the disk are similarities: near the identity.
-    assert np.abs(surfcomp.disk_map((vertices, faces), "discrete-conformal")
-                  - vertices[:, :2]).max() < 1e-9
+    # Weights that reproduce linear maps give a flat disk with a circular border the identity.
+    for method in ("mean-value", "discrete-conformal"):
+        assert np.abs(surfcomp.disk_map((vertices, faces), method)
+                      - vertices[:, :2]).max() < 1e-9, method
     with pytest.raises(surfcomp.OptionError, match="'mean_value' is not one of harmonic, tutte"):
         surfcomp.disk_map((vertices, faces), "mean_value")
     closed = _sphere_arrays(1.0, 2)
@@ -636,7 +642,7 @@ def test_critical_points_are_cp_detects_as_vertex_indices(program, tmp_path, rad
     vertices, faces = _bumpy_sphere(radius)
     found = surfcomp.critical_points((vertices, faces))
     assert len(found.vertex) > 2 and set(found.type) == {"peak", "valley"}
-    assert np.array_equal(found.position, vertices[found.vertex])
+    assert np.allclose(found.position, vertices[found.vertex], rtol=1e-14, atol=0)
     assert found.length_unit == surfcomp.curvatures((vertices, faces)).length_unit
     mesh = tmp_path / "bumpy.off"
     with open(mesh, "w") as out:
@@ -700,7 +706,7 @@ def test_the_array_functions_refuse_bad_arrays_with_one_message():
            np.array([[0, 1, 2], [1, 0, 3], [0, 1, 4]]))
     with pytest.raises(surfcomp.InputError, match="non-manifold.*repair=True"):
         surfcomp.geodesic_distances(fan, 0)
-    with pytest.raises(TypeError, match="expected \(V, F\) arrays or a Surface"):
+    with pytest.raises(TypeError, match=r"expected \(V, F\) arrays or a Surface"):
         surfcomp.curvatures("mesh.off")
     with pytest.raises(surfcomp.OptionError):
         surfcomp.critical_points((vertices, faces), critical_point_radius=-1)
