@@ -806,10 +806,6 @@ def patch(mesh, center_vertex: int, radius: Optional[float] = None, **options) -
                                            None if radius is None else float(radius), options))
 
 
-_DISK_MAP_METHODS = ("harmonic", "tutte", "mean-value", "discrete-conformal",
-                     "discrete-authalic", "lscm", "arap")
-
-
 @_keyword_options("disk_map")
 def disk_map(patch_or_mesh, method: str = "harmonic", **options) -> np.ndarray:
     """A patch mapped onto the unit disk: (k, 2) uv, one row per patch vertex, by one of the
