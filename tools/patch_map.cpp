@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <system_error>
@@ -122,11 +123,12 @@ std::vector<harmonic::Parameterization> parameterizations(const std::string& tex
         out.push_back(static_cast<harmonic::Parameterization>(i));
       continue;
     }
-    const auto found = std::find(names.begin(), names.end(), name);
-    if (found == names.end())
+    const std::optional<harmonic::Parameterization> method =
+        harmonic::parameterization_from_name(name);
+    if (!method)
       throw OptionError("--methods " + text + ": unknown method '" + name + "' (" + known +
                         ", all)");
-    out.push_back(static_cast<harmonic::Parameterization>(found - names.begin()));
+    out.push_back(*method);
   }
   // A method named twice ("all,lscm") is compared once, where it is first named: each has one
   // column and one file.
@@ -230,13 +232,10 @@ int patch_map(const std::vector<std::string>& args) {
     // Described in the input's length unit, as hsi-build and match describe it; the files are
     // written in its own coordinates.
     mesh::LoadedSurface loaded = load_noted(path, settings.input);
-    const double unit = loaded.unit.value;
-    length_unit = unit;
+    length_unit = loaded.unit.value;
     surface = std::move(loaded.surface);
-    mesh::Surface in_units = surface;
-    if (unit != 1.0) mesh::scale_surface(in_units, 1.0 / unit);
-    const std::vector<mesh::CriticalPoint> points =
-        mesh::detect_critical_points(in_units, settings.descriptors.critical_points);
+    const std::vector<mesh::CriticalPoint> points = mesh::detect_critical_points_in_unit(
+        surface, length_unit, settings.descriptors.critical_points);
     total = points.size();
     std::vector<std::size_t> indices;
     std::vector<mesh::CriticalPoint> picked;
@@ -247,11 +246,7 @@ int patch_map(const std::vector<std::string>& args) {
       }
     }
     std::vector<harmonic::CriticalPointDescriptor> descriptions =
-        harmonic::describe_points(in_units, picked, settings.descriptors);
-    if (unit != 1.0) {
-      for (harmonic::CriticalPointDescriptor& d : descriptions)
-        harmonic::scale_point_descriptor(d, unit, settings.descriptors.image_property);
-    }
+        harmonic::describe_points_in_unit(surface, picked, length_unit, settings.descriptors);
     for (std::size_t k = 0; k < indices.size(); ++k)
       chosen.push_back({indices[k], std::move(descriptions[k])});
   }

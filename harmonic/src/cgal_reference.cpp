@@ -153,6 +153,13 @@ DiskMap cgal_disk_map(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
   return map;
 }
 
+std::optional<Parameterization> parameterization_from_name(const std::string& name) {
+  for (std::size_t i = 0; i < parameterization_names.size(); ++i) {
+    if (name == parameterization_names[i]) return static_cast<Parameterization>(i);
+  }
+  return std::nullopt;
+}
+
 Eigen::MatrixX2d parameterize_patch(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
                                     const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                                     const std::vector<int>& outer_boundary, Parameterization method,

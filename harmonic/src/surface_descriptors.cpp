@@ -78,6 +78,19 @@ std::vector<CriticalPointDescriptor> describe_points(const mesh::Surface& surfac
   return out;
 }
 
+std::vector<CriticalPointDescriptor> describe_points_in_unit(
+    const mesh::Surface& surface, const std::vector<mesh::CriticalPoint>& points, double unit,
+    const DescriptorOptions& options) {
+  if (unit == 1.0) return describe_points(surface, points, options);
+  mesh::Surface in_units = surface;
+  mesh::scale_surface(in_units, 1.0 / unit);  // checks the unit
+  std::vector<mesh::CriticalPoint> scaled = points;
+  for (mesh::CriticalPoint& point : scaled) mesh::scale_critical_point(point, 1.0 / unit);
+  std::vector<CriticalPointDescriptor> out = describe_points(in_units, scaled, options);
+  for (CriticalPointDescriptor& d : out) scale_point_descriptor(d, unit, options.image_property);
+  return out;
+}
+
 CriticalPointDescriptor describe_point(const mesh::Surface& surface,
                                        const mesh::CriticalPoint& point,
                                        const DescriptorOptions& options) {
@@ -164,8 +177,7 @@ void scale_descriptors(SurfaceDescriptors& descriptors, double factor) {
 void scale_point_descriptor(CriticalPointDescriptor& descriptor, double factor,
                             const std::string& image_property) {
   mesh::scale_critical_point(descriptor.point, factor);
-  descriptor.patch.positions *= factor;
-  descriptor.patch.distance *= factor;
+  mesh::scale_patch(descriptor.patch, factor);
   const bool image_is_curvature = image_property == mesh::property::cc1 ||
                                   image_property == mesh::property::cc2 ||
                                   image_property == mesh::property::curvedness;

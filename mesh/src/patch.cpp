@@ -531,4 +531,19 @@ Patch extract_patch(const Surface& surface, int center_vertex, const PatchOption
   return assemble_patch(surface, center_vertex, selection.faces, distances);
 }
 
+void scale_patch(Patch& patch, double factor) {
+  patch.positions *= factor;
+  patch.distance *= factor;
+}
+
+Patch extract_patch_in_unit(const Surface& surface, int center_vertex, double unit,
+                            const PatchOptions& options) {
+  if (unit == 1.0) return extract_patch(surface, center_vertex, options);
+  Surface in_units = surface;
+  scale_surface(in_units, 1.0 / unit);  // checks the unit
+  Patch patch = extract_patch(in_units, center_vertex, options);
+  scale_patch(patch, unit);
+  return patch;
+}
+
 }  // namespace surfcomp::mesh

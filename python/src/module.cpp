@@ -10,14 +10,19 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/option_table.hpp"
+#include "surfcomp/harmonic/cgal_reference.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/matching/pockets.hpp"
+#include "surfcomp/mesh/critical_points.hpp"
+#include "surfcomp/mesh/geodesic.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/mesh/patch.hpp"
 #include "surfcomp/mesh/topology.hpp"
 #include "surfcomp/report/critical_point_files.hpp"
 #include "surfcomp/report/html_report.hpp"
+#include "surfcomp/report/patch_files.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/screen.hpp"
@@ -33,6 +38,7 @@
 #include <memory>
 #include <optional>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -266,15 +272,29 @@ mesh::Surface surface_of_arrays(const py::tuple& pair, bool repair) {
   const auto faces = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(pair[1]);
   if (!positions || positions.ndim() != 2 || positions.shape(1) != 3 || !faces ||
       faces.ndim() != 2 || faces.shape(1) != 3) {
-    throw InputError("a mesh as (V, F) needs V of shape (n, 3) and F of shape (m, 3)");
+    const auto shape = [](const py::handle& array) {
+      return py::hasattr(array, "shape") ? py::str(array.attr("shape")).cast<std::string>()
+                                         : "(not an array of numbers)";
+    };
+    throw InputError("a mesh as (V, F) needs V of shape (n, 3) and F of shape (m, 3), got V " +
+                     shape(positions ? py::handle(positions) : pair[0]) + " and F " +
+                     shape(faces ? py::handle(faces) : pair[1]));
   }
   using Rows3d = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
   using Rows3i = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
   const Eigen::MatrixX3d v = Eigen::Map<const Rows3d>(positions.data(), positions.shape(0), 3);
   const Eigen::MatrixX3i f = Eigen::Map<const Rows3i>(faces.data(), faces.shape(0), 3);
   const char* source = "<(V, F) arrays>";
-  return repair ? mesh::repair_triangles(v, f, source).surface
-                : mesh::Surface::from_arrays(v, f, source);
+  if (repair) return mesh::repair_triangles(v, f, source).surface;
+  try {
+    return mesh::Surface::from_arrays(v, f, source);
+  } catch (const TopologyError& e) {  // the caller's arrays: bad input, in Python's words
+    std::string message = e.what();
+    const std::string cli = "--repair";
+    if (const auto at = message.find(cli); at != std::string::npos)
+      message.replace(at, cli.size(), "repair=True");
+    throw InputError(message);
+  }
 }
 
 /// A Python input (a path, a MoleculeBlock, a Surface, a Descriptors, a (V, F) pair) as the
@@ -384,39 +404,52 @@ py::dict descriptor_options_dict(const harmonic::DescriptorOptions& o) {
   return d;
 }
 
-/// The critical points of a description as arrays, one row per point.
-py::dict critical_points_dict(const harmonic::SurfaceDescriptors& d) {
-  const auto n = static_cast<Eigen::Index>(d.critical_points.size());
+/// Critical points as arrays, one row per point: position, normal, vertex, type, cc1, cc2,
+/// shape_index, curvedness, esp, lp.
+py::dict points_dict(const std::vector<mesh::CriticalPoint>& points) {
+  const auto n = static_cast<Eigen::Index>(points.size());
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> positions(n, 3), normals(n, 3);
   Eigen::VectorXd cc1(n), cc2(n), shape_index(n), curvedness(n), esp(n), lp(n);
   Eigen::VectorXi vertex(n);
-  py::list types, status;
+  py::list types;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const auto& cp = d.critical_points[static_cast<std::size_t>(i)];
-    positions.row(i) = cp.point.position.transpose();
-    normals.row(i) = cp.point.normal.transpose();
-    cc1(i) = cp.point.cc1;
-    cc2(i) = cp.point.cc2;
-    shape_index(i) = cp.point.shape_index;
-    curvedness(i) = cp.point.curvedness;
-    esp(i) = cp.point.esp;
-    lp(i) = cp.point.lp;
-    vertex(i) = cp.point.vertex;
-    types.append(mesh::type_name(cp.point.type));
-    status.append(harmonic::to_string(cp.status));
+    const mesh::CriticalPoint& point = points[static_cast<std::size_t>(i)];
+    positions.row(i) = point.position.transpose();
+    normals.row(i) = point.normal.transpose();
+    cc1(i) = point.cc1;
+    cc2(i) = point.cc2;
+    shape_index(i) = point.shape_index;
+    curvedness(i) = point.curvedness;
+    esp(i) = point.esp;
+    lp(i) = point.lp;
+    vertex(i) = point.vertex;
+    types.append(mesh::type_name(point.type));
   }
   py::dict out;
   out["position"] = owned_array(std::move(positions));
   out["normal"] = owned_array(std::move(normals));
   out["vertex"] = owned_array(std::move(vertex));
-  out["type"] = py::array(types);
-  out["status"] = py::array(status);
+  // An empty list would make a float array; the types are text.
+  out["type"] = types.empty() ? py::array(py::dtype("<U6"), {0}, {}) : py::array(types);
   out["cc1"] = owned_array(std::move(cc1));
   out["cc2"] = owned_array(std::move(cc2));
   out["shape_index"] = owned_array(std::move(shape_index));
   out["curvedness"] = owned_array(std::move(curvedness));
   out["esp"] = owned_array(std::move(esp));
   out["lp"] = owned_array(std::move(lp));
+  return out;
+}
+
+/// The critical points of a description as arrays, one row per point: points_dict and status.
+py::dict critical_points_dict(const harmonic::SurfaceDescriptors& d) {
+  std::vector<mesh::CriticalPoint> points;
+  py::list status;
+  for (const harmonic::CriticalPointDescriptor& cp : d.critical_points) {
+    points.push_back(cp.point);
+    status.append(harmonic::to_string(cp.status));
+  }
+  py::dict out = points_dict(points);
+  out["status"] = status.empty() ? py::array(py::dtype("<U10"), {0}, {}) : py::array(status);
   return out;
 }
 
@@ -441,24 +474,24 @@ py::dict patch_dict(const harmonic::SurfaceDescriptors& d, std::size_t index) {
   return out;
 }
 
+/// Writes `image` into the (rings, sectors) grid at `out`, row-major; NaN where a grid point is
+/// not valid, or everywhere when the image is not of that grid (a point without an image).
+void fill_image(const harmonic::ShapeImage& image, int rings, int sectors, double* out) {
+  const std::size_t size = static_cast<std::size_t>(rings) * static_cast<std::size_t>(sectors);
+  const bool has = image.values.size() == static_cast<Eigen::Index>(size);
+  for (std::size_t g = 0; g < size; ++g)
+    out[g] = has && image.valid[g] != 0 ? image.values(static_cast<Eigen::Index>(g)) : std::nan("");
+}
+
 /// The images as one array (n_cp, rings, sectors); NaN where a grid point is not valid or a
 /// point has no image.
 py::array images_array(const harmonic::SurfaceDescriptors& d) {
   const int rings = d.options.image.rings, sectors = d.options.image.sectors;
   const auto n = static_cast<py::ssize_t>(d.critical_points.size());
   py::array_t<double> out({n, static_cast<py::ssize_t>(rings), static_cast<py::ssize_t>(sectors)});
-  auto view = out.mutable_unchecked<3>();
   for (py::ssize_t i = 0; i < n; ++i) {
-    const harmonic::ShapeImage& image = d.critical_points[static_cast<std::size_t>(i)].image;
-    const bool has = image.values.size() == static_cast<Eigen::Index>(rings) * sectors;
-    for (int r = 0; r < rings; ++r) {
-      for (int s = 0; s < sectors; ++s) {
-        const std::size_t g = static_cast<std::size_t>(r) * static_cast<std::size_t>(sectors) +
-                              static_cast<std::size_t>(s);
-        view(i, r, s) =
-            has && image.valid[g] != 0 ? image.values(static_cast<Eigen::Index>(g)) : std::nan("");
-      }
-    }
+    fill_image(d.critical_points[static_cast<std::size_t>(i)].image, rings, sectors,
+               out.mutable_data(i, 0, 0));
   }
   return out;
 }
@@ -556,6 +589,344 @@ py::dict match(const py::object& reference, const py::object& probe, const py::d
       report::write_html_report(report_path, *compared, settings.inputs.match, report_options);
   }
   return match_dict(*compared, settings.inputs.match.site.lining_weight);
+}
+
+// --- (V, F) functions ---------------------------------------------------------------------------
+
+/// The keyword options of the (V, F) functions, from the library's tables: the length unit
+/// (scale, unit: mesh::surface_input_option_table) and, per function, the critical point options
+/// (critical_points), the spring weights (disk_map) or the image grid and weights (shape_image).
+/// Held in a matching::MatchInputOptions: `input` and `descriptors` are the parts they set.
+const options::Table<matching::MatchInputOptions>& array_option_table(const std::string& function) {
+  using I = matching::MatchInputOptions;
+  const auto unit_options = [](options::Table<I>& t) {
+    options::append(
+        t, options::pick(mesh::surface_input_option_table(), {"scale", "unit"}),
+        [](auto& i) -> auto& { return i.input; });
+  };
+  const auto description_options = [](options::Table<I>& t, const std::vector<std::string>& names) {
+    options::append(
+        t, options::pick(harmonic::descriptor_option_table(), names),
+        [](auto& i) -> auto& { return i.descriptors; });
+  };
+  static const options::Table<I> unit_only = [&] {
+    options::Table<I> t;
+    unit_options(t);
+    return t;
+  }();
+  static const options::Table<I> critical_points = [&] {
+    options::Table<I> t;
+    unit_options(t);
+    options::append(
+        t, mesh::critical_point_option_table(),
+        [](auto& i) -> auto& { return i.descriptors.critical_points; });
+    return t;
+  }();
+  static const options::Table<I> weights = [&] {
+    options::Table<I> t;
+    description_options(t, {"weights"});
+    return t;
+  }();
+  static const options::Table<I> image = [&] {
+    options::Table<I> t;
+    unit_options(t);
+    description_options(t, {"image-rings", "image-sectors", "weights"});
+    return t;
+  }();
+  if (function == "critical_points") return critical_points;
+  if (function == "disk_map") return weights;
+  if (function == "shape_image") return image;
+  return unit_only;  // curvatures, patch
+}
+
+/// What the (V, F) functions need of their mesh argument.
+enum class Needs {
+  geometry,   ///< the surface alone
+  unit,       ///< and its length unit
+  curvature,  ///< and cc1, cc2, shape_index, curvedness fitted at that unit
+};
+
+/// A mesh argument as the Python caller gave it, taken while the GIL is held: (V, F) arrays as a
+/// surface (vertex i is row i of V), or a Surface with the unit its curvature was fitted at.
+struct MeshArgument {
+  mesh::Surface surface;
+  bool from_arrays = false;
+  double length_unit = 1.0;  ///< a Surface's (PySurface::length_unit)
+};
+
+MeshArgument mesh_argument(const py::handle& object) {
+  MeshArgument out;
+  if (py::isinstance<py::tuple>(object) && py::len(object) == 2) {
+    out.surface = surface_of_arrays(object.cast<py::tuple>(), false);
+    out.from_arrays = true;
+  } else if (py::isinstance<PySurface>(object)) {
+    const auto& surface = object.cast<const PySurface&>();
+    out.surface = surface.surface;
+    out.length_unit = surface.length_unit;
+  } else {
+    throw py::type_error("expected (V, F) arrays or a Surface, got " +
+                         py::str(py::type::of(object)).cast<std::string>());
+  }
+  if (out.surface.n_faces() == 0)
+    throw InputError(out.surface.source() + ": the mesh has no triangle (F is empty)");
+  return out;
+}
+
+/// The length unit of `mesh` under `options`, its curvature fitted at it when `needs` says so.
+/// (V, F) arrays are a general mesh, as build_surface takes them (mesh::load_mesh_surface). A
+/// Surface keeps its unit and curvature unless scale="none" or unit= asks for another; unit= on a
+/// Surface in A (with ESP and LP) is refused. Runs without the GIL.
+double settle_unit(MeshArgument& mesh, const mesh::SurfaceInputOptions& options, Needs needs) {
+  if (needs == Needs::geometry) return 1.0;
+  const std::string& name = mesh.surface.source();
+  if (!mesh.from_arrays) {
+    if (options.unit > 0.0 && mesh::is_molecular_mesh(mesh.surface, "")) {
+      throw OptionError("unit: applies to general meshes; " + name +
+                        " is in A (it carries ESP and LP)");
+    }
+    const double asked = options.unit > 0.0                         ? options.unit
+                         : options.scale == mesh::LengthScale::none ? 1.0
+                                                                    : mesh.length_unit;
+    if (asked == mesh.length_unit || needs == Needs::unit) return asked;
+  }
+  if (needs == Needs::unit)
+    return mesh::general_mesh_unit({&mesh.surface}, options.scale, options.unit, name).value;
+  mesh::LoadedSurface loaded = mesh::load_mesh_surface(std::move(mesh.surface), options);
+  mesh.surface = std::move(loaded.surface);
+  return loaded.unit.value;
+}
+
+/// `vertex` checked as the vertex argument `argument` of a function on `surface`.
+int vertex_argument(long long vertex, const mesh::Surface& surface, const char* argument) {
+  const auto n = static_cast<long long>(surface.n_vertices());
+  if (vertex < 0 || vertex >= n) {
+    throw InputError(std::string(argument) + " " + std::to_string(vertex) + " is outside 0.." +
+                     std::to_string(n - 1) + " (the mesh has " + std::to_string(n) + " vertices)");
+  }
+  return static_cast<int>(vertex);
+}
+
+/// A number as Python prints it, for messages.
+std::string python_number(double x) { return py::repr(py::float_(x)).cast<std::string>(); }
+
+/// Checks a patch radius argument: None, or finite and > 0 (the mesh's coordinates).
+void check_radius(const std::optional<double>& radius) {
+  if (radius && (!std::isfinite(*radius) || *radius <= 0.0)) {
+    throw OptionError("radius: " + python_number(*radius) +
+                      ", expected a finite number > 0 (in the mesh's coordinates) or None");
+  }
+}
+
+/// The patch radius in units: `radius` (the mesh's coordinates, check_radius) over `unit`, or
+/// `fallback` (units) without one.
+double radius_in_units(const std::optional<double>& radius, double unit, double fallback) {
+  return radius ? *radius / unit : fallback;
+}
+
+/// The value named `name` among `names` (the library's names of an enum), as an enum; OptionError
+/// naming `argument` and the names otherwise.
+template <class Enum, std::size_t N>
+Enum named(const std::string& name, const std::array<const char*, N>& names, const char* argument) {
+  std::string known;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (name == names[i]) return static_cast<Enum>(i);
+    known += std::string(i == 0 ? "" : ", ") + names[i];
+  }
+  throw OptionError(std::string(argument) + ": '" + name + "' is not one of " + known);
+}
+
+/// A library TopologyError raised on the caller's arrays (a patch that is not a disk, a radius
+/// shorter than the edges) as the bad input it is.
+template <class Work>
+auto on_arrays(Work&& work) {
+  try {
+    return work();
+  } catch (const TopologyError& e) {
+    throw InputError(e.what());
+  }
+}
+
+py::dict curvatures(const py::object& input, const py::dict& keywords) {
+  const auto settings = settings_from(array_option_table("curvatures"), keywords);
+  MeshArgument mesh = mesh_argument(input);
+  double unit = 1.0;
+  {
+    py::gil_scoped_release release;
+    unit = on_arrays([&] { return settle_unit(mesh, settings.input, Needs::curvature); });
+  }
+  py::dict out;
+  for (const char* name : {mesh::property::cc1, mesh::property::cc2, mesh::property::shape_index,
+                           mesh::property::curvedness}) {
+    out[name] = owned_array(mesh.surface.property(name));
+  }
+  out["length_unit"] = unit;
+  return out;
+}
+
+py::dict critical_points(const py::object& input, const py::dict& keywords) {
+  const auto settings = settings_from(array_option_table("critical_points"), keywords);
+  MeshArgument mesh = mesh_argument(input);
+  double unit = 1.0;
+  std::vector<mesh::CriticalPoint> points;
+  {
+    py::gil_scoped_release release;
+    on_arrays([&] {
+      unit = settle_unit(mesh, settings.input, Needs::curvature);
+      points = mesh::detect_critical_points_in_unit(mesh.surface, unit,
+                                                    settings.descriptors.critical_points);
+      return 0;
+    });
+  }
+  py::dict out = points_dict(points);
+  out["length_unit"] = unit;
+  return out;
+}
+
+py::array geodesic_distances(const py::object& input, long long source,
+                             const std::optional<double>& max_distance, const std::string& method) {
+  MeshArgument mesh = mesh_argument(input);
+  mesh::GeodesicOptions geodesic;
+  geodesic.method = named<mesh::GeodesicMethod>(method, mesh::geodesic_method_names, "method");
+  if (max_distance) {
+    if (std::isnan(*max_distance) || *max_distance < 0.0) {
+      throw OptionError("max_distance: " + python_number(*max_distance) +
+                        ", expected a number >= 0 (in the mesh's coordinates) or None");
+    }
+    geodesic.max_distance = *max_distance;
+  }
+  const int vertex = vertex_argument(source, mesh.surface, "source_vertex");
+  Eigen::VectorXd distances;
+  {
+    py::gil_scoped_release release;
+    distances = on_arrays([&] { return mesh::geodesic_distances(mesh.surface, vertex, geodesic); });
+  }
+  return owned_array(std::move(distances));
+}
+
+py::dict patch(const py::object& input, long long center, const std::optional<double>& radius,
+               const py::dict& keywords) {
+  const auto settings = settings_from(array_option_table("patch"), keywords);
+  MeshArgument mesh = mesh_argument(input);
+  const int vertex = vertex_argument(center, mesh.surface, "center_vertex");
+  check_radius(radius);
+  mesh::Patch cut;
+  double unit = 1.0;
+  mesh::PatchOptions patch_options = settings.descriptors.patch;  // as describe cuts them
+  {
+    py::gil_scoped_release release;
+    on_arrays([&] {
+      unit = settle_unit(mesh, settings.input, Needs::unit);
+      patch_options.radius = radius_in_units(radius, unit, patch_options.radius);
+      try {
+        cut = mesh::extract_patch_in_unit(mesh.surface, vertex, unit, patch_options);
+      } catch (const TopologyError&) {  // the one a manifold mesh can raise, in Python's words
+        std::ostringstream message;
+        message << mesh.surface.source() << ": center_vertex " << vertex
+                << ": no triangle of its patch is left within radius "
+                << patch_options.radius * unit
+                << " (the mesh's coordinates); expected a radius longer than its edges";
+        throw InputError(message.str());
+      }
+      return 0;
+    });
+  }
+  const auto indices = [](const std::vector<int>& list) {
+    return owned_array(Eigen::VectorXi(
+        Eigen::Map<const Eigen::VectorXi>(list.data(), static_cast<Eigen::Index>(list.size()))));
+  };
+  py::list holes;
+  for (const std::vector<int>& hole : cut.holes) holes.append(indices(hole));
+  py::dict out;
+  out["center"] = cut.center;
+  out["surface_vertex"] = indices(cut.surface_vertex);
+  out["positions"] = owned_array(std::move(cut.positions));
+  out["faces"] = owned_array(std::move(cut.faces));
+  out["distance"] = owned_array(std::move(cut.distance));
+  out["outer_boundary"] = indices(cut.outer_boundary);
+  out["holes"] = holes;
+  out["genus"] = cut.genus;
+  out["radius"] = patch_options.radius * unit;
+  return out;
+}
+
+py::array disk_map(const py::object& positions_in, const py::object& faces_in,
+                   const std::optional<std::vector<int>>& outer_boundary, const std::string& method,
+                   const py::dict& keywords) {
+  const auto settings = settings_from(array_option_table("disk_map"), keywords);
+  const auto parameterization =
+      named<harmonic::Parameterization>(method, harmonic::parameterization_names, "method");
+  const mesh::Surface surface = surface_of_arrays(py::make_tuple(positions_in, faces_in), false);
+  Eigen::MatrixX2d uv;
+  {
+    py::gil_scoped_release release;
+    uv = on_arrays([&] {
+      const Eigen::MatrixX3i faces = surface.faces();
+      std::vector<int> border;
+      if (outer_boundary) {
+        border = *outer_boundary;
+      } else {
+        std::vector<int> all(static_cast<std::size_t>(faces.rows()));
+        for (std::size_t f = 0; f < all.size(); ++f) all[f] = static_cast<int>(f);
+        border = mesh::boundary_loops(surface, all).outer;
+        if (border.empty()) {
+          throw InputError(surface.source() +
+                           ": the mesh has no border; a disk map needs a disk (a patch)");
+        }
+      }
+      const Eigen::MatrixX2d map = harmonic::parameterize_patch(
+          surface.positions(), faces, border, parameterization, settings.descriptors.disk_map);
+      // A free border's map, whose position and scale are arbitrary, as patch-map writes it.
+      return harmonic::has_free_border(parameterization) ? report::fit_to_disk_square(map) : map;
+    });
+  }
+  return owned_array(std::move(uv));
+}
+
+/// Why describe gives a critical point at a vertex no image, in a user's words.
+std::string no_image_reason(harmonic::PatchStatus status) {
+  switch (status) {
+    case harmonic::PatchStatus::empty:
+      return "no triangle of its patch is left (a radius shorter than its edges?)";
+    case harmonic::PatchStatus::not_a_disk:
+      return "its patch has a handle, and a harmonic map needs a disk (a smaller radius?)";
+    case harmonic::PatchStatus::map_failed:
+      return "the harmonic map of its patch cannot be solved (degenerate triangles)";
+    case harmonic::PatchStatus::at_border:
+      return "its patch reaches the mesh's border, and describe images no truncated patch";
+    default:
+      return harmonic::to_string(status);
+  }
+}
+
+py::array shape_image(const py::object& input, long long center,
+                      const std::optional<double>& radius, const py::dict& keywords) {
+  auto settings = settings_from(array_option_table("shape_image"), keywords);
+  MeshArgument mesh = mesh_argument(input);
+  const int vertex = vertex_argument(center, mesh.surface, "center_vertex");
+  check_radius(radius);
+  harmonic::CriticalPointDescriptor described;
+  {
+    py::gil_scoped_release release;
+    on_arrays([&] {
+      const double unit = settle_unit(mesh, settings.input, Needs::curvature);
+      harmonic::DescriptorOptions& d = settings.descriptors;
+      d.patch.radius = radius_in_units(radius, unit, d.patch.radius);
+      mesh::CriticalPoint point;  // describe_points_in_unit uses its vertex alone
+      point.vertex = vertex;
+      point.position = point.normal = Eigen::Vector3d::Zero();
+      described = std::move(harmonic::describe_points_in_unit(mesh.surface, {point}, unit, d)[0]);
+      return 0;
+    });
+  }
+  if (described.status != harmonic::PatchStatus::ok) {
+    throw InputError(mesh.surface.source() + ": center_vertex " + std::to_string(vertex) + ": " +
+                     no_image_reason(described.status));
+  }
+  const harmonic::ImageOptions& grid = settings.descriptors.image;
+  py::array_t<double> out(
+      {static_cast<py::ssize_t>(grid.rings), static_cast<py::ssize_t>(grid.sectors)});
+  fill_image(described.image, grid.rings, grid.sectors, out.mutable_data(0, 0));
+  return out;
 }
 
 /// A row of a screen's table: its rank and its molecule's entry, as Hit and FusedHit begin.
@@ -675,8 +1046,12 @@ py::list option_table(const std::string& function) {
   if (function == "match") return table_list(matching::pair_match_option_table());
   if (function == "screen") return table_list(screening::screen_option_table());
   if (function == "pockets") return table_list(matching::pocket_search_option_table());
+  for (const char* name : {"curvatures", "critical_points", "patch", "disk_map", "shape_image"}) {
+    if (function == name) return table_list(array_option_table(function));
+  }
   throw py::value_error("no function '" + function +
-                        "' with options (build_surface, describe, match, screen, pockets)");
+                        "' with options (build_surface, describe, match, screen, pockets, "
+                        "curvatures, critical_points, patch, disk_map, shape_image)");
 }
 
 /// The module's exception classes: Error, the base of all; InputError (also a ValueError) and
@@ -860,6 +1235,16 @@ PYBIND11_MODULE(_surfcomp, m) {
         py::arg("molecules"));
   m.def("pockets", &sp::pockets, py::arg("structure"), py::arg("options"));
   m.def("option_table", &sp::option_table, py::arg("function"));
+  m.def("curvatures", &sp::curvatures, py::arg("mesh"), py::arg("options"));
+  m.def("critical_points", &sp::critical_points, py::arg("mesh"), py::arg("options"));
+  m.def("geodesic_distances", &sp::geodesic_distances, py::arg("mesh"), py::arg("source_vertex"),
+        py::arg("max_distance"), py::arg("method"));
+  m.def("patch", &sp::patch, py::arg("mesh"), py::arg("center_vertex"), py::arg("radius"),
+        py::arg("options"));
+  m.def("disk_map", &sp::disk_map, py::arg("positions"), py::arg("faces"),
+        py::arg("outer_boundary"), py::arg("method"), py::arg("options"));
+  m.def("shape_image", &sp::shape_image, py::arg("mesh"), py::arg("center_vertex"),
+        py::arg("radius"), py::arg("options"));
   m.def(
       "run_command_line",
       [](const std::vector<std::string>& args) {

@@ -43,12 +43,13 @@ from . import _surfcomp
 from ._surfcomp import Descriptors, Error, FileError, InputError, OptionError, Surface
 
 __all__ = [
-    "Alignment", "CoverageScore", "CriticalPoints", "DescriptionParameters", "Descriptors",
-    "Error", "FileError", "FusedHit", "Hit", "InputError", "LibraryEntry", "LibraryInfo",
-    "MatchResult", "OptionError", "OverlayScore", "Patch", "Pocket", "Screens", "Surface",
-    "SurfaceMeasures", "build_surface",
-    "describe", "library_info", "load_descriptors", "match", "option_table", "pockets", "screen",
-    "screen_queries",
+    "Alignment", "CoverageScore", "CriticalPointSet", "CriticalPoints", "Curvatures",
+    "DescriptionParameters", "Descriptors", "Error", "FileError", "FusedHit", "GeodesicPatch",
+    "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
+    "OverlayScore", "Patch", "Pocket", "Screens", "Surface", "SurfaceMeasures", "build_surface",
+    "critical_points", "curvatures", "describe", "disk_map", "geodesic_distances", "library_info",
+    "load_descriptors", "match", "option_table", "patch", "pockets", "screen", "screen_queries",
+    "shape_image",
 ]
 __version__ = "0.1.0"
 
@@ -494,6 +495,89 @@ _documented(LibraryInfo, version="file format version", settings="how the librar
             entries="the entries in library order (LibraryEntry)")
 
 
+class Curvatures(NamedTuple):
+    """Per-vertex curvature of a mesh (:func:`curvatures`), as :func:`build_surface` fits it."""
+
+    cc1: np.ndarray
+    cc2: np.ndarray
+    shape_index: np.ndarray
+    curvedness: np.ndarray
+    length_unit: float
+
+
+_documented(
+    Curvatures,
+    cc1="(n,) first principal curvature, per length of the mesh's coordinates; convex "
+        "negative (a sphere of radius R: -1/R), |cc1| >= |cc2|",
+    cc2="(n,) second principal curvature, same unit and sign",
+    shape_index="(n,) Koenderink shape index in [-1, 1]: +1 on caps, -1 on cups, 0 on saddles",
+    curvedness="(n,) Koenderink curvedness sqrt((k1^2 + k2^2) / 2), per length",
+    length_unit="the length unit the curvature was fitted in, in the mesh's coordinates "
+                "(the fit spans 3 units)")
+
+
+class CriticalPointSet(NamedTuple):
+    """The critical points of a mesh (:func:`critical_points`), as ``surfcomp cp-detect`` finds
+    them: peaks first, then valleys, each by vertex."""
+
+    vertex: np.ndarray
+    type: np.ndarray
+    position: np.ndarray
+    normal: np.ndarray
+    cc1: np.ndarray
+    cc2: np.ndarray
+    shape_index: np.ndarray
+    curvedness: np.ndarray
+    esp: np.ndarray
+    lp: np.ndarray
+    length_unit: float
+
+
+_documented(
+    CriticalPointSet,
+    vertex="(k,) indices into V (rows of the mesh's vertices)",
+    type='(k,) "peak" (convex, the largest |cc1| within critical_point_radius) or "valley" '
+         "(concave, the largest cc1)",
+    position="(k, 3) positions, the mesh's coordinates",
+    normal="(k, 3) unit outward normals",
+    cc1="(k,) first principal curvature at the vertex, per length (convex < 0)",
+    cc2="(k,) second principal curvature, per length",
+    shape_index="(k,) shape index averaged over the disc of disc_radius, [-1, 1]",
+    curvedness="(k,) curvedness at the vertex, per length",
+    esp="(k,) ESP averaged over the disc (NaN on a mesh without ESP)",
+    lp="(k,) lipophilic potential averaged over the disc (NaN on a mesh without LP)",
+    length_unit="the length unit the radii counted in, in the mesh's coordinates")
+
+
+class GeodesicPatch(NamedTuple):
+    """The geodesic patch around a vertex (:func:`patch`), as ``describe`` cuts it: a
+    triangulated disk (possibly with holes) whose vertices are rows of V."""
+
+    center: int
+    surface_vertex: np.ndarray
+    positions: np.ndarray
+    faces: np.ndarray
+    distance: np.ndarray
+    outer_boundary: np.ndarray
+    holes: List[np.ndarray]
+    genus: int
+    radius: float
+
+
+_documented(
+    GeodesicPatch,
+    center="the patch vertex (local index) at the centre vertex",
+    surface_vertex="(p,) index into V of each patch vertex, increasing",
+    positions="(p, 3) the patch vertices' positions: V[surface_vertex]",
+    faces="(f, 3) patch triangles, local indices, oriented as the mesh's",
+    distance="(p,) on-surface (fast-marching) distance from the centre, the mesh's coordinates",
+    outer_boundary="(b,) local indices of the outer border loop, counter-clockwise seen from "
+                   "outside (the patch on its left), starting at its lowest index",
+    holes="the other border loops, local indices, each with the patch on its left",
+    genus="handles of the patch: 0 for a disk (with holes); a harmonic map needs 0",
+    radius="the on-surface radius it was cut at, the mesh's coordinates")
+
+
 def _critical_points(self) -> CriticalPoints:
     """The critical points, one row per point (:class:`CriticalPoints`)."""
     return CriticalPoints(**self._critical_points())
@@ -613,7 +697,159 @@ def pockets(structure, **options) -> List[Pocket]:
 
 
 def option_table(function: str) -> List[Dict[str, Any]]:
-    """The options of ``build_surface``, ``describe``, ``match``, ``screen`` or ``pockets`` as the library
-    defines them, in order: ``name`` (the keyword), ``option`` (the command line's), ``kind``,
-    ``default``, ``help`` (with unit and range), ``unit``, ``range`` and ``choices``."""
+    """The keyword options of ``build_surface``, ``describe``, ``match``, ``screen``,
+    ``pockets``, ``curvatures``, ``critical_points``, ``patch``, ``disk_map`` or ``shape_image``
+    as the library defines them, in order: ``name`` (the keyword), ``option`` (the command
+    line's), ``kind``, ``default``, ``help`` (with unit and range), ``unit``, ``range`` and
+    ``choices``."""
     return _surfcomp.option_table(function)
+
+
+# --- (V, F) functions: one step of the pipeline each, on a mesh's arrays ----------------------
+
+_MESH_ARGUMENT = """``mesh`` is ``(V, F)``: V (n, 3) float positions and F (m, 3) int 0-based
+    triangles, counter-clockwise seen from outside, a manifold mesh (else :class:`InputError`;
+    ``build_surface((V, F), repair=True)`` repairs one, renumbering its vertices, and its
+    :class:`Surface` goes here instead), or a :class:`Surface`. Vertex indices, in and out,
+    are rows of V (``Surface.vertices``)."""
+
+_UNIT_RULE = """Lengths are in the mesh's own coordinates. The radii that have defaults count in
+    the mesh's length unit, chosen as :func:`build_surface` chooses it: 1/12 of the mesh's size
+    (the area-weighted RMS distance of its triangles from their centre) with ``scale="auto"``,
+    ``unit=`` when given, 1 with ``scale="none"``; a :class:`Surface` keeps its own
+    (``Surface.length_unit``; 1 for a molecule's, in A). So one shape gives the same answers at
+    any scale."""
+
+
+def _mesh(mesh):
+    """A mesh argument as the module takes it: a Surface as is, ``(V, F)`` as a tuple."""
+    if isinstance(mesh, Surface):
+        return mesh
+    if isinstance(mesh, (tuple, list)) and len(mesh) == 2:
+        return tuple(mesh)
+    raise TypeError(f"expected (V, F) arrays or a Surface, got {type(mesh).__name__}")
+
+
+def _with_docs(function):
+    function.__doc__ = (function.__doc__.replace("{mesh}", _MESH_ARGUMENT)
+                        .replace("{units}", _UNIT_RULE))
+    return function
+
+
+@_keyword_options("curvatures")
+@_with_docs
+def curvatures(mesh, **options) -> Curvatures:
+    """Per-vertex principal curvatures, shape index and curvedness of a mesh, as
+    :func:`build_surface` (``surfcomp surf-build``) fits them: a local quadric over 3 length
+    units around each vertex, in the project's sign (convex negative: a sphere of radius R has
+    cc1 = cc2 = -1/R and shape index 1), per length of the mesh's coordinates.
+
+    {mesh}
+
+    {units} A :class:`Surface` without ``scale``/``unit`` gives back the curvature it holds.
+
+    Returns a :class:`Curvatures` of (n,) arrays and the length unit."""
+    return Curvatures(**_surfcomp.curvatures(_mesh(mesh), options))
+
+
+@_keyword_options("critical_points")
+@_with_docs
+def critical_points(mesh, **options) -> CriticalPointSet:
+    """The shape critical points of a mesh, as ``surfcomp cp-detect`` finds them: peaks, convex
+    vertices whose |cc1| is the largest within ``critical_point_radius`` on the surface, and
+    valleys, concave vertices whose cc1 is the largest within it; the curvature as
+    :func:`curvatures` fits it.
+
+    {mesh}
+
+    {units} ``critical_point_radius`` and ``disc_radius`` count in that unit.
+
+    Returns a :class:`CriticalPointSet`: vertex indices, types ("peak", "valley") and the
+    points' positions, normals and curvature, peaks first."""
+    return CriticalPointSet(**_surfcomp.critical_points(_mesh(mesh), options))
+
+
+@_with_docs
+def geodesic_distances(mesh, source_vertex: int, max_distance: Optional[float] = None, *,
+                       method: str = "fast-marching") -> np.ndarray:
+    """On-surface distances from ``source_vertex`` to every vertex: (n,) floats in the mesh's
+    coordinates, ``inf`` beyond ``max_distance`` (None: no bound; a bounded run visits only the
+    vertices within it and their neighbours) and in other connected components (never NaN).
+
+    ``method``: ``"fast-marching"`` (default; the distances ``describe`` cuts its patches by,
+    Dijkstra order with the Kimmel-Sethian triangle update: exact on a plane, within about 1 %
+    of the great circle on a fine sphere) or ``"dijkstra"`` (shortest paths along the edges, as
+    critical points are found; longer than the true geodesic).
+
+    {mesh}"""
+    return _surfcomp.geodesic_distances(
+        _mesh(mesh), source_vertex, None if max_distance is None else float(max_distance), method)
+
+
+@_keyword_options("patch")
+@_with_docs
+def patch(mesh, center_vertex: int, radius: Optional[float] = None, **options) -> GeodesicPatch:
+    """The geodesic patch around ``center_vertex``, as ``describe`` (``surfcomp hsi-build``)
+    cuts it around a critical point: the vertices within the on-surface (fast-marching)
+    ``radius`` and those within 5 % more that share an edge with them, their triangles, cleaned
+    until it is a disk with holes whose border loops pass each vertex once.
+
+    {mesh}
+
+    {units} ``radius`` is in the mesh's coordinates; None takes ``describe``'s patch radius,
+    5 length units, which cuts the patch ``describe`` cuts.
+
+    Returns a :class:`GeodesicPatch` (its vertices as rows of V, local triangles, the outer
+    border loop); :func:`disk_map` maps it. :class:`InputError` when no triangle is left (a
+    radius shorter than the vertex's edges)."""
+    return GeodesicPatch(**_surfcomp.patch(_mesh(mesh), center_vertex,
+                                           None if radius is None else float(radius), options))
+
+
+@_keyword_options("disk_map")
+def disk_map(patch_or_mesh, method: str = "harmonic", **options) -> np.ndarray:
+    """A patch mapped onto the unit disk: (k, 2) uv, one row per patch vertex, by one of the
+    seven methods ``surfcomp patch-map --methods`` compares:
+
+    - ``"harmonic"`` (default): ``describe``'s harmonic map (spring weights ``weights``,
+      the seed's 1 / edge length), the outer border on the unit circle by arc length;
+    - ``"tutte"``, ``"mean-value"``, ``"discrete-conformal"``, ``"discrete-authalic"``: CGAL's
+      fixed-border maps, the border on the unit circle as the harmonic map's;
+    - ``"lscm"``, ``"arap"``: CGAL's free-border maps, moved and scaled (one factor) so that
+      their bounding box is centred and its longer side spans [-1, 1], as patch-map writes
+      them: inside the unit disk's square, not its circle.
+
+    ``patch_or_mesh`` is a :class:`GeodesicPatch` (:func:`patch`) or a :class:`Patch`
+    (``Descriptors.patch(i)``), mapped with its outer border; or ``(V, F)`` arrays of a
+    disk-like mesh (one border loop, the longest; holes are free), mapped whole. Uv row i is
+    patch vertex i (row i of V). :class:`InputError` for a mesh that is not a disk."""
+    if all(hasattr(patch_or_mesh, a) for a in ("positions", "faces", "outer_boundary")):
+        positions, faces = patch_or_mesh.positions, patch_or_mesh.faces
+        boundary = [int(v) for v in patch_or_mesh.outer_boundary]
+    elif isinstance(patch_or_mesh, (tuple, list)) and len(patch_or_mesh) == 2:
+        (positions, faces), boundary = patch_or_mesh, None
+    else:
+        raise TypeError("expected a GeodesicPatch, a Patch or (V, F) arrays, got "
+                        f"{type(patch_or_mesh).__name__}")
+    return _surfcomp.disk_map(positions, faces, boundary, method, options)
+
+
+@_keyword_options("shape_image")
+@_with_docs
+def shape_image(mesh, center_vertex: int, radius: Optional[float] = None,
+                **options) -> np.ndarray:
+    """The harmonic shape image of the patch around ``center_vertex``, as ``describe`` computes
+    it for a critical point: the patch (:func:`patch`), its harmonic map (:func:`disk_map`) and
+    the shape index (:func:`curvatures`) resampled on a polar grid over the disk: an
+    (image_rings, image_sectors) array, ring k at radius (k + 0.5) / rings, sector j at
+    j * 360 / sectors degrees counter-clockwise from the map's u axis; NaN where no triangle of
+    the map lies under a grid point (a hole).
+
+    {mesh}
+
+    {units} ``radius`` is in the mesh's coordinates; None takes ``describe``'s 5 length units.
+
+    :class:`InputError` when ``describe`` would give the vertex no image: its patch reaches the
+    mesh's border, has a handle, or keeps no triangle."""
+    return _surfcomp.shape_image(_mesh(mesh), center_vertex,
+                                 None if radius is None else float(radius), options)

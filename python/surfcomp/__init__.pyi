@@ -100,6 +100,37 @@ class Patch(NamedTuple):
     uv: npt.NDArray[np.float64]  # (p, 2)
     outer_boundary: List[int]
 
+class Curvatures(NamedTuple):
+    cc1: npt.NDArray[np.float64]  # (n,), per length of the mesh's coordinates; convex < 0
+    cc2: npt.NDArray[np.float64]  # (n,)
+    shape_index: npt.NDArray[np.float64]  # (n,), [-1, 1]; cap +1
+    curvedness: npt.NDArray[np.float64]  # (n,)
+    length_unit: float
+
+class CriticalPointSet(NamedTuple):
+    vertex: npt.NDArray[np.int32]  # (k,), rows of V
+    type: npt.NDArray[Any]  # "peak" or "valley"
+    position: npt.NDArray[np.float64]  # (k, 3)
+    normal: npt.NDArray[np.float64]  # (k, 3)
+    cc1: npt.NDArray[np.float64]
+    cc2: npt.NDArray[np.float64]
+    shape_index: npt.NDArray[np.float64]
+    curvedness: npt.NDArray[np.float64]
+    esp: npt.NDArray[np.float64]  # NaN without ESP
+    lp: npt.NDArray[np.float64]  # NaN without LP
+    length_unit: float
+
+class GeodesicPatch(NamedTuple):
+    center: int  # local index of the centre vertex
+    surface_vertex: npt.NDArray[np.int32]  # (p,), rows of V
+    positions: npt.NDArray[np.float64]  # (p, 3)
+    faces: npt.NDArray[np.int32]  # (f, 3), local
+    distance: npt.NDArray[np.float64]  # (p,), the mesh's coordinates
+    outer_boundary: npt.NDArray[np.int32]  # (b,), local, counter-clockwise
+    holes: List[npt.NDArray[np.int32]]
+    genus: int
+    radius: float  # the mesh's coordinates
+
 class DescriptionParameters(NamedTuple):
     critical_point_radius: float
     disc_radius: float
@@ -403,3 +434,55 @@ def pockets(
 
 def library_info(path: PathLike) -> LibraryInfo: ...
 def option_table(function: str) -> List[Dict[str, Any]]: ...
+
+def curvatures(
+    mesh: Union[MeshArrays, Surface],
+    *,
+    scale: str = 'auto',
+    unit: Optional[float] = None,
+) -> Curvatures: ...
+
+def critical_points(
+    mesh: Union[MeshArrays, Surface],
+    *,
+    scale: str = 'auto',
+    unit: Optional[float] = None,
+    critical_point_radius: float = 2.5,
+    disc_radius: float = 1.0,
+) -> CriticalPointSet: ...
+
+def geodesic_distances(
+    mesh: Union[MeshArrays, Surface],
+    source_vertex: int,
+    max_distance: Optional[float] = None,
+    *,
+    method: str = 'fast-marching',
+) -> npt.NDArray[np.float64]: ...  # (n,); inf beyond max_distance
+
+def patch(
+    mesh: Union[MeshArrays, Surface],
+    center_vertex: int,
+    radius: Optional[float] = None,
+    *,
+    scale: str = 'auto',
+    unit: Optional[float] = None,
+) -> GeodesicPatch: ...
+
+def disk_map(
+    patch_or_mesh: Union[GeodesicPatch, Patch, MeshArrays],
+    method: str = 'harmonic',
+    *,
+    weights: str = 'inverse-length',
+) -> npt.NDArray[np.float64]: ...  # (k, 2)
+
+def shape_image(
+    mesh: Union[MeshArrays, Surface],
+    center_vertex: int,
+    radius: Optional[float] = None,
+    *,
+    scale: str = 'auto',
+    unit: Optional[float] = None,
+    image_rings: int = 16,
+    image_sectors: int = 180,
+    weights: str = 'inverse-length',
+) -> npt.NDArray[np.float64]: ...  # (image_rings, image_sectors); NaN where no value

@@ -287,21 +287,29 @@ def test_signatures_and_help_come_from_one_option_table(program, function, subco
 def test_the_stubs_match_the_module():
     tree = ast.parse((SOURCE_DIR / "python" / "surfcomp" / "__init__.pyi").read_text())
     functions = {f.name: f for f in tree.body if isinstance(f, ast.FunctionDef)}
-    for name in ("build_surface", "describe", "match", "screen", "pockets"):
+    for name in ("build_surface", "describe", "match", "screen", "pockets", "curvatures",
+                 "critical_points", "geodesic_distances", "patch", "disk_map", "shape_image"):
         arguments = functions[name].args
         stub = {a.arg: ast.literal_eval(d) for a, d in zip(arguments.kwonlyargs,
                                                             arguments.kw_defaults)}
         module = {n: p.default for n, p in inspect.signature(getattr(surfcomp, name)).parameters.items()
                   if p.kind is inspect.Parameter.KEYWORD_ONLY}
         assert stub == module, name
+        # The positional parameters too: names and defaults.
+        positional = [a.arg for a in arguments.args]
+        assert positional == [n for n, p in inspect.signature(getattr(surfcomp, name)).parameters
+                              .items() if p.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD], name
     exported = {node.name for node in tree.body if isinstance(node, (ast.FunctionDef, ast.ClassDef))}
-    assert set(surfcomp.__all__) <= exported
+    # Everything the stubs declare is exported, and everything exported is declared.
+    assert set(surfcomp.__all__) == exported
+    assert all(hasattr(surfcomp, name) for name in surfcomp.__all__)
 
 
 def test_every_field_of_every_result_class_is_documented():
     for cls in (surfcomp.Alignment, surfcomp.Hit, surfcomp.OverlayScore, surfcomp.CriticalPoints,
                 surfcomp.Patch, surfcomp.SurfaceMeasures, surfcomp.DescriptionParameters,
-                surfcomp.LibraryEntry, surfcomp.LibraryInfo, surfcomp.Pocket):
+                surfcomp.LibraryEntry, surfcomp.LibraryInfo, surfcomp.Pocket,
+                surfcomp.Curvatures, surfcomp.CriticalPointSet, surfcomp.GeodesicPatch):
         for field in cls._fields:
             doc = getattr(cls, field).__doc__
             assert doc and not doc.startswith("Alias for field"), (cls.__name__, field)
@@ -497,3 +505,214 @@ def test_numpy_arrays_are_a_mesh_at_its_own_scale(radius):
     chosen = surfcomp.build_surface((vertices, faces), unit=radius / 5)
     assert chosen.length_unit == pytest.approx(radius / 5)
     assert surfcomp.describe(chosen).length_unit == pytest.approx(radius / 5)
+
+
+# --- (V, F) functions -----------------------------------------------------------------------
+
+
+def _flat_disk(rings):
+    """A flat disk of radius 1 in the z = 0 plane: a centre vertex and rings k = 1..rings of 6k
+    vertices at radius k / rings, the first of each at angle 0, joined ring to ring by angle;
+    counter-clockwise seen from +z. (V, F)."""
+    vertices, ring_start = [(0.0, 0.0, 0.0)], [0]
+    for k in range(1, rings + 1):
+        ring_start.append(len(vertices))
+        vertices += [(k / rings * np.cos(a), k / rings * np.sin(a), 0.0)
+                     for a in 2 * np.pi * np.arange(6 * k) / (6 * k)]
+    faces = []
+    for k in range(1, rings + 1):
+        inner = [0] if k == 1 else list(range(ring_start[k - 1], ring_start[k - 1] + 6 * (k - 1)))
+        outer = list(range(ring_start[k], ring_start[k] + 6 * k))
+        i = j = 0
+        while i < len(inner) or j < len(outer):  # advance the ring whose next angle is nearer
+            next_inner = (i + 1) / len(inner) if i < len(inner) else 2.0
+            next_outer = (j + 1) / len(outer) if j < len(outer) else 2.0
+            if len(inner) > 1 and next_inner <= next_outer:
+                faces.append((inner[i % len(inner)], outer[j % len(outer)],
+                              inner[(i + 1) % len(inner)]))
+                i += 1
+            else:
+                faces.append((inner[i % len(inner)], outer[j % len(outer)],
+                              outer[(j + 1) % len(outer)]))
+                j += 1
+                if len(inner) == 1 and j == len(outer):
+                    i = 1
+    return np.array(vertices), np.array(faces, dtype=np.int32)
+
+
+def _bumpy_sphere(radius):
+    """A sphere of `radius` with smooth bumps (up to 36 % of the radius), no mirror symmetry
+    (whose ties rounding would break): peaks and valleys."""
+    vertices, faces = _sphere_arrays(1.0, 4)
+    x, y, z = vertices.T
+    bumps = 1 + 0.2 * np.sin(3 * x + 1) * np.cos(2 * y + 0.3) + 0.16 * np.sin(4 * z - 0.5)
+    return radius * vertices * bumps[:, None], faces
+
+
+def _signed_areas(uv, faces):
+    a, b, c = uv[faces[:, 0]], uv[faces[:, 1]], uv[faces[:, 2]]
+    return 0.5 * ((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
+
+
+@pytest.mark.parametrize("radius", [0.01, 100.0])
+def test_a_spheres_curvature_is_minus_one_over_its_radius_at_any_scale(radius):
+    vertices, faces = _sphere_arrays(radius, 5)
+    k = surfcomp.curvatures((vertices, faces))
+    # Convex negative, per length of the mesh's own coordinates (measured at both scales:
+    # relative error 2e-8, shape index within 1e-8 of 1).
+    assert k.length_unit == pytest.approx(radius / 12, rel=2e-3)
+    for cc in (k.cc1, k.cc2):
+        assert cc.shape == (len(vertices),) and np.allclose(cc, -1 / radius, rtol=1e-7, atol=0)
+    assert np.allclose(k.shape_index, 1.0, rtol=0, atol=1e-7)
+    assert np.allclose(k.curvedness, 1 / radius, rtol=1e-7, atol=0)
+    # A Surface gives the curvature build_surface fitted; unit= fits it again.
+    surface = surfcomp.build_surface((vertices, faces))
+    assert np.array_equal(surfcomp.curvatures(surface).cc1, surface.properties["cc1"])
+    refit = surfcomp.curvatures(surface, unit=radius / 6)
+    assert refit.length_unit == radius / 6
+    assert np.allclose(refit.cc1, -1 / radius, rtol=1e-6, atol=0)
+
+
+def test_geodesic_distances_on_a_sphere_are_radius_times_angle():
+    radius = 3.0
+    vertices, faces = _sphere_arrays(radius, 5)
+    angle = np.arccos(np.clip(vertices @ vertices[0] / radius ** 2, -1, 1))
+    d = surfcomp.geodesic_distances((vertices, faces), 0)
+    assert d.shape == (len(vertices),) and d[0] == 0.0
+    # Fast marching: within 2 % of the great circle (measured: 1.4 % at most).
+    assert np.all(np.abs(d - radius * angle) <= 0.02 * radius * angle + 1e-12)
+    # Dijkstra along the edges is never shorter than fast marching (which also crosses
+    # triangles), and zig-zags: 7.6 % longer on average here.
+    edges = surfcomp.geodesic_distances((vertices, faces), 0, method="dijkstra")
+    assert np.all(edges >= d - 1e-12) and edges.mean() > 1.05 * d.mean()
+    # A bound: the same distances within it, inf beyond it (never NaN).
+    bounded = surfcomp.geodesic_distances((vertices, faces), 0, max_distance=2.0)
+    inside = d <= 2.0
+    assert np.array_equal(bounded[inside], d[inside])
+    assert np.all(np.isinf(bounded[d > 2.0 + 1e-9])) and not np.isnan(bounded).any()
+    with pytest.raises(surfcomp.InputError, match=r"source_vertex 99999 is outside 0\.\."):
+        surfcomp.geodesic_distances((vertices, faces), 99999)
+    with pytest.raises(surfcomp.OptionError, match="max_distance: -1.0"):
+        surfcomp.geodesic_distances((vertices, faces), 0, max_distance=-1)
+    with pytest.raises(surfcomp.OptionError, match="'heat' is not one of dijkstra, fast-marching"):
+        surfcomp.geodesic_distances((vertices, faces), 0, method="heat")
+
+
+def test_a_flat_disks_harmonic_map_is_near_the_identity():
+    vertices, faces = _flat_disk(12)
+    # The whole disk: its border on the unit circle, the first border vertex (angle 0) at (1, 0).
+    uv = surfcomp.disk_map((vertices, faces))
+    assert uv.shape == (len(vertices), 2)
+    r = np.linalg.norm(vertices[:, :2], axis=1)
+    assert np.allclose(np.linalg.norm(uv, axis=1)[r > 0.999], 1.0, atol=1e-12)
+    # The seed's weights, 1 / edge length, do not reproduce linear maps: measured 0.052.
+    assert np.abs(uv - vertices[:, :2]).max() < 0.08
+    # A patch of it: |uv| against r / R_patch, up to a rotation.
+    piece = surfcomp.patch((vertices, faces), 0, radius=0.6)
+    assert piece.surface_vertex[piece.center] == 0 and piece.genus == 0 and not piece.holes
+    # Cut in the mesh's length unit and given back: its positions to rounding.
+    assert np.allclose(piece.positions, vertices[piece.surface_vertex], rtol=0, atol=1e-15)
+    assert np.allclose(piece.distance, np.linalg.norm(piece.positions, axis=1), atol=1e-12)
+    assert piece.radius == 0.6 and piece.distance.max() <= 0.6 * 1.05 + 1e-12
+    uv = surfcomp.disk_map(piece)
+    r = np.linalg.norm(piece.positions[:, :2], axis=1)
+    r_patch = r[piece.outer_boundary].mean()
+    assert np.abs(np.linalg.norm(uv, axis=1) - r / r_patch).max() < 0.08  # measured 0.051
+    assert (_signed_areas(uv, piece.faces) > 0).all()
+
+
+def test_every_method_maps_a_flat_disk_without_flips():
+    vertices, faces = _flat_disk(8)
+    for method in ("harmonic", "tutte", "mean-value", "discrete-conformal",
+                   "discrete-authalic", "lscm", "arap"):
+        uv = surfcomp.disk_map((vertices, faces), method)
+        assert uv.shape == (len(vertices), 2) and np.isfinite(uv).all(), method
+        if method in ("lscm", "arap"):  # free border: within the unit disk's square
+            assert np.abs(uv).max() == pytest.approx(1.0, abs=1e-12), method
+        else:
+            assert np.linalg.norm(uv, axis=1).max() <= 1 + 1e-12, method
+        assert (_signed_areas(uv, faces) > 0).all(), method
+    # Weights that reproduce linear maps give a flat disk with a circular border the identity.
+    for method in ("mean-value", "discrete-conformal"):
+        assert np.abs(surfcomp.disk_map((vertices, faces), method)
+                      - vertices[:, :2]).max() < 1e-9, method
+    with pytest.raises(surfcomp.OptionError, match="'mean_value' is not one of harmonic, tutte"):
+        surfcomp.disk_map((vertices, faces), "mean_value")
+    closed = _sphere_arrays(1.0, 2)
+    with pytest.raises(surfcomp.InputError, match="no border"):
+        surfcomp.disk_map(closed)
+
+
+@pytest.mark.parametrize("radius", [0.01, 100.0])
+def test_critical_points_are_cp_detects_as_vertex_indices(program, tmp_path, radius):
+    vertices, faces = _bumpy_sphere(radius)
+    found = surfcomp.critical_points((vertices, faces))
+    assert len(found.vertex) > 2 and set(found.type) == {"peak", "valley"}
+    assert np.allclose(found.position, vertices[found.vertex], rtol=1e-14, atol=0)
+    assert found.length_unit == surfcomp.curvatures((vertices, faces)).length_unit
+    mesh = tmp_path / "bumpy.off"
+    with open(mesh, "w") as out:
+        out.write(f"OFF\n{len(vertices)} {len(faces)} 0\n")
+        out.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in vertices)
+        out.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
+    cli = run([program, "cp-detect", mesh, "-o", tmp_path / "cps.json"])
+    assert cli.returncode == 0, cli.stderr
+    theirs = json.loads((tmp_path / "cps.json").read_text())["critical_points"]
+    assert [p["vertex"] for p in theirs] == found.vertex.tolist()
+    assert [p["type"] for p in theirs] == found.type.tolist()
+    # The same points describe finds, with their patches and images.
+    described = surfcomp.describe((vertices, faces))
+    assert np.array_equal(described.critical_points.vertex, found.vertex)
+    assert list(described.critical_points.type) == list(found.type)
+    imaged = [i for i, s in enumerate(described.critical_points.status) if s == "ok"]
+    assert imaged
+    for i in imaged[:3]:
+        vertex = int(found.vertex[i])
+        stored = described.patch(i)
+        piece = surfcomp.patch((vertices, faces), vertex)
+        assert piece.surface_vertex.tolist() == stored.surface_vertex
+        assert np.array_equal(piece.faces, stored.faces)
+        assert np.allclose(surfcomp.disk_map(piece), stored.uv, atol=1e-9)
+        image = surfcomp.shape_image((vertices, faces), vertex)
+        assert image.shape == described.images[i].shape
+        assert np.allclose(image, described.images[i], atol=1e-9, equal_nan=True)
+
+
+def test_a_shape_image_has_its_grid_and_a_spheres_is_a_cap():
+    vertices, faces = _sphere_arrays(7.0, 4)
+    image = surfcomp.shape_image((vertices, faces), 0, image_rings=8, image_sectors=90)
+    assert image.shape == (8, 90)
+    assert np.allclose(image, 1.0, atol=1e-6)  # the shape index of a sphere, everywhere
+    default = surfcomp.shape_image((vertices, faces), 0)
+    assert default.shape == (16, 180)
+    # A radius in the mesh's coordinates: a quarter of the sphere's.
+    assert surfcomp.shape_image((vertices, faces), 0, radius=1.75).shape == (16, 180)
+    flat, flat_faces = _flat_disk(8)
+    assert surfcomp.shape_image((flat, flat_faces), 0).shape == (16, 180)
+    with pytest.raises(surfcomp.InputError, match="center_vertex 216: its patch reaches the mesh's"):
+        surfcomp.shape_image((flat, flat_faces), len(flat) - 1)  # on the disk's border
+
+
+def test_the_array_functions_refuse_bad_arrays_with_one_message():
+    vertices, faces = _sphere_arrays(1.0, 2)
+    with pytest.raises(surfcomp.InputError, match=r"V of shape \(n, 3\).*got V \(\d+, 2\)"):
+        surfcomp.curvatures((vertices[:, :2], faces))
+    with pytest.raises(surfcomp.InputError, match="center_vertex -1 is outside"):
+        surfcomp.patch((vertices, faces), -1)
+    with pytest.raises(surfcomp.InputError, match="center_vertex 1000 is outside"):
+        surfcomp.shape_image((vertices, faces), 1000)
+    with pytest.raises(surfcomp.OptionError, match="radius: 0.0"):
+        surfcomp.patch((vertices, faces), 0, radius=0)
+    with pytest.raises(surfcomp.InputError, match="center_vertex 0: no triangle of its patch"):
+        surfcomp.patch((vertices, faces), 0, radius=1e-6)
+    with pytest.raises(surfcomp.InputError, match="no triangle \\(F is empty\\)"):
+        surfcomp.curvatures((vertices, np.zeros((0, 3), int)))
+    # Three triangles on one edge: not a manifold mesh.
+    fan = (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1.0]]),
+           np.array([[0, 1, 2], [1, 0, 3], [0, 1, 4]]))
+    with pytest.raises(surfcomp.InputError, match="non-manifold.*repair=True"):
+        surfcomp.geodesic_distances(fan, 0)
+    with pytest.raises(TypeError, match=r"expected \(V, F\) arrays or a Surface"):
+        surfcomp.curvatures("mesh.off")
+    with pytest.raises(surfcomp.OptionError):
+        surfcomp.critical_points((vertices, faces), critical_point_radius=-1)

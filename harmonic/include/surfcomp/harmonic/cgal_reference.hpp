@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,9 @@ enum class Parameterization {
 /// The names of Parameterization's values, as patch-map --methods takes them.
 inline constexpr std::array<const char*, 7> parameterization_names = {
     "harmonic", "tutte", "mean-value", "discrete-conformal", "discrete-authalic", "lscm", "arap"};
+
+/// The method of that name (parameterization_names); nullopt for any other.
+std::optional<Parameterization> parameterization_from_name(const std::string& name);
 
 /// Whether `method` leaves the patch's border free (lscm, arap): its map has the scale and
 /// position CGAL gives it, not the unit disk's.

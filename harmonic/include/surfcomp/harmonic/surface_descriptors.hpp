@@ -135,6 +135,16 @@ std::vector<CriticalPointDescriptor> describe_points(const mesh::Surface& surfac
                                                      const std::vector<mesh::CriticalPoint>& points,
                                                      const DescriptorOptions& options = {});
 
+/// describe_points of `points` on `surface` described in the length unit `unit` (the length of
+/// its coordinates that options' radii count as 1 A, mesh::general_mesh_unit), as describe_surface
+/// describes a general mesh: the points (in the surface's coordinates, as
+/// mesh::detect_critical_points_in_unit gives them) are described on the surface's copy scaled by
+/// 1 / unit and given back in its coordinates (scale_point_descriptor). Throws as
+/// describe_points; InputError for a unit that is not finite and > 0.
+std::vector<CriticalPointDescriptor> describe_points_in_unit(
+    const mesh::Surface& surface, const std::vector<mesh::CriticalPoint>& points, double unit,
+    const DescriptorOptions& options = {});
+
 /// Scales a description's geometry by `factor` (> 0, finite), as a change of length unit: the
 /// surface (mesh::scale_surface), the critical points' positions and curvatures (cc1, cc2,
 /// curvedness divided by it), the patches' positions and on-surface distances, the atoms, and

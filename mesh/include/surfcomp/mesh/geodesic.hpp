@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -28,6 +29,9 @@ enum class GeodesicMethod {
   /// close to the great-circle distance on a sphere. METHOD section 2 allows it.
   fast_marching,
 };
+
+/// The names of GeodesicMethod's values, as options and Python's `method=` take them.
+inline constexpr std::array<const char*, 2> geodesic_method_names = {"dijkstra", "fast-marching"};
 
 struct GeodesicOptions {
   /// Default +inf (no bound), A. Vertices farther than this are +inf and are not expanded, so a

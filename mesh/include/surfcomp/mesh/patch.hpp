@@ -156,4 +156,17 @@ Patch assemble_patch(const Surface& surface, int center_vertex, const std::vecto
 /// Deterministic, const on the surface, thread-safe.
 Patch extract_patch(const Surface& surface, int center_vertex, const PatchOptions& options = {});
 
+/// Scales a patch by `factor`, as a change of length unit: its positions and on-surface
+/// distances times it. `factor` is not checked.
+void scale_patch(Patch& patch, double factor);
+
+/// extract_patch of `surface` described in the length unit `unit` (the length of its
+/// coordinates that options.radius counts as 1 A, mesh::general_mesh_unit): cut on its copy
+/// scaled by 1 / unit and given back in its coordinates (scale_patch). With
+/// harmonic::DescriptorOptions::patch, the patch describe_surface cuts around that vertex of a
+/// general mesh described in that unit. Throws as extract_patch; InputError for a unit that is
+/// not finite and > 0.
+Patch extract_patch_in_unit(const Surface& surface, int center_vertex, double unit,
+                            const PatchOptions& options = {});
+
 }  // namespace surfcomp::mesh
