@@ -261,6 +261,8 @@ matching::MatchOptions query_match_options(const ScreenQuery& query, const Scree
   matching::MatchOptions match = options.match;
   match.mode =
       query.site.empty() ? matching::MatchMode::whole_surfaces : matching::MatchMode::binding_sites;
+  // A hit is scored by its overlay: the coverage would add a third to each pair's match time.
+  match.coverage_distance = 0.0;
   return match;
 }
 
