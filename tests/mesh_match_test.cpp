@@ -3,12 +3,14 @@
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/mesh/load_surface.hpp"
 #include "surfcomp/mesh/repair.hpp"
 #include "surfcomp/mesh/surface.hpp"
 #include "surfcomp/mesh/topology.hpp"
 
 #include "surfcomp/core/error.hpp"
 
+#include "mesh_cut.hpp"
 #include "test_data.hpp"
 
 #include <Eigen/Geometry>
@@ -22,36 +24,6 @@
 
 namespace surfcomp {
 namespace {
-
-/// The faces of `full` whose centroids lie below the plane through its centroid with normal
-/// `normal` (about half the surface), as a mesh in the same frame.
-mesh::Surface cut(const mesh::Surface& full, const Eigen::Vector3d& normal) {
-  const Eigen::MatrixX3d v = full.positions();
-  const Eigen::MatrixX3i f = full.faces();
-  const Eigen::RowVector3d centre = v.colwise().mean();
-  std::vector<int> kept;
-  std::vector<int> index(static_cast<std::size_t>(v.rows()), -1);
-  for (Eigen::Index i = 0; i < f.rows(); ++i) {
-    const Eigen::RowVector3d centroid = (v.row(f(i, 0)) + v.row(f(i, 1)) + v.row(f(i, 2))) / 3;
-    if ((centroid - centre).dot(normal.transpose()) < 0.0) kept.push_back(static_cast<int>(i));
-  }
-  std::vector<Eigen::RowVector3d> points;
-  Eigen::MatrixX3i faces(static_cast<Eigen::Index>(kept.size()), 3);
-  for (std::size_t k = 0; k < kept.size(); ++k) {
-    for (int c = 0; c < 3; ++c) {
-      int& at = index[static_cast<std::size_t>(f(kept[k], c))];
-      if (at < 0) {
-        at = static_cast<int>(points.size());
-        points.push_back(v.row(f(kept[k], c)));
-      }
-      faces(static_cast<Eigen::Index>(k), c) = at;
-    }
-  }
-  Eigen::MatrixX3d positions(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t k = 0; k < points.size(); ++k)
-    positions.row(static_cast<Eigen::Index>(k)) = points[k];
-  return mesh::Surface::from_arrays(positions, faces, "cut copy");
-}
 
 double diagonal(const mesh::Surface& s) {
   const Eigen::MatrixX3d v = s.positions();
@@ -74,7 +46,7 @@ double motion_error(const Eigen::MatrixX3d& truth, const Eigen::Isometry3d& moti
 TEST(MeshMatch, PatchesThatReachABorderAreNotImaged) {
   SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
   const mesh::Surface full = mesh::io::read_mesh(path);
-  mesh::Surface copy = cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
+  mesh::Surface copy = test::cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
   mesh::scale_surface(copy, 1.0 / 0.03);  // the elephant is 1 unit long; patches of 5 A
   matching::MatchInputOptions options;
   matching::MatchInput input;
@@ -108,7 +80,7 @@ TEST(MeshMatch, ACutMovedCopyIsRecoveredWhateverTheLengthUnit) {
   for (const double scale : {1.0, 1000.0}) {
     mesh::Surface full = original;
     mesh::scale_surface(full, scale);
-    mesh::Surface copy = cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
+    mesh::Surface copy = test::cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
     const Eigen::MatrixX3d truth = copy.positions();
     mesh::transform_surface(copy, motion.linear(), motion.translation() * scale);
     matching::MatchInput reference, probe;
@@ -138,7 +110,7 @@ TEST(MeshMatch, ACutCopyLiesWhollyOnItsOriginalAndIcpMakesItsPoseExact) {
   SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
   SURFCOMP_FETCHED_OR_SKIP(other_path, "cgal/meshes/cow.off");
   const mesh::Surface full = mesh::io::read_mesh(path);
-  mesh::Surface copy = cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
+  mesh::Surface copy = test::cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
   const double area_fraction = mesh::measure_surface(copy).area / mesh::measure_surface(full).area;
   const Eigen::MatrixX3d truth = copy.positions();
   Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
@@ -183,6 +155,51 @@ TEST(MeshMatch, ACutCopyLiesWhollyOnItsOriginalAndIcpMakesItsPoseExact) {
   ASSERT_FALSE(wrong.result.alignments.empty());
   EXPECT_LT(wrong.result.alignments.front().coverage.score, 0.8)
       << wrong.result.alignments.front().coverage.score;
+}
+
+TEST(MeshMatch, CurvatureFittedAtThePairsUnitIsKeptAndAtAnotherFittedAgain) {
+  SURFCOMP_FETCHED_OR_SKIP(path, "cgal/meshes/elephant.off");
+  const mesh::Surface full = mesh::io::read_mesh(path);
+  mesh::Surface copy = test::cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
+  mesh::transform_surface(copy, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.2, 0.1, 0.0));
+  // The whole with the curvature a mesh library stores: fitted at its own (automatic) unit.
+  const mesh::LoadedSurface fitted = mesh::load_mesh_surface(full);
+  matching::MatchInput plain, stored, probe;
+  plain.surface = full;
+  stored.surface = fitted.surface;
+  stored.curvature_unit = fitted.unit.value;
+  probe.surface = copy;
+  const auto top = [](const matching::InputMatch& m) {
+    EXPECT_FALSE(m.result.alignments.empty());
+    return m.result.alignments.empty() ? Eigen::Matrix4d::Identity().eval()
+                                       : m.result.alignments.front().transform;
+  };
+  const auto peaks = [](const matching::InputMatch& m) {
+    std::vector<int> at;
+    for (const auto& point : m.reference.descriptors.critical_points)
+      at.push_back(point.point.vertex);
+    return at;
+  };
+  // The pair's unit is the whole's (the larger): the stored curvature is the one a fit gives
+  // (but for rounding), and so is the match.
+  const matching::InputMatch a = matching::match_inputs(plain, probe);
+  const matching::InputMatch b = matching::match_inputs(stored, probe);
+  ASSERT_EQ(a.unit, fitted.unit.value);
+  EXPECT_EQ(peaks(a), peaks(b));
+  EXPECT_LT((top(a) - top(b)).norm(), 1e-9);
+  // A curvature that is not the fit's shows which one the match used: kept at its unit...
+  matching::MatchInput altered = stored;
+  const Eigen::VectorXd height = full.positions().col(1);
+  for (const char* name : {mesh::property::cc1, mesh::property::cc2})
+    altered.surface->set_property(name, height);
+  EXPECT_NE(peaks(matching::match_inputs(altered, probe)), peaks(a));
+  // ... and fitted again in another unit: the plain match in that unit.
+  matching::MatchInputOptions other;
+  other.input.unit = 2.0 * fitted.unit.value;
+  const matching::InputMatch c = matching::match_inputs(plain, probe, other);
+  const matching::InputMatch d = matching::match_inputs(altered, probe, other);
+  EXPECT_EQ(peaks(c), peaks(d));
+  EXPECT_LT((top(c) - top(d)).norm(), 1e-9);
 }
 
 TEST(MeshRepair, ATriangleSoupBecomesTheMeshItCameFrom) {

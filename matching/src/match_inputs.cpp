@@ -43,6 +43,8 @@ struct LoadedInput {
   /// The surface still needs its curvature, computed once its length unit is known (a mesh
   /// read without a molecule, or a surface in memory without curvature).
   bool needs_curvature = false;
+  /// MatchInput::curvature_unit: the unit the surface's curvature was fitted at (0: none).
+  double curvature_unit = 0.0;
   std::optional<mesh::RepairReport> repair;  ///< what --repair changed in a mesh file
   std::vector<std::string> notes;            ///< mesh::LoadedSurface::notes
 };
@@ -130,6 +132,7 @@ LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& opti
                              mesh::property::curvedness}) {
       if (!side.surface->has_property(name)) side.needs_curvature = true;
     }
+    if (!side.needs_curvature) side.curvature_unit = input.curvature_unit;
   } else if (options.input.molecule_file.empty()) {
     mesh::check_surface_input(input.path, options.input);
     mesh::LoadedSurface loaded = mesh::read_mesh_input(input.path, options.input);
@@ -240,7 +243,7 @@ void complete(LoadedInput& side, const MatchInputOptions& options, bool general_
 }
 
 /// The side's surface and site spheres scaled by `factor` (a change of length unit); its
-/// curvature is computed again at the new unit.
+/// curvature is computed again at the new unit (but see settle_curvature).
 void scale_side(LoadedInput& side, double factor) {
   if (side.descriptors) {
     harmonic::scale_descriptors(*side.descriptors, factor);
@@ -252,6 +255,12 @@ void scale_side(LoadedInput& side, double factor) {
     sphere.center *= factor;
     sphere.radius *= factor;
   }
+}
+
+/// A side described in `unit` whose curvature was fitted at a unit (LoadedInput::curvature_unit)
+/// keeps it when that is `unit` and has it fitted again otherwise.
+void settle_curvature(LoadedInput& side, double unit) {
+  if (side.curvature_unit > 0.0) side.needs_curvature = !same_unit(side.curvature_unit, unit);
 }
 
 /// A prepared side and the match result given back in the inputs' coordinates.
@@ -440,6 +449,7 @@ PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& op
                                                               options.input.unit, side.name)
                                     : mesh::LengthUnit{};
   if (unit.value != 1.0) scale_side(side, 1.0 / unit.value);
+  settle_curvature(side, unit.value);
   complete(side, options, general_mesh);
   PreparedInput prepared = describe(std::move(side), options.descriptors, options, "input");
   if (unit.value != 1.0) unscale(prepared, unit.value);
@@ -510,6 +520,8 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
     scale_side(*prb, 1.0 / out.unit);
     log(options, "length unit " + std::to_string(out.unit) + " (" + out.unit_from + ")");
   }
+  settle_curvature(*ref, out.unit);
+  settle_curvature(*prb, out.unit);
   complete(*ref, options, general_meshes);
   complete(*prb, options, general_meshes);
   out.reference = describe(std::move(*ref), descriptors, options, "REF");

@@ -31,7 +31,12 @@ struct MatchInput {
   std::filesystem::path path;
   std::optional<harmonic::SurfaceDescriptors> descriptors;  ///< a description in memory
   std::optional<mesh::Surface> surface;  ///< a surface in memory, with its esp and lp
-  std::optional<Molecule> molecule;      ///< a molecule in memory (its SES is built)
+  /// Default 0: none. A general mesh `surface` whose curvature properties were fitted at this
+  /// length unit (mesh::assign_general_mesh_curvature; a mesh library's entries): a comparison
+  /// in that unit keeps them instead of fitting them again, which costs most of a large mesh's
+  /// description. Any other unit fits them again.
+  double curvature_unit = 0.0;
+  std::optional<Molecule> molecule;  ///< a molecule in memory (its SES is built)
   /// A binding site around one copy of this ligand residue (MatchInputOptions::site): the
   /// structure's surface is built without water and without that copy. A molecule input only.
   std::string site_ligand;
