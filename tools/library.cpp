@@ -15,6 +15,7 @@
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/library_build.hpp"
+#include "surfcomp/screening/shape_screen.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -52,7 +53,10 @@ constexpr const char* kUsage =
     "        skipped and listed in LIB.sclib.log (when all are, the build fails and leaves only\n"
     "        the log). A .hsi INPUT (surfcomp hsi-build from a molecule) becomes one entry\n"
     "        keeping its surface and heavy atoms (no bonds; no --conformers; at most 999 heavy\n"
-    "        atoms); screen describes that surface again.\n"
+    "        atoms); screen describes that surface again. Mesh INPUTs (.ply .stl .off .obj\n"
+    "        .vert; folders of them) make a library of meshes instead, one entry each (the mesh\n"
+    "        as read, --repair: repaired first), which `surfcomp screen SCAN.ply LIB` screens\n"
+    "        by shape; molecules and meshes do not mix in one library.\n"
     "        Entries keep the input order; the file does not depend on --threads.\n"
     "        More records than --shard-records N make a sharded library: LIB.sclib is then an\n"
     "        index of shards of N consecutive records each (LIB.sclib.d/000001.sclib, ...), which\n"
@@ -314,11 +318,11 @@ int info(const std::vector<std::string>& args) {
   const double mean =
       summary.entries > 0 ? static_cast<double>(summary.file_bytes) / summary.entries : 0.0;
   console::summary(
-      "%s: format version %u, %zu entries, %zu molecules, %zu shard%s, %.2f MB (%.1f KB per "
+      "%s: format version %u, %zu entries, %zu %s, %zu shard%s, %.2f MB (%.1f KB per "
       "entry, largest %.1f KB)\n",
       library.path().string().c_str(), library.version(), summary.entries, summary.molecules,
-      library.shards(), library.shards() == 1 ? "" : "s",
-      static_cast<double>(summary.file_bytes) / 1e6, mean / 1e3,
+      screening::is_mesh_library(library) ? "meshes" : "molecules", library.shards(),
+      library.shards() == 1 ? "" : "s", static_cast<double>(summary.file_bytes) / 1e6, mean / 1e3,
       static_cast<double>(summary.largest_entry_bytes) / 1e3);
   for (const auto& [source, count] : summary.entries_per_source)
     console::summary("  %s: %zu entries\n", source.c_str(), count);
@@ -338,6 +342,11 @@ int export_sdf(const std::vector<std::string>& args) {
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   check_command_files({{{"LIB", path}}, {{"--output", output, {".sdf"}, ""}}});
   const screening::Library library(path);
+  if (screening::is_mesh_library(library)) {
+    throw InputError(path.string() +
+                     ": a library of meshes has no molecules to export (`library info` lists "
+                     "its mesh files)");
+  }
   io::write_file_atomically(output,
                             [&](std::ostream& out) { screening::write_library_sdf(out, library); });
   console::summary("%s: %zu entries -> %s\n", path.string().c_str(), library.size(),

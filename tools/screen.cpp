@@ -14,9 +14,12 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/matching/site.hpp"
+#include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/mesh/load_surface.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/screen.hpp"
+#include "surfcomp/screening/shape_screen.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -33,7 +36,9 @@ constexpr const char* kUsage =
     "                       [--fusion max|mean] [--aligned-out hits.sdf] [--threads T]\n"
     "       surfcomp screen STRUCTURE.pdb POCKETS.sclib --site-ligand RES | --site-sphere x,y,z,r\n"
     "                       | --site-pocket N -o hits.csv [--aligned-out hits.pdb] ...\n"
-    "       mpirun -np R surfcomp screen ...   (the library split over R processes)\n\n"
+    "       mpirun -np R surfcomp screen ...   (the library split over R processes)\n"
+    "       surfcomp screen SCAN.ply MESHES.sclib -o hits.csv [--top N] [--scale auto|none]\n"
+    "                       [--unit L] [--repair] [--threads T]\n\n"
     "Ranks the molecules of a library (surfcomp library build) by how well their surfaces\n"
     "overlay QUERY's, in three stages: every conformer gets a fast score (the overlay score of\n"
     "its stored surface sample at the four principal-axes superpositions onto the query, no\n"
@@ -67,7 +72,17 @@ constexpr const char* kUsage =
     "       rank,entry,name,source,record,conformer,score,query (the best query) and\n"
     "       score_1..score_K. Every query is read and described before the library is: a\n"
     "       query record that cannot be read stops the command, naming it, before any\n"
-    "       screening work and without output. --aligned-out takes one query.";
+    "       screening work and without output. --aligned-out takes one query.\n\n"
+    "A mesh QUERY (a partial scan, say) is screened by shape against a library of meshes\n"
+    "(library build MESH...): each entry is matched with it as `surfcomp match ENTRY QUERY`\n"
+    "would (each pair in the larger mesh's unit under --scale auto, or in --unit L), and the\n"
+    "entries are ranked by the fraction of QUERY's area that lies within one unit of QUERY's\n"
+    "own (1/12 of its RMS radius, or --unit) of the entry, under the best of the pair's three\n"
+    "best distinct poses. hits.csv has the columns\n"
+    "rank,entry,name,source,score (that fraction),entry_coverage (the entry's fraction within\n"
+    "it of QUERY),overlay (the pose's shape Tanimoto),unit (the pair's),t00..t33 (the\n"
+    "transform moving the entry into QUERY's frame),note (why a pair was not matched: an entry\n"
+    "narrower than QUERY cannot hold it as a part, or the match failed).";
 
 /// One query of a screen: a file, and its record in a multi-molecule file (0: its only one).
 struct QuerySpec {
@@ -97,6 +112,67 @@ std::vector<QuerySpec> query_specs(const std::vector<std::string>& files, std::s
     }
   }
   return specs;
+}
+
+/// The options that apply to molecule and site screens only.
+constexpr const char* kMoleculeScreenOptions[] = {
+    "refine",      "refine-starts",     "candidates",        "fusion",      "chemistry",
+    "record",      "aligned-out",       "aligned-top",       "site-ligand", "site-sphere",
+    "site-pocket", "atom-polish-sigma", "atom-polish-weight"};
+
+/// `surfcomp screen SCAN LIB`: a mesh query screened by shape against a library of meshes.
+int screen_mesh(const std::filesystem::path& query_path, const std::filesystem::path& library_path,
+                const std::filesystem::path& output,
+                const boost::program_options::variables_map& vm,
+                screening::QueryScreenOptions settings) {
+  for (const char* name : kMoleculeScreenOptions) {
+    if (vm.count(name) && !vm[name].defaulted())
+      throw OptionError(std::string("--") + name +
+                        " applies to molecule and site queries, not to " + query_path.string() +
+                        " (a mesh)");
+  }
+  if (launched_by_mpi())
+    throw OptionError("a mesh query is screened in one process (--threads T), not under mpirun");
+  CommandFiles files;
+  files.inputs.push_back({"QUERY", query_path});
+  files.inputs.push_back({"LIB", library_path});
+  files.outputs.push_back({"--output", output, {".csv"}, ""});
+  check_command_files(files);
+  const auto limit = limit_threads(settings.query.threads);
+  screening::ShapeScreenOptions options;
+  options.inputs = settings.query;
+  options.inputs.descriptors.progress = nullptr;  // pairs are described in parallel
+  options.inputs.log = nullptr;
+  options.top = static_cast<std::size_t>(settings.screen.top);
+  if (console::progress_shown()) {
+    auto line = std::make_shared<console::ProgressLine>("shape screen (matches)", "entries");
+    options.progress = [line](std::int64_t done, std::int64_t total) { (*line)(done, total); };
+  }
+  const Stopwatch clock;
+  mesh::check_surface_input(query_path, settings.query.input);
+  const screening::Library library(library_path);
+  if (!screening::is_mesh_library(library)) {
+    throw InputError(library_path.string() +
+                     ": holds molecules or sites; a mesh query is screened against a library "
+                     "of meshes (library build MESH...)");
+  }
+  console::step(library_path.string() + ": " + std::to_string(library.size()) + " meshes");
+  mesh::LoadedSurface query = mesh::read_mesh_input(query_path, settings.query.input);
+  for (const std::string& note : query.notes) console::note(note);
+  const std::vector<screening::ShapeHit> hits =
+      screening::screen_shapes(query.surface, library, options);
+  io::write_file_atomically(
+      output, [&](std::ostream& out) { screening::write_shape_hits_csv(out, library, hits); });
+  const auto failed = std::count_if(
+      hits.begin(), hits.end(), [](const screening::ShapeHit& hit) { return !hit.note.empty(); });
+  const std::string unmatched =
+      failed ? ", " + std::to_string(failed) + " not matched (see the note column)" : "";
+  const std::string top = hits.empty() ? "-" : library.info(hits.front().entry).name;
+  console::summary("%s vs %s: %zu meshes, %zu rows%s; top %s (%.3f of the query on it); %.2f s\n",
+                   query_path.string().c_str(), library_path.string().c_str(), library.size(),
+                   hits.size(), unmatched.c_str(), top.c_str(),
+                   hits.empty() ? 0.0 : hits.front().score, clock.elapsed_s());
+  return 0;
 }
 
 /// `output` with ".queryK" before its extension: the table of query K (1-based).
@@ -135,6 +211,13 @@ int screen(const std::vector<std::string>& args) {
   const std::filesystem::path library_path = inputs.back();
   const bool site_query = screening::is_site_query(settings);
   const std::vector<std::string> query_files(inputs.begin(), inputs.end() - 1);
+  if (std::any_of(query_files.begin(), query_files.end(),
+                  [](const std::string& file) { return mesh::io::is_mesh_file(file); })) {
+    if (query_files.size() > 1)
+      throw OptionError("a mesh QUERY is screened alone; " + std::to_string(query_files.size()) +
+                        " queries were given");
+    return screen_mesh(query_files.front(), library_path, output, vm, settings);
+  }
   for (const std::string& file : query_files) {
     if (site_query && (harmonic::io::is_hsi_file(file) || !io::is_molecule_file(file))) {
       throw OptionError(file +

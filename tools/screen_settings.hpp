@@ -9,7 +9,7 @@
 namespace surfcomp::tools {
 
 /// Adds --top --refine --refine-starts --candidates --record --site-ligand --site-sphere
-/// --site-radius --site-margin --threads.
+/// --site-radius --site-margin --threads, and a mesh query's --repair --scale --unit.
 void add_screen_options(boost::program_options::options_description& described);
 
 /// The screen options given on the command line (checked), with progress lines for the query's

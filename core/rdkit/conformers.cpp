@@ -36,11 +36,12 @@ std::unique_ptr<RDKit::RWMol> parse(const io::MoleculeRecord& record) {
       return std::unique_ptr<RDKit::RWMol>(RDKit::Mol2BlockToMol(record.text, true, false));
     case io::RecordFormat::structure:
     case io::RecordFormat::descriptors:
+    case io::RecordFormat::mesh:
       break;
   }
   throw InputError(describe(record) +
                    ": conformers are generated from SMILES, SDF or MOL2 records, not from a "
-                   "PDB/PQR structure or a .hsi file");
+                   "PDB/PQR structure, a .hsi file or a mesh");
 }
 
 std::vector<std::string> embed(const io::MoleculeRecord& record, const ConformerOptions& options) {

@@ -576,6 +576,8 @@ std::string rdkit_moved_record_block(const MoleculeRecord& record, const Eigen::
       throw InputError(source + ": a PQR structure cannot be written as a mol block");
     case RecordFormat::descriptors:
       throw InputError(source + ": a .hsi file has no molecule to write as a mol block");
+    case RecordFormat::mesh:
+      throw InputError(source + ": a mesh has no molecule to write as a mol block");
     case RecordFormat::smiles:
       break;
   }

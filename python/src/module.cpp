@@ -18,6 +18,7 @@
 #include "surfcomp/mesh/geodesic.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/mesh/load_surface.hpp"
 #include "surfcomp/mesh/patch.hpp"
 #include "surfcomp/mesh/topology.hpp"
 #include "surfcomp/report/critical_point_files.hpp"
@@ -26,6 +27,7 @@
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/screen.hpp"
+#include "surfcomp/screening/shape_screen.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -1018,6 +1020,52 @@ py::dict screen(const py::list& queries, const std::string& library_path, const 
   return out;
 }
 
+/// A mesh query screened by shape against a library of meshes (screening::screen_shapes): one
+/// dict per hit (ShapeHit's fields), best first.
+py::list screen_shapes(const py::handle& query, const std::string& library_path,
+                       const py::dict& keywords, const py::dict& mesh_keywords) {
+  auto settings = settings_from(screening::screen_option_table(), keywords);
+  settings.query.input = settings_from(mesh::surface_input_option_table(), mesh_keywords);
+  const matching::MatchInput input = input_of(query, settings.query.input);
+  std::optional<screening::Library> library;
+  std::vector<screening::ShapeHit> hits;
+  {
+    py::gil_scoped_release release;
+    const auto limit = tools::limit_threads(settings.query.threads);
+    mesh::Surface surface;
+    if (input.surface && !input.molecule) {
+      surface = *input.surface;
+    } else if (!input.path.empty() && mesh::io::is_mesh_file(input.path)) {
+      mesh::check_surface_input(input.path, settings.query.input);
+      surface = mesh::read_mesh_input(input.path, settings.query.input).surface;
+    } else {
+      throw InputError(input.name() +
+                       ": a shape screen's query is a mesh (a mesh file, (V, F) or a Surface "
+                       "built from one)");
+    }
+    library.emplace(library_path);
+    screening::ShapeScreenOptions options;
+    options.inputs = settings.query;
+    options.top = static_cast<std::size_t>(settings.screen.top);
+    hits = screening::screen_shapes(surface, *library, options);
+  }
+  py::list rows;
+  for (std::size_t k = 0; k < hits.size(); ++k) {
+    const screening::ShapeHit& hit = hits[k];
+    py::dict d = entry_row(*library, k + 1, hit.entry);
+    d.attr("pop")("record");
+    d.attr("pop")("conformer");
+    d["score"] = hit.score;
+    d["entry_coverage"] = hit.entry_coverage;
+    d["overlay"] = hit.overlay;
+    d["unit"] = hit.unit;
+    d["transform"] = owned_array(Eigen::Matrix4d(hit.transform));
+    d["note"] = hit.note;
+    rows.append(d);
+  }
+  return rows;
+}
+
 py::list pockets(const std::string& structure, const py::dict& keywords) {
   const auto settings = settings_from(matching::pocket_search_option_table(), keywords);
   matching::StructurePockets found;
@@ -1233,6 +1281,8 @@ PYBIND11_MODULE(_surfcomp, m) {
         py::arg("report") = std::string());
   m.def("screen", &sp::screen, py::arg("query"), py::arg("library"), py::arg("options"),
         py::arg("molecules"));
+  m.def("screen_shapes", &sp::screen_shapes, py::arg("query"), py::arg("library"),
+        py::arg("options"), py::arg("mesh_options"));
   m.def("pockets", &sp::pockets, py::arg("structure"), py::arg("options"));
   m.def("option_table", &sp::option_table, py::arg("function"));
   m.def("curvatures", &sp::curvatures, py::arg("mesh"), py::arg("options"));

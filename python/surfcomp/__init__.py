@@ -46,10 +46,10 @@ __all__ = [
     "Alignment", "CoverageScore", "CriticalPointSet", "CriticalPoints", "Curvatures",
     "DescriptionParameters", "Descriptors", "Error", "FileError", "FusedHit", "GeodesicPatch",
     "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
-    "OverlayScore", "Patch", "Pocket", "Screens", "Surface", "SurfaceMeasures", "build_surface",
-    "critical_points", "curvatures", "describe", "disk_map", "geodesic_distances", "library_info",
-    "load_descriptors", "match", "option_table", "patch", "pockets", "screen", "screen_queries",
-    "shape_image",
+    "OverlayScore", "Patch", "Pocket", "Screens", "ShapeHit", "Surface", "SurfaceMeasures",
+    "build_surface", "critical_points", "curvatures", "describe", "disk_map", "geodesic_distances",
+    "library_info", "load_descriptors", "match", "option_table", "patch", "pockets", "screen",
+    "screen_queries", "screen_shapes", "shape_image",
 ]
 __version__ = "0.1.0"
 
@@ -680,6 +680,49 @@ def screen_queries(queries, library, *, molecules: bool = False, **options) -> S
     result = _surfcomp.screen([_input(q) for q in queries], os.fspath(library), options, molecules)
     return Screens(hits=[_hits(rows, molecules) for rows in result["hits"]],
                    fused=[FusedHit(**row) for row in result["fused"]])
+
+
+class ShapeHit(NamedTuple):
+    """One mesh of a library of meshes matched with a mesh query (:func:`screen_shapes`)."""
+    rank: int
+    entry: int
+    name: str
+    source: str
+    score: float
+    entry_coverage: float
+    overlay: float
+    unit: float
+    transform: np.ndarray
+    note: str
+
+
+_documented(ShapeHit,
+            rank="1-based rank", entry="1-based library entry",
+            name="the mesh's name (its file's stem)", source="the mesh file it was built from",
+            score="the fraction of the query's area within one unit of the query's own (or "
+                  "``unit``) of the mesh, under the best of the pair's three best distinct poses",
+            entry_coverage="the fraction of the mesh's area within that distance of the query",
+            overlay="that pose's shape Tanimoto",
+            unit="the pair's length unit, in the inputs' coordinates",
+            transform="(4, 4) homogeneous transform moving the mesh into the query's frame",
+            note="why the pair was not matched (score 0): the mesh is narrower than the query, "
+                 "or the match failed; empty when it was")
+
+
+def screen_shapes(query, library, *, top: int = 100, scale: str = "auto",
+                  unit: Optional[float] = None, repair: bool = False,
+                  threads: int = 0) -> List[ShapeHit]:
+    """Ranks the meshes of a library of meshes (``surfcomp library build MESH...``) by how much
+    of ``query`` (a mesh file, ``(V, F)`` or a :class:`Surface` of a mesh; a partial scan, say)
+    lies on each, as ``surfcomp screen SCAN LIB`` does: each mesh is matched with the query as
+    :func:`match` would match them (in the larger mesh's unit with ``scale="auto"``, or in
+    ``unit``), best ``top`` first (0: every mesh). ``repair`` repairs a query file first."""
+    mesh_options = {"scale": scale, "repair": repair}
+    if unit is not None:
+        mesh_options["unit"] = unit
+    return [ShapeHit(**row) for row in
+            _surfcomp.screen_shapes(_input(query), os.fspath(library),
+                                    {"top": top, "threads": threads}, mesh_options)]
 
 
 def library_info(path) -> LibraryInfo:

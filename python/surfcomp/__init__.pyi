@@ -205,6 +205,18 @@ class Hit(NamedTuple):
     transform: npt.NDArray[np.float64]
     molecule: Any = None  # with screen(..., molecules=True): an RDKit molecule
 
+class ShapeHit(NamedTuple):
+    rank: int
+    entry: int
+    name: str
+    source: str
+    score: float
+    entry_coverage: float
+    overlay: float
+    unit: float
+    transform: npt.NDArray[np.float64]
+    note: str
+
 class FusedHit(NamedTuple):
     rank: int
     entry: int
@@ -431,6 +443,17 @@ def pockets(
     pocket_buriedness: float = 0.6,
     pocket_min_spheres: int = 12,
 ) -> List[Pocket]: ...
+
+def screen_shapes(
+    query: Union[PathLike, Surface, MeshArrays],
+    library: PathLike,
+    *,
+    top: int = 100,
+    scale: str = "auto",
+    unit: Optional[float] = None,
+    repair: bool = False,
+    threads: int = 0,
+) -> List[ShapeHit]: ...
 
 def library_info(path: PathLike) -> LibraryInfo: ...
 def option_table(function: str) -> List[Dict[str, Any]]: ...

@@ -19,6 +19,16 @@ std::string score_text(double score) {
 
 }  // namespace
 
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
 std::string aligned_hit_record(const Library& library, const Hit& hit, std::size_t rank) {
   const LibraryEntry entry = library.entry(hit.entry);
   const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();

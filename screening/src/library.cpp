@@ -40,6 +40,8 @@ std::uint8_t format_code(io::RecordFormat format) {
       return 1;
     case io::RecordFormat::structure:
       return 2;
+    case io::RecordFormat::mesh:
+      return 3;
     case io::RecordFormat::descriptors:
       throw InputError("a library entry from a .hsi file stores its atoms as an MDL block");
     case io::RecordFormat::smiles:
@@ -507,10 +509,10 @@ LibraryEntry LibraryFile::decode_entry(std::size_t index) const {
   LibraryEntry entry;
   entry.info = info;
   const std::uint8_t format = r.u8();
-  if (format > 2) r.fail("unknown molecule format code " + std::to_string(format));
-  entry.molecule.format = format == 0   ? io::RecordFormat::mdl
-                          : format == 1 ? io::RecordFormat::mol2
-                                        : io::RecordFormat::structure;
+  if (format > 3) r.fail("unknown molecule format code " + std::to_string(format));
+  constexpr io::RecordFormat kFormats[] = {io::RecordFormat::mdl, io::RecordFormat::mol2,
+                                           io::RecordFormat::structure, io::RecordFormat::mesh};
+  entry.molecule.format = kFormats[format];
   entry.molecule.text = r.string();
   entry.molecule.source = info.source;
   entry.molecule.record = info.record;

@@ -10,6 +10,10 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
+#include "surfcomp/mesh/io/formats.hpp"
+#include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/mesh/length_unit.hpp"
+#include "surfcomp/mesh/load_surface.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
@@ -81,7 +85,36 @@ std::uint32_t heavy_atom_count(const Molecule& molecule) {
 }
 
 bool is_library_input(const std::filesystem::path& path) {
-  return io::is_record_file(path) || harmonic::io::is_hsi_file(path);
+  return io::is_record_file(path) || harmonic::io::is_hsi_file(path) ||
+         mesh::io::is_mesh_file(path);
+}
+
+/// The entry of a mesh file: the mesh as read (repaired with options.repair; held to the
+/// surface's vertex limit) with the normals and curvature mesh::load_mesh_surface gives it (its
+/// length unit automatic; a .hsi file's surface carries them), and the sample of its surface
+/// pooled in cells of options.spacing of that unit, which the format keeps for every entry; a
+/// shape screen matches the meshes themselves.
+LibraryEntry mesh_entry(const io::MoleculeRecord& record, const LibraryBuildOptions& options) {
+  mesh::SurfaceInputOptions input;
+  input.surface = options.surface;
+  input.repair = options.repair;
+  mesh::LoadedSurface loaded =
+      mesh::load_mesh_surface(mesh::read_mesh_input(record.source, input).surface, input);
+  mesh::Surface& surface = loaded.surface;
+  const mesh::LengthUnit unit = loaded.unit;
+  LibraryEntry entry;
+  entry.info.name = record.name;
+  entry.info.source = record.source.string();
+  entry.info.record = static_cast<std::uint32_t>(record.record);
+  entry.molecule = record;
+  entry.sample = matching::sample_surface(surface, options.spacing * unit.value);
+  entry.kind = matching::SampleKind::surface;
+  entry.packed =
+      matching::PackedSample(entry.sample, entry.atoms, options.sigma * unit.value, entry.kind);
+  harmonic::SurfaceDescriptors stored;
+  stored.surface = std::move(surface);
+  entry.surface = harmonic::io::encode_hsi(stored);
+  return entry;
 }
 
 /// The entry of a .hsi file: its surface's samples, its heavy atoms as an MDL block, and its
@@ -125,6 +158,14 @@ std::vector<io::MoleculeRecord> read_library_inputs(
     const std::vector<std::filesystem::path>& inputs) {
   std::vector<io::MoleculeRecord> records;
   const auto append = [&](const std::filesystem::path& file) {
+    if (mesh::io::is_mesh_file(file)) {
+      io::MoleculeRecord record;
+      record.source = file;
+      record.name = file.stem().string();
+      record.format = io::RecordFormat::mesh;
+      records.push_back(std::move(record));
+      return;
+    }
     if (harmonic::io::is_hsi_file(file)) {
       io::MoleculeRecord record;
       record.source = file;
@@ -151,8 +192,20 @@ std::vector<io::MoleculeRecord> read_library_inputs(
       throw InputError(
           input.string() +
           ": not a molecule file or list (.sdf .mol .mol2 .pdb .ent .cif .cif.gz .pqr .smi .dat "
-          ".dat.gz), a .hsi file nor a directory");
+          ".dat.gz), a .hsi file, a mesh (" +
+          mesh::io::mesh_extensions(mesh::io::MeshUse::read) + ") nor a directory");
     }
+  }
+  const auto is_mesh = [](const io::MoleculeRecord& r) {
+    return r.format == io::RecordFormat::mesh;
+  };
+  const auto meshes = std::count_if(records.begin(), records.end(), is_mesh);
+  if (meshes > 0 && static_cast<std::size_t>(meshes) < records.size()) {
+    const auto other = std::find_if_not(records.begin(), records.end(), is_mesh);
+    throw InputError("a library holds molecules or meshes, not both: " + other->source.string() +
+                     " is not a mesh, " +
+                     std::find_if(records.begin(), records.end(), is_mesh)->source.string() +
+                     " is");
   }
   if (records.empty()) {
     std::string names;
@@ -166,6 +219,14 @@ std::vector<io::MoleculeRecord> read_library_inputs(
 
 std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
                                         const LibraryBuildOptions& options, BuildTimes* times) {
+  if (record.format == io::RecordFormat::mesh) {
+    if (options.conformers)
+      throw InputError("a mesh has fixed coordinates: --conformers does not apply to it");
+    const Stopwatch clock;
+    std::vector<LibraryEntry> entries{mesh_entry(record, options)};
+    if (times != nullptr) times->entries += clock.elapsed_s();
+    return entries;
+  }
   if (record.format == io::RecordFormat::descriptors) {
     if (options.conformers)
       throw InputError("a .hsi file has fixed coordinates: --conformers does not apply to it");

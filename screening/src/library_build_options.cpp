@@ -44,6 +44,11 @@ const options::Table<LibraryBuildOptions>& library_build_option_table() {
             [](auto& l) -> auto& { return l.resume; }),
     };
     t.push_back(options::field<L>(
+        {"repair", Kind::flag,
+         "mesh INPUTs: repair each first, as `surfcomp match --repair` does (duplicate "
+         "vertices merged, degenerate faces removed, the largest component kept, ...)"},
+        [](auto& l) -> auto& { return l.repair; }));
+    t.push_back(options::field<L>(
         io::min_plddt_spec(), [](auto& l) -> auto& { return l.read.min_plddt; }));
     options::append(
         t, matching::binding_site_option_table(), [](auto& l) -> auto& { return l.site; });

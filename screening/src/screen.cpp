@@ -1,5 +1,8 @@
 #include "surfcomp/screening/screen.hpp"
 
+#include "surfcomp/screening/hit_files.hpp"
+#include "surfcomp/screening/shape_screen.hpp"
+
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/protein_lipophilicity.hpp"
@@ -36,16 +39,6 @@ HitScore from_overlay(const matching::OverlayScore& s, const Eigen::Matrix4d& tr
 }
 
 /// A CSV field: quoted (inner quotes doubled) when it holds a comma, quote or line break.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) {
-    if (c == '"') quoted += '"';
-    quoted += c;
-  }
-  return quoted + "\"";
-}
-
 /// %.6f of a value, with -0.000000 written as 0.000000 so that equal results give equal bytes.
 std::string fixed(double value) {
   char text[64];
@@ -254,6 +247,10 @@ void check_entry_kind(const Library& library, std::size_t e, const LibraryEntryI
 }  // namespace
 
 void check_library_kind(const Library& library, bool site_query) {
+  if (is_mesh_library(library)) {
+    throw InputError(library.path().string() +
+                     ": a library of meshes: its query is a mesh (surfcomp screen SCAN.ply LIB)");
+  }
   if (library.size() > 0) check_entry_kind(library, 0, library.info(0), site_query);
 }
 

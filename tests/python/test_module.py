@@ -1,6 +1,7 @@
 """The Python module `surfcomp`: round trips, RDKit molecules against their files, a self-match,
 errors, the GIL, the type stubs against the command line's options, and the example script."""
 import ast
+import csv
 import inspect
 import json
 import os
@@ -264,7 +265,9 @@ def _help_defaults(program, subcommand):
     ("describe", "hsi-build", {"output", "help"}),
     ("match", "match", {"output", "aligned_out", "report", "top", "all_alignments", "trace",
                         "help"}),
-    ("screen", "screen", {"output", "aligned_out", "aligned_top", "help"}),
+    # screen's --repair --scale --unit are screen_shapes' (a mesh query).
+    ("screen", "screen", {"output", "aligned_out", "aligned_top", "help", "repair", "scale",
+                          "unit"}),
     ("pockets", "pockets", {"output", "pdb_out", "help"}),
 ])
 def test_signatures_and_help_come_from_one_option_table(program, function, subcommand, own):
@@ -436,6 +439,33 @@ def test_the_program_recovers_a_partial_copy_of_a_mesh(program, elephant, tmp_pa
     # REF is the partial copy: the transform moves the original into the copy's frame.
     transform = np.linalg.inv(np.array(document["alignments"][0]["transform"]))
     assert mesh_cases.motion_error(case, transform) < 0.02
+
+
+def test_a_partial_copy_finds_its_mesh_in_a_library_of_meshes(program, elephant, tmp_path):
+    path, _, _, case = elephant
+    others = [path.parent / f"{name}.off" for name in ("cow", "knot")]
+    library = tmp_path / "meshes.sclib"
+    done = run([program, "library", "build", path, *others, "-o", library])
+    assert done.returncode == 0, done.stderr
+    hits = surfcomp.screen_shapes((case.vertices, case.faces), library, top=0)
+    assert [h.name for h in hits][0] == "elephant" and len(hits) == 3
+    # The copy lies on its mesh (noise 0.5 % of the diagonal; the tolerance is the copy's own
+    # unit, about 2 % of it) and covers its share of it; far less of it on the others.
+    assert hits[0].score > 0.9 and hits[1].score < hits[0].score - 0.2
+    assert hits[0].entry_coverage == pytest.approx(case.area_fraction, abs=0.1)
+    # The transform moves the mesh into the copy's frame.
+    assert _mesh_cases().motion_error(case, np.linalg.inv(hits[0].transform)) < 0.02
+    # The program's table gives the same ranking and scores.
+    scan = tmp_path / "scan.off"
+    _mesh_cases().write_off(scan, case.vertices, case.faces)
+    done = run([program, "screen", scan, library, "-o", tmp_path / "hits.csv", "--top", "0"])
+    assert done.returncode == 0, done.stderr
+    with open(tmp_path / "hits.csv") as table:
+        rows = list(csv.DictReader(table))
+    assert [r["name"] for r in rows] == [h.name for h in hits]
+    assert [float(r["score"]) for r in rows] == pytest.approx([h.score for h in hits], abs=1e-6)
+    with pytest.raises(surfcomp.InputError, match="a shape screen's query is a mesh"):
+        surfcomp.screen_shapes(SOURCE_DIR / "README.md", library)
 
 
 def test_pockets_are_the_programs_and_a_pocket_is_a_site(program, shared, tmp_path):

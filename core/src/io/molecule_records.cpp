@@ -190,6 +190,8 @@ Molecule read_record_molecule(const MoleculeRecord& record, const MoleculeReadOp
     case RecordFormat::descriptors:
       throw InputError(record.source.string() +
                        ": a .hsi file keeps a surface and heavy atoms, not a molecule to read");
+    case RecordFormat::mesh:
+      throw InputError(record.source.string() + ": a mesh, not a molecule to read");
     case RecordFormat::mol2:
       return detail::read_with_rdkit(record.source, record.text, detail::RdkitFormat::mol2, single);
     case RecordFormat::mdl:

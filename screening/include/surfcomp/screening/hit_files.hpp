@@ -16,6 +16,10 @@
 
 namespace surfcomp::screening {
 
+/// `text` as one CSV field: as it is, or quoted (quotes doubled) when it holds a comma, a quote
+/// or a line break.
+std::string csv_field(const std::string& text);
+
 /// Hit `hit` (row `rank`, 1-based) as one SDF record: its stored molecule moved into the
 /// query's frame as an MDL block (io::moved_record_block: bonds and hydrogens as stored) with
 /// the data items surfcomp_rank, surfcomp_entry (1-based), surfcomp_name, surfcomp_conformer

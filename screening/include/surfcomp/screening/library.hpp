@@ -2,12 +2,14 @@
 // holding what the first two stages of a screen read (the overlay's surface sample, packed in
 // single precision with its self-overlaps, and the heteroatoms) and the molecule itself, from
 // which the last stage rebuilds the surface of a finalist; a site entry also holds its spheres, an
-// entry made from a .hsi file its surface. A library is one file, or an index of shards.
+// entry made from a .hsi file its surface. A library of meshes holds one general mesh an entry
+// (its surface, no molecule), screened by shape (shape_screen.hpp). A library is one file, or an
+// index of shards.
 //
 // Layout of format 4 (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
 //   header   "SURFCLIB", u32 format version, u32 0
-//   records  one per entry: the molecule (format, text), the site spheres, the bytes of a
-//            described surface (LibraryEntry::surface)
+//   records  one per entry: the molecule (format: 0 MDL, 1 MOL2, 2 PDB, 3 none, a mesh entry;
+//            text), the site spheres, the bytes of a described surface (LibraryEntry::surface)
 //   samples  from a 64-byte boundary, one per entry, each on a 64-byte boundary: the packed
 //            sample (matching::PackedSampleView: a 192-byte header, nine float arrays, the
 //            heteroatoms), read in place by the first stage, in entry order
@@ -87,7 +89,10 @@ struct LibraryEntry {
   /// An entry made from a .hsi file: its surface and heavy atoms, encoded as a .hsi file
   /// without critical points (harmonic::io::encode_hsi), from which the last stage describes
   /// the entry instead of rebuilding a surface; `molecule` then holds only the heavy atoms (an
-  /// MDL block without bonds, io::atoms_mol_block). Empty for every other entry.
+  /// MDL block without bonds, io::atoms_mol_block). An entry made from a mesh file: the mesh
+  /// (its vertices, normals and triangles, in its own coordinates), encoded the same way
+  /// without atoms; `molecule` is then an io::RecordFormat::mesh record without text. Empty
+  /// for every other entry.
   std::vector<std::uint8_t> surface;
 };
 

@@ -61,6 +61,8 @@ struct LibraryBuildOptions {
   double lining_radius = matching::SiteMatchOptions{}.overlay_radius;
   /// Pockets (build_pocket_library): how each structure's pockets are detected.
   matching::PocketOptions pockets;
+  /// Default false. Mesh inputs are repaired first (mesh::SurfaceInputOptions::repair).
+  bool repair = false;
   /// Default 64. Most records in flight (being built or waiting for their turn to be written):
   /// bounds the memory a build holds. >= 1.
   std::size_t batch = 64;
@@ -113,17 +115,20 @@ struct LibraryBuildResult {
 void write_build_log(std::ostream& out, const std::filesystem::path& library,
                      const LibraryBuildResult& result);
 
-/// The records of `inputs` in order: each file's records (io::read_molecule_records), and for a
-/// .hsi file one io::RecordFormat::descriptors record (read when its entry is built); a
-/// directory stands for those files (io::is_record_file, .hsi) directly inside it, in name
-/// order. Throws as read_molecule_records, InputError for a path that is none of these, and
-/// FileError naming the inputs when they hold no record at all.
+/// The records of `inputs` in order: each file's records (io::read_molecule_records), for a
+/// .hsi file one io::RecordFormat::descriptors record and for a mesh file one
+/// io::RecordFormat::mesh record (both read when their entry is built); a directory stands for
+/// those files (io::is_record_file, .hsi, mesh::io::is_mesh_file) directly inside it, in name
+/// order. Throws as read_molecule_records, InputError for a path that is none of these or for
+/// meshes mixed with molecules (a library holds one kind), and FileError naming the inputs when
+/// they hold no record at all.
 std::vector<io::MoleculeRecord> read_library_inputs(
     const std::vector<std::filesystem::path>& inputs);
 
 /// The entries of one record: its own coordinates, or its conformers, each with its screening
 /// sample (matching::sample_molecule) and heteroatoms, packed; for a .hsi file, one entry with
-/// the sample of the file's surface (read_hsi) and its heavy atoms (LibraryEntry::surface). Adds
+/// the sample of the file's surface (read_hsi) and its heavy atoms (LibraryEntry::surface); for
+/// a mesh, one entry holding the mesh as read (with options.repair, repaired). Adds
 /// its time to `times` when given. Throws what reading the record, generating its conformers or
 /// building a surface throws (surfcomp::Error).
 std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,

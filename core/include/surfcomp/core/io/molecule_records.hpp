@@ -25,6 +25,8 @@ enum class RecordFormat {
   /// a .hsi file (text empty: read from source): a surface description and its heavy atoms,
   /// no molecule to read
   descriptors,
+  /// a mesh file (text empty: read from source): a general surface, no molecule to read
+  mesh,
 };
 
 /// One molecule of an input file.
