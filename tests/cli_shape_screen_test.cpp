@@ -1,8 +1,8 @@
 // `surfcomp library build` of meshes and `surfcomp screen` of a mesh against them, as a user runs
 // them: a moved half of one of CGAL's meshes finds its whole first, with the motion that puts the
 // whole onto it; the table does not depend on --threads; molecules and meshes do not mix, a
-// library of meshes exports no molecules, and the options of molecule screens are refused for a
-// mesh query, each with one line.
+// library of meshes exports no molecules, and the options of molecule screens and a query no
+// mesh can be matched with are refused, each with one line.
 #include "mesh_cut.hpp"
 #include "program_run.hpp"
 #include "test_data.hpp"
@@ -56,8 +56,9 @@ class ShapeScreen : public ::testing::Test {
  protected:
   void SetUp() override {
     for (const char* name : {"cow", "knot", "elephant", "femur"}) {
-      const auto path = test::fetched_dataset(std::string("cgal/meshes/") + name + ".off");
-      if (!path) GTEST_SKIP() << test::fetched_absent_message("cgal/meshes/cow.off");
+      const std::string relative = std::string("cgal/meshes/") + name + ".off";
+      const auto path = test::fetched_dataset(relative);
+      if (!path) GTEST_SKIP() << test::fetched_absent_message(relative);
       meshes_.push_back(*path);
     }
     folder_ = fs::temp_directory_path() / ("surfcomp_shape_screen_" + std::to_string(::getpid()));
@@ -142,6 +143,26 @@ TEST_F(ShapeScreen, TheTableDoesNotDependOnTheThreads) {
   EXPECT_EQ(csv_rows(tables[0]).size(), 2u);
 }
 
+TEST_F(ShapeScreen, AQueryWiderThanEveryMeshIsMatchedWithNone) {
+  // The cow three times over: no mesh of the library can hold it as a part.
+  mesh::Surface big = mesh::io::read_mesh(meshes_.front());
+  mesh::scale_surface(big, 3.0);
+  mesh::io::write_mesh(big, folder_ / "big.off");
+  const fs::path hits = folder_ / "big.csv";
+  const test::ProgramRun run =
+      test::run_program("screen " + (folder_ / "big.off").string() + " " +
+                        (folder_ / "meshes.sclib").string() + " -o " + hits.string());
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto rows = csv_rows(test::file_bytes(hits));
+  ASSERT_EQ(rows.size(), 4u);
+  for (const auto& row : rows) {
+    EXPECT_EQ(std::stod(row.at("score")), 0.0);
+    EXPECT_NE(row.at("note").find("not matched: the query's extent"), std::string::npos)
+        << row.at("note");
+  }
+  EXPECT_NE(run.out.find("4 not matched"), std::string::npos) << run.out;
+}
+
 /// The one line a refused run writes, and that it wrote no table.
 void expect_refused(const std::string& arguments, const std::string& wanted,
                     const fs::path& table) {
@@ -162,7 +183,16 @@ TEST_F(ShapeScreen, MoleculesAndMeshesDoNotMixAndMoleculeOptionsAreRefused) {
   expect_refused("screen " + scan + " " + library + " -o " + table.string() + " --refine 3",
                  "--refine applies to molecule and site queries", table);
   expect_refused("screen " + scan + " " + scan + " " + library + " -o " + table.string(),
-                 "a mesh QUERY is screened alone", table);
+                 "a library of meshes: its query is one mesh", table);
+  // A query that no entry can be matched with (one triangle has no curvature to fit) stops the
+  // screen with the reason, rather than a table of failed pairs.
+  {
+    std::ofstream triangle(folder_ / "triangle.off");
+    triangle << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  }
+  expect_refused("screen " + (folder_ / "triangle.off").string() + " " + library + " -o " +
+                     table.string() + " --unit 0.1",
+                 "fewer than 3 other vertices", table);
   const fs::path exported = folder_ / "meshes.sdf";
   expect_refused("library export " + library + " -o " + exported.string(),
                  "a library of meshes has no molecules to export", exported);
@@ -178,8 +208,14 @@ TEST_F(ShapeScreen, MoleculesAndMeshesDoNotMixAndMoleculeOptionsAreRefused) {
   ASSERT_EQ(
       test::run_program("library build " + ligand.string() + " -o " + molecules.string()).status,
       0);
-  expect_refused("screen " + scan + " " + molecules.string() + " -o " + table.string(),
-                 "a mesh query is screened against a library of meshes", table);
+  // A mesh with ESP and LP (a molecule's surface) is a query of a molecule library, as before.
+  const fs::path surface = folder_ / "ligand.ply";
+  ASSERT_EQ(test::run_program("surf-build " + ligand.string() + " -o " + surface.string()).status,
+            0);
+  const test::ProgramRun molecular = test::run_program(
+      "screen " + surface.string() + " " + molecules.string() + " -o " + table.string());
+  EXPECT_EQ(molecular.status, 0) << molecular.err;
+  EXPECT_TRUE(fs::exists(table));
 }
 
 }  // namespace

@@ -301,6 +301,9 @@ int build(const std::vector<std::string>& args) {
                           ": SMILES records have no coordinates; give --conformers N");
       }
     }
+  } else if (records.front().format == io::RecordFormat::mesh) {  // one kind: the build's check
+    throw OptionError(records.front().source.string() +
+                      ": a mesh has fixed coordinates; --conformers applies to molecules");
   }
   return run_build([&](auto& plan, auto settings) { plan.emplace(records, library, settings); },
                    library, std::move(options), under_mpi);

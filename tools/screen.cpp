@@ -21,10 +21,12 @@
 #include "surfcomp/screening/screen.hpp"
 #include "surfcomp/screening/shape_screen.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace surfcomp::tools {
@@ -114,35 +116,34 @@ std::vector<QuerySpec> query_specs(const std::vector<std::string>& files, std::s
   return specs;
 }
 
-/// The options that apply to molecule and site screens only.
-constexpr const char* kMoleculeScreenOptions[] = {
-    "refine",      "refine-starts",     "candidates",        "fusion",      "chemistry",
-    "record",      "aligned-out",       "aligned-top",       "site-ligand", "site-sphere",
-    "site-pocket", "atom-polish-sigma", "atom-polish-weight"};
+/// Throws OptionError for an option given on the command line that a shape screen does not
+/// read: every option of molecule and site screens but --top and --threads, and --aligned-out.
+void refuse_molecule_options(const boost::program_options::variables_map& vm,
+                             const std::filesystem::path& query) {
+  std::vector<std::string> names{"aligned-out", "aligned-top"};
+  for (const auto& option : screening::screen_option_table()) {
+    if (option.spec.name != "top" && option.spec.name != "threads")
+      names.push_back(option.spec.name);
+  }
+  for (const std::string& name : names) {
+    if (vm.count(name) && !vm[name].defaulted()) {
+      throw OptionError("--" + name + " applies to molecule and site queries, not to " +
+                        query.string() + " (a mesh, screened by shape against meshes)");
+    }
+  }
+}
 
 /// `surfcomp screen SCAN LIB`: a mesh query screened by shape against a library of meshes.
-int screen_mesh(const std::filesystem::path& query_path, const std::filesystem::path& library_path,
+int screen_mesh(const std::filesystem::path& query_path, const screening::Library& library,
                 const std::filesystem::path& output,
                 const boost::program_options::variables_map& vm,
-                screening::QueryScreenOptions settings) {
-  for (const char* name : kMoleculeScreenOptions) {
-    if (vm.count(name) && !vm[name].defaulted())
-      throw OptionError(std::string("--") + name +
-                        " applies to molecule and site queries, not to " + query_path.string() +
-                        " (a mesh)");
-  }
+                const screening::QueryScreenOptions& settings) {
+  refuse_molecule_options(vm, query_path);
   if (launched_by_mpi())
     throw OptionError("a mesh query is screened in one process (--threads T), not under mpirun");
-  CommandFiles files;
-  files.inputs.push_back({"QUERY", query_path});
-  files.inputs.push_back({"LIB", library_path});
-  files.outputs.push_back({"--output", output, {".csv"}, ""});
-  check_command_files(files);
   const auto limit = limit_threads(settings.query.threads);
   screening::ShapeScreenOptions options;
   options.inputs = settings.query;
-  options.inputs.descriptors.progress = nullptr;  // pairs are described in parallel
-  options.inputs.log = nullptr;
   options.top = static_cast<std::size_t>(settings.screen.top);
   if (console::progress_shown()) {
     auto line = std::make_shared<console::ProgressLine>("shape screen (matches)", "entries");
@@ -150,27 +151,21 @@ int screen_mesh(const std::filesystem::path& query_path, const std::filesystem::
   }
   const Stopwatch clock;
   mesh::check_surface_input(query_path, settings.query.input);
-  const screening::Library library(library_path);
-  if (!screening::is_mesh_library(library)) {
-    throw InputError(library_path.string() +
-                     ": holds molecules or sites; a mesh query is screened against a library "
-                     "of meshes (library build MESH...)");
-  }
-  console::step(library_path.string() + ": " + std::to_string(library.size()) + " meshes");
+  console::step(library.path().string() + ": " + std::to_string(library.size()) + " meshes");
   mesh::LoadedSurface query = mesh::read_mesh_input(query_path, settings.query.input);
   for (const std::string& note : query.notes) console::note(note);
   const std::vector<screening::ShapeHit> hits =
       screening::screen_shapes(query.surface, library, options);
   io::write_file_atomically(
       output, [&](std::ostream& out) { screening::write_shape_hits_csv(out, library, hits); });
-  const auto failed = std::count_if(
+  const auto unmatched = std::count_if(
       hits.begin(), hits.end(), [](const screening::ShapeHit& hit) { return !hit.note.empty(); });
-  const std::string unmatched =
-      failed ? ", " + std::to_string(failed) + " not matched (see the note column)" : "";
+  const std::string not_matched =
+      unmatched ? ", " + std::to_string(unmatched) + " not matched (see the note column)" : "";
   const std::string top = hits.empty() ? "-" : library.info(hits.front().entry).name;
   console::summary("%s vs %s: %zu meshes, %zu rows%s; top %s (%.3f of the query on it); %.2f s\n",
-                   query_path.string().c_str(), library_path.string().c_str(), library.size(),
-                   hits.size(), unmatched.c_str(), top.c_str(),
+                   query_path.string().c_str(), library.path().string().c_str(), library.size(),
+                   hits.size(), not_matched.c_str(), top.c_str(),
                    hits.empty() ? 0.0 : hits.front().score, clock.elapsed_s());
   return 0;
 }
@@ -211,13 +206,21 @@ int screen(const std::vector<std::string>& args) {
   const std::filesystem::path library_path = inputs.back();
   const bool site_query = screening::is_site_query(settings);
   const std::vector<std::string> query_files(inputs.begin(), inputs.end() - 1);
-  if (std::any_of(query_files.begin(), query_files.end(),
-                  [](const std::string& file) { return mesh::io::is_mesh_file(file); })) {
-    if (query_files.size() > 1)
-      throw OptionError("a mesh QUERY is screened alone; " + std::to_string(query_files.size()) +
-                        " queries were given");
-    return screen_mesh(query_files.front(), library_path, output, vm, settings);
+  // A library of meshes is screened by shape, with one mesh; any other library as before (a
+  // mesh with ESP and LP is a molecule's surface).
+  std::optional<screening::Library> shapes(std::in_place, library_path);
+  if (screening::is_mesh_library(*shapes)) {
+    if (query_files.size() > 1 || !mesh::io::is_mesh_file(query_files.front())) {
+      throw InputError(library_path.string() +
+                       ": a library of meshes: its query is one mesh, screened by shape");
+    }
+    CommandFiles files;
+    files.inputs.push_back({"QUERY", query_files.front()});
+    files.outputs.push_back({"--output", output, {".csv"}, ""});
+    check_command_files(files);
+    return screen_mesh(query_files.front(), *shapes, output, vm, settings);
   }
+  shapes.reset();
   for (const std::string& file : query_files) {
     if (site_query && (harmonic::io::is_hsi_file(file) || !io::is_molecule_file(file))) {
       throw OptionError(file +

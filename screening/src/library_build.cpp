@@ -3,6 +3,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/binary_stream.hpp"
+#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
@@ -95,6 +96,12 @@ bool is_library_input(const std::filesystem::path& path) {
 /// pooled in cells of options.spacing of that unit, which the format keeps for every entry; a
 /// shape screen matches the meshes themselves.
 LibraryEntry mesh_entry(const io::MoleculeRecord& record, const LibraryBuildOptions& options) {
+  const std::string extension = io::lowercase_extension(record.source);
+  if (extension == ".vert" || extension == ".face") {
+    throw InputError(record.source.string() +
+                     ": an MSMS surface is a molecule's, in A: build the library from the "
+                     "molecule");
+  }
   mesh::SurfaceInputOptions input;
   input.surface = options.surface;
   input.repair = options.repair;
@@ -182,7 +189,10 @@ std::vector<io::MoleculeRecord> read_library_inputs(
     if (std::filesystem::is_directory(input)) {
       std::vector<std::filesystem::path> files;
       for (const auto& item : std::filesystem::directory_iterator(input)) {
-        if (item.is_regular_file() && is_library_input(item.path())) files.push_back(item.path());
+        // An MSMS surface is a .vert and a .face file: one record, its .vert.
+        if (item.is_regular_file() && is_library_input(item.path()) &&
+            io::lowercase_extension(item.path()) != ".face")
+          files.push_back(item.path());
       }
       std::sort(files.begin(), files.end());
       for (const auto& file : files) append(file);

@@ -1,5 +1,7 @@
 #include "surfcomp/screening/library_build.hpp"
 
+#include "surfcomp/mesh/load_surface.hpp"
+
 namespace surfcomp::screening {
 
 const options::Table<LibraryBuildOptions>& library_build_option_table() {
@@ -43,11 +45,12 @@ const options::Table<LibraryBuildOptions>& library_build_option_table() {
              "and options, keeping its finished shards"},
             [](auto& l) -> auto& { return l.resume; }),
     };
-    t.push_back(options::field<L>(
-        {"repair", Kind::flag,
-         "mesh INPUTs: repair each first, as `surfcomp match --repair` does (duplicate "
-         "vertices merged, degenerate faces removed, the largest component kept, ...)"},
-        [](auto& l) -> auto& { return l.repair; }));
+    // --repair as every subcommand that reads a mesh defines it.
+    for (const auto& option : mesh::surface_input_option_table()) {
+      if (option.spec.name == "repair")
+        t.push_back(options::field<L>(
+            option.spec, [](auto& l) -> auto& { return l.repair; }));
+    }
     t.push_back(options::field<L>(
         io::min_plddt_spec(), [](auto& l) -> auto& { return l.read.min_plddt; }));
     options::append(

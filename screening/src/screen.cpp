@@ -38,7 +38,6 @@ HitScore from_overlay(const matching::OverlayScore& s, const Eigen::Matrix4d& tr
   return hit;
 }
 
-/// A CSV field: quoted (inner quotes doubled) when it holds a comma, quote or line break.
 /// %.6f of a value, with -0.000000 written as 0.000000 so that equal results give equal bytes.
 std::string fixed(double value) {
   char text[64];
@@ -249,7 +248,8 @@ void check_entry_kind(const Library& library, std::size_t e, const LibraryEntryI
 void check_library_kind(const Library& library, bool site_query) {
   if (is_mesh_library(library)) {
     throw InputError(library.path().string() +
-                     ": a library of meshes: its query is a mesh (surfcomp screen SCAN.ply LIB)");
+                     ": a library of meshes: its query is a mesh, screened by shape "
+                     "(screen_shapes)");
   }
   if (library.size() > 0) check_entry_kind(library, 0, library.info(0), site_query);
 }
@@ -411,6 +411,7 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
           "(agree_on_chemistry)");
   }
   if (begin > end || end > library.size()) throw InputError("screen: entries outside the library");
+  check_library_kind(library, sites);
   const std::size_t q_count = queries.size();
   const bool fusing = q_count > 1;
   const bool by_shape = queries.front()->by_shape;

@@ -5,6 +5,7 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/surface_fit.hpp"
 #include "surfcomp/mesh/length_unit.hpp"
+#include "surfcomp/mesh/load_surface.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 
 #include <Eigen/LU>
@@ -14,6 +15,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <utility>
 
 namespace surfcomp::screening {
@@ -68,9 +70,11 @@ double extent_below(const mesh::Surface& surface) {
 }
 
 /// The match of the query with one entry, as a hit; `distance` is the coverage's tolerance in
-/// the inputs' coordinates.
+/// the inputs' coordinates. A match that throws surfcomp::Error leaves the exception in
+/// `failure`.
 ShapeHit match_entry(const mesh::Surface& query, double query_extent, const Library& library,
-                     std::size_t e, double distance, const ShapeScreenOptions& options) {
+                     std::size_t e, double distance, const ShapeScreenOptions& options,
+                     std::exception_ptr* failure) {
   ShapeHit hit;
   hit.entry = e;
   const LibraryEntry entry = library.entry(e);
@@ -108,6 +112,7 @@ ShapeHit match_entry(const mesh::Surface& query, double query_extent, const Libr
     hit = ShapeHit{};
     hit.entry = e;
     hit.note = std::string("not matched: ") + error.what();
+    *failure = std::current_exception();
   }
   return hit;
 }
@@ -126,27 +131,39 @@ double shape_query_unit(const mesh::Surface& query, const ShapeScreenOptions& op
 
 std::vector<ShapeHit> screen_shapes(const mesh::Surface& query, const Library& library,
                                     const ShapeScreenOptions& options) {
-  if (options.poses < 1) throw OptionError("a shape screen measures at least one pose a pair");
+  if (options.poses < 1) throw OptionError("shape screen: poses must be at least 1");
   const double tolerance = options.inputs.match.coverage_distance;
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
-    throw OptionError("--coverage-distance must be finite and > 0 for a shape screen");
+    throw OptionError("shape screen: coverage_distance must be finite and > 0");
+  mesh::check_vertex_limit(query, options.inputs.input);
   if (!is_mesh_library(library)) {
     throw InputError(library.path().string() +
                      ": not a library of meshes (library build MESH...); a mesh query is "
                      "screened against meshes");
   }
   const double distance = tolerance * shape_query_unit(query, options);
-  // The pairs' coverage is measured here, at the query's tolerance.
+  // The pairs' coverage is measured here, at the query's tolerance; the pairs run side by side,
+  // so that a log or a progress line of one description would interleave with the others'.
   ShapeScreenOptions pair = options;
   pair.inputs.match.coverage_distance = 0.0;
+  pair.inputs.log = nullptr;
+  pair.inputs.descriptors.progress = nullptr;
   const double query_extent = extent_below(query);
   std::vector<ShapeHit> hits(library.size());
+  std::vector<std::exception_ptr> failures(library.size());
   std::atomic<std::int64_t> done{0};
   const auto total = static_cast<std::int64_t>(hits.size());
   tbb::parallel_for(std::size_t{0}, hits.size(), [&](std::size_t e) {
-    hits[e] = match_entry(query, query_extent, library, e, distance, pair);
+    hits[e] = match_entry(query, query_extent, library, e, distance, pair, &failures[e]);
     if (options.progress) options.progress(++done, total);
   });
+  // A query (or an option) that no entry can be matched with is the query's fault, not the
+  // entries': the first failure says why.
+  const auto matched =
+      std::count_if(hits.begin(), hits.end(), [](const ShapeHit& hit) { return hit.note.empty(); });
+  const auto failed = std::find_if(failures.begin(), failures.end(),
+                                   [](const std::exception_ptr& p) { return p != nullptr; });
+  if (matched == 0 && failed != failures.end()) std::rethrow_exception(*failed);
   std::stable_sort(hits.begin(), hits.end(), [](const ShapeHit& a, const ShapeHit& b) {
     if (a.score != b.score) return a.score > b.score;
     if (a.overlay != b.overlay) return a.overlay > b.overlay;

@@ -174,8 +174,9 @@ inline constexpr std::size_t macromolecule_chain_residues = 30;
 std::string macromolecule_query_warning(const Molecule& query, const std::string& source);
 
 /// Throws InputError naming the library and its first entry unless that entry is a binding site
-/// when `site_query` (a pocket library) and a molecule otherwise: a check before any work, as a
-/// library is built of one kind. score_molecules checks every entry as it reads it.
+/// when `site_query` (a pocket library) and a molecule otherwise, and naming the library when it
+/// holds meshes (screen_shapes screens those): a check before any work, as a library is built
+/// of one kind. score_molecules checks the library so and every entry as it reads it.
 void check_library_kind(const Library& library, bool site_query);
 
 /// options.match with the mode the query asks for: MatchMode::binding_sites for a site query.

@@ -45,7 +45,7 @@ struct ShapeHit {
   double score = 0.0;
   double entry_coverage = 0.0;  ///< the fraction of the entry's area within it of the query
   double overlay = 0.0;         ///< that pose's overlay score (shape Tanimoto)
-  double unit = 1.0;            ///< the pair's length unit, in the inputs' coordinates
+  double unit = 0.0;  ///< the pair's length unit, in the inputs' coordinates; 0: not matched
   /// Moves the entry's coordinates into the query's frame.
   Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
   /// Why the pair was not matched (score 0): the query is wider than the entry, which cannot
@@ -65,9 +65,12 @@ double shape_query_unit(const mesh::Surface& query, const ShapeScreenOptions& op
 /// by score, then overlay, then entry (the order does not depend on the threads). An entry
 /// narrower than the query (its bounding box's diagonal below 1/1.15 of the query's widest
 /// span, which a part of it cannot have) is not matched, nor one whose match throws
-/// surfcomp::Error (no critical point, say): each scores 0 with the reason. Throws
-/// InputError naming the library when it does not hold meshes, OptionError for options outside
-/// their domain, and what reading an entry throws.
+/// surfcomp::Error (no critical point, say): each scores 0 with the reason, unless no entry was
+/// matched at all, when the first such error is thrown (the query's or the options' fault).
+/// options.inputs' log and description progress are not called (the pairs run side by side).
+/// Throws InputError naming the library when it does not hold meshes, and the query when it
+/// has more vertices than options.inputs.input allows; OptionError for options outside their
+/// domain; what reading an entry throws.
 std::vector<ShapeHit> screen_shapes(const mesh::Surface& query, const Library& library,
                                     const ShapeScreenOptions& options = {});
 
