@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
-"""Virtual screening on the six DUD targets: `surfcomp screen` beside USRCAT and Open3DAlign.
+"""Virtual screening on the six DUD targets or the 17 MUV targets: `surfcomp screen` beside
+USRCAT and Open3DAlign.
 
-Per target (../shared/datasets/dud/cmp_list_DUD_<target>_{actives,decoys}.dat.gz):
+Per target (../shared/datasets/dud/cmp_list_DUD_<target>_{actives,decoys}.dat.gz, or with
+--set muv ../shared/datasets/muv/cmp_list_MUV_<AID>_{actives,decoys}.dat.gz, the same layout):
 - the queries are actives picked with random.Random(seed); each gets one conformer (AddHs,
   ETKDGv3 with randomSeed=seed, MMFF94 optimisation) written to its own SDF;
 - the library is every other active and the decoys (optionally subsampled with the same
@@ -21,6 +23,8 @@ the queries, N conformers per molecule) and only the baselines run.
 
 Run with the system Python, which has RDKit (Debian python3-rdkit):
     /usr/bin/python3 bench/dud_screen_bench.py --surfcomp build/release/tools/surfcomp --json dud.json
+    /usr/bin/python3 bench/dud_screen_bench.py --set muv --max-decoys 1500 --surfcomp ... (MUV,
+        a fixed-seed subset of 1,500 decoys per target while developing; every decoy at the end)
 """
 
 import argparse
@@ -42,6 +46,10 @@ from rdkit import Chem, RDLogger
 from rdkit.Chem import AllChem, rdDistGeom, rdMolAlign, rdMolDescriptors, rdShapeHelpers
 
 TARGETS = ("ace", "ache", "cdk2", "fxa", "hivrt", "na")
+# The 17 MUV targets, by PubChem assay id (Rohrer & Baumann 2009; ../shared/datasets/README.md).
+MUV_TARGETS = ("466", "548", "600", "644", "652", "689", "692", "712", "713", "733", "737",
+               "810", "832", "846", "852", "858", "859")
+SETS = {"dud": TARGETS, "muv": MUV_TARGETS}
 METHODS = ("surfcomp", "usrcat", "o3a_shape")
 METHOD_LABELS = {"surfcomp": "surfcomp", "usrcat": "USRCAT", "o3a_shape": "O3A-shape"}
 EF_FRACTION = 0.01
@@ -55,8 +63,11 @@ def parse_args(argv=None):
     parser.add_argument("--datasets", type=Path, default=DEFAULT_DATASETS,
                         help="the shared datasets folder holding dud/ (default: ../shared/datasets "
                              "beside the repository)")
-    parser.add_argument("--targets", default=",".join(TARGETS),
-                        help="comma-separated DUD targets (default: all six)")
+    parser.add_argument("--set", choices=sorted(SETS), default="dud",
+                        help="the targets' set: dud (six) or muv (17), each in its folder of "
+                             "--datasets (default dud)")
+    parser.add_argument("--targets", default=None,
+                        help="comma-separated targets of the set (default: all of them)")
     parser.add_argument("--queries", type=int, default=5, help="queries per target (default 5)")
     parser.add_argument("--conformers", type=int, default=10,
                         help="conformers per library molecule (default 10)")
@@ -90,10 +101,11 @@ def parse_args(argv=None):
                              "settings, --screen-args included (WORK/TARGET/result.json), instead "
                              "of running it again; the program itself is not compared")
     args = parser.parse_args(argv)
-    args.targets = [t for t in args.targets.split(",") if t]
+    known = SETS[args.set]
+    args.targets = list(known) if args.targets is None else [t for t in args.targets.split(",") if t]
     for target in args.targets:
-        if target not in TARGETS:
-            parser.error(f"unknown target '{target}' (expected some of {', '.join(TARGETS)})")
+        if target not in known:
+            parser.error(f"unknown {args.set} target '{target}' (expected some of {', '.join(known)})")
     if args.rebuild:
         args.rescreen = True
     if args.rescreen and (args.work is None or args.skip_surfcomp):
@@ -614,9 +626,10 @@ def run_target(args, target, work):
 
 def run_target_anew(args, target, work):
     """Runs the screen of one target and returns its figures as a dict."""
-    dud = args.datasets / "dud"
-    actives = read_dud_list(dud / f"cmp_list_DUD_{target}_actives.dat.gz")
-    decoys = read_dud_list(dud / f"cmp_list_DUD_{target}_decoys.dat.gz")
+    folder = args.datasets / args.set
+    prefix = f"cmp_list_{args.set.upper()}_{target}"
+    actives = read_dud_list(folder / f"{prefix}_actives.dat.gz")
+    decoys = read_dud_list(folder / f"{prefix}_decoys.dat.gz")
     log(f"{target}: {len(actives)} actives, {len(decoys)} decoys")
     queries, rng = choose_queries(actives, args.queries, args.seed)
     query_ids = {r["id"] for r, _ in queries}
@@ -714,7 +727,7 @@ def summary_table(args, results, means):
     """The stdout report: one row per target, the means over targets, then the times."""
     methods = [m for m in METHODS if m in means]
     lines = []
-    lines.append(f"DUD screen: {len(results)} target(s), {args.queries} queries each, "
+    lines.append(f"{args.set.upper()} screen: {len(results)} target(s), {args.queries} queries each, "
                  f"{args.conformers} conformers per library molecule, seed {args.seed}")
     lines.append("AUC: actives against decoys, ties one half. EF1%: top ceil(0.01 N) of the N library "
                  "molecules, ties at the cut shared in proportion.")
@@ -767,9 +780,9 @@ def main(argv=None):
     if not args.skip_surfcomp and not Path(args.surfcomp).is_file():
         print(f"dud_screen_bench: surfcomp program {args.surfcomp} not found", file=sys.stderr)
         return 2
-    dud = args.datasets / "dud"
-    if not dud.is_dir():
-        print(f"dud_screen_bench: {dud} not found; skipped", file=sys.stderr)
+    folder = args.datasets / args.set
+    if not folder.is_dir():
+        print(f"dud_screen_bench: {folder} not found; skipped", file=sys.stderr)
         return 0
     temporary = args.work is None
     work = Path(tempfile.mkdtemp(prefix="dud_screen_bench.")) if temporary else args.work

@@ -1,6 +1,7 @@
 """The README's steps for mesh researchers, run as a new user runs them: its shell block as
 written, with `surfcomp` on the PATH and datasets/ where the block expects it, and its (V, F)
 block on a mesh's arrays."""
+import csv
 import json
 import os
 import re
@@ -40,7 +41,8 @@ def test_the_mesh_commands_run_as_written(program, cache, tmp_path):
     done = subprocess.run(["bash", "-e", "-c", script], cwd=tmp_path, env=env,
                           capture_output=True, text=True, timeout=900)
     assert done.returncode == 0, done.stderr
-    for written in ("cps.json", "cps.ply", "maps/patch_maps.json", "result.json"):
+    for written in ("cps.json", "cps.ply", "maps/patch_maps.json", "result.json", "meshes.sclib",
+                    "hits.csv"):
         assert (tmp_path / written).is_file(), written
     # The critical points the first command wrote are the ones patch-map numbered.
     points = json.loads((tmp_path / "cps.json").read_text())["critical_points"]
@@ -54,6 +56,11 @@ def test_the_mesh_commands_run_as_written(program, cache, tmp_path):
     moved = vertices @ np.array(best["transform"])[:3, :3].T + np.array(best["transform"])[:3, 3]
     assert np.sqrt(((moved - vertices) ** 2).sum(1).mean()) < 1e-3 * diagonal
     assert best["coverage"]["score"] > 0.99
+    # The elephant among three meshes: itself first, wholly on itself.
+    with open(tmp_path / "hits.csv") as table:
+        hits = list(csv.DictReader(table))
+    assert [h["name"] for h in hits][0] == "elephant" and len(hits) == 3
+    assert float(hits[0]["score"]) > 0.99
 
 
 def test_the_mesh_arrays_example_runs_as_written(cache):
