@@ -466,6 +466,9 @@ def test_a_partial_copy_finds_its_mesh_in_a_library_of_meshes(program, elephant,
     assert [float(r["score"]) for r in rows] == pytest.approx([h.score for h in hits], abs=1e-6)
     with pytest.raises(surfcomp.InputError, match="a shape screen's query is a mesh"):
         surfcomp.screen_shapes(SOURCE_DIR / "README.md", library)
+    # The molecule screen points at the shape screen.
+    with pytest.raises(surfcomp.InputError, match=r"a library of meshes.*screen_shapes"):
+        surfcomp.screen((case.vertices, case.faces), library)
 
 
 def test_pockets_are_the_programs_and_a_pocket_is_a_site(program, shared, tmp_path):
