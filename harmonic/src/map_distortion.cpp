@@ -39,6 +39,23 @@ void check_map_input(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
                          std::to_string(faces(f, k)) + " outside [0, " + std::to_string(n) + ")");
 }
 
+/// The corners of face `f` on the patch (`p`) and in the map (`q`).
+struct Corners {
+  std::array<Eigen::Vector3d, 3> p;
+  std::array<Eigen::Vector2d, 3> q;
+};
+
+Corners corners_of(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
+                   const Eigen::Ref<const Eigen::MatrixX3i>& faces,
+                   const Eigen::Ref<const Eigen::MatrixX2d>& uv, Eigen::Index f) {
+  Corners corners;
+  for (int k = 0; k < 3; ++k) {
+    corners.p[static_cast<std::size_t>(k)] = positions.row(faces(f, k)).transpose();
+    corners.q[static_cast<std::size_t>(k)] = uv.row(faces(f, k)).transpose();
+  }
+  return corners;
+}
+
 }  // namespace
 
 Eigen::MatrixX3d corner_angle_distortion(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
@@ -47,12 +64,7 @@ Eigen::MatrixX3d corner_angle_distortion(const Eigen::Ref<const Eigen::MatrixX3d
   check_map_input(positions, faces, uv);
   Eigen::MatrixX3d out(faces.rows(), 3);
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    std::array<Eigen::Vector3d, 3> p;
-    std::array<Eigen::Vector2d, 3> q;
-    for (int k = 0; k < 3; ++k) {
-      p[static_cast<std::size_t>(k)] = positions.row(faces(f, k)).transpose();
-      q[static_cast<std::size_t>(k)] = uv.row(faces(f, k)).transpose();
-    }
+    const auto [p, q] = corners_of(positions, faces, uv, f);
     for (std::size_t k = 0; k < 3; ++k) {
       const std::size_t b = (k + 1) % 3, c = (k + 2) % 3;
       out(f, static_cast<Eigen::Index>(k)) =
@@ -72,11 +84,8 @@ MapDistortion map_distortion(const Eigen::Ref<const Eigen::MatrixX3d>& positions
   std::vector<double> map_area(patch_area.size());
   double patch_total = 0.0, map_total = 0.0, angle_sum = 0.0;
   for (Eigen::Index f = 0; f < faces.rows(); ++f) {
-    std::array<Eigen::Vector3d, 3> p;
-    std::array<Eigen::Vector2d, 3> q;
+    const auto [p, q] = corners_of(positions, faces, uv, f);
     for (int k = 0; k < 3; ++k) {
-      p[static_cast<std::size_t>(k)] = positions.row(faces(f, k)).transpose();
-      q[static_cast<std::size_t>(k)] = uv.row(faces(f, k)).transpose();
       angle_sum += angles(f, k);
       out.angle_max_degrees = std::max(out.angle_max_degrees, angles(f, k));
     }
