@@ -28,7 +28,6 @@ Usage (Debian's Python, with the module on the path, e.g. after scripts/demo.sh)
 """
 import argparse
 import json
-import os
 import pathlib
 import sys
 import time
@@ -48,33 +47,42 @@ HELD_OUT = ["anchor_dense", "armadillo", "bear", "blobby", "bunny00", "camel", "
             "knot1", "man", "retinal", "rotor_small", "turbine"]
 
 
-def open3d_registration(o3d, full, case, voxel, with_icp):
-    """Open3D's FPFH + RANSAC (and ICP) motion taking the copy onto the original, and seconds."""
+def fpfh_points(o3d, vertices, voxel):
+    """The points voxel-downsampled, with normals (2 voxels) and FPFH features (5 voxels), as
+    Open3D's registration tutorial prepares them."""
     reg = o3d.pipelines.registration
+    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(vertices))
+    down = cloud.voxel_down_sample(voxel)
+    down.estimate_normals(o3d.geometry.KDTreeSearchParamHybrid(radius=2 * voxel, max_nn=30))
+    feature = reg.compute_fpfh_feature(
+        down, o3d.geometry.KDTreeSearchParamHybrid(radius=5 * voxel, max_nn=100))
+    return down, feature
 
-    def prepared(vertices):
-        cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(vertices))
-        down = cloud.voxel_down_sample(voxel)
-        down.estimate_normals(o3d.geometry.KDTreeSearchParamHybrid(radius=2 * voxel, max_nn=30))
-        feature = reg.compute_fpfh_feature(
-            down, o3d.geometry.KDTreeSearchParamHybrid(radius=5 * voxel, max_nn=100))
-        return down, feature
 
-    start = time.perf_counter()
-    target, target_f = prepared(full)
-    source, source_f = prepared(case.vertices)
+def ransac_icp(o3d, source, target, voxel, with_icp=True):
+    """RANSAC on mutual FPFH matches (1.5 voxels) of two fpfh_points results, then with_icp
+    point-to-plane ICP (1 voxel): Open3D's registration result."""
+    reg = o3d.pipelines.registration
     distance = 1.5 * voxel
     result = reg.registration_ransac_based_on_feature_matching(
-        source, target, source_f, target_f, True, distance,
+        source[0], target[0], source[1], target[1], True, distance,
         reg.TransformationEstimationPointToPoint(False), 3,
         [reg.CorrespondenceCheckerBasedOnEdgeLength(0.9),
          reg.CorrespondenceCheckerBasedOnDistance(distance)],
         reg.RANSACConvergenceCriteria(100000, 0.999))
-    transform = result.transformation
-    if with_icp:
-        transform = reg.registration_icp(source, target, voxel, transform,
-                                         reg.TransformationEstimationPointToPlane()).transformation
-    return np.asarray(transform), time.perf_counter() - start
+    if not with_icp:
+        return result
+    return reg.registration_icp(source[0], target[0], voxel, result.transformation,
+                                reg.TransformationEstimationPointToPlane())
+
+
+def open3d_registration(o3d, full, case, voxel, with_icp):
+    """Open3D's FPFH + RANSAC (and ICP) motion taking the copy onto the original, and seconds."""
+    start = time.perf_counter()
+    target = fpfh_points(o3d, full, voxel)
+    source = fpfh_points(o3d, case.vertices, voxel)
+    result = ransac_icp(o3d, source, target, voxel, with_icp)
+    return np.asarray(result.transformation), time.perf_counter() - start
 
 
 def roc_auc(positives, negatives):

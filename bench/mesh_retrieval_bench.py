@@ -20,7 +20,6 @@ Usage (Debian's Python, the surfcomp program built):
 import argparse
 import csv
 import json
-import os
 import pathlib
 import subprocess
 import sys
@@ -32,7 +31,7 @@ import numpy as np
 HERE = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 import mesh_cases  # noqa: E402
-from mesh_registration_bench import DEV, HELD_OUT  # noqa: E402
+from mesh_registration_bench import DEV, HELD_OUT, fpfh_points, ransac_icp  # noqa: E402
 
 
 def read_mesh(o3d, path):
@@ -75,38 +74,16 @@ def copies_of(o3d, name, meshes):
 
 def open3d_scores(o3d, scan, meshes):
     """Open3D FPFH + RANSAC + ICP fitness of the scan on every mesh, and seconds."""
-    reg = o3d.pipelines.registration
     voxel = mesh_cases.diagonal(scan) / 40
-
-    def prepared(points):
-        cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(points))
-        down = cloud.voxel_down_sample(voxel)
-        down.estimate_normals(o3d.geometry.KDTreeSearchParamHybrid(radius=2 * voxel, max_nn=30))
-        feature = reg.compute_fpfh_feature(
-            down, o3d.geometry.KDTreeSearchParamHybrid(radius=5 * voxel, max_nn=100))
-        return down, feature
-
     start = time.perf_counter()
-    source, source_f = prepared(scan)
-    distance = 1.5 * voxel
+    source = fpfh_points(o3d, scan, voxel)
     scores = {}
     for name, (v, _) in meshes.items():
-        if len(v) < 4:
+        target = fpfh_points(o3d, v, voxel) if len(v) >= 4 else None
+        if target is None or len(target[0].points) < 4:
             scores[name] = 0.0
             continue
-        target, target_f = prepared(v)
-        if len(target.points) < 4:
-            scores[name] = 0.0
-            continue
-        result = reg.registration_ransac_based_on_feature_matching(
-            source, target, source_f, target_f, True, distance,
-            reg.TransformationEstimationPointToPoint(False), 3,
-            [reg.CorrespondenceCheckerBasedOnEdgeLength(0.9),
-             reg.CorrespondenceCheckerBasedOnDistance(distance)],
-            reg.RANSACConvergenceCriteria(100000, 0.999))
-        icp = reg.registration_icp(source, target, voxel, result.transformation,
-                                   reg.TransformationEstimationPointToPlane())
-        scores[name] = icp.fitness
+        scores[name] = ransac_icp(o3d, source, target, voxel).fitness
     return scores, time.perf_counter() - start
 
 

@@ -26,7 +26,6 @@
 #include <cstdio>
 #include <iomanip>
 #include <memory>
-#include <optional>
 #include <sstream>
 
 namespace surfcomp::tools {
@@ -208,8 +207,8 @@ int screen(const std::vector<std::string>& args) {
   const std::vector<std::string> query_files(inputs.begin(), inputs.end() - 1);
   // A library of meshes is screened by shape, with one mesh; any other library as before (a
   // mesh with ESP and LP is a molecule's surface).
-  std::optional<screening::Library> shapes(std::in_place, library_path);
-  if (screening::is_mesh_library(*shapes)) {
+  const screening::Library library(library_path);
+  if (screening::is_mesh_library(library)) {
     if (query_files.size() > 1 || !mesh::io::is_mesh_file(query_files.front())) {
       throw InputError(library_path.string() +
                        ": a library of meshes: its query is one mesh, screened by shape");
@@ -218,9 +217,8 @@ int screen(const std::vector<std::string>& args) {
     files.inputs.push_back({"QUERY", query_files.front()});
     files.outputs.push_back({"--output", output, {".csv"}, ""});
     check_command_files(files);
-    return screen_mesh(query_files.front(), *shapes, output, vm, settings);
+    return screen_mesh(query_files.front(), library, output, vm, settings);
   }
-  shapes.reset();
   for (const std::string& file : query_files) {
     if (site_query && (harmonic::io::is_hsi_file(file) || !io::is_molecule_file(file))) {
       throw OptionError(file +
@@ -257,7 +255,6 @@ int screen(const std::vector<std::string>& args) {
   }
 
   const Stopwatch clock;
-  const screening::Library library(library_path);
   screening::check_library_kind(library, site_query);  // before the query's surface is built
   console::step(library_path.string() + ": " + std::to_string(library.size()) +
                 " entries, format version " + std::to_string(library.version()));

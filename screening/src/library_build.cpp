@@ -165,19 +165,13 @@ std::vector<io::MoleculeRecord> read_library_inputs(
     const std::vector<std::filesystem::path>& inputs) {
   std::vector<io::MoleculeRecord> records;
   const auto append = [&](const std::filesystem::path& file) {
-    if (mesh::io::is_mesh_file(file)) {
+    // A mesh or a .hsi file is one record, read when its entry is built.
+    const bool is_mesh = mesh::io::is_mesh_file(file);
+    if (is_mesh || harmonic::io::is_hsi_file(file)) {
       io::MoleculeRecord record;
       record.source = file;
       record.name = file.stem().string();
-      record.format = io::RecordFormat::mesh;
-      records.push_back(std::move(record));
-      return;
-    }
-    if (harmonic::io::is_hsi_file(file)) {
-      io::MoleculeRecord record;
-      record.source = file;
-      record.name = file.stem().string();
-      record.format = io::RecordFormat::descriptors;
+      record.format = is_mesh ? io::RecordFormat::mesh : io::RecordFormat::descriptors;
       records.push_back(std::move(record));
       return;
     }
@@ -229,19 +223,15 @@ std::vector<io::MoleculeRecord> read_library_inputs(
 
 std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
                                         const LibraryBuildOptions& options, BuildTimes* times) {
-  if (record.format == io::RecordFormat::mesh) {
-    if (options.conformers)
-      throw InputError("a mesh has fixed coordinates: --conformers does not apply to it");
+  const bool is_mesh = record.format == io::RecordFormat::mesh;
+  if (is_mesh || record.format == io::RecordFormat::descriptors) {
+    if (options.conformers) {
+      throw InputError(std::string(is_mesh ? "a mesh" : "a .hsi file") +
+                       " has fixed coordinates: --conformers does not apply to it");
+    }
     const Stopwatch clock;
-    std::vector<LibraryEntry> entries{mesh_entry(record, options)};
-    if (times != nullptr) times->entries += clock.elapsed_s();
-    return entries;
-  }
-  if (record.format == io::RecordFormat::descriptors) {
-    if (options.conformers)
-      throw InputError("a .hsi file has fixed coordinates: --conformers does not apply to it");
-    const Stopwatch clock;
-    std::vector<LibraryEntry> entries{hsi_entry(record, options)};
+    std::vector<LibraryEntry> entries{is_mesh ? mesh_entry(record, options)
+                                              : hsi_entry(record, options)};
     if (times != nullptr) times->entries += clock.elapsed_s();
     return entries;
   }
