@@ -5,7 +5,7 @@
 // only raises their scores. Pocket libraries: a site list is read line by line; a
 // site entry keeps its spheres; a site query finds its own pocket first, and a library of the
 // other kind is refused. A .hsi file becomes an entry keeping its surface and heavy atoms. A
-// query without an ionic group screens by shape alone unless asked otherwise.
+// query without an ionic group ranks by the mean of its score and shape unless asked otherwise.
 #include "analytic_meshes.hpp"
 #include "pocket_cut.hpp"
 #include "test_data.hpp"
@@ -604,7 +604,7 @@ TEST(IonicGroups, AnAcidOrBaseDrawnNeutralCountsAtTheAtomThatIonises) {
   }
 }
 
-TEST(Screen, ANeutralQueryRanksByShapeAndAnIonicOneByItsScore) {
+TEST(Screen, ANeutralQueryRanksByScoreAndShapeAndAnIonicOneByItsScore) {
   const ThreeMoleculeLibrary three;
   const std::vector<io::MoleculeRecord>& records = three.records;
   const screening::Library& library = three.library;
@@ -622,17 +622,18 @@ TEST(Screen, ANeutralQueryRanksByShapeAndAnIonicOneByItsScore) {
   const Molecule salicylate = conformer_of("[O-]C(=O)c1ccccc1O", "salicylate");
   const Molecule acid = io::read_record_molecule(records[1]);  // salicylic acid, drawn neutral
   using screening::QueryChemistry;
-  EXPECT_TRUE(query_of(neutral, QueryChemistry::automatic).by_shape);
-  EXPECT_FALSE(query_of(neutral, QueryChemistry::on).by_shape);
-  EXPECT_FALSE(query_of(salicylate, QueryChemistry::automatic).by_shape);
-  EXPECT_FALSE(query_of(acid, QueryChemistry::automatic).by_shape);
-  EXPECT_TRUE(query_of(salicylate, QueryChemistry::off).by_shape);
+  EXPECT_EQ(query_of(neutral, QueryChemistry::automatic).shape_weight,
+            screening::neutral_query_shape_weight);
+  EXPECT_EQ(query_of(neutral, QueryChemistry::on).shape_weight, 0.0);
+  EXPECT_EQ(query_of(salicylate, QueryChemistry::automatic).shape_weight, 0.0);
+  EXPECT_EQ(query_of(acid, QueryChemistry::automatic).shape_weight, 0.0);
+  EXPECT_EQ(query_of(salicylate, QueryChemistry::off).shape_weight, 1.0);
 
   // Ranked by shape, every row's score is its shape Tanimoto (stage 3's of the full match's
   // pose) and the rows after the candidates go by it; with chemistry the score is not the
   // shape. The stages overlay with chemistry either way: the same molecules get the full match,
   // and every molecule the same conformer, pose and shape term.
-  const screening::ScreenQuery by_shape = query_of(neutral, QueryChemistry::automatic);
+  const screening::ScreenQuery by_shape = query_of(neutral, QueryChemistry::off);
   const std::vector<screening::Hit> shape_hits = screening::screen(by_shape, library, options).hits;
   ASSERT_EQ(shape_hits.size(), 3u);
   expect_found_itself_first(shape_hits, 0);
@@ -652,6 +653,20 @@ TEST(Screen, ANeutralQueryRanksByShapeAndAnIonicOneByItsScore) {
     EXPECT_EQ(same->score.shape, hit.score.shape) << "entry " << hit.entry;
     EXPECT_EQ(same->score.transform, hit.score.transform) << "entry " << hit.entry;
   }
+  // `auto` ranks the neutral query by the mean of the two: each row's score is the mean of its
+  // shape term and the score the same pose has with chemistry.
+  const std::vector<screening::Hit> mean_hits =
+      screening::screen(query_of(neutral, QueryChemistry::automatic), library, options).hits;
+  ASSERT_EQ(mean_hits.size(), 3u);
+  expect_found_itself_first(mean_hits, 0);
+  for (const screening::Hit& hit : mean_hits) {
+    const auto same = std::find_if(chemical_hits.begin(), chemical_hits.end(),
+                                   [&](const screening::Hit& h) { return h.entry == hit.entry; });
+    ASSERT_NE(same, chemical_hits.end()) << "entry " << hit.entry;
+    EXPECT_NEAR(hit.score.score, 0.5 * (same->score.score + same->score.shape), 1e-12)
+        << "entry " << hit.entry;
+  }
+  EXPECT_GE(mean_hits[1].score.score, mean_hits[2].score.score);
 
   // Fewer rows than molecules: the candidates are kept by score and the other rows by shape, so
   // the rows are the head of all of them, from one range of the library or merged from two.
@@ -676,7 +691,7 @@ TEST(Screen, ANeutralQueryRanksByShapeAndAnIonicOneByItsScore) {
     };
     const std::vector<screening::Hit> whole = best_of(0, library.size());
     const std::vector<screening::Hit> merged =
-        screening::merge_best({best_of(0, middle), best_of(middle, library.size())}, bounded, true);
+        screening::merge_best({best_of(0, middle), best_of(middle, library.size())}, bounded, 1.0);
     ASSERT_EQ(merged.size(), whole.size());
     for (std::size_t i = 0; i < whole.size(); ++i) {
       EXPECT_EQ(merged[i].entry, whole[i].entry) << i;
@@ -692,14 +707,14 @@ TEST(Screen, ANeutralQueryRanksByShapeAndAnIonicOneByItsScore) {
       screening::score_molecules({&queries[0], &queries[1]}, library, 0, library.size(), options),
       InputError);
   screening::agree_on_chemistry(queries);
-  EXPECT_FALSE(queries[0].by_shape);
-  EXPECT_FALSE(queries[1].by_shape);
+  EXPECT_EQ(queries[0].shape_weight, 0.0);
+  EXPECT_EQ(queries[1].shape_weight, 0.0);
   queries.clear();
   queries.push_back(query_of(neutral, QueryChemistry::automatic));
   queries.push_back(query_of(neutral, QueryChemistry::automatic));
   screening::agree_on_chemistry(queries);
-  EXPECT_TRUE(queries[0].by_shape);
-  EXPECT_TRUE(queries[1].by_shape);
+  EXPECT_EQ(queries[0].shape_weight, screening::neutral_query_shape_weight);
+  EXPECT_EQ(queries[1].shape_weight, screening::neutral_query_shape_weight);
 }
 
 // merge_best and rank_hits by hand: for a query ranked by shape, the candidates are the best by
@@ -724,29 +739,29 @@ TEST(Screen, AQueryRankedByShapeKeepsItsCandidatesByScoreAndItsOtherRowsByShape)
     for (const screening::Hit& h : hits) e.push_back(h.entry);
     return e;
   };
-  EXPECT_EQ(entries(screening::merge_best(parts, options, false)),
+  EXPECT_EQ(entries(screening::merge_best(parts, options, 0.0)),
             (std::vector<std::size_t>{0, 1, 2}));
-  const std::vector<screening::Hit> best = screening::merge_best(parts, options, true);
+  const std::vector<screening::Hit> best = screening::merge_best(parts, options, 1.0);
   EXPECT_EQ(entries(best), (std::vector<std::size_t>{0, 3, 1}));
   EXPECT_EQ(best[1].score.score, 0.6);  // merge_best keeps the overlay score
 
   screening::HitScore full;
   full.score = 0.55;
   full.shape = 0.55;
-  const std::vector<screening::Hit> rows = screening::rank_hits(best, {full}, 0, true);
+  const std::vector<screening::Hit> rows = screening::rank_hits(best, {full}, 0, 1.0);
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[0].stage, 3);
   EXPECT_EQ(rows[0].score.score, 0.55);
   EXPECT_EQ(rows[1].score.score, 0.95);
   EXPECT_EQ(rows[2].score.score, 0.9);
   EXPECT_EQ(rows[1].score.shape, 0.95);
-  const std::vector<screening::Hit> scored = screening::rank_hits(best, {full}, 2, false);
+  const std::vector<screening::Hit> scored = screening::rank_hits(best, {full}, 2, 0.0);
   ASSERT_EQ(scored.size(), 2u);
   EXPECT_EQ(scored[1].score.score, 0.6);
 
   // Every molecule kept (top 0): the same candidate, then all the others by shape.
   options.top = 0;
-  EXPECT_EQ(entries(screening::merge_best(parts, options, true)),
+  EXPECT_EQ(entries(screening::merge_best(parts, options, 1.0)),
             (std::vector<std::size_t>{0, 3, 1, 2}));
 
   // Two candidates whose full matches' score and shape disagree go by shape.
@@ -756,10 +771,10 @@ TEST(Screen, AQueryRankedByShapeKeepsItsCandidatesByScoreAndItsOtherRowsByShape)
   high_shape.score = 0.6;
   high_shape.shape = 0.8;
   const std::vector<screening::Hit> two =
-      screening::rank_hits(best, {high_score, high_shape}, 0, true);
+      screening::rank_hits(best, {high_score, high_shape}, 0, 1.0);
   EXPECT_EQ(entries(two), (std::vector<std::size_t>{3, 0, 1}));
   EXPECT_EQ(two[0].score.score, 0.8);
-  EXPECT_EQ(entries(screening::rank_hits(best, {high_score, high_shape}, 0, false)),
+  EXPECT_EQ(entries(screening::rank_hits(best, {high_score, high_shape}, 0, 0.0)),
             (std::vector<std::size_t>{0, 3, 1}));
 }
 
@@ -1355,7 +1370,7 @@ TEST(LibraryShards, ABoundedFusedRankingIsTheHeadOfTheWholeOne) {
        {screening::QueryChemistry::on, screening::QueryChemistry::off}) {
     options.chemistry = chemistry;
     const screening::ScreenQuery first = query_of(0), second = query_of(3);
-    ASSERT_EQ(first.by_shape, chemistry == screening::QueryChemistry::off);
+    ASSERT_EQ(first.shape_weight, chemistry == screening::QueryChemistry::off ? 1.0 : 0.0);
     for (const screening::Fusion fusion : {screening::Fusion::max, screening::Fusion::mean}) {
       for (const auto& [top, candidates] :
            {std::pair<std::size_t, std::size_t>{1, 1}, {2, 1}, {1, 2}}) {
@@ -1371,7 +1386,7 @@ TEST(LibraryShards, ABoundedFusedRankingIsTheHeadOfTheWholeOne) {
         ASSERT_EQ(head.size(), top);
         for (std::size_t i = 0; i < top; ++i) {
           SCOPED_TRACE("top " + std::to_string(top) + ", candidates " + std::to_string(candidates) +
-                       (first.by_shape ? ", by shape" : ", by score"));
+                       (first.shape_weight > 0.0 ? ", by shape" : ", by score"));
           EXPECT_EQ(head[i].entry, whole[i].entry) << i;
           EXPECT_EQ(head[i].query, whole[i].query) << i;
           EXPECT_EQ(head[i].score, whole[i].score) << i;

@@ -50,14 +50,14 @@ constexpr const char* kUsage =
     "queries, and only each query's best molecules are kept: memory does not grow with the\n"
     "library's size. hits.csv has one row per molecule, best first: the candidates by their\n"
     "full-match score (stage 3), then the others by their refined score (stage 2; stage 1,\n"
-    "the fast score, with --refine 0), for a query ranked by shape (--chemistry) both by\n"
-    "their shape term; the columns\n"
+    "the fast score, with --refine 0), both by the value --chemistry ranks by; the columns\n"
     "rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,fast_score and\n"
     "t00..t33, the transform moving the hit into QUERY's frame (row-major). The rows do not\n"
     "depend on --threads or on the number of MPI processes. The score weighs ESP, LP and\n"
-    "heteroatoms beside shape when the query carries an ionic group (--chemistry auto): the\n"
-    "hits of a query without one are found and posed with chemistry all the same, but ranked\n"
-    "by the shape Tanimoto of their pose (the score column).\n\n"
+    "heteroatoms beside shape, and ranks the hits of a query that carries an ionic group\n"
+    "(--chemistry auto); the hits of a query without one are found and posed with chemistry\n"
+    "all the same, but ranked by the mean of that score and the shape Tanimoto of their pose\n"
+    "(the score column).\n\n"
     "QUERY  a molecule (.sdf .mol .mol2 .pdb) or a .hsi file built from one; with\n"
     "       --site-ligand, --site-sphere or --site-pocket (a pocket `surfcomp pockets` finds), a\n"
     "       binding site on a structure (PDB or mmCIF), screened against a pocket library\n"
@@ -336,11 +336,13 @@ int screen(const std::vector<std::string>& args) {
     for (const std::filesystem::path& path : written) std::filesystem::remove(path);
     throw;
   }
-  if (!queries.empty() && queries.front().by_shape) {
+  if (!queries.empty() && queries.front().shape_weight > 0.0) {
     console::summary(
-        "%s: hits ranked by the shape of their pose (%s; --chemistry on ranks by the "
-        "score with ESP, LP and heteroatoms)\n",
+        "%s: hits ranked by %s of their pose (%s; --chemistry on ranks by the score with ESP, "
+        "LP and heteroatoms)\n",
         several ? "the queries" : specs.front().label().c_str(),
+        queries.front().shape_weight == 1.0 ? "the shape Tanimoto"
+                                            : "the mean of that score and the shape Tanimoto",
         options.chemistry == screening::QueryChemistry::off
             ? "--chemistry off"
             : (several ? "none carries an ionic group" : "no ionic group"));

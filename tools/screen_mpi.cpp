@@ -143,7 +143,7 @@ DistributedScreen run(const std::vector<const screening::ScreenQuery*>& queries,
     std::vector<screening::Hit> hits;
     for (std::size_t at = 0; at < gathered.size(); at += kHitDoubles)
       hits.push_back(unpack_hit(&gathered[at]));
-    if (rank == 0) best[q] = screening::merge_best({hits}, options, queries.front()->by_shape);
+    if (rank == 0) best[q] = screening::merge_best({hits}, options, queries.front()->shape_weight);
   }
   // For the fused ranking, each rank's molecules that it may need (bounded lists), as the
   // molecule then each query's entry and score.
@@ -200,7 +200,7 @@ DistributedScreen run(const std::vector<const screening::ScreenQuery*>& queries,
   result.result.stage3_seconds = clock.elapsed_s() - stages12_seconds;
   if (rank != 0) return result;
   screening::MultiScreenResult ranked =
-      screening::rank_and_fuse(best, full, molecules, options, queries.front()->by_shape);
+      screening::rank_and_fuse(best, full, molecules, options, queries.front()->shape_weight);
   result.result.hits = std::move(ranked.hits);
   result.result.fused = std::move(ranked.fused);
   return result;

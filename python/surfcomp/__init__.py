@@ -296,8 +296,9 @@ _documented(
     source="the file the molecule came from",
     record="1-based record of that file",
     conformer="the conformer's number (0: the record's own coordinates)",
-    score="stage 3: the full match's overlay score; stage 2: the refined overlay score; "
-          "stage 1: the fast score",
+    score="what ranks the hit (``chemistry``): the overlay score, its shape term, or their "
+          "mean, of the full match (stage 3), the refined overlay (stage 2) or the fast one "
+          "(stage 1)",
     stage="the stage whose score ``score`` is (3 for the full-match candidates)",
     shape="shape Tanimoto of the pose",
     chem="ESP/LP Tanimoto of the pose",
@@ -676,7 +677,9 @@ def screen(query, library, *, molecules: bool = False, **options) -> List[Hit]:
 def screen_queries(queries, library, *, molecules: bool = False, **options) -> Screens:
     """Screens several queries against a library in one pass, as ``surfcomp screen Q1 Q2 ...
     LIB`` does: each query's hits (the rows :func:`screen` gives it alone) and, with more than
-    one query, every molecule ranked by the ``fusion`` of its scores against the queries."""
+    one query, every molecule ranked by the ``fusion`` of its scores against the queries. With
+    several actives, their fused ranking (``fused``, ``fusion="max"``) finds more actives than
+    any one of them does alone (docs/benchmarks.md, dud_screen_bench)."""
     result = _surfcomp.screen([_input(q) for q in queries], os.fspath(library), options, molecules)
     return Screens(hits=[_hits(rows, molecules) for rows in result["hits"]],
                    fused=[FusedHit(**row) for row in result["fused"]])

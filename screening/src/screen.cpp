@@ -83,14 +83,15 @@ bool same_molecule(const LibraryEntryInfo& a, const LibraryEntryInfo& b) {
   return a.record == b.record && a.name == b.name && a.source == b.source;
 }
 
-/// What ranks a hit: its score, or its shape term for a query ranked by shape.
-double ranking_score(const HitScore& score, bool by_shape) {
-  return by_shape ? score.shape : score.score;
+/// What ranks a hit: its score, its shape term, or a weighted mean of the two
+/// (ScreenQuery::shape_weight).
+double ranking_score(const HitScore& score, double shape_weight) {
+  return shape_weight * score.shape + (1.0 - shape_weight) * score.score;
 }
 
 /// Ranks hits: the higher ranking_score first, ties to the lower entry.
-bool better_hit(const Hit& x, const Hit& y, bool by_shape = false) {
-  const double a = ranking_score(x.score, by_shape), b = ranking_score(y.score, by_shape);
+bool better_hit(const Hit& x, const Hit& y, double shape_weight = 0.0) {
+  const double a = ranking_score(x.score, shape_weight), b = ranking_score(y.score, shape_weight);
   if (a != b) return a > b;
   return x.entry < y.entry;
 }
@@ -136,36 +137,36 @@ const Hit& hit_of(const KeptHit& kept) { return kept.hit; }
 
 /// better_hit of items that are or hold hits.
 struct BetterHit {
-  bool by_shape = false;
+  double shape_weight = 0.0;
   template <class Item>
   bool operator()(const Item& x, const Item& y) const {
-    return better_hit(hit_of(x), hit_of(y), by_shape);
+    return better_hit(hit_of(x), hit_of(y), shape_weight);
   }
 };
 
 /// A query's best molecules (QueryScores::best) of those added, each once: the
-/// kept_molecules() best by score, and for a query ranked by shape the first options.candidates
-/// of them followed by the others best by their shape term.
+/// kept_molecules() best by score, and for a query ranked by another value (a shape weight
+/// above 0) the first options.candidates of them followed by the others best by that value.
 template <class Item>
 class KeptMolecules {
  public:
-  KeptMolecules(const ScreenOptions& options, bool by_shape)
+  KeptMolecules(const ScreenOptions& options, double shape_weight)
       : candidates_(options.candidates),
         capacity_(kept_molecules(options)),
         by_score_(capacity_, BetterHit{false}) {
-    if (by_shape) by_shape_.emplace(capacity_, BetterHit{true});
+    if (shape_weight != 0.0) by_rank_.emplace(capacity_, BetterHit{shape_weight});
   }
   void add(const Item& item) {
     by_score_.add(item);
-    if (by_shape_) by_shape_->add(item);
+    if (by_rank_) by_rank_->add(item);
   }
   std::vector<Item> sorted() const {
     std::vector<Item> items = by_score_.sorted();
-    if (!by_shape_) return items;
+    if (!by_rank_) return items;
     items.resize(std::min(candidates_, items.size()));
     std::set<std::size_t> candidates;
     for (const Item& item : items) candidates.insert(hit_of(item).entry);
-    for (Item& item : by_shape_->sorted()) {
+    for (Item& item : by_rank_->sorted()) {
       if (capacity_ > 0 && items.size() == capacity_) break;
       if (candidates.count(hit_of(item).entry) == 0) items.push_back(std::move(item));
     }
@@ -176,7 +177,7 @@ class KeptMolecules {
   std::size_t candidates_;
   std::size_t capacity_;
   BestItems<Item, BetterHit> by_score_;
-  std::optional<BestItems<Item, BetterHit>> by_shape_;
+  std::optional<BestItems<Item, BetterHit>> by_rank_;
 };
 
 /// A molecule's scores fused by `fusion` (fuse_scores), and the query that scores it highest
@@ -281,6 +282,12 @@ std::string macromolecule_query_warning(const Molecule& query, const std::string
          "): its whole surface is compared with the library's molecules";
 }
 
+double query_shape_weight(QueryChemistry chemistry, bool whole_molecule, const Molecule* molecule) {
+  if (!whole_molecule || chemistry == QueryChemistry::on) return 0.0;
+  if (chemistry == QueryChemistry::off) return 1.0;
+  return molecule != nullptr && !carries_ionic_group(*molecule) ? neutral_query_shape_weight : 0.0;
+}
+
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               const ScreenOptions& options, std::vector<matching::SiteSphere> site,
                               const Molecule* molecule) {
@@ -315,19 +322,17 @@ ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
   query.atom_packed = std::make_shared<const matching::PackedQuery>(matching::PackedSample(
       query.atom_sample, query.atoms, overlay.sigma, matching::SampleKind::atoms));
   query.descriptors = std::move(descriptors);
-  query.by_shape = query.site.empty() && (options.chemistry == QueryChemistry::off ||
-                                          (options.chemistry == QueryChemistry::automatic &&
-                                           molecule != nullptr && !carries_ionic_group(*molecule)));
+  query.shape_weight = query_shape_weight(options.chemistry, query.site.empty(), molecule);
   return query;
 }
 
 void agree_on_chemistry(std::vector<ScreenQuery>& queries) {
   const bool mixed =
       std::adjacent_find(queries.begin(), queries.end(), [](const auto& a, const auto& b) {
-        return a.by_shape != b.by_shape;
+        return a.shape_weight != b.shape_weight;
       }) != queries.end();
   if (mixed) {
-    for (ScreenQuery& query : queries) query.by_shape = false;
+    for (ScreenQuery& query : queries) query.shape_weight = 0.0;
   }
 }
 
@@ -405,18 +410,18 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
   for (const ScreenQuery* query : queries) {
     if (query->site.empty() == sites)
       throw InputError("a screen's queries are all molecules or all binding sites");
-    if (query->by_shape != queries.front()->by_shape)
+    if (query->shape_weight != queries.front()->shape_weight)
       throw InputError(
-          "a screen's queries are all ranked by shape or all by their score "
+          "a screen's queries are all ranked by one mix of shape and score "
           "(agree_on_chemistry)");
   }
   if (begin > end || end > library.size()) throw InputError("screen: entries outside the library");
   check_library_kind(library, sites);
   const std::size_t q_count = queries.size();
   const bool fusing = q_count > 1;
-  const bool by_shape = queries.front()->by_shape;
+  const double shape_weight = queries.front()->shape_weight;
   const double sigma = overlay_options(*queries.front(), options).sigma;
-  std::vector<KeptMolecules<KeptHit>> kept(q_count, KeptMolecules<KeptHit>(options, by_shape));
+  std::vector<KeptMolecules<KeptHit>> kept(q_count, KeptMolecules<KeptHit>(options, shape_weight));
   BestItems<FusedMolecule, BetterFused> fused(fused_molecules(options, q_count));
   StreamedScores result;
   result.queries.resize(q_count);
@@ -487,7 +492,8 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
           const Hit& hit = scores[(e - e0) * q_count + q];
           if (best[q] == nullptr || hit.score.score > best[q]->score.score) best[q] = &hit;
         }
-        if (fusing) all.scores.push_back({best[q]->entry, ranking_score(best[q]->score, by_shape)});
+        if (fusing)
+          all.scores.push_back({best[q]->entry, ranking_score(best[q]->score, shape_weight)});
       }
       for (std::size_t q = 0; q < q_count; ++q) kept[q].add({*best[q], all});
       if (fusing) {
@@ -514,8 +520,8 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
 }
 
 std::vector<Hit> merge_best(const std::vector<std::vector<Hit>>& parts,
-                            const ScreenOptions& options, bool by_shape) {
-  KeptMolecules<Hit> kept(options, by_shape);
+                            const ScreenOptions& options, double shape_weight) {
+  KeptMolecules<Hit> kept(options, shape_weight);
   for (const std::vector<Hit>& part : parts) {
     for (const Hit& hit : part) kept.add(hit);
   }
@@ -567,12 +573,12 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
 }
 
 std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,
-                           std::size_t top, bool by_shape) {
+                           std::size_t top, double shape_weight) {
   const std::size_t k = std::min(full.size(), best.size());
   std::vector<Hit> hits;
   for (std::size_t i = 0; i < best.size(); ++i) {
     hits.push_back(i < k ? Hit{best[i].entry, 3, full[i], best[i].fast_score} : best[i]);
-    hits.back().score.score = ranking_score(hits.back().score, by_shape);
+    hits.back().score.score = ranking_score(hits.back().score, shape_weight);
   }
   std::sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(k), BetterHit{});
   if (top > 0 && hits.size() > top) hits.resize(top);
@@ -623,7 +629,7 @@ std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
 MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
                                 const std::vector<HitScore>& full,
                                 const std::vector<MoleculeScores>& molecules,
-                                const ScreenOptions& options, bool by_shape) {
+                                const ScreenOptions& options, double shape_weight) {
   MultiScreenResult result;
   std::vector<std::vector<Hit>> rows;  // each query's every row: its every stage-3 score
   for (std::size_t q = 0, at = 0; q < best.size(); ++q) {
@@ -632,7 +638,7 @@ MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
     const std::vector<HitScore> mine(full.begin() + static_cast<std::ptrdiff_t>(at),
                                      full.begin() + static_cast<std::ptrdiff_t>(at + k));
     at += k;
-    rows.push_back(rank_hits(best[q], mine, 0, by_shape));
+    rows.push_back(rank_hits(best[q], mine, 0, shape_weight));
     const std::size_t shown =
         options.top == 0 ? rows.back().size() : std::min(options.top, rows.back().size());
     result.hits.emplace_back(rows.back().begin(),
@@ -666,7 +672,7 @@ MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
   std::vector<std::vector<Hit>> best;
   for (QueryScores& scores : streamed.queries) best.push_back(std::move(scores.best));
   MultiScreenResult ranked =
-      rank_and_fuse(best, full, streamed.molecules, options, queries.front()->by_shape);
+      rank_and_fuse(best, full, streamed.molecules, options, queries.front()->shape_weight);
   result.hits = std::move(ranked.hits);
   result.fused = std::move(ranked.fused);
   return result;

@@ -39,8 +39,9 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
              "heteroatoms beside shape: auto (by that score when the query carries an ionic "
              "group at pH 7, a formal charge that no bonded atom balances (as a nitro group's "
              "is) or an acid or base drawn neutral (a carboxylic acid, an aliphatic amine...); by "
-             "the shape Tanimoto of their pose otherwise; several queries all by the score when "
-             "one has it), on (by the score), or off (by shape)"},
+             "the mean of that score and the shape Tanimoto of their pose otherwise; several "
+             "queries all by the score when one has the group), on (by the score), or off (by "
+             "shape)"},
             [](auto& q) -> auto& { return q.screen.chemistry; }, query_chemistry_names),
         options::field<Q>(
             matching::site_ligand_spec(), [](auto& q) -> auto& { return q.site_ligand; }),

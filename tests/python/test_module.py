@@ -198,16 +198,19 @@ def test_a_screen_finds_its_query_first(program, cache, tmp_path):
     assert hits[0].score == pytest.approx(1.0, abs=1e-3)
     np.testing.assert_allclose(hits[0].transform, np.eye(4), atol=1e-2)
     assert hits[0].molecule is None
-    # A query without an ionic group ranks by the shape of its poses unless chemistry is asked
-    # for; the poses and the molecules given the full match are the same either way.
-    assert all(h.score == h.shape for h in hits)
+    # A query without an ionic group ranks by the mean of the score and the shape of its poses
+    # unless told otherwise; the poses and the molecules given the full match are the same.
     chemical = surfcomp.screen(query, library, top=5, candidates=3, chemistry="on")
     assert chemical[0].entry == 4 and any(abs(h.score - h.shape) > 1e-3 for h in chemical)
     assert {h.entry for h in hits if h.stage == 3} == {h.entry for h in chemical if h.stage == 3}
     posed = {h.entry: h for h in chemical}
+    assert len([h for h in hits if h.entry in posed]) >= 3
     for hit in (h for h in hits if h.entry in posed):
         assert hit.shape == posed[hit.entry].shape
+        assert hit.score == pytest.approx(0.5 * (posed[hit.entry].score + hit.shape), abs=1e-12)
         np.testing.assert_array_equal(hit.transform, posed[hit.entry].transform)
+    shaped = surfcomp.screen(query, library, top=5, candidates=3, chemistry="off")
+    assert all(h.score == h.shape for h in shaped)
     # The atom polish is the full match's last step: without it the stage-3 poses of the other
     # molecules move, and the other rows do not.
     unpolished = {h.entry: h for h in surfcomp.screen(query, library, top=5, candidates=3,

@@ -47,16 +47,20 @@ enum class Fusion { max, mean };
 /// The names of the fusion rules, indexed by Fusion (as --fusion spells them).
 inline constexpr std::array<const char*, 2> fusion_names = {"max", "mean"};
 
-/// Whether a molecule query's hits are ranked by the overlay score, which weighs ESP, LP and
-/// heteroatoms beside shape: `automatic` when the query carries an ionic group
-/// (carries_ionic_group; a .hsi query, which has no formal charges, always), `on` always, `off`
-/// never. Otherwise they are ranked by the shape Tanimoto of their pose. Either way every stage
-/// overlays with chemistry and picks the candidates of stage 3 by the overlay score, so the
-/// poses and the molecules given the full match do not change. Site queries keep their own
-/// score.
+/// What ranks a molecule query's hits: `on`, the overlay score, which weighs ESP, LP and
+/// heteroatoms beside shape; `off`, the shape Tanimoto of their pose; `automatic`, the score
+/// for a query that carries an ionic group (carries_ionic_group; a .hsi query, which has no
+/// formal charges, always) and the mean of the score and the shape Tanimoto
+/// (neutral_query_shape_weight) for any other. Either way every stage overlays with chemistry
+/// and picks the candidates of stage 3 by the overlay score, so the poses and the molecules
+/// given the full match do not change. Site queries keep their own score.
 enum class QueryChemistry { automatic, on, off };
 /// The names of the chemistry rules, indexed by QueryChemistry (as --chemistry spells them).
 inline constexpr std::array<const char*, 3> query_chemistry_names = {"auto", "on", "off"};
+/// The weight of the shape Tanimoto beside the overlay score in the value that ranks the hits of
+/// a query without an ionic group under QueryChemistry::automatic (docs/decisions.md, "Screen
+/// chemistry by query": chosen leave-one-target-out over the DUD and MUV targets).
+inline constexpr double neutral_query_shape_weight = 0.5;
 
 struct ScreenOptions {
   /// Default 5. The conformers of each molecule, best fast score first, whose overlay stage 2
@@ -72,7 +76,8 @@ struct ScreenOptions {
   std::size_t top = 100;
   /// Default Fusion::max. How the scores of several queries make one ranking (fuse_scores).
   Fusion fusion = Fusion::max;
-  /// Default QueryChemistry::automatic: a molecule query without an ionic group ranks by shape.
+  /// Default QueryChemistry::automatic: a molecule query without an ionic group ranks by the
+  /// mean of its score and shape.
   QueryChemistry chemistry = QueryChemistry::automatic;
   /// The full match of stage 3, whose overlay options (sigma, spacing, chemistry and atom
   /// weights, refinement steps) stages 1 and 2 score and refine with too; default as
@@ -137,27 +142,32 @@ struct ScreenQuery {
   /// The two samples packed and indexed once for stages 1 and 2 (matching::PackedQuery):
   /// `packed` for `sample`, atom_packed for atom_sample.
   std::shared_ptr<const matching::PackedQuery> packed, atom_packed;
-  /// Whether the screen ranks this query's hits by their shape term (ScreenOptions::chemistry).
-  bool by_shape = false;
+  /// The weight of the shape term in the value that ranks this query's hits, the overlay score
+  /// weighing 1 - shape_weight (query_shape_weight): 0 ranks by the score, 1 by shape alone.
+  double shape_weight = 0.0;
 };
+
+/// The shape weight (ScreenQuery::shape_weight) of a query under `chemistry`: 0 for a
+/// binding site (`whole_molecule` false) and under `on`, 1 under `off`; under `automatic`,
+/// neutral_query_shape_weight for a molecule without an ionic group and 0 for one with, or for a
+/// query without `molecule` (a .hsi file).
+double query_shape_weight(QueryChemistry chemistry, bool whole_molecule, const Molecule* molecule);
 
 /// The query of a screen from its descriptors (describe_surface of its molecule's surface, or
 /// a .hsi file) and, for a molecule, the molecule itself (its screening sample,
 /// matching::sample_molecule with options.surface); with `site` spheres, a binding-site query
 /// (descriptors from matching::describe_site) whose sample is its pocket lining
 /// (matching::pocket_lining, options.match.site.overlay_radius), and with its structure as
-/// `molecule` the composition of its lining residues. by_shape follows options.chemistry; a
-/// molecule query without `molecule` keeps its chemistry under `automatic`. Throws InputError
-/// when its
-/// surface (or lining) has no vertex, or no ESP or LP (matching::require_match_properties:
-/// entries are compared on them).
+/// `molecule` the composition of its lining residues. shape_weight is query_shape_weight's.
+/// Throws InputError when its surface (or lining) has no vertex, or no ESP or LP
+/// (matching::require_match_properties: entries are compared on them).
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               const ScreenOptions& options = {},
                               std::vector<matching::SiteSphere> site = {},
                               const Molecule* molecule = nullptr);
 
-/// Several queries are fused on one scale: when some would rank by shape and others not,
-/// all of them rank by their score (by_shape false). Callers of screen_queries (and of
+/// Several queries are fused on one scale: when their shape weights differ, all of them rank by
+/// their score (shape_weight 0). Callers of screen_queries (and of
 /// score_molecules with several queries) call this on the queries first.
 void agree_on_chemistry(std::vector<ScreenQuery>& queries);
 
@@ -250,8 +260,9 @@ struct QueryScores {
   /// get their fast scores, its `refine` best by fast score (ties to the lower index) their
   /// refined scores where those are not lower, and its best entry (ties to the lower index)
   /// stands for it. Only the kept_molecules() best molecules, best first (ties to the lower
-  /// entry); for a query ranked by shape (ScreenQuery::by_shape), the options.candidates best
-  /// by score first, then the others by their shape term. The scores are overlay scores.
+  /// entry); for a query ranked by another value (ScreenQuery::shape_weight above 0), the
+  /// options.candidates best by score first, then the others by that value. The scores are
+  /// overlay scores.
   std::vector<Hit> best;
 };
 
@@ -282,7 +293,7 @@ struct StreamedScores {
 /// `begin` and `end` begin molecules (molecule_start_at). Progress (options.progress) is
 /// reported as stage 1 over the range's entries. Throws InputError when an entry is not of the
 /// queries' kind (as check_library_kind words it) or the queries are of two kinds (sites and
-/// molecules, or ranked by shape and by score: agree_on_chemistry), FormatError
+/// molecules, or ranked by different shape weights: agree_on_chemistry), FormatError
 /// for a damaged entry.
 StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
                                const Library& library, std::size_t begin, std::size_t end,
@@ -291,14 +302,15 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
 /// The kept_molecules() best of several ranges' lists of one query (QueryScores::best), in
 /// its order, ties to the lower entry: what one range of all the molecules would have kept.
 std::vector<Hit> merge_best(const std::vector<std::vector<Hit>>& parts,
-                            const ScreenOptions& options, bool by_shape);
+                            const ScreenOptions& options, double shape_weight);
 
 /// The result rows: first the `full.size()` candidates (the first molecules of `best`, their
 /// stage-3 scores in `full`) by their stage-3 score, then the other molecules of `best` in
-/// their order, each scored by its shape term when `by_shape`; at most `top` rows (0: all).
+/// their order, each scored by `shape_weight` times its shape term plus 1 - shape_weight times
+/// its score (ScreenQuery::shape_weight); at most `top` rows (0: all).
 /// Ties go to the lower entry index.
 std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,
-                           std::size_t top, bool by_shape);
+                           std::size_t top, double shape_weight);
 
 /// One row of a fused ranking of several queries.
 struct FusedHit {
@@ -345,14 +357,14 @@ struct MultiScreenResult {
 /// The rows and fused ranking of a screen from what its stages left: `best` each query's
 /// best molecules after stage 2 (merge_best of its ranges), `full` the stage-3 scores of each
 /// query's first min(options.candidates, its best) molecules, query after query, `molecules`
-/// the ranges' StreamedScores::molecules, `by_shape` the queries' ScreenQuery::by_shape. Each
-/// query's rows are rank_hits(best, its scores, options.top, by_shape); the fused ranking
+/// the ranges' StreamedScores::molecules, `shape_weight` the queries' ScreenQuery::shape_weight.
+/// Each query's rows are rank_hits(best, its scores, options.top, shape_weight); the fused ranking
 /// (several queries) is fuse_scores with every stage-3 score. Times are left 0. Throws
 /// InputError when `full` is short.
 MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
                                 const std::vector<HitScore>& full,
                                 const std::vector<MoleculeScores>& molecules,
-                                const ScreenOptions& options, bool by_shape);
+                                const ScreenOptions& options, double shape_weight);
 
 /// screen() of every query at once: the library read once for stages 1 and 2, each query's
 /// rows the same as its own screen's, and their fused ranking (fuse_scores). Throws as
