@@ -496,7 +496,6 @@ Trial run_trial(const Entry& reference, const Entry& probe, int pose_index, cons
   return trial;
 }
 
-/// The whole number `text` spells, or nullopt.
 /// Every ordered pair of `ligands`, which share one frame, with `poses` random poses of the probe
 /// each; prints the set's trials and failures.
 std::vector<Trial> run_frame_set(const std::string& set, const std::vector<Entry>& ligands,
@@ -518,6 +517,7 @@ std::vector<Trial> run_frame_set(const std::string& set, const std::vector<Entry
   return trials;
 }
 
+/// The whole number `text` spells, or nullopt.
 std::optional<long> whole_number(const std::string& text) {
   char* end = nullptr;
   const long n = std::strtol(text.c_str(), &end, 10);

@@ -25,11 +25,17 @@ maximum or mean, as `fuse_scores` ranks them (one ranking per target, no stage f
 queries are mixed, all take the ionic weight, as `agree_on_chemistry` does).
 
 Each variant is written as a dud_screen_bench-like JSON (config.set, targets.T.mean) to
---out/VARIANT.json, for bench/loto.py:
+--out/VARIANT.SET.json, for bench/loto.py. With --choose, the script also makes the held-out
+choice among the `nAiB` rules that docs/decisions.md describes: for each target, the rule best
+on the other targets by the mean of its one-query AUC and its fused (max) AUC, among the rules
+that keep every other DUD target's one-query AUC at or above the lower of `neutral-shape`'s and
+`on`'s; it prints each target's choice and the held-out means beside `auto`, `neutral-shape`
+and `on`, and writes them to --out/choice.json.
 
     /usr/bin/python3 bench/ranking_variants.py --surfcomp SURFCOMP --work dud=WORK_DUD \\
-        --work muv=WORK_MUV --out variants/
-    /usr/bin/python3 bench/loto.py --variant auto=variants/auto.json --variant on=variants/on.json ...
+        --work muv=WORK_MUV --out variants/ --choose
+    /usr/bin/python3 bench/loto.py --variant auto=variants/auto.dud.json,variants/auto.muv.json \\
+        --variant on=variants/on.dud.json,variants/on.muv.json
 """
 import argparse
 import csv
@@ -59,11 +65,14 @@ NEUTRAL_SUMMARY = "(no ionic group;"
 def parse_args(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--surfcomp", type=Path, required=True,
-                        help="the program, asked which queries --chemistry auto ranks by shape")
+                        help="the program, asked which queries carry no ionic group (the ones "
+                             "--chemistry auto does not rank by the score alone)")
     parser.add_argument("--work", action="append", required=True,
                         help="SET=FOLDER: a dud_screen_bench.py --work folder of a "
                              "`--screen-args \"--chemistry on\"` run (SET: dud or muv)")
-    parser.add_argument("--out", type=Path, required=True, help="folder for VARIANT.json")
+    parser.add_argument("--out", type=Path, required=True, help="folder for VARIANT.SET.json")
+    parser.add_argument("--choose", action="store_true",
+                        help="make the held-out choice among the nAiB rules (see above)")
     return parser.parse_args(argv)
 
 
@@ -111,10 +120,16 @@ def fused_scores(all_rows, rule, flags, fusion):
 
 
 def query_flags(surfcomp, target_dir, count):
-    """Whether `--chemistry auto` ranks each query by shape (cached in auto_by_shape.json)."""
-    cache = target_dir / "auto_by_shape.json"
+    """Whether each query carries no ionic group, as the program's summary line of an `auto`
+    screen says (cached in neutral_queries.json beside the program's path, size and time)."""
+    cache = target_dir / "neutral_queries.json"
+    stat = Path(surfcomp).stat()
+    program = {"program": str(Path(surfcomp).resolve()), "size": stat.st_size,
+               "mtime": stat.st_mtime}
     if cache.is_file():
-        return json.loads(cache.read_text())
+        saved = json.loads(cache.read_text())
+        if saved.get("by") == program:
+            return saved["flags"]
     flags = []
     for q in range(count):
         out = target_dir / f"auto_probe_{q}.csv"
@@ -126,7 +141,7 @@ def query_flags(surfcomp, target_dir, count):
             raise SystemExit(f"ranking_variants: {target_dir}: {result.stderr.strip()}")
         out.unlink(missing_ok=True)
         flags.append(NEUTRAL_SUMMARY in result.stdout + result.stderr)
-    cache.write_text(json.dumps(flags))
+    cache.write_text(json.dumps({"by": program, "flags": flags}))
     return flags
 
 
@@ -175,8 +190,8 @@ def main(argv=None):
         for target_dir in sorted(p for p in folder.iterdir() if (p / "result.json").is_file()):
             figures, baselines, flags = target_figures(args.surfcomp, target_dir)
             flags_by_target[f"{dataset}:{target_dir.name}"] = flags
-            log(f"{dataset}:{target_dir.name}: auto ranks {sum(flags)} of {len(flags)} queries by "
-                "shape; " + ", ".join(f"{v} {f['auc']:.3f}" for v, f in figures.items()
+            log(f"{dataset}:{target_dir.name}: {sum(flags)} of {len(flags)} queries without an "
+                "ionic group; " + ", ".join(f"{v} {f['auc']:.3f}" for v, f in figures.items()
                                       if not v.startswith("fused")))
             for variant, figure in figures.items():
                 report = variants.setdefault(variant, {}).setdefault(
@@ -186,8 +201,59 @@ def main(argv=None):
     for variant, by_set in variants.items():
         for dataset, report in by_set.items():
             (args.out / f"{variant}.{dataset}.json").write_text(json.dumps(report, indent=1) + "\n")
-    (args.out / "auto_by_shape.json").write_text(json.dumps(flags_by_target, indent=1) + "\n")
+    (args.out / "neutral_queries.json").write_text(json.dumps(flags_by_target, indent=1) + "\n")
+    if args.choose:
+        choose(variants, args.out)
     return 0
+
+
+def choose(variants, out):
+    """The held-out choice among the nAiB rules (module docstring); prints and writes it."""
+    def figures(variant):
+        return {f"{d}:{t}": r["mean"] for d, report in variants[variant].items()
+                for t, r in report["targets"].items()}
+
+    rules = [r for r in RULES if not r.startswith("c")]
+    single = {r: figures(r) for r in rules}
+    fused = {r: figures(f"fusedmax-{r}") for r in rules}
+    targets = sorted(single["auto"])
+
+    def auc(table, rule, target):
+        return table[rule][target]["surfcomp"]["auc"]
+
+    def guarded(rule, others):
+        return all(auc(single, rule, u) >= min(auc(single, "neutral-shape", u),
+                                               auc(single, "on", u)) - 1e-12
+                   for u in others if u.startswith("dud:"))
+
+    chosen = {}
+    for target in targets:
+        others = [u for u in targets if u != target]
+        allowed = [r for r in rules if guarded(r, others)]
+        chosen[target] = max(allowed, key=lambda r: (
+            mean((auc(single, r, u) + auc(fused, r, u)) / 2 for u in others), -rules.index(r)))
+    lines = [f"{t}: {chosen[t]}" for t in targets]
+    summary = {}
+    for dataset in sorted({t.split(":")[0] for t in targets}):
+        chosen_here = [t for t in targets if t.startswith(dataset + ":")]
+        row = {}
+        for label, pick in (("held_out", lambda t: chosen[t]), ("auto", lambda t: "auto"),
+                            ("neutral-shape", lambda t: "neutral-shape"), ("on", lambda t: "on")):
+            row[label] = {kind: {k: mean(table[pick(t)][t]["surfcomp"][k] for t in chosen_here)
+                                 for k in ("auc", "ef1")}
+                          for kind, table in (("single", single), ("fused_max", fused))}
+        for baseline in ("o3a_shape", "usrcat"):
+            values = [single["auto"][t][baseline] for t in chosen_here
+                      if baseline in single["auto"][t]]
+            if values:
+                row[baseline] = {k: mean(v[k] for v in values) for k in ("auc", "ef1")}
+        summary[dataset] = row
+        for label, value in row.items():
+            text = "; ".join(f"{kind} {v['auc']:.3f} / {v['ef1']:.2f}" for kind, v in value.items()) \
+                if "single" in value else f"{value['auc']:.3f} / {value['ef1']:.2f}"
+            lines.append(f"mean {dataset} ({len(chosen_here)}) {label}: {text}")
+    print("\n".join(lines))
+    (out / "choice.json").write_text(json.dumps({"chosen": chosen, "means": summary}, indent=1) + "\n")
 
 
 if __name__ == "__main__":

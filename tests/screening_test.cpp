@@ -1365,12 +1365,13 @@ TEST(LibraryShards, ABoundedFusedRankingIsTheHeadOfTheWholeOne) {
     }
   }
   // The fused table against the whole one, also with more candidates than rows (their full
-  // matches count where their rows are not shown), ranked by score and by shape.
-  for (const screening::QueryChemistry chemistry :
-       {screening::QueryChemistry::on, screening::QueryChemistry::off}) {
-    options.chemistry = chemistry;
-    const screening::ScreenQuery first = query_of(0), second = query_of(3);
-    ASSERT_EQ(first.shape_weight, chemistry == screening::QueryChemistry::off ? 1.0 : 0.0);
+  // matches count where their rows are not shown), ranked by score, by shape and by their mean
+  // (the weight `auto` gives two queries without an ionic group).
+  for (const double weight : {0.0, 1.0, screening::neutral_query_shape_weight}) {
+    options.chemistry =
+        weight == 0.0 ? screening::QueryChemistry::on : screening::QueryChemistry::off;
+    screening::ScreenQuery first = query_of(0), second = query_of(3);
+    first.shape_weight = second.shape_weight = weight;
     for (const screening::Fusion fusion : {screening::Fusion::max, screening::Fusion::mean}) {
       for (const auto& [top, candidates] :
            {std::pair<std::size_t, std::size_t>{1, 1}, {2, 1}, {1, 2}}) {
@@ -1386,7 +1387,7 @@ TEST(LibraryShards, ABoundedFusedRankingIsTheHeadOfTheWholeOne) {
         ASSERT_EQ(head.size(), top);
         for (std::size_t i = 0; i < top; ++i) {
           SCOPED_TRACE("top " + std::to_string(top) + ", candidates " + std::to_string(candidates) +
-                       (first.shape_weight > 0.0 ? ", by shape" : ", by score"));
+                       ", shape weight " + std::to_string(weight));
           EXPECT_EQ(head[i].entry, whole[i].entry) << i;
           EXPECT_EQ(head[i].query, whole[i].query) << i;
           EXPECT_EQ(head[i].score, whole[i].score) << i;

@@ -341,8 +341,9 @@ int screen(const std::vector<std::string>& args) {
         "%s: hits ranked by %s of their pose (%s; --chemistry on ranks by the score with ESP, "
         "LP and heteroatoms)\n",
         several ? "the queries" : specs.front().label().c_str(),
-        queries.front().shape_weight == 1.0 ? "the shape Tanimoto"
-                                            : "the mean of that score and the shape Tanimoto",
+        queries.front().shape_weight == 1.0
+            ? "the shape Tanimoto"
+            : "the mean of the overlay score and the shape Tanimoto",
         options.chemistry == screening::QueryChemistry::off
             ? "--chemistry off"
             : (several ? "none carries an ionic group" : "no ionic group"));

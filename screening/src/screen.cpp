@@ -153,7 +153,7 @@ class KeptMolecules {
   KeptMolecules(const ScreenOptions& options, double shape_weight)
       : candidates_(options.candidates),
         capacity_(kept_molecules(options)),
-        by_score_(capacity_, BetterHit{false}) {
+        by_score_(capacity_, BetterHit{0.0}) {
     if (shape_weight != 0.0) by_rank_.emplace(capacity_, BetterHit{shape_weight});
   }
   void add(const Item& item) {

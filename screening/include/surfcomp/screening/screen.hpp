@@ -245,7 +245,7 @@ std::size_t molecule_start_at(const Library& library, std::size_t entry);
 /// One molecule's score against one query after stage 2, for a fused ranking.
 struct MoleculeScore {
   std::size_t entry = 0;  ///< its best conformer
-  double score = 0.0;     ///< what ranks it: the shape term for a query ranked by shape
+  double score = 0.0;     ///< what ranks it (ranking_score: ScreenQuery::shape_weight)
 };
 
 /// A molecule's scores against every query after stage 2.
