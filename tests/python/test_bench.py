@@ -2,6 +2,7 @@
 bench/ranking_variants.py, bench/loto.py), with the system Python (RDKit, numpy)."""
 import json
 import math
+import shutil
 import sys
 
 import pytest
@@ -87,8 +88,6 @@ def test_muv_run_reports_every_method(muv_run):
 def test_rankings_recomputed_from_hits_equal_the_programs(program, muv_run):
     """ranking_variants' `on` and `auto` equal what `surfcomp screen` itself ranks, and the
     overlay weights it recomputes with equal the program's (6, 14)."""
-    import shutil
-
     out = muv_run / "variants"
     result = run([sys.executable, BENCH / "ranking_variants.py", "--surfcomp", program,
                   "--work", f"muv={muv_run / 'on'}", "--out", out], timeout=600)
