@@ -453,7 +453,9 @@ TEST_F(Cli, QuietSaysNothingAndVerboseSaysEachStep) {
   EXPECT_TRUE(fs::exists(scratch("q.json")));
   const ProgramRun verbose = run("match " + pair + " --verbose");
   ASSERT_EQ(verbose.status, 0) << verbose.err;
-  for (const char* expected : {"] REF ", "22 atoms, surface of", "] PROBE ", "imaged", "] match: "})
+  // Each long stage of a surface says when it starts and ends, also when stderr is a log.
+  for (const char* expected : {"] REF ", "22 atoms, surface of", "] PROBE ", "imaged", "] match: ",
+                               "] SES: 4 stages", "] SES done", "] ESP done", "] curvature done"})
     EXPECT_NE(verbose.err.find(expected), std::string::npos) << expected << "\n" << verbose.err;
   EXPECT_NE(verbose.out.find("alignments"), std::string::npos);
   const ProgramRun both = run("match " + pair + " -q -v");

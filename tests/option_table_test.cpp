@@ -108,6 +108,11 @@ TEST(OptionTable, ValuesOutsideTheDomainAreRefusedByName) {
   refused(options::find(match, "rmsd-cut")->spec, "0", "--rmsd-cut: value 0 is outside (0, 100]");
   refused(options::find(match, "max-cliques")->spec, "2.5",
           "--max-cliques: '2.5' is not a whole number");
+  refused(options::find(match, "max-cliques")->spec, "1.5e0",
+          "--max-cliques: '1.5e0' is not a whole number");
+  EXPECT_EQ(std::get<std::int64_t>(
+                options::parse(options::find(match, "max-cliques")->spec, "1e3", "--max-cliques")),
+            1000);
   refused(options::find(match, "principal-axes-starts")->spec, "5",
           "--principal-axes-starts: value 5 is not one of 0|4|24");
   const options::Spec sphere = matching::site_sphere_spec();

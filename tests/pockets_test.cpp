@@ -27,6 +27,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -299,16 +300,55 @@ TEST_F(Mmcif, BrokenAndEmptyFilesAreRefusedNamingTheFile) {
   std::ofstream(dir_ / "cut.cif") << "data_CUT\nloop_\n_atom_site.group_PDB\n_atom_site.id\n"
                                      "_atom_site.type_symbol\n_atom_site.Cartn_x\n"
                                      "ATOM 1 C 1.0\n'unterminated\n";
-  for (const char* name : {"empty.cif", "cut.cif"}) {
+  std::ofstream(dir_ / "zero.cif").flush();
+  std::ofstream(dir_ / "no_block.cif") << "# a comment, and no data_ block\n";
+  const auto refused = [&](const std::string& name, const std::string& reason) {
     try {
       io::read_molecule(dir_ / name);
       ADD_FAILURE() << name << " was accepted";
     } catch (const Error& e) {
       const std::string message = e.what();
       EXPECT_NE(message.find(name), std::string::npos) << message;
+      EXPECT_NE(message.find(reason), std::string::npos) << message;
       EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      // The C++ library's own words never reach the user.
+      EXPECT_EQ(message.find("_M_range_check"), std::string::npos) << message;
+    }
+  };
+  refused("empty.cif", "");
+  refused("cut.cif", "");
+  refused("zero.cif", "the file is empty");
+  refused("no_block.cif", "no data_ block");
+}
+
+TEST_F(Mmcif, ACompressedFileCutShortIsSaidToBeCutShort) {
+  SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/1THL.pdb");
+  write_mmcif(pdb, dir_ / "whole.cif.gz");
+  std::ifstream in(dir_ / "whole.cif.gz", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 100u);
+  // Cut at 10 % (inside the deflate stream), and without only the 8-byte trailer (CRC, size).
+  for (const std::size_t kept : {bytes.size() / 10, bytes.size() - 8, bytes.size() - 1}) {
+    const std::string name = "cut" + std::to_string(kept) + ".cif.gz";
+    std::ofstream(dir_ / name, std::ios::binary) << bytes.substr(0, kept);
+    try {
+      io::read_molecule(dir_ / name);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(name + ": the compressed file is cut short"),
+                std::string::npos)
+          << e.what();
     }
   }
+  std::ofstream(dir_ / "empty.cif.gz").flush();
+  try {
+    io::read_molecule(dir_ / "empty.cif.gz");
+    ADD_FAILURE() << "empty.cif.gz was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("empty.cif.gz: the file is empty"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_GT(io::read_molecule(dir_ / "whole.cif.gz").atoms.size(), 2000u);
 }
 
 }  // namespace

@@ -174,6 +174,22 @@ TEST(ReadCharges, AbsurdPqrChargesAreRefusedNamingLineAndAtom) {
   EXPECT_DOUBLE_EQ(ok.atoms[1].charge, -9.5);
 }
 
+TEST(ReadRadii, AbsurdPqrRadiiAreRefusedNamingLineAndAtom) {
+  const TempDir dir;
+  const auto with_radius = [](const std::string& r) {  // atom O1's radius, 6 columns
+    std::string text = pqr_with_z("0.5");
+    text.replace(text.find("1.5200"), 6, r);
+    return text;
+  };
+  const fs::path path = dir.write("r.pqr", with_radius("  1e30"));
+  expect_error<FormatError>([&] { io::read_molecule(path); },
+                            {path.string() + ":2:", "atom 'O1'", "radius 1e+30 A", "100 A"});
+  expect_error<FormatError>([&] { io::read_molecule(dir.write("z.pqr", with_radius("0.0000"))); },
+                            {":2:", "atom 'O1'", "not positive"});
+  const Molecule ok = io::read_molecule(dir.write("ok.pqr", with_radius("99.000")));
+  EXPECT_DOUBLE_EQ(ok.atoms[1].radius, 99.0);
+}
+
 /// Ethanol in MOL2 with its own charges; the oxygen's charge is Q.
 constexpr const char* kMol2 =
     "@<TRIPOS>MOLECULE\n"

@@ -77,7 +77,7 @@ TEST(SesLimits, VoxelsAndRadiiBelowTheGridResolutionAreRefused) {
   const Atoms tiny = three_atoms(1e-6);
   const std::string message =
       refusal<InputError>([&] { mesh::build_ses(tiny.centers, tiny.radii); });
-  EXPECT_TRUE(contains(message, "atom 2 has radius 1e-06 A")) << message;
+  EXPECT_TRUE(contains(message, "atom 3 has radius 1e-06 A")) << message;
   // The smallest accepted radius passes this check and meets the grid limit instead.
   const Atoms smallest = three_atoms(2.0 * mesh::min_voxel_size);
   const std::string limit =
@@ -90,7 +90,7 @@ TEST(SesLimits, CentresBeyondTheGridRangeAreRefused) {
   atoms.centers(1, 2) = 1e30;
   const std::string message =
       refusal<InputError>([&] { mesh::build_ses(atoms.centers, atoms.radii); });
-  EXPECT_TRUE(contains(message, "atom 1 lies 1e+30 A from the origin")) << message;
+  EXPECT_TRUE(contains(message, "atom 2 lies 1e+30 A from the origin")) << message;
 }
 
 TEST(SesLimits, AtomAndVertexLimits) {

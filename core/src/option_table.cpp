@@ -159,7 +159,15 @@ Value parse(const Spec& spec, const std::string& text, const std::string& shown)
         throw OptionError(shown + ": value " + text + " is outside " + range_text(spec));
       }
       if (text.empty() || error != std::errc() || end != text.data() + text.size()) {
-        throw OptionError(shown + ": '" + text + "' is not a whole number");
+        // Scientific notation of a whole number (1e6, as --help prints the ranges) is taken too.
+        const std::optional<double> x = whole_number(text);
+        if (!x || std::isnan(*x) || (std::isfinite(*x) && std::floor(*x) != *x)) {
+          throw OptionError(shown + ": '" + text + "' is not a whole number");
+        }
+        if (!std::isfinite(*x) || std::abs(*x) >= 9.2e18) {
+          throw OptionError(shown + ": value " + text + " is outside " + range_text(spec));
+        }
+        n = static_cast<std::int64_t>(*x);
       }
       value = n;
       break;

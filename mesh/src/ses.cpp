@@ -81,11 +81,11 @@ void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                  "--max-atoms");
   for (Eigen::Index i = 0; i < centers.rows(); ++i) {
     if (!centers.row(i).allFinite()) {
-      throw InputError(what + ": atom " + std::to_string(i) +
+      throw InputError(what + ": atom " + std::to_string(i + 1) +
                        " has a non-finite centre; expected finite coordinates");
     }
     if (!std::isfinite(radii(i)) || radii(i) <= 0.0) {
-      throw InputError(what + ": atom " + std::to_string(i) + " has radius " +
+      throw InputError(what + ": atom " + std::to_string(i + 1) + " has radius " +
                        std::to_string(radii(i)) + "; expected a finite radius > 0 A");
     }
   }
@@ -114,7 +114,7 @@ double choose_voxel_size(const Eigen::Ref<const Eigen::VectorXd>& radii, const S
   const double smallest = radii.minCoeff(&which);
   if (options.voxel_size == 0.0) {
     if (smallest < min_atom_voxels * min_voxel_size) {
-      throw InputError(what + ": atom " + std::to_string(which) + " has radius " +
+      throw InputError(what + ": atom " + std::to_string(which + 1) + " has radius " +
                        number(smallest) + " A; expected at least " +
                        number(min_atom_voxels * min_voxel_size) +
                        " A (the grid needs 2 voxels per radius, voxels of at least " +
@@ -159,7 +159,7 @@ void check_grid_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers, double r
                      double max_cells, const std::string& what) {
   for (Eigen::Index i = 0; i < centers.rows(); ++i) {
     if (centers.row(i).cwiseAbs().maxCoeff() + reach > max_grid_coordinate * voxel) {
-      throw InputError(what + ": atom " + std::to_string(i) + " lies " +
+      throw InputError(what + ": atom " + std::to_string(i + 1) + " lies " +
                        number(centers.row(i).cwiseAbs().maxCoeff()) +
                        " A from the origin; at voxel size " + number(voxel) +
                        " A the grid reaches " + number(max_grid_coordinate * voxel - reach) + " A");
@@ -211,6 +211,10 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   // Both surfaces lie inside the spheres R_i (SAS on them), the band a little beyond.
   const double reach = radii.maxCoeff() + options.probe_radius + 2.0 * voxel;
   check_grid_size(centers, reach, voxel, options.max_grid_cells, what);
+  const auto stage_done = [&](std::int64_t stage) {
+    if (options.progress) options.progress(stage, 4);
+  };
+  stage_done(0);
 
   // An exact copy of an atom leaves the union unchanged but would make each copy bury the
   // other's sphere; the geometry sees each distinct atom once.
@@ -225,6 +229,7 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   detail::TriangleSoup soup = detail::grid_mesh(
       sas, excluded ? detail::SurfaceKind::excluded : detail::SurfaceKind::accessible,
       distinct_centers, reach, voxel);
+  stage_done(1);
   // A component holding an atom holds its whole van der Waals ball, and a cavity the probe's.
   const double fraction = options.min_component_volume_fraction;
   detail::ComponentVolumes limits;
@@ -236,6 +241,7 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
     throw TopologyError(what + ": the isosurface is empty at voxel size " + std::to_string(voxel) +
                         " A");
   }
+  stage_done(2);
   const double vertices = expected_vertices(soup, options);
   require_within(what, "the surface would have about " + number(std::round(vertices)) + " vertices",
                  vertices, static_cast<double>(options.max_vertices), "--max-vertices");
@@ -252,6 +258,7 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                                edge_length, remesh_iterations, false);
     if (parts.small.faces.rows() > 0) surface = with_components(surface, parts.small, what);
   }
+  stage_done(3);
   // Grid and remeshed vertices lie within a voxel of the surface; search a little wider.
   const double projection_reach = reach_voxels * voxel;
   if (excluded) {
@@ -261,6 +268,7 @@ Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                                options.compensate_chords);
   }
   require_closed_manifold(surface);
+  stage_done(4);
   return surface;
 }
 

@@ -2,10 +2,10 @@
 
 #include "surfcomp/core/error.hpp"
 
-#include <boost/iostreams/device/array.hpp>
+#include <boost/iostreams/device/back_inserter.hpp>
 #include <boost/iostreams/filter/gzip.hpp>
-#include <boost/iostreams/filtering_stream.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -82,22 +82,38 @@ std::string read_input_file(const std::filesystem::path& path) {
 std::string read_gzip_input_file(const std::filesystem::path& path) {
   const std::string compressed = read_input_file(path);
   namespace bio = boost::iostreams;
+  // The decompressor is driven as an output filter: its close() is where a stream cut short is
+  // caught (no end-of-stream marker, or a missing or partial trailer), which reading it as an
+  // input filter lets pass as a shorter text.
   std::string text;
+  bio::gzip_decompressor decompressor;
+  bio::back_insert_device<std::string> sink(text);
+  if (compressed.empty()) throw FileError(path.string(), "the file is empty");
+  constexpr std::size_t chunk = std::size_t{1} << 16;
+  bool closing = false;
   try {
-    bio::filtering_istream in;
-    in.push(bio::gzip_decompressor());
-    in.push(bio::array_source(compressed.data(), compressed.size()));
-    char buffer[1 << 16];
-    while (in) {
-      in.read(buffer, sizeof buffer);
-      text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    for (std::size_t at = 0; at < compressed.size();) {
+      const std::streamsize taken =
+          decompressor.write(sink, compressed.data() + at,
+                             static_cast<std::streamsize>(std::min(chunk, compressed.size() - at)));
+      if (taken <= 0) throw FileError(path.string(), "cannot decompress (gzip): no progress");
+      at += static_cast<std::size_t>(taken);
       if (text.size() > max_input_file_bytes) {
         throw FileError(path.string(), "decompresses to more than the limit of " +
                                            std::to_string(max_input_file_bytes) + " bytes");
       }
     }
+    closing = true;
+    decompressor.close(sink, std::ios_base::out);
   } catch (const Error&) {
     throw;
+  } catch (const bio::gzip_error& e) {
+    if (closing) {
+      throw FileError(path.string(),
+                      "the compressed file is cut short: its gzip stream stops before its end "
+                      "(a partial download or copy?)");
+    }
+    throw FileError(path.string(), std::string("cannot decompress (gzip): ") + e.what());
   } catch (const std::exception& e) {
     throw FileError(path.string(), std::string("cannot decompress (gzip): ") + e.what());
   }
@@ -137,6 +153,18 @@ void check_read_charge(double charge, const std::string& file, std::size_t line,
                       item + " has charge " + number(charge) +
                           " e, beyond the accepted magnitude " + number(max_charge_magnitude) +
                           " e");
+  }
+}
+
+void check_read_radius(double radius, const std::string& file, std::size_t line,
+                       const std::string& item) {
+  if (!(radius > 0.0)) {
+    throw FormatError(file, line, item + " has radius " + number(radius) + ", not positive");
+  }
+  if (radius > max_atom_radius) {
+    throw FormatError(file, line,
+                      item + " has radius " + number(radius) + " A, beyond the accepted " +
+                          number(max_atom_radius) + " A");
   }
 }
 

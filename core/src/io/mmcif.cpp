@@ -93,10 +93,24 @@ std::string read_structure_text(const std::filesystem::path& path, std::size_t* 
   const std::string source = path.string();
   const std::string text =
       has_suffix(lowercase_name(path), ".gz") ? read_gzip_input_file(path) : read_input_file(path);
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
+    throw FormatError(source, "the file is empty");
+  }
   gemmi::Structure structure;
   try {
-    structure =
-        gemmi::make_structure(gemmi::cif::read_memory(text.data(), text.size(), source.c_str()));
+    const gemmi::cif::Document document =
+        gemmi::cif::read_memory(text.data(), text.size(), source.c_str());
+    if (document.blocks.empty()) {
+      throw FormatError(source, "cannot read it as mmCIF: it has no data_ block");
+    }
+    structure = gemmi::make_structure(document);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::out_of_range&) {
+    // gemmi reaches past an empty table with .at(): a block without the rows a structure needs.
+    throw FormatError(source,
+                      "cannot read it as mmCIF: a table a structure needs is missing or "
+                      "empty");
   } catch (const std::exception& e) {
     throw FormatError(source, "cannot read it as mmCIF: " + first_line(e.what()));
   }

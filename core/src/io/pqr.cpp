@@ -158,9 +158,7 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
       throw InputError(source + ":" + std::to_string(line_number) + ": atom '" + atom.name +
                        "' has no recognisable element");
     }
-    if (!(atom.radius > 0.0)) {
-      throw FormatError(source, line_number, "radius '" + fields[k + 5] + "' is not positive");
-    }
+    check_read_radius(atom.radius, source, line_number, "atom '" + atom.name + "'");
     molecule.atoms.push_back(atom);
   }
   if (molecule.atoms.empty()) throw InputError(source + ": no ATOM/HETATM records (no atoms)");

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace surfcomp::mesh {
@@ -63,6 +64,11 @@ struct SesOptions {
   /// grid mesh before remeshing (its area times vertex_density; its vertex count without
   /// remeshing). Every later stage (ESP, LP, curvature, patches) is at least linear in it.
   std::int64_t max_vertices = 20'000'000;
+
+  /// Reports the build's progress: called with (k, 4) as each of its four stages ends (grid
+  /// sampled and meshed, components kept, remeshed, vertices placed on the exact surface), and
+  /// (0, 4) once the limits are checked and the work starts. Empty: no reports.
+  std::function<void(std::int64_t done, std::int64_t total)> progress;
 };
 
 /// The smallest voxel build_ses and build_sas accept, A: an automatic voxel (r_min / 2) below it

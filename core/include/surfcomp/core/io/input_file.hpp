@@ -24,6 +24,11 @@ inline constexpr double max_coordinate_magnitude = 1e6;
 /// elementary charges (metal ions +4); a larger value is a corrupt or misaligned column.
 inline constexpr double max_charge_magnitude = 10.0;
 
+/// Largest atom radius read from a file, A. Atoms are 1-3 A and coarse-grained beads a few A;
+/// a larger value is a corrupt or misaligned column, and the surface grid around it would not
+/// fit in memory.
+inline constexpr double max_atom_radius = 100.0;
+
 /// The whole content of `path`, read with one bounded read of at most its size. Refuses,
 /// with FileError "PATH: reason", a path that does not exist, is not a regular file (a
 /// directory, FIFO, socket or device such as /dev/zero: "not a regular file"), cannot be
@@ -53,6 +58,12 @@ void check_read_value(double value, const std::string& file, const std::string& 
 /// at most max_charge_magnitude. Throws FormatError "FILE:LINE: ITEM has charge 1e+30 e, beyond
 /// the accepted magnitude 10 e" (or "a non-finite charge").
 void check_read_charge(double charge, const std::string& file, std::size_t line,
+                       const std::string& item);
+
+/// Checks an atom radius read from line `line` of `file` (0: no line): finite, > 0 and at most
+/// max_atom_radius. Throws FormatError "FILE:LINE: ITEM has radius 1e+30 A, beyond the accepted
+/// 100 A" (or "a radius that is not positive").
+void check_read_radius(double radius, const std::string& file, std::size_t line,
                        const std::string& item);
 
 }  // namespace surfcomp::io
