@@ -14,9 +14,12 @@
 // The match runs with each parameter set of variants(); the sites are built once.
 //
 //   ./build/r/bench/site_bench [entries.txt [PREFIX [VARIANTS [MARGIN]]]]
-// entries.txt defaults to ../shared/datasets/kahraman-dev/entries.txt; PREFIX, when given and not
-// "-", makes PREFIX.<variant>.csv with one row per pair (sites, same type, top-1 pairs, points,
-// r_chem, overlay scores, imaged CPs, ms, the top-1 transform as t00..t23); VARIANTS, a
+// entries.txt defaults to ../shared/datasets/kahraman-dev/entries.txt (the homogeneous set,
+// ../shared/datasets/homogeneous/entries.txt, has the same layout and IsoMIF's per-site figures
+// beside it, printed with the per-site AUCs); PREFIX, when given and not "-", makes
+// PREFIX.<variant>.csv with one row per pair (sites, ligand types, same type, imaged CPs, site
+// surface vertices, ms, every score printed, r_chem, the top-1 transform as t00..t23), which
+// bench/site_choice.py reads; sites are built and pairs matched on every core; VARIANTS, a
 // comma-separated list (or "-" for all), runs those only; MARGIN (A) is the site surface's margin
 // (BindingSiteOptions::surface_margin; 0 = the surface of the whole structure).
 #include "surfcomp/core/error.hpp"
@@ -34,12 +37,16 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <random>
 #include <set>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace {
 
@@ -84,8 +91,12 @@ struct Site {
   std::vector<bool> in_site;             ///< one flag per critical point: inside the site
   std::size_t site_cps = 0;              ///< critical points inside the site
   std::size_t imaged = 0;                ///< site critical points with an image
+  std::size_t site_vertices = 0;         ///< surface vertices inside the site's spheres
   matching::LiningComposition lining{};  ///< its lining residues' composition
-  double build_ms = 0;                   ///< read, surface, critical points and site descriptors
+  /// Its surface points' interaction composition (matching::interaction_composition).
+  matching::InteractionComposition interactions{};
+  std::vector<matching::InteractionPoint> points;  ///< its surface points' interactions
+  double build_ms = 0;  ///< read, surface, critical points and site descriptors
 };
 
 /// Builds the site of `entry` from `pdb`: the binding site of the entry's ligand copy (residue
@@ -116,8 +127,22 @@ Site build_site(const Entry& entry, const fs::path& pdb, double margin,
   site.site_cps =
       static_cast<std::size_t>(std::count(site.in_site.begin(), site.in_site.end(), true));
   site.imaged = harmonic::count_descriptors(site.descriptors).imaged;
+  const Eigen::MatrixX3d positions = site.descriptors.surface.positions();
+  for (Eigen::Index v = 0; v < positions.rows(); ++v) {
+    const Eigen::Vector3d x = positions.row(v).transpose();
+    site.site_vertices += std::any_of(binding_site.spheres.begin(), binding_site.spheres.end(),
+                                      [&](const matching::SiteSphere& sphere) {
+                                        return (x - sphere.center).norm() <= sphere.radius;
+                                      })
+                              ? 1
+                              : 0;
+  }
   site.lining = matching::lining_composition(binding_site.structure, binding_site.spheres)
                     .value_or(matching::LiningComposition{});  // none: similarity 0
+  site.points = matching::interaction_points(site.descriptors.surface, binding_site.structure,
+                                             binding_site.spheres);
+  site.interactions =
+      matching::interaction_composition(site.points).value_or(matching::InteractionComposition{});
   site.build_ms = start.elapsed_ms();
   return site;
 }
@@ -132,7 +157,8 @@ struct PairResult {
   std::size_t points = 0;                                   ///< its corresponding surface points
   Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();  ///< top-1: b into a's frame
   double r_chem = 0;                                        ///< its ESP correlation at those points
-  matching::OverlayScore overlay;  ///< its whole-site overlay scores (0 when not refined)
+  matching::OverlayScore overlay;        ///< its whole-site overlay scores (0 when not refined)
+  matching::AlignedInteractions fields;  ///< the sites' interaction points under it
   double match_ms = 0;
 };
 
@@ -303,6 +329,70 @@ void print_pocket_search(const std::vector<PairResult>& results, const std::vect
               score.name, top1, sites.size(), top3, sites.size());
 }
 
+/// Per-site AUC the way IsoMIF's evaluation computes it: each site in turn is the query, the
+/// other sites are ranked by `score`, and the AUC separates those of the query's ligand type from
+/// the rest. Prints the mean over all sites and per ligand type, beside IsoMIF's published
+/// per-site figures when `isomif_csv` exists (rows IsoMIF_p, a column per ligand type).
+void print_per_site_auc(const std::vector<PairResult>& results, const std::vector<Site>& sites,
+                        const Score& score, const fs::path& isomif_csv) {
+  std::vector<std::vector<double>> values(sites.size());
+  std::vector<std::vector<bool>> same(sites.size());
+  for (const auto& r : results) {
+    const double value = score.value(r, sites[r.a], sites[r.b]);
+    for (const auto& [query, other] : {std::pair{r.a, r.b}, std::pair{r.b, r.a}}) {
+      values[query].push_back(value);
+      same[query].push_back(sites[other].entry.ligand == sites[query].entry.ligand);
+    }
+  }
+  std::map<std::string, std::vector<double>> by_type;
+  std::vector<double> all;
+  for (std::size_t query = 0; query < sites.size(); ++query) {
+    const auto positives = std::count(same[query].begin(), same[query].end(), true);
+    if (positives == 0 || positives == static_cast<std::ptrdiff_t>(same[query].size())) continue;
+    const double auc = roc_auc(values[query], same[query]);
+    by_type[sites[query].entry.ligand].push_back(auc);
+    all.push_back(auc);
+  }
+  std::map<std::string, std::vector<double>> isomif;
+  if (std::ifstream in(isomif_csv); in) {
+    std::string header;
+    std::getline(in, header);
+    std::vector<std::string> columns;
+    std::stringstream names(header);
+    for (std::string name; std::getline(names, name, ',');) columns.push_back(name);
+    for (std::string line; std::getline(in, line);) {
+      std::stringstream cells(line);
+      std::string cell;
+      std::getline(cells, cell, ',');
+      if (cell != "IsoMIF_p") continue;
+      for (std::size_t c = 1; c < columns.size() && std::getline(cells, cell, ','); ++c) {
+        isomif[columns[c]].push_back(std::stod(cell));
+      }
+    }
+  }
+  const auto mean = [](const std::vector<double>& v) {
+    double sum = 0;
+    for (double x : v) sum += x;
+    return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+  };
+  std::vector<double> isomif_all;
+  for (const auto& [type, aucs] : isomif)
+    isomif_all.insert(isomif_all.end(), aucs.begin(), aucs.end());
+  std::printf(
+      "per-site AUC by %s (each site the query, same type against the rest): mean %.3f over %zu "
+      "sites",
+      score.name, mean(all), all.size());
+  if (!isomif_all.empty())
+    std::printf("; IsoMIF_p published mean %.3f over %zu", mean(isomif_all), isomif_all.size());
+  std::printf("\n");
+  for (const auto& [type, aucs] : by_type) {
+    std::printf("  %-4s %2zu sites  %.3f", type.c_str(), aucs.size(), mean(aucs));
+    if (const auto it = isomif.find(type); it != isomif.end())
+      std::printf("   IsoMIF_p %.3f", mean(it->second));
+    std::printf("\n");
+  }
+}
+
 int main(int argc, char** argv) {
   const fs::path entries_path =
       argc > 1 ? fs::path(argv[1]) : test::shared_datasets_root() / "kahraman-dev/entries.txt";
@@ -322,25 +412,39 @@ int main(int argc, char** argv) {
         kSiteRadius, kPatchRadius, kContactRadius, margin);
     std::printf("%-5s %-4s %6s %-2s %-6s %7s %6s %9s %6s %7s %9s\n", "pdb", "lig", "resnum", "ch",
                 "kept", "atoms", "ligat", "vertices", "cps", "imaged", "build_ms");
-    std::vector<Site> sites;
-    std::vector<std::string> skipped;
-    for (const Entry& e : entries) {
+    // Sites are built, and pairs matched, in parallel (every core TBB is given); each time in the
+    // tables is one site's or one pair's own wall time.
+    std::vector<Site> built(entries.size());
+    std::vector<std::string> build_error(entries.size());
+    tbb::parallel_for(std::size_t{0}, entries.size(), [&](std::size_t i) {
+      const Entry& e = entries[i];
       // A site whose surface a stage rejects is reported and left out of the pairs.
       try {
-        sites.push_back(
-            build_site(e, entries_path.parent_path() / "pdb" / (e.pdb + ".pdb"), margin, options));
+        built[i] =
+            build_site(e, entries_path.parent_path() / "pdb" / (e.pdb + ".pdb"), margin, options);
       } catch (const Error& error) {
-        std::printf("%-5s %-4s skipped: %s\n", e.pdb.c_str(), e.ligand.c_str(), error.what());
+        build_error[i] = error.what();
+      }
+    });
+    std::vector<Site> sites;
+    std::vector<std::string> skipped;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+      const Entry& e = entries[i];
+      if (!build_error[i].empty()) {
+        std::printf("%-5s %-4s skipped: %s\n", e.pdb.c_str(), e.ligand.c_str(),
+                    build_error[i].c_str());
         skipped.push_back(e.pdb);
         continue;
       }
+      sites.push_back(std::move(built[i]));
       const Site& s = sites.back();
       std::printf("%-5s %-4s %6d %-2s %-6s %7zu %6zu %9zu %6zu %7zu %9.0f\n", e.pdb.c_str(),
                   e.ligand.c_str(), e.residue_number, e.chain.c_str(), s.chains.c_str(), s.atoms,
                   s.ligand_atoms, s.descriptors.surface.n_vertices(), s.site_cps, s.imaged,
                   s.build_ms);
-      std::fflush(stdout);
     }
+    std::printf("%d threads\n", tbb::this_task_arena::max_concurrency());
+    std::fflush(stdout);
 
     for (const Variant& variant : variants()) {
       if (argc > 3 && std::string(argv[3]) != "-" &&
@@ -360,23 +464,28 @@ int main(int argc, char** argv) {
           r.a = a;
           r.b = b;
           r.same = sites[a].entry.ligand == sites[b].entry.ligand;
-          const Stopwatch start;
-          const auto match =
-              matching::match_surfaces(sites[a].descriptors, sites[b].descriptors, match_options,
-                                       &sites[a].in_site, &sites[b].in_site);
-          r.match_ms = start.elapsed_ms();
-          r.alignments = match.alignments.size();
-          if (!match.alignments.empty()) {
-            const auto& top = match.alignments.front();
-            r.pairs = top.cp_pairs.size();
-            r.points = top.n_points;
-            r.r_chem = top.r_chem;
-            r.overlay = top.overlay;
-            r.transform = top.transform;
-          }
           results.push_back(r);
         }
       }
+      tbb::parallel_for(std::size_t{0}, results.size(), [&](std::size_t i) {
+        PairResult& r = results[i];
+        const Stopwatch start;
+        const auto match =
+            matching::match_surfaces(sites[r.a].descriptors, sites[r.b].descriptors, match_options,
+                                     &sites[r.a].in_site, &sites[r.b].in_site);
+        r.match_ms = start.elapsed_ms();
+        r.alignments = match.alignments.size();
+        if (!match.alignments.empty()) {
+          const auto& top = match.alignments.front();
+          r.pairs = top.cp_pairs.size();
+          r.points = top.n_points;
+          r.r_chem = top.r_chem;
+          r.overlay = top.overlay;
+          r.transform = top.transform;
+        }
+        r.fields =
+            matching::aligned_interactions(sites[r.a].points, sites[r.b].points, r.transform);
+      });
 
       // Correspondences per matched critical-point pair at full image coverage: the image grid's
       // point count over the correspondence subsampling is the same for every pair, so n_points
@@ -418,6 +527,15 @@ int main(int argc, char** argv) {
            [](const PairResult&, const Site& x, const Site& y) {
              return matching::lining_similarity(x.lining, y.lining);
            }},
+          {"interactions", "interaction_similarity of the site surface points' interaction classes",
+           [](const PairResult&, const Site& x, const Site& y) {
+             return matching::interaction_similarity(x.interactions, y.interactions);
+           }},
+          {"fields", "aligned_interactions similarity: agreeing interaction points of both",
+           [](const PairResult& r, const Site&, const Site&) { return r.fields.similarity; }},
+          {"fields_partial",
+           "aligned_interactions coverage: agreeing points of the smaller site over its points",
+           [](const PairResult& r, const Site&, const Site&) { return r.fields.coverage; }},
           {"site",
            "site_score: (overlay + w lining) / (1 + w), w = site.lining_weight (the documented "
            "site similarity)",
@@ -430,13 +548,20 @@ int main(int argc, char** argv) {
       if (argc > 2 && std::string(argv[2]) != "-") {
         std::ofstream csv(std::string(argv[2]) + "." + variant.name + ".csv");
         if (!csv) throw FileError(argv[2], "cannot write the pairs table");
-        csv << "a,b,same,pairs,points,r_chem,overlay,overlay_shape,overlay_chem,imaged_a,imaged_b,"
-               "match_ms,t00,t01,t02,t03,t10,t11,t12,t13,t20,t21,t22,t23\n";
+        csv << "a,b,ligand_a,ligand_b,same,imaged_a,imaged_b,site_vertices_a,site_vertices_b,"
+               "points,"
+               "match_ms";
+        for (const Score& score : scores) csv << ',' << score.name;
+        csv << ",r_chem,t00,t01,t02,t03,t10,t11,t12,t13,t20,t21,t22,t23\n";
+        csv.precision(9);
         for (const auto& r : results) {
-          csv << sites[r.a].entry.pdb << ',' << sites[r.b].entry.pdb << ',' << r.same << ','
-              << r.pairs << ',' << r.points << ',' << r.r_chem << ',' << r.overlay.score << ','
-              << r.overlay.shape << ',' << r.overlay.chem << ',' << sites[r.a].imaged << ','
-              << sites[r.b].imaged << ',' << r.match_ms;
+          const Site& x = sites[r.a];
+          const Site& y = sites[r.b];
+          csv << x.entry.pdb << ',' << y.entry.pdb << ',' << x.entry.ligand << ',' << y.entry.ligand
+              << ',' << r.same << ',' << x.imaged << ',' << y.imaged << ',' << x.site_vertices
+              << ',' << y.site_vertices << ',' << r.points << ',' << r.match_ms;
+          for (const Score& score : scores) csv << ',' << score.value(r, x, y);
+          csv << ',' << r.r_chem;
           for (int row = 0; row < 3; ++row) {
             for (int col = 0; col < 4; ++col) csv << ',' << r.transform(row, col);
           }
@@ -472,8 +597,11 @@ int main(int argc, char** argv) {
       }
       print_size_matched(results, sites, scores);
       for (const Score& score : scores) {
-        if (std::string(score.name) != "overlay" && std::string(score.name) != "site") continue;
+        const std::string name = score.name;
+        if (name != "overlay" && name != "site" && name != "size") continue;
         print_pocket_search(results, sites, score);
+        print_per_site_auc(results, sites, score,
+                           entries_path.parent_path() / "isomif_per_site_auc.csv");
         const auto [low, high] = site_bootstrap_auc(
             results, sites.size(),
             [&](const PairResult& r) { return score.value(r, sites[r.a], sites[r.b]); }, 20261122u,

@@ -188,13 +188,17 @@ TEST_F(CliPockets, APocketMatchOntoTheMmcifCopyIsTheIdentity) {
   const double w = site.at("lining_weight").get<double>();
   EXPECT_NEAR(site.at("score").get<double>(),
               (top.at("overlay").at("score").get<double>() + w) / (1.0 + w), 1e-12);
+  // The same surface points with the same interactions, overlaid by the identity.
+  EXPECT_DOUBLE_EQ(site.at("interactions").get<double>(), 1.0);
+  EXPECT_NEAR(site.at("fields").at("similarity").get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(site.at("fields").at("coverage").get<double>(), 1.0, 1e-12);
   // The report takes the pocket as match does: its page holds the same site figures and marks
   // the pocket linings.
   const ProgramRun report = run("report site.pdb site.cif --site-pocket 1 -o r.html");
   ASSERT_EQ(report.status, 0) << report.err;
   const std::string page = file_bytes(dir_ / "r.html");
-  const std::string key = "\"site\":{\"lining\":";
-  const std::size_t at = page.find(key);
+  const std::string key = "\"lining\":";
+  const std::size_t at = page.find(key, page.find("\"site\":{\"fields\":"));
   ASSERT_NE(at, std::string::npos);
   EXPECT_NEAR(std::stod(page.substr(at + key.size(), 24)), 1.0, 1e-12);
   EXPECT_NE(page.find("\"site_lining\":["), std::string::npos);

@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -452,6 +454,118 @@ TEST(LiningComposition, CountsEachLiningResidueOnceByClass) {
   EXPECT_FALSE(matching::lining_composition(structure, {{Eigen::Vector3d(50, 0, 0), 4.0}}));
   EXPECT_DOUBLE_EQ(matching::site_score(0.4, 0.75, 0.3), (0.4 + 0.3 * 0.75) / 1.3);
   EXPECT_DOUBLE_EQ(matching::site_score(0.4, 0.75, 0.0), 0.4);
+}
+
+Atom named(const std::string& element, const std::string& name, const std::string& residue) {
+  Atom a = atom(element, Eigen::Vector3d::Zero(), residue, 1, "A", false);
+  a.name = name;
+  return a;
+}
+
+// The interaction a contact meets, class by class, for the atoms the classes are defined by.
+TEST(Interactions, EachAtomOffersItsClass) {
+  using matching::Interaction;
+  const auto weight = [](const Atom& a, Interaction kind) {
+    return matching::interaction_of(a)[static_cast<std::size_t>(kind)];
+  };
+  EXPECT_EQ(weight(named("N", "NZ", "LYS"), Interaction::positive), 1.0);
+  EXPECT_EQ(weight(named("N", "NH2", "ARG"), Interaction::positive), 1.0);
+  EXPECT_EQ(weight(named("O", "OD2", "ASP"), Interaction::negative), 1.0);
+  EXPECT_EQ(weight(named("O", "OE1", "GLU"), Interaction::negative), 1.0);
+  EXPECT_EQ(weight(named("N", "N", "GLY"), Interaction::donor), 1.0);
+  EXPECT_EQ(weight(named("N", "N", "PRO"), Interaction::hydrophobic), 1.0);
+  EXPECT_EQ(weight(named("O", "O", "ALA"), Interaction::acceptor), 1.0);
+  EXPECT_EQ(weight(named("O", "OG", "SER"), Interaction::donor), 0.5);
+  EXPECT_EQ(weight(named("O", "OG", "SER"), Interaction::acceptor), 0.5);
+  EXPECT_EQ(weight(named("C", "CZ", "PHE"), Interaction::aromatic), 1.0);
+  EXPECT_EQ(weight(named("C", "CB", "PHE"), Interaction::hydrophobic), 1.0);
+  EXPECT_EQ(weight(named("S", "SD", "MET"), Interaction::hydrophobic), 1.0);
+  Atom zinc = named("Zn", "ZN", "ZN");
+  zinc.hetero = true;
+  EXPECT_EQ(weight(zinc, Interaction::positive), 1.0);
+  EXPECT_EQ(weight(named("P", "PA", "ATP"), Interaction::negative), 1.0);
+  const matching::InteractionComposition hydrogen =
+      matching::interaction_of(named("H", "H", "ALA"));
+  for (double w : hydrogen) EXPECT_EQ(w, 0.0);
+}
+
+/// The interaction points of a grid of vertices, 1 A apart, over x and y in [-4, 4], beside a
+/// lysine NZ (x < 0) and an aspartate OD1 (x > 0); the site: a sphere of radius `r` around
+/// `center`.
+std::vector<matching::InteractionPoint> two_class_site(const Eigen::Vector3d& center, double r) {
+  Molecule structure;
+  Atom lysine = named("N", "NZ", "LYS");
+  lysine.position = {-3, 0, -2};
+  Atom aspartate = named("O", "OD1", "ASP");
+  aspartate.position = {3, 0, -2};
+  structure.atoms = {lysine, aspartate};
+  std::vector<Eigen::Vector3d> vertices;
+  for (int i = -4; i <= 4; ++i) {
+    for (int j = -4; j <= 4; ++j) vertices.emplace_back(i + 0.5, j, 0);
+  }
+  Eigen::MatrixX3d positions(static_cast<Eigen::Index>(vertices.size()), 3);
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    positions.row(static_cast<Eigen::Index>(v)) = vertices[v].transpose();
+  }
+  Eigen::MatrixX3i faces(1, 3);
+  faces << 0, 1, 9;
+  const mesh::Surface surface = mesh::Surface::from_arrays(positions, faces, "grid");
+  return matching::interaction_points(surface, structure, {{center, r}});
+}
+
+// A site compared with itself, moved, and with a part of itself: the aligned agreement is 1
+// where every point meets its like, the part is covered whole (partial matching), and a site
+// whose classes are swapped agrees nowhere.
+TEST(Interactions, AlignedPointsAgreeClassForClassAndAPartIsCovered) {
+  const std::vector<matching::InteractionPoint> whole = two_class_site({0, 0, 0}, 10.0);
+  ASSERT_EQ(whole.size(), 81u);
+  const matching::InteractionComposition composition =
+      matching::interaction_composition(whole).value();
+  // x = -3.5 .. -0.5 nearer the lysine (36 points), 0.5 .. 4.5 nearer the aspartate (45).
+  EXPECT_DOUBLE_EQ(composition[static_cast<std::size_t>(matching::Interaction::positive)],
+                   36.0 / 81.0);
+  EXPECT_DOUBLE_EQ(composition[static_cast<std::size_t>(matching::Interaction::negative)],
+                   45.0 / 81.0);
+  const matching::AlignedInteractions self =
+      matching::aligned_interactions(whole, whole, Eigen::Matrix4d::Identity());
+  EXPECT_DOUBLE_EQ(self.similarity, 1.0);
+  EXPECT_DOUBLE_EQ(self.coverage, 1.0);
+
+  // The same points moved by a rigid motion, and that motion's inverse as the alignment.
+  Eigen::Matrix4d motion = Eigen::Matrix4d::Identity();
+  motion.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  motion.topRightCorner<3, 1>() = Eigen::Vector3d(5, -2, 9);
+  std::vector<matching::InteractionPoint> moved = whole;
+  for (auto& point : moved) {
+    point.position = motion.topLeftCorner<3, 3>() * point.position + motion.topRightCorner<3, 1>();
+  }
+  const Eigen::Matrix4d back = motion.inverse();
+  EXPECT_NEAR(matching::aligned_interactions(whole, moved, back).similarity, 1.0, 1e-12);
+  EXPECT_NEAR(matching::aligned_interactions(moved, whole, motion).coverage, 1.0, 1e-12);
+  EXPECT_EQ(matching::aligned_interactions(whole, moved, Eigen::Matrix4d::Identity()).similarity,
+            0.0);
+
+  // A cut: the points within 2.5 A of (2, 0, 0), all nearer the aspartate. The cut lies
+  // whole inside the site (coverage 1); the similarity counts the site's unmatched points (with
+  // contacts closer than the grid's 1 A, only a point's own copy is its contact).
+  const std::vector<matching::InteractionPoint> cut = two_class_site({2, 0, 0}, 2.5);
+  ASSERT_GT(cut.size(), 10u);
+  const matching::AlignedInteractions part =
+      matching::aligned_interactions(whole, cut, Eigen::Matrix4d::Identity(), 0.5);
+  EXPECT_DOUBLE_EQ(part.coverage, 1.0);
+  EXPECT_DOUBLE_EQ(part.similarity, 2.0 * static_cast<double>(cut.size()) /
+                                        static_cast<double>(whole.size() + cut.size()));
+  EXPECT_DOUBLE_EQ(matching::aligned_interactions(whole, cut, Eigen::Matrix4d::Identity()).coverage,
+                   1.0);
+  // Mirrored in x, the cut faces the lysine: it keeps its contacts but agrees with none.
+  Eigen::Matrix4d mirror = Eigen::Matrix4d::Identity();
+  mirror(0, 0) = -1.0;
+  mirror(1, 1) = -1.0;  // a rotation by pi about z: x -> -x, y -> -y
+  const matching::AlignedInteractions swapped = matching::aligned_interactions(whole, cut, mirror);
+  EXPECT_EQ(swapped.coverage, 0.0);
+  EXPECT_THROW(matching::aligned_interactions(whole, cut, mirror, 0.0), OptionError);
+  EXPECT_FALSE(matching::interaction_composition({}));
 }
 
 }  // namespace

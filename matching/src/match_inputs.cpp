@@ -564,6 +564,23 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
     out.site_score = site_score(out.result.alignments.front().overlay.score, *out.lining,
                                 match.site.lining_weight);
   }
+  if (out.lining) {
+    // The sites' interaction points: their compositions, and their agreement under the top
+    // alignment (its coverage scores a ligand's site inside a larger pocket).
+    const auto ref_points = interaction_points(out.reference.descriptors.surface,
+                                               *out.reference.molecule, out.reference.site);
+    const auto probe_points =
+        interaction_points(out.probe.descriptors.surface, *out.probe.molecule, out.probe.site);
+    const auto ref_interactions = interaction_composition(ref_points);
+    const auto probe_interactions = interaction_composition(probe_points);
+    if (ref_interactions && probe_interactions) {
+      out.interactions = interaction_similarity(*ref_interactions, *probe_interactions);
+      if (!out.result.alignments.empty()) {
+        out.fields =
+            aligned_interactions(ref_points, probe_points, out.result.alignments.front().transform);
+      }
+    }
+  }
   out.match_ms = clock.elapsed_ms() - out.prepare_ms;
   tell_clique_stop(out.result, match, out);
   log(options, "match: " + std::to_string(out.result.alignments.size()) + " alignments from " +

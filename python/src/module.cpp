@@ -382,7 +382,15 @@ py::dict match_dict(const matching::InputMatch& compared, double lining_weight) 
                 py::arg("lining") = *compared.lining, py::arg("lining_weight") = lining_weight,
                 py::arg("score") = compared.site_score
                                        ? py::object(py::float_(*compared.site_score))
-                                       : py::object(py::none())))
+                                       : py::object(py::none()),
+                py::arg("interactions") = compared.interactions
+                                              ? py::object(py::float_(*compared.interactions))
+                                              : py::object(py::none()),
+                py::arg("fields") =
+                    compared.fields
+                        ? py::object(py::dict(py::arg("similarity") = compared.fields->similarity,
+                                              py::arg("coverage") = compared.fields->coverage))
+                        : py::object(py::none())))
           : py::object(py::none());
   d["unit"] = compared.unit;
   d["cliques"] = compared.result.cliques;

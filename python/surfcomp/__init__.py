@@ -254,7 +254,10 @@ class MatchResult(list):
     #: True when ESP, LP and atoms were set aside (asked, or a side carries no ESP and LP).
     shape_only: bool
     #: Two sites on structures: {"lining": the lining residues' similarity, "lining_weight": w,
-    #: "score": the site score, (top overlay score + w lining) / (1 + w)}; None otherwise.
+    #: "score": the site score, (top overlay score + w lining) / (1 + w), "interactions": the
+    #: similarity of the sites' surface points' interaction classes, "fields": {"similarity",
+    #: "coverage"}, those points compared under the top alignment (coverage: the smaller site's
+    #: agreement, 1 when it lies class for class inside the other)}; None otherwise.
     site: Optional[Dict[str, Any]]
     #: The length unit the match ran at, in the inputs' coordinates (1 for molecules; see the
     #: ``scale`` and ``unit`` options). Transforms and RMSDs are in the inputs' coordinates.

@@ -77,10 +77,16 @@ nlohmann::json match_document(const matching::InputMatch& compared,
   const auto& g = options.graph;
   nlohmann::json site = nullptr;  // two sites on structures: their similarity
   if (compared.lining) {
-    site = {{"lining", *compared.lining},
-            {"lining_weight", options.site.lining_weight},
-            {"score",
-             compared.site_score ? nlohmann::json(*compared.site_score) : nlohmann::json(nullptr)}};
+    site = {
+        {"lining", *compared.lining},
+        {"lining_weight", options.site.lining_weight},
+        {"score",
+         compared.site_score ? nlohmann::json(*compared.site_score) : nlohmann::json(nullptr)},
+        {"interactions",
+         compared.interactions ? nlohmann::json(*compared.interactions) : nlohmann::json(nullptr)},
+        {"fields", compared.fields ? nlohmann::json({{"similarity", compared.fields->similarity},
+                                                     {"coverage", compared.fields->coverage}})
+                                   : nlohmann::json(nullptr)}};
   }
   return {{"reference", ref.name},
           {"probe", compared.probe.name},

@@ -14,6 +14,7 @@ sys.path.insert(0, str(BENCH))
 
 import dud_screen_bench  # noqa: E402
 import loto  # noqa: E402
+import site_choice  # noqa: E402
 
 
 def test_auc_and_ef1_of_known_rankings():
@@ -29,6 +30,51 @@ def test_auc_and_ef1_of_known_rankings():
     assert dud_screen_bench.enrichment_factor(scores, actives) == pytest.approx(50.0)
     # Every score tied: the top set holds the library's active share, EF 1.
     assert dud_screen_bench.enrichment_factor([0] * 200, actives) == pytest.approx(1.0)
+
+
+def _site_pairs(path, sites, value):
+    """A site_bench-like pair table over `sites` (name -> ligand type), every score column
+    `value(a, b)`, all sites of one size."""
+    columns = ["a", "b", "ligand_a", "ligand_b", "same", "imaged_a", "imaged_b",
+               "site_vertices_a", "site_vertices_b", "overlay", "overlay_shape", "overlay_chem",
+               "lining", "interactions", "fields"]
+    names = list(sites)
+    with open(path, "w") as f:
+        f.write(",".join(columns) + "\n")
+        for i, a in enumerate(names):
+            for b in names[i + 1:]:
+                same = sites[a] == sites[b]
+                scores = value(a, b, same)
+                row = [a, b, sites[a], sites[b], str(int(same)), "10", "10", "100", "100"]
+                row += [str(scores[c]) for c in columns[9:]]
+                f.write(",".join(row) + "\n")
+
+
+def test_site_choice_scores_a_rule_chosen_on_one_set_on_the_other(tmp_path, capsys, monkeypatch):
+    assert site_choice.auc([3, 1, 2, 2], [True, False, True, False]) == pytest.approx(0.875)
+    sites = {"s1": "X", "s2": "X", "s3": "Y", "s4": "Y"}
+    # Set A: only the lining separates the types; set B: only the overlay does.
+    _site_pairs(tmp_path / "a.csv", sites, lambda a, b, same: dict(
+        overlay=0.5, overlay_shape=0.5, overlay_chem=0.5, lining=0.9 if same else 0.1,
+        interactions=0.5, fields=0.5))
+    _site_pairs(tmp_path / "b.csv", sites, lambda a, b, same: dict(
+        overlay=0.9 if same else 0.2, overlay_shape=0.9 if same else 0.2, overlay_chem=0.5,
+        lining=0.5, interactions=0.5, fields=0.5))
+    rows = site_choice.read_pairs(tmp_path / "a.csv")
+    default = site_choice.rules()["o30i0f0"]
+    figures = site_choice.figures(rows, site_choice.rule_values(rows, default))
+    assert figures["auc"] == 1.0 and figures["per_site_auc"] == 1.0 and figures["top1"] == 1.0
+    assert figures["auc_size_matched"] == 1.0  # every pair is size-matched here
+    monkeypatch.setattr(sys, "argv", [
+        "site_choice.py", "--set", f"A={tmp_path / 'a.csv'}", "--set", f"B={tmp_path / 'b.csv'}",
+        "--json", str(tmp_path / "choice.json")])
+    site_choice.main()
+    choice = json.loads((tmp_path / "choice.json").read_text())
+    # Chosen on A, the least lining weight that separates the types, held out on B (where the
+    # overlay still does); chosen on B, the overlay alone.
+    assert choice["chosen_for"] == {"B": "o15i0f0", "A": "o0i0f0"}
+    assert choice["figures"]["A"]["o0i0f0"]["auc"] == 0.5
+    assert "held out on B" in capsys.readouterr().out
 
 
 def test_loto_scores_each_target_with_the_choice_made_without_it(tmp_path):

@@ -494,6 +494,8 @@ def test_pockets_are_the_programs_and_a_pocket_is_a_site(program, shared, tmp_pa
     assert itself.site["lining"] == 1.0
     assert itself.site["lining_weight"] == 0.5
     assert itself.site["score"] == pytest.approx((itself[0].overlay.score + 0.5) / 1.5, abs=1e-12)
+    assert itself.site["interactions"] == 1.0
+    assert itself.site["fields"]["coverage"] == pytest.approx(1.0, abs=1e-9)
 
 
 def _sphere_arrays(radius, levels):

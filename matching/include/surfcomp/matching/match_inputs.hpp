@@ -173,6 +173,13 @@ struct InputMatch {
   /// With `lining` and an alignment: the sites' similarity, site_score of the top alignment's
   /// overlay score and `lining` (MatchOptions::site.lining_weight).
   std::optional<double> site_score;
+  /// With `lining`: the interaction_similarity of the sites' surface points' interaction
+  /// compositions (site.hpp); none when a site has no surface point.
+  std::optional<double> interactions;
+  /// With `interactions` and an alignment: the sites' interaction points compared under the top
+  /// alignment (aligned_interactions): `coverage` is the smaller site's agreement, 1 when it
+  /// lies, class for class, inside the other (a ligand's site in a detected pocket).
+  std::optional<AlignedInteractions> fields;
   double prepare_ms = 0.0;  ///< reading, surfaces and descriptions
   double match_ms = 0.0;    ///< match_surfaces
 };

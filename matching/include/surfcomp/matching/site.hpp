@@ -164,6 +164,62 @@ std::optional<LiningComposition> lining_composition(const Molecule& structure,
 /// is empty. Independent of the sites' sizes.
 double lining_similarity(const LiningComposition& a, const LiningComposition& b);
 
+/// The interaction classes of a site's surface points, in the spirit of IsoMIF's probes: a
+/// ligand atom touching the point would meet a hydrogen-bond donor, an acceptor, an aromatic
+/// ring, a positive or a negative charge, or a hydrophobic group.
+inline constexpr std::size_t interaction_classes = 6;
+enum class Interaction : std::size_t { donor, acceptor, aromatic, positive, negative, hydrophobic };
+using InteractionComposition = std::array<double, interaction_classes>;
+
+/// The interaction a contact with `atom` offers, as weights over the classes (summing to 1, or
+/// all 0 for hydrogens): protein atoms by residue and atom name (backbone N a donor, O an
+/// acceptor; Lys NZ, Arg NE/NH1/NH2 and metal ions positive; Asp OD1/OD2, Glu OE1/OE2 and OXT
+/// negative; hydroxyl O, His ring N and water half donor, half acceptor; Phe/Tyr/Trp/His ring
+/// carbons aromatic; other carbons and S hydrophobic); any other atom by its element (N half
+/// donor, half acceptor; O an acceptor; C, S and halogens hydrophobic; P negative).
+InteractionComposition interaction_of(const Atom& atom);
+
+/// A site's surface point and the interaction a ligand atom touching it would meet.
+struct InteractionPoint {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< A
+  InteractionComposition weights{};                    ///< interaction_of its nearest heavy atom
+};
+
+/// The site's surface points: each vertex of `surface` inside `spheres`, with the interaction_of
+/// its nearest heavy atom of `structure`, in vertex order.
+std::vector<InteractionPoint> interaction_points(const mesh::Surface& surface,
+                                                 const Molecule& structure,
+                                                 const std::vector<SiteSphere>& spheres);
+
+/// The fraction of a site's interaction points in each class: independent of the site's size.
+/// None when there is no point.
+std::optional<InteractionComposition> interaction_composition(
+    const std::vector<InteractionPoint>& points);
+
+/// Default 1 A: two interaction points are in contact when this close.
+inline constexpr double interaction_contact = 1.0;
+
+/// How two sites' interaction points agree under an alignment.
+struct AlignedInteractions {
+  /// (agreement of a's points + agreement of b's points) / (|a| + |b|), in [0, 1]: a point's
+  /// agreement is sum_k min(w_k, w'_k) with its nearest point of the other site within the
+  /// contact distance (0 without one). 1 for a site against itself.
+  double similarity = 0.0;
+  /// The smaller site's agreement over its points, in [0, 1]: 1 when a site lies, class for
+  /// class, inside a larger one (a ligand's site inside a detected pocket).
+  double coverage = 0.0;
+};
+
+/// How the interaction points of `a` and of `b` agree when `b_to_a` (4 x 4, rigid) moves b's
+/// points into a's frame, with contacts within `contact` A. All 0 when a side has no point.
+AlignedInteractions aligned_interactions(const std::vector<InteractionPoint>& a,
+                                         const std::vector<InteractionPoint>& b,
+                                         const Eigen::Matrix4d& b_to_a,
+                                         double contact = interaction_contact);
+
+/// How alike two sites' interaction compositions are: the histogram intersection, in [0, 1].
+double interaction_similarity(const InteractionComposition& a, const InteractionComposition& b);
+
 /// The similarity of two sites: (overlay_score + weight lining) / (1 + weight), the top
 /// alignment's overlay score of the pocket linings with their lining_similarity.
 double site_score(double overlay_score, double lining, double weight);
