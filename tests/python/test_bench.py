@@ -14,6 +14,7 @@ sys.path.insert(0, str(BENCH))
 
 import dud_screen_bench  # noqa: E402
 import loto  # noqa: E402
+import pocket_detection_bench  # noqa: E402
 import site_choice  # noqa: E402
 
 
@@ -75,6 +76,22 @@ def test_site_choice_scores_a_rule_chosen_on_one_set_on_the_other(tmp_path, caps
     assert choice["chosen_for"] == {"B": "o15i0f0", "A": "o0i0f0"}
     assert choice["figures"]["A"]["o0i0f0"]["auc"] == 0.5
     assert "held out on B" in capsys.readouterr().out
+
+
+def test_pocket_ranking_terms_and_ligand_volume():
+    # One ball: 4/3 pi r^3; two far apart: twice that.
+    one = pocket_detection_bench.ligand_volume([(0.0, 0.0, 0.0)])
+    assert one == pytest.approx(4.0 / 3.0 * math.pi * 1.7 ** 3, rel=0.03)
+    assert pocket_detection_bench.ligand_volume([(0, 0, 0), (10, 0, 0)]) == pytest.approx(2 * one)
+    big = {"buriedness": 0.7, "spheres": [0] * 100, "lining_residues": ["ASP1:A", "GLU2:A"]}
+    small = {"buriedness": 0.9, "spheres": [0] * 25, "lining_residues": ["LEU3:A", "PHE4:A"]}
+    # The program's score (size power 1) puts the big pocket first; without size, or with the
+    # hydrophobic lining weighed, the small one (the site here) comes first.
+    dca = [10.0, 1.0]
+    assert pocket_detection_bench.rule_ranks([big, small], dca, 1.0, 0.0) == 2
+    assert pocket_detection_bench.rule_ranks([big, small], dca, 0.0, 0.0) == 1
+    assert pocket_detection_bench.rule_ranks([big, small], dca, 0.5, 2.0) == 1
+    assert pocket_detection_bench.rule_value(small, 1.0, 0.0) == pytest.approx(0.9 * 25)
 
 
 def test_loto_scores_each_target_with_the_choice_made_without_it(tmp_path):
