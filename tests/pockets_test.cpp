@@ -23,6 +23,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -54,9 +55,10 @@ Atom protein_atom(const Eigen::Vector3d& position, int number) {
 }
 
 /// A cube of side 2 * half (A) of atoms on a 3 A lattice, each moved by a fixed pseudo-random
-/// offset of up to 0.3 A (so that no five atoms are cospherical), without the atoms within
-/// `cavity` A of the centre: a closed cavity.
-Molecule block_with_cavity(double half, double cavity) {
+/// offset of up to 0.3 A (so that no five atoms are cospherical), without the atoms `carved`
+/// takes: a closed cavity.
+template <typename Carved>
+Molecule carved_block(double half, const Carved& carved) {
   Molecule m;
   m.source = "block.pdb";
   const int n = static_cast<int>(std::floor(2 * half / 3.0));
@@ -70,12 +72,17 @@ Molecule block_with_cavity(double half, double cavity) {
       for (int k = 0; k <= n; ++k) {
         Eigen::Vector3d p = Eigen::Vector3d(i, j, k) * 3.0 - Eigen::Vector3d::Constant(half);
         p += Eigen::Vector3d(jitter(), jitter(), jitter());
-        if (p.norm() < cavity) continue;
+        if (carved(p)) continue;
         m.atoms.push_back(protein_atom(p, static_cast<int>(m.atoms.size()) / 4 + 1));
       }
     }
   }
   return m;
+}
+
+/// carved_block without the atoms within `cavity` A of the centre.
+Molecule block_with_cavity(double half, double cavity) {
+  return carved_block(half, [cavity](const Eigen::Vector3d& p) { return p.norm() < cavity; });
 }
 
 TEST(DetectPockets, FindsAClosedCavityAndMovesWithTheStructure) {
@@ -120,6 +127,60 @@ TEST(DetectPockets, FindsAClosedCavityAndMovesWithTheStructure) {
     EXPECT_EQ(again[k].center, pockets[k].center);
     EXPECT_EQ(again[k].score, pockets[k].score);
   }
+}
+
+// Two lobes (balls of 5.5 A around (+-6, 0, 0)) joined by a channel (4.5 A around the x axis):
+// one cavity. Unsplit, it is one pocket; with a volume cap below the whole's, it splits into
+// sub-pockets of at most the cap, the two lobes, which share the cavity and its spheres.
+TEST(DetectPockets, ATwoLobeCavitySplitsIntoItsLobes) {
+  const Molecule block = carved_block(18.0, [](const Eigen::Vector3d& p) {
+    const double lobe =
+        std::min((p - Eigen::Vector3d(-6, 0, 0)).norm(), (p - Eigen::Vector3d(6, 0, 0)).norm());
+    return lobe < 5.5 || (std::abs(p.x()) < 6.0 && std::hypot(p.y(), p.z()) < 4.5);
+  });
+  const std::vector<matching::Pocket> whole = matching::detect_pockets(block);
+  ASSERT_FALSE(whole.empty());
+  const matching::Pocket& cavity = whole.front();
+  EXPECT_EQ(cavity.cavity, 1);
+  const auto spans_both = [](const matching::Pocket& p) {
+    bool left = false, right = false;
+    for (const matching::SiteSphere& s : p.spheres) {
+      left = left || s.center.x() < -4.0;
+      right = right || s.center.x() > 4.0;
+    }
+    return left && right;
+  };
+  ASSERT_TRUE(spans_both(cavity));
+
+  matching::PocketOptions split;
+  split.max_volume = 0.6 * cavity.volume;
+  const std::vector<matching::Pocket> parts = matching::detect_pockets(block, split);
+  std::vector<const matching::Pocket*> of_cavity;
+  std::size_t spheres = 0;
+  for (const matching::Pocket& p : parts) {
+    if (p.cavity != 1) continue;
+    of_cavity.push_back(&p);
+    spheres += p.spheres.size();
+    EXPECT_LE(p.volume, split.max_volume);
+    EXPECT_FALSE(spans_both(p));
+  }
+  ASSERT_GE(of_cavity.size(), 2u);
+  EXPECT_EQ(spheres, cavity.spheres.size());  // the parts partition the cavity's spheres
+  // The cavity's parts lie in the lobes, some in each; its best part is pocket 1.
+  EXPECT_EQ(of_cavity[0]->rank, 1);
+  const auto in_lobe = [&](double side) {
+    return std::any_of(of_cavity.begin(), of_cavity.end(),
+                       [side](const matching::Pocket* p) { return side * p->center.x() > 4.0; });
+  };
+  EXPECT_TRUE(in_lobe(-1.0));
+  EXPECT_TRUE(in_lobe(1.0));
+  // Deterministic.
+  const std::vector<matching::Pocket> again = matching::detect_pockets(block, split);
+  ASSERT_EQ(again.size(), parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) EXPECT_EQ(again[k].center, parts[k].center);
+  matching::PocketOptions negative;
+  negative.max_volume = -1.0;
+  EXPECT_THROW(matching::detect_pockets(block, negative), OptionError);
 }
 
 TEST(DetectPockets, ASheetOfAtomsHasNoPocket) {

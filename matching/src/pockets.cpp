@@ -45,7 +45,14 @@ struct AlphaSphere {
   double buriedness = 0.0;
 };
 
+void check_split(const PocketOptions& options) {
+  if (!(std::isfinite(options.max_volume) && options.max_volume >= 0.0)) {
+    throw OptionError("--pocket-max-volume must be a finite volume >= 0 A^3 (0: no split)");
+  }
+}
+
 void check_options(const PocketOptions& options) {
+  check_split(options);
   const auto positive = [](double value) { return std::isfinite(value) && value > 0.0; };
   if (!positive(options.min_sphere_radius) || !positive(options.max_sphere_radius) ||
       !(options.max_sphere_radius > options.min_sphere_radius)) {
@@ -184,6 +191,95 @@ double shrunk_union_volume(const std::vector<SiteSphere>& spheres) {
   return static_cast<double>(inside) * volume_spacing * volume_spacing * volume_spacing;
 }
 
+/// The spheres of `part` (indices into `spheres`) as site spheres.
+std::vector<SiteSphere> site_spheres(const std::vector<AlphaSphere>& spheres,
+                                     const std::vector<std::size_t>& part) {
+  std::vector<SiteSphere> out;
+  out.reserve(part.size());
+  for (std::size_t s : part) out.push_back({spheres[s].center, spheres[s].radius});
+  return out;
+}
+
+/// `part` in two by two-means on its sphere centres, seeded by the sphere farthest from the
+/// centroid and the sphere farthest from that one (ties: the lower index); deterministic.
+std::pair<std::vector<std::size_t>, std::vector<std::size_t>> two_means(
+    const std::vector<AlphaSphere>& spheres, const std::vector<std::size_t>& part) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (std::size_t s : part) centroid += spheres[s].center;
+  centroid /= static_cast<double>(part.size());
+  const auto farthest = [&](const Eigen::Vector3d& from) {
+    std::size_t best = part.front();
+    for (std::size_t s : part) {
+      if ((spheres[s].center - from).squaredNorm() > (spheres[best].center - from).squaredNorm())
+        best = s;
+    }
+    return spheres[best].center;
+  };
+  Eigen::Vector3d a = farthest(centroid);
+  Eigen::Vector3d b = farthest(a);
+  std::vector<std::size_t> first, second;
+  constexpr int rounds = 50;
+  for (int round = 0; round < rounds; ++round) {
+    std::vector<std::size_t> near_a, near_b;
+    for (std::size_t s : part) {
+      const bool to_a =
+          (spheres[s].center - a).squaredNorm() <= (spheres[s].center - b).squaredNorm();
+      (to_a ? near_a : near_b).push_back(s);
+    }
+    if (near_a == first && near_b == second) break;
+    first = std::move(near_a);
+    second = std::move(near_b);
+    if (first.empty() || second.empty()) break;
+    a.setZero();
+    b.setZero();
+    for (std::size_t s : first) a += spheres[s].center;
+    for (std::size_t s : second) b += spheres[s].center;
+    a /= static_cast<double>(first.size());
+    b /= static_cast<double>(second.size());
+  }
+  return {first, second};
+}
+
+/// Reorders pockets sorted by score so that each cavity's best part comes first, cavities by
+/// number (their summed score), then each cavity's second part, and so on: a split keeps the
+/// cavities' order at the top of the list, where the parts' own scores would put the parts of
+/// one large cavity first.
+void interleave_cavities(std::vector<Pocket>& pockets) {
+  std::stable_sort(pockets.begin(), pockets.end(),
+                   [](const Pocket& a, const Pocket& b) { return a.cavity < b.cavity; });
+  std::vector<int> part(pockets.size(), 0);  // its place among its cavity's parts, by score
+  for (std::size_t k = 1; k < pockets.size(); ++k) {
+    if (pockets[k - 1].cavity == pockets[k].cavity) part[k] = part[k - 1] + 1;
+  }
+  std::vector<std::size_t> order(pockets.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return part[x] != part[y] ? part[x] < part[y] : pockets[x].cavity < pockets[y].cavity;
+  });
+  std::vector<Pocket> sorted;
+  sorted.reserve(pockets.size());
+  for (std::size_t k : order) sorted.push_back(std::move(pockets[k]));
+  pockets = std::move(sorted);
+}
+
+/// The sub-pockets of a cavity (PocketOptions::max_volume): `cavity` itself when it holds at
+/// most max_volume (or max_volume is 0), else the sub-pockets of each side of its two-means
+/// split, unless a side would hold fewer than min_spheres spheres.
+std::vector<std::vector<std::size_t>> sub_pockets(const std::vector<AlphaSphere>& spheres,
+                                                  const std::vector<std::size_t>& cavity,
+                                                  const PocketOptions& options) {
+  if (options.max_volume <= 0.0 ||
+      shrunk_union_volume(site_spheres(spheres, cavity)) <= options.max_volume) {
+    return {cavity};
+  }
+  const auto [first, second] = two_means(spheres, cavity);
+  const auto fewest = static_cast<std::size_t>(options.min_spheres);
+  if (first.size() < fewest || second.size() < fewest) return {cavity};
+  std::vector<std::vector<std::size_t>> parts = sub_pockets(spheres, first, options);
+  for (auto& part : sub_pockets(spheres, second, options)) parts.push_back(std::move(part));
+  return parts;
+}
+
 std::string residue_label(const Atom& atom) {
   std::string label = atom.residue_name + std::to_string(atom.residue_number);
   if (!atom.chain.empty() && atom.chain != " ") label += ":" + atom.chain;
@@ -229,6 +325,12 @@ const options::Table<PocketOptions>& pocket_option_table() {
           {"pocket-min-spheres", Kind::integer, "pockets: fewest alpha spheres a pocket holds", "",
            1, 1e6},
           [](auto& p) -> auto& { return p.min_spheres; }),
+      options::field<P>(
+          {"pocket-max-volume", Kind::real,
+           "pockets: split a cavity larger than this into sub-pockets of at most this volume "
+           "(0: no split)",
+           "A^3", 0.0, 1e6},
+          [](auto& p) -> auto& { return p.max_volume; }),
   };
   return table;
 }
@@ -288,33 +390,48 @@ std::vector<Pocket> detect_pockets(const Molecule& structure, const PocketOption
   }
 
   std::vector<Pocket> pockets;
-  for (const std::vector<std::size_t>& cluster : single_linkage(buried, options.cluster_distance)) {
-    if (cluster.size() < static_cast<std::size_t>(options.min_spheres)) continue;
-    Pocket pocket;
-    std::set<std::size_t> lining;
-    for (std::size_t s : cluster) {
-      const AlphaSphere& sphere = buried[s];
-      pocket.spheres.push_back({sphere.center, sphere.radius});
-      pocket.score += sphere.buriedness;
-      pocket.center += sphere.center;
-      lining.insert(sphere.atoms.begin(), sphere.atoms.end());
+  std::vector<double> cavity_score;  // by cavity, in cluster order
+  for (const std::vector<std::size_t>& cavity : single_linkage(buried, options.cluster_distance)) {
+    if (cavity.size() < static_cast<std::size_t>(options.min_spheres)) continue;
+    cavity_score.push_back(0.0);
+    for (const std::vector<std::size_t>& cluster : sub_pockets(buried, cavity, options)) {
+      Pocket pocket;
+      pocket.cavity = static_cast<int>(cavity_score.size());
+      std::set<std::size_t> lining;
+      for (std::size_t s : cluster) {
+        const AlphaSphere& sphere = buried[s];
+        pocket.spheres.push_back({sphere.center, sphere.radius});
+        pocket.score += sphere.buriedness;
+        pocket.center += sphere.center;
+        lining.insert(sphere.atoms.begin(), sphere.atoms.end());
+      }
+      pocket.center /= static_cast<double>(cluster.size());
+      pocket.buriedness = pocket.score / static_cast<double>(cluster.size());
+      pocket.volume = shrunk_union_volume(pocket.spheres);
+      pocket.lining_atoms.assign(lining.begin(), lining.end());
+      std::set<std::string> seen;
+      for (std::size_t atom : pocket.lining_atoms) {
+        std::string label = residue_label(structure.atoms[atom]);
+        if (seen.insert(label).second) pocket.lining_residues.push_back(std::move(label));
+      }
+      cavity_score.back() += pocket.score;
+      pockets.push_back(std::move(pocket));
     }
-    pocket.center /= static_cast<double>(cluster.size());
-    pocket.buriedness = pocket.score / static_cast<double>(cluster.size());
-    pocket.volume = shrunk_union_volume(pocket.spheres);
-    pocket.lining_atoms.assign(lining.begin(), lining.end());
-    std::set<std::string> seen;
-    for (std::size_t atom : pocket.lining_atoms) {
-      std::string label = residue_label(structure.atoms[atom]);
-      if (seen.insert(label).second) pocket.lining_residues.push_back(std::move(label));
-    }
-    pockets.push_back(std::move(pocket));
   }
+  // Cavities numbered by decreasing summed score (ties: cluster order).
+  std::vector<int> by_score(cavity_score.size());
+  for (std::size_t k = 0; k < by_score.size(); ++k) by_score[k] = static_cast<int>(k);
+  std::stable_sort(by_score.begin(), by_score.end(),
+                   [&](int x, int y) { return cavity_score[x] > cavity_score[y]; });
+  std::vector<int> number(cavity_score.size());
+  for (std::size_t k = 0; k < by_score.size(); ++k) number[by_score[k]] = static_cast<int>(k + 1);
+  for (Pocket& pocket : pockets) pocket.cavity = number[pocket.cavity - 1];
   std::sort(pockets.begin(), pockets.end(), [](const Pocket& a, const Pocket& b) {
     if (a.score != b.score) return a.score > b.score;
     return std::make_tuple(a.center.x(), a.center.y(), a.center.z()) <
            std::make_tuple(b.center.x(), b.center.y(), b.center.z());
   });
+  if (options.max_volume > 0.0) interleave_cavities(pockets);
   for (std::size_t k = 0; k < pockets.size(); ++k) pockets[k].rank = static_cast<int>(k + 1);
   return pockets;
 }

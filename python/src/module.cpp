@@ -1090,6 +1090,7 @@ py::list pockets(const std::string& structure, const py::dict& keywords) {
     out.append(py::dict(
         py::arg("rank") = pocket.rank, py::arg("score") = pocket.score,
         py::arg("volume") = pocket.volume, py::arg("buriedness") = pocket.buriedness,
+        py::arg("cavity") = pocket.cavity,
         py::arg("center") = py::make_tuple(pocket.center.x(), pocket.center.y(), pocket.center.z()),
         py::arg("lining_residues") = pocket.lining_residues, py::arg("spheres") = spheres));
   }

@@ -468,6 +468,7 @@ class Pocket(NamedTuple):
     score: float
     volume: float
     buriedness: float
+    cavity: int
     center: Tuple[float, float, float]
     lining_residues: List[str]
     spheres: List[Tuple[float, float, float, float]]
@@ -477,6 +478,8 @@ _documented(Pocket, rank="1-based, by decreasing score",
             score="the sum of its alpha spheres' buriedness",
             volume="A^3, of its alpha spheres shrunk by 1.6 A",
             buriedness="its alpha spheres' mean buriedness, 0 to 1",
+            cavity="the 1-based cavity it is part of (the parts of a cavity split by "
+                   "pocket_max_volume share it)",
             center="the mean of its alpha sphere centres, A",
             lining_residues='the residues its alpha spheres touch, "HIS142:A"',
             spheres="its alpha spheres (x, y, z, r), A: a binding site's spheres")

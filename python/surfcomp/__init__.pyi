@@ -246,6 +246,7 @@ class Pocket(NamedTuple):
     score: float
     volume: float
     buriedness: float
+    cavity: int
     center: Tuple[float, float, float]
     lining_residues: List[str]
     spheres: List[Tuple[float, float, float, float]]
@@ -378,6 +379,7 @@ def match(
     pocket_max_radius: float = 6.4,
     pocket_buriedness: float = 0.6,
     pocket_min_spheres: int = 12,
+    pocket_max_volume: float = 0.0,
     threads: int = 0,
 ) -> MatchResult: ...
 
@@ -404,6 +406,7 @@ def screen(
     pocket_max_radius: float = 6.4,
     pocket_buriedness: float = 0.6,
     pocket_min_spheres: int = 12,
+    pocket_max_volume: float = 0.0,
     threads: int = 0,
 ) -> List[Hit]: ...
 
@@ -430,6 +433,7 @@ def screen_queries(
     pocket_max_radius: float = 6.4,
     pocket_buriedness: float = 0.6,
     pocket_min_spheres: int = 12,
+    pocket_max_volume: float = 0.0,
     threads: int = 0,
 ) -> Screens: ...
 
@@ -442,6 +446,7 @@ def pockets(
     pocket_max_radius: float = 6.4,
     pocket_buriedness: float = 0.6,
     pocket_min_spheres: int = 12,
+    pocket_max_volume: float = 0.0,
 ) -> List[Pocket]: ...
 
 def screen_shapes(

@@ -21,6 +21,7 @@ std::string pockets_json(const PocketSet& set) {
                     {"score", pocket.score},
                     {"volume", pocket.volume},
                     {"buriedness", pocket.buriedness},
+                    {"cavity", pocket.cavity},
                     {"center", {pocket.center.x(), pocket.center.y(), pocket.center.z()}},
                     {"lining_residues", pocket.lining_residues},
                     {"lining_atoms", atoms},
@@ -38,7 +39,8 @@ std::string pockets_json(const PocketSet& set) {
         {"min_buriedness", o.min_buriedness},
         {"buried_distance", o.buried_distance},
         {"cluster_distance", o.cluster_distance},
-        {"min_spheres", o.min_spheres}}},
+        {"min_spheres", o.min_spheres},
+        {"max_volume", o.max_volume}}},
       {"pockets", list}};
   return detail::json_text(document, 2) + "\n";
 }

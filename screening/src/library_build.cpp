@@ -896,7 +896,7 @@ std::string site_settings(const LibraryBuildOptions& options, bool detects_pocke
     text << "pockets (min_sphere_radius " << p.min_sphere_radius << ", max_sphere_radius "
          << p.max_sphere_radius << ", min_buriedness " << p.min_buriedness << ", buried_distance "
          << p.buried_distance << ", cluster_distance " << p.cluster_distance << ", min_spheres "
-         << p.min_spheres << ")\n";
+         << p.min_spheres << ", max_volume " << p.max_volume << ")\n";
   }
   return text.str();
 }

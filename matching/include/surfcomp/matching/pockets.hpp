@@ -37,10 +37,17 @@ struct PocketOptions {
   double cluster_distance = 2.4;
   /// Default 12. Fewest alpha spheres a pocket holds; smaller clusters are dropped. >= 1.
   int min_spheres = 12;
+  /// Default 0: no split. A cavity (a single-linkage cluster) whose volume is above this, A^3, is
+  /// split into sub-pockets: its alpha sphere centres in two by two-means, again and again, until
+  /// each part holds at most this volume or would leave a side with fewer than min_spheres
+  /// spheres. Each part is a pocket; Pocket::cavity keeps the hierarchy. The pockets are then
+  /// ranked cavity by cavity: the best part of each cavity (cavities by summed score), then
+  /// each one's second part, and so on. Finite, >= 0.
+  double max_volume = 0.0;
 };
 
 /// The user's options of PocketOptions: --pocket-min-radius, --pocket-max-radius,
-/// --pocket-buriedness, --pocket-min-spheres.
+/// --pocket-buriedness, --pocket-min-spheres, --pocket-max-volume.
 const options::Table<PocketOptions>& pocket_option_table();
 
 /// What the user sees of --site-pocket, wherever a site is asked for: the binding site is the
@@ -55,6 +62,9 @@ struct Pocket {
   /// Waals reach), on a 0.5 A grid.
   double volume = 0.0;
   double buriedness = 0.0;  ///< its alpha spheres' mean buriedness, in [0, 1]
+  /// 1-based: the cavity it is part of, cavities numbered by decreasing summed score. A cavity
+  /// not split (PocketOptions::max_volume) is one pocket; the parts of a split one share it.
+  int cavity = 0;
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< mean of its alpha sphere centres, A
   /// Its alpha spheres (centre, radius to their atoms' centres), A: the pocket's site spheres.
   std::vector<SiteSphere> spheres;
