@@ -104,31 +104,30 @@ def rule_ranks(pockets, dca, power, weight):
     return next((r + 1 for r, k in enumerate(order) if dca[k] <= 4.0), None)
 
 
-def cases(shared):
+def entry_cases(shared, name):
+    """The structures of the site set `name` (entries.txt: PDB ligand residue-number chain),
+    each with its listed ligand copy; none when the set is absent."""
     out = []
-    entries = os.path.join(shared, "kahraman-dev", "entries.txt")
+    entries = os.path.join(shared, name, "entries.txt")
+    if not os.path.exists(entries):
+        return out
     with open(entries) as f:
         for line in f:
             fields = line.split()
             if len(fields) < 4 or line.startswith("#"):
                 continue
-            pdb = os.path.join(shared, "kahraman-dev", "pdb", fields[0] + ".pdb")
-            out.append(("kahraman-dev", fields[0], pdb,
+            pdb = os.path.join(shared, name, "pdb", fields[0] + ".pdb")
+            out.append((name, fields[0], pdb,
                         ligand_atoms(pdb, [fields[1]], int(fields[2]), fields[3])))
+    return out
+
+
+def cases(shared):
+    out = entry_cases(shared, "kahraman-dev")
     for code, names in THERMOLYSIN.items():
         pdb = os.path.join(shared, "thermolysin", code + ".pdb")
         out.append(("thermolysin", code, pdb, ligand_atoms(pdb, names)))
-    entries = os.path.join(shared, "homogeneous", "entries.txt")
-    if os.path.exists(entries):
-        with open(entries) as f:
-            for line in f:
-                fields = line.split()
-                if len(fields) < 4 or line.startswith("#"):
-                    continue
-                pdb = os.path.join(shared, "homogeneous", "pdb", fields[0] + ".pdb")
-                out.append(("homogeneous", fields[0], pdb,
-                            ligand_atoms(pdb, [fields[1]], int(fields[2]), fields[3])))
-    return out
+    return out + entry_cases(shared, "homogeneous")
 
 
 def rule_figures(rows, rule):

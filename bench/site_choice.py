@@ -8,7 +8,7 @@ again:
 - `oLiIfF`: (overlay + L/100 lining + I/100 interactions + F/100 fields) / (1 + L/100 + I/100
   + F/100), L, I and F in WEIGHTS: lining the residue composition, interactions the surface
   points' interaction composition, fields their agreement under the top-1 alignment
-  (`o30i0f0` is the site score with lining_weight 0.3, the default before issue 48);
+  (`o30i0f0` is the default site score, lining_weight 0.3);
 - `pLiIfF`: the same with the partial overlay in place of the overlay: the shape Tanimoto's
   overlap over the smaller site's (overlap / min(A, B), A and B the sites' surface vertices),
   so that a small site inside a larger pocket is a match;

@@ -45,14 +45,10 @@ struct AlphaSphere {
   double buriedness = 0.0;
 };
 
-void check_split(const PocketOptions& options) {
+void check_options(const PocketOptions& options) {
   if (!(std::isfinite(options.max_volume) && options.max_volume >= 0.0)) {
     throw OptionError("--pocket-max-volume must be a finite volume >= 0 A^3 (0: no split)");
   }
-}
-
-void check_options(const PocketOptions& options) {
-  check_split(options);
   const auto positive = [](double value) { return std::isfinite(value) && value > 0.0; };
   if (!positive(options.min_sphere_radius) || !positive(options.max_sphere_radius) ||
       !(options.max_sphere_radius > options.min_sphere_radius)) {
