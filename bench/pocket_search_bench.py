@@ -17,9 +17,9 @@ left out of its ranking:
 
     /usr/bin/python3 bench/pocket_search_bench.py --surfcomp build/release/tools/surfcomp \\
         [--shared ../shared/datasets] [--library pockets.sclib] [--work DIR] [--reuse] \\
-        [--json out.json] [screen options...]
+        [--json out.json] [--detect 'POCKET OPTIONS'] [screen options...]
 
---library reuses a library built before (its pockets must be those of the default detection);
+--library reuses a library built before (its pockets must be those of --detect's detection);
 --reuse keeps the screens' tables already in --work (a rerun of the figures); options after the
 known ones go to `surfcomp screen` unchanged.
 """
@@ -78,7 +78,11 @@ def main():
     parser.add_argument("--work")
     parser.add_argument("--reuse", action="store_true")
     parser.add_argument("--json")
+    parser.add_argument("--detect", default="",
+                        help="pocket detection options for the library and the pockets' ligand "
+                             "check, as one string (e.g. '--pocket-max-volume 600')")
     args, extra = parser.parse_known_args()
+    detect = args.detect.split()
     if not os.path.isdir(os.path.join(args.shared, "kahraman-dev")):
         print(f"pocket_search_bench: {args.shared}/kahraman-dev is absent; nothing to measure")
         return 0
@@ -89,7 +93,7 @@ def main():
     if not args.library:
         start = time.perf_counter()
         subprocess.run([args.surfcomp, "library", "build", "--pockets",
-                        os.path.join(args.shared, "kahraman-dev", "pdb"), "-o", library],
+                        os.path.join(args.shared, "kahraman-dev", "pdb"), "-o", library] + detect,
                        check=True)
         print(f"library built in {time.perf_counter() - start:.0f} s", flush=True)
 
@@ -98,8 +102,8 @@ def main():
     for site in sites:
         out = os.path.join(work, site["code"] + ".pockets.json")
         if not (args.reuse and os.path.exists(out)):
-            subprocess.run([args.surfcomp, "pockets", site["pdb"], "-o", out], check=True,
-                           capture_output=True)
+            subprocess.run([args.surfcomp, "pockets", site["pdb"], "-o", out] + detect,
+                           check=True, capture_output=True)
         for pocket in json.load(open(out))["pockets"]:
             dca = min(distance(a, pocket["center"]) for a in site["atoms"])
             inside = dca <= 4.0 or covered(site["atoms"], pocket) >= 0.5

@@ -1,9 +1,11 @@
 // `surfcomp pockets`, `library build --pockets` and `--site-pocket` as a user runs them: the
 // JSON and the PDB of 1THL's pockets agree; a structure without a pocket gives an empty list and
 // exit 0, one without protein atoms or a --min-plddt that removes everything one line naming the
-// file and no output; a pocket library of three structures, sharded, built alike by one process
-// and by two under mpirun, screens the query's own pocket first; a pocket match of a structure onto
-// its mmCIF copy is the identity, in match and in the report.
+// file and no output, and a pocket library with nothing to build one line naming the structure; a
+// pocket library of three structures, sharded, built alike by one process and by two under
+// mpirun, screens the query's own pocket first and refuses a resume with other pockets; the site
+// z-score sets related sites apart; a pocket match of a structure onto its mmCIF copy is the
+// identity, in match and in the report.
 #include "pocket_cut.hpp"
 #include "program_run.hpp"
 #include "test_data.hpp"
@@ -11,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -114,6 +117,23 @@ TEST_F(CliPockets, EmptyAndRefusedStructures) {
     EXPECT_NE(r.err.find(words), std::string::npos) << arguments << "\n" << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "x.json")) << arguments;
   }
+
+  // A pocket library that would be empty fails on one line naming the structure and why, and
+  // leaves only its log: a structure without a pocket, a pocket rank beyond the structure's
+  // pockets, a listed structure that is missing.
+  std::ofstream(dir_ / "beyond.txt") << pdb.string() << " pocket 500\n";
+  std::ofstream(dir_ / "missing.txt") << "absent.pdb pocket 1\n";
+  for (const auto& [arguments, words] : std::vector<std::pair<std::string, std::string>>{
+           {"library build --pockets few.pdb -o lib.sclib", "few.pdb: no pocket found"},
+           {"library build --sites beyond.txt -o lib.sclib", "pocket 500 was asked for"},
+           {"library build --sites missing.txt -o lib.sclib", "absent.pdb: no such file"}}) {
+    const ProgramRun r = run(arguments);
+    EXPECT_NE(r.status, 0) << arguments;
+    EXPECT_EQ(lines_of(r.err).size(), 1u) << arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << arguments << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "lib.sclib")) << arguments;
+  }
+  EXPECT_NE(file_bytes(dir_ / "lib.sclib.log").find("absent.pdb"), std::string::npos);
 }
 
 TEST_F(CliPockets, APocketLibraryOfThreeStructuresScreensItsOwnPocketFirst) {
@@ -134,6 +154,14 @@ TEST_F(CliPockets, APocketLibraryOfThreeStructuresScreensItsOwnPocketFirst) {
   EXPECT_NE(built.out.find("in 2 shards"), std::string::npos) << built.out;
   const std::map<std::string, std::string> serial = files_under(dir_ / "serial");
   EXPECT_EQ(serial.size(), 7u);  // index, log, manifest, two shards and their logs
+  // Pockets detected otherwise do not join it: a resume with another detection is refused.
+  const ProgramRun mixed = test::run_program(
+      "library build --pockets ../therm_a.pdb ../therm_b.pdb ../ligase.pdb -o pockets.sclib "
+      "--pocket-min-spheres 31 --shard-records 2 --resume",
+      {dir_ / "serial", ""});
+  EXPECT_NE(mixed.status, 0);
+  EXPECT_NE(mixed.err.find("another build's inputs or options"), std::string::npos) << mixed.err;
+  EXPECT_TRUE(files_under(dir_ / "serial") == serial) << "a refused resume changed the files";
 #ifdef SURFCOMP_MPIEXEC
   // Under mpirun the processes share the shards, to the same bytes.
   fs::create_directories(dir_ / "mpi");
@@ -166,6 +194,31 @@ TEST_F(CliPockets, APocketLibraryOfThreeStructuresScreensItsOwnPocketFirst) {
   ASSERT_EQ(listed.size(), 2u);
   EXPECT_EQ(fields_of(listed[1])[2], "therm_b:pocket1");
   EXPECT_EQ(fields_of(listed[1])[6], first[6]);
+}
+
+// The site z-score reads as its documentation says: far above unrelated sites' for two
+// thermolysin sites, within the unrelated pairs' spread for thermolysin's site against a
+// kinase's ATP site.
+TEST_F(CliPockets, TheSiteZScoreSetsRelatedSitesApartFromUnrelatedOnes) {
+  SURFCOMP_SHARED_OR_SKIP(pdb_1thl, "thermolysin/1THL.pdb");
+  SURFCOMP_SHARED_OR_SKIP(pdb_4tmn, "thermolysin/4TMN.pdb");
+  SURFCOMP_SHARED_OR_SKIP(pdb_1a0i, "kahraman-dev/pdb/1A0I.pdb");
+  test::write_pocket(pdb_1thl, "0DB", 12.0, dir_ / "therm_a.pdb");
+  test::write_pocket(pdb_4tmn, "0PK", 12.0, dir_ / "therm_b.pdb");
+  test::write_pocket(pdb_1a0i, "ATP", 12.0, dir_ / "ligase.pdb");
+  const auto z_of = [&](const std::string& arguments) {
+    const ProgramRun r = run("match " + arguments + " -o z.json");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("site z-score"), std::string::npos) << r.out;
+    const nlohmann::json site = nlohmann::json::parse(file_bytes(dir_ / "z.json")).at("site");
+    return site.at("z_score").get<double>();
+  };
+  const double related =
+      z_of("therm_b.pdb therm_a.pdb --ref-site-ligand 0PK --probe-site-ligand 0DB");
+  const double unrelated =
+      z_of("therm_b.pdb ligase.pdb --ref-site-ligand 0PK --probe-site-ligand ATP");
+  EXPECT_GT(related, 5.0);              // 6.97 measured
+  EXPECT_LT(std::abs(unrelated), 1.0);  // -0.23 measured
 }
 
 TEST_F(CliPockets, APocketMatchOntoTheMmcifCopyIsTheIdentity) {

@@ -4,7 +4,9 @@
 // and describes, and what its lining residues' composition and the site score are.
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
@@ -21,6 +23,7 @@
 #include <cstdio>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -372,6 +375,65 @@ TEST(SiteSurface, IsTheWholeSurfaceWhereTheSiteLooks) {
   }
 }
 
+// A pocket library stores the site's neighbourhood, not the structure: written as PDB and read
+// back, it gives the site the same surface, with the same ESP (every charged atom is kept) and
+// the same LP wherever the patches look (every atom within the LP cutoff of them is kept).
+TEST(SiteNeighbourhood, GivesTheSiteTheStructuresSurfaceAndPotentials) {
+  SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/4TMN.pdb");
+  const Molecule structure = io::read_molecule(pdb);
+  const matching::BindingSite site =
+      matching::binding_site(structure, LigandSelector{"0PK", {}, {}});
+  const Molecule kept = matching::site_neighbourhood(
+      site.structure, site.spheres, site.surface_margin + matching::neighbourhood_beyond_margin);
+  EXPECT_LT(kept.atoms.size(), site.structure.atoms.size());
+  for (const Atom& a : site.structure.atoms) {
+    const bool near = std::any_of(site.spheres.begin(), site.spheres.end(), [&](const auto& s) {
+      return (a.position - s.center).norm() <= s.radius + site.surface_margin + 4.0;
+    });
+    if (!near && a.charge == 0.0) continue;
+    EXPECT_TRUE(
+        std::any_of(kept.atoms.begin(), kept.atoms.end(),
+                    [&](const Atom& k) { return k.position == a.position && k.name == a.name; }))
+        << a.name << " " << a.residue_number;
+  }
+  const std::string text = [&] {
+    std::ostringstream out;
+    io::write_pdb(kept, out);
+    return out.str();
+  }();
+  io::MoleculeRecord record;
+  record.source = pdb.string();
+  record.format = io::RecordFormat::structure;
+  record.text = text;
+  matching::BindingSite stored = site;
+  stored.structure = io::read_record_molecule(record);
+  ASSERT_EQ(stored.structure.atoms.size(), kept.atoms.size());
+  for (std::size_t i = 0; i < kept.atoms.size(); ++i)  // the same charges as the whole file gave
+    ASSERT_EQ(stored.structure.atoms[i].charge, kept.atoms[i].charge) << i;
+
+  const mesh::Surface whole = matching::build_site_surface(site);
+  const mesh::Surface local = matching::build_site_surface(stored);
+  ASSERT_EQ(local.n_vertices(), whole.n_vertices());
+  EXPECT_EQ(local.positions(), whole.positions());
+  const Eigen::VectorXd esp_gap =
+      local.property(mesh::property::esp) - whole.property(mesh::property::esp);
+  EXPECT_LT(esp_gap.cwiseAbs().maxCoeff(), 1e-9);
+  const Eigen::MatrixX3d positions = whole.positions();
+  const Eigen::VectorXd whole_lp = whole.property(mesh::property::lp);
+  const Eigen::VectorXd local_lp = local.property(mesh::property::lp);
+  std::size_t compared = 0;
+  for (Eigen::Index v = 0; v < positions.rows(); ++v) {
+    const Eigen::Vector3d x = positions.row(v).transpose();
+    const bool seen = std::any_of(site.spheres.begin(), site.spheres.end(), [&](const auto& s) {
+      return (x - s.center).norm() <= s.radius + site.surface_margin - 8.0;
+    });
+    if (!seen) continue;
+    ++compared;
+    EXPECT_NEAR(local_lp(v), whole_lp(v), 1e-9) << v;
+  }
+  EXPECT_GT(compared, 5000u);
+}
+
 // A site whose spheres reach no atom within the margin is refused, naming the file.
 TEST(SiteSurface, ASiteFarFromEveryAtomIsRefused) {
   Molecule m = structure_with_copies();
@@ -454,6 +516,24 @@ TEST(LiningComposition, CountsEachLiningResidueOnceByClass) {
   EXPECT_FALSE(matching::lining_composition(structure, {{Eigen::Vector3d(50, 0, 0), 4.0}}));
   EXPECT_DOUBLE_EQ(matching::site_score(0.4, 0.75, 0.3), (0.4 + 0.3 * 0.75) / 1.3);
   EXPECT_DOUBLE_EQ(matching::site_score(0.4, 0.75, 0.0), 0.4);
+}
+
+// The z-score against the null: 0 at the null's mean, one per spread above it, sizes clamped to
+// the fitted range, and the default null's spread positive over all of it.
+TEST(SiteZScore, CountsSpreadsAboveTheNullOfTheSmallerSite) {
+  const matching::SiteScoreNull null{0.1, 0.2, 0.3, -0.05, 100.0, 10000.0};
+  const auto mean = [&](double n) { return 0.1 + 0.2 * std::log10(n); };
+  const auto spread = [&](double n) { return 0.3 - 0.05 * std::log10(n); };
+  EXPECT_NEAR(matching::site_z_score(mean(1000.0), 1000, 5000, null), 0.0, 1e-12);
+  EXPECT_NEAR(matching::site_z_score(mean(1000.0) + 2.0 * spread(1000.0), 5000, 1000, null), 2.0,
+              1e-12);
+  EXPECT_NEAR(matching::site_z_score(mean(100.0) + spread(100.0), 10, 20, null), 1.0, 1e-12);
+  EXPECT_NEAR(matching::site_z_score(mean(10000.0), 50000, 90000, null), 0.0, 1e-12);
+  EXPECT_THROW(matching::site_z_score(0.5, 0, 100, null), InputError);
+  const matching::SiteScoreNull& fitted = matching::site_score_null;
+  EXPECT_LT(fitted.min_points, fitted.max_points);
+  for (const double n : {fitted.min_points, fitted.max_points})
+    EXPECT_GT(fitted.spread_intercept + fitted.spread_slope * std::log10(n), 0.0) << n;
 }
 
 Atom named(const std::string& element, const std::string& name, const std::string& residue) {

@@ -110,9 +110,18 @@ void write_log_and_summary(const std::filesystem::path& library, const std::file
   io::write_file_atomically(
       log, [&](std::ostream& out) { screening::write_build_log(out, library, result); });
   if (result.entries == 0) {  // an empty library would only fail later, further from the cause
+    // The first reason, with its file, on the line itself: often the only one.
+    std::string first;
+    if (!result.skipped.empty()) {
+      const screening::SkippedRecord& skipped = result.skipped.front();
+      const std::string& source = skipped.source;
+      first =
+          skipped.reason.rfind(source, 0) == 0 ? skipped.reason : source + ": " + skipped.reason;
+      first = "; first, " + first;
+    }
     throw InputError(library.string() + ": no entry was built; all " +
-                     std::to_string(result.records) + " records were skipped (reasons in " +
-                     log.string() + ")");
+                     std::to_string(result.records) + " records were skipped" + first +
+                     " (reasons in " + log.string() + ")");
   }
   std::string shards;
   if (result.shards > 1) {

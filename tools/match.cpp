@@ -137,6 +137,12 @@ int match(const std::vector<std::string>& args) {
     console::summary("site score %.3f: (overlay %.3f + %.2f x lining %.3f) / %.2f\n",
                      *compared.site_score, result.alignments.front().overlay.score, w,
                      *compared.lining, 1.0 + w);
+    if (compared.site_z) {
+      console::summary(
+          "site z-score %.2f: spreads above unrelated sites of this size (0 unrelated, "
+          "3 or more rare without a relation)\n",
+          *compared.site_z);
+    }
   }
   if (!result.alignments.empty()) {
     console::summary("%5s %-7s %8s %8s %8s %9s %8s %8s %8s %6s %7s  %s\n", "rank", "from", "rmsd",

@@ -571,6 +571,10 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
                                                *out.reference.molecule, out.reference.site);
     const auto probe_points =
         interaction_points(out.probe.descriptors.surface, *out.probe.molecule, out.probe.site);
+    // The null is that of the default site score: another lining weight has none.
+    if (out.site_score && !ref_points.empty() && !probe_points.empty() &&
+        match.site.lining_weight == SiteMatchOptions{}.lining_weight)
+      out.site_z = site_z_score(*out.site_score, ref_points.size(), probe_points.size());
     const auto ref_interactions = interaction_composition(ref_points);
     const auto probe_interactions = interaction_composition(probe_points);
     if (ref_interactions && probe_interactions) {

@@ -151,6 +151,27 @@ mesh::Surface build_site_surface(const BindingSite& site,
   return surface;
 }
 
+Molecule site_neighbourhood(const Molecule& structure, const std::vector<SiteSphere>& spheres,
+                            double reach) {
+  if (!std::isfinite(reach) || reach < 0.0)
+    throw InputError("site neighbourhood: the reach must be a finite number >= 0 A");
+  Molecule kept = structure;
+  kept.atoms.clear();
+  kept.ionisable_atoms.clear();  // a PDB structure has none
+  std::set<std::string> chains;
+  std::optional<std::tuple<std::string, int, std::string>> first_residue;
+  for (const Atom& atom : structure.atoms) {
+    const auto residue = std::make_tuple(atom.chain, atom.residue_number, atom.residue_name);
+    if (!atom.hetero && chains.insert(atom.chain).second) first_residue = residue;
+    const bool near = std::any_of(spheres.begin(), spheres.end(), [&](const SiteSphere& s) {
+      return (atom.position - s.center).norm() <= s.radius + reach;
+    });
+    const bool starts_chain = !atom.hetero && first_residue && residue == *first_residue;
+    if (near || atom.charge != 0.0 || starts_chain) kept.atoms.push_back(atom);
+  }
+  return kept;
+}
+
 std::optional<SiteSphere> parse_site_sphere(const std::string& text) {
   const std::optional<options::Sphere> sphere = options::parse_sphere(text);
   if (!sphere) return std::nullopt;
@@ -305,6 +326,16 @@ double lining_similarity(const LiningComposition& a, const LiningComposition& b)
 
 double site_score(double overlay_score, double lining, double weight) {
   return (overlay_score + weight * lining) / (1.0 + weight);
+}
+
+double site_z_score(double score, std::size_t points_a, std::size_t points_b,
+                    const SiteScoreNull& null) {
+  if (points_a == 0 || points_b == 0) throw InputError("site z-score: a site has no surface point");
+  const double n = std::clamp(static_cast<double>(std::min(points_a, points_b)), null.min_points,
+                              null.max_points);
+  const double x = std::log10(n);
+  const double spread = null.spread_intercept + null.spread_slope * x;
+  return (score - null.mean_intercept - null.mean_slope * x) / spread;
 }
 
 namespace {

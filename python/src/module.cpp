@@ -383,6 +383,8 @@ py::dict match_dict(const matching::InputMatch& compared, double lining_weight) 
                 py::arg("score") = compared.site_score
                                        ? py::object(py::float_(*compared.site_score))
                                        : py::object(py::none()),
+                py::arg("z_score") = compared.site_z ? py::object(py::float_(*compared.site_z))
+                                                     : py::object(py::none()),
                 py::arg("interactions") = compared.interactions
                                               ? py::object(py::float_(*compared.interactions))
                                               : py::object(py::none()),

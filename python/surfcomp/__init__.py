@@ -254,7 +254,9 @@ class MatchResult(list):
     #: True when ESP, LP and atoms were set aside (asked, or a side carries no ESP and LP).
     shape_only: bool
     #: Two sites on structures: {"lining": the lining residues' similarity, "lining_weight": w,
-    #: "score": the site score, (top overlay score + w lining) / (1 + w), "interactions": the
+    #: "score": the site score, (top overlay score + w lining) / (1 + w), "z_score": how many
+    #: spreads that lies above unrelated sites' of the same size (about 0 unrelated, 3 or more
+    #: rare without a relation; None with another lining weight), "interactions": the
     #: similarity of the sites' surface points' interaction classes, "fields": {"similarity",
     #: "coverage"}, those points compared under the top alignment (coverage: the smaller site's
     #: agreement, 1 when it lies class for class inside the other)}; None otherwise.

@@ -14,8 +14,10 @@ sys.path.insert(0, str(BENCH))
 
 import dud_screen_bench  # noqa: E402
 import loto  # noqa: E402
+import plddt_bench  # noqa: E402
 import pocket_detection_bench  # noqa: E402
 import site_choice  # noqa: E402
+import site_null  # noqa: E402
 
 
 def test_auc_and_ef1_of_known_rankings():
@@ -92,6 +94,52 @@ def test_pocket_ranking_terms_and_ligand_volume():
     assert pocket_detection_bench.rule_ranks([big, small], dca, 0.0, 0.0) == 1
     assert pocket_detection_bench.rule_ranks([big, small], dca, 0.5, 2.0) == 1
     assert pocket_detection_bench.rule_value(small, 1.0, 0.0) == pytest.approx(0.9 * 25)
+
+
+def test_site_null_fits_the_unrelated_pairs_mean_and_spread(tmp_path):
+    # Unrelated pairs score 0.1 + 0.2 log10 n, +-0.05: the fitted mean is that line,
+    # and their z is +-1 once the spread is the normal's from the mean absolute deviation.
+    rows = ["a,b,same,site_vertices_a,site_vertices_b,site"]
+    for k, n in enumerate([100, 200, 400, 800, 1600, 3200] * 2):
+        noise = 0.05 if k >= 6 else -0.05  # each size once below the line, once above
+        rows.append(f"s{k},t{k},0,{n},{2 * n},{0.1 + 0.2 * math.log10(n) + noise}")
+    rows.append("u,v,1,1000,1000,0.9")
+    (tmp_path / "pairs.csv").write_text("\n".join(rows) + "\n")
+    table = site_null.rows(tmp_path / "pairs.csv", "site")
+    (m0, m1), (s0, s1) = site_null.fit(table)
+    assert (m0, m1) == (pytest.approx(0.1), pytest.approx(0.2))
+    assert s0 == pytest.approx(0.05 * math.sqrt(math.pi / 2)) and s1 == pytest.approx(0.0, abs=1e-12)
+    model = ((m0, m1), (s0, s1), 100, 3200)
+    zs = [site_null.z_of(model, x, y) for x, y, same in table if not same]
+    assert all(abs(abs(z) - math.sqrt(2 / math.pi)) < 1e-9 for z in zs)
+    assert site_null.auc([0.9], [0.1, 0.2]) == 1.0
+
+
+def test_plddt_models_mark_confidence_and_add_a_tail_off_the_surface(tmp_path):
+    # A helix-like chain of 30 alanines (N, CA, C, O per residue) along x.
+    lines = []
+    for r in range(30):
+        for k, (name, dx, dy) in enumerate(((" N  ", -1.2, 0.0), (" CA ", 0.0, 0.0),
+                                            (" C  ", 1.2, 0.3), (" O  ", 1.6, 1.4))):
+            x, y, z = 1.5 * r + dx, 2.3 * math.cos(r) + dy, 2.3 * math.sin(r)
+            lines.append(f"ATOM  {4 * r + k + 1:5d} {name} ALA A{r + 1:4d}    "
+                         f"{x:8.3f}{y:8.3f}{z:8.3f}  1.00 20.00           {name.strip()[0]}\n")
+    (tmp_path / "chain.pdb").write_text("".join(lines) + "END\n")
+    tail = plddt_bench.write_model(tmp_path / "chain.pdb", tmp_path / "model.pdb", "chain")
+    model = [l for l in (tmp_path / "model.pdb").read_text().splitlines() if l.startswith("ATOM")]
+    chain = [l for l in model if l[21] == "A"]
+    values = {int(l[22:26]): float(l[60:66]) for l in chain}
+    assert [values[r] for r in (1, 5, 26, 30)] == [40.0] * 4  # the chain's ends
+    assert all(50.0 <= values[r] <= 95.0 for r in range(6, 26))
+    assert len(tail) == 4 * plddt_bench.TAIL_RESIDUES
+    assert all(float(l[60:66]) == plddt_bench.TAIL_PLDDT for l in model if l[21] == "Z")
+    protein = [(float(l[30:38]), float(l[38:46]), float(l[46:54])) for l in chain]
+    cas = tail[1::4]
+    assert all(4.0 <= min(pocket_detection_bench.distance(c, p) for p in protein) <= 9.0
+               for c in cas)
+    # The same model on every run.
+    again = plddt_bench.write_model(tmp_path / "chain.pdb", tmp_path / "again.pdb", "chain")
+    assert again == tail
 
 
 def test_loto_scores_each_target_with_the_choice_made_without_it(tmp_path):

@@ -495,6 +495,7 @@ def test_pockets_are_the_programs_and_a_pocket_is_a_site(program, shared, tmp_pa
     assert itself.site["lining_weight"] == 0.5
     assert itself.site["score"] == pytest.approx((itself[0].overlay.score + 0.5) / 1.5, abs=1e-12)
     assert itself.site["interactions"] == 1.0
+    assert itself.site["z_score"] is None  # the null is the default weight's
     assert itself.site["fields"]["coverage"] == pytest.approx(1.0, abs=1e-9)
 
 

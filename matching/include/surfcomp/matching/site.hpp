@@ -116,6 +116,18 @@ BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> sphe
 mesh::Surface build_site_surface(const BindingSite& site,
                                  const mesh::MolecularSurfaceOptions& options = {});
 
+/// Default 4 A beyond the surface margin: the reach of the atoms a site keeps
+/// (site_neighbourhood). A vertex within the patch radius of a sphere sums LP over atoms within
+/// mesh::default_fauchere_cutoff (12 A), which is the surface margin (patch radius + 8 A) + 4 A.
+inline constexpr double neighbourhood_beyond_margin = 4.0;
+
+/// What a site's surface and scores need of `structure`, in its order: every atom within a
+/// sphere's radius + `reach` (A) of its centre, every charged atom (the ESP sums them all) and
+/// each chain's first residue (whose N terminus a reader charges). A pocket library stores this
+/// rather than the structure. Throws InputError when `reach` is not finite and >= 0.
+Molecule site_neighbourhood(const Molecule& structure, const std::vector<SiteSphere>& spheres,
+                            double reach);
+
 /// One flag per critical point of `descriptors`, in order: its position lies in at least one
 /// of `spheres` (distance to the centre <= radius).
 std::vector<bool> critical_points_in_site(const harmonic::SurfaceDescriptors& descriptors,
@@ -223,5 +235,29 @@ double interaction_similarity(const InteractionComposition& a, const Interaction
 /// The similarity of two sites: (overlay_score + weight lining) / (1 + weight), the top
 /// alignment's overlay score of the pocket linings with their lining_similarity.
 double site_score(double overlay_score, double lining, double weight);
+
+/// The site score of unrelated sites (ligands of different types): its mean and spread, each
+/// linear in log10 n, n the smaller site's surface points (interaction_points), over the range
+/// of n it was fitted on.
+struct SiteScoreNull {
+  double mean_intercept = 0.0;
+  double mean_slope = 0.0;
+  double spread_intercept = 1.0;
+  double spread_slope = 0.0;
+  double min_points = 1.0;  ///< n below this is taken as this
+  double max_points = 1.0;  ///< and above this as this
+};
+
+/// The default null: fitted by bench/site_null.py on the 4,904 unrelated pairs of both labelled
+/// site sets (kahraman-dev and homogeneous, site_bench's default run). Fitted on one set alone,
+/// it is off on the other by up to one spread (docs/benchmarks.md, "Site z-score").
+inline constexpr SiteScoreNull site_score_null{0.1725, 0.0382, 0.0799, -0.0140, 556.0, 1795.0};
+
+/// How far a site score lies above those of unrelated sites of the same size, in their spreads:
+/// (score - mean(n)) / spread(n), n = min(points_a, points_b) clamped to the null's range. About
+/// 0 for an unrelated pair, whatever the sizes; 3 or more is rare without a relation (see
+/// docs/benchmarks.md for the measured tail). Throws InputError when a site has no point.
+double site_z_score(double score, std::size_t points_a, std::size_t points_b,
+                    const SiteScoreNull& null = site_score_null);
 
 }  // namespace surfcomp::matching
