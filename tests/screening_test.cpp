@@ -29,6 +29,7 @@
 #include "surfcomp/screening/hit_files.hpp"
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -930,8 +931,15 @@ TEST(Library, SiteEntriesKeepTheirSpheres) {
   screening::LibraryEntry entry;
   entry.info = {"pocket", "p.pdb", 3, 0, 120, 2};
   entry.molecule.format = io::RecordFormat::structure;
-  entry.molecule.text =
-      "ATOM      1  CA  ALA A   1       0.000   0.000   0.000  1.00  0.00           C\nEND\n";
+  // A neighbourhood of 500 atoms, stored compressed and read back to the byte.
+  for (int k = 1; k <= 500; ++k) {
+    char line[96];
+    std::snprintf(line, sizeof line,
+                  "ATOM  %5d  CA  ALA A%4d    %8.3f%8.3f%8.3f  1.00  0.00           C\n", k, k,
+                  0.37 * k, -0.11 * k, 0.05 * k);
+    entry.molecule.text += line;
+  }
+  entry.molecule.text += "END\n";
   entry.sample.points = Eigen::Matrix3Xd::Random(3, 4);
   entry.sample.normals = Eigen::Matrix3Xd::Random(3, 4);
   entry.sample.weights = Eigen::VectorXd::Ones(4);
@@ -951,6 +959,8 @@ TEST(Library, SiteEntriesKeepTheirSpheres) {
     EXPECT_EQ(read.site[k].radius, entry.site[k].radius);
   }
   EXPECT_EQ(read.molecule.text, entry.molecule.text);
+  EXPECT_EQ(read.molecule.format, io::RecordFormat::structure);
+  EXPECT_LT(fs::file_size(path), entry.molecule.text.size() / 2);
 }
 
 TEST(Screen, SiteQueryFindsItsOwnPocketFirstAndKindsDoNotMix) {

@@ -56,7 +56,7 @@ void write_aligned_hits_sdf(std::ostream& out, const Library& library, const std
 std::string aligned_site_model(const Library& library, const Hit& hit, std::size_t rank,
                                const io::MoleculeReadOptions& read) {
   const LibraryEntry entry = library.entry(hit.entry);
-  Molecule structure = io::read_record_molecule(entry.molecule, read);
+  Molecule structure = io::read_record_molecule(entry.molecule, site_entry_read_options(read));
   const Eigen::Matrix3d rotation = hit.score.transform.topLeftCorner<3, 3>();
   const Eigen::Vector3d translation = hit.score.transform.topRightCorner<3, 1>();
   for (Atom& atom : structure.atoms) atom.position = rotation * atom.position + translation;

@@ -858,25 +858,33 @@ LibraryEntry site_entry(const Molecule& structure, const SiteRequest& request,
                      : matching::binding_site(structure, request.spheres, options.site);
   const harmonic::DescriptorOptions describing;
   site.surface_margin = matching::site_surface_margin(site.surface_margin, describing.patch.radius);
+  // The entry keeps the site's neighbourhood, not the structure (a margin of 0 keeps every atom),
+  // and is built from that text read back, as the screen will read it.
+  LibraryEntry entry;
+  entry.molecule.source = request.structure;
+  entry.molecule.record = request.line;
+  entry.molecule.name = request.name;
+  entry.molecule.format = io::RecordFormat::structure;
+  std::ostringstream pdb;
+  io::write_pdb(site.surface_margin == 0.0
+                    ? site.structure
+                    : matching::site_neighbourhood(
+                          site.structure, site.spheres,
+                          site.surface_margin + matching::neighbourhood_beyond_margin),
+                pdb);
+  entry.molecule.text = pdb.str();
+  entry.info.heavy_atoms = heavy_atom_count(site.structure);
+  site.structure = io::read_record_molecule(entry.molecule, site_entry_read_options(options.read));
   const harmonic::SurfaceDescriptors described =
       matching::describe_site(matching::build_site_surface(site, options.surface), site.structure,
                               site.spheres, describing);
   const std::vector<bool> in_site = matching::critical_points_in_site(described, site.spheres);
   const std::vector<bool> lining =
       matching::pocket_lining(described, &in_site, options.lining_radius);
-  LibraryEntry entry;
   entry.info.name = request.name;
   entry.info.source = request.structure.string();
   entry.info.record = static_cast<std::uint32_t>(request.line);
-  entry.info.heavy_atoms = heavy_atom_count(site.structure);
   entry.info.site_spheres = static_cast<std::uint32_t>(site.spheres.size());
-  std::ostringstream pdb;
-  io::write_pdb(site.structure, pdb);
-  entry.molecule.source = request.structure;
-  entry.molecule.record = request.line;
-  entry.molecule.name = request.name;
-  entry.molecule.format = io::RecordFormat::structure;
-  entry.molecule.text = pdb.str();
   entry.sample = matching::sample_surface(described.surface, options.spacing, &lining);
   if (entry.sample.size() == 0)
     throw InputError(request.name + ": the site's pocket lining has no vertex");

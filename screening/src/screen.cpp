@@ -547,7 +547,8 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
     result = matching::match_surfaces(query.descriptors, described, match);
   } else {
     matching::BindingSite site;
-    site.structure = io::read_record_molecule(entry.molecule, options.read);
+    site.structure =
+        io::read_record_molecule(entry.molecule, site_entry_read_options(options.read));
     site.spheres = entry.site;
     site.surface_margin = matching::site_surface_margin(options.site.surface_margin,
                                                         query.descriptors.options.patch.radius);

@@ -80,7 +80,26 @@ std::string read_input_file(const std::filesystem::path& path) {
 }
 
 std::string read_gzip_input_file(const std::filesystem::path& path) {
-  const std::string compressed = read_input_file(path);
+  return gunzip(read_input_file(path), path.string());
+}
+
+std::string gzip(const std::string& text) {
+  namespace bio = boost::iostreams;
+  std::string compressed;
+  bio::gzip_compressor compressor;
+  bio::back_insert_device<std::string> sink(compressed);
+  for (std::size_t at = 0; at < text.size();) {
+    const std::streamsize taken = compressor.write(
+        sink, text.data() + at,
+        static_cast<std::streamsize>(std::min(std::size_t{1} << 16, text.size() - at)));
+    if (taken <= 0) throw Error("gzip: the compressor made no progress");
+    at += static_cast<std::size_t>(taken);
+  }
+  compressor.close(sink, std::ios_base::out);
+  return compressed;
+}
+
+std::string gunzip(const std::string& compressed, const std::string& source) {
   namespace bio = boost::iostreams;
   // The decompressor is driven as an output filter: its close() is where a stream cut short is
   // caught (no end-of-stream marker, or a missing or partial trailer), which reading it as an
@@ -88,7 +107,7 @@ std::string read_gzip_input_file(const std::filesystem::path& path) {
   std::string text;
   bio::gzip_decompressor decompressor;
   bio::back_insert_device<std::string> sink(text);
-  if (compressed.empty()) throw FileError(path.string(), "the file is empty");
+  if (compressed.empty()) throw FileError(source, "the file is empty");
   constexpr std::size_t chunk = std::size_t{1} << 16;
   bool closing = false;
   try {
@@ -96,11 +115,11 @@ std::string read_gzip_input_file(const std::filesystem::path& path) {
       const std::streamsize taken =
           decompressor.write(sink, compressed.data() + at,
                              static_cast<std::streamsize>(std::min(chunk, compressed.size() - at)));
-      if (taken <= 0) throw FileError(path.string(), "cannot decompress (gzip): no progress");
+      if (taken <= 0) throw FileError(source, "cannot decompress (gzip): no progress");
       at += static_cast<std::size_t>(taken);
       if (text.size() > max_input_file_bytes) {
-        throw FileError(path.string(), "decompresses to more than the limit of " +
-                                           std::to_string(max_input_file_bytes) + " bytes");
+        throw FileError(source, "decompresses to more than the limit of " +
+                                    std::to_string(max_input_file_bytes) + " bytes");
       }
     }
     closing = true;
@@ -109,13 +128,13 @@ std::string read_gzip_input_file(const std::filesystem::path& path) {
     throw;
   } catch (const bio::gzip_error& e) {
     if (closing) {
-      throw FileError(path.string(),
+      throw FileError(source,
                       "the compressed file is cut short: its gzip stream stops before its end "
                       "(a partial download or copy?)");
     }
-    throw FileError(path.string(), std::string("cannot decompress (gzip): ") + e.what());
+    throw FileError(source, std::string("cannot decompress (gzip): ") + e.what());
   } catch (const std::exception& e) {
-    throw FileError(path.string(), std::string("cannot decompress (gzip): ") + e.what());
+    throw FileError(source, std::string("cannot decompress (gzip): ") + e.what());
   }
   return text;
 }

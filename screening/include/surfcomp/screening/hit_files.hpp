@@ -30,8 +30,10 @@ std::string aligned_hit_record(const Library& library, const Hit& hit, std::size
 void write_aligned_hits_sdf(std::ostream& out, const Library& library, const std::vector<Hit>& hits,
                             std::size_t count);
 
-/// Hit `hit` (row `rank`, 1-based) of a pocket library as one PDB model: its structure (read
-/// with `read`) moved into the query's frame, with a REMARK giving rank, entry, name and score.
+/// Hit `hit` (row `rank`, 1-based) of a pocket library as one PDB model: the atoms its entry
+/// keeps (the site's neighbourhood, matching::site_neighbourhood; read with
+/// site_entry_read_options(read)) moved into the query's frame, with a REMARK giving rank, entry,
+/// name and score.
 std::string aligned_site_model(const Library& library, const Hit& hit, std::size_t rank,
                                const io::MoleculeReadOptions& read);
 

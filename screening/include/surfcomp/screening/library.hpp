@@ -6,10 +6,11 @@
 // (its surface, no molecule), screened by shape (shape_screen.hpp). A library is one file, or an
 // index of shards.
 //
-// Layout of format 4 (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
+// Layout of format 5 (little-endian, core/io/binary_stream.hpp encodings; docs/screening.md):
 //   header   "SURFCLIB", u32 format version, u32 0
-//   records  one per entry: the molecule (format: 0 MDL, 1 MOL2, 2 PDB, 3 none, a mesh entry;
-//            text), the site spheres, the bytes of a described surface (LibraryEntry::surface)
+//   records  one per entry: the molecule (format: 0 MDL, 1 MOL2, 2 PDB, 3 none, a mesh entry,
+//            4 PDB compressed with gzip; text), the site spheres, the bytes of a described
+//            surface (LibraryEntry::surface)
 //   samples  from a 64-byte boundary, one per entry, each on a 64-byte boundary: the packed
 //            sample (matching::PackedSampleView: a 192-byte header, nine float arrays, the
 //            heteroatoms), read in place by the first stage, in entry order
@@ -17,9 +18,10 @@
 //            offset, size and checksum (XXH3 64), string name, string source, u32 record,
 //            u32 conformer, u32 heavy atoms, u32 site spheres; string settings
 //   trailer  u64 index offset, u64 index size, u64 index checksum, "SCLIBEND"
-// Formats 1 to 3 (one region of entries, each the molecule, the sample in double precision, the
-// heteroatoms, from 2 the site spheres, from 3 a described surface; an index without the sample
-// columns) are still read; their samples are packed when the first stage asks for them.
+// Format 4 is format 5 without compressed PDB text. Formats 1 to 3 (one region of entries, each the
+// molecule, the sample in double precision, the heteroatoms, from 2 the site spheres, from 3 a
+// described surface; an index without the sample columns) are still read; their samples are packed
+// when the first stage asks for them.
 //
 // A sharded library (a build of many records, library_build.hpp) is an index file listing
 // format-4 library files, its shards, whose entries follow each other in its order:
@@ -49,11 +51,15 @@
 
 namespace surfcomp::screening {
 
-/// The format version write_library writes; Library reads it and versions 1 to 3.
-inline constexpr std::uint32_t library_format_version = 4;
+/// The format version write_library writes; Library reads it and versions 1 to 4.
+inline constexpr std::uint32_t library_format_version = 5;
 
 /// The version of a sharded library's index that write_library_index writes and Library reads.
 inline constexpr std::uint32_t library_index_version = 1;
+
+/// How a site entry's structure text is read: `read` without its pLDDT cut, which the build
+/// applied already (the text keeps no B-factors).
+io::MoleculeReadOptions site_entry_read_options(io::MoleculeReadOptions read);
 
 /// What the index says of an entry (it is read without decoding the entry).
 struct LibraryEntryInfo {

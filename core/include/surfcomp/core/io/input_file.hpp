@@ -41,6 +41,13 @@ std::string read_input_file(const std::filesystem::path& path);
 /// "PATH: cannot decompress (gzip): reason" for a damaged file.
 std::string read_gzip_input_file(const std::filesystem::path& path);
 
+/// `compressed` (a gzip stream) decompressed, with read_gzip_input_file's limit and messages,
+/// naming `source`.
+std::string gunzip(const std::string& compressed, const std::string& source);
+
+/// `text` as a gzip stream (no file name, time 0: the same bytes for the same text).
+std::string gzip(const std::string& text);
+
 /// Checks a position read from `file`: every coordinate finite and of magnitude at most
 /// max_coordinate_magnitude. `item` names what the position belongs to ("vertex 12",
 /// "atom 3 (C C1)"). Throws FormatError "FILE: ITEM has a non-finite coordinate" or
