@@ -181,6 +181,20 @@ TEST_F(CliPockets, APocketLibraryOfThreeStructuresScreensItsOwnPocketFirst) {
   const std::vector<std::string> first = fields_of(rows[1]);
   EXPECT_EQ(first[2], "therm_b:pocket1");
   EXPECT_NEAR(std::stod(first[6]), 1.0, 1e-3);  // the pocket overlays itself
+  // The entries keep their sites' neighbourhoods: a screen that wants more of the structure is
+  // refused before any work, naming the library.
+  for (const char* margin : {"0", "30"}) {
+    const ProgramRun wider =
+        run(std::string("screen therm_b.pdb pockets.sclib --site-pocket 1 --pocket-min-spheres 30 "
+                        "-o wide.csv --site-margin ") +
+            margin);
+    EXPECT_NE(wider.status, 0) << margin;
+    EXPECT_EQ(lines_of(wider.err).size(), 1u) << wider.err;
+    EXPECT_NE(wider.err.find("pockets.sclib: its sites keep the atoms within 20 A"),
+              std::string::npos)
+        << wider.err;
+    EXPECT_FALSE(fs::exists(dir_ / "wide.csv"));
+  }
 
   // A site list's `STRUCTURE pocket N` is the same site: the query finds it at the same score.
   std::ofstream(dir_ / "list.txt") << "therm_b.pdb pocket 1\n";

@@ -530,6 +530,10 @@ TEST(SiteZScore, CountsSpreadsAboveTheNullOfTheSmallerSite) {
   EXPECT_NEAR(matching::site_z_score(mean(100.0) + spread(100.0), 10, 20, null), 1.0, 1e-12);
   EXPECT_NEAR(matching::site_z_score(mean(10000.0), 50000, 90000, null), 0.0, 1e-12);
   EXPECT_THROW(matching::site_z_score(0.5, 0, 100, null), InputError);
+  EXPECT_THROW(matching::site_z_score(0.5, 10, 100, {0.1, 0.2, 0.3, -0.05, 500.0, 100.0}),
+               InputError);  // an empty range
+  EXPECT_THROW(matching::site_z_score(0.5, 10, 100, {0.1, 0.2, 0.1, -0.05, 100.0, 10000.0}),
+               InputError);  // spread 0.1 - 0.05 * 4 < 0 at 10,000 points
   const matching::SiteScoreNull& fitted = matching::site_score_null;
   EXPECT_LT(fitted.min_points, fitted.max_points);
   for (const double n : {fitted.min_points, fitted.max_points})

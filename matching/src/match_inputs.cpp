@@ -571,9 +571,13 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
                                                *out.reference.molecule, out.reference.site);
     const auto probe_points =
         interaction_points(out.probe.descriptors.surface, *out.probe.molecule, out.probe.site);
-    // The null is that of the default site score: another lining weight has none.
-    if (out.site_score && !ref_points.empty() && !probe_points.empty() &&
-        match.site.lining_weight == SiteMatchOptions{}.lining_weight)
+    // The null is that of the default site score: other site settings have none.
+    const SiteMatchOptions defaults;
+    const bool default_site = match.site.lining_weight == defaults.lining_weight &&
+                              match.site.chem_weight == defaults.chem_weight &&
+                              match.site.overlay_radius == defaults.overlay_radius &&
+                              match.site.principal_axes_starts == defaults.principal_axes_starts;
+    if (out.site_score && !ref_points.empty() && !probe_points.empty() && default_site)
       out.site_z = site_z_score(*out.site_score, ref_points.size(), probe_points.size());
     const auto ref_interactions = interaction_composition(ref_points);
     const auto probe_interactions = interaction_composition(probe_points);

@@ -1,6 +1,7 @@
 #include "surfcomp/matching/site.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/protein_charges.hpp"
 #include "surfcomp/mesh/spatial_grid.hpp"
 
 #include <algorithm>
@@ -157,17 +158,34 @@ Molecule site_neighbourhood(const Molecule& structure, const std::vector<SiteSph
     throw InputError("site neighbourhood: the reach must be a finite number >= 0 A");
   Molecule kept = structure;
   kept.atoms.clear();
-  kept.ionisable_atoms.clear();  // a PDB structure has none
+  kept.ionisable_atoms.clear();
+  // The smallest atom sets the SES grid (mesh::ses_voxel_size): it stays, wherever it is.
+  const auto smallest =
+      std::min_element(structure.atoms.begin(), structure.atoms.end(),
+                       [](const Atom& x, const Atom& y) { return x.radius < y.radius; });
+  // A chain's first residue as assign_protein_formal_charges finds it: its first atom of a
+  // standard residue.
   std::set<std::string> chains;
   std::optional<std::tuple<std::string, int, std::string>> first_residue;
-  for (const Atom& atom : structure.atoms) {
+  std::vector<std::size_t> new_index(structure.atoms.size(), structure.atoms.size());
+  for (std::size_t i = 0; i < structure.atoms.size(); ++i) {
+    const Atom& atom = structure.atoms[i];
     const auto residue = std::make_tuple(atom.chain, atom.residue_number, atom.residue_name);
-    if (!atom.hetero && chains.insert(atom.chain).second) first_residue = residue;
+    if (protein_atom_formal_charge(atom.residue_name, atom.name) &&
+        chains.insert(atom.chain).second)
+      first_residue = residue;
     const bool near = std::any_of(spheres.begin(), spheres.end(), [&](const SiteSphere& s) {
       return (atom.position - s.center).norm() <= s.radius + reach;
     });
-    const bool starts_chain = !atom.hetero && first_residue && residue == *first_residue;
-    if (near || atom.charge != 0.0 || starts_chain) kept.atoms.push_back(atom);
+    const bool starts_chain = first_residue && residue == *first_residue;
+    if (near || atom.charge != 0.0 || starts_chain || &atom == &*smallest) {
+      new_index[i] = kept.atoms.size();
+      kept.atoms.push_back(atom);
+    }
+  }
+  for (const std::size_t i : structure.ionisable_atoms) {
+    if (i < new_index.size() && new_index[i] < kept.atoms.size())
+      kept.ionisable_atoms.push_back(new_index[i]);
   }
   return kept;
 }
@@ -331,11 +349,18 @@ double site_score(double overlay_score, double lining, double weight) {
 double site_z_score(double score, std::size_t points_a, std::size_t points_b,
                     const SiteScoreNull& null) {
   if (points_a == 0 || points_b == 0) throw InputError("site z-score: a site has no surface point");
+  const auto spread_at = [&](double n) {
+    return null.spread_intercept + null.spread_slope * std::log10(n);
+  };
+  if (!(null.min_points >= 1.0 && null.min_points <= null.max_points) ||
+      !(spread_at(null.min_points) > 0.0 && spread_at(null.max_points) > 0.0)) {
+    throw InputError(
+        "site z-score: the null needs 1 <= min_points <= max_points and a positive "
+        "spread over that range");
+  }
   const double n = std::clamp(static_cast<double>(std::min(points_a, points_b)), null.min_points,
                               null.max_points);
-  const double x = std::log10(n);
-  const double spread = null.spread_intercept + null.spread_slope * x;
-  return (score - null.mean_intercept - null.mean_slope * x) / spread;
+  return (score - null.mean_intercept - null.mean_slope * std::log10(n)) / spread_at(n);
 }
 
 namespace {

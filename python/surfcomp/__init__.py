@@ -256,7 +256,7 @@ class MatchResult(list):
     #: Two sites on structures: {"lining": the lining residues' similarity, "lining_weight": w,
     #: "score": the site score, (top overlay score + w lining) / (1 + w), "z_score": how many
     #: spreads that lies above unrelated sites' of the same size (about 0 unrelated, 3 or more
-    #: rare without a relation; None with another lining weight), "interactions": the
+    #: rare without a relation; None with other site settings), "interactions": the
     #: similarity of the sites' surface points' interaction classes, "fields": {"similarity",
     #: "coverage"}, those points compared under the top alignment (coverage: the smaller site's
     #: agreement, 1 when it lies class for class inside the other)}; None otherwise.
@@ -675,7 +675,7 @@ def screen(query, library, *, molecules: bool = False, **options) -> List[Hit]:
     (a molecule, a ``.hsi`` file or :class:`Descriptors`; with site_ligand or site_sphere, a
     binding site on a structure against a pocket library), as ``surfcomp screen`` does. With
     ``molecules``, each hit carries its molecule moved onto the query as an RDKit molecule
-    (``Hit.molecule``; a pocket hit: its structure), written as ``screen --aligned-out``
+    (``Hit.molecule``; a pocket hit: the atoms of its site's neighbourhood that the entry keeps), written as ``screen --aligned-out``
     writes it. ``fusion`` applies to :func:`screen_queries`."""
     result = _surfcomp.screen([_input(query)], os.fspath(library), options, molecules)
     return _hits(result["hits"][0], molecules)

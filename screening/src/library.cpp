@@ -680,10 +680,11 @@ void check_listed_shard(const ListedShard& shard, const std::string& index) {
   ::close(fd);
   if (std::memcmp(header.data(), kMagic, kMagicBytes) != 0)
     throw FormatError(name, "not a surfcomp library (no SURFCLIB magic)");
+  // Shards of format 4 (an earlier program's sharded builds) are read as the one files are.
   const std::uint32_t version = io::BinaryReader(header.data() + kMagicBytes, 4, name).u32();
-  if (version != library_format_version) {
+  if (version < 4 || version > library_format_version) {
     throw FormatError(name, "format version " + std::to_string(version) +
-                                "; a shard must be version " +
+                                "; a shard must be version 4 to " +
                                 std::to_string(library_format_version));
   }
   if (std::memcmp(trailer.data() + kTrailerBytes - kMagicBytes, kEndMagic, kMagicBytes) != 0)

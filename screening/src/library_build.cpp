@@ -610,6 +610,12 @@ void ShardedLibraryBuild::Impl::verify_shards() const {
     if (!std::filesystem::exists(path)) return;
     try {
       const Library shard(path);
+      // A shard of an earlier format (whole structures in its site entries) is not mixed in.
+      if (shard.version() != library_format_version) {
+        throw FormatError(path.string(), "format version " + std::to_string(shard.version()) +
+                                             ", written by an earlier surfcomp; remove " +
+                                             folder.string() + " to build again");
+      }
       if (shard.shards() != 1 || shard.settings() != shard_settings(k)) {
         throw FormatError(path.string(), "its settings are not those of shard " +
                                              std::to_string(k + 1) + " of this build");

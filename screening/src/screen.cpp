@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -230,6 +231,33 @@ std::vector<std::size_t> best_by_fast(const std::vector<HitScore>& fast, std::si
   return entries;
 }
 
+/// Throws InputError naming the library when its site entries cannot give the site surfaces the
+/// screen asks for. From format 5 an entry keeps its site's neighbourhood: the atoms within the
+/// build's surface margin (matching::site_surface_margin of the settings' surface_margin and the
+/// default patch radius) + matching::neighbourhood_beyond_margin of its spheres. A screen whose
+/// margin is 0 (every atom) or wider would build its surface from a part of the structure.
+void check_site_margin(const Library& library, double margin, double patch_radius) {
+  if (library.version() < 5) return;  // whole structures
+  const std::string& settings = library.settings();
+  const std::string key = "surface_margin ";
+  const std::size_t at = settings.find(key);
+  if (at == std::string::npos) return;
+  const double built =
+      matching::site_surface_margin(std::strtod(settings.c_str() + at + key.size(), nullptr),
+                                    harmonic::DescriptorOptions{}.patch.radius);
+  if (built == 0.0) return;  // every atom kept
+  const double asked = matching::site_surface_margin(margin, patch_radius);
+  if (asked != 0.0 && asked <= built) return;
+  char wanted[32] = "every atom";
+  if (asked != 0.0) std::snprintf(wanted, sizeof wanted, "a %g A margin", asked);
+  char text[200];
+  std::snprintf(text, sizeof text,
+                ": its sites keep the atoms within %g A of their spheres (a site margin of %g A); "
+                "a site surface of %s needs a library built with that margin",
+                built + matching::neighbourhood_beyond_margin, built, wanted);
+  throw InputError(library.path().string() + text);
+}
+
 /// Throws InputError unless entry `e` of `library` (its index record `info`) is a binding site
 /// when `site_query` and a molecule otherwise.
 void check_entry_kind(const Library& library, std::size_t e, const LibraryEntryInfo& info,
@@ -417,6 +445,10 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
   }
   if (begin > end || end > library.size()) throw InputError("screen: entries outside the library");
   check_library_kind(library, sites);
+  if (sites) {
+    check_site_margin(library, options.site.surface_margin,
+                      queries.front()->descriptors.options.patch.radius);
+  }
   const std::size_t q_count = queries.size();
   const bool fusing = q_count > 1;
   const double shape_weight = queries.front()->shape_weight;

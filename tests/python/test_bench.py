@@ -98,7 +98,7 @@ def test_pocket_ranking_terms_and_ligand_volume():
 
 def test_site_null_fits_the_unrelated_pairs_mean_and_spread(tmp_path):
     # Unrelated pairs score 0.1 + 0.2 log10 n, +-0.05: the fitted mean is that line,
-    # and their z is +-1 once the spread is the normal's from the mean absolute deviation.
+    # and their z is +-sqrt(2 / pi), the spread being the normal's from the mean absolute deviation.
     rows = ["a,b,same,site_vertices_a,site_vertices_b,site"]
     for k, n in enumerate([100, 200, 400, 800, 1600, 3200] * 2):
         noise = 0.05 if k >= 6 else -0.05  # each size once below the line, once above

@@ -175,7 +175,8 @@ struct InputMatch {
   std::optional<double> site_score;
   /// With `site_score`: its site_z_score over the sites' surface points (site.hpp), the number of
   /// spreads it lies above unrelated sites' of the same size; none when a site has no point or
-  /// the lining weight is not the default (the null was fitted for the default score).
+  /// a site setting (MatchOptions::site) is not the default (the null was fitted for the default
+  /// score).
   std::optional<double> site_z;
   /// With `lining`: the interaction_similarity of the sites' surface points' interaction
   /// compositions (site.hpp); none when a site has no surface point.

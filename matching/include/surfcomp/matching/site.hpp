@@ -117,13 +117,15 @@ mesh::Surface build_site_surface(const BindingSite& site,
                                  const mesh::MolecularSurfaceOptions& options = {});
 
 /// Default 4 A beyond the surface margin: the reach of the atoms a site keeps
-/// (site_neighbourhood). A vertex within the patch radius of a sphere sums LP over atoms within
-/// mesh::default_fauchere_cutoff (12 A), which is the surface margin (patch radius + 8 A) + 4 A.
+/// (site_neighbourhood). LP sums the atoms within mesh::default_fauchere_cutoff (12 A) of a
+/// vertex, so it is the whole structure's at every vertex within the margin - 8 A of a sphere:
+/// at least the patch radius (site_surface_margin).
 inline constexpr double neighbourhood_beyond_margin = 4.0;
 
 /// What a site's surface and scores need of `structure`, in its order: every atom within a
-/// sphere's radius + `reach` (A) of its centre, every charged atom (the ESP sums them all) and
-/// each chain's first residue (whose N terminus a reader charges). A pocket library stores this
+/// sphere's radius + `reach` (A) of its centre, every charged atom (the ESP sums them all), each
+/// chain's first standard residue (whose N terminus a reader charges) and the smallest atom
+/// (which sets the SES grid); ionisable_atoms follow their atoms. A pocket library stores this
 /// rather than the structure. Throws InputError when `reach` is not finite and >= 0.
 Molecule site_neighbourhood(const Molecule& structure, const std::vector<SiteSphere>& spheres,
                             double reach);
@@ -256,7 +258,8 @@ inline constexpr SiteScoreNull site_score_null{0.1725, 0.0382, 0.0799, -0.0140, 
 /// How far a site score lies above those of unrelated sites of the same size, in their spreads:
 /// (score - mean(n)) / spread(n), n = min(points_a, points_b) clamped to the null's range. About
 /// 0 for an unrelated pair, whatever the sizes; 3 or more is rare without a relation (see
-/// docs/benchmarks.md for the measured tail). Throws InputError when a site has no point.
+/// docs/benchmarks.md for the measured tail). Throws InputError when a site has no point, or
+/// for a null whose range is empty or whose spread is not positive over it.
 double site_z_score(double score, std::size_t points_a, std::size_t points_b,
                     const SiteScoreNull& null = site_score_null);
 

@@ -24,7 +24,8 @@
 // when the first stage asks for them.
 //
 // A sharded library (a build of many records, library_build.hpp) is an index file listing
-// format-4 library files, its shards, whose entries follow each other in its order:
+// format-5 library files (format 4 from earlier builds), its shards, whose entries follow each
+// other in its order:
 //   header   "SURFCSET", u32 index version, u32 0
 //   body     u64 shard count; per shard string path (relative to the index's folder, '/'
 //            separated), u64 entries, u64 file size, u64 the shard's index checksum (its
@@ -147,7 +148,7 @@ void write_library(const std::filesystem::path& path, const std::vector<LibraryE
                    const std::string& settings = "",
                    double sigma = matching::OverlayOptions{}.sigma);
 
-/// Writes at `path`, atomically, the index of a sharded library whose shards are the format-4
+/// Writes at `path`, atomically, the index of a sharded library whose shards are the format-5
 /// library files `shards` (paths relative to `path`'s folder, in entry order), with `settings`
 /// (how the library was built, as a whole file stores them). Each shard is opened and checked
 /// as Library opens a file, and listed with its entries, size and index checksum. Throws

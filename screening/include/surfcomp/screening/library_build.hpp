@@ -219,7 +219,7 @@ std::filesystem::path shard_folder(const std::filesystem::path& output);
 
 /// A build cut into shards of options.shard_records consecutive records (molecule records, sites
 /// or structures), shard k (0-based)
-/// holding records [k N, (k + 1) N): a format-4 library file in shard_folder(output) named by
+/// holding records [k N, (k + 1) N): a format-5 library file in shard_folder(output) named by
 /// its 1-based number (000001.sclib ...), with a log of its skipped records beside it
 /// (000001.log), written once the shard is complete. A shard whose records were all skipped has
 /// a log and no library file. The output is the index of the shards that have entries
