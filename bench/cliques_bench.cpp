@@ -1,4 +1,4 @@
-// Maximal cliques (seed 3.9, METHOD 6) on random graphs at and beyond the association graph's
+// Maximal cliques (method §6) on random graphs at and beyond the association graph's
 // sizes (a ligand pair gives ~60 nodes and ~100 edges after all filters). Graphs are drawn with
 // std::mt19937 seed 7, one per size, the same in every run.
 #include "surfcomp/matching/cliques.hpp"

@@ -1,4 +1,4 @@
-// Principal curvatures (seed 3.2) on icospheres at the surface builder's density (2.5 vertices
+// Principal curvatures (method §0.2) on icospheres at the surface builder's density (2.5 vertices
 // per A^2), 1,212 and 30,252 vertices: the quadric fit (the default) beside CGAL's jet fit,
 // measured in the same run. Prints Google Benchmark's table, then the ratios.
 #include "analytic_meshes.hpp"

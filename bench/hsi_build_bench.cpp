@@ -4,7 +4,7 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "test_support.hpp"
 
 #include <benchmark/benchmark.h>
@@ -21,13 +21,13 @@ const std::filesystem::path kLigand =
     test::shared_datasets_root() / "thermolysin/ligands-common-frame/1THL_ligand.sdf";
 
 const mesh::Surface& ligand_surface() {
-  static const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(kLigand));
+  static const mesh::Surface surface = molsurf::build_molecular_surface(io::read_molecule(kLigand));
   return surface;
 }
 
 void BM_SurfaceBuild(benchmark::State& state) {
   const Molecule molecule = io::read_molecule(kLigand);
-  for (auto _ : state) benchmark::DoNotOptimize(mesh::build_molecular_surface(molecule));
+  for (auto _ : state) benchmark::DoNotOptimize(molsurf::build_molecular_surface(molecule));
 }
 
 void BM_DescribeSurface(benchmark::State& state) {

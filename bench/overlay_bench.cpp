@@ -30,7 +30,7 @@
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "test_support.hpp"
 
 #include <Eigen/Geometry>
@@ -103,8 +103,8 @@ Entry load_entry(const std::string& name, const fs::path& path) {
                        std::to_string(entry.rdkit->getNumAtoms()));
     }
     const Stopwatch start;
-    entry.descriptors =
-        harmonic::describe_surface(mesh::build_molecular_surface(*entry.molecule), *entry.molecule);
+    entry.descriptors = harmonic::describe_surface(
+        molsurf::build_molecular_surface(*entry.molecule), *entry.molecule);
     entry.describe_ms = start.elapsed_ms();
   } catch (const std::exception& e) {
     entry.molecule.reset();
@@ -229,7 +229,8 @@ Outcome run_surfcomp(const Entry& reference, const Entry& probe, const Pose& pos
   const std::vector<bool> heavy = heavy_atoms(*probe.molecule);
   try {
     const Stopwatch start;
-    const auto described = harmonic::describe_surface(mesh::build_molecular_surface(posed), posed);
+    const auto described =
+        harmonic::describe_surface(molsurf::build_molecular_surface(posed), posed);
     const Stopwatch match_start;
     const auto result = matching::match_surfaces(*reference.descriptors, described, options);
     out.match_ms = match_start.elapsed_ms();

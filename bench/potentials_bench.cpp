@@ -1,5 +1,5 @@
-// ESP and LP (seed 3.2) on a protein-sized case, 30,252 surface points (an icosphere of radius
-// 30 A) and 2,000 atoms on a grid inside it, beside a serial double loop computing the same
+// ESP and LP (method §0.3-0.4) on a protein-sized case, 30,252 surface points (an icosphere of
+// radius 30 A) and 2,000 atoms on a grid inside it, beside a serial double loop computing the same
 // Coulomb sum, measured in the same run. Then the LP over 4we2's surface (1,949 atoms,
 // datasets/cache from datasets/fetch.sh; skipped when absent): the exact sum against
 // LpOptions::cutoff of 8, 10 and 12 A, with each cutoff's error over the vertices (RMS and max,
@@ -10,8 +10,8 @@
 #include "test_support.hpp"
 
 #include "surfcomp/core/io/read_molecule.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
-#include "surfcomp/mesh/potentials.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
+#include "surfcomp/molsurf/potentials.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -51,20 +51,20 @@ const Molecule& grid_molecule() {
 
 /// The exact ESP (the treecode has its rows on 4we2), for the ratio to the serial loop.
 void BM_Esp(benchmark::State& state) {
-  mesh::EspOptions exact;
+  molsurf::EspOptions exact;
   exact.treecode_tolerance = 0.0;
   for (auto _ : state)
-    benchmark::DoNotOptimize(mesh::electrostatic_potential(points(), grid_molecule(), exact));
+    benchmark::DoNotOptimize(molsurf::electrostatic_potential(points(), grid_molecule(), exact));
   state.counters["points"] = static_cast<double>(points().rows());
   state.counters["atoms"] = static_cast<double>(grid_molecule().atoms.size());
 }
 
 /// The exact LP (every atom; the grid's atoms lie beyond the default cutoff of every point).
 void BM_Lp(benchmark::State& state) {
-  mesh::LpOptions every_atom;
+  molsurf::LpOptions every_atom;
   every_atom.cutoff = 0.0;
   for (auto _ : state)
-    benchmark::DoNotOptimize(mesh::lipophilic_potential(points(), grid_molecule(), every_atom));
+    benchmark::DoNotOptimize(molsurf::lipophilic_potential(points(), grid_molecule(), every_atom));
 }
 
 /// The reference: the Coulomb sum of EspOptions' defaults (dielectric 1, no distance dependence) as
@@ -77,7 +77,7 @@ void BM_EspSerialLoop(benchmark::State& state) {
     for (Eigen::Index i = 0; i < p.rows(); ++i) {
       double sum = 0.0;
       for (const Atom& a : m.atoms)
-        sum += mesh::coulomb_constant * a.charge / (p.row(i) - a.position.transpose()).norm();
+        sum += molsurf::coulomb_constant * a.charge / (p.row(i) - a.position.transpose()).norm();
       esp(i) = sum;
     }
     benchmark::DoNotOptimize(esp.data());
@@ -95,14 +95,14 @@ const Protein* protein() {
     if (!path) return std::nullopt;
     Protein out;
     out.molecule = io::read_molecule(*path);
-    out.vertices = mesh::build_molecular_surface(out.molecule).positions();
+    out.vertices = molsurf::build_molecular_surface(out.molecule).positions();
     return out;
   }();
   return p ? &*p : nullptr;
 }
 
-mesh::LpOptions cutoff_of(double cutoff) {
-  mesh::LpOptions options;
+molsurf::LpOptions cutoff_of(double cutoff) {
+  molsurf::LpOptions options;
   options.cutoff = cutoff;
   return options;
 }
@@ -110,7 +110,8 @@ mesh::LpOptions cutoff_of(double cutoff) {
 void BM_LpProtein(benchmark::State& state, double cutoff) {
   const Protein& p = *protein();
   for (auto _ : state)
-    benchmark::DoNotOptimize(mesh::lipophilic_potential(p.vertices, p.molecule, cutoff_of(cutoff)));
+    benchmark::DoNotOptimize(
+        molsurf::lipophilic_potential(p.vertices, p.molecule, cutoff_of(cutoff)));
   state.counters["vertices"] = static_cast<double>(p.vertices.rows());
 }
 
@@ -120,8 +121,8 @@ std::string tolerance_name(double tolerance) {
   return name;
 }
 
-mesh::EspOptions theta_of(double theta) {
-  mesh::EspOptions options;
+molsurf::EspOptions theta_of(double theta) {
+  molsurf::EspOptions options;
   options.treecode_tolerance = theta;
   return options;
 }
@@ -130,7 +131,7 @@ void BM_EspProtein(benchmark::State& state, double theta) {
   const Protein& p = *protein();
   for (auto _ : state) {
     benchmark::DoNotOptimize(
-        mesh::electrostatic_potential(p.vertices, p.molecule, theta_of(theta)));
+        molsurf::electrostatic_potential(p.vertices, p.molecule, theta_of(theta)));
   }
   state.counters["vertices"] = static_cast<double>(p.vertices.rows());
 }
@@ -139,13 +140,13 @@ void BM_EspProtein(benchmark::State& state, double theta) {
 void print_treecode_errors(const std::vector<double>& thetas) {
   const Protein& p = *protein();
   const Eigen::VectorXd exact =
-      mesh::electrostatic_potential(p.vertices, p.molecule, theta_of(0.0));
+      molsurf::electrostatic_potential(p.vertices, p.molecule, theta_of(0.0));
   const double range = exact.maxCoeff() - exact.minCoeff();
   std::printf("\n4we2 ESP: exact range %.4g (%.4g to %.4g) kcal/(mol e)\n", range, exact.minCoeff(),
               exact.maxCoeff());
   for (const double theta : thetas) {
     const Eigen::VectorXd error =
-        mesh::electrostatic_potential(p.vertices, p.molecule, theta_of(theta)) - exact;
+        molsurf::electrostatic_potential(p.vertices, p.molecule, theta_of(theta)) - exact;
     const double max_error = error.cwiseAbs().maxCoeff();
     const double rms = std::sqrt(error.squaredNorm() / static_cast<double>(error.size()));
     std::printf("tolerance %.0e: max |error| %.3g (%.3g of the range), RMS %.3g (%.3g)\n", theta,
@@ -156,7 +157,8 @@ void print_treecode_errors(const std::vector<double>& thetas) {
 /// Each cutoff's error against the exact LP over 4we2's vertices.
 void print_cutoff_errors(const std::vector<double>& cutoffs) {
   const Protein& p = *protein();
-  const Eigen::VectorXd exact = mesh::lipophilic_potential(p.vertices, p.molecule, cutoff_of(0.0));
+  const Eigen::VectorXd exact =
+      molsurf::lipophilic_potential(p.vertices, p.molecule, cutoff_of(0.0));
   const double range = exact.maxCoeff() - exact.minCoeff();
   double sum_abs_f = 0.0;
   for (const Atom& atom : p.molecule.atoms) sum_abs_f += std::abs(atom.lipophilicity);
@@ -165,7 +167,7 @@ void print_cutoff_errors(const std::vector<double>& cutoffs) {
               exact.minCoeff(), exact.maxCoeff());
   for (const double cutoff : cutoffs) {
     const Eigen::VectorXd cut =
-        mesh::lipophilic_potential(p.vertices, p.molecule, cutoff_of(cutoff));
+        molsurf::lipophilic_potential(p.vertices, p.molecule, cutoff_of(cutoff));
     const Eigen::VectorXd error = cut - exact;
     const double rms = std::sqrt(error.squaredNorm() / static_cast<double>(error.size()));
     std::printf(

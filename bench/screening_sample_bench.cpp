@@ -18,7 +18,7 @@
 #include "surfcomp/matching/overlay_sample.hpp"
 #include "surfcomp/matching/packed_overlay.hpp"
 #include "surfcomp/matching/principal_axes.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "test_support.hpp"
 
 #include <tbb/global_control.h>
@@ -84,7 +84,8 @@ Molecules load(const std::filesystem::path& file, double grid) {
   const matching::OverlayOptions overlay;
   Stopwatch clock;
   for (const Molecule& m : set.molecules)
-    set.full.push_back(matching::sample_surface(mesh::build_molecular_surface(m), overlay.spacing));
+    set.full.push_back(
+        matching::sample_surface(molsurf::build_molecular_surface(m), overlay.spacing));
   set.full_ms = clock.elapsed_s() * 1e3 / static_cast<double>(set.molecules.size());
   clock.restart();
   for (const Molecule& m : set.molecules)

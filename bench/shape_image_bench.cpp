@@ -1,4 +1,4 @@
-// Harmonic shape images (METHOD section 4): building one image (a grid over the embedded
+// Harmonic shape images (method §4): building one image (a grid over the embedded
 // triangles + 16 x 180 point queries) from a patch of about 170 vertices, preparing it for
 // comparison (per-ring FFTs), and comparing two images over all 180 rotations, beside a direct
 // evaluation of the same correlations measured in the same run. Target: one comparison over

@@ -1,5 +1,5 @@
 // Binding-site comparison on the Kahraman dev set (issue 4, "Binding sites"): 36 sites of ATP,
-// HEM and FMN (../shared/datasets/kahraman-dev). Each site is built once (matching::binding_site
+// HEM and FMN (../shared/datasets/kahraman-dev). Each site is built once (molsurf::binding_site
 // of the entry's ligand copy, its chains in contact): the surface of its structure without water
 // and without the site's own ligand copy, described (patch, harmonic map, shape image) only at
 // the critical points within kSiteRadius of that ligand's atoms (matching::describe_site). Every
@@ -28,7 +28,7 @@
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/site.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -108,11 +108,11 @@ Site build_site(const Entry& entry, const fs::path& pdb, double margin,
   const Stopwatch start;
   Site site;
   site.entry = entry;
-  matching::BindingSiteOptions site_options;
+  molsurf::BindingSiteOptions site_options;
   site_options.sphere_radius = kSiteRadius;
   site_options.chain_contact_radius = kContactRadius;
   site_options.surface_margin = margin;
-  const matching::BindingSite binding_site = matching::binding_site(
+  const molsurf::BindingSite binding_site = molsurf::binding_site(
       io::read_molecule(pdb), LigandSelector{entry.ligand, entry.chain, entry.residue_number},
       site_options);
   std::set<std::string> chains;
@@ -121,7 +121,7 @@ Site build_site(const Entry& entry, const fs::path& pdb, double margin,
   for (const auto& chain : chains) site.chains += chain;
   site.atoms = binding_site.structure.atoms.size();
   site.ligand_atoms = binding_site.ligand.atoms.size();
-  site.descriptors = matching::describe_site(matching::build_site_surface(binding_site),
+  site.descriptors = matching::describe_site(molsurf::build_site_surface(binding_site),
                                              binding_site.structure, binding_site.spheres, options);
   site.in_site = matching::critical_points_in_site(site.descriptors, binding_site.spheres);
   site.site_cps =
@@ -131,7 +131,7 @@ Site build_site(const Entry& entry, const fs::path& pdb, double margin,
   for (Eigen::Index v = 0; v < positions.rows(); ++v) {
     const Eigen::Vector3d x = positions.row(v).transpose();
     site.site_vertices += std::any_of(binding_site.spheres.begin(), binding_site.spheres.end(),
-                                      [&](const matching::SiteSphere& sphere) {
+                                      [&](const molsurf::SiteSphere& sphere) {
                                         return (x - sphere.center).norm() <= sphere.radius;
                                       })
                               ? 1
@@ -405,7 +405,7 @@ int main(int argc, char** argv) {
     harmonic::DescriptorOptions options;
     options.patch.radius = kPatchRadius;
     const double margin =
-        argc > 4 ? std::stod(argv[4]) : matching::BindingSiteOptions{}.surface_margin;
+        argc > 4 ? std::stod(argv[4]) : molsurf::BindingSiteOptions{}.surface_margin;
     std::printf(
         "site radius %.1f A, patch radius %.1f A, chains within %.1f A of the ligand, surface "
         "margin %.1f A\n\n",

@@ -4,7 +4,7 @@
 // Prints Google Benchmark's table, then the ratios and the SES areas side by side.
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "test_support.hpp"
 
 #include <benchmark/benchmark.h>
@@ -82,7 +82,7 @@ void BM_SurfBuild(benchmark::State& state, const std::string& name) {
   double area = 0.0;
   for (auto _ : state) {
     const Molecule molecule = io::read_molecule(input.molecule);
-    const mesh::Surface surface = mesh::build_molecular_surface(molecule);
+    const mesh::Surface surface = molsurf::build_molecular_surface(molecule);
     mesh::io::write_ply(surface, kWork / (name + ".ply"));
     vertices = surface.n_vertices();
     area = mesh::measure_surface(surface).area;
@@ -101,7 +101,7 @@ void BM_SesOnly(benchmark::State& state, const std::string& name) {
     radii(i) = molecule.atoms[static_cast<std::size_t>(i)].radius;
   }
   std::size_t vertices = 0;
-  for (auto _ : state) vertices = mesh::build_ses(centers, radii).n_vertices();
+  for (auto _ : state) vertices = molsurf::build_ses(centers, radii).n_vertices();
   state.counters["vertices"] = static_cast<double>(vertices);
 }
 
@@ -178,7 +178,7 @@ int main(int argc, char** argv) {
   std::printf(
       "\nSES area beside EDTSurf's (no exact reference: EDTSurf's area grows with its scale):\n");
   for (const auto& [name, input] : inputs()) {
-    const mesh::Surface ours = mesh::build_molecular_surface(io::read_molecule(input.molecule));
+    const mesh::Surface ours = molsurf::build_molecular_surface(io::read_molecule(input.molecule));
     std::printf("  %-12s surfcomp %.1f A^2 (%zu vertices)", name.c_str(),
                 mesh::measure_surface(ours).area, ours.n_vertices());
     for (int scale : {2, 4, 8}) {

@@ -6,7 +6,7 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include <cstdio>
 #include <exception>
@@ -19,7 +19,7 @@ namespace {
 harmonic::SurfaceDescriptors describe(const char* path) {
   const Molecule molecule = io::read_molecule(path);
   harmonic::SurfaceDescriptors described =
-      harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule);
+      harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule);
   const harmonic::DescriptorCounts counts = harmonic::count_descriptors(described);
   std::printf("%s: %zu vertices, %zu peaks, %zu valleys, %zu images\n", path,
               described.surface.n_vertices(), counts.peaks, counts.valleys, counts.imaged);

@@ -6,7 +6,7 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include <cstdio>
 
@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   }
   try {
     surfcomp::mesh::Surface surface = surfcomp::mesh::io::read_mesh(argv[1]);
-    surfcomp::mesh::assign_surface_properties(surface, nullptr);
+    surfcomp::molsurf::assign_surface_properties(surface, nullptr);
     surfcomp::harmonic::DescriptorOptions options;
     options.image.rings = 4;
     options.image.sectors = 8;

@@ -9,8 +9,8 @@
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "surfcomp/screening/library.hpp"
 
 #include <cstdio>
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   namespace sc = surfcomp;
   try {
     sc::mesh::Surface surface = sc::mesh::io::read_mesh(argv[1]);
-    sc::mesh::assign_surface_properties(surface, nullptr);
+    sc::molsurf::assign_surface_properties(surface, nullptr);
     const auto n = static_cast<Eigen::Index>(surface.n_vertices());
     surface.set_property(sc::mesh::property::esp, Eigen::VectorXd::Zero(n));
     surface.set_property(sc::mesh::property::lp, Eigen::VectorXd::Zero(n));

@@ -10,7 +10,8 @@
 #      (scripts/check-install.sh).
 # Each stage prints its wall time. The `ci` preset is the same build without the sanitizers.
 # Fuzzing (scripts/fuzz.sh) runs separately: CONTRIBUTING.md says how.
-# Tests that need ../shared/datasets skip, saying so, when it is absent.
+# Tests that need ../shared/datasets skip, saying so, when it is absent, or fail under
+# SURFCOMP_REQUIRE_DATA=1 (.ci/run sets it).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/install-deps.sh

@@ -1,14 +1,14 @@
-// The association graph and its four filters (seed 3.3, 3.5-3.8; METHOD 5) on hand-built cases
-// with known outcomes, a surface against a moved copy of itself, and the thesis' 1THL vs 4TMN
-// trace (Table 3-1).
+// The association graph and its four filters (method §5.1-5.5) on hand-built cases
+// with known outcomes, a surface against a moved copy of itself, and the 1THL vs 4TMN reference
+// trace (method §5.7).
 #include "surfcomp/matching/association_graph.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/disk_map.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/cliques.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/patch.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include "analytic_meshes.hpp"
 #include "test_data.hpp"
@@ -250,7 +250,7 @@ TEST(AssociationGraph, AngularDifferenceWrapsIntoZeroTo180) {
 const char* kLigands = "thermolysin/ligands-common-frame/";
 
 harmonic::SurfaceDescriptors ligand(const std::filesystem::path& file) {
-  return harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(file)));
+  return harmonic::describe_surface(molsurf::build_molecular_surface(io::read_molecule(file)));
 }
 
 // The surface moved rigidly, with each patch's harmonic map then rotated by its own angle
@@ -435,7 +435,8 @@ TEST(AssociationGraph, ThermolysinLigandsTraceBesideTheThesis) {
   }
   EXPECT_EQ(graph.trace.back().nodes, graph.nodes.size());
   EXPECT_EQ(graph.trace.back().edges, graph.edges.size());
-  // Each stage removes a sizeable share, as in the thesis (553 -> 63 nodes, 359 -> 93 edges).
+  // Each stage removes a sizeable share, as in the reference trace of method §5.7 (553 -> 63 nodes,
+  // 359 -> 93 edges).
   EXPECT_LT(graph.trace[2].nodes, graph.trace[0].nodes / 2);
   EXPECT_LT(graph.trace[4].edges, graph.trace[3].edges);
   EXPECT_GT(graph.edges.size(), 10u);

@@ -58,7 +58,7 @@ class ShapeScreen : public ::testing::Test {
     for (const char* name : {"cow", "knot", "elephant", "femur"}) {
       const std::string relative = std::string("cgal/meshes/") + name + ".off";
       const auto path = test::fetched_dataset(relative);
-      if (!path) GTEST_SKIP() << test::fetched_absent_message(relative);
+      if (!path) SURFCOMP_DATA_ABSENT(test::fetched_absent_message(relative));
       meshes_.push_back(*path);
     }
     folder_ = fs::temp_directory_path() / ("surfcomp_shape_screen_" + std::to_string(::getpid()));

@@ -1,4 +1,4 @@
-// Maximal cliques (seed 3.9, METHOD 6) on small graphs with known answers and against brute
+// Maximal cliques (method §6) on small graphs with known answers and against brute
 // force on random graphs (bench/cliques_bench.cpp times them at the association graph's sizes).
 #include "surfcomp/matching/cliques.hpp"
 #include "surfcomp/core/error.hpp"

@@ -1,4 +1,4 @@
-// Single-linkage merging of clique alignments (seed 3.9) on synthetic correspondences: each CP
+// Single-linkage merging of clique alignments (method §6) on synthetic correspondences: each CP
 // pair (a, b) gets 30 points p around a place that depends on a and their images q under the
 // inverse of a chosen motion (plus noise), so that fitting B onto A recovers that motion.
 #include "surfcomp/matching/clustering.hpp"

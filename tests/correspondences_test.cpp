@@ -1,4 +1,4 @@
-// Dense correspondences through harmonic shape images (seed 3.9) on the 1THL ligand surface and
+// Dense correspondences through harmonic shape images (method §6) on the 1THL ligand surface and
 // a rigidly moved copy: the points paired through the images of the same critical point must be
 // images of each other under the motion, and their fit must recover it.
 #include "surfcomp/matching/correspondences.hpp"
@@ -6,7 +6,7 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/clustering.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include "test_data.hpp"
 
@@ -54,11 +54,11 @@ std::vector<double> residuals(const Correspondences& c, const Motion& m) {
 // correspondences are exact images of each other (to round-off); so are the properties.
 TEST(Correspondences, AMovedCopyOfTheSameMeshCorrespondsExactly) {
   SURFCOMP_SHARED_OR_SKIP(file, k1thl);
-  const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
+  const mesh::Surface surface = molsurf::build_molecular_surface(io::read_molecule(file));
   const Motion m = random_motion(7u);
   mesh::Surface moved = surface;
   mesh::transform_surface(moved, m.rotation, m.translation);
-  mesh::assign_surface_properties(moved, nullptr);  // curvature refitted on the moved mesh
+  molsurf::assign_surface_properties(moved, nullptr);  // curvature refitted on the moved mesh
   const auto a = harmonic::describe_surface(surface);
   const auto b = harmonic::describe_surface(moved);
   ASSERT_EQ(a.critical_points.size(), b.critical_points.size());
@@ -111,12 +111,12 @@ TEST(Correspondences, ARebuiltMovedSurfaceCorrespondsToWithinTheMeshResolution) 
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& atom : molecule.atoms)
     centroid += atom.position / static_cast<double>(molecule.atoms.size());
-  const auto a = harmonic::describe_surface(mesh::build_molecular_surface(molecule));
+  const auto a = harmonic::describe_surface(molsurf::build_molecular_surface(molecule));
   for (unsigned seed : {11u, 12u, 13u}) {
     Molecule moved_molecule = molecule;
     const Motion m = random_motion(seed);
     transform_molecule(moved_molecule, m.rotation, m.translation);
-    const auto b = harmonic::describe_surface(mesh::build_molecular_surface(moved_molecule));
+    const auto b = harmonic::describe_surface(molsurf::build_molecular_surface(moved_molecule));
 
     std::vector<MatchedPair> pairs;
     std::vector<double> all;
@@ -168,7 +168,8 @@ TEST(Correspondences, ARebuiltMovedSurfaceCorrespondsToWithinTheMeshResolution) 
 
 TEST(Correspondences, BadPairsAreRejected) {
   SURFCOMP_SHARED_OR_SKIP(file, k1thl);
-  const auto a = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(file)));
+  const auto a =
+      harmonic::describe_surface(molsurf::build_molecular_surface(io::read_molecule(file)));
   const int n = static_cast<int>(a.critical_points.size());
   int k = 0;
   while (k < n &&

@@ -40,7 +40,7 @@ double longest_edge_at(const Surface& surface, int vertex) {
   return longest;
 }
 
-/// Same-type critical points are farther apart than the radius (on-surface), by eq. 3-1.
+/// Same-type critical points are farther apart than the radius (on-surface), by method §2.1.
 void expect_separated(const Surface& surface, const std::vector<CriticalPoint>& cps,
                       double radius) {
   for (const auto& a : cps) {

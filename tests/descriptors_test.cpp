@@ -1,12 +1,12 @@
-// The coarse level end to end on real surfaces: critical point counts against the thesis,
-// images invariant under rigid motion and independent of the sampling density (Zhang & Hebert),
-// thread-count independence, and the .hsi file.
+// The coarse level end to end on real surfaces: critical point counts against the reference counts
+// of method §2.4, images invariant under rigid motion and independent of the sampling density
+// (Zhang & Hebert), thread-count independence, and the .hsi file.
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/binary_stream.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include "test_data.hpp"
 
@@ -27,31 +27,32 @@ namespace {
 const char* kLigands = "thermolysin/ligands-common-frame/";
 
 mesh::Surface ligand_surface(const std::filesystem::path& file, double density = 2.5) {
-  mesh::MolecularSurfaceOptions options;
+  molsurf::MolecularSurfaceOptions options;
   options.ses.vertex_density = density;
-  return mesh::build_molecular_surface(io::read_molecule(file), options);
+  return molsurf::build_molecular_surface(io::read_molecule(file), options);
 }
 
 std::vector<std::uint8_t> encoded(const harmonic::SurfaceDescriptors& d) {
   return harmonic::io::encode_hsi(d);
 }
 
-// The thesis found 27 (1THL) and 29 (4TMN) critical points on its MOLCAD surfaces; the defaults
+// The reference counts (method §2.4) are 27 (1THL) and 29 (4TMN) critical points; the defaults
 // (r_cp 2.5 A on surfaces whose curvature is fitted over 2 A) give 26 and 30. The range
-// asserted, 22..36, is the thesis' figure +-25 %; a 2-ring curvature fit, noisier, gives 40 and
-// 41 and falls outside it.
+// asserted, 22..36, is the reference figure of method §2.4 +-25 %; a 2-ring curvature fit, noisier,
+// gives 40 and 41 and falls outside it.
 TEST(Descriptors, ThermolysinCriticalPointCountsAreOfTheThesisOrder) {
   for (const char* id : {"1THL", "4TMN"}) {
     SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + id + "_ligand.sdf");
     const auto d = harmonic::describe_surface(ligand_surface(file));
     const auto counts = harmonic::count_descriptors(d);
     std::printf(
-        "[ cps      ] %s: %zu vertices, %zu peaks + %zu valleys = %zu (thesis: %s), %zu images\n",
+        "[ cps      ] %s: %zu vertices, %zu peaks + %zu valleys = %zu (reference, method §2.4: "
+        "%s), %zu images\n",
         id, d.surface.n_vertices(), counts.peaks, counts.valleys, counts.peaks + counts.valleys,
         std::string(id) == "1THL" ? "27" : "29", counts.imaged);
     EXPECT_GE(counts.peaks + counts.valleys, 22u) << id;
     EXPECT_LE(counts.peaks + counts.valleys, 36u) << id;
-    EXPECT_GT(counts.peaks, counts.valleys) << id << ": the seed finds more peaks than valleys";
+    EXPECT_GT(counts.peaks, counts.valleys) << id << ": peaks outnumber valleys (method §2.4)";
     EXPECT_GE(counts.imaged, (counts.peaks + counts.valleys) * 9 / 10) << id;
   }
 }
@@ -70,7 +71,7 @@ TEST(Descriptors, RotatingTheSurfaceLeavesEveryImageUnchanged) {
   const Eigen::Vector3d shift(12.0, -3.0, 40.0);
   mesh::Surface moved = surface;
   mesh::transform_surface(moved, rotation, shift);
-  mesh::assign_surface_properties(moved, nullptr);  // curvature refitted on the moved mesh
+  molsurf::assign_surface_properties(moved, nullptr);  // curvature refitted on the moved mesh
   const auto a = harmonic::describe_surface(surface);
   const auto b = harmonic::describe_surface(moved);
   ASSERT_EQ(a.critical_points.size(), b.critical_points.size());

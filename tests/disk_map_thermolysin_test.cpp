@@ -1,12 +1,12 @@
 // Harmonic disk maps of real patches: the critical-point patches of the 1THL ligand's SES
-// (seed 3.4 and 3.6) mapped by harmonic_disk_map and by CGAL's parameterizers must agree for
+// (method §3-4) mapped by harmonic_disk_map and by CGAL's parameterizers must agree for
 // every weight kind, and the maps with positive weights must not fold.
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/cgal_reference.hpp"
 #include "surfcomp/harmonic/disk_map.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/patch.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include "test_data.hpp"
 
@@ -22,7 +22,7 @@ namespace {
 
 TEST(DiskMapThermolysinTest, CriticalPointPatchesOf1thlAgreeWithCgalAndDoNotFold) {
   SURFCOMP_SHARED_OR_SKIP(file, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
-  const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
+  const mesh::Surface surface = molsurf::build_molecular_surface(io::read_molecule(file));
   const std::vector<mesh::CriticalPoint> critical_points = mesh::detect_critical_points(surface);
   ASSERT_GE(critical_points.size(), 6u);
   // Every fourth critical point, peaks and valleys alike: a spread over the whole ligand.

@@ -23,7 +23,7 @@
 #include <utility>
 #include <vector>
 
-namespace surfcomp::mesh::detail {
+namespace surfcomp::molsurf::detail {
 namespace {
 
 /// What a triangle soup is, checked from its arrays alone.
@@ -721,4 +721,4 @@ TEST(DualMarchingCubes, EmptyAndUniformGridsGiveNoTriangles) {
 }
 
 }  // namespace
-}  // namespace surfcomp::mesh::detail
+}  // namespace surfcomp::molsurf::detail

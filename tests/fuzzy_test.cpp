@@ -1,4 +1,4 @@
-// The fuzzy chemical filter's pieces (seed 3.5, METHOD 5): triangular memberships on autoscaled
+// The fuzzy chemical filter's pieces (method §5.2): triangular memberships on autoscaled
 // values, their similarity, and the autoscaling of critical point properties.
 #include "surfcomp/matching/fuzzy.hpp"
 #include "surfcomp/core/error.hpp"

@@ -7,7 +7,7 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/rigid_fit.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include "test_data.hpp"
 
@@ -67,7 +67,8 @@ Eigen::Vector3d centroid(const mesh::Surface& surface) {
 
 TEST(Match, SurfaceAgainstItselfGivesTheIdentity) {
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
-  const auto d = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(file)));
+  const auto d =
+      harmonic::describe_surface(molsurf::build_molecular_surface(io::read_molecule(file)));
   const auto result = matching::match_surfaces(d, d);
   ASSERT_FALSE(result.alignments.empty());
   const auto [angle, shift] = transform_error(result.alignments[0].transform,
@@ -84,7 +85,8 @@ TEST(Match, SurfaceAgainstItselfGivesTheIdentity) {
 // before the graph is built, not matched on whatever the missing values default to.
 TEST(Match, ASurfaceWithoutEspOrLpIsRefusedNamingItsSource) {
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1THL_ligand.sdf");
-  const auto d = harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(file)));
+  const auto d =
+      harmonic::describe_surface(molsurf::build_molecular_surface(io::read_molecule(file)));
   for (const char* name : {mesh::property::esp, mesh::property::lp}) {
     harmonic::SurfaceDescriptors bare = d;
     bare.surface.remove_property(name);
@@ -101,7 +103,7 @@ TEST(Match, ASurfaceWithoutEspOrLpIsRefusedNamingItsSource) {
 
 TEST(Match, MovedCopyOfASurfaceRecoversTheMotion) {
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "4TMN_ligand.sdf");
-  const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
+  const mesh::Surface surface = molsurf::build_molecular_surface(io::read_molecule(file));
   const auto reference = harmonic::describe_surface(surface);
   std::mt19937 rng(424242u);
   std::printf("[ moved    ] seed 424242\n");
@@ -137,7 +139,7 @@ double heavy_atom_rmsd(const Molecule& probe, const Eigen::Matrix4d& transform,
 
 /// The description of a molecule's surface, with its heavy atoms, as `surfcomp match` builds it.
 harmonic::SurfaceDescriptors describe_molecule(const Molecule& molecule) {
-  return harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule);
+  return harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule);
 }
 
 /// `truth` moved by a random motion (drawn from `rng`), matched onto `reference` with the
@@ -296,9 +298,9 @@ TEST(Match, RefinedAlignmentsLeadByOverlayScoreAndRefineTopZeroKeepsTheConsensus
   SURFCOMP_SHARED_OR_SKIP(ref_file, std::string(kLigands) + "1THL_ligand.sdf");
   SURFCOMP_SHARED_OR_SKIP(probe_file, std::string(kLigands) + "4TMN_ligand.sdf");
   const auto reference =
-      harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(ref_file)));
+      harmonic::describe_surface(molsurf::build_molecular_surface(io::read_molecule(ref_file)));
   const auto probe =
-      harmonic::describe_surface(mesh::build_molecular_surface(io::read_molecule(probe_file)));
+      harmonic::describe_surface(molsurf::build_molecular_surface(io::read_molecule(probe_file)));
   matching::MatchOptions seed_options;  // the cliques' alignments alone
   seed_options.refine_top = 0;
   seed_options.principal_axes_starts = 0;
@@ -348,7 +350,7 @@ struct MovedCopy {
 };
 
 MovedCopy moved_copy(const std::filesystem::path& file, unsigned seed) {
-  const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
+  const mesh::Surface surface = molsurf::build_molecular_surface(io::read_molecule(file));
   std::mt19937 rng(seed);
   const Eigen::Matrix4d motion = random_motion(rng);
   return {harmonic::describe_surface(surface),

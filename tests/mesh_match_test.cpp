@@ -3,10 +3,10 @@
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
-#include "surfcomp/mesh/load_surface.hpp"
 #include "surfcomp/mesh/repair.hpp"
 #include "surfcomp/mesh/surface.hpp"
 #include "surfcomp/mesh/topology.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
 
 #include "surfcomp/core/error.hpp"
 
@@ -163,7 +163,7 @@ TEST(MeshMatch, CurvatureFittedAtThePairsUnitIsKeptAndAtAnotherFittedAgain) {
   mesh::Surface copy = test::cut(full, Eigen::Vector3d(1, 0.3, 0.2).normalized());
   mesh::transform_surface(copy, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.2, 0.1, 0.0));
   // The whole with the curvature a mesh library stores: fitted at its own (automatic) unit.
-  const mesh::LoadedSurface fitted = mesh::load_mesh_surface(full);
+  const molsurf::LoadedSurface fitted = molsurf::load_mesh_surface(full);
   matching::MatchInput plain, stored, probe;
   plain.surface = full;
   stored.surface = fitted.surface;

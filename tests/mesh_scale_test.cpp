@@ -9,7 +9,7 @@
 #include "surfcomp/mesh/critical_points.hpp"
 #include "surfcomp/mesh/curvature.hpp"
 #include "surfcomp/mesh/length_unit.hpp"
-#include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
 
 #include <gtest/gtest.h>
 
@@ -60,7 +60,7 @@ TEST(MeshScale, TheSameMeshGivesTheSameCriticalPointsAtAnyScale) {
   double reference_cc1 = 0.0;
   for (const double size : {0.01, 1.0, 100.0}) {
     SCOPED_TRACE("size " + std::to_string(size));
-    const mesh::LoadedSurface loaded = mesh::load_mesh_surface(blob(size));
+    const molsurf::LoadedSurface loaded = molsurf::load_mesh_surface(blob(size));
     EXPECT_TRUE(loaded.general_mesh);
     EXPECT_NEAR(loaded.unit.value / size, mesh::rms_radius(blob(1.0)) / 12.0, 1e-9);
     const std::vector<mesh::CriticalPoint> points =
@@ -90,7 +90,7 @@ TEST(MeshScale, DescribeAndDetectFindTheSamePointsAndImagesAtAnyScale) {
     EXPECT_EQ(prepared.unit.from, "auto");
     EXPECT_NEAR(prepared.descriptors.length_unit, prepared.unit.value, 0.0);
     // The critical points are cp-detect's (load_surface, then detect in the unit).
-    const mesh::LoadedSurface loaded = mesh::load_mesh_surface(blob(size));
+    const molsurf::LoadedSurface loaded = molsurf::load_mesh_surface(blob(size));
     const auto detected = mesh::detect_critical_points_in_unit(loaded.surface, loaded.unit.value);
     std::vector<int> described_vertices;
     for (const auto& cp : prepared.descriptors.critical_points)
@@ -177,9 +177,10 @@ TEST(MeshScale, AFineSphereInTinyCoordinatesGetsItsCurvatureAtABoundedCost) {
   // the whole sphere, and each fit stops growing at 4 x CurvatureOptions::max_points = 4096
   // vertices (40 % of the sphere), sampled down to 1024.
   const double radius = 0.005;
-  mesh::SurfaceInputOptions options;
+  molsurf::SurfaceInputOptions options;
   options.scale = mesh::LengthScale::none;
-  const mesh::LoadedSurface loaded = mesh::load_mesh_surface(test::icosphere(radius, 32), options);
+  const molsurf::LoadedSurface loaded =
+      molsurf::load_mesh_surface(test::icosphere(radius, 32), options);
   EXPECT_EQ(loaded.unit.value, 1.0);
   const Eigen::VectorXd cc1 = loaded.surface.property(mesh::property::cc1);
   const Eigen::VectorXd cc2 = loaded.surface.property(mesh::property::cc2);
@@ -190,7 +191,8 @@ TEST(MeshScale, AFineSphereInTinyCoordinatesGetsItsCurvatureAtABoundedCost) {
   EXPECT_NEAR(cc2.maxCoeff(), -1.0 / radius, 0.03 / radius);
   // Where the 3 A neighbourhood holds fewer than 4096 vertices nothing is sampled: a sphere of
   // 3 A gets its curvature to 0.1 %.
-  const mesh::LoadedSurface coarse = mesh::load_mesh_surface(test::icosphere(3.0, 16), options);
+  const molsurf::LoadedSurface coarse =
+      molsurf::load_mesh_surface(test::icosphere(3.0, 16), options);
   EXPECT_NEAR(coarse.surface.property(mesh::property::cc1).maxCoeff(), -1.0 / 3.0, 1e-3 / 3.0);
 
   mesh::CurvatureOptions bad;
@@ -204,11 +206,11 @@ TEST(MeshScale, AUnitIsRefusedForAnInputInAngstrom) {
       Eigen::VectorXd::Zero(static_cast<Eigen::Index>(with_chemistry.n_vertices()));
   with_chemistry.set_property(mesh::property::esp, zeros);
   with_chemistry.set_property(mesh::property::lp, zeros);
-  mesh::SurfaceInputOptions options;
+  molsurf::SurfaceInputOptions options;
   options.unit = 0.5;
-  EXPECT_THROW(mesh::load_mesh_surface(with_chemistry, options), OptionError);
+  EXPECT_THROW(molsurf::load_mesh_surface(with_chemistry, options), OptionError);
   // Without the unit it is in A: its curvature is the sphere's in A.
-  const mesh::LoadedSurface loaded = mesh::load_mesh_surface(with_chemistry);
+  const molsurf::LoadedSurface loaded = molsurf::load_mesh_surface(with_chemistry);
   EXPECT_FALSE(loaded.general_mesh);
   EXPECT_NEAR(loaded.surface.property(mesh::property::cc1).mean(), -1.0 / 3.0, 1e-3);
 }

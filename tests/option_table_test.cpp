@@ -6,7 +6,7 @@
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
-#include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
 #include "surfcomp/screening/library_build.hpp"
 #include "surfcomp/screening/screen.hpp"
 
@@ -36,11 +36,11 @@ Described described(const std::string& name, const options::Table<Settings>& tab
 }
 
 std::vector<Described> every_table() {
-  return {described("surface", mesh::surface_input_option_table()),
+  return {described("surface", molsurf::surface_input_option_table()),
           described("critical points", mesh::critical_point_option_table()),
           described("descriptors", harmonic::descriptor_option_table()),
           described("match", matching::match_option_table()),
-          described("binding site", matching::binding_site_option_table()),
+          described("binding site", molsurf::binding_site_option_table()),
           described("describe", matching::describe_option_table()),
           described("pair match", matching::pair_match_option_table()),
           described("screen", screening::screen_option_table()),
@@ -97,7 +97,7 @@ TEST(OptionTable, ValuesOutsideTheDomainAreRefusedByName) {
       EXPECT_EQ(std::string(e.what()), expected);
     }
   };
-  const auto& surface = mesh::surface_input_option_table();
+  const auto& surface = molsurf::surface_input_option_table();
   const options::Spec& probe = options::find(surface, "probe-radius")->spec;
   refused(probe, "-1", "--probe-radius: value -1 is outside [0, 10]");
   refused(probe, "nan", "--probe-radius: value nan is outside [0, 10]");
@@ -115,7 +115,7 @@ TEST(OptionTable, ValuesOutsideTheDomainAreRefusedByName) {
             1000);
   refused(options::find(match, "principal-axes-starts")->spec, "5",
           "--principal-axes-starts: value 5 is not one of 0|4|24");
-  const options::Spec sphere = matching::site_sphere_spec();
+  const options::Spec sphere = molsurf::site_sphere_spec();
   refused(sphere, "1,2,3", "--site-sphere '1,2,3': expected x,y,z,r with r > 0 (A)");
   refused(sphere, "1,2,3,0", "--site-sphere '1,2,3,0': expected x,y,z,r with r > 0 (A)");
   const options::Value spheres = options::parse(sphere, " 1, 2,3 ,4", "--site-sphere");

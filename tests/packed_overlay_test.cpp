@@ -78,7 +78,7 @@ class PackedOverlayTest : public ::testing::Test {
   void SetUp() override {
     reference_ = ligand("1THL");
     probe_ = ligand("4TMN");
-    if (!reference_ || !probe_) GTEST_SKIP() << test::shared_absent_message("thermolysin");
+    if (!reference_ || !probe_) SURFCOMP_DATA_ABSENT(test::shared_absent_message("thermolysin"));
   }
   std::optional<Ligand> reference_, probe_;
   const OverlayOptions options_;

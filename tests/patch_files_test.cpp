@@ -7,7 +7,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "surfcomp/report/patch_files.hpp"
 #include "test_data.hpp"
 
@@ -25,7 +25,7 @@ using ObjMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 harmonic::CriticalPointDescriptor a_described_point(mesh::Surface& surface) {
   surface = test::ellipsoid(6.0, 4.0, 3.0, 24);
-  mesh::assign_surface_properties(surface, nullptr);
+  molsurf::assign_surface_properties(surface, nullptr);
   harmonic::SurfaceDescriptors d = harmonic::describe_surface(surface);
   for (auto& cp : d.critical_points)
     if (cp.status == harmonic::PatchStatus::ok) return cp;

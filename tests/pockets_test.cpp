@@ -4,11 +4,11 @@
 // mmCIF (and gzipped mmCIF), written from the PDB files by gemmi here, reads as its PDB file:
 // the same atoms, charges, lipophilicities and surface; --min-plddt drops exactly the residues
 // whose mean B-factor is below it; broken or empty mmCIF files are refused naming the file.
-#include "surfcomp/matching/pockets.hpp"
+#include "surfcomp/molsurf/pockets.hpp"
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include "test_data.hpp"
 
@@ -87,14 +87,14 @@ Molecule block_with_cavity(double half, double cavity) {
 
 TEST(DetectPockets, FindsAClosedCavityAndMovesWithTheStructure) {
   const Molecule block = block_with_cavity(12.0, 6.0);
-  const std::vector<matching::Pocket> pockets = matching::detect_pockets(block);
+  const std::vector<molsurf::Pocket> pockets = molsurf::detect_pockets(block);
   ASSERT_FALSE(pockets.empty());
-  const matching::Pocket& cavity = pockets.front();
+  const molsurf::Pocket& cavity = pockets.front();
   EXPECT_EQ(cavity.rank, 1);
   EXPECT_LT(cavity.center.norm(), 1.0);
   // Rays from inside meet the wall but for the few that run along the lattice's channels.
   EXPECT_GT(cavity.buriedness, 0.9);
-  for (const matching::SiteSphere& s : cavity.spheres) {
+  for (const molsurf::SiteSphere& s : cavity.spheres) {
     EXPECT_LT(s.center.norm(), 6.0);  // inside the carved ball
   }
   // Its lining is the cavity's wall: atoms within a lattice step of the carved ball.
@@ -112,16 +112,16 @@ TEST(DetectPockets, FindsAClosedCavityAndMovesWithTheStructure) {
       Eigen::AngleAxisd(1.1, Eigen::Vector3d(1.0, 2.0, -0.5).normalized());
   Molecule moved = block;
   for (Atom& atom : moved.atoms) atom.position = motion * atom.position;
-  const std::vector<matching::Pocket> moved_pockets = matching::detect_pockets(moved);
+  const std::vector<molsurf::Pocket> moved_pockets = molsurf::detect_pockets(moved);
   ASSERT_FALSE(moved_pockets.empty());
-  const matching::Pocket& moved_cavity = moved_pockets.front();
+  const molsurf::Pocket& moved_cavity = moved_pockets.front();
   EXPECT_LT((moved_cavity.center - motion * cavity.center).norm(), 1e-6);
   EXPECT_EQ(moved_cavity.spheres.size(), cavity.spheres.size());
   EXPECT_EQ(moved_cavity.lining_atoms, cavity.lining_atoms);
   EXPECT_NEAR(moved_cavity.volume, cavity.volume, 0.05 * cavity.volume);  // an axis-aligned grid
 
   // The same input gives the same pockets.
-  const std::vector<matching::Pocket> again = matching::detect_pockets(block);
+  const std::vector<molsurf::Pocket> again = molsurf::detect_pockets(block);
   ASSERT_EQ(again.size(), pockets.size());
   for (std::size_t k = 0; k < pockets.size(); ++k) {
     EXPECT_EQ(again[k].center, pockets[k].center);
@@ -138,13 +138,13 @@ TEST(DetectPockets, ATwoLobeCavitySplitsIntoItsLobes) {
         std::min((p - Eigen::Vector3d(-6, 0, 0)).norm(), (p - Eigen::Vector3d(6, 0, 0)).norm());
     return lobe < 5.5 || (std::abs(p.x()) < 6.0 && std::hypot(p.y(), p.z()) < 4.5);
   });
-  const std::vector<matching::Pocket> whole = matching::detect_pockets(block);
+  const std::vector<molsurf::Pocket> whole = molsurf::detect_pockets(block);
   ASSERT_FALSE(whole.empty());
-  const matching::Pocket& cavity = whole.front();
+  const molsurf::Pocket& cavity = whole.front();
   EXPECT_EQ(cavity.cavity, 1);
-  const auto spans_both = [](const matching::Pocket& p) {
+  const auto spans_both = [](const molsurf::Pocket& p) {
     bool left = false, right = false;
-    for (const matching::SiteSphere& s : p.spheres) {
+    for (const molsurf::SiteSphere& s : p.spheres) {
       left = left || s.center.x() < -4.0;
       right = right || s.center.x() > 4.0;
     }
@@ -152,12 +152,12 @@ TEST(DetectPockets, ATwoLobeCavitySplitsIntoItsLobes) {
   };
   ASSERT_TRUE(spans_both(cavity));
 
-  matching::PocketOptions split;
+  molsurf::PocketOptions split;
   split.max_volume = 0.6 * cavity.volume;
-  const std::vector<matching::Pocket> parts = matching::detect_pockets(block, split);
-  std::vector<const matching::Pocket*> of_cavity;
+  const std::vector<molsurf::Pocket> parts = molsurf::detect_pockets(block, split);
+  std::vector<const molsurf::Pocket*> of_cavity;
   std::size_t spheres = 0;
-  for (const matching::Pocket& p : parts) {
+  for (const molsurf::Pocket& p : parts) {
     if (p.cavity != 1) continue;
     of_cavity.push_back(&p);
     spheres += p.spheres.size();
@@ -170,17 +170,17 @@ TEST(DetectPockets, ATwoLobeCavitySplitsIntoItsLobes) {
   EXPECT_EQ(of_cavity[0]->rank, 1);
   const auto in_lobe = [&](double side) {
     return std::any_of(of_cavity.begin(), of_cavity.end(),
-                       [side](const matching::Pocket* p) { return side * p->center.x() > 4.0; });
+                       [side](const molsurf::Pocket* p) { return side * p->center.x() > 4.0; });
   };
   EXPECT_TRUE(in_lobe(-1.0));
   EXPECT_TRUE(in_lobe(1.0));
   // Deterministic.
-  const std::vector<matching::Pocket> again = matching::detect_pockets(block, split);
+  const std::vector<molsurf::Pocket> again = molsurf::detect_pockets(block, split);
   ASSERT_EQ(again.size(), parts.size());
   for (std::size_t k = 0; k < parts.size(); ++k) EXPECT_EQ(again[k].center, parts[k].center);
-  matching::PocketOptions negative;
+  molsurf::PocketOptions negative;
   negative.max_volume = -1.0;
-  EXPECT_THROW(matching::detect_pockets(block, negative), OptionError);
+  EXPECT_THROW(molsurf::detect_pockets(block, negative), OptionError);
 }
 
 TEST(DetectPockets, ASheetOfAtomsHasNoPocket) {
@@ -192,24 +192,24 @@ TEST(DetectPockets, ASheetOfAtomsHasNoPocket) {
           Eigen::Vector3d(3.0 * i + 0.1 * ((i * j) % 3), 3.0 * j, 0.2 * ((i + 2 * j) % 3)), i + 1));
     }
   }
-  EXPECT_TRUE(matching::detect_pockets(sheet).empty());
+  EXPECT_TRUE(molsurf::detect_pockets(sheet).empty());
 }
 
 TEST(DetectPockets, RefusesStructuresWithoutProteinAtomsAndBadOptions) {
   Molecule ligand = block_with_cavity(6.0, 0.0);
   for (Atom& atom : ligand.atoms) atom.hetero = true;
   try {
-    matching::detect_pockets(ligand);
+    molsurf::detect_pockets(ligand);
     FAIL() << "a structure of HETATM records only was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("block.pdb: no protein atom"), std::string::npos)
         << e.what();
   }
-  matching::PocketOptions crossed;
+  molsurf::PocketOptions crossed;
   crossed.min_sphere_radius = 5.0;
   crossed.max_sphere_radius = 4.0;
-  EXPECT_THROW(matching::detect_pockets(block_with_cavity(9.0, 4.0), crossed), OptionError);
-  EXPECT_THROW(matching::pocket_site(block_with_cavity(12.0, 6.0), 50), InputError);
+  EXPECT_THROW(molsurf::detect_pockets(block_with_cavity(9.0, 4.0), crossed), OptionError);
+  EXPECT_THROW(molsurf::pocket_site(block_with_cavity(12.0, 6.0), 50), InputError);
 }
 
 TEST(DetectPockets, ThermolysinInhibitorSiteIsInTheTopThreeOf1THL) {
@@ -219,7 +219,7 @@ TEST(DetectPockets, ThermolysinInhibitorSiteIsInTheTopThreeOf1THL) {
   for (std::size_t i : select_ligand(structure, LigandSelector{"0DB", {}, {}})) {
     if (structure.atoms[i].element != "H") ligand.push_back(structure.atoms[i].position);
   }
-  const std::vector<matching::Pocket> pockets = matching::detect_pockets(structure);
+  const std::vector<molsurf::Pocket> pockets = molsurf::detect_pockets(structure);
   ASSERT_GE(pockets.size(), 3u);
   // The site is found by the first of the top three pockets whose alpha spheres hold at least
   // half the inhibitor's heavy atoms.
@@ -227,7 +227,7 @@ TEST(DetectPockets, ThermolysinInhibitorSiteIsInTheTopThreeOf1THL) {
   for (std::size_t k = 0; k < 3 && found == 0; ++k) {
     std::size_t inside = 0;
     for (const Eigen::Vector3d& atom : ligand) {
-      for (const matching::SiteSphere& s : pockets[k].spheres) {
+      for (const molsurf::SiteSphere& s : pockets[k].spheres) {
         if ((atom - s.center).norm() <= s.radius) {
           ++inside;
           break;
@@ -238,7 +238,7 @@ TEST(DetectPockets, ThermolysinInhibitorSiteIsInTheTopThreeOf1THL) {
   }
   ASSERT_GE(found, 1);
   // A pocket's site lies on the protein alone: no HETATM record (inhibitor, zinc, calcium).
-  const matching::BindingSite site = matching::pocket_site(structure, found);
+  const molsurf::BindingSite site = molsurf::pocket_site(structure, found);
   for (const Atom& atom : site.structure.atoms) EXPECT_FALSE(atom.hetero) << atom.residue_name;
   EXPECT_EQ(site.spheres.size(), pockets[static_cast<std::size_t>(found - 1)].spheres.size());
 }
@@ -301,13 +301,13 @@ TEST_F(Mmcif, ReadsAsItsPdbFileWithTheSameSurface) {
   expect_same_atoms(io::read_molecule(pdb, ligand), io::read_molecule(dir_ / "1THL.cif", ligand));
 
   // The same atoms give the same surface, vertex for vertex, and the same pockets.
-  const mesh::Surface a = mesh::build_molecular_surface(from_pdb);
-  const mesh::Surface b = mesh::build_molecular_surface(from_cif);
+  const mesh::Surface a = molsurf::build_molecular_surface(from_pdb);
+  const mesh::Surface b = molsurf::build_molecular_surface(from_cif);
   ASSERT_EQ(a.n_vertices(), b.n_vertices());
   EXPECT_EQ(a.positions(), b.positions());
   EXPECT_EQ(a.property(mesh::property::esp), b.property(mesh::property::esp));
-  const auto pockets_pdb = matching::detect_pockets(from_pdb);
-  const auto pockets_cif = matching::detect_pockets(from_cif);
+  const auto pockets_pdb = molsurf::detect_pockets(from_pdb);
+  const auto pockets_cif = molsurf::detect_pockets(from_cif);
   ASSERT_EQ(pockets_pdb.size(), pockets_cif.size());
   for (std::size_t k = 0; k < pockets_pdb.size(); ++k)
     EXPECT_EQ(pockets_pdb[k].center, pockets_cif[k].center);

@@ -1,7 +1,7 @@
 #include "analytic_meshes.hpp"
 
 #include "surfcomp/core/error.hpp"
-#include "surfcomp/mesh/potentials.hpp"
+#include "surfcomp/molsurf/potentials.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <limits>
 
-namespace surfcomp::mesh {
+namespace surfcomp::molsurf {
 namespace {
 
 Atom atom_at(const Eigen::Vector3d& position, double charge, double lipophilicity = 0.0) {
@@ -297,4 +297,4 @@ TEST(Potentials, ProteinSizedCaseAgreesWithASerialSum) {
 }
 
 }  // namespace
-}  // namespace surfcomp::mesh
+}  // namespace surfcomp::molsurf

@@ -1,4 +1,4 @@
-// Consensus ranking (seed 3.10, eq. 3-6 to 3-9) on synthetic scores whose consensus values are
+// Consensus ranking (method §6.5) on synthetic scores whose consensus values are
 // computed by hand in the comments.
 #include "surfcomp/matching/ranking.hpp"
 #include "surfcomp/core/error.hpp"

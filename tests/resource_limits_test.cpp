@@ -4,9 +4,9 @@
 #include "atom_balls.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
-#include "surfcomp/mesh/potentials.hpp"
-#include "surfcomp/mesh/ses.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
+#include "surfcomp/molsurf/potentials.hpp"
+#include "surfcomp/molsurf/ses.hpp"
 
 #include <gtest/gtest.h>
 
@@ -51,37 +51,37 @@ bool contains(const std::string& text, const std::string& part) {
 TEST(SesLimits, AHugeRadiusIsRefusedByTheGridLimit) {
   const Atoms atoms = three_atoms(1000.0);
   const std::string message =
-      refusal<InputError>([&] { mesh::build_ses(atoms.centers, atoms.radii); });
+      refusal<InputError>([&] { molsurf::build_ses(atoms.centers, atoms.radii); });
   EXPECT_TRUE(contains(message, "--max-grid-cells")) << message;
   EXPECT_TRUE(contains(message, "limit is 2e+08")) << message;
 }
 
 TEST(SesLimits, AFineVoxelIsRefusedByTheGridLimit) {
   const Atoms atoms = three_atoms();
-  mesh::SesOptions options;
+  molsurf::SesOptions options;
   options.voxel_size = 0.01;
   const std::string message =
-      refusal<InputError>([&] { mesh::build_ses(atoms.centers, atoms.radii, options); });
+      refusal<InputError>([&] { molsurf::build_ses(atoms.centers, atoms.radii, options); });
   EXPECT_TRUE(contains(message, "--max-grid-cells")) << message;
   // The automatic voxel needs a few thousand cells for three atoms.
   options.voxel_size = 0.0;
   options.max_grid_cells = 10.0;
-  EXPECT_THROW(mesh::build_ses(atoms.centers, atoms.radii, options), InputError);
+  EXPECT_THROW(molsurf::build_ses(atoms.centers, atoms.radii, options), InputError);
 }
 
 TEST(SesLimits, VoxelsAndRadiiBelowTheGridResolutionAreRefused) {
   const Atoms atoms = three_atoms();
-  mesh::SesOptions options;
+  molsurf::SesOptions options;
   options.voxel_size = 1e-6;
-  EXPECT_THROW(mesh::build_ses(atoms.centers, atoms.radii, options), OptionError);
+  EXPECT_THROW(molsurf::build_ses(atoms.centers, atoms.radii, options), OptionError);
   const Atoms tiny = three_atoms(1e-6);
   const std::string message =
-      refusal<InputError>([&] { mesh::build_ses(tiny.centers, tiny.radii); });
+      refusal<InputError>([&] { molsurf::build_ses(tiny.centers, tiny.radii); });
   EXPECT_TRUE(contains(message, "atom 3 has radius 1e-06 A")) << message;
   // The smallest accepted radius passes this check and meets the grid limit instead.
-  const Atoms smallest = three_atoms(2.0 * mesh::min_voxel_size);
+  const Atoms smallest = three_atoms(2.0 * molsurf::min_voxel_size);
   const std::string limit =
-      refusal<InputError>([&] { mesh::build_ses(smallest.centers, smallest.radii); });
+      refusal<InputError>([&] { molsurf::build_ses(smallest.centers, smallest.radii); });
   EXPECT_TRUE(contains(limit, "cells of 0.001 A")) << limit;
 }
 
@@ -89,28 +89,28 @@ TEST(SesLimits, CentresBeyondTheGridRangeAreRefused) {
   Atoms atoms = three_atoms();
   atoms.centers(1, 2) = 1e30;
   const std::string message =
-      refusal<InputError>([&] { mesh::build_ses(atoms.centers, atoms.radii); });
+      refusal<InputError>([&] { molsurf::build_ses(atoms.centers, atoms.radii); });
   EXPECT_TRUE(contains(message, "atom 2 lies 1e+30 A from the origin")) << message;
 }
 
 TEST(SesLimits, AtomAndVertexLimits) {
   const Atoms atoms = three_atoms();
-  mesh::SesOptions options;
+  molsurf::SesOptions options;
   options.max_atoms = 2;
   std::string message =
-      refusal<InputError>([&] { mesh::build_ses(atoms.centers, atoms.radii, options); });
+      refusal<InputError>([&] { molsurf::build_ses(atoms.centers, atoms.radii, options); });
   EXPECT_TRUE(contains(message, "3 atoms; the limit is 2 (raise it with --max-atoms")) << message;
   options.max_atoms = 3;
   options.max_vertices = 50;
-  message = refusal<InputError>([&] { mesh::build_sas(atoms.centers, atoms.radii, options); });
+  message = refusal<InputError>([&] { molsurf::build_sas(atoms.centers, atoms.radii, options); });
   EXPECT_TRUE(contains(message, "--max-vertices")) << message;
   // The estimate is the grid mesh's area times the density: the result stays near it.
-  options.max_vertices = mesh::SesOptions{}.max_vertices;
-  const mesh::Surface ses = mesh::build_ses(atoms.centers, atoms.radii, options);
+  options.max_vertices = molsurf::SesOptions{}.max_vertices;
+  const mesh::Surface ses = molsurf::build_ses(atoms.centers, atoms.radii, options);
   options.max_vertices = static_cast<std::int64_t>(1.5 * static_cast<double>(ses.n_vertices()));
-  EXPECT_NO_THROW(mesh::build_ses(atoms.centers, atoms.radii, options));
+  EXPECT_NO_THROW(molsurf::build_ses(atoms.centers, atoms.radii, options));
   options.max_vertices = 0;
-  EXPECT_THROW(mesh::build_ses(atoms.centers, atoms.radii, options), OptionError);
+  EXPECT_THROW(molsurf::build_ses(atoms.centers, atoms.radii, options), OptionError);
 }
 
 Molecule three_atom_molecule() {
@@ -132,7 +132,7 @@ Molecule three_atom_molecule() {
 }
 
 TEST(ImageLimits, TheImagesAreEstimatedBeforeTheyAreBuilt) {
-  const mesh::Surface surface = mesh::build_molecular_surface(three_atom_molecule());
+  const mesh::Surface surface = molsurf::build_molecular_surface(three_atom_molecule());
   harmonic::ImageOptions grid;
   EXPECT_DOUBLE_EQ(harmonic::image_bytes(grid, 10), 10.0 * 16 * 180 * 37);
   // Less than one image of the default grid: refused if the surface has a critical point.
@@ -158,15 +158,15 @@ TEST(PotentialProgress, ReportsUpToTheTotalAndLeavesTheValuesUnchanged) {
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
     points.row(i) << 0.01 * static_cast<double>(i), 3.0, -1.0;
   }
-  mesh::EspOptions esp;
-  const Eigen::VectorXd plain = mesh::electrostatic_potential(points, molecule, esp);
+  molsurf::EspOptions esp;
+  const Eigen::VectorXd plain = molsurf::electrostatic_potential(points, molecule, esp);
   std::vector<std::int64_t> reported;
   std::int64_t total = 0;
   esp.progress = [&](std::int64_t done, std::int64_t all) {
     reported.push_back(done);
     total = all;
   };
-  const Eigen::VectorXd watched = mesh::electrostatic_potential(points, molecule, esp);
+  const Eigen::VectorXd watched = molsurf::electrostatic_potential(points, molecule, esp);
   EXPECT_EQ(watched, plain);
   ASSERT_FALSE(reported.empty());
   EXPECT_EQ(total, points.rows());
@@ -174,11 +174,11 @@ TEST(PotentialProgress, ReportsUpToTheTotalAndLeavesTheValuesUnchanged) {
   EXPECT_LE(reported.size(), 101U);
   for (std::size_t k = 1; k < reported.size(); ++k) EXPECT_GT(reported[k], reported[k - 1]);
 
-  mesh::LpOptions lp;
+  molsurf::LpOptions lp;
   int calls = 0;
   lp.progress = [&](std::int64_t, std::int64_t) { ++calls; };
-  EXPECT_EQ(mesh::lipophilic_potential(points, molecule, lp),
-            mesh::lipophilic_potential(points, molecule));
+  EXPECT_EQ(molsurf::lipophilic_potential(points, molecule, lp),
+            molsurf::lipophilic_potential(points, molecule));
   EXPECT_GT(calls, 0);
 }
 

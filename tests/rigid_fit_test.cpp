@@ -1,4 +1,4 @@
-// Least-squares rigid fits (seed eq. 3-5): exact recovery of a known motion, the RMSD of a noisy
+// Least-squares rigid fits (method §6.3): exact recovery of a known motion, the RMSD of a noisy
 // fit against its analytic expectation, and proper rotations for mirror-image targets.
 #include "surfcomp/matching/rigid_fit.hpp"
 #include "surfcomp/core/error.hpp"

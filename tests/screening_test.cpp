@@ -19,7 +19,7 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/site.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/library_build.hpp"
 #include "surfcomp/screening/screen.hpp"
@@ -366,7 +366,7 @@ TEST(Library, FormatThreeIsStillReadAndScreened) {
     entry.info.source = record.source.string();
     entry.info.record = static_cast<std::uint32_t>(record.record);
     entry.molecule = record;
-    entry.sample = matching::sample_surface(mesh::build_molecular_surface(molecule),
+    entry.sample = matching::sample_surface(molsurf::build_molecular_surface(molecule),
                                             matching::OverlayOptions{}.spacing);
     entry.atoms = matching::sample_atoms(harmonic::surface_atoms(molecule));
     entries.push_back(std::move(entry));
@@ -386,7 +386,7 @@ TEST(Library, FormatThreeIsStillReadAndScreened) {
   options.top = 0;
   options.candidates = 1;
   const screening::ScreenQuery query = screening::make_screen_query(
-      harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options, {},
+      harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule), options, {},
       &molecule);
   expect_found_itself_first(screening::screen(query, library, options).hits, 1);
 }
@@ -439,7 +439,7 @@ TEST(Screen, QueryInTheLibraryFindsItselfFirstWithTheIdentity) {
   options.candidates = 2;
   options.top = 0;
   const screening::ScreenQuery query = screening::make_screen_query(
-      harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options, {},
+      harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule), options, {},
       &molecule);
   const std::vector<screening::Hit> hits = screening::screen(query, library, options).hits;
   ASSERT_EQ(hits.size(), 3u);
@@ -475,7 +475,7 @@ TEST(Screen, StageTwoRefinesEachMoleculesBestConformersAndNeverLowersTheirScores
   options.top = 0;
   options.candidates = 0;
   const screening::ScreenQuery query = screening::make_screen_query(
-      harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options, {},
+      harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule), options, {},
       &molecule);
   std::vector<screening::HitScore> fast;
   for (std::size_t e = 0; e < library.size(); ++e)
@@ -616,7 +616,7 @@ TEST(Screen, ANeutralQueryRanksByScoreAndShapeAndAnIonicOneByItsScore) {
     screening::ScreenOptions asked = options;
     asked.chemistry = chemistry;
     return screening::make_screen_query(
-        harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), asked, {},
+        harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule), asked, {},
         &molecule);
   };
   const Molecule neutral = io::read_record_molecule(records[0]);  // paracetamol
@@ -822,7 +822,7 @@ TEST(LibraryBuild, HsiFilesBecomeEntriesThatKeepTheirSurfaceAndFindThemselves) {
   for (const io::MoleculeRecord& record : records) {
     const Molecule molecule = io::read_record_molecule(record);
     described.push_back(
-        harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule));
+        harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule));
     harmonic::io::write_hsi(described.back(), dir / "hsi" / (record.name + ".hsi"));
   }
   dir.write("hsi/notes.txt", "not an input: a directory stands for its inputs only\n");
@@ -857,13 +857,13 @@ TEST(LibraryBuild, HsiFilesBecomeEntriesThatKeepTheirSurfaceAndFindThemselves) {
   screening::ScreenOptions options;
   options.top = 0;
   const screening::ScreenQuery query = screening::make_screen_query(
-      harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options, {},
+      harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule), options, {},
       &molecule);
   expect_found_itself_first(screening::screen(query, library, options).hits, 2);
 
   // A .hsi made from a mesh (no atoms, no ESP or LP) is skipped with the reason.
   mesh::Surface ball = test::icosphere(5.0, 12);
-  mesh::assign_surface_properties(ball, nullptr);
+  molsurf::assign_surface_properties(ball, nullptr);
   harmonic::io::write_hsi(harmonic::describe_surface(std::move(ball)), dir / "ball.hsi");
   const screening::LibraryBuildResult ball_build = screening::build_library(
       screening::read_library_inputs({dir / "ball.hsi"}), dir / "ball.sclib");
@@ -983,13 +983,13 @@ TEST(Screen, SiteQueryFindsItsOwnPocketFirstAndKindsDoNotMix) {
   const screening::Library library(path);
 
   // The query: 4TMN's site built as `screen --site-ligand 0PK` builds it.
-  const matching::BindingSite site =
-      matching::binding_site(io::read_molecule(pocket_4tmn), LigandSelector{"0PK", {}, {}});
+  const molsurf::BindingSite site =
+      molsurf::binding_site(io::read_molecule(pocket_4tmn), LigandSelector{"0PK", {}, {}});
   EXPECT_EQ(library.entry(1).site.size(), site.spheres.size());
   screening::ScreenOptions options;
   options.top = 0;
   const screening::ScreenQuery query = screening::make_screen_query(
-      matching::describe_site(mesh::build_molecular_surface(site.structure), site.structure,
+      matching::describe_site(molsurf::build_molecular_surface(site.structure), site.structure,
                               site.spheres),
       options, site.spheres, &site.structure);
   const std::vector<screening::Hit> hits = screening::screen(query, library, options).hits;
@@ -1020,7 +1020,7 @@ TEST(Screen, SiteQueryFindsItsOwnPocketFirstAndKindsDoNotMix) {
   const std::vector<io::MoleculeRecord> records = screening::read_library_inputs({sdf});
   const Molecule ligand = io::read_record_molecule(records[0]);
   const screening::ScreenQuery molecule_query = screening::make_screen_query(
-      harmonic::describe_surface(mesh::build_molecular_surface(ligand), ligand), options, {},
+      harmonic::describe_surface(molsurf::build_molecular_surface(ligand), ligand), options, {},
       &ligand);
   EXPECT_THROW(screening::screen(molecule_query, library, options), InputError);
   const fs::path molecules = dir / "three.sclib";
@@ -1333,8 +1333,8 @@ TEST(LibraryShards, ABoundedFusedRankingIsTheHeadOfTheWholeOne) {
   const auto query_of = [&](std::size_t e) {
     const Molecule molecule = io::read_record_molecule(library.entry(e).molecule);
     return screening::make_screen_query(
-        harmonic::describe_surface(mesh::build_molecular_surface(molecule), molecule), options, {},
-        &molecule);
+        harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule), options,
+        {}, &molecule);
   };
   const screening::ScreenQuery paracetamol = query_of(0), ibuprofen = query_of(3);
   // What stages 1 and 2 keep: the fused_molecules() best by fused score and each query's best.

@@ -1,14 +1,14 @@
-// The SES as points straight from the atoms (mesh::ses_points) and the screening sample built on
+// The SES as points straight from the atoms (molsurf::ses_points) and the screening sample built on
 // it (matching::sample_molecule): points on the analytic surfaces of one and two atoms, areas
 // against the analytic SES and the union of balls, rigid motions, cavities, bad input; and the
 // sample against the sample of the full surface on a real ligand.
-#include "surfcomp/mesh/ses_points.hpp"
+#include "surfcomp/molsurf/ses_points.hpp"
 #include "atom_balls.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/matching/overlay.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "test_data.hpp"
 
 #include <Eigen/Geometry>
@@ -20,8 +20,8 @@
 namespace surfcomp {
 namespace {
 
-using mesh::SesPointOptions;
-using mesh::SurfacePoints;
+using molsurf::SesPointOptions;
+using molsurf::SurfacePoints;
 using test::Atoms;
 using test::make_atoms;
 
@@ -29,7 +29,7 @@ TEST(SesPoints, OneAtomIsItsSphereWithRadialNormals) {
   const double r = 1.7;
   const Eigen::Vector3d c(0.3, -0.2, 0.1);
   const Atoms atom = make_atoms({c}, {r});
-  const SurfacePoints s = mesh::ses_points(atom.centers, atom.radii);
+  const SurfacePoints s = molsurf::ses_points(atom.centers, atom.radii);
   ASSERT_GT(s.size(), 100u);
   for (std::size_t i = 0; i < s.size(); ++i) {
     const Eigen::Vector3d p = s.points.col(static_cast<Eigen::Index>(i));
@@ -48,7 +48,7 @@ TEST(SesPoints, TwoAtomsMatchCapsPlusTorus) {
   const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 0.4, -0.7).normalized();
   const Eigen::Vector3d c1(0.1, 0.2, 0.3);
   const Atoms atoms = make_atoms({c1, c1 + d * axis}, {r1, r2});
-  const SurfacePoints s = mesh::ses_points(atoms.centers, atoms.radii);
+  const SurfacePoints s = molsurf::ses_points(atoms.centers, atoms.radii);
   EXPECT_NEAR(s.areas.sum(), exact.area, 0.015 * exact.area);
   // Every point lies on the SES: at least the probe's radius from every probe position that
   // touches both atoms (the torus's centre circle), and on an atom's sphere or on the torus.
@@ -68,7 +68,7 @@ TEST(SesPoints, ZeroProbeGivesTheUnionOfBalls) {
   const Atoms atoms = make_atoms({{0, 0, 0}, {1.4, 0.3, 0}, {2.1, 1.5, 0.4}}, {1.7, 1.5, 1.52});
   SesPointOptions options;
   options.probe_radius = 0.0;
-  const SurfacePoints s = mesh::ses_points(atoms.centers, atoms.radii, options);
+  const SurfacePoints s = molsurf::ses_points(atoms.centers, atoms.radii, options);
   const double union_area = test::union_area(atoms, 0.0, 20000);
   EXPECT_NEAR(s.areas.sum(), union_area, 0.02 * union_area);
 }
@@ -86,7 +86,7 @@ TEST(SesPoints, RigidMotionsKeepTheArea) {
                                   {-0.6, -1.0, 0.0},
                                   {3.1, 1.2, 0.0}},
                                  {1.7, 1.7, 1.7, 1.7, 1.7, 1.7, 1.52, 1.7, 1.2, 1.2});
-  const double reference = mesh::ses_points(atoms.centers, atoms.radii).areas.sum();
+  const double reference = molsurf::ses_points(atoms.centers, atoms.radii).areas.sum();
   std::mt19937 random(20261127);
   std::normal_distribution<double> normal(0.0, 1.0);
   for (int trial = 0; trial < 5; ++trial) {
@@ -96,7 +96,7 @@ TEST(SesPoints, RigidMotionsKeepTheArea) {
     const Eigen::Vector3d shift(normal(random) * 10, normal(random) * 10, normal(random) * 10);
     const Eigen::MatrixX3d moved =
         ((q.toRotationMatrix() * atoms.centers.transpose()).colwise() + shift).transpose();
-    const double area = mesh::ses_points(moved, atoms.radii).areas.sum();
+    const double area = molsurf::ses_points(moved, atoms.radii).areas.sum();
     EXPECT_NEAR(area, reference, 0.02 * reference) << "trial " << trial;
   }
 }
@@ -113,40 +113,40 @@ TEST(SesPoints, AnInternalCavityIsLeftOut) {
     centers.push_back(7.0 * Eigen::Vector3d(ring * std::cos(phi), ring * std::sin(phi), z));
   }
   const Atoms shell = make_atoms(centers, std::vector<double>(centers.size(), 1.8));
-  const SurfacePoints s = mesh::ses_points(shell.centers, shell.radii);
+  const SurfacePoints s = molsurf::ses_points(shell.centers, shell.radii);
   ASSERT_GT(s.size(), 0u);
   EXPECT_GT(s.points.colwise().norm().minCoeff(), 8.0);  // only the outside (7 + 1.8 A)
 }
 
 TEST(SesPoints, BadInputIsRefused) {
   const Atoms none = make_atoms({}, {});
-  EXPECT_THROW(mesh::ses_points(none.centers, none.radii), InputError);
+  EXPECT_THROW(molsurf::ses_points(none.centers, none.radii), InputError);
   const Atoms one = make_atoms({{0, 0, 0}}, {1.5});
   SesPointOptions options;
   options.probe_radius = -1.0;
-  EXPECT_THROW(mesh::ses_points(one.centers, one.radii, options), OptionError);
+  EXPECT_THROW(molsurf::ses_points(one.centers, one.radii, options), OptionError);
   options = {};
   options.grid_spacing = 0.0;
-  EXPECT_THROW(mesh::ses_points(one.centers, one.radii, options), OptionError);
+  EXPECT_THROW(molsurf::ses_points(one.centers, one.radii, options), OptionError);
   const Atoms far =
       make_atoms({{0, 0, 0}, {1e3, 0, 0}, {0, 1e3, 0}, {0, 0, 1e3}}, {1.5, 1.5, 1.5, 1.5});
   try {
-    mesh::ses_points(far.centers, far.radii);
+    molsurf::ses_points(far.centers, far.radii);
     ADD_FAILURE() << "no error for a grid over the limit";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--max-grid-cells"), std::string::npos) << e.what();
   }
   const Atoms nan = make_atoms({{0, 0, std::nan("")}}, {1.5});
-  EXPECT_THROW(mesh::ses_points(nan.centers, nan.radii), InputError);
+  EXPECT_THROW(molsurf::ses_points(nan.centers, nan.radii), InputError);
 }
 
 TEST(ScreeningSample, StandsInForTheFullSurfacesSample) {
   const auto path = test::shared_dataset("thermolysin/ligands-common-frame/1THL_ligand.sdf");
-  if (!path) GTEST_SKIP() << test::shared_absent_message("thermolysin");
+  if (!path) SURFCOMP_DATA_ABSENT(test::shared_absent_message("thermolysin"));
   const Molecule ligand = io::read_molecule(*path);
   const matching::OverlayOptions options;
   const matching::SurfaceSample full =
-      matching::sample_surface(mesh::build_molecular_surface(ligand), options.spacing);
+      matching::sample_surface(molsurf::build_molecular_surface(ligand), options.spacing);
   const matching::SurfaceSample fast = matching::sample_molecule(ligand, options.spacing);
   // About the same area (the re-entrant surface a little low: over the therm set's 76 molecules
   // the ratio is 0.965-0.987, median 0.976), about as many points, and the two samples overlay
@@ -160,7 +160,7 @@ TEST(ScreeningSample, StandsInForTheFullSurfacesSample) {
   EXPECT_GT(s.shape, 0.97);
   EXPECT_GT(s.chem, 0.97);
   // ESP and LP at the pooled points are the molecule's potentials there.
-  const Eigen::VectorXd esp = mesh::electrostatic_potential(fast.points.transpose(), ligand);
+  const Eigen::VectorXd esp = molsurf::electrostatic_potential(fast.points.transpose(), ligand);
   EXPECT_TRUE(esp.isApprox(fast.esp, 1e-12));
 }
 

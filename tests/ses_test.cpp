@@ -1,4 +1,4 @@
-#include "surfcomp/mesh/ses.hpp"
+#include "surfcomp/molsurf/ses.hpp"
 #include "atom_balls.hpp"
 #include "surface_components.hpp"
 #include "surfcomp/core/elements.hpp"
@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-namespace surfcomp::mesh {
+namespace surfcomp::molsurf {
 namespace {
 
 using test::Atoms;
@@ -67,12 +67,12 @@ Atoms cresol() {
   return make_atoms(centers, radii);
 }
 
-double vertex_density(const Surface& surface) {
-  return static_cast<double>(surface.n_vertices()) / measure_surface(surface).area;
+double vertex_density(const mesh::Surface& surface) {
+  return static_cast<double>(surface.n_vertices()) / mesh::measure_surface(surface).area;
 }
 
 /// The fraction of triangles whose normal points against their vertices' normals (folds).
-double folded_fraction(const Surface& surface) {
+double folded_fraction(const mesh::Surface& surface) {
   const Eigen::MatrixX3d p = surface.positions();
   const Eigen::MatrixX3i f = surface.faces();
   const Eigen::MatrixX3d n = surface.normals();
@@ -87,10 +87,10 @@ double folded_fraction(const Surface& surface) {
 
 TEST(EdgeLength, EquilateralMeshDensity) {
   // V / area = 2 / (sqrt(3) L^2) for an equilateral mesh with F = 2V.
-  const double length = edge_length_for_density(2.5);
+  const double length = mesh::edge_length_for_density(2.5);
   EXPECT_NEAR(2.0 / (std::sqrt(3.0) * length * length), 2.5, 1e-12);
   EXPECT_NEAR(length, 0.6796, 1e-4);
-  EXPECT_THROW(edge_length_for_density(0.0), OptionError);
+  EXPECT_THROW(mesh::edge_length_for_density(0.0), OptionError);
 }
 
 TEST(Ses, OneAtomIsItsVanDerWaalsSphere) {
@@ -99,9 +99,9 @@ TEST(Ses, OneAtomIsItsVanDerWaalsSphere) {
   const double volume = 4.0 / 3.0 * M_PI * r * r * r;
   const Atoms atom = make_atoms({Eigen::Vector3d(0.3, -0.2, 0.1)}, {r});
   const SesOptions options;
-  const Surface ses = build_ses(atom.centers, atom.radii, options);
-  ASSERT_NO_THROW(require_closed_manifold(ses));
-  const SurfaceMeasures m = measure_surface(ses);
+  const mesh::Surface ses = build_ses(atom.centers, atom.radii, options);
+  ASSERT_NO_THROW(mesh::require_closed_manifold(ses));
+  const mesh::SurfaceMeasures m = mesh::measure_surface(ses);
   std::cout << "one atom: " << ses.n_vertices() << " vertices, area " << m.area << " (exact "
             << area << "), volume " << m.volume << " (exact " << volume << "), density "
             << vertex_density(ses) << " per A^2\n";
@@ -126,13 +126,13 @@ TEST(Ses, WithoutChordCompensationVerticesLieOnTheSurface) {
   const Atoms atom = make_atoms({Eigen::Vector3d(0.3, -0.2, 0.1)}, {r});
   SesOptions options;
   options.compensate_chords = false;
-  const Surface ses = build_ses(atom.centers, atom.radii, options);
+  const mesh::Surface ses = build_ses(atom.centers, atom.radii, options);
   const Eigen::MatrixX3d p = ses.positions();
   for (Eigen::Index v = 0; v < p.rows(); ++v) {
     ASSERT_NEAR((p.row(v) - atom.centers.row(0)).norm(), r, 1e-12);
   }
   // The inscribed polyhedron loses area: about 3 % at 2.5 vertices per A^2 (see SesOptions).
-  const double ratio = measure_surface(ses).area / (4.0 * M_PI * r * r);
+  const double ratio = mesh::measure_surface(ses).area / (4.0 * M_PI * r * r);
   std::cout << "one atom, vertices on the sphere: area ratio " << ratio << "\n";
   EXPECT_GT(ratio, 0.95);
   EXPECT_LT(ratio, 0.985);
@@ -149,7 +149,8 @@ TEST(Ses, ZeroProbeGivesTheVanDerWaalsSurface) {
   SesOptions options;
   options.probe_radius = 0.0;
   const Atoms atoms = make_atoms({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(d, 0, 0)}, {r1, r2});
-  const SurfaceMeasures m = measure_surface(build_ses(atoms.centers, atoms.radii, options));
+  const mesh::SurfaceMeasures m =
+      mesh::measure_surface(build_ses(atoms.centers, atoms.radii, options));
   std::cout << "van der Waals surface of two atoms: area " << m.area << " (exact " << area << ")\n";
   EXPECT_NEAR(m.area, area, 0.02 * area);
   EXPECT_EQ(m.euler_characteristic, 2);
@@ -160,8 +161,8 @@ TEST(Sas, OneAtomIsTheProbeGrownSphere) {
   const SesOptions options;
   const double big = r + options.probe_radius;
   const Atoms atom = make_atoms({Eigen::Vector3d(0, 0, 0)}, {r});
-  const Surface sas = build_sas(atom.centers, atom.radii, options);
-  const SurfaceMeasures m = measure_surface(sas);
+  const mesh::Surface sas = build_sas(atom.centers, atom.radii, options);
+  const mesh::SurfaceMeasures m = mesh::measure_surface(sas);
   std::cout << "SAS one atom: area " << m.area << " (exact " << 4 * M_PI * big * big << ")\n";
   EXPECT_NEAR(m.area, 4.0 * M_PI * big * big, 0.01 * 4.0 * M_PI * big * big);
   EXPECT_EQ(m.euler_characteristic, 2);
@@ -176,7 +177,7 @@ TEST(Sas, TwoAtomsAreTwoSphereCaps) {
   const double area = 2.0 * M_PI * big1 * big1 * (1.0 + x1 / big1) +
                       2.0 * M_PI * big2 * big2 * (1.0 + (d - x1) / big2);
   const Atoms atoms = make_atoms({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, d, 0)}, {1.7, 1.5});
-  const SurfaceMeasures m = measure_surface(build_sas(atoms.centers, atoms.radii));
+  const mesh::SurfaceMeasures m = mesh::measure_surface(build_sas(atoms.centers, atoms.radii));
   std::cout << "SAS two atoms: area " << m.area << " (exact " << area << ")\n";
   EXPECT_NEAR(m.area, area, 0.01 * area);
   EXPECT_EQ(m.euler_characteristic, 2);
@@ -192,14 +193,14 @@ TEST(Sas, CreasedClusterMatchesShrakeRupley) {
                                  {1.7, 1.55, 1.52, 1.8, 1.2});
   const SesOptions options;
   const double exact = union_area(atoms, options.probe_radius, 400000);
-  const Surface sas = build_sas(atoms.centers, atoms.radii, options);
-  const SurfaceMeasures m = measure_surface(sas);
+  const mesh::Surface sas = build_sas(atoms.centers, atoms.radii, options);
+  const mesh::SurfaceMeasures m = mesh::measure_surface(sas);
   std::cout << "SAS creased cluster: area " << m.area << " (Shrake-Rupley " << exact << ", "
             << 100.0 * (m.area - exact) / exact << " %), " << sas.n_vertices()
             << " vertices, density " << vertex_density(sas) << "\n";
   EXPECT_NEAR(m.area, exact, 0.005 * exact);
   EXPECT_EQ(m.euler_characteristic, 2);
-  EXPECT_NO_THROW(require_closed_manifold(sas));
+  EXPECT_NO_THROW(mesh::require_closed_manifold(sas));
   EXPECT_NEAR(vertex_density(sas), options.vertex_density, 0.3 * options.vertex_density);
   // Every vertex lies on the SAS: on the outermost of the spheres through it, up to the chord
   // compensation (at most ~0.05 A outward for these radii).
@@ -225,14 +226,14 @@ void expect_two_atom_area(double r1, double r2, double d, double tolerance) {
   const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 0.4, -0.7).normalized();
   const Eigen::Vector3d c1(0.1, 0.2, 0.3);
   const Atoms atoms = make_atoms({c1, c1 + d * axis}, {r1, r2});
-  const Surface ses = build_ses(atoms.centers, atoms.radii, options);
-  const SurfaceMeasures m = measure_surface(ses);
+  const mesh::Surface ses = build_ses(atoms.centers, atoms.radii, options);
+  const mesh::SurfaceMeasures m = mesh::measure_surface(ses);
   std::cout << "two atoms r " << r1 << ", " << r2 << " at " << d << " A: area " << m.area
             << " (analytic " << exact.area << ", h " << exact.h << "), " << ses.n_vertices()
             << " vertices\n";
   EXPECT_NEAR(m.area, exact.area, tolerance * exact.area);
   EXPECT_EQ(m.euler_characteristic, 2);
-  EXPECT_NO_THROW(require_closed_manifold(ses));
+  EXPECT_NO_THROW(mesh::require_closed_manifold(ses));
 }
 
 TEST(Ses, TwoOverlappingAtomsMatchCapsPlusTorus) { expect_two_atom_area(1.7, 1.5, 2.5, 0.02); }
@@ -254,8 +255,8 @@ TEST(Ses, RigidMotionKeepsAreaAndVolume) {
   for (Eigen::Index i = 0; i < moved.centers.rows(); ++i) {
     moved.centers.row(i) = (q * atoms.centers.row(i).transpose() + t).transpose();
   }
-  const SurfaceMeasures a = measure_surface(build_ses(atoms.centers, atoms.radii));
-  const SurfaceMeasures b = measure_surface(build_ses(moved.centers, moved.radii));
+  const mesh::SurfaceMeasures a = mesh::measure_surface(build_ses(atoms.centers, atoms.radii));
+  const mesh::SurfaceMeasures b = mesh::measure_surface(build_ses(moved.centers, moved.radii));
   std::cout << "cresol (seed " << seed << "): area " << a.area << " -> " << b.area << ", volume "
             << a.volume << " -> " << b.volume << "\n";
   EXPECT_NEAR(b.area, a.area, 0.005 * a.area);
@@ -264,9 +265,9 @@ TEST(Ses, RigidMotionKeepsAreaAndVolume) {
 
 TEST(Ses, MultiAtomFragmentIsASphereTopologically) {
   const Atoms atoms = cresol();
-  const Surface ses = build_ses(atoms.centers, atoms.radii);
-  ASSERT_NO_THROW(require_closed_manifold(ses));
-  const SurfaceMeasures m = measure_surface(ses);
+  const mesh::Surface ses = build_ses(atoms.centers, atoms.radii);
+  ASSERT_NO_THROW(mesh::require_closed_manifold(ses));
+  const mesh::SurfaceMeasures m = mesh::measure_surface(ses);
   EXPECT_EQ(m.euler_characteristic, 2);
   EXPECT_GT(m.volume, 0.0);
   // The SES encloses the van der Waals volume: at least the largest atom's sphere.
@@ -275,9 +276,9 @@ TEST(Ses, MultiAtomFragmentIsASphereTopologically) {
   // The grid mesh itself (no remeshing) is closed and encloses the same volume.
   SesOptions raw;
   raw.remesh = false;
-  const Surface grid_mesh = build_ses(atoms.centers, atoms.radii, raw);
-  ASSERT_NO_THROW(require_closed_manifold(grid_mesh));
-  const SurfaceMeasures g = measure_surface(grid_mesh);
+  const mesh::Surface grid_mesh = build_ses(atoms.centers, atoms.radii, raw);
+  ASSERT_NO_THROW(mesh::require_closed_manifold(grid_mesh));
+  const mesh::SurfaceMeasures g = mesh::measure_surface(grid_mesh);
   EXPECT_EQ(g.euler_characteristic, 2);
   EXPECT_NEAR(g.volume, m.volume, 0.01 * m.volume);
   EXPECT_NEAR(g.area, m.area, 0.01 * m.area);
@@ -295,11 +296,11 @@ TEST(Ses, CavitiesAreDroppedOrKept) {
     centers.emplace_back(5.0 * s * std::cos(phi), 5.0 * s * std::sin(phi), 5.0 * z);
   }
   const Atoms shell = make_atoms(centers, std::vector<double>(n, 1.7));
-  const SurfaceMeasures outer = measure_surface(build_ses(shell.centers, shell.radii));
+  const mesh::SurfaceMeasures outer = mesh::measure_surface(build_ses(shell.centers, shell.radii));
   SesOptions keep;
   keep.keep_cavities = true;
-  const Surface both = build_ses(shell.centers, shell.radii, keep);
-  const SurfaceMeasures m = measure_surface(both);
+  const mesh::Surface both = build_ses(shell.centers, shell.radii, keep);
+  const mesh::SurfaceMeasures m = mesh::measure_surface(both);
   const double cavity = outer.volume - m.volume;
   // Probe centres fit where every atom is >= 1.7 + 1.4 = 3.1 A away: out to radius
   // 5 - 3.1 = 1.9 below an atom and a little further (< 0.1 A) in the gaps between atoms, so
@@ -313,7 +314,7 @@ TEST(Ses, CavitiesAreDroppedOrKept) {
   EXPECT_EQ(m.euler_characteristic, 4);  // two spheres
   EXPECT_GT(cavity, 0.99 * void_ball);
   EXPECT_LT(cavity, void_bound);
-  EXPECT_NO_THROW(require_closed_manifold(both));
+  EXPECT_NO_THROW(mesh::require_closed_manifold(both));
 }
 
 TEST(Ses, NeckThinnerThanAVoxelLeavesNoFragment) {
@@ -347,22 +348,22 @@ TEST(Ses, NeckThinnerThanAVoxelLeavesNoFragment) {
   EXPECT_LT(fragment->vertices, 9);
 
   // By default the fragment is dropped: two components, each enclosing its atom's ball.
-  const Surface ses = build_ses(atoms.centers, atoms.radii);
+  const mesh::Surface ses = build_ses(atoms.centers, atoms.radii);
   const auto kept = test::surface_components(ses);
   ASSERT_EQ(kept.size(), 2u);
   for (const auto& c : kept) {
     EXPECT_GT(c.volume, 0.99 * ball);
     EXPECT_LT(c.volume, 1.05 * ball);
   }
-  EXPECT_EQ(measure_surface(ses).euler_characteristic, 4);
-  EXPECT_NO_THROW(require_closed_manifold(ses));
+  EXPECT_EQ(mesh::measure_surface(ses).euler_characteristic, 4);
+  EXPECT_NO_THROW(mesh::require_closed_manifold(ses));
 }
 
 TEST(Ses, DeterministicAcrossRunsAndThreadCounts) {
   const Atoms atoms = cresol();
-  const Surface first = build_ses(atoms.centers, atoms.radii);
-  const Surface second = build_ses(atoms.centers, atoms.radii);
-  Surface serial;
+  const mesh::Surface first = build_ses(atoms.centers, atoms.radii);
+  const mesh::Surface second = build_ses(atoms.centers, atoms.radii);
+  mesh::Surface serial;
   {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     serial = build_ses(atoms.centers, atoms.radii);
@@ -372,8 +373,8 @@ TEST(Ses, DeterministicAcrossRunsAndThreadCounts) {
   EXPECT_TRUE(first.positions() == serial.positions());
   EXPECT_TRUE(first.faces() == serial.faces());
   // The SAS crease splits and collapses run after a parallel projection.
-  const Surface sas = build_sas(atoms.centers, atoms.radii);
-  Surface sas_serial;
+  const mesh::Surface sas = build_sas(atoms.centers, atoms.radii);
+  mesh::Surface sas_serial;
   {
     const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
     sas_serial = build_sas(atoms.centers, atoms.radii);
@@ -422,14 +423,14 @@ TEST(Ses, ThermolysinLigand) {
   const Atoms atoms = read_pdb_heavy_atoms(path);
   ASSERT_EQ(atoms.radii.size(), 35);
   const auto start = std::chrono::steady_clock::now();
-  const Surface ses = build_ses(atoms.centers, atoms.radii);
+  const mesh::Surface ses = build_ses(atoms.centers, atoms.radii);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const SurfaceMeasures m = measure_surface(ses);
+  const mesh::SurfaceMeasures m = mesh::measure_surface(ses);
   std::cout << "1THL ligand (" << atoms.radii.size() << " atoms): " << ses.n_vertices()
             << " vertices, area " << m.area << " A^2, volume " << m.volume << " A^3, chi "
             << m.euler_characteristic << ", " << seconds << " s\n";
-  EXPECT_NO_THROW(require_closed_manifold(ses));
+  EXPECT_NO_THROW(mesh::require_closed_manifold(ses));
   EXPECT_GT(m.volume, 0.0);
   EXPECT_NEAR(vertex_density(ses), 2.5, 0.3 * 2.5);
   EXPECT_EQ(folded_fraction(ses), 0.0);
@@ -443,14 +444,14 @@ TEST(Ses, AllThermolysinStructuresGiveClosedSurfaces) {
     SURFCOMP_SHARED_OR_SKIP(path, "thermolysin/" + name);
     const Atoms atoms = read_pdb_heavy_atoms(path);
     const auto start = std::chrono::steady_clock::now();
-    const Surface ses = build_ses(atoms.centers, atoms.radii);
+    const mesh::Surface ses = build_ses(atoms.centers, atoms.radii);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const SurfaceMeasures m = measure_surface(ses);
+    const mesh::SurfaceMeasures m = mesh::measure_surface(ses);
     std::cout << name << " (" << atoms.radii.size() << " atoms): " << ses.n_vertices()
               << " vertices, area " << m.area << ", chi " << m.euler_characteristic << ", "
               << seconds << " s\n";
-    EXPECT_NO_THROW(require_closed_manifold(ses)) << name;
+    EXPECT_NO_THROW(mesh::require_closed_manifold(ses)) << name;
     EXPECT_GT(m.volume, 0.0) << name;
     EXPECT_NEAR(vertex_density(ses), 2.5, 0.3 * 2.5) << name;
     EXPECT_LT(folded_fraction(ses), 1e-3) << name;
@@ -461,14 +462,14 @@ TEST(Ses, Protein4we2) {
   SURFCOMP_FETCHED_OR_SKIP(path, "edtsurf/4we2.pdb");
   const Atoms atoms = read_pdb_heavy_atoms(path);
   const auto start = std::chrono::steady_clock::now();
-  const Surface ses = build_ses(atoms.centers, atoms.radii);
+  const mesh::Surface ses = build_ses(atoms.centers, atoms.radii);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const SurfaceMeasures m = measure_surface(ses);
+  const mesh::SurfaceMeasures m = mesh::measure_surface(ses);
   std::cout << "4we2 (" << atoms.radii.size() << " atoms): " << ses.n_vertices()
             << " vertices, area " << m.area << " A^2, volume " << m.volume << " A^3, chi "
             << m.euler_characteristic << ", " << seconds << " s\n";
-  EXPECT_NO_THROW(require_closed_manifold(ses));
+  EXPECT_NO_THROW(mesh::require_closed_manifold(ses));
   EXPECT_GT(m.volume, 0.0);
   EXPECT_NEAR(vertex_density(ses), 2.5, 0.3 * 2.5);
   std::cout << "4we2 folded triangles: " << folded_fraction(ses) << "\n";
@@ -476,4 +477,4 @@ TEST(Ses, Protein4we2) {
 }
 
 }  // namespace
-}  // namespace surfcomp::mesh
+}  // namespace surfcomp::molsurf

@@ -1,4 +1,4 @@
-// Harmonic shape images (METHOD section 4): resampling on the polar grid (exact for linear data,
+// Harmonic shape images (method §4): resampling on the polar grid (exact for linear data,
 // masks for points outside the patch and in holes), grid points back to the surface, and the
 // comparison over rotations (angle convention, self-comparison, unrelated fields, the FFT
 // comparison against a direct evaluation, the area weighting).

@@ -8,7 +8,7 @@
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/rigid_fit.hpp"
 #include "surfcomp/matching/site.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include "test_data.hpp"
 
@@ -30,7 +30,7 @@ constexpr double kPatchRadius = 8.0;  // A, harmonic patches of the site's criti
 
 /// A protein's binding site around its ligand (spheres of the default 4 A) and its description.
 struct Site {
-  matching::BindingSite site;
+  molsurf::BindingSite site;
   harmonic::SurfaceDescriptors descriptors;  ///< critical points outside the site skipped
   std::vector<bool> in_site;                 ///< one flag per critical point
 };
@@ -40,8 +40,8 @@ Site build_site(const std::filesystem::path& pdb, const std::string& ligand_name
   Site out;
   // The whole structure is read, so the ligand's charges are not typed (Gasteiger cannot type
   // 4TMN's phosphonamidate), and only its positions are needed.
-  out.site = matching::binding_site(io::read_molecule(pdb), LigandSelector{ligand_name, {}, {}});
-  mesh::Surface surface = mesh::build_molecular_surface(out.site.structure);
+  out.site = molsurf::binding_site(io::read_molecule(pdb), LigandSelector{ligand_name, {}, {}});
+  mesh::Surface surface = molsurf::build_molecular_surface(out.site.structure);
   out.descriptors =
       matching::describe_site(std::move(surface), out.site.structure, out.site.spheres, options);
   out.in_site = matching::critical_points_in_site(out.descriptors, out.site.spheres);
@@ -118,7 +118,7 @@ TEST(SiteMatch, ThermolysinSitesAlignWithinHalfAnAngstrom) {
                                                &ref.in_site, &probe.in_site);
   ASSERT_FALSE(result.alignments.empty());
 
-  const double site_radius = matching::BindingSiteOptions{}.sphere_radius;
+  const double site_radius = molsurf::BindingSiteOptions{}.sphere_radius;
   const auto probe_cas = site_c_alphas(probe.site.structure, probe.site.ligand, site_radius);
   const auto ref_cas =
       site_c_alphas(ref.site.structure, ref.site.ligand, 1e9);  // all residues, by number

@@ -10,7 +10,7 @@
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include "test_data.hpp"
 
@@ -173,9 +173,9 @@ TEST(SelectLigand, ReadMoleculeLigandOptionTakesTheSameCopy) {
 
 TEST(BindingSite, SpheresAreTheLigandCopysAtomsWithTheRadius) {
   const Molecule m = structure_with_copies();
-  matching::BindingSiteOptions options;
+  molsurf::BindingSiteOptions options;
   options.sphere_radius = 3.5;
-  const auto site = matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options);
+  const auto site = molsurf::binding_site(m, LigandSelector{"LIG", {}, {}}, options);
   const std::vector<std::size_t> copy = {10, 11, 12};
   ASSERT_EQ(site.spheres.size(), copy.size());
   ASSERT_EQ(site.ligand.atoms.size(), copy.size());
@@ -189,7 +189,7 @@ TEST(BindingSite, SpheresAreTheLigandCopysAtomsWithTheRadius) {
 
 TEST(BindingSite, TheStructureLosesExactlyTheCopyAndTheWater) {
   const Molecule m = structure_with_copies();
-  const auto site = matching::binding_site(m, LigandSelector{"LIG", {}, {}});
+  const auto site = molsurf::binding_site(m, LigandSelector{"LIG", {}, {}});
   // Kept: the protein (with its LIG-named ATOM record), the copies B 5 and A 9, the ion; in order.
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < m.atoms.size(); ++i) {
@@ -204,7 +204,7 @@ TEST(BindingSite, TheStructureLosesExactlyTheCopyAndTheWater) {
   }
   EXPECT_EQ(site.structure.source, m.source);
   // A copy chosen by chain and number leaves the others.
-  const auto b5 = matching::binding_site(m, LigandSelector{"LIG", std::string("B"), 5});
+  const auto b5 = molsurf::binding_site(m, LigandSelector{"LIG", std::string("B"), 5});
   EXPECT_EQ(b5.structure.atoms.size(), m.atoms.size() - 3 - 2);
   for (const Atom& a : b5.structure.atoms)
     EXPECT_FALSE(a.residue_name == "LIG" && a.chain == "B") << a.residue_number;
@@ -220,16 +220,16 @@ TEST(BindingSite, ChainPruningKeepsOnlyTheChainsInContact) {
   m.atoms.push_back(atom("C", {0, 0, -5.0}, "GLY", 1, "C", false));   // 5.0 A: in contact
   m.atoms.push_back(atom("O", {0, 0, 4.0}, "HOH", 1, "D", true));     // water: never counts
   m.atoms.push_back(atom("C", {0, 0, 8.0}, "GLY", 1, "D", false));    // 8 A: out
-  matching::BindingSiteOptions options;
-  const auto whole = matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options);
+  molsurf::BindingSiteOptions options;
+  const auto whole = molsurf::binding_site(m, LigandSelector{"LIG", {}, {}}, options);
   EXPECT_EQ(whole.structure.atoms.size(), 5u);  // every chain, water and ligand out
   options.chain_contact_radius = 5.0;
-  const auto pruned = matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options);
+  const auto pruned = molsurf::binding_site(m, LigandSelector{"LIG", {}, {}}, options);
   std::vector<std::string> chains;
   for (const Atom& a : pruned.structure.atoms) chains.push_back(a.chain);
   EXPECT_EQ(chains, (std::vector<std::string>{"A", "A", "C"}));
   // From spheres: the same rule about their centres.
-  const auto spheres = matching::binding_site(m, pruned.spheres, options);
+  const auto spheres = molsurf::binding_site(m, pruned.spheres, options);
   EXPECT_EQ(spheres.structure.atoms.size(), 6u);  // the ligand is no copy here: it stays
   EXPECT_TRUE(spheres.ligand.atoms.empty());
   chains.clear();
@@ -239,22 +239,22 @@ TEST(BindingSite, ChainPruningKeepsOnlyTheChainsInContact) {
 
 TEST(BindingSite, BadSpheresAndOptionsAreRejected) {
   const Molecule m = structure_with_copies();
-  EXPECT_THROW(matching::binding_site(m, std::vector<matching::SiteSphere>{}), InputError);
-  EXPECT_THROW(matching::binding_site(m, {matching::SiteSphere{{0, 0, 0}, 0.0}}), InputError);
-  EXPECT_THROW(matching::binding_site(m, {matching::SiteSphere{{0, std::nan(""), 0}, 1.0}}),
+  EXPECT_THROW(molsurf::binding_site(m, std::vector<molsurf::SiteSphere>{}), InputError);
+  EXPECT_THROW(molsurf::binding_site(m, {molsurf::SiteSphere{{0, 0, 0}, 0.0}}), InputError);
+  EXPECT_THROW(molsurf::binding_site(m, {molsurf::SiteSphere{{0, std::nan(""), 0}, 1.0}}),
                InputError);
-  matching::BindingSiteOptions options;
+  molsurf::BindingSiteOptions options;
   options.sphere_radius = 0.0;
-  EXPECT_THROW(matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
+  EXPECT_THROW(molsurf::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
   options = {};
   options.chain_contact_radius = -1.0;
-  EXPECT_THROW(matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
+  EXPECT_THROW(molsurf::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
   options = {};
   for (double margin : {-1.0, std::nan(""), HUGE_VAL}) {
     options.surface_margin = margin;
-    EXPECT_THROW(matching::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
+    EXPECT_THROW(molsurf::binding_site(m, LigandSelector{"LIG", {}, {}}, options), OptionError);
   }
-  EXPECT_THROW(matching::binding_site(m, LigandSelector{"ATP", {}, {}}), InputError);
+  EXPECT_THROW(molsurf::binding_site(m, LigandSelector{"ATP", {}, {}}), InputError);
 }
 
 TEST(BindingSite, TheMaskFlagsTheCriticalPointsInsideASphere) {
@@ -266,7 +266,7 @@ TEST(BindingSite, TheMaskFlagsTheCriticalPointsInsideASphere) {
     c.point.position = p;
     d.critical_points.push_back(c);
   }
-  const std::vector<matching::SiteSphere> spheres = {{{0, 0, 0}, 2.0}, {{10, 0, 0}, 1.0}};
+  const std::vector<molsurf::SiteSphere> spheres = {{{0, 0, 0}, 2.0}, {{10, 0, 0}, 1.0}};
   EXPECT_EQ(matching::critical_points_in_site(d, spheres),
             (std::vector<bool>{true, true, false, true, false}));
   EXPECT_EQ(matching::critical_points_in_site(d, {}), std::vector<bool>(5, false));
@@ -277,10 +277,10 @@ TEST(BindingSite, TheMaskFlagsTheCriticalPointsInsideASphere) {
 TEST(BindingSite, DescribeSiteImagesOnlyTheSiteCriticalPoints) {
   SURFCOMP_SHARED_OR_SKIP(file, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
   const Molecule molecule = io::read_molecule(file);
-  const mesh::Surface surface = mesh::build_molecular_surface(molecule);
+  const mesh::Surface surface = molsurf::build_molecular_surface(molecule);
   const auto whole = harmonic::describe_surface(surface, molecule);
   ASSERT_GT(whole.critical_points.size(), 4u);
-  const std::vector<matching::SiteSphere> spheres = {
+  const std::vector<molsurf::SiteSphere> spheres = {
       {whole.critical_points.front().point.position, 4.0}};
   const auto site = matching::describe_site(surface, molecule, spheres);
   const std::vector<bool> in_site = matching::critical_points_in_site(site, spheres);
@@ -311,18 +311,17 @@ TEST(BindingSite, DescribeSiteImagesOnlyTheSiteCriticalPoints) {
 TEST(SiteSurface, IsTheWholeSurfaceWhereTheSiteLooks) {
   SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/4TMN.pdb");
   const Molecule structure = io::read_molecule(pdb);
-  matching::BindingSiteOptions whole_options;
+  molsurf::BindingSiteOptions whole_options;
   whole_options.surface_margin = 0.0;
-  const matching::BindingSite whole_site =
-      matching::binding_site(structure, LigandSelector{"0PK", {}, {}}, whole_options);
-  const matching::BindingSite site =
-      matching::binding_site(structure, LigandSelector{"0PK", {}, {}});
+  const molsurf::BindingSite whole_site =
+      molsurf::binding_site(structure, LigandSelector{"0PK", {}, {}}, whole_options);
+  const molsurf::BindingSite site = molsurf::binding_site(structure, LigandSelector{"0PK", {}, {}});
   ASSERT_EQ(site.surface_margin, 16.0);
   harmonic::DescriptorOptions options;
   options.patch.radius = 8.0;
-  const auto whole = matching::describe_site(matching::build_site_surface(whole_site),
+  const auto whole = matching::describe_site(molsurf::build_site_surface(whole_site),
                                              whole_site.structure, whole_site.spheres, options);
-  const auto local = matching::describe_site(matching::build_site_surface(site), site.structure,
+  const auto local = matching::describe_site(molsurf::build_site_surface(site), site.structure,
                                              site.spheres, options);
   EXPECT_LT(local.surface.n_vertices(), 4 * whole.surface.n_vertices() / 5);
   EXPECT_EQ(local.surface.source(), pdb.string());
@@ -381,10 +380,9 @@ TEST(SiteSurface, IsTheWholeSurfaceWhereTheSiteLooks) {
 TEST(SiteNeighbourhood, GivesTheSiteTheStructuresSurfaceAndPotentials) {
   SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/4TMN.pdb");
   const Molecule structure = io::read_molecule(pdb);
-  const matching::BindingSite site =
-      matching::binding_site(structure, LigandSelector{"0PK", {}, {}});
-  const Molecule kept = matching::site_neighbourhood(
-      site.structure, site.spheres, site.surface_margin + matching::neighbourhood_beyond_margin);
+  const molsurf::BindingSite site = molsurf::binding_site(structure, LigandSelector{"0PK", {}, {}});
+  const Molecule kept = molsurf::site_neighbourhood(
+      site.structure, site.spheres, site.surface_margin + molsurf::neighbourhood_beyond_margin);
   EXPECT_LT(kept.atoms.size(), site.structure.atoms.size());
   for (const Atom& a : site.structure.atoms) {
     const bool near = std::any_of(site.spheres.begin(), site.spheres.end(), [&](const auto& s) {
@@ -405,14 +403,14 @@ TEST(SiteNeighbourhood, GivesTheSiteTheStructuresSurfaceAndPotentials) {
   record.source = pdb.string();
   record.format = io::RecordFormat::structure;
   record.text = text;
-  matching::BindingSite stored = site;
+  molsurf::BindingSite stored = site;
   stored.structure = io::read_record_molecule(record);
   ASSERT_EQ(stored.structure.atoms.size(), kept.atoms.size());
   for (std::size_t i = 0; i < kept.atoms.size(); ++i)  // the same charges as the whole file gave
     ASSERT_EQ(stored.structure.atoms[i].charge, kept.atoms[i].charge) << i;
 
-  const mesh::Surface whole = matching::build_site_surface(site);
-  const mesh::Surface local = matching::build_site_surface(stored);
+  const mesh::Surface whole = molsurf::build_site_surface(site);
+  const mesh::Surface local = molsurf::build_site_surface(stored);
   ASSERT_EQ(local.n_vertices(), whole.n_vertices());
   EXPECT_EQ(local.positions(), whole.positions());
   const Eigen::VectorXd esp_gap =
@@ -437,12 +435,12 @@ TEST(SiteNeighbourhood, GivesTheSiteTheStructuresSurfaceAndPotentials) {
 // A site whose spheres reach no atom within the margin is refused, naming the file.
 TEST(SiteSurface, ASiteFarFromEveryAtomIsRefused) {
   Molecule m = structure_with_copies();
-  matching::BindingSiteOptions options;
+  molsurf::BindingSiteOptions options;
   options.surface_margin = 2.0;
-  const matching::BindingSite site =
-      matching::binding_site(m, {{Eigen::Vector3d(500, 500, 500), 4.0}}, options);
+  const molsurf::BindingSite site =
+      molsurf::binding_site(m, {{Eigen::Vector3d(500, 500, 500), 4.0}}, options);
   try {
-    (void)matching::build_site_surface(site);
+    (void)molsurf::build_site_surface(site);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("copies.pdb: no atom lies within 2 A"), std::string::npos)
@@ -453,10 +451,10 @@ TEST(SiteSurface, ASiteFarFromEveryAtomIsRefused) {
 // The margin a site's surface is built with grows with the patch radius it is described with,
 // also when a stored description on the other side fixes that radius.
 TEST(SiteSurface, TheMarginGrowsWithThePatchRadiusTheOtherSideFixes) {
-  EXPECT_EQ(matching::site_surface_margin(16.0, 5.0), 16.0);
-  EXPECT_EQ(matching::site_surface_margin(16.0, 12.0), 20.0);
-  EXPECT_EQ(matching::site_surface_margin(5.0, 5.0), 13.0);
-  EXPECT_EQ(matching::site_surface_margin(0.0, 12.0), 0.0);
+  EXPECT_EQ(molsurf::site_surface_margin(16.0, 5.0), 16.0);
+  EXPECT_EQ(molsurf::site_surface_margin(16.0, 12.0), 20.0);
+  EXPECT_EQ(molsurf::site_surface_margin(5.0, 5.0), 13.0);
+  EXPECT_EQ(molsurf::site_surface_margin(0.0, 12.0), 0.0);
   SURFCOMP_SHARED_OR_SKIP(pdb, "thermolysin/4TMN.pdb");
   matching::MatchInput site;
   site.molecule = io::read_molecule(pdb);
@@ -474,10 +472,10 @@ TEST(SiteSurface, TheMarginGrowsWithThePatchRadiusTheOtherSideFixes) {
   EXPECT_EQ(compared.probe.descriptors.options.patch.radius, 12.0);
   EXPECT_EQ(compared.probe.descriptors.surface.n_vertices(),
             stored.descriptors.surface.n_vertices());
-  const matching::BindingSite narrow =
-      matching::binding_site(*site.molecule, LigandSelector{"0PK", {}, {}});  // margin 16
+  const molsurf::BindingSite narrow =
+      molsurf::binding_site(*site.molecule, LigandSelector{"0PK", {}, {}});  // margin 16
   EXPECT_GT(stored.descriptors.surface.n_vertices(),
-            matching::build_site_surface(narrow).n_vertices());
+            molsurf::build_site_surface(narrow).n_vertices());
 }
 
 // Lining composition by hand: the residues with a heavy atom within a sphere's radius + 1 A,
@@ -493,7 +491,7 @@ TEST(LiningComposition, CountsEachLiningResidueOnceByClass) {
                      atom("H", {0, 0, 1}, "ALA", 4, "A", false),    // a hydrogen only
                      atom("C", {0, 0, -1}, "HEM", 5, "A", true),    // not an amino acid
                      atom("C", {0, -1, 0}, "MSE", 6, "A", false)};  // not a standard one
-  const std::vector<matching::SiteSphere> spheres{{Eigen::Vector3d::Zero(), 4.0}};
+  const std::vector<molsurf::SiteSphere> spheres{{Eigen::Vector3d::Zero(), 4.0}};
   const matching::LiningComposition lining =
       matching::lining_composition(structure, spheres).value();
   matching::LiningComposition expected{};

@@ -3,9 +3,9 @@
 #include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/mesh/curvature.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
-#include "surfcomp/mesh/ses.hpp"
 #include "surfcomp/mesh/topology.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
+#include "surfcomp/molsurf/ses.hpp"
 
 #include "surface_components.hpp"
 #include "test_data.hpp"
@@ -79,14 +79,14 @@ void atoms_as_arrays(const Molecule& molecule, Eigen::MatrixX3d& centers, Eigen:
 }
 
 void expect_sas_matches_freesasa(const std::filesystem::path& file, const std::string& tag,
-                                 const mesh::SesOptions& options = {}) {
+                                 const molsurf::SesOptions& options = {}) {
   const Molecule molecule = io::read_molecule(file);
   const auto reference = freesasa_area(molecule, tag);
   if (!reference) GTEST_SKIP() << "freesasa is not installed (scripts/install-deps.sh installs it)";
   Eigen::MatrixX3d centers;
   Eigen::VectorXd radii;
   atoms_as_arrays(molecule, centers, radii);
-  const mesh::Surface sas = mesh::build_sas(centers, radii, options);
+  const mesh::Surface sas = molsurf::build_sas(centers, radii, options);
   const double area = mesh::measure_surface(sas).area;
   std::printf(
       "[ SAS      ] %s: %zu atoms, voxel %s, ours %.2f A^2, FreeSASA Lee-Richards %.2f A^2 "
@@ -107,7 +107,7 @@ TEST(SurfaceBuild, SasOf1thlLigandMatchesFreeSasa) {
 // resolves enough of them for 1 %.
 TEST(SurfaceBuild, SasOf4we2MatchesFreeSasa) {
   SURFCOMP_FETCHED_OR_SKIP(file, "edtsurf/4we2.pdb");
-  mesh::SesOptions fine;
+  molsurf::SesOptions fine;
   fine.voxel_size = 0.34;
   expect_sas_matches_freesasa(file, "4we2", fine);
 }
@@ -116,7 +116,7 @@ TEST(SurfaceBuild, LigandSurfacesAreClosedSpheresTopologically) {
   for (const char* id : {"1THL", "4TMN", "1TLP", "1TMN", "3TMN"}) {
     SURFCOMP_SHARED_OR_SKIP(file,
                             std::string("thermolysin/ligands-common-frame/") + id + "_ligand.sdf");
-    const mesh::Surface surface = mesh::build_molecular_surface(io::read_molecule(file));
+    const mesh::Surface surface = molsurf::build_molecular_surface(io::read_molecule(file));
     const mesh::SurfaceMeasures m = mesh::measure_surface(surface);
     EXPECT_EQ(m.euler_characteristic, 2) << id;
     EXPECT_EQ(m.boundary_edges, 0u) << id;
@@ -159,15 +159,15 @@ TEST(SurfaceBuild, KahramanSite1nazPocketHasNoFragment) {
   Eigen::MatrixX3d centers;
   Eigen::VectorXd radii;
   atoms_as_arrays(pocket, centers, radii);
-  mesh::SesOptions keep_all;
+  molsurf::SesOptions keep_all;
   keep_all.min_component_volume_fraction = 0.0;
   // With every component kept, the grid mesh may cut a neck thinner than a voxel off as a
   // fragment (the mesher's face rule); the default component filter drops exactly those.
-  const auto all = test::surface_components(mesh::build_ses(centers, radii, keep_all));
+  const auto all = test::surface_components(molsurf::build_ses(centers, radii, keep_all));
   const auto is_fragment = [&](const test::SurfaceComponent& c) { return c.volume < 0.5 * ball; };
   const auto fragments = std::count_if(all.begin(), all.end(), is_fragment);
 
-  const mesh::Surface surface = mesh::build_molecular_surface(pocket);
+  const mesh::Surface surface = molsurf::build_molecular_surface(pocket);
   const auto components = test::surface_components(surface);
   std::printf("[ 1NAZ     ] %zu pocket atoms: %zu vertices in %zu components\n",
               pocket.atoms.size(), surface.n_vertices(), components.size());
@@ -189,7 +189,7 @@ TEST(SurfaceBuild, OneAtomSurfaceHasSphereCurvatureAndCapShapeIndex) {
   atom.charge = 1.0;
   atom.lipophilicity = 1.0;
   molecule.atoms.push_back(atom);
-  const mesh::Surface surface = mesh::build_molecular_surface(molecule);
+  const mesh::Surface surface = molsurf::build_molecular_surface(molecule);
   const Eigen::VectorXd cc1 = surface.property(mesh::property::cc1);
   const Eigen::VectorXd cc2 = surface.property(mesh::property::cc2);
   const Eigen::VectorXd si = surface.property(mesh::property::shape_index);
@@ -291,8 +291,8 @@ TEST(SurfaceBuild, RigidMotionLeavesMeasuresAndPropertiesUnchanged) {
   Molecule moved = molecule;
   transform_molecule(moved, rotation, translation);
 
-  const mesh::Surface a = mesh::build_molecular_surface(molecule);
-  const mesh::Surface b = mesh::build_molecular_surface(moved);
+  const mesh::Surface a = molsurf::build_molecular_surface(molecule);
+  const mesh::Surface b = molsurf::build_molecular_surface(moved);
   const auto ma = mesh::measure_surface(a);
   const auto mb = mesh::measure_surface(b);
   std::printf("[ motion   ] area %.2f -> %.2f A^2, volume %.2f -> %.2f A^3\n", ma.area, mb.area,

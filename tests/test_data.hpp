@@ -1,4 +1,5 @@
-// GoogleTest's side of the test data: skipping a test whose data set is absent (the paths are
+// GoogleTest's side of the test data: ending a test whose data set is absent (a skip, or a
+// failure under SURFCOMP_REQUIRE_DATA=1) (the paths are
 // in support/test_support.hpp, shared with the benchmarks) and a temporary directory per test.
 #pragma once
 
@@ -47,14 +48,26 @@ class TempDir {
 
 }  // namespace surfcomp::test
 
-/// Binds `var` to the shared data set <relative> or skips the test, saying which file is missing.
-#define SURFCOMP_SHARED_OR_SKIP(var, relative)                                       \
-  const auto var##_opt = ::surfcomp::test::shared_dataset(relative);                 \
-  if (!var##_opt) GTEST_SKIP() << ::surfcomp::test::shared_absent_message(relative); \
+/// Ends the test for data it lacks, saying why: a skip, or a failure under
+/// SURFCOMP_REQUIRE_DATA=1.
+#define SURFCOMP_DATA_ABSENT(message)                                        \
+  do {                                                                       \
+    if (::surfcomp::test::data_required()) {                                 \
+      GTEST_FAIL() << (message) << " (SURFCOMP_REQUIRE_DATA=1 requires it)"; \
+    }                                                                        \
+    GTEST_SKIP() << (message);                                               \
+  } while (false)
+
+/// Binds `var` to the shared data set <relative> or ends the test (SURFCOMP_DATA_ABSENT), saying
+/// which file is missing.
+#define SURFCOMP_SHARED_OR_SKIP(var, relative)                                             \
+  const auto var##_opt = ::surfcomp::test::shared_dataset(relative);                       \
+  if (!var##_opt) SURFCOMP_DATA_ABSENT(::surfcomp::test::shared_absent_message(relative)); \
   const std::filesystem::path var = *var##_opt
 
-/// Binds `var` to datasets/cache/<relative> or skips, telling the user to run the fetch script.
-#define SURFCOMP_FETCHED_OR_SKIP(var, relative)                                       \
-  const auto var##_opt = ::surfcomp::test::fetched_dataset(relative);                 \
-  if (!var##_opt) GTEST_SKIP() << ::surfcomp::test::fetched_absent_message(relative); \
+/// Binds `var` to datasets/cache/<relative> or ends the test, telling the user to run the
+/// fetch script.
+#define SURFCOMP_FETCHED_OR_SKIP(var, relative)                                             \
+  const auto var##_opt = ::surfcomp::test::fetched_dataset(relative);                       \
+  if (!var##_opt) SURFCOMP_DATA_ABSENT(::surfcomp::test::fetched_absent_message(relative)); \
   const std::filesystem::path var = *var##_opt

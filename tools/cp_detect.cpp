@@ -27,7 +27,7 @@ std::string format_length(double value) {
 
 constexpr const char* kUsage =
     "usage: surfcomp cp-detect INPUT -o CPS.json [--points-out CPS.pdb|CPS.ply] [options]\n\n"
-    "Finds the shape critical points of a surface (seed 3.2): peaks, convex vertices whose |cc1|\n"
+    "Finds the shape critical points of a surface (method §2): peaks, convex vertices whose |cc1|\n"
     "is the largest within the on-surface radius; valleys, concave vertices whose cc1 is the\n"
     "largest within it. Each comes with its position, normal, curvature and the shape index,\n"
     "ESP and LP averaged over a small geodesic disc. A general mesh is searched in its length\n"
@@ -52,11 +52,11 @@ int cp_detect(const std::vector<std::string>& args) {
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
-  const mesh::SurfaceInputOptions input = surface_options_from(vm);
+  const molsurf::SurfaceInputOptions input = surface_options_from(vm);
   mesh::CriticalPointOptions cp_options;
   apply_table_options(mesh::critical_point_option_table(), vm, cp_options);
   const bool from_hsi = harmonic::io::is_hsi_file(path);
-  if (!from_hsi) mesh::check_surface_input(path, input);
+  if (!from_hsi) molsurf::check_surface_input(path, input);
   check_command_files(
       {{{"INPUT", path}, {"--molecule", input.molecule_file}},
        {{"--output", output, {}, ""}, {"--points-out", points_out, {".pdb", ".ply"}, ""}}});
@@ -72,7 +72,7 @@ int cp_detect(const std::vector<std::string>& args) {
     cp_options = stored.options.critical_points;
     n_vertices = stored.surface.n_vertices();
   } else {
-    const mesh::LoadedSurface loaded = load_noted(path, input);
+    const molsurf::LoadedSurface loaded = load_noted(path, input);
     points = mesh::detect_critical_points_in_unit(loaded.surface, loaded.unit.value, cp_options);
     n_vertices = loaded.surface.n_vertices();
     unit = loaded.unit;

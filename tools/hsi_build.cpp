@@ -19,7 +19,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: surfcomp hsi-build INPUT -o OUT.hsi [options]\n\n"
-    "Builds the coarse level of a surface (METHOD sections 2-4): its critical points and, for\n"
+    "Builds the coarse level of a surface (method §2-4): its critical points and, for\n"
     "each, the geodesic patch around it, the patch's harmonic map onto the unit disk and its\n"
     "harmonic shape image of the shape index on a polar grid; writes them, the surface and the\n"
     "parameters to a versioned, checksummed binary file (byte-identical for any --threads).\n\n"
@@ -44,8 +44,8 @@ int hsi_build(const std::vector<std::string>& args) {
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   const matching::MatchInputOptions settings = describe_options_from(vm);
-  const mesh::SurfaceInputOptions& input = settings.input;
-  mesh::check_surface_input(path, input);
+  const molsurf::SurfaceInputOptions& input = settings.input;
+  molsurf::check_surface_input(path, input);
   check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
                        {{"--output", output, {".hsi"}, ""}}});
   const auto limit = limit_threads(settings.threads);

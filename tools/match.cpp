@@ -1,4 +1,4 @@
-// surfcomp match: ranked rigid alignments of PROBE onto REF (METHOD sections 5-7), as a table on
+// surfcomp match: ranked rigid alignments of PROBE onto REF (method §5-7), as a table on
 // stdout and a JSON file other tools read; optionally PROBE moved by the top alignment.
 #include "command.hpp"
 #include "command_files.hpp"
@@ -30,8 +30,9 @@ constexpr const char* kUsage =
     "Finds where PROBE's surface looks and feels like REF's and returns ranked rigid\n"
     "alignments that move PROBE into REF's frame: critical-point pairs filtered by ESP/LP\n"
     "(fuzzy), harmonic shape images, distances and overlap; maximal cliques; least-squares fits\n"
-    "on the images' corresponding points; single-linkage merging; consensus ranking (METHOD\n"
-    "sections 5-7); then the first --refine-top alignments are refined on the whole surfaces\n"
+    "on the images' corresponding points; single-linkage merging; consensus ranking\n"
+    "(docs/method.md §5-6); then the first --refine-top alignments are refined on the whole "
+    "surfaces\n"
     "(Gaussian overlay of shape, ESP and LP) and ranked by that overlay score (table column\n"
     "'overlay', * = refined), together with --principal-axes-starts superpositions refined the\n"
     "same way (column 'from': axes). Where both inputs are molecules (or .hsi files built from\n"

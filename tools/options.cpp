@@ -1,6 +1,6 @@
 #include "options.hpp"
 
-#include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
 
 #include "console.hpp"
 
@@ -149,7 +149,7 @@ int threads_from(const boost::program_options::variables_map& vm) {
 std::string with_formats(const char* usage) {
   std::string text = usage;
   const std::size_t at = text.find("%s");
-  if (at != std::string::npos) text.replace(at, 2, mesh::surface_input_formats());
+  if (at != std::string::npos) text.replace(at, 2, molsurf::surface_input_formats());
   return text;
 }
 

@@ -27,7 +27,7 @@ bool parse_command_line(const std::vector<std::string>& args,
                         const char* usage, boost::program_options::variables_map& vm);
 
 /// `usage` with its one "%s" replaced by the input formats a surface is read from
-/// (mesh::surface_input_formats), so that help texts list them from the one registry.
+/// (molsurf::surface_input_formats), so that help texts list them from the one registry.
 std::string with_formats(const char* usage);
 
 /// An option value stored in `*target`, with default `fallback`. --help shows a floating-point

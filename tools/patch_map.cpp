@@ -38,7 +38,7 @@ constexpr const char* kUsage =
     "usage: surfcomp patch-map INPUT -o DIR [--cp I ... | --all] [--compare-cgal]\n"
     "                          [--methods M,M,...|all] [options]\n\n"
     "Writes, for each chosen critical point I (0-based, as cp-detect numbers them; --all: every\n"
-    "one), its geodesic patch and harmonic map onto the unit disk (METHOD sections 3-4) into DIR\n"
+    "one), its geodesic patch and harmonic map onto the unit disk (method §3-4) into DIR\n"
     "(made if missing; a general mesh described in its length unit, --scale and --unit, with\n"
     "the files in its own coordinates):\n"
     "  cpI.obj        the patch with the map as texture coordinates: vt = ((u+1)/2, (v+1)/2)\n"
@@ -194,7 +194,7 @@ int patch_map(const std::vector<std::string>& args) {
                         "are stored");
     }
   } else {
-    mesh::check_surface_input(path, settings.input);
+    molsurf::check_surface_input(path, settings.input);
   }
   // "maps/" names the folder "maps", as a shell's completion writes it.
   const std::filesystem::path folder = std::filesystem::path(output).has_filename()
@@ -231,7 +231,7 @@ int patch_map(const std::vector<std::string>& args) {
   } else {
     // Described in the input's length unit, as hsi-build and match describe it; the files are
     // written in its own coordinates.
-    mesh::LoadedSurface loaded = load_noted(path, settings.input);
+    molsurf::LoadedSurface loaded = load_noted(path, settings.input);
     length_unit = loaded.unit.value;
     surface = std::move(loaded.surface);
     const std::vector<mesh::CriticalPoint> points = mesh::detect_critical_points_in_unit(

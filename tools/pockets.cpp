@@ -7,7 +7,7 @@
 
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/stopwatch.hpp"
-#include "surfcomp/matching/pockets.hpp"
+#include "surfcomp/molsurf/pockets.hpp"
 #include "surfcomp/report/pocket_files.hpp"
 
 #include <filesystem>
@@ -39,22 +39,21 @@ int pockets(const std::vector<std::string>& args) {
       ("output,o", po::value(&output)->required(), "the pockets as JSON")
       ("pdb-out", po::value(&pdb_out), "also write the alpha sphere centres as PDB (residue STP)");
   // clang-format on
-  add_table_options(described, matching::pocket_search_option_table());
+  add_table_options(described, molsurf::pocket_search_option_table());
   po::variables_map vm;
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing STRUCTURE (see --help)");
   const auto inputs = vm["input"].as<std::vector<std::string>>();
   if (inputs.size() != 1) throw OptionError("one STRUCTURE at a time (see --help)");
   const std::filesystem::path path = inputs.front();
-  matching::PocketSearchOptions options;
-  apply_table_options(matching::pocket_search_option_table(), vm, options);
+  molsurf::PocketSearchOptions options;
+  apply_table_options(molsurf::pocket_search_option_table(), vm, options);
   check_command_files({{{"STRUCTURE", path}},
                        {{"--output", output, {}, ""}, {"--pdb-out", pdb_out, {".pdb"}, ""}}});
 
   Stopwatch clock;
-  const report::PocketSet set{path.string(), options.pockets,
-                              matching::find_pockets(path, options)};
-  const matching::StructurePockets& found = set.found;
+  const report::PocketSet set{path.string(), options.pockets, molsurf::find_pockets(path, options)};
+  const molsurf::StructurePockets& found = set.found;
   if (found.models > 1) {
     console::note(path.string() + ": holds " + std::to_string(found.models) +
                   " models; the first is read");
@@ -77,7 +76,7 @@ int pockets(const std::vector<std::string>& args) {
     console::summary("%s: no pocket found (%zu protein atoms), %.0f ms -> %s\n",
                      path.string().c_str(), found.protein_atoms, elapsed, output.c_str());
   } else {
-    const matching::Pocket& top = found.pockets.front();
+    const molsurf::Pocket& top = found.pockets.front();
     console::summary(
         "%s: %zu pockets (%zu protein atoms); pocket 1: score %.1f, %.0f A^3, %zu "
         "residues; %.0f ms -> %s\n",

@@ -15,7 +15,7 @@
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
-#include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/screen.hpp"
@@ -150,9 +150,9 @@ int screen_mesh(const std::filesystem::path& query_path, const screening::Librar
     options.progress = [line](std::int64_t done, std::int64_t total) { (*line)(done, total); };
   }
   const Stopwatch clock;
-  mesh::check_surface_input(query_path, settings.query.input);
+  molsurf::check_surface_input(query_path, settings.query.input);
   console::step(library.path().string() + ": " + std::to_string(library.size()) + " meshes");
-  mesh::LoadedSurface query = mesh::read_mesh_input(query_path, settings.query.input);
+  molsurf::LoadedSurface query = molsurf::read_mesh_input(query_path, settings.query.input);
   for (const std::string& note : query.notes) console::note(note);
   const std::vector<screening::ShapeHit> hits =
       screening::screen_shapes(query.surface, library, options);

@@ -4,16 +4,16 @@
 #include "describe_settings.hpp"
 #include "options.hpp"
 
-#include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
 
 namespace surfcomp::tools {
 
 namespace {
 
 /// The options of a mesh query (a shape screen) beside those of molecule and site screens.
-const options::Table<mesh::SurfaceInputOptions>& mesh_query_option_table() {
-  static const options::Table<mesh::SurfaceInputOptions> table =
-      options::pick(mesh::surface_input_option_table(), {"repair", "scale", "unit"});
+const options::Table<molsurf::SurfaceInputOptions>& mesh_query_option_table() {
+  static const options::Table<molsurf::SurfaceInputOptions> table =
+      options::pick(molsurf::surface_input_option_table(), {"repair", "scale", "unit"});
   return table;
 }
 

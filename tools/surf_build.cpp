@@ -46,13 +46,13 @@ int surf_build(const std::vector<std::string>& args) {
   if (!parse_command_line(args, described, 1, with_formats(kUsage).c_str(), vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing INPUT (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
-  const mesh::SurfaceInputOptions input = surface_options_from(vm);
-  mesh::check_surface_input(path, input);
+  const molsurf::SurfaceInputOptions input = surface_options_from(vm);
+  molsurf::check_surface_input(path, input);
   check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
                        {{"--output", output, {".ply", ".off", ".obj"}, ""}}});
 
   Stopwatch clock;
-  const mesh::LoadedSurface loaded = load_noted(path, input);
+  const molsurf::LoadedSurface loaded = load_noted(path, input);
   const double elapsed = clock.elapsed_ms();
   if (io::lowercase_extension(output) == ".ply") {
     mesh::io::write_ply(loaded.surface, output,

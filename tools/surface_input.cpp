@@ -34,26 +34,26 @@ std::function<void(std::int64_t, std::int64_t)> progress_line(const char* what, 
 }  // namespace
 
 void add_surface_options(boost::program_options::options_description& described) {
-  add_table_options(described, mesh::surface_input_option_table());
+  add_table_options(described, molsurf::surface_input_option_table());
 }
 
-mesh::SurfaceInputOptions surface_options_from(const boost::program_options::variables_map& vm) {
-  mesh::SurfaceInputOptions input;
-  apply_table_options(mesh::surface_input_option_table(), vm, input);
+molsurf::SurfaceInputOptions surface_options_from(const boost::program_options::variables_map& vm) {
+  molsurf::SurfaceInputOptions input;
+  apply_table_options(molsurf::surface_input_option_table(), vm, input);
   show_surface_progress(input.surface);
   return input;
 }
 
-void show_surface_progress(mesh::MolecularSurfaceOptions& surface) {
+void show_surface_progress(molsurf::MolecularSurfaceOptions& surface) {
   surface.ses.progress = progress_line("SES", "stages");
   surface.esp.progress = progress_line("ESP", "points");
   surface.lp.progress = progress_line("LP", "points");
   surface.curvature.progress = progress_line("curvature", "vertices");
 }
 
-mesh::LoadedSurface load_noted(const std::filesystem::path& path,
-                               const mesh::SurfaceInputOptions& options) {
-  mesh::LoadedSurface loaded = mesh::load_surface(path, options);
+molsurf::LoadedSurface load_noted(const std::filesystem::path& path,
+                                  const molsurf::SurfaceInputOptions& options) {
+  molsurf::LoadedSurface loaded = molsurf::load_surface(path, options);
   for (const std::string& note : loaded.notes) console::note(note);
   return loaded;
 }

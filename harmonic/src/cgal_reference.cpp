@@ -34,7 +34,7 @@ using Border = smp::Circular_border_arc_length_parameterizer_3<Mesh>;
 using Solver = CGAL::Eigen_solver_traits<
     Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType, Eigen::COLAMDOrdering<int>>>;
 
-/// Zhang & Hebert's springs k_ij = 1 / |p_i - p_j| (seed eq. 3-2), written like CGAL's
+/// Zhang & Hebert's springs k_ij = 1 / |p_i - p_j| (method §4.2), written like CGAL's
 /// Barycentric_mapping_parameterizer_3, which returns 1 from the same hook.
 class InverseLengthParameterizer : public smp::Fixed_border_parameterizer_3<Mesh, Border, Solver> {
   using Base = smp::Fixed_border_parameterizer_3<Mesh, Border, Solver>;

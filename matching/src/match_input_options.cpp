@@ -7,7 +7,7 @@ const options::Table<MatchInputOptions>& describe_option_table() {
   static const options::Table<I> table = [] {
     options::Table<I> t;
     options::append(
-        t, mesh::surface_input_option_table(), [](auto& i) -> auto& { return i.input; });
+        t, molsurf::surface_input_option_table(), [](auto& i) -> auto& { return i.input; });
     options::append(
         t, harmonic::descriptor_option_table(), [](auto& i) -> auto& { return i.descriptors; });
     t.push_back(options::threads_option<I>([](auto& i) -> auto& { return i.threads; }));
@@ -22,7 +22,7 @@ const options::Table<PairMatchOptions>& pair_match_option_table() {
   static const options::Table<P> table = [] {
     options::Table<P> t;
     options::append(
-        t, mesh::surface_input_option_table(), [](auto& p) -> auto& { return p.inputs.input; });
+        t, molsurf::surface_input_option_table(), [](auto& p) -> auto& { return p.inputs.input; });
     options::append(
         t, harmonic::descriptor_option_table(),
         [](auto& p) -> auto& { return p.inputs.descriptors; },
@@ -33,23 +33,23 @@ const options::Table<PairMatchOptions>& pair_match_option_table() {
       return options::Spec{name, Kind::text, help, "", 0, 0, false, {}, true};
     };
     t.push_back(options::field<P>(
-        site_ligand_spec(), [](auto& p) -> auto& { return p.sites.ligand; }));
+        molsurf::site_ligand_spec(), [](auto& p) -> auto& { return p.sites.ligand; }));
     t.push_back(options::field<P>(
         text("ref-site-ligand", "binding site of REF only"),
         [](auto& p) -> auto& { return p.sites.reference_ligand; }));
     t.push_back(options::field<P>(
         text("probe-site-ligand", "binding site of PROBE only"),
         [](auto& p) -> auto& { return p.sites.probe_ligand; }));
-    t.push_back(sphere_option<P>(
-        site_sphere_spec(), [](auto& p) -> auto& { return p.sites.spheres; }));
-    t.push_back(sphere_option<P>(
+    t.push_back(molsurf::sphere_option<P>(
+        molsurf::site_sphere_spec(), [](auto& p) -> auto& { return p.sites.spheres; }));
+    t.push_back(molsurf::sphere_option<P>(
         {"ref-site-sphere", Kind::spheres, "site sphere on REF only", "A"},
         [](auto& p) -> auto& { return p.sites.reference_spheres; }));
-    t.push_back(sphere_option<P>(
+    t.push_back(molsurf::sphere_option<P>(
         {"probe-site-sphere", Kind::spheres, "site sphere on PROBE only", "A"},
         [](auto& p) -> auto& { return p.sites.probe_spheres; }));
     t.push_back(options::field<P>(
-        site_pocket_spec(), [](auto& p) -> auto& { return p.sites.pocket; }));
+        molsurf::site_pocket_spec(), [](auto& p) -> auto& { return p.sites.pocket; }));
     const auto pocket = [](const char* name, const char* help) {
       return options::Spec{name, Kind::integer, help, "", 1, 1e6, false, {}, true};
     };
@@ -60,9 +60,9 @@ const options::Table<PairMatchOptions>& pair_match_option_table() {
         pocket("probe-site-pocket", "binding site of PROBE only: its pocket N"),
         [](auto& p) -> auto& { return p.sites.probe_pocket; }));
     options::append(
-        t, binding_site_option_table(), [](auto& p) -> auto& { return p.inputs.site; });
+        t, molsurf::binding_site_option_table(), [](auto& p) -> auto& { return p.inputs.site; });
     options::append(
-        t, pocket_option_table(), [](auto& p) -> auto& { return p.inputs.pockets; });
+        t, molsurf::pocket_option_table(), [](auto& p) -> auto& { return p.inputs.pockets; });
     t.push_back(options::threads_option<P>([](auto& p) -> auto& { return p.inputs.threads; }));
     return t;
   }();

@@ -6,7 +6,7 @@
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include <Eigen/Geometry>
 
@@ -39,30 +39,31 @@ struct LoadedInput {
   std::optional<harmonic::SurfaceDescriptors> descriptors;  // a stored description
   std::optional<mesh::Surface> surface;
   std::optional<Molecule> molecule;
-  std::vector<SiteSphere> site;
+  std::vector<molsurf::SiteSphere> site;
   /// The surface still needs its curvature, computed once its length unit is known (a mesh
   /// read without a molecule, or a surface in memory without curvature).
   bool needs_curvature = false;
   /// MatchInput::curvature_unit: the unit the surface's curvature was fitted at (0: none).
   double curvature_unit = 0.0;
   std::optional<mesh::RepairReport> repair;  ///< what --repair changed in a mesh file
-  std::vector<std::string> notes;            ///< mesh::LoadedSurface::notes
+  std::vector<std::string> notes;            ///< molsurf::LoadedSurface::notes
 };
 
 /// The surface of a molecule with a site: the site's structure (binding_site) surfaced around
 /// the site (build_site_surface).
 void load_site(LoadedInput& side, const Molecule& structure, const MatchInput& input,
                const MatchInputOptions& options) {
-  BindingSite site =
+  molsurf::BindingSite site =
       input.site_pocket > 0
-          ? pocket_site(structure, input.site_pocket, options.pockets, options.site)
+          ? molsurf::pocket_site(structure, input.site_pocket, options.pockets, options.site)
       : input.site_ligand.empty()
-          ? binding_site(structure, input.site_spheres, options.site)
-          : binding_site(structure, LigandSelector{input.site_ligand, {}, {}}, options.site);
+          ? molsurf::binding_site(structure, input.site_spheres, options.site)
+          : molsurf::binding_site(structure, LigandSelector{input.site_ligand, {}, {}},
+                                  options.site);
   if (!input.site_ligand.empty()) {  // spheres add to the ligand's
     site.spheres.insert(site.spheres.end(), input.site_spheres.begin(), input.site_spheres.end());
   }
-  side.surface = build_site_surface(site, options.input.surface);
+  side.surface = molsurf::build_site_surface(site, options.input.surface);
   side.molecule = std::move(site.structure);
   side.site = std::move(site.spheres);
 }
@@ -122,10 +123,10 @@ LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& opti
   if (molecule && has_site) {
     load_site(side, *molecule, input, options);
   } else if (molecule) {
-    side.surface = mesh::build_molecular_surface(*molecule, options.input.surface);
+    side.surface = molsurf::build_molecular_surface(*molecule, options.input.surface);
     side.molecule = std::move(molecule);
   } else if (input.surface) {
-    mesh::check_vertex_limit(*input.surface, options.input);
+    molsurf::check_vertex_limit(*input.surface, options.input);
     side.surface = *input.surface;
     side.molecule = input.molecule;
     for (const char* name : {mesh::property::cc1, mesh::property::cc2, mesh::property::shape_index,
@@ -134,14 +135,14 @@ LoadedInput load_unlogged(const MatchInput& input, const MatchInputOptions& opti
     }
     if (!side.needs_curvature) side.curvature_unit = input.curvature_unit;
   } else if (options.input.molecule_file.empty()) {
-    mesh::check_surface_input(input.path, options.input);
-    mesh::LoadedSurface loaded = mesh::read_mesh_input(input.path, options.input);
+    molsurf::check_surface_input(input.path, options.input);
+    molsurf::LoadedSurface loaded = molsurf::read_mesh_input(input.path, options.input);
     side.surface = std::move(loaded.surface);
     side.repair = loaded.repair;
     side.notes = std::move(loaded.notes);
     side.needs_curvature = true;
   } else {
-    mesh::LoadedSurface loaded = mesh::load_surface(input.path, options.input);
+    molsurf::LoadedSurface loaded = molsurf::load_surface(input.path, options.input);
     side.surface = std::move(loaded.surface);
     side.molecule = std::move(loaded.molecule);
     side.repair = loaded.repair;
@@ -182,7 +183,7 @@ bool same_unit(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(a
 mesh::LengthUnit length_unit(const LoadedInput& ref, const MatchInput& reference,
                              const LoadedInput& prb, const MatchInput& probe,
                              const MatchInputOptions& options) {
-  const mesh::SurfaceInputOptions& input = options.input;
+  const molsurf::SurfaceInputOptions& input = options.input;
   if (input.unit > 0.0) {
     for (const auto& [side, given] : {std::pair{&ref, &reference}, std::pair{&prb, &probe}}) {
       if (is_molecular(*side, *given)) {
@@ -231,13 +232,13 @@ mesh::LengthUnit length_unit(const LoadedInput& ref, const MatchInput& reference
 
 /// The curvature of a side that still needs it (LoadedInput::needs_curvature), in the length
 /// unit its surface now has: over the molecular surface's neighbourhood, or for a general mesh
-/// as mesh::assign_general_mesh_curvature fits it.
+/// as molsurf::assign_general_mesh_curvature fits it.
 void complete(LoadedInput& side, const MatchInputOptions& options, bool general_mesh) {
   if (!side.needs_curvature) return;
   if (general_mesh) {
-    mesh::assign_general_mesh_curvature(*side.surface, 1.0, options.input.surface.curvature);
+    molsurf::assign_general_mesh_curvature(*side.surface, 1.0, options.input.surface.curvature);
   } else {
-    mesh::assign_surface_properties(*side.surface, nullptr, options.input.surface);
+    molsurf::assign_surface_properties(*side.surface, nullptr, options.input.surface);
   }
   side.needs_curvature = false;
 }
@@ -251,7 +252,7 @@ void scale_side(LoadedInput& side, double factor) {
   }
   mesh::scale_surface(*side.surface, factor);
   side.needs_curvature = true;
-  for (SiteSphere& sphere : side.site) {
+  for (molsurf::SiteSphere& sphere : side.site) {
     sphere.center *= factor;
     sphere.radius *= factor;
   }
@@ -266,7 +267,7 @@ void settle_curvature(LoadedInput& side, double unit) {
 /// A prepared side and the match result given back in the inputs' coordinates.
 void unscale(PreparedInput& side, double unit) {
   harmonic::scale_descriptors(side.descriptors, unit);
-  for (SiteSphere& sphere : side.site) {
+  for (molsurf::SiteSphere& sphere : side.site) {
     sphere.center *= unit;
     sphere.radius *= unit;
   }
@@ -424,14 +425,14 @@ void check_match_input(const MatchInput& input, const MatchInputOptions& options
     }
   }
   if (!input.path.empty() && !harmonic::io::is_hsi_file(input.path))
-    mesh::check_surface_input(input.path, options.input);
+    molsurf::check_surface_input(input.path, options.input);
 }
 
 PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& options) {
   check_match_input(input, options, "input");
   MatchInputOptions built = options;
   built.site.surface_margin =
-      site_surface_margin(options.site.surface_margin, options.descriptors.patch.radius);
+      molsurf::site_surface_margin(options.site.surface_margin, options.descriptors.patch.radius);
   LoadedInput side = load(input, built, "input");
   if (side.descriptors) {  // as it was stored, in its own unit
     const double stored = side.descriptors->length_unit;
@@ -497,7 +498,7 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
   descriptors.progress = options.descriptors.progress;
   MatchInputOptions built = options;
   built.site.surface_margin =
-      site_surface_margin(options.site.surface_margin, descriptors.patch.radius);
+      molsurf::site_surface_margin(options.site.surface_margin, descriptors.patch.radius);
   if (!ref) ref = load(ref_read, built, "REF");
   if (!prb) prb = load(probe_read, built, "PROBE");
   for (const LoadedInput* side : {&*ref, &*prb})

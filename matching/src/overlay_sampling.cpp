@@ -1,8 +1,8 @@
 #include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
-#include "surfcomp/mesh/ses_points.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
+#include "surfcomp/molsurf/ses_points.hpp"
 
 #include <Eigen/Core>
 
@@ -110,21 +110,22 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
 }
 
 SurfaceSample sample_molecule(const Molecule& molecule, double spacing,
-                              const mesh::MolecularSurfaceOptions& surface, double grid_spacing) {
+                              const molsurf::MolecularSurfaceOptions& surface,
+                              double grid_spacing) {
   detail::check_overlay_spacing(spacing, {"sample_molecule", ""});
   validate_molecule(molecule);
-  mesh::SesPointOptions options;
+  molsurf::SesPointOptions options;
   options.probe_radius = surface.ses.probe_radius;
   options.grid_spacing = grid_spacing;
   options.max_grid_cells = surface.ses.max_grid_cells;
-  const mesh::AtomBalls balls = mesh::atom_balls(molecule);
-  const mesh::SurfacePoints points = mesh::ses_points(balls.centers, balls.radii, options);
+  const molsurf::AtomBalls balls = molsurf::atom_balls(molecule);
+  const molsurf::SurfacePoints points = molsurf::ses_points(balls.centers, balls.radii, options);
   SurfaceSample sample = pool_in_cells(points.points, points.normals, points.areas, nullptr,
                                        nullptr, spacing, nullptr);
   if (sample.size() > 0) {
     const Eigen::MatrixX3d at = sample.points.transpose();
-    sample.esp = mesh::electrostatic_potential(at, molecule, surface.esp);
-    sample.lp = mesh::lipophilic_potential(at, molecule, surface.lp);
+    sample.esp = molsurf::electrostatic_potential(at, molecule, surface.esp);
+    sample.lp = molsurf::lipophilic_potential(at, molecule, surface.lp);
   }
   return sample;
 }

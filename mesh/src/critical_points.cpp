@@ -94,7 +94,7 @@ std::vector<CriticalPoint> detect_critical_points(const Surface& surface,
   for (std::size_t v = 0; v < n; ++v) {
     kind[v] = kind_of(cc1(static_cast<Eigen::Index>(v)), cc2(static_cast<Eigen::Index>(v)));
   }
-  // p beats q when |cc1_p| > |cc1_q|, or they are equal and p has the lower index (eq. 3-1).
+  // p beats q when |cc1_p| > |cc1_q|, or they are equal and p has the lower index (method §2.1).
   const auto beats = [&cc1](int p, int q) {
     const double a = std::abs(cc1(p)), b = std::abs(cc1(q));
     return a > b || (a == b && p < q);

@@ -13,14 +13,14 @@
 #include "surfcomp/harmonic/cgal_reference.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
-#include "surfcomp/matching/pockets.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
 #include "surfcomp/mesh/geodesic.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
-#include "surfcomp/mesh/load_surface.hpp"
 #include "surfcomp/mesh/patch.hpp"
 #include "surfcomp/mesh/topology.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
+#include "surfcomp/molsurf/pockets.hpp"
 #include "surfcomp/report/critical_point_files.hpp"
 #include "surfcomp/report/html_report.hpp"
 #include "surfcomp/report/patch_files.hpp"
@@ -62,7 +62,7 @@ struct MoleculeBlock {
 struct PySurface {
   mesh::Surface surface;
   std::optional<Molecule> molecule;
-  /// The length unit its curvature was fitted in (mesh::LoadedSurface::unit): 1 in A.
+  /// The length unit its curvature was fitted in (molsurf::LoadedSurface::unit): 1 in A.
   double length_unit = 1.0;
 };
 
@@ -301,7 +301,8 @@ mesh::Surface surface_of_arrays(const py::tuple& pair, bool repair) {
 
 /// A Python input (a path, a MoleculeBlock, a Surface, a Descriptors, a (V, F) pair) as the
 /// library's.
-matching::MatchInput input_of(const py::handle& object, const mesh::SurfaceInputOptions& options) {
+matching::MatchInput input_of(const py::handle& object,
+                              const molsurf::SurfaceInputOptions& options) {
   const io::MoleculeReadOptions& read = options.read;
   matching::MatchInput input;
   if (py::isinstance<py::tuple>(object) && py::len(object) == 2) {
@@ -542,17 +543,17 @@ void save_surface(const mesh::Surface& surface, const std::filesystem::path& p, 
 // --------------------------------------------------------------------------------
 
 PySurface build_surface(const py::object& input, const py::dict& keywords) {
-  const auto settings = settings_from(mesh::surface_input_option_table(), keywords);
+  const auto settings = settings_from(molsurf::surface_input_option_table(), keywords);
   matching::MatchInput in = input_of(input, settings);
   py::gil_scoped_release release;
   PySurface out;
   if (in.molecule) {
-    out.surface = mesh::build_molecular_surface(*in.molecule, settings.surface);
+    out.surface = molsurf::build_molecular_surface(*in.molecule, settings.surface);
     out.molecule = std::move(in.molecule);
   } else {
-    mesh::LoadedSurface loaded = in.surface
-                                     ? mesh::load_mesh_surface(std::move(*in.surface), settings)
-                                     : mesh::load_surface(in.path, settings);
+    molsurf::LoadedSurface loaded =
+        in.surface ? molsurf::load_mesh_surface(std::move(*in.surface), settings)
+                   : molsurf::load_surface(in.path, settings);
     out.surface = std::move(loaded.surface);
     out.molecule = std::move(loaded.molecule);
     out.length_unit = loaded.unit.value;
@@ -606,14 +607,14 @@ py::dict match(const py::object& reference, const py::object& probe, const py::d
 // --- (V, F) functions ---------------------------------------------------------------------------
 
 /// The keyword options of the (V, F) functions, from the library's tables: the length unit
-/// (scale, unit: mesh::surface_input_option_table) and, per function, the critical point options
+/// (scale, unit: molsurf::surface_input_option_table) and, per function, the critical point options
 /// (critical_points), the spring weights (disk_map) or the image grid and weights (shape_image).
 /// Held in a matching::MatchInputOptions: `input` and `descriptors` are the parts they set.
 const options::Table<matching::MatchInputOptions>& array_option_table(const std::string& function) {
   using I = matching::MatchInputOptions;
   const auto unit_options = [](options::Table<I>& t) {
     options::append(
-        t, options::pick(mesh::surface_input_option_table(), {"scale", "unit"}),
+        t, options::pick(molsurf::surface_input_option_table(), {"scale", "unit"}),
         [](auto& i) -> auto& { return i.input; });
   };
   const auto description_options = [](options::Table<I>& t, const std::vector<std::string>& names) {
@@ -685,10 +686,10 @@ MeshArgument mesh_argument(const py::handle& object) {
 }
 
 /// The length unit of `mesh` under `options`, its curvature fitted at it when `needs` says so.
-/// (V, F) arrays are a general mesh, as build_surface takes them (mesh::load_mesh_surface). A
+/// (V, F) arrays are a general mesh, as build_surface takes them (molsurf::load_mesh_surface). A
 /// Surface keeps its unit and curvature unless scale="none" or unit= asks for another; unit= on a
 /// Surface in A (with ESP and LP) is refused. Runs without the GIL.
-double settle_unit(MeshArgument& mesh, const mesh::SurfaceInputOptions& options, Needs needs) {
+double settle_unit(MeshArgument& mesh, const molsurf::SurfaceInputOptions& options, Needs needs) {
   if (needs == Needs::geometry) return 1.0;
   const std::string& name = mesh.surface.source();
   if (!mesh.from_arrays) {
@@ -703,7 +704,7 @@ double settle_unit(MeshArgument& mesh, const mesh::SurfaceInputOptions& options,
   }
   if (needs == Needs::unit)
     return mesh::general_mesh_unit({&mesh.surface}, options.scale, options.unit, name).value;
-  mesh::LoadedSurface loaded = mesh::load_mesh_surface(std::move(mesh.surface), options);
+  molsurf::LoadedSurface loaded = molsurf::load_mesh_surface(std::move(mesh.surface), options);
   mesh.surface = std::move(loaded.surface);
   return loaded.unit.value;
 }
@@ -1035,7 +1036,7 @@ py::dict screen(const py::list& queries, const std::string& library_path, const 
 py::list screen_shapes(const py::handle& query, const std::string& library_path,
                        const py::dict& keywords, const py::dict& mesh_keywords) {
   auto settings = settings_from(screening::screen_option_table(), keywords);
-  settings.query.input = settings_from(mesh::surface_input_option_table(), mesh_keywords);
+  settings.query.input = settings_from(molsurf::surface_input_option_table(), mesh_keywords);
   const matching::MatchInput input = input_of(query, settings.query.input);
   std::optional<screening::Library> library;
   std::vector<screening::ShapeHit> hits;
@@ -1046,8 +1047,8 @@ py::list screen_shapes(const py::handle& query, const std::string& library_path,
     if (input.surface && !input.molecule) {
       surface = *input.surface;
     } else if (!input.path.empty() && mesh::io::is_mesh_file(input.path)) {
-      mesh::check_surface_input(input.path, settings.query.input);
-      surface = mesh::read_mesh_input(input.path, settings.query.input).surface;
+      molsurf::check_surface_input(input.path, settings.query.input);
+      surface = molsurf::read_mesh_input(input.path, settings.query.input).surface;
     } else {
       throw InputError(input.name() +
                        ": a shape screen's query is a mesh (a mesh file, (V, F) or a Surface "
@@ -1077,16 +1078,16 @@ py::list screen_shapes(const py::handle& query, const std::string& library_path,
 }
 
 py::list pockets(const std::string& structure, const py::dict& keywords) {
-  const auto settings = settings_from(matching::pocket_search_option_table(), keywords);
-  matching::StructurePockets found;
+  const auto settings = settings_from(molsurf::pocket_search_option_table(), keywords);
+  molsurf::StructurePockets found;
   {
     py::gil_scoped_release release;
-    found = matching::find_pockets(structure, settings);
+    found = molsurf::find_pockets(structure, settings);
   }
   py::list out;
-  for (const matching::Pocket& pocket : found.pockets) {
+  for (const molsurf::Pocket& pocket : found.pockets) {
     py::list spheres;
-    for (const matching::SiteSphere& s : pocket.spheres) {
+    for (const molsurf::SiteSphere& s : pocket.spheres) {
       spheres.append(py::make_tuple(s.center.x(), s.center.y(), s.center.z(), s.radius));
     }
     out.append(py::dict(
@@ -1100,11 +1101,11 @@ py::list pockets(const std::string& structure, const py::dict& keywords) {
 }
 
 py::list option_table(const std::string& function) {
-  if (function == "build_surface") return table_list(mesh::surface_input_option_table());
+  if (function == "build_surface") return table_list(molsurf::surface_input_option_table());
   if (function == "describe") return table_list(matching::describe_option_table());
   if (function == "match") return table_list(matching::pair_match_option_table());
   if (function == "screen") return table_list(screening::screen_option_table());
-  if (function == "pockets") return table_list(matching::pocket_search_option_table());
+  if (function == "pockets") return table_list(molsurf::pocket_search_option_table());
   for (const char* name : {"curvatures", "critical_points", "patch", "disk_map", "shape_image"}) {
     if (function == name) return table_list(array_option_table(function));
   }

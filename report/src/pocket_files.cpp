@@ -10,9 +10,9 @@ namespace surfcomp::report {
 
 std::string pockets_json(const PocketSet& set) {
   nlohmann::json list = nlohmann::json::array();
-  for (const matching::Pocket& pocket : set.found.pockets) {
+  for (const molsurf::Pocket& pocket : set.found.pockets) {
     nlohmann::json spheres = nlohmann::json::array();
-    for (const matching::SiteSphere& s : pocket.spheres) {
+    for (const molsurf::SiteSphere& s : pocket.spheres) {
       spheres.push_back({s.center.x(), s.center.y(), s.center.z(), s.radius});
     }
     nlohmann::json atoms = nlohmann::json::array();
@@ -27,7 +27,7 @@ std::string pockets_json(const PocketSet& set) {
                     {"lining_atoms", atoms},
                     {"spheres", spheres}});
   }
-  const matching::PocketOptions& o = set.options;
+  const molsurf::PocketOptions& o = set.options;
   const nlohmann::json document = {
       {"input", set.input},
       {"models", set.found.models},
@@ -45,10 +45,10 @@ std::string pockets_json(const PocketSet& set) {
   return detail::json_text(document, 2) + "\n";
 }
 
-void write_pockets_pdb(const std::vector<matching::Pocket>& pockets, std::ostream& out) {
+void write_pockets_pdb(const std::vector<molsurf::Pocket>& pockets, std::ostream& out) {
   std::size_t serial = 0;
-  for (const matching::Pocket& pocket : pockets) {
-    for (const matching::SiteSphere& s : pocket.spheres) {
+  for (const molsurf::Pocket& pocket : pockets) {
+    for (const molsurf::SiteSphere& s : pocket.spheres) {
       ++serial;
       char line[96];
       std::snprintf(

@@ -79,7 +79,7 @@ std::vector<std::uint8_t> encode_record(const LibraryEntry& entry) {
   w.u8(compressed ? kCompressedStructure : format_code(entry.molecule.format));
   w.string(compressed ? io::gzip(entry.molecule.text) : entry.molecule.text);
   w.u64(entry.site.size());
-  for (const matching::SiteSphere& sphere : entry.site) {
+  for (const molsurf::SiteSphere& sphere : entry.site) {
     for (int k = 0; k < 3; ++k) w.f64(sphere.center(k));
     w.f64(sphere.radius);
   }
@@ -555,7 +555,7 @@ LibraryEntry LibraryFile::decode_entry(std::size_t index) const {
              std::to_string(info.site_spheres));
     }
     for (std::uint64_t k = 0; k < spheres; ++k) {
-      matching::SiteSphere sphere;
+      molsurf::SiteSphere sphere;
       for (int d = 0; d < 3; ++d) sphere.center(d) = r.f64();
       sphere.radius = r.f64();
       if (!sphere.center.allFinite() || !std::isfinite(sphere.radius) || !(sphere.radius > 0.0))

@@ -14,7 +14,7 @@
 #include "surfcomp/mesh/io/formats.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
 #include "surfcomp/mesh/length_unit.hpp"
-#include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
@@ -91,7 +91,7 @@ bool is_library_input(const std::filesystem::path& path) {
 }
 
 /// The entry of a mesh file: the mesh as read (repaired with options.repair; held to the
-/// surface's vertex limit) with the normals and curvature mesh::load_mesh_surface gives it (its
+/// surface's vertex limit) with the normals and curvature molsurf::load_mesh_surface gives it (its
 /// length unit automatic; a .hsi file's surface carries them), and the sample of its surface
 /// pooled in cells of options.spacing of that unit, which the format keeps for every entry; a
 /// shape screen matches the meshes themselves.
@@ -102,11 +102,11 @@ LibraryEntry mesh_entry(const io::MoleculeRecord& record, const LibraryBuildOpti
                      ": an MSMS surface is a molecule's, in A: build the library from the "
                      "molecule");
   }
-  mesh::SurfaceInputOptions input;
+  molsurf::SurfaceInputOptions input;
   input.surface = options.surface;
   input.repair = options.repair;
-  mesh::LoadedSurface loaded =
-      mesh::load_mesh_surface(mesh::read_mesh_input(record.source, input).surface, input);
+  molsurf::LoadedSurface loaded =
+      molsurf::load_mesh_surface(molsurf::read_mesh_input(record.source, input).surface, input);
   mesh::Surface& surface = loaded.surface;
   const mesh::LengthUnit unit = loaded.unit;
   LibraryEntry entry;
@@ -799,7 +799,7 @@ std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {
       site.name = stem + ":pocket" + std::to_string(rank);
     } else if (words[1].find(',') != std::string::npos) {
       for (std::size_t w = 1; w < words.size(); ++w) {
-        const std::optional<matching::SiteSphere> sphere = matching::parse_site_sphere(words[w]);
+        const std::optional<molsurf::SiteSphere> sphere = molsurf::parse_site_sphere(words[w]);
         if (!sphere) {
           throw InputError(where + "'" + words[w] + "' is not a sphere x,y,z,r with r > 0 (A)");
         }
@@ -859,11 +859,11 @@ namespace {
 /// pocket_structure).
 LibraryEntry site_entry(const Molecule& structure, const SiteRequest& request,
                         const LibraryBuildOptions& options) {
-  matching::BindingSite site =
-      request.ligand ? matching::binding_site(structure, *request.ligand, options.site)
-                     : matching::binding_site(structure, request.spheres, options.site);
+  molsurf::BindingSite site = request.ligand
+                                  ? molsurf::binding_site(structure, *request.ligand, options.site)
+                                  : molsurf::binding_site(structure, request.spheres, options.site);
   const harmonic::DescriptorOptions describing;
-  site.surface_margin = matching::site_surface_margin(site.surface_margin, describing.patch.radius);
+  site.surface_margin = molsurf::site_surface_margin(site.surface_margin, describing.patch.radius);
   // The entry keeps the site's neighbourhood, not the structure (a margin of 0 keeps every atom),
   // and is built from that text read back, as the screen will read it.
   LibraryEntry entry;
@@ -872,18 +872,17 @@ LibraryEntry site_entry(const Molecule& structure, const SiteRequest& request,
   entry.molecule.name = request.name;
   entry.molecule.format = io::RecordFormat::structure;
   std::ostringstream pdb;
-  io::write_pdb(site.surface_margin == 0.0
-                    ? site.structure
-                    : matching::site_neighbourhood(
-                          site.structure, site.spheres,
-                          site.surface_margin + matching::neighbourhood_beyond_margin),
-                pdb);
+  io::write_pdb(
+      site.surface_margin == 0.0
+          ? site.structure
+          : molsurf::site_neighbourhood(site.structure, site.spheres,
+                                        site.surface_margin + molsurf::neighbourhood_beyond_margin),
+      pdb);
   entry.molecule.text = pdb.str();
   entry.info.heavy_atoms = heavy_atom_count(site.structure);
   site.structure = io::read_record_molecule(entry.molecule, site_entry_read_options(options.read));
-  const harmonic::SurfaceDescriptors described =
-      matching::describe_site(matching::build_site_surface(site, options.surface), site.structure,
-                              site.spheres, describing);
+  const harmonic::SurfaceDescriptors described = matching::describe_site(
+      molsurf::build_site_surface(site, options.surface), site.structure, site.spheres, describing);
   const std::vector<bool> in_site = matching::critical_points_in_site(described, site.spheres);
   const std::vector<bool> lining =
       matching::pocket_lining(described, &in_site, options.lining_radius);
@@ -906,7 +905,7 @@ std::string site_settings(const LibraryBuildOptions& options, bool detects_pocke
   std::ostringstream text;
   text << "min_plddt " << options.read.min_plddt << "\n";
   if (detects_pockets) {
-    const matching::PocketOptions& p = options.pockets;
+    const molsurf::PocketOptions& p = options.pockets;
     text << "pockets (min_sphere_radius " << p.min_sphere_radius << ", max_sphere_radius "
          << p.max_sphere_radius << ", min_buriedness " << p.min_buriedness << ", buried_distance "
          << p.buried_distance << ", cluster_distance " << p.cluster_distance << ", min_spheres "
@@ -935,7 +934,7 @@ BuildItems site_items(const std::vector<SiteRequest>& sites, const LibraryBuildO
     bytes.string(site.name);
     bytes.string(site.ligand ? site.ligand->residue_name + ":" + site.ligand->chain.value_or("")
                              : "");
-    for (const matching::SiteSphere& sphere : site.spheres) {
+    for (const molsurf::SiteSphere& sphere : site.spheres) {
       bytes.f64(sphere.center.x());
       bytes.f64(sphere.center.y());
       bytes.f64(sphere.center.z());
@@ -960,8 +959,8 @@ BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
                                         std::vector<SkippedRecord>& skipped) {
     const Stopwatch clock;
     const std::filesystem::path& file = structures[i];
-    const Molecule structure = matching::pocket_structure(io::read_molecule(file, options.read));
-    std::vector<matching::Pocket> pockets = matching::detect_pockets(structure, options.pockets);
+    const Molecule structure = molsurf::pocket_structure(io::read_molecule(file, options.read));
+    std::vector<molsurf::Pocket> pockets = molsurf::detect_pockets(structure, options.pockets);
     if (pockets.empty()) throw InputError("no pocket found");
     const double detection_seconds = clock.elapsed_s();
     const std::string stem = io::structure_stem(file);
@@ -1035,11 +1034,10 @@ LibraryEntry build_site_entry(const SiteRequest& request, const LibraryBuildOpti
   if (request.pocket_rank > 0) {
     SiteRequest found = request;
     found.spheres =
-        matching::pocket_site(structure, request.pocket_rank, options.pockets, options.site)
-            .spheres;
-    return site_entry(matching::pocket_structure(structure), found, options);
+        molsurf::pocket_site(structure, request.pocket_rank, options.pockets, options.site).spheres;
+    return site_entry(molsurf::pocket_structure(structure), found, options);
   }
-  if (request.pocket) structure = matching::pocket_structure(structure);
+  if (request.pocket) structure = molsurf::pocket_structure(structure);
   return site_entry(structure, request, options);
 }
 

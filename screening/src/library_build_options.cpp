@@ -1,6 +1,6 @@
 #include "surfcomp/screening/library_build.hpp"
 
-#include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
 
 namespace surfcomp::screening {
 
@@ -46,7 +46,7 @@ const options::Table<LibraryBuildOptions>& library_build_option_table() {
             [](auto& l) -> auto& { return l.resume; }),
     };
     // --repair as every subcommand that reads a mesh defines it.
-    for (const auto& option : mesh::surface_input_option_table()) {
+    for (const auto& option : molsurf::surface_input_option_table()) {
       if (option.spec.name == "repair")
         t.push_back(options::field<L>(
             option.spec, [](auto& l) -> auto& { return l.repair; }));
@@ -54,9 +54,9 @@ const options::Table<LibraryBuildOptions>& library_build_option_table() {
     t.push_back(options::field<L>(
         io::min_plddt_spec(), [](auto& l) -> auto& { return l.read.min_plddt; }));
     options::append(
-        t, matching::binding_site_option_table(), [](auto& l) -> auto& { return l.site; });
+        t, molsurf::binding_site_option_table(), [](auto& l) -> auto& { return l.site; });
     options::append(
-        t, matching::pocket_option_table(), [](auto& l) -> auto& { return l.pockets; });
+        t, molsurf::pocket_option_table(), [](auto& l) -> auto& { return l.pockets; });
     return t;
   }();
   return table;

@@ -233,8 +233,8 @@ std::vector<std::size_t> best_by_fast(const std::vector<HitScore>& fast, std::si
 
 /// Throws InputError naming the library when its site entries cannot give the site surfaces the
 /// screen asks for. From format 5 an entry keeps its site's neighbourhood: the atoms within the
-/// build's surface margin (matching::site_surface_margin of the settings' surface_margin and the
-/// default patch radius) + matching::neighbourhood_beyond_margin of its spheres. A screen whose
+/// build's surface margin (molsurf::site_surface_margin of the settings' surface_margin and the
+/// default patch radius) + molsurf::neighbourhood_beyond_margin of its spheres. A screen whose
 /// margin is 0 (every atom) or wider would build its surface from a part of the structure.
 void check_site_margin(const Library& library, double margin, double patch_radius) {
   if (library.version() < 5) return;  // whole structures
@@ -243,10 +243,10 @@ void check_site_margin(const Library& library, double margin, double patch_radiu
   const std::size_t at = settings.find(key);
   if (at == std::string::npos) return;
   const double built =
-      matching::site_surface_margin(std::strtod(settings.c_str() + at + key.size(), nullptr),
-                                    harmonic::DescriptorOptions{}.patch.radius);
+      molsurf::site_surface_margin(std::strtod(settings.c_str() + at + key.size(), nullptr),
+                                   harmonic::DescriptorOptions{}.patch.radius);
   if (built == 0.0) return;  // every atom kept
-  const double asked = matching::site_surface_margin(margin, patch_radius);
+  const double asked = molsurf::site_surface_margin(margin, patch_radius);
   if (asked != 0.0 && asked <= built) return;
   char wanted[32] = "every atom";
   if (asked != 0.0) std::snprintf(wanted, sizeof wanted, "a %g A margin", asked);
@@ -254,7 +254,7 @@ void check_site_margin(const Library& library, double margin, double patch_radiu
   std::snprintf(text, sizeof text,
                 ": its sites keep the atoms within %g A of their spheres (a site margin of %g A); "
                 "a site surface of %s needs a library built with that margin",
-                built + matching::neighbourhood_beyond_margin, built, wanted);
+                built + molsurf::neighbourhood_beyond_margin, built, wanted);
   throw InputError(library.path().string() + text);
 }
 
@@ -317,7 +317,7 @@ double query_shape_weight(QueryChemistry chemistry, bool whole_molecule, const M
 }
 
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
-                              const ScreenOptions& options, std::vector<matching::SiteSphere> site,
+                              const ScreenOptions& options, std::vector<molsurf::SiteSphere> site,
                               const Molecule* molecule) {
   matching::require_match_properties(descriptors.surface);  // the entries are compared by ESP/LP
   ScreenQuery query;
@@ -574,18 +574,18 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
   } else if (entry.site.empty()) {
     const Molecule molecule = io::read_record_molecule(entry.molecule, options.read);
     const harmonic::SurfaceDescriptors described =
-        harmonic::describe_surface(mesh::build_molecular_surface(molecule, options.surface),
+        harmonic::describe_surface(molsurf::build_molecular_surface(molecule, options.surface),
                                    molecule, query.descriptors.options);
     result = matching::match_surfaces(query.descriptors, described, match);
   } else {
-    matching::BindingSite site;
+    molsurf::BindingSite site;
     site.structure =
         io::read_record_molecule(entry.molecule, site_entry_read_options(options.read));
     site.spheres = entry.site;
-    site.surface_margin = matching::site_surface_margin(options.site.surface_margin,
-                                                        query.descriptors.options.patch.radius);
+    site.surface_margin = molsurf::site_surface_margin(options.site.surface_margin,
+                                                       query.descriptors.options.patch.radius);
     const harmonic::SurfaceDescriptors described =
-        matching::describe_site(matching::build_site_surface(site, options.surface), site.structure,
+        matching::describe_site(molsurf::build_site_surface(site, options.surface), site.structure,
                                 entry.site, query.descriptors.options);
     const std::vector<bool> in_site = matching::critical_points_in_site(described, entry.site);
     result =

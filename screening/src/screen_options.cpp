@@ -44,23 +44,23 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
              "shape)"},
             [](auto& q) -> auto& { return q.screen.chemistry; }, query_chemistry_names),
         options::field<Q>(
-            matching::site_ligand_spec(), [](auto& q) -> auto& { return q.site_ligand; }),
-        matching::sphere_option<Q>(
-            matching::site_sphere_spec(), [](auto& q) -> auto& { return q.site_spheres; }),
+            molsurf::site_ligand_spec(), [](auto& q) -> auto& { return q.site_ligand; }),
+        molsurf::sphere_option<Q>(
+            molsurf::site_sphere_spec(), [](auto& q) -> auto& { return q.site_spheres; }),
         options::field<Q>(
-            matching::site_pocket_spec(), [](auto& q) -> auto& { return q.site_pocket; }),
+            molsurf::site_pocket_spec(), [](auto& q) -> auto& { return q.site_pocket; }),
     };
     options::append(
-        t, options::pick(mesh::surface_input_option_table(), {"record"}),
+        t, options::pick(molsurf::surface_input_option_table(), {"record"}),
         [](auto& q) -> auto& { return q.query.input; });
     options::append(
         t,
         options::pick(matching::match_option_table(), {"atom-polish-sigma", "atom-polish-weight"}),
         [](auto& q) -> auto& { return q.screen.match; });
     options::append(
-        t, matching::binding_site_option_table(), [](auto& q) -> auto& { return q.screen.site; });
+        t, molsurf::binding_site_option_table(), [](auto& q) -> auto& { return q.screen.site; });
     options::append(
-        t, matching::pocket_option_table(), [](auto& q) -> auto& { return q.query.pockets; });
+        t, molsurf::pocket_option_table(), [](auto& q) -> auto& { return q.query.pockets; });
     t.push_back(options::threads_option<Q>([](auto& q) -> auto& { return q.query.threads; }));
     return t;
   }();

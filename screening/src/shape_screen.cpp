@@ -5,7 +5,7 @@
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/surface_fit.hpp"
 #include "surfcomp/mesh/length_unit.hpp"
-#include "surfcomp/mesh/load_surface.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 
 #include <Eigen/LU>
@@ -135,7 +135,7 @@ std::vector<ShapeHit> screen_shapes(const mesh::Surface& query, const Library& l
   const double tolerance = options.inputs.match.coverage_distance;
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     throw OptionError("shape screen: coverage_distance must be finite and > 0");
-  mesh::check_vertex_limit(query, options.inputs.input);
+  molsurf::check_vertex_limit(query, options.inputs.input);
   if (!is_mesh_library(library)) {
     throw InputError(library.path().string() +
                      ": not a library of meshes (library build MESH...); a mesh query is "

@@ -3,7 +3,8 @@
 The environment names what the build made: SURFCOMP_PROGRAM (the surfcomp program),
 SURFCOMP_PYTHON_DIR (the folder holding the built `surfcomp` package) and SURFCOMP_SOURCE_DIR.
 Reference data: datasets/cache (datasets/fetch.sh) and ../shared/datasets
-($SURFCOMP_SHARED_DATASETS); a test whose data is absent skips, saying so.
+($SURFCOMP_SHARED_DATASETS); a test whose data is absent skips, saying so, or fails when
+SURFCOMP_REQUIRE_DATA=1 (as CI sets it).
 """
 import os
 import pathlib
@@ -26,6 +27,13 @@ def _shared_dir():
     return pathlib.Path(configured) if configured else SOURCE_DIR.parent / "shared" / "datasets"
 
 
+def absent(reason):
+    """Ends a test whose data is absent: a skip, or a failure under SURFCOMP_REQUIRE_DATA=1."""
+    if os.environ.get("SURFCOMP_REQUIRE_DATA") == "1":
+        pytest.fail(f"{reason} (SURFCOMP_REQUIRE_DATA=1 requires it)")
+    pytest.skip(reason)
+
+
 @pytest.fixture(scope="session")
 def program():
     path = os.environ.get("SURFCOMP_PROGRAM")
@@ -39,7 +47,7 @@ def cache():
     """datasets/cache, fetched from Debian packages by datasets/fetch.sh."""
     path = SOURCE_DIR / "datasets" / "cache"
     if not (path / "rdkit-data" / "4i23_1C9.pdb").exists():
-        pytest.skip(f"{path} is not fetched (datasets/fetch.sh)")
+        absent(f"{path} is not fetched (datasets/fetch.sh)")
     return path
 
 
@@ -48,7 +56,7 @@ def shared():
     """../shared/datasets, or skip."""
     path = _shared_dir()
     if not (path / "thermolysin").is_dir():
-        pytest.skip(f"{path} is absent: the reference data sets are not beside the repository")
+        absent(f"{path} is absent: the reference data sets are not beside the repository")
     return path
 
 

@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from conftest import SOURCE_DIR, _shared_dir, run
+from conftest import SOURCE_DIR, _shared_dir, absent, run
 
 BENCH = SOURCE_DIR / "bench"
 sys.path.insert(0, str(BENCH))
@@ -174,8 +174,8 @@ def muv_run(program, tmp_path_factory):
     """A small MUV screen with `--chemistry on`: one target, 2 queries, 30 molecules."""
     datasets = _shared_dir()
     if not (datasets / "muv").is_dir():
-        pytest.skip(f"{datasets / 'muv'} is absent: the reference data sets are not beside the "
-                    "repository")
+        absent(f"{datasets / 'muv'} is absent: the reference data sets are not beside the "
+               "repository")
     work = tmp_path_factory.mktemp("muv")
     result = run([sys.executable, BENCH / "dud_screen_bench.py", "--surfcomp", program,
                   "--datasets", datasets, "--set", "muv", "--targets", "466", "--queries", "2",
@@ -221,3 +221,12 @@ def test_rankings_recomputed_from_hits_equal_the_programs(program, muv_run):
     screened = json.loads((muv_run / "auto.json").read_text())["targets"]["466"]["mean"]["surfcomp"]
     assert auc("auto")["auc"] == pytest.approx(screened["auc"], abs=1e-9)
     assert auc("auto")["ef1"] == pytest.approx(screened["ef1"], abs=1e-9)
+
+
+def test_absent_data_fails_only_when_data_is_required(monkeypatch):
+    monkeypatch.setenv("SURFCOMP_REQUIRE_DATA", "1")
+    with pytest.raises(pytest.fail.Exception, match="SURFCOMP_REQUIRE_DATA=1 requires it"):
+        absent("x.pdb is absent")
+    monkeypatch.delenv("SURFCOMP_REQUIRE_DATA")
+    with pytest.raises(pytest.skip.Exception, match="x.pdb is absent"):
+        absent("x.pdb is absent")

@@ -14,7 +14,7 @@ import threading
 import numpy as np
 import pytest
 
-from conftest import SOURCE_DIR, run
+from conftest import SOURCE_DIR, absent, run
 
 surfcomp = pytest.importorskip("surfcomp", reason="the Python module is not built")
 Chem = pytest.importorskip("rdkit.Chem")
@@ -388,7 +388,7 @@ def elephant(cache):
     mesh_cases = _mesh_cases()
     path = cache / "cgal" / "meshes" / "elephant.off"
     if not path.exists():
-        pytest.skip(f"{path} is not fetched (datasets/fetch.sh)")
+        absent(f"{path} is not fetched (datasets/fetch.sh)")
     vertices, faces = mesh_cases.read_off(path)
     # A partial view (40 % of the area), remeshed (each triangle split in four), with noise of
     # 0.5 % of the diagonal and a random rigid motion: the benchmark's case, fixed seed.
@@ -477,7 +477,7 @@ def test_a_partial_copy_finds_its_mesh_in_a_library_of_meshes(program, elephant,
 def test_pockets_are_the_programs_and_a_pocket_is_a_site(program, shared, tmp_path):
     pdb = shared / "thermolysin" / "1THL.pdb"
     if not pdb.exists():
-        pytest.skip(f"{pdb} is absent")
+        absent(f"{pdb} is absent")
     found = surfcomp.pockets(pdb)
     cli = run([program, "pockets", pdb, "-o", tmp_path / "p.json"])
     assert cli.returncode == 0, cli.stderr

@@ -25,6 +25,13 @@ inline std::filesystem::path shared_datasets_root() {
   return source_dir().parent_path() / "shared" / "datasets";
 }
 
+/// Whether a test that lacks its data fails instead of skipping: $SURFCOMP_REQUIRE_DATA is 1
+/// (CI sets it, since it has the data beside the repository and a skip would pass unnoticed).
+inline bool data_required() {
+  const char* env = std::getenv("SURFCOMP_REQUIRE_DATA");
+  return env != nullptr && std::string(env) == "1";
+}
+
 /// shared_datasets_root()/<relative>; nullopt if absent.
 inline std::optional<std::filesystem::path> shared_dataset(const std::string& relative) {
   const auto path = shared_datasets_root() / relative;

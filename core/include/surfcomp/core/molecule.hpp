@@ -71,7 +71,7 @@ struct LigandSelector {
 /// named selector.residue_name, narrowed to selector.chain and selector.residue_number when
 /// they are given; a copy is one (chain, residue number), and of several copies the one with
 /// the lowest chain, then the lowest residue number, is taken. This is the one ligand
-/// selection of the project (io::MoleculeReadOptions::ligand, matching::binding_site).
+/// selection of the project (io::MoleculeReadOptions::ligand, molsurf::binding_site).
 /// Throws InputError naming molecule.source when no HETATM residue has that name (listing up
 /// to ten HETATM residue names present) or when no copy of it is in the chain and number asked
 /// for (listing the copies present).

@@ -1,5 +1,5 @@
 // The harmonic disk map computed by CGAL's Surface_mesh_parameterization package, the
-// reference that harmonic_disk_map is tested and benchmarked against (METHOD section 4).
+// reference that harmonic_disk_map is tested and benchmarked against (method §4).
 // CGAL's headers stay in cgal_reference.cpp.
 #pragma once
 

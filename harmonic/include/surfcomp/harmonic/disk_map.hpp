@@ -1,5 +1,5 @@
-// Harmonic maps of surface patches onto the unit disk (seed section 3.6, eqs. 2-28 to 2-30 and
-// 3-2; Zhang & Hebert 1999; METHOD section 4): the outer border is fixed on the unit circle by
+// Harmonic maps of surface patches onto the unit disk (method §4.1-4.2; Zhang & Hebert
+// 1999): the outer border is fixed on the unit circle by
 // arc length, every other vertex is the weighted average of its neighbours (a spring system),
 // which is one sparse linear system with two right-hand sides (u and v).
 #pragma once
@@ -19,7 +19,7 @@ namespace surfcomp::harmonic {
 /// across the hole (the triangle i, next, previous hole neighbour of i), as CGAL's
 /// Fixed_border_parameterizer_3 does by circulating the one-ring cyclically.
 enum class SpringWeights {
-  /// k_ij = 1 / |p_i - p_j| (seed eq. 3-2; Zhang & Hebert). Symmetric, positive.
+  /// k_ij = 1 / |p_i - p_j| (method §4.2; Zhang & Hebert). Symmetric, positive.
   inverse_length,
   /// k_ij = 1: Tutte's barycentric map (CGAL Barycentric_mapping_parameterizer_3).
   uniform,
@@ -45,7 +45,7 @@ const char* to_string(SpringWeights weights);
 std::optional<SpringWeights> spring_weights_from_name(const std::string& name);
 
 struct DiskMapOptions {
-  /// Default inverse_length (seed eq. 3-2: k_ij = 1 / |p_i - p_j|).
+  /// Default inverse_length (method §4.2: k_ij = 1 / |p_i - p_j|).
   SpringWeights weights = SpringWeights::inverse_length;
 };
 
@@ -69,7 +69,7 @@ void check_disk_map_input(const Eigen::Ref<const Eigen::MatrixX3d>& positions,
                           const Eigen::Ref<const Eigen::MatrixX3i>& faces,
                           const std::vector<int>& outer_boundary);
 
-/// The harmonic map of a patch onto the unit disk (Zhang & Hebert 1999; seed 3.6).
+/// The harmonic map of a patch onto the unit disk (Zhang & Hebert 1999; method §4).
 ///
 /// `positions` (#V by 3, A) and `faces` (#F by 3, patch-local vertex indices, counter-clockwise
 /// seen from outside) form a connected triangulated disk, possibly with holes.

@@ -1,4 +1,4 @@
-// Harmonic shape images and their comparison (seed section 3.6; METHOD section 4; Zhang & Hebert
+// Harmonic shape images and their comparison (method §4; Zhang & Hebert
 // 1999). A patch already embedded in the unit disk (by harmonic_disk_map) is resampled onto a
 // polar grid over the disk; two images are compared by the Pearson correlation of their values,
 // maximised over rotations. On a polar grid a rotation by one angular step is a cyclic shift of
@@ -20,8 +20,8 @@ struct ImageOptions {
   int rings = 16;
   /// Sectors of the grid, i.e. samples per ring; sector j of every ring lies at angle
   /// j * 360 / sectors degrees, counter-clockwise from the +u axis. The default, 180, gives
-  /// 2-degree steps, so a rotation by 2 degrees is a cyclic shift by one sector (seed: delta =
-  /// 2 degrees). Must be >= 1.
+  /// 2-degree steps, so a rotation by 2 degrees is a cyclic shift by one sector (method §4.3). Must
+  /// be >= 1.
   int sectors = 180;
 };
 
@@ -46,7 +46,7 @@ struct ShapeImage {
 /// OptionError for grid sizes below 1, InputError when grid_index is outside the grid.
 Eigen::Vector2d image_grid_point(const ImageOptions& options, int grid_index);
 
-/// Resamples a per-vertex scalar (the shape index, METHOD section 0) of a patch embedded in the
+/// Resamples a per-vertex scalar (the shape index, method §0) of a patch embedded in the
 /// unit disk onto the polar grid of `options`. uv: #V by 2 embedded vertex positions (normally
 /// inside the closed unit disk); faces: #F by 3 vertex indices; values: #V. Each grid point is
 /// located in the embedded triangles through a uniform grid of their bounding boxes, by CGAL's

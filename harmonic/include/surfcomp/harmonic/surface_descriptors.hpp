@@ -1,6 +1,6 @@
 // The coarse level of a surface, computed once and stored (.hsi): its shape critical points and,
 // for each, the geodesic patch around it, the patch's harmonic map onto the unit disk and its
-// harmonic shape image (METHOD sections 2-4; seed 3.2, 3.4, 3.6).
+// harmonic shape image (method §2-4).
 #pragma once
 
 #include "surfcomp/core/molecule.hpp"
@@ -28,9 +28,9 @@ struct DescriptorOptions {
     options.distance = mesh::GeodesicMethod::fast_marching;
     return options;
   }();
-  DiskMapOptions disk_map;  ///< spring weights 1/|p_i - p_j| (seed eq. 3-2)
+  DiskMapOptions disk_map;  ///< spring weights 1/|p_i - p_j| (method §4.2)
   ImageOptions image;       ///< 16 rings x 180 sectors (2-degree steps)
-  /// The vertex property resampled into the images; default the shape index (METHOD 0).
+  /// The vertex property resampled into the images; default the shape index (method §0.2).
   std::string image_property = mesh::property::shape_index;
   /// Default 1 GiB (CLI --max-image-bytes); must be >= 1. describe_surface refuses, before
   /// building any image, a description whose images would take more memory than this:
@@ -55,7 +55,7 @@ double image_bytes(const ImageOptions& image, std::int64_t count);
 /// but take no part in image comparisons.
 enum class PatchStatus : std::uint8_t {
   ok = 0,          ///< patch, map and image built
-  empty = 1,       ///< the patch lost every triangle in its refinement (seed 3.4 steps 5-6)
+  empty = 1,       ///< the patch lost every triangle in its refinement (method §3.1, steps 5-6)
   not_a_disk = 2,  ///< the patch has a handle (genus > 0); a harmonic map needs a disk
   map_failed = 3,  ///< the harmonic map could not be solved (degenerate patch geometry)
   skipped = 4,     ///< not asked for (outside a binding site, see describe_surface)

@@ -1,5 +1,5 @@
 // The association graph of two surfaces' critical points and the four filters that thin it
-// (seed sections 3.3, 3.5-3.8; METHOD section 5). Nodes are pairs of same-type critical points
+// (method §5.1-5.5). Nodes are pairs of same-type critical points
 // (peak-peak, valley-valley); the fuzzy and image filters remove nodes, the distance filter
 // creates the edges, the overlap filter removes edges. Each filter is its own function, so that
 // it can be tested and traced alone; build_association_graph runs them in the seed's order.
@@ -31,22 +31,22 @@ struct PointPair {
   int image_shift = 0;  ///< the same rotation in angular grid steps (ImageMatch::shift)
 };
 
-/// The filter options (METHOD section 8 starting values [choice], except F).
+/// The filter options (method §8 starting values [choice], except F).
 struct GraphOptions {
-  /// Default 0.3 (METHOD: 0.5). F: a pair is dropped when the fuzzy similarity of its
+  /// Default 0.3 (method §8: 0.5). F: a pair is dropped when the fuzzy similarity of its
   /// autoscaled ESP or of its LP is below F (a property missing on either surface is not
   /// filtered). In [0, 1]. With the fuzzy Jaccard similarity (fuzzy.hpp) F is roughly
   /// (1 - dz) / (1 + dz) for z-scores dz apart, so 0.5 allows dz <= 1/3 and 0.3 about
   /// dz <= 0.54; 0.5 drops most true pairs (docs/decisions.md#fuzzy-threshold).
   double fuzzy_threshold = 0.3;
-  /// Default 0.5 (METHOD). R: a pair is dropped when its best image correlation is below R.
+  /// Default 0.5 (method §8). R: a pair is dropped when its best image correlation is below R.
   /// In [-1, 1] (--image-threshold). See docs/decisions.md#image-threshold.
   double image_threshold = 0.5;
-  /// Default 1.5 A. t: two pairs are joined when |d_A - d_B| <= t (eq. 3-3). Finite, >= 0.
+  /// Default 1.5 A. t: two pairs are joined when |d_A - d_B| <= t (method §5.4). Finite, >= 0.
   double distance_tolerance = 1.5;
   /// Default 2.0 A. d_min: ... and d_A >= d_min and d_B >= d_min. Finite, >= 0.
   double min_distance = 2.0;
-  /// Default 30 degrees. j_tol: an edge is dropped when neither heading difference (eq. 3-4)
+  /// Default 30 degrees. j_tol: an edge is dropped when neither heading difference (method §5.5)
   /// is within it. In [0, 180].
   double overlap_tolerance_degrees = 30.0;
   /// Default 20000 (docs/decisions.md#clique-budget). The most nodes the graph may keep after
@@ -62,13 +62,13 @@ struct GraphOptions {
   bool overlap_filter = true;
 };
 
-/// The graph size after one stage (seed Table 3-1).
+/// The graph size after one stage (method §5.6-5.7).
 struct TraceStage {
   /// "critical points", "fuzzy", "image", "distance" or "overlap".
   std::string stage;
   /// Nodes and edges after the stage. Before the distance filter creates edges, `edges` is the
   /// edge count of the complete association graph on the nodes (count_complete_edges), as the
-  /// thesis reports it; the graph itself is never materialised.
+  /// reference trace reports it (method §5.7); the graph itself is never materialised.
   std::size_t nodes = 0, edges = 0;
   double milliseconds = 0;  ///< wall-clock time of the stage
 };
@@ -80,8 +80,8 @@ struct AssociationGraph {
   std::vector<TraceStage> trace;           ///< one entry per stage, in order
 };
 
-/// The initial nodes (seed 3.3): every pair of a peak of A with a peak of B and of a valley of
-/// A with a valley of B, sorted by (a, b). With a site restriction (METHOD 7), only critical
+/// The initial nodes (method §5.1): every pair of a peak of A with a peak of B and of a valley of
+/// A with a valley of B, sorted by (a, b). With a site restriction (method §7), only critical
 /// points i with (*a_allowed)[i] (resp. b) enter; nullptr allows all. Throws InputError when a
 /// restriction's size differs from the number of critical points.
 std::vector<PointPair> initial_pairs(const harmonic::SurfaceDescriptors& a,
@@ -94,7 +94,7 @@ std::vector<PointPair> initial_pairs(const harmonic::SurfaceDescriptors& a,
 /// C(n, 2) - sum_i C(#nodes using A's point i, 2) - sum_j C(#nodes using B's point j, 2).
 std::size_t count_complete_edges(const std::vector<PointPair>& nodes);
 
-/// The fuzzy filter (seed 3.5): fills fuzzy_esp and fuzzy_lp of every node from the autoscaled
+/// The fuzzy filter (method §5.2): fills fuzzy_esp and fuzzy_lp of every node from the autoscaled
 /// point values (fuzzy.hpp, autoscaled_point_values) and keeps the nodes whose similarity is
 /// >= threshold for ESP and for LP; a NaN similarity (property missing) passes. Order kept.
 /// Throws InputError when a node's indices are outside the critical point lists.
@@ -111,13 +111,13 @@ std::vector<PointPair> with_image_matches(std::vector<PointPair> nodes,
                                           const harmonic::SurfaceDescriptors& a,
                                           const harmonic::SurfaceDescriptors& b);
 
-/// The harmonic shape image filter (seed 3.6): with_image_matches, then keeps the nodes whose
+/// The harmonic shape image filter (method §5.3): with_image_matches, then keeps the nodes whose
 /// two points both have images and whose best correlation is >= threshold. Order kept.
 std::vector<PointPair> image_filter(std::vector<PointPair> nodes,
                                     const harmonic::SurfaceDescriptors& a,
                                     const harmonic::SurfaceDescriptors& b, double threshold);
 
-/// The distance filter (seed 3.7, eq. 3-3), which creates the edges: nodes i < j are joined
+/// The distance filter (method §5.4), which creates the edges: nodes i < j are joined
 /// when they share no critical point (a_i != a_j and b_i != b_j), d_A = |p(a_i) - p(a_j)| and
 /// d_B = |p(b_i) - p(b_j)| (critical point positions, A) satisfy |d_A - d_B| <= tolerance and
 /// d_A, d_B >= min_distance. Returns (i, j) with i < j, sorted. Throws InputError for bad node
@@ -141,7 +141,7 @@ double patch_bearing_degrees(const harmonic::CriticalPointDescriptor& from,
 /// [0, 180].
 double angular_difference_degrees(double x, double y);
 
-/// The overlap filter (seed 3.8, eq. 3-4). For an edge between pp1 = (A1, B1) and
+/// The overlap filter (method §5.5). For an edge between pp1 = (A1, B1) and
 /// pp2 = (A2, B2): a1 = bearing of A2 in A1's map, b1 = bearing of B2 in B1's map minus pp1's
 /// image angle (so that both are in A1's image frame, the alignment axis of pp1), and likewise
 /// a2 (A1 in A2's map) and b2 (B1 in B2's map minus pp2's image angle). The edge is kept when

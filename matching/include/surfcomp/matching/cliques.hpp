@@ -1,4 +1,4 @@
-// Maximal cliques of the association graph (seed section 3.9; METHOD section 6): the groups of
+// Maximal cliques of the association graph (method §6): the groups of
 // critical point pairs that can all overlap at once.
 #pragma once
 

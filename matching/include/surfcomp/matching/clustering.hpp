@@ -1,6 +1,6 @@
-// From cliques of critical-point pairs to a tree of rigid alignments (seed section 3.9; METHOD
-// section 6): each clique's correspondences are fitted, poor fits dropped, and the rest merged
-// by single linkage into larger clusters while no critical point gets two partners.
+// From cliques of critical-point pairs to a tree of rigid alignments (method §6.3-6.4): each
+// clique's correspondences are fitted, poor fits dropped, and the rest merged by single linkage
+// into larger clusters while no critical point gets two partners.
 #pragma once
 
 #include "surfcomp/harmonic/surface_descriptors.hpp"
@@ -20,7 +20,7 @@ struct Cluster {
   std::vector<MatchedPair> pairs;
   /// Least-squares fit of the union of the pairs' correspondences moving B onto A (from =
   /// b_points, to = a_points): the transform maps PROBE (B) coordinates into REF's (A) frame;
-  /// rmsd is eq. 3-5, n_points the number of correspondences.
+  /// rmsd is method §6.3, n_points the number of correspondences.
   RigidFit fit;
   /// Pearson correlation of the property at the corresponding points (property_correlation).
   double r_chem = 0.0;
@@ -33,7 +33,7 @@ struct Cluster {
 };
 
 struct ClusteringOptions {
-  /// Default 4.0 A (seed 3.9). Primary cliques whose fit has a larger RMSD are dropped. Must be
+  /// Default 4.0 A (method §6.3). Primary cliques whose fit has a larger RMSD are dropped. Must be
   /// > 0 (infinity keeps every clique).
   double rmsd_cut = 4.0;
   /// Default 4.0 A [choice]. Two clusters merge only when their single-linkage distance is at
@@ -41,7 +41,7 @@ struct ClusteringOptions {
   /// own transform on the union, merging two clusters of RMSD <= c at distance <= c gives a
   /// cluster of RMSD <= c: with merge_cut <= rmsd_cut every cluster of the tree fits within
   /// the RMSD cut. Infinity reproduces the seed, which merges until only CP conflicts stop it
-  /// and then finds its top-level clusters "often poor alignments" (seed 3.10). Must be > 0.
+  /// and then finds its top-level clusters "often poor alignments" (method §6.5). Must be > 0.
   double merge_cut = 4.0;
 };
 
@@ -49,7 +49,7 @@ struct ClusteringOptions {
 /// order); e.g. pair_correspondences of two described surfaces, or synthetic ones in tests.
 using CorrespondenceProvider = std::function<Correspondences(const MatchedPair&)>;
 
-/// The merge tree of the cliques (seed 3.9):
+/// The merge tree of the cliques (method §6):
 /// 1. Each clique (a list of MatchedPair; order irrelevant) becomes a leaf: its pairs'
 /// correspondences
 ///    are concatenated and fitted (fit_rigid, B onto A); cliques with RMSD > rmsd_cut are dropped.
@@ -62,7 +62,7 @@ using CorrespondenceProvider = std::function<Correspondences(const MatchedPair&)
 ///    both; repeat until no pair merges.
 /// Returns every cluster ever formed: the leaves first, then the merged ones in merge order,
 /// with parent and children indices into the result. The roots (parent -1) are the final
-/// alignments; rank_alignments ranks them all, whatever their level (seed 3.10).
+/// alignments; rank_alignments ranks them all, whatever their level (method §6.5).
 /// Distances use the second moments of each cluster's points about their centroids, so each
 /// costs O(1) after one pass over the points per cluster: O(L^2) for L leaves.
 /// Throws InputError when a clique is empty, pairs one CP with two partners, or gives one CP

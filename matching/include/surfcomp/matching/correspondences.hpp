@@ -1,4 +1,4 @@
-// Dense point correspondences of matched critical points (seed section 3.9; METHOD section 6):
+// Dense point correspondences of matched critical points (method §6):
 // two patches whose harmonic shape images match at a rotation are paired point by point through
 // their images: the same disk position after the rotation, mapped back to each patch in 3D.
 #pragma once
@@ -71,7 +71,7 @@ Correspondences pair_correspondences(const harmonic::SurfaceDescriptors& a,
 /// The columns of all `parts`, in order (the union of the correspondences of several pairs).
 Correspondences concatenate(const std::vector<const Correspondences*>& parts);
 
-/// Pearson correlation of a_property and b_property (R_chem, seed 3.10 and eq. 2-35); 0 when
+/// Pearson correlation of a_property and b_property (R_chem, method §6.5); 0 when
 /// there are fewer than 2 points or either side is constant (standard deviation below 1e-12
 /// times its root mean square value, or exactly 0). Throws InputError when a value is not
 /// finite or the two vectors differ in length.

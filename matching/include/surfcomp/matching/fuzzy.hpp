@@ -1,4 +1,4 @@
-// The fuzzy chemical filter's pieces (seed section 3.5, eqs. 2-18 and 2-19; METHOD section 5):
+// The fuzzy chemical filter's pieces (method §5.2):
 // autoscaled surface properties, five fuzzy sets per property and a similarity of two
 // membership vectors.
 #pragma once
@@ -11,18 +11,18 @@
 
 namespace surfcomp::matching {
 
-/// Memberships of a value in the five fuzzy sets high-, -, neutral, +, high+ (seed Table 3-2).
+/// Memberships of a value in the five fuzzy sets high-, -, neutral, +, high+ (method §5.2).
 using FuzzyMemberships = std::array<double, 5>;
 
 /// The memberships of an autoscaled value z (a z-score, dimensionless) in five triangular fuzzy
-/// sets centred at -2, -1, 0, 1, 2 with half-width 1 [choice, METHOD 5]; the outer two are
+/// sets centred at -2, -1, 0, 1, 2 with half-width 1 [choice, method §5.2]; the outer two are
 /// shoulders (high- is 1 for z <= -2, high+ is 1 for z >= 2). At most two sets are non-zero
 /// and the memberships always sum to 1 (a partition of unity): z = 0.5 gives
 /// (0, 0, 0.5, 0.5, 0). Throws InputError when z is NaN (infinities take the shoulders).
 FuzzyMemberships fuzzy_memberships(double z);
 
 /// The similarity of two membership vectors: sum_k min(m_k, n_k) / sum_k max(m_k, n_k) (a
-/// fuzzy Jaccard index [choice, METHOD 5]) in [0, 1]: 1 for equal vectors, 0 when no set holds
+/// fuzzy Jaccard index [choice, method §5.2]) in [0, 1]: 1 for equal vectors, 0 when no set holds
 /// both, symmetric. Throws InputError when both vectors are all zero (the ratio is undefined).
 double fuzzy_similarity(const FuzzyMemberships& m, const FuzzyMemberships& n);
 
@@ -33,7 +33,7 @@ double fuzzy_similarity(double z_a, double z_b);
 /// The autoscaled value of each critical point's property `property` ("esp" or "lp"): its
 /// disc average (CriticalPoint::esp or ::lp) minus the mean of the vertex property of that
 /// name over all vertices of descriptors.surface, divided by the property's population
-/// standard deviation over those vertices (seed 3.5: autoscaled properties, so that the most
+/// standard deviation over those vertices (method §5.2: autoscaled properties, so that the most
 /// positive regions of two molecules match whatever their net charges). One value per
 /// critical point, in descriptors.critical_points order. All NaN when the surface has no such
 /// property (then the fuzzy filter does not filter on it); all 0 when the property is constant

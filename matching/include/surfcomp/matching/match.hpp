@@ -1,4 +1,4 @@
-// The fine level and the answer (METHOD sections 5-7): two described surfaces in, their ranked
+// The fine level and the answer (method §5-7): two described surfaces in, their ranked
 // rigid alignments out. Composes the association graph, maximal cliques, rigid fits with
 // single-linkage merging, the consensus ranking and the overlay refinement of the first poses.
 #pragma once
@@ -30,7 +30,7 @@ enum class MatchMode {
   /// with MatchOptions::overlay and principal_axes_starts; the critical-point masks, if any,
   /// restrict only the association graph.
   whole_surfaces,
-  /// Binding sites (METHOD section 7): the overlay compares the pocket linings, the vertices
+  /// Binding sites (method §7): the overlay compares the pocket linings, the vertices
   /// within SiteMatchOptions::overlay_radius of the critical points that take part (allowed by
   /// the side's mask and not PatchStatus::skipped), with MatchOptions::site's settings.
   binding_sites,

@@ -8,10 +8,10 @@
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match.hpp"
-#include "surfcomp/matching/pockets.hpp"
 #include "surfcomp/matching/site.hpp"
-#include "surfcomp/mesh/load_surface.hpp"
 #include "surfcomp/mesh/surface.hpp"
+#include "surfcomp/molsurf/load_surface.hpp"
+#include "surfcomp/molsurf/pockets.hpp"
 
 #include <array>
 #include <filesystem>
@@ -32,7 +32,7 @@ struct MatchInput {
   std::optional<harmonic::SurfaceDescriptors> descriptors;  ///< a description in memory
   std::optional<mesh::Surface> surface;  ///< a surface in memory, with its esp and lp
   /// Default 0: none. A general mesh `surface` whose curvature properties were fitted at this
-  /// length unit (mesh::assign_general_mesh_curvature; a mesh library's entries): a comparison
+  /// length unit (molsurf::assign_general_mesh_curvature; a mesh library's entries): a comparison
   /// in that unit keeps them instead of fitting them again, which costs most of a large mesh's
   /// description. Any other unit fits them again.
   double curvature_unit = 0.0;
@@ -41,7 +41,7 @@ struct MatchInput {
   /// structure's surface is built without water and without that copy. A molecule input only.
   std::string site_ligand;
   /// Spheres of a binding site (with site_ligand: more spheres), any input.
-  std::vector<SiteSphere> site_spheres;
+  std::vector<molsurf::SiteSphere> site_spheres;
   /// Default 0: none. The binding site is pocket N (1-based) of detect_pockets
   /// (MatchInputOptions::pockets): its alpha spheres on the structure's ATOM records
   /// (pocket_site). A molecule input only; not with site_ligand or site_spheres.
@@ -58,13 +58,13 @@ struct MatchInputOptions {
   /// meshes: of one side alone in prepare_input, of both together in match_inputs (the larger
   /// side's size under --scale auto), which describes them in it and gives every result back in
   /// the inputs' coordinates (a result file's parameters stay in units).
-  mesh::SurfaceInputOptions input;
+  molsurf::SurfaceInputOptions input;
   /// How a side that is not a description already is described. When the other side is a
   /// stored description (a .hsi file or descriptors in memory), its parameters are used instead
   /// (all but max_image_bytes), so that the two sides' images compare.
   harmonic::DescriptorOptions descriptors;
-  BindingSiteOptions site;  ///< spheres of 4 A around a site ligand, surface margin 16 A
-  PocketOptions pockets;    ///< how a site_pocket's pockets are detected
+  molsurf::BindingSiteOptions site;  ///< spheres of 4 A around a site ligand, surface margin 16 A
+  molsurf::PocketOptions pockets;    ///< how a site_pocket's pockets are detected
   /// The match; its mode is set to MatchMode::binding_sites when either side has a site.
   MatchOptions match;
   /// Default 0: all cores. The worker threads the caller lets TBB use while this runs (the CLI
@@ -76,22 +76,22 @@ struct MatchInputOptions {
 };
 
 /// The user's options of describing one input: the surface options
-/// (mesh::surface_input_option_table), the descriptor options
+/// (molsurf::surface_input_option_table), the descriptor options
 /// (harmonic::descriptor_option_table) and --threads.
 const options::Table<MatchInputOptions>& describe_option_table();
 
 /// The binding sites a pair match asks for, as a user gives them: a ligand residue and spheres
 /// on both sides, or on one side only (default: none, whole surfaces).
 struct PairSites {
-  std::string ligand;                         ///< both sides' site ligand
-  std::string reference_ligand;               ///< REF's, instead of `ligand`
-  std::string probe_ligand;                   ///< PROBE's, instead of `ligand`
-  std::vector<SiteSphere> spheres;            ///< on both sides
-  std::vector<SiteSphere> reference_spheres;  ///< on REF only, after `spheres`
-  std::vector<SiteSphere> probe_spheres;      ///< on PROBE only, after `spheres`
-  int pocket = 0;                             ///< both sides' site pocket (0: none)
-  int reference_pocket = 0;                   ///< REF's, instead of `pocket`
-  int probe_pocket = 0;                       ///< PROBE's, instead of `pocket`
+  std::string ligand;                                  ///< both sides' site ligand
+  std::string reference_ligand;                        ///< REF's, instead of `ligand`
+  std::string probe_ligand;                            ///< PROBE's, instead of `ligand`
+  std::vector<molsurf::SiteSphere> spheres;            ///< on both sides
+  std::vector<molsurf::SiteSphere> reference_spheres;  ///< on REF only, after `spheres`
+  std::vector<molsurf::SiteSphere> probe_spheres;      ///< on PROBE only, after `spheres`
+  int pocket = 0;                                      ///< both sides' site pocket (0: none)
+  int reference_pocket = 0;                            ///< REF's, instead of `pocket`
+  int probe_pocket = 0;                                ///< PROBE's, instead of `pocket`
 };
 
 /// A pair match as a user asks for it: how the sides are read, described and matched, and
@@ -120,19 +120,19 @@ struct PreparedInput {
   /// The molecule the surface was built from, or the mesh's --molecule; for a site with a
   /// ligand, the structure without water and without the ligand copy.
   std::optional<Molecule> molecule;
-  std::vector<SiteSphere> site;   ///< the site's spheres; empty for a whole surface
-  std::vector<bool> site_points;  ///< critical_points_in_site; empty without a site
+  std::vector<molsurf::SiteSphere> site;  ///< the site's spheres; empty for a whole surface
+  std::vector<bool> site_points;          ///< critical_points_in_site; empty without a site
   /// The length unit it was described in; its descriptions are given back in its own
   /// coordinates, their parameters (DescriptorOptions) stay in units.
   mesh::LengthUnit unit;
-  /// What a reader may want to know of reading it, one line each (mesh::LoadedSurface::notes).
+  /// What a reader may want to know of reading it, one line each (molsurf::LoadedSurface::notes).
   std::vector<std::string> notes;
 };
 
 /// Checks from names and options alone, before any work, that `input` can be read as asked:
 /// exactly one input; a site ligand only on a molecule (a file or in memory), never a water
 /// (readers drop waters) and not with options.input.read.ligand; a file's extension and the
-/// surface options that apply to it (mesh::check_surface_input). `role` ("REF", "PROBE",
+/// surface options that apply to it (molsurf::check_surface_input). `role` ("REF", "PROBE",
 /// "QUERY") names the side and `site_option` the site ligand's option in messages. Throws
 /// OptionError or InputError.
 void check_match_input(const MatchInput& input, const MatchInputOptions& options, const char* role,
@@ -142,8 +142,8 @@ void check_match_input(const MatchInput& input, const MatchInputOptions& options
 /// built with site_surface_margin of options.descriptors' patch radius, described at its site's
 /// critical points only, matching::describe_site); a general mesh is described in its own length
 /// unit (mesh::general_mesh_unit of options.input's scale and unit; its curvature fitted as
-/// mesh::assign_general_mesh_curvature does) and given back in its coordinates, so that it gets
-/// the critical points, patches and images that mesh::load_surface's curvature and
+/// molsurf::assign_general_mesh_curvature does) and given back in its coordinates, so that it gets
+/// the critical points, patches and images that molsurf::load_surface's curvature and
 /// describe_surface give in that unit. Throws as check_match_input,
 /// the readers, the surface construction and the description; InputError when a site holds no
 /// critical point.

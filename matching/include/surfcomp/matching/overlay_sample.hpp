@@ -9,8 +9,8 @@
 
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 
 #include <Eigen/Core>
 
@@ -51,11 +51,11 @@ SurfaceSample sample_surface(const mesh::Surface& surface, double spacing,
                              const std::vector<bool>* vertex_mask = nullptr);
 
 /// Default 0.5 A: the grid on which sample_molecule finds its surface points
-/// (mesh::SesPointOptions::grid_spacing).
+/// (molsurf::SesPointOptions::grid_spacing).
 inline constexpr double screening_grid_spacing = 0.5;
 
 /// The screening sample of a molecule, built straight from its atoms: the points where its SES
-/// crosses a grid of `grid_spacing` (mesh::ses_points, probe `surface.ses.probe_radius`) pooled
+/// crosses a grid of `grid_spacing` (molsurf::ses_points, probe `surface.ses.probe_radius`) pooled
 /// in cells of `spacing` A as sample_surface pools vertices, with the ESP and LP (`surface.esp`,
 /// `surface.lp`) computed at each pooled point. It stands in for sample_surface of the full
 /// surface where only the overlay needs it (a screen's first two stages), at a fraction of the
@@ -63,7 +63,7 @@ inline constexpr double screening_grid_spacing = 0.5;
 /// validate_molecule refuses or a grid over surface.ses.max_grid_cells; OptionError when spacing
 /// is not finite and > 0.
 SurfaceSample sample_molecule(const Molecule& molecule, double spacing,
-                              const mesh::MolecularSurfaceOptions& surface = {},
+                              const molsurf::MolecularSurfaceOptions& surface = {},
                               double grid_spacing = screening_grid_spacing);
 
 }  // namespace surfcomp::matching

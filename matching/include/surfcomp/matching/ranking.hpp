@@ -1,4 +1,4 @@
-// Consensus ranking of alignments (seed section 3.10, eq. 3-6 to 3-9; METHOD section 6; Wang &
+// Consensus ranking of alignments (method §6.5; Wang &
 // Wang's consensus schemes): three scores per cluster, RMSD (lower is better), number of
 // corresponding points (higher is better) and R_chem (higher is better), combined into one.
 #pragma once
@@ -11,15 +11,18 @@
 namespace surfcomp::matching {
 
 enum class ConsensusScheme {
-  /// Eq. 3-7 / 3-9: the weighted mean of the three ranks; rank 1 is the best score, clusters
+  /// method §6.5, rank by rank: the weighted mean of the three ranks; rank 1 is the best score,
+  /// clusters
   /// with equal scores share the mean of the ranks they span (fractional ranking). Lower
   /// consensus is better.
   rank_by_rank,
-  /// Eq. 3-6: the weighted mean of the three scores normalised to [0, 1] over the clusters,
+  /// method §6.5, rank by number: the weighted mean of the three scores normalised to [0, 1] over
+  /// the clusters,
   /// 1 for the best and 0 for the worst value ((max - x) / (max - min) for RMSD, (x - min) /
   /// (max - min) for the others; 1 for all when max == min). Higher consensus is better.
   rank_by_number,
-  /// Eq. 3-8: the weighted count of scores in whose top fraction the cluster is: a cluster
+  /// method §6.5, rank by vote: the weighted count of scores in whose top fraction the cluster is:
+  /// a cluster
   /// gets the vote of a score when its value is at least as good as the k-th best value, k =
   /// max(1, ceil(vote_top_fraction * #clusters)) (ties at the border all vote). Higher
   /// consensus is better.
@@ -32,7 +35,7 @@ inline constexpr std::array<const char*, 3> consensus_scheme_names = {"rank", "n
 struct RankingOptions {
   /// Default rank_by_rank (the seed's choice).
   ConsensusScheme scheme = ConsensusScheme::rank_by_rank;
-  /// Default 1 each (seed 3.10). Weights of RMSD, point count and R_chem; finite, >= 0, and
+  /// Default 1 each (method §6.5). Weights of RMSD, point count and R_chem; finite, >= 0, and
   /// not all 0.
   double weight_rmsd = 1.0;
   double weight_points = 1.0;
@@ -50,7 +53,7 @@ struct RankedAlignment {
 
 /// Every cluster ranked best first by the consensus of options.scheme over fit.rmsd,
 /// fit.n_points and r_chem; clusters with equal consensus keep index order (deterministic).
-/// All clusters are ranked, whatever their level in the merge tree (seed 3.10).
+/// All clusters are ranked, whatever their level in the merge tree (method §6.5).
 /// Throws InputError when a score is not finite; OptionError for weights or a fraction
 /// outside their domain.
 std::vector<RankedAlignment> rank_alignments(const std::vector<Cluster>& clusters,

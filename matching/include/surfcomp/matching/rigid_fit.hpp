@@ -1,5 +1,5 @@
-// Least-squares rigid superposition of corresponding point sets (seed section 3.9, eq. 3-5;
-// METHOD section 6): the rotation about the centroids that minimises the sum of squared
+// Least-squares rigid superposition of corresponding point sets (method §6.3;
+// method §6): the rotation about the centroids that minimises the sum of squared
 // distances (Kabsch 1976; Horn 1987), restricted to proper rotations.
 #pragma once
 
@@ -23,12 +23,12 @@ struct RigidTransform {
 /// A fitted transform and its quality.
 struct RigidFit {
   RigidTransform transform;
-  double rmsd = 0.0;         ///< A, eq. 3-5 over the n_points correspondences
+  double rmsd = 0.0;         ///< A, method §6.3 over the n_points correspondences
   std::size_t n_points = 0;  ///< correspondences fitted
 };
 
 /// The proper rigid transform T minimising sum_i |T from_i - to_i|^2 over the columns of two
-/// 3 by N arrays (A), and its RMSD sqrt(sum_i |T from_i - to_i|^2 / N) (seed eq. 3-5 with
+/// 3 by N arrays (A), and its RMSD sqrt(sum_i |T from_i - to_i|^2 / N) (method §6.3 with
 /// q = from, p = to). Kabsch: centroids removed, SVD of the cross-covariance H = sum (from_i -
 /// from_c)(to_i - to_c)^T = U S V^T, R = V diag(1, 1, d) U^T with d = sign det(V U^T), so a
 /// point set that best matches its mirror image still gets a rotation (det +1), never a

@@ -1,4 +1,4 @@
-// Binding sites (METHOD section 7): a site is a set of spheres on a structure, built around a
+// Binding sites (method §7): a site is a set of spheres on a structure, built around a
 // ligand copy or given; its surface is the structure's without water and without that copy,
 // described only at the critical points inside the spheres. match_surfaces compares two sites
 // with MatchMode::binding_sites and the sites' critical-point masks.
@@ -7,8 +7,8 @@
 #include "surfcomp/core/molecule.hpp"
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
 #include "surfcomp/mesh/surface.hpp"
+#include "surfcomp/molsurf/site.hpp"
 
 #include <Eigen/Core>
 
@@ -20,120 +20,10 @@
 
 namespace surfcomp::matching {
 
-/// A sphere of a binding site, A.
-struct SiteSphere {
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();
-  double radius = 0.0;
-};
-
-/// The sphere written "x,y,z,r" (A; what `--site-sphere` and a site list take), or none when
-/// `text` is not four comma-separated numbers with a finite centre and a finite radius > 0.
-std::optional<SiteSphere> parse_site_sphere(const std::string& text);
-
-/// Site spheres as an option's value, and back.
-std::vector<options::Sphere> sphere_values(const std::vector<SiteSphere>& spheres);
-std::vector<SiteSphere> site_spheres(const std::vector<options::Sphere>& values);
-
-/// What the user sees of --site-ligand and --site-sphere, wherever a site is asked for.
-options::Spec site_ligand_spec();
-options::Spec site_sphere_spec();
-
-/// The repeatable option of a list of site spheres at `access(settings)` (a generic lambda as
-/// for options::field).
-template <class Settings, class Access>
-options::Option<Settings> sphere_option(options::Spec spec, Access access) {
-  spec.kind = options::Kind::spheres;
-  spec.optional = true;
-  return {std::move(spec),
-          [access](const Settings& s) { return options::Value(sphere_values(access(s))); },
-          [access](Settings& s, const options::Value& v) {
-            access(s) = site_spheres(std::get<std::vector<options::Sphere>>(v));
-          }};
-}
-
-/// A site's surface (build_site_surface) is the whole structure's wherever the site's patches
-/// reach, up to the remeshing's small non-locality, when its margin is at least the patch
-/// radius plus this, A: the SES of a point depends on atoms up to a probe diameter and an atom
-/// radius away, its curvature on 2 A around it (docs/decisions.md#site-surfaces).
-inline constexpr double surface_margin_beyond_patch = 8.0;
-
-/// The surface margin a site described with patches of `patch_radius` (A) is built with:
-/// `margin` raised to at least patch_radius + surface_margin_beyond_patch, or 0 (every atom)
-/// when `margin` is 0.
-double site_surface_margin(double margin, double patch_radius);
-
-struct BindingSiteOptions {
-  /// Default 4 A. Radius of the sphere around each atom of the ligand copy. Finite, > 0.
-  double sphere_radius = 4.0;
-  /// Default 0 A: the site's structure keeps every chain. When > 0, it keeps only the chains
-  /// with an atom within this distance of a sphere's centre (for a ligand, the ligand's own
-  /// chain among them), so that the surface, whose ESP and LP cost #vertices x #atoms, leaves
-  /// out chains far from the site. Finite, >= 0.
-  double chain_contact_radius = 0.0;
-  /// Default 16 A (patches of up to 8 A; see surface_margin_beyond_patch). build_site_surface
-  /// builds the SES of the structure's atoms within a sphere's radius plus this margin of its
-  /// centre, not of the whole structure. 0: every atom. Finite, >= 0. Where a site is
-  /// described (match_inputs, prepare_input, a pocket screen), it is raised to
-  /// site_surface_margin of the patch radius.
-  double surface_margin = 16.0;
-};
-
-/// The user's options of BindingSiteOptions: --site-radius and --site-margin.
-const options::Table<BindingSiteOptions>& binding_site_option_table();
-
-/// A binding site and the structure whose surface it lies on.
-struct BindingSite {
-  std::vector<SiteSphere> spheres;  ///< the site, A
-  /// The atoms of the ligand copy the site was built around, in the structure's order (source
-  /// and title the structure's); no atoms when the site was built from spheres.
-  Molecule ligand;
-  /// The structure without water, without the ligand copy (only that copy: other copies of the
-  /// ligand, ions and cofactors stay) and, with chain_contact_radius > 0, without the chains
-  /// out of contact; the atoms keep their order and properties.
-  Molecule structure;
-  double surface_margin = 0.0;  ///< BindingSiteOptions::surface_margin, A
-};
-
-/// The site of the ligand copy select_ligand(structure, ligand) takes: a sphere of
-/// options.sphere_radius around each of its atoms. Throws InputError when that copy is absent
-/// (select_ligand's message: the file and the residues present) or when no atom is left in the
-/// site's structure; OptionError for options outside their domain.
-BindingSite binding_site(const Molecule& structure, const LigandSelector& ligand,
-                         const BindingSiteOptions& options = {});
-
-/// The site made of `spheres` on `structure` (options.sphere_radius is not used). Throws
-/// InputError when there is no sphere, a sphere has a non-finite centre or a radius that is not
-/// a finite number > 0, or no atom is left in the site's structure; OptionError for options
-/// outside their domain.
-BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> spheres,
-                         const BindingSiteOptions& options = {});
-
-/// The site's surface: the SES (options.ses) of the structure's atoms within a sphere's radius
-/// plus site.surface_margin of its centre (every atom when the margin is 0), sampled on the grid
-/// of the whole structure (mesh::ses_voxel_size), with ESP and LP from every atom of the
-/// structure and curvature (options.esp, lp, curvature); its source is the structure's. Throws
-/// InputError when no atom lies within the margin, and as build_molecular_surface.
-mesh::Surface build_site_surface(const BindingSite& site,
-                                 const mesh::MolecularSurfaceOptions& options = {});
-
-/// Default 4 A beyond the surface margin: the reach of the atoms a site keeps
-/// (site_neighbourhood). LP sums the atoms within mesh::default_fauchere_cutoff (12 A) of a
-/// vertex, so it is the whole structure's at every vertex within the margin - 8 A of a sphere:
-/// at least the patch radius (site_surface_margin).
-inline constexpr double neighbourhood_beyond_margin = 4.0;
-
-/// What a site's surface and scores need of `structure`, in its order: every atom within a
-/// sphere's radius + `reach` (A) of its centre, every charged atom (the ESP sums them all), each
-/// chain's first standard residue (whose N terminus a reader charges) and the smallest atom
-/// (which sets the SES grid); ionisable_atoms follow their atoms. A pocket library stores this
-/// rather than the structure. Throws InputError when `reach` is not finite and >= 0.
-Molecule site_neighbourhood(const Molecule& structure, const std::vector<SiteSphere>& spheres,
-                            double reach);
-
 /// One flag per critical point of `descriptors`, in order: its position lies in at least one
 /// of `spheres` (distance to the centre <= radius).
 std::vector<bool> critical_points_in_site(const harmonic::SurfaceDescriptors& descriptors,
-                                          const std::vector<SiteSphere>& spheres);
+                                          const std::vector<molsurf::SiteSphere>& spheres);
 
 /// A site's pocket lining: one flag per vertex of descriptors.surface, set when the vertex lies
 /// within `radius` (A) of a critical point that takes part: allowed by `allowed` (one flag per
@@ -146,13 +36,13 @@ std::vector<bool> pocket_lining(const harmonic::SurfaceDescriptors& descriptors,
 /// `spheres` (as critical_points_in_site flags them); the others keep PatchStatus::skipped, so
 /// that their indices stay those of detect_critical_points. Errors as describe_surface's.
 harmonic::SurfaceDescriptors describe_site(mesh::Surface surface,
-                                           const std::vector<SiteSphere>& spheres,
+                                           const std::vector<molsurf::SiteSphere>& spheres,
                                            const harmonic::DescriptorOptions& options = {});
 
 /// describe_site of a surface built from `molecule`, keeping its heavy atoms
 /// (SurfaceDescriptors::atoms).
 harmonic::SurfaceDescriptors describe_site(mesh::Surface surface, const Molecule& molecule,
-                                           const std::vector<SiteSphere>& spheres,
+                                           const std::vector<molsurf::SiteSphere>& spheres,
                                            const harmonic::DescriptorOptions& options = {});
 
 /// The residue classes of a pocket lining's composition: aliphatic (ALA VAL LEU ILE MET),
@@ -170,7 +60,7 @@ inline constexpr double lining_reach = 1.0;
 /// in each class; none when no residue lines the site (a nucleic-acid site, or spheres away
 /// from the protein), which then has no composition to compare.
 std::optional<LiningComposition> lining_composition(const Molecule& structure,
-                                                    const std::vector<SiteSphere>& spheres,
+                                                    const std::vector<molsurf::SiteSphere>& spheres,
                                                     double reach = lining_reach);
 
 /// How alike two linings' compositions are: the histogram intersection, the sum over the
@@ -203,7 +93,7 @@ struct InteractionPoint {
 /// its nearest heavy atom of `structure`, in vertex order.
 std::vector<InteractionPoint> interaction_points(const mesh::Surface& surface,
                                                  const Molecule& structure,
-                                                 const std::vector<SiteSphere>& spheres);
+                                                 const std::vector<molsurf::SiteSphere>& spheres);
 
 /// The fraction of a site's interaction points in each class: independent of the site's size.
 /// None when there is no point.

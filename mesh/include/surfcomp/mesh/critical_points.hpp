@@ -1,4 +1,4 @@
-// Shape critical points (seed section 3.2, eq. 3-1; METHOD section 2): the peaks and valleys
+// Shape critical points (method §2.1): the peaks and valleys
 // that form SURFCOMP's coarse-level representation of a surface.
 #pragma once
 
@@ -22,14 +22,14 @@ constexpr const char* type_name(CriticalPointType type) {
 struct CriticalPointOptions {
   /// Default 2.5 A. The on-surface radius r_cp of the neighbourhood N(p, r_cp) in which a
   /// critical point must have the extreme curvature, on-surface (see `distance`). Must be
-  /// finite and > 0. METHOD section 2's value; on the default molecular surfaces it gives
-  /// about the thesis' critical-point counts (docs/decisions.md#curvature-neighbourhood).
+  /// finite and > 0. method §2's value; on the default molecular surfaces it gives
+  /// about the reference counts of method §2.4 (docs/decisions.md#curvature-neighbourhood).
   double radius = 2.5;
   /// Default 1.0 A. Radius of the on-surface disc over which a critical point's shape index,
   /// esp and lp are averaged (weighted by vertex area, a third of the incident triangles'
-  /// area); 0 takes the vertex's own values. METHOD section 5 [choice]. Finite and >= 0.
+  /// area); 0 takes the vertex's own values. method §2.3 [choice]. Finite and >= 0.
   double property_disc_radius = 1.0;
-  /// Default dijkstra (METHOD section 2). How the on-surface distances of both radii are
+  /// Default dijkstra (method §2). How the on-surface distances of both radii are
   /// computed (geodesic.hpp).
   GeodesicMethod distance = GeodesicMethod::dijkstra;
 };
@@ -50,7 +50,7 @@ struct CriticalPoint {
   double lp = 0.0;              ///< disc average; NaN without property lp
 };
 
-/// The peaks and valleys of `surface` (seed eq. 3-1):
+/// The peaks and valleys of `surface` (method §2.1):
 /// - peak: a convex vertex (cc1 < 0 and cc2 < 0) whose |cc1| is larger than that of every
 ///   other convex vertex within the on-surface distance options.radius;
 /// - valley: a concave vertex (cc1 > 0 and cc2 > 0) whose cc1 is larger than that of every

@@ -1,5 +1,5 @@
 // On-surface distances from a vertex, in Dijkstra order over the mesh edges, each edge weighted
-// by its Euclidean length (seed section 3.4, step 2; METHOD section 2), optionally with the
+// by its Euclidean length (method §3.1, step 2; method §2), optionally with the
 // fast-marching triangle update. Edge paths zig-zag, so plain Dijkstra distances are longer
 // than the true geodesic except along straight chains of edges, and refining the mesh does not
 // remove that; the fast-marching update also reaches a vertex straight across a triangle
@@ -26,7 +26,7 @@ enum class GeodesicMethod {
   /// vertex is also reached straight across a triangle whose other two vertices are done,
   /// from the virtual source their distances define in the triangle's plane (when that ray
   /// crosses the opposite edge; obtuse triangles fall back to the edges). Exact on a plane,
-  /// close to the great-circle distance on a sphere. METHOD section 2 allows it.
+  /// close to the great-circle distance on a sphere. method §2 allows it.
   fast_marching,
 };
 

@@ -1,6 +1,6 @@
 // Surface patches: the piece of a surface within an on-surface radius of a centre vertex, cut
 // out as a triangulated disk (with holes) whose border can be walked once, counter-clockwise
-// (seed section 3.4, steps 1-7; METHOD section 3). The harmonic map (seed 3.6) embeds it.
+// (method §3.1). The harmonic map (method §4) embeds it.
 //
 // The steps are separate functions over sorted lists of surface vertex and face indices, so
 // that each can be tested alone; extract_patch composes them. Every function here is const
@@ -20,13 +20,13 @@ namespace surfcomp::mesh {
 
 struct PatchOptions {
   /// Default 5.0 A. The patch radius: on-surface distance (by `distance`) from the centre.
-  /// METHOD section 3 [choice]: about 5 A for ligands, larger for protein sites. Finite and
+  /// method §3 [choice]: about 5 A for ligands, larger for protein sites. Finite and
   /// > 0.
   double radius = 5.0;
-  /// Default 0.05 (seed: 5 %). Vertices up to radius * (1 + margin) that share an edge with a
-  /// vertex within the radius are selected too (step 3). Finite and >= 0.
+  /// Default 0.05 (method §3.1: 5 %). Vertices up to radius * (1 + margin) that share an edge with
+  /// a vertex within the radius are selected too (step 3). Finite and >= 0.
   double margin = 0.05;
-  /// Default dijkstra (seed 3.4 step 2). How the on-surface distances of steps 2-3 are
+  /// Default dijkstra (method §3.1, step 2). How the on-surface distances of steps 2-3 are
   /// computed; fast_marching gives round patches where Dijkstra's balls are polygons.
   /// describe_surface uses fast_marching by default (harmonic::DescriptorOptions::patch;
   /// docs/decisions.md#patch-distances).
@@ -51,7 +51,7 @@ struct Patch {
   /// border edge that some patch triangle traverses as a -> b. It is the border loop of the
   /// largest perimeter (ties: the loop with the lowest vertex index); see boundary_loops.
   std::vector<int> outer_boundary;
-  /// The other border loops (left unfilled, seed 3.4), each walked with the patch on its left
+  /// The other border loops (left unfilled, method §3), each walked with the patch on its left
   /// (clockwise around the hole seen from outside), ordered by their lowest vertex index.
   std::vector<std::vector<int>> holes;
   /// Handles of the patch: (2 - V + E - F - #border loops) / 2; 0 for a disk with holes.
@@ -64,7 +64,7 @@ struct Patch {
 /// range, OptionError for a radius that is not finite and >= 0.
 std::vector<int> preselect_euclidean(const Surface& surface, int center_vertex, double radius);
 
-/// Step 2: on-surface distances (A) by `method` (the seed: Dijkstra) from `center_vertex`
+/// Step 2: on-surface distances (A) by `method` (method §3.1: Dijkstra) from `center_vertex`
 /// over paths inside the `preselected` vertices (sorted, unique, containing the centre), up to
 /// `max_distance`, as (vertex, distance) pairs sorted by vertex. Throws InputError for indices out
 /// of range, unsorted or without the centre, OptionError for a max_distance that is not finite and
@@ -74,9 +74,9 @@ std::vector<std::pair<int, double>> patch_distances(
     double max_distance, GeodesicMethod method = GeodesicMethod::dijkstra);
 
 /// Step 3: the vertices with distance <= radius, plus those with distance <= radius * (1 +
-/// margin) that share an edge with one of them (seed: "points connected to them within a 5 %
-/// margin"), sorted. `distances` as patch_distances returns them. Throws InputError for
-/// indices out of range or unsorted, OptionError for radius or margin outside their domain.
+/// margin) that share an edge with one of them (method §3.1, step 3), sorted. `distances` as
+/// patch_distances returns them. Throws InputError for indices out of range or unsorted,
+/// OptionError for radius or margin outside their domain.
 std::vector<int> select_within_radius(const Surface& surface,
                                       const std::vector<std::pair<int, double>>& distances,
                                       double radius, double margin);
@@ -147,7 +147,7 @@ BoundaryLoops boundary_loops(const Surface& surface, const std::vector<int>& fac
 Patch assemble_patch(const Surface& surface, int center_vertex, const std::vector<int>& faces,
                      const std::vector<std::pair<int, double>>& distances);
 
-/// The patch of on-surface radius options.radius around `center_vertex` (seed 3.4): steps 1-4,
+/// The patch of on-surface radius options.radius around `center_vertex` (method §3): steps 1-4,
 /// refine_patch, assemble_patch. The Euclidean preselection and the on-surface distances
 /// (options.distance) run to radius * (1 + margin). Throws TopologyError for a surface without
 /// vertices or faces, or when no triangle is left around the centre (radius shorter than its

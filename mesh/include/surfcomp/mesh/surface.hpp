@@ -17,7 +17,7 @@ namespace detail {
 struct SurfaceAccess;  // the mesh module's own way in; defined in its sources only
 }  // namespace detail
 
-/// Names of the properties the project computes (seed and METHOD section 0).
+/// Names of the properties the project computes (method §0).
 namespace property {
 inline constexpr const char* esp = "esp";                  ///< kcal/(mol*e)
 inline constexpr const char* lp = "lp";                    ///< lipophilic potential, logP units

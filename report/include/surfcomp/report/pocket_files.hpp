@@ -3,7 +3,7 @@
 // for viewing. `surfcomp pockets` and the Python module write them with these functions.
 #pragma once
 
-#include "surfcomp/matching/pockets.hpp"
+#include "surfcomp/molsurf/pockets.hpp"
 
 #include <cstddef>
 #include <ostream>
@@ -14,9 +14,9 @@ namespace surfcomp::report {
 
 /// The pockets of one structure and how they were found.
 struct PocketSet {
-  std::string input;                 ///< the structure's name (a path)
-  matching::PocketOptions options;   ///< the detection's parameters
-  matching::StructurePockets found;  ///< its models, protein atoms and pockets
+  std::string input;                ///< the structure's name (a path)
+  molsurf::PocketOptions options;   ///< the detection's parameters
+  molsurf::StructurePockets found;  ///< its models, protein atoms and pockets
 };
 
 /// The JSON document, indented by two spaces, ending with a newline: input, models,
@@ -26,6 +26,6 @@ std::string pockets_json(const PocketSet& set);
 
 /// One HETATM record per alpha sphere: atom name APOL, residue STP numbered by the pocket's rank
 /// (as fpocket writes them), the sphere's radius as B-factor; then END.
-void write_pockets_pdb(const std::vector<matching::Pocket>& pockets, std::ostream& out);
+void write_pockets_pdb(const std::vector<molsurf::Pocket>& pockets, std::ostream& out);
 
 }  // namespace surfcomp::report

@@ -31,7 +31,7 @@ void write_aligned_hits_sdf(std::ostream& out, const Library& library, const std
                             std::size_t count);
 
 /// Hit `hit` (row `rank`, 1-based) of a pocket library as one PDB model: the atoms its entry
-/// keeps (the site's neighbourhood, matching::site_neighbourhood; read with
+/// keeps (the site's neighbourhood, molsurf::site_neighbourhood; read with
 /// site_entry_read_options(read)) moved into the query's frame, with a REMARK giving rank, entry,
 /// name and score.
 std::string aligned_site_model(const Library& library, const Hit& hit, std::size_t rank,

@@ -90,9 +90,9 @@ struct LibraryEntry {
   /// The sample and atoms packed for the first stage. Empty (no points) in an entry being built
   /// until the writer packs it, unless its builder packed it already.
   matching::PackedSample packed;
-  /// A binding site's spheres (matching::BindingSite::spheres); empty for a molecule. The
+  /// A binding site's spheres (molsurf::BindingSite::spheres); empty for a molecule. The
   /// molecule is then the site's structure (PDB text).
-  std::vector<matching::SiteSphere> site;
+  std::vector<molsurf::SiteSphere> site;
   /// An entry made from a .hsi file: its surface and heavy atoms, encoded as a .hsi file
   /// without critical points (harmonic::io::encode_hsi), from which the last stage describes
   /// the entry instead of rebuilding a surface; `molecule` then holds only the heavy atoms (an

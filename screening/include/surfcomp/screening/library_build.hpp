@@ -13,9 +13,9 @@
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/overlay.hpp"
-#include "surfcomp/matching/pockets.hpp"
 #include "surfcomp/matching/site.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
+#include "surfcomp/molsurf/pockets.hpp"
 #include "surfcomp/screening/library.hpp"
 
 #include <cstddef>
@@ -46,7 +46,7 @@ struct LibraryBuildOptions {
   /// How the molecules are read (charges, lipophilicity); default as `surfcomp match`.
   io::MoleculeReadOptions read;
   /// The surface built for each entry; default as `surfcomp match`.
-  mesh::MolecularSurfaceOptions surface;
+  molsurf::MolecularSurfaceOptions surface;
   /// Default OverlayOptions::spacing. Cell edge of the surface sample, A; a screen refuses a
   /// library sampled otherwise than its overlay. > 0.
   double spacing = matching::OverlayOptions{}.spacing;
@@ -55,13 +55,13 @@ struct LibraryBuildOptions {
   double sigma = matching::OverlayOptions{}.sigma;
   /// Sites (build_site_library): the spheres around a site ligand's atoms (sphere_radius,
   /// default 4 A, as `surfcomp match --site-radius`) and the chains kept.
-  matching::BindingSiteOptions site;
+  molsurf::BindingSiteOptions site;
   /// Sites: the pocket lining sampled is the vertices within this distance of the site's
   /// critical points (default as `surfcomp match --site-overlay-radius`). Finite, > 0.
   double lining_radius = matching::SiteMatchOptions{}.overlay_radius;
   /// Pockets (build_pocket_library): how each structure's pockets are detected.
-  matching::PocketOptions pockets;
-  /// Default false. Mesh inputs are repaired first (mesh::SurfaceInputOptions::repair).
+  molsurf::PocketOptions pockets;
+  /// Default false. Mesh inputs are repaired first (molsurf::SurfaceInputOptions::repair).
   bool repair = false;
   /// Default 64. Most records in flight (being built or waiting for their turn to be written):
   /// bounds the memory a build holds. >= 1.
@@ -141,14 +141,14 @@ struct SiteRequest {
   std::filesystem::path structure;  ///< PDB/PQR file; relative paths are the list's folder's
   /// The site ligand (residue name, chain if given), or none when the site is `spheres`.
   std::optional<LigandSelector> ligand;
-  std::vector<matching::SiteSphere> spheres;
+  std::vector<molsurf::SiteSphere> spheres;
   /// "<structure's stem>:<ligand>[:<chain>]", "<stem>:spheres<line>" or, for a pocket,
   /// "<stem>:pocket<rank>"
   std::string name;
   /// The spheres are a detected pocket's: the site's structure is the structure's ATOM records
-  /// (matching::pocket_structure), as the pocket was found on them.
+  /// (molsurf::pocket_structure), as the pocket was found on them.
   bool pocket = false;
-  /// A site list's `STRUCTURE pocket N`: pocket N of the structure (matching::pocket_site with
+  /// A site list's `STRUCTURE pocket N`: pocket N of the structure (molsurf::pocket_site with
   /// LibraryBuildOptions::pockets), found when the entry is built; 0 otherwise.
   int pocket_rank = 0;
 };
@@ -159,7 +159,7 @@ struct SiteRequest {
 std::vector<std::filesystem::path> structure_files(
     const std::vector<std::filesystem::path>& inputs);
 
-/// The structures of a pocket library: every pocket matching::detect_pockets finds in each (on
+/// The structures of a pocket library: every pocket molsurf::detect_pockets finds in each (on
 /// its ATOM records, options.pockets) is one site entry, named "<stem>:pocket<rank>".
 struct PocketStructures {
   std::vector<std::filesystem::path> files;  ///< structure_files' order
@@ -174,7 +174,7 @@ struct PocketStructures {
 std::vector<SiteRequest> read_site_list(const std::filesystem::path& list);
 
 /// The entry of one site: its structure read (`options.read`), the site built
-/// (matching::binding_site with options.site), the site's structure surfaced
+/// (molsurf::binding_site with options.site), the site's structure surfaced
 /// (options.surface) and described at the site's critical points (matching::describe_site),
 /// and its pocket lining (matching::pocket_lining, options.lining_radius) sampled. The entry's
 /// molecule is the site's structure as PDB text (water and the site ligand's copy removed), its

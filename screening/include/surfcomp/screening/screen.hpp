@@ -24,7 +24,7 @@
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/matching/packed_overlay.hpp"
 #include "surfcomp/matching/site.hpp"
-#include "surfcomp/mesh/molecular_surface.hpp"
+#include "surfcomp/molsurf/molecular_surface.hpp"
 #include "surfcomp/screening/library.hpp"
 
 #include <Eigen/Core>
@@ -86,10 +86,10 @@ struct ScreenOptions {
   /// How a candidate's stored molecule is read and its surface rebuilt in stage 3; default as
   /// `surfcomp match` (its descriptors are built with the query's DescriptorOptions).
   io::MoleculeReadOptions read;
-  mesh::MolecularSurfaceOptions surface;
+  molsurf::MolecularSurfaceOptions surface;
   /// A pocket screen: how a candidate site's surface is built in stage 3, its surface margin
-  /// raised to matching::site_surface_margin of the query's patch radius; default as `match`.
-  matching::BindingSiteOptions site;
+  /// raised to molsurf::site_surface_margin of the query's patch radius; default as `match`.
+  molsurf::BindingSiteOptions site;
   /// Default none. Called as entries are scored, (stage 1, 2 or 3, done, total), from the worker
   /// threads (it must be thread-safe), and once with done == total at the end of each stage.
   std::function<void(int stage, std::int64_t done, std::int64_t total)> progress;
@@ -102,14 +102,14 @@ struct QueryScreenOptions {
   /// How the query is read (its record) and described; its site options are screen.site's
   /// (screen_query_options).
   matching::MatchInputOptions query;
-  std::string site_ligand;                         ///< a site query: its ligand residue
-  std::vector<matching::SiteSphere> site_spheres;  ///< a site query: its spheres (A)
+  std::string site_ligand;                        ///< a site query: its ligand residue
+  std::vector<molsurf::SiteSphere> site_spheres;  ///< a site query: its spheres (A)
   int site_pocket = 0;  ///< a site query: its structure's pocket N (0: none)
 };
 
 /// The user's options of a screen, each defined once: --top --refine --refine-starts
 /// --candidates --record --site-ligand --site-sphere --site-pocket --site-radius --site-margin,
-/// the pocket detection's options (matching::pocket_option_table) and --threads.
+/// the pocket detection's options (molsurf::pocket_option_table) and --threads.
 const options::Table<QueryScreenOptions>& screen_option_table();
 
 /// Whether `options` ask for a binding-site query (a site ligand, spheres or a pocket).
@@ -135,7 +135,7 @@ struct ScreenQuery {
   matching::SurfaceSample atom_sample;
   /// A binding-site query: its spheres and critical_points_in_site of its descriptors. Empty
   /// for a molecule.
-  std::vector<matching::SiteSphere> site;
+  std::vector<molsurf::SiteSphere> site;
   std::vector<bool> site_points;
   /// A site on a structure: its lining residues' composition (matching::lining_composition).
   std::optional<matching::LiningComposition> lining;
@@ -163,7 +163,7 @@ double query_shape_weight(QueryChemistry chemistry, bool whole_molecule, const M
 /// (matching::require_match_properties: entries are compared on them).
 ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
                               const ScreenOptions& options = {},
-                              std::vector<matching::SiteSphere> site = {},
+                              std::vector<molsurf::SiteSphere> site = {},
                               const Molecule* molecule = nullptr);
 
 /// Several queries are fused on one scale: when their shape weights differ, all of them rank by
@@ -221,7 +221,7 @@ HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
 
 /// Stage 3 of one entry: the full match of the query with the entry's molecule, rebuilt (see
 /// ScreenOptions::read, surface; a site's structure described at its site, matched as binding
-/// sites, its surface that of the atoms within the site's margin, as matching::build_site_surface
+/// sites, its surface that of the atoms within the site's margin, as molsurf::build_site_surface
 /// builds it); the top alignment's overlay score and transform. An entry
 /// without any alignment scores 0 with the identity. Throws what reading the molecule,
 /// building its surface or matching throws.

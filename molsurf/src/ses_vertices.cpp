@@ -1,0 +1,65 @@
+#include "ses_vertices.hpp"
+
+#include "surface_mesh.hpp"
+
+#include <tbb/parallel_for.h>
+
+namespace surfcomp::molsurf::detail {
+
+void place_ses_vertices(mesh::Surface& surface, const SasGeometry& sas, double reach,
+                        bool compensate) {
+  mesh::TriMesh& mesh = mesh::tri_mesh(surface);
+  const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
+  Eigen::MatrixX3d positions = surface.positions();
+  Eigen::MatrixX3d normals(n, 3);
+  Eigen::VectorXd curvature(n);
+  tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index v) {
+    Vec3 x = positions.row(v).transpose();
+    Vec3 normal = Vec3::Zero();
+    double h = 0.0;
+    sas.project_to_ses(x, reach, normal, h);
+    positions.row(v) = x.transpose();
+    normals.row(v) = normal.transpose();
+    curvature(v) = h;
+  });
+  for (auto vh : mesh.vertices()) {
+    const Eigen::Index v = vh.idx();
+    mesh.set_point(vh, mesh::TriMesh::Point(positions(v, 0), positions(v, 1), positions(v, 2)));
+  }
+  if ((normals.rowwise().squaredNorm().array() == 0.0).any()) {
+    // A vertex with no surface point within reach keeps its place and the mesh normal.
+    surface.compute_normals();
+    const Eigen::MatrixX3d mesh_normals = surface.normals();
+    for (Eigen::Index v = 0; v < n; ++v) {
+      if (normals.row(v).squaredNorm() == 0.0) normals.row(v) = mesh_normals.row(v);
+    }
+  }
+  surface.set_normals(normals);
+  if (compensate) compensate_chord_gaps(surface, normals, curvature);
+}
+
+void compensate_chord_gaps(mesh::Surface& surface, const Eigen::MatrixX3d& normals,
+                           const Eigen::VectorXd& curvature) {
+  mesh::TriMesh& mesh = mesh::tri_mesh(surface);
+  const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
+  Eigen::MatrixX3d positions = surface.positions();
+  Eigen::VectorXd squared_edges = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd face_count = Eigen::VectorXd::Zero(n);
+  for (auto f : mesh.faces()) {
+    double sum = 0.0;
+    for (auto h : mesh.fh_range(f)) sum += mesh.calc_edge_sqr_length(h);
+    for (auto v : mesh.fv_range(f)) {
+      squared_edges(v.idx()) += sum;
+      face_count(v.idx()) += 1.0;
+    }
+  }
+  for (auto vh : mesh.vertices()) {
+    const Eigen::Index v = vh.idx();
+    if (face_count(v) == 0.0 || normals.row(v).squaredNorm() == 0.0) continue;
+    const double gap = curvature(v) * squared_edges(v) / face_count(v) / 24.0;
+    positions.row(v) += gap * normals.row(v);
+    mesh.set_point(vh, mesh::TriMesh::Point(positions(v, 0), positions(v, 1), positions(v, 2)));
+  }
+}
+
+}  // namespace surfcomp::molsurf::detail
