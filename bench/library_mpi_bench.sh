@@ -2,7 +2,7 @@
 # A library built with one process and with `mpirun -np R`, and a build killed (SIGKILL) halfway
 # then resumed: the times, the peak resident memory per process, and whether the three libraries
 # have the same bytes (the index and every shard). Not part of the test command
-# (docs/benchmarks.md#library_mpi_bench-builds-across-processes).
+# (docs/benchmarks.md#library-builds-across-processes-library_mpi_bench).
 #
 # Usage: bench/library_mpi_bench.sh INPUT WORKDIR [SURFCOMP] [R] [BUILD OPTIONS...]
 #   INPUT    molecule files for `library build` (e.g. an SDF of conformers with coordinates)

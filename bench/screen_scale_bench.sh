@@ -2,7 +2,7 @@
 # Time and peak resident memory of screens of one large library (made by
 # bench/library_scale_bench): one query and several in one pass, on all cores of one process and
 # with `mpirun -np 2` (each process its share of the cores). Not part of the test command
-# (docs/benchmarks.md#screen_scale_bench-a-million-conformers).
+# (docs/benchmarks.md#screening-at-scale-screen_scale_bench).
 #
 # Usage: bench/screen_scale_bench.sh LIB WORKDIR SURFCOMP QUERY1 [QUERY2 ...]
 #   Runs, each under /usr/bin/time: QUERY1 with the default stages; QUERY1 and all the queries
