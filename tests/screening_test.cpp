@@ -24,6 +24,8 @@
 #include "surfcomp/screening/library_build.hpp"
 #include "surfcomp/screening/screen.hpp"
 
+#include "screen_stages.hpp"
+
 #include <gtest/gtest.h>
 
 #include "surfcomp/screening/hit_files.hpp"

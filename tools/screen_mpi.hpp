@@ -21,14 +21,9 @@ struct DistributedScreen {
   screening::MultiScreenResult result;  ///< hits on rank 0 only; stage times as rank 0 saw them
 };
 
-/// screening::screen_queries over the ranks of MPI_COMM_WORLD: each rank runs stages 1 and 2 on
-/// a contiguous slice of whole molecules (screening::score_molecules), rank 0 gathers each
-/// query's best molecules (and, for several queries, the molecules their fused ranking may
-/// need: StreamedScores::molecules, bounded lists) and merges them,
-/// then picks each query's candidates, whose full matches (stage 3) are dealt out round-robin and
-/// gathered, and ranks the hits and fuses them: the same rows as one process. Initialises and
-/// finalises MPI; an error on one rank aborts the job after printing it. Every rank must give
-/// the same queries, library and options.
+/// screening::screen_queries over the ranks of MPI_COMM_WORLD (its Exchange overload: the same
+/// rows as one process, on rank 0). Initialises and finalises MPI; an error on one rank aborts
+/// the job after printing it. Every rank must give the same queries, library and options.
 DistributedScreen screen_distributed(const std::vector<const screening::ScreenQuery*>& queries,
                                      const screening::Library& library,
                                      const screening::ScreenOptions& options);

@@ -1,5 +1,7 @@
 #include "surfcomp/screening/screen.hpp"
 
+#include "screen_stages.hpp"
+
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/shape_screen.hpp"
 
@@ -37,30 +39,6 @@ HitScore from_overlay(const matching::OverlayScore& s, const Eigen::Matrix4d& tr
   hit.atoms = s.atoms;
   hit.transform = transform;
   return hit;
-}
-
-/// %.6f of a value, with -0.000000 written as 0.000000 so that equal results give equal bytes.
-std::string fixed(double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.6f", value);
-  std::string s = text;
-  if (s == "-0.000000") s = "0.000000";
-  return s;
-}
-
-/// score(i) for i in [0, count), in parallel into slots, reporting progress as `stage`.
-template <class Score>
-std::vector<HitScore> score_in_parallel(std::size_t count, int stage, const ScreenOptions& options,
-                                        const Score& score) {
-  std::vector<HitScore> scores(count);
-  const auto total = static_cast<std::int64_t>(count);
-  std::atomic<std::int64_t> done{0};
-  tbb::parallel_for(std::size_t{0}, count, [&](std::size_t i) {
-    scores[i] = score(i);
-    if (options.progress) options.progress(stage, ++done, total);
-  });
-  if (options.progress) options.progress(stage, total, total);
-  return scores;
 }
 
 /// The query's packed sample of an entry's kind.
@@ -679,93 +657,6 @@ MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
   }
   if (best.size() > 1) result.fused = fuse_scores(molecules, rows, options.fusion, options.top);
   return result;
-}
-
-MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
-                                 const Library& library, const ScreenOptions& options) {
-  if (queries.empty()) throw InputError("screen: no query");
-  matching::validate(query_match_options(*queries.front(), options));
-  MultiScreenResult result;
-  StreamedScores streamed = score_molecules(queries, library, 0, library.size(), options);
-  result.stage1_seconds = streamed.stage1_seconds;
-  result.stage2_seconds = streamed.stage2_seconds;
-  const Stopwatch clock;
-  std::vector<std::pair<std::size_t, std::size_t>> candidates;  // (query, rank in its best)
-  for (std::size_t q = 0; q < queries.size(); ++q) {
-    const std::size_t k = std::min(options.candidates, streamed.queries[q].best.size());
-    for (std::size_t i = 0; i < k; ++i) candidates.emplace_back(q, i);
-  }
-  const std::vector<HitScore> full =
-      score_in_parallel(candidates.size(), 3, options, [&](std::size_t i) {
-        const auto [q, rank] = candidates[i];
-        return full_score(*queries[q], library.entry(streamed.queries[q].best[rank].entry),
-                          options);
-      });
-  result.stage3_seconds = clock.elapsed_s();
-  std::vector<std::vector<Hit>> best;
-  for (QueryScores& scores : streamed.queries) best.push_back(std::move(scores.best));
-  MultiScreenResult ranked =
-      rank_and_fuse(best, full, streamed.molecules, options, queries.front()->shape_weight);
-  result.hits = std::move(ranked.hits);
-  result.fused = std::move(ranked.fused);
-  return result;
-}
-
-ScreenResult screen(const ScreenQuery& query, const Library& library,
-                    const ScreenOptions& options) {
-  MultiScreenResult multi = screen_queries({&query}, library, options);
-  ScreenResult result;
-  result.hits = std::move(multi.hits.front());
-  result.stage1_seconds = multi.stage1_seconds;
-  result.stage2_seconds = multi.stage2_seconds;
-  result.stage3_seconds = multi.stage3_seconds;
-  return result;
-}
-
-namespace {
-
-/// The first columns of a row of hits: rank, entry (1-based), name, source, record, conformer,
-/// each followed by a comma.
-void write_entry_columns(std::ostream& out, const Library& library, std::size_t rank,
-                         std::size_t entry) {
-  const LibraryEntryInfo info = library.info(entry);
-  out << rank << ',' << entry + 1 << ',' << csv_field(info.name) << ',' << csv_field(info.source)
-      << ',' << info.record << ',' << info.conformer << ',';
-}
-
-}  // namespace
-
-void write_hits_csv(std::ostream& out, const Library& library, const std::vector<Hit>& hits) {
-  out << "rank,entry,name,source,record,conformer,score,stage,shape,chem,atoms,fast_score";
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) out << ",t" << r << c;
-  }
-  out << "\n";
-  for (std::size_t i = 0; i < hits.size(); ++i) {
-    const Hit& hit = hits[i];
-    write_entry_columns(out, library, i + 1, hit.entry);
-    out << fixed(hit.score.score) << ',' << hit.stage << ',' << fixed(hit.score.shape) << ','
-        << fixed(hit.score.chem) << ',' << fixed(hit.score.atoms) << ',' << fixed(hit.fast_score);
-    for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) out << ',' << fixed(hit.score.transform(r, c));
-    }
-    out << "\n";
-  }
-}
-
-void write_fused_csv(std::ostream& out, const Library& library,
-                     const std::vector<FusedHit>& fused) {
-  const std::size_t queries = fused.empty() ? 0 : fused.front().scores.size();
-  out << "rank,entry,name,source,record,conformer,score,query";
-  for (std::size_t q = 0; q < queries; ++q) out << ",score_" << q + 1;
-  out << "\n";
-  for (std::size_t i = 0; i < fused.size(); ++i) {
-    const FusedHit& hit = fused[i];
-    write_entry_columns(out, library, i + 1, hit.entry);
-    out << fixed(hit.score) << ',' << hit.query + 1;
-    for (const double score : hit.scores) out << ',' << fixed(score);
-    out << "\n";
-  }
 }
 
 }  // namespace surfcomp::screening

@@ -25,6 +25,7 @@
 #include "surfcomp/matching/packed_overlay.hpp"
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/molsurf/molecular_surface.hpp"
+#include "surfcomp/screening/exchange.hpp"
 #include "surfcomp/screening/library.hpp"
 
 #include <Eigen/Core>
@@ -189,9 +190,6 @@ std::string macromolecule_query_warning(const Molecule& query, const std::string
 /// of one kind. score_molecules checks the library so and every entry as it reads it.
 void check_library_kind(const Library& library, bool site_query);
 
-/// options.match with the mode the query asks for: MatchMode::binding_sites for a site query.
-matching::MatchOptions query_match_options(const ScreenQuery& query, const ScreenOptions& options);
-
 /// A score of one entry against the query.
 struct HitScore {
   /// The overlay score (OverlayScore::score); for a site's full match (stage 3) the site score
@@ -219,15 +217,6 @@ HitScore refined_score(const ScreenQuery& query, const matching::PackedSampleVie
 HitScore refined_score(const ScreenQuery& query, const LibraryEntry& entry,
                        const ScreenOptions& options = {});
 
-/// Stage 3 of one entry: the full match of the query with the entry's molecule, rebuilt (see
-/// ScreenOptions::read, surface; a site's structure described at its site, matched as binding
-/// sites, its surface that of the atoms within the site's margin, as molsurf::build_site_surface
-/// builds it); the top alignment's overlay score and transform. An entry
-/// without any alignment scores 0 with the identity. Throws what reading the molecule,
-/// building its surface or matching throws.
-HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
-                    const ScreenOptions& options = {});
-
 /// One row of a screen's result: a molecule, by its best conformer.
 struct Hit {
   std::size_t entry = 0;  ///< 0-based library index of the molecule's best conformer
@@ -242,76 +231,6 @@ struct Hit {
 /// molecule than entry - 1. Reads the index records of the entries it passes.
 std::size_t molecule_start_at(const Library& library, std::size_t entry);
 
-/// One molecule's score against one query after stage 2, for a fused ranking.
-struct MoleculeScore {
-  std::size_t entry = 0;  ///< its best conformer
-  double score = 0.0;     ///< what ranks it (ranking_score: ScreenQuery::shape_weight)
-};
-
-/// A molecule's scores against every query after stage 2.
-struct MoleculeScores {
-  std::size_t molecule = 0;           ///< its first entry
-  std::vector<MoleculeScore> scores;  ///< one per query, in query order
-};
-
-/// What stages 1 and 2 leave of one query over a range of molecules.
-struct QueryScores {
-  /// Each molecule's best conformer (stage 2, or stage 1 with refine 0): a molecule's entries
-  /// get their fast scores, its `refine` best by fast score (ties to the lower index) their
-  /// refined scores where those are not lower, and its best entry (ties to the lower index)
-  /// stands for it. Only the kept_molecules() best molecules, best first (ties to the lower
-  /// entry); for a query ranked by another value (ScreenQuery::shape_weight above 0), the
-  /// options.candidates best by score first, then the others by that value. The scores are
-  /// overlay scores.
-  std::vector<Hit> best;
-};
-
-/// The molecules stages 1 and 2 keep per query: every one when options.top is 0, else
-/// max(options.top, options.candidates).
-std::size_t kept_molecules(const ScreenOptions& options);
-
-/// The molecules stages 1 and 2 keep by fused score for a ranking of `queries` queries: every
-/// one when options.top is 0, else options.top + queries * options.candidates. Stage 3 changes
-/// the scores of at most queries * options.candidates molecules, so the options.top best after
-/// it are among these and the candidates.
-std::size_t fused_molecules(const ScreenOptions& options, std::size_t queries);
-
-/// Stages 1 and 2 of some molecules against every query.
-struct StreamedScores {
-  std::vector<QueryScores> queries;  ///< one per query, in query order
-  /// With several queries, what their fused ranking needs (fuse_scores): the fused_molecules()
-  /// best molecules by their scores fused (options.fusion; ties to the lower molecule) and every
-  /// molecule of a query's `best`, each once, in library order. Empty for one query.
-  std::vector<MoleculeScores> molecules;
-  double stage1_seconds = 0.0;  ///< wall-clock, summed over the blocks
-  double stage2_seconds = 0.0;
-};
-
-/// Stages 1 and 2 (see the file comment) of the molecules of entries [begin, end) against every
-/// query, streamed: a block of whole molecules at a time is read once, its entries fast-scored
-/// against every query and each molecule's best refined, then released (Library::release).
-/// `begin` and `end` begin molecules (molecule_start_at). Progress (options.progress) is
-/// reported as stage 1 over the range's entries. Throws InputError when an entry is not of the
-/// queries' kind (as check_library_kind words it) or the queries are of two kinds (sites and
-/// molecules, or ranked by different shape weights: agree_on_chemistry), FormatError
-/// for a damaged entry.
-StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
-                               const Library& library, std::size_t begin, std::size_t end,
-                               const ScreenOptions& options = {});
-
-/// The kept_molecules() best of several ranges' lists of one query (QueryScores::best), in
-/// its order, ties to the lower entry: what one range of all the molecules would have kept.
-std::vector<Hit> merge_best(const std::vector<std::vector<Hit>>& parts,
-                            const ScreenOptions& options, double shape_weight);
-
-/// The result rows: first the `full.size()` candidates (the first molecules of `best`, their
-/// stage-3 scores in `full`) by their stage-3 score, then the other molecules of `best` in
-/// their order, each scored by `shape_weight` times its shape term plus 1 - shape_weight times
-/// its score (ScreenQuery::shape_weight); at most `top` rows (0: all).
-/// Ties go to the lower entry index.
-std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,
-                           std::size_t top, double shape_weight);
-
 /// One row of a fused ranking of several queries.
 struct FusedHit {
   std::size_t entry = 0;  ///< the molecule's best conformer against its best query
@@ -319,18 +238,6 @@ struct FusedHit {
   double score = 0.0;     ///< the fused score
   std::vector<double> scores;  ///< the molecule's score against each query
 };
-
-/// The fused ranking of `molecules`: each one's final score against each query (its score in
-/// `molecules`, or its stage-3 score where its best conformer for that query is a stage-3 row of
-/// the query's `ranked` hits) fused by `fusion` (max: the highest, mean: the mean over the
-/// queries), best first, ties to the lower molecule; at most `top` rows (0: all). For the
-/// ranking of a whole screen, `molecules` holds StreamedScores::molecules (of one range, or of
-/// several ranges together) and `ranked` each query's every stage-3 row, also those past its
-/// table's `--top` (rank_and_fuse). Throws InputError when a molecule has not one score per
-/// query.
-std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
-                                  const std::vector<std::vector<Hit>>& ranked, Fusion fusion,
-                                  std::size_t top);
 
 /// A screen's rows and its time.
 struct ScreenResult {
@@ -354,23 +261,25 @@ struct MultiScreenResult {
   double stage3_seconds = 0.0;
 };
 
-/// The rows and fused ranking of a screen from what its stages left: `best` each query's
-/// best molecules after stage 2 (merge_best of its ranges), `full` the stage-3 scores of each
-/// query's first min(options.candidates, its best) molecules, query after query, `molecules`
-/// the ranges' StreamedScores::molecules, `shape_weight` the queries' ScreenQuery::shape_weight.
-/// Each query's rows are rank_hits(best, its scores, options.top, shape_weight); the fused ranking
-/// (several queries) is fuse_scores with every stage-3 score. Times are left 0. Throws
-/// InputError when `full` is short.
-MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
-                                const std::vector<HitScore>& full,
-                                const std::vector<MoleculeScores>& molecules,
-                                const ScreenOptions& options, double shape_weight);
-
 /// screen() of every query at once: the library read once for stages 1 and 2, each query's
-/// rows the same as its own screen's, and their fused ranking (fuse_scores). Throws as
-/// score_molecules.
+/// rows the same as its own screen's, and their fused ranking (the molecules by their scores
+/// fused by options.fusion, the queries' stage-3 scores where they have one). Throws InputError
+/// when an entry is not of the queries' kind (check_library_kind) or the queries are of two
+/// kinds (agree_on_chemistry), FormatError for a damaged entry.
 MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
                                  const Library& library, const ScreenOptions& options = {});
+
+/// screen_queries split over the processes of `exchange`, each called with the same queries,
+/// library and options: each process runs stages 1 and 2 on its slice of whole molecules
+/// (about library.size() / processes entries), process 0 gathers each query's best molecules
+/// (and, for several queries, those their fused ranking may need) and picks the candidates,
+/// whose full matches are dealt out round-robin and gathered. Process 0 gets the same rows as
+/// one process would, bit for bit (scores travel as doubles); the others get no rows. Stage
+/// times are process 0's, its stages 1 and 2 with the gathers. Throws as screen_queries and
+/// what the exchange throws.
+MultiScreenResult screen_queries(const std::vector<const ScreenQuery*>& queries,
+                                 const Library& library, const ScreenOptions& options,
+                                 Exchange& exchange);
 
 /// The fused ranking as CSV: a header row, then one row per molecule with the columns rank,
 /// entry (1-based), name, source, record, conformer, score (fused), query (1-based, the best
