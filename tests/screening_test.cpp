@@ -31,17 +31,20 @@
 #include "surfcomp/screening/hit_files.hpp"
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
 #include <iterator>
 #include <map>
+#include <mutex>
 #include <numeric>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -1320,6 +1323,128 @@ TEST(LibraryShards, OnlyAFewShardsStayOpenAndReleaseClosesThem) {
   EXPECT_EQ(library.open_shards(), 3u);
   EXPECT_EQ(names, (std::vector<std::string>{"paracetamol", "salicylic_acid", "aspirin",
                                              "ibuprofen", "caffeine"}));
+}
+
+/// The processes of a screen as threads of one test: gather and broadcast meet at a barrier.
+class ThreadExchange final : public screening::Exchange {
+ public:
+  /// What the threads share.
+  struct Meeting {
+    explicit Meeting(int n) : processes(n), parts(static_cast<std::size_t>(n)) {}
+    /// Returns when every process has come.
+    void wait() {
+      std::unique_lock<std::mutex> lock(mutex);
+      const std::uint64_t mine = round;
+      if (++arrived == processes) {
+        arrived = 0;
+        ++round;
+        changed.notify_all();
+      } else {
+        changed.wait(lock, [&] { return round != mine; });
+      }
+    }
+    int processes;
+    std::mutex mutex;
+    std::condition_variable changed;
+    int arrived = 0;
+    std::uint64_t round = 0;
+    std::vector<std::vector<double>> parts;
+    std::vector<std::uint64_t> values;
+  };
+  ThreadExchange(Meeting& meeting, int process) : meeting_(meeting), process_(process) {}
+  int process() const override { return process_; }
+  int processes() const override { return meeting_.processes; }
+  std::vector<double> gather(const std::vector<double>& local) override {
+    {
+      const std::lock_guard<std::mutex> lock(meeting_.mutex);
+      meeting_.parts[static_cast<std::size_t>(process_)] = local;
+    }
+    meeting_.wait();
+    std::vector<double> all;
+    if (process_ == 0) {
+      for (const std::vector<double>& part : meeting_.parts)
+        all.insert(all.end(), part.begin(), part.end());
+    }
+    meeting_.wait();  // the parts are free for the next gather
+    return all;
+  }
+  std::vector<std::uint64_t> broadcast(std::vector<std::uint64_t> values) override {
+    if (process_ == 0) {
+      const std::lock_guard<std::mutex> lock(meeting_.mutex);
+      meeting_.values = std::move(values);
+    }
+    meeting_.wait();
+    std::vector<std::uint64_t> out = meeting_.values;
+    meeting_.wait();
+    return out;
+  }
+
+ private:
+  Meeting& meeting_;
+  int process_;
+};
+
+// The screen engine split over 2, 3, 5 or 7 processes (more than the library's molecules: some
+// slices are empty) gives process 0 the rows and fused ranking of one process, bit for bit, and
+// the others none.
+TEST(ScreenEngine, AnyNumberOfProcessesGivesTheOneProcessRows) {
+  const test::TempDir dir;
+  screening::build_library(seven_records(), dir / "lib.sclib", one_conformer(2));
+  const screening::Library library(dir / "lib.sclib");
+  ASSERT_EQ(library.size(), 5u);
+  screening::ScreenOptions options;
+  options.candidates = 2;
+  options.chemistry = screening::QueryChemistry::on;
+  const auto query_of = [&](std::size_t e) {
+    const Molecule molecule = io::read_record_molecule(library.entry(e).molecule);
+    return screening::make_screen_query(
+        harmonic::describe_surface(molsurf::build_molecular_surface(molecule), molecule), options,
+        {}, &molecule);
+  };
+  const screening::ScreenQuery paracetamol = query_of(0), ibuprofen = query_of(3);
+  const std::vector<const screening::ScreenQuery*> queries{&paracetamol, &ibuprofen};
+  for (const std::size_t top : {0, 3}) {
+    options.top = top;
+    const screening::MultiScreenResult one = screening::screen_queries(queries, library, options);
+    ASSERT_EQ(one.hits.size(), 2u);
+    ASSERT_EQ(one.fused.size(), top == 0 ? 5u : top);
+    for (const int processes : {2, 3, 5, 7}) {
+      SCOPED_TRACE(std::to_string(processes) + " processes, top " + std::to_string(top));
+      ThreadExchange::Meeting meeting(processes);
+      std::vector<screening::MultiScreenResult> results(static_cast<std::size_t>(processes));
+      std::vector<std::thread> threads;
+      for (int p = 0; p < processes; ++p) {
+        threads.emplace_back([&, p] {
+          ThreadExchange exchange(meeting, p);
+          results[static_cast<std::size_t>(p)] =
+              screening::screen_queries(queries, library, options, exchange);
+        });
+      }
+      for (std::thread& thread : threads) thread.join();
+      const screening::MultiScreenResult& root = results.front();
+      ASSERT_EQ(root.hits.size(), one.hits.size());
+      for (std::size_t q = 0; q < one.hits.size(); ++q) {
+        ASSERT_EQ(root.hits[q].size(), one.hits[q].size());
+        for (std::size_t i = 0; i < one.hits[q].size(); ++i) {
+          const screening::Hit &a = root.hits[q][i], &b = one.hits[q][i];
+          EXPECT_EQ(a.entry, b.entry);
+          EXPECT_EQ(a.stage, b.stage);
+          EXPECT_EQ(a.score.score, b.score.score);
+          EXPECT_EQ(a.fast_score, b.fast_score);
+          EXPECT_EQ(a.score.transform, b.score.transform);
+        }
+      }
+      ASSERT_EQ(root.fused.size(), one.fused.size());
+      for (std::size_t i = 0; i < one.fused.size(); ++i) {
+        EXPECT_EQ(root.fused[i].entry, one.fused[i].entry);
+        EXPECT_EQ(root.fused[i].scores, one.fused[i].scores);
+      }
+      for (std::size_t p = 1; p < results.size(); ++p) {
+        EXPECT_TRUE(results[p].hits.empty());
+        EXPECT_TRUE(results[p].fused.empty());
+      }
+    }
+  }
 }
 
 // A screen of several queries keeps a bounded list of molecules for its fused ranking: with
