@@ -178,6 +178,89 @@ std::filesystem::path query_table(const std::filesystem::path& output, std::size
   return table;
 }
 
+/// Each query read and described (prepare_input) as a screen query, their chemistry agreed on;
+/// an error names the query when there are several. Warns when a whole structure is screened
+/// without a site.
+std::vector<screening::ScreenQuery> describe_queries(const std::vector<QuerySpec>& specs,
+                                                     const screening::QueryScreenOptions& settings,
+                                                     bool site_query) {
+  std::vector<screening::ScreenQuery> queries;
+  for (const QuerySpec& spec : specs) {
+    matching::MatchInput query_input;
+    query_input.path = spec.path;
+    query_input = screening::screen_query_input(std::move(query_input), settings);
+    matching::MatchInputOptions query_options = screening::screen_query_options(settings);
+    query_options.input.read.record = spec.record;
+    try {
+      matching::check_match_input(query_input, query_options, "QUERY");
+      matching::PreparedInput prepared = matching::prepare_input(query_input, query_options);
+      if (!site_query && prepared.molecule) {
+        const std::string warning =
+            screening::macromolecule_query_warning(*prepared.molecule, spec.label());
+        if (!warning.empty()) {
+          std::fprintf(stderr,
+                       "surfcomp screen: warning: %s; to screen its binding site, give "
+                       "--site-ligand RES, --site-sphere x,y,z,r or --site-pocket N\n",
+                       warning.c_str());
+        }
+      }
+      queries.push_back(screening::make_screen_query(
+          std::move(prepared.descriptors), settings.screen, prepared.site,
+          prepared.molecule ? &*prepared.molecule : nullptr));
+    } catch (const Error& e) {
+      if (specs.size() == 1) throw;
+      throw InputError("query " + std::to_string(queries.size() + 1) + " (" + spec.label() +
+                       "): " + e.what());
+    }
+  }
+  screening::agree_on_chemistry(queries);
+  return queries;
+}
+
+/// Where a screen's rows go: the table (the fused ranking with several queries, each query's
+/// own beside it), and the first aligned_top hits moved onto the one query.
+struct ScreenFiles {
+  std::filesystem::path output, aligned_out;
+  std::size_t aligned_top = 10;
+};
+
+/// Writes the screen's files, each whole or not at all: an error removes those written.
+void write_screen_files(const screening::MultiScreenResult& result,
+                        const screening::Library& library, const ScreenFiles& files,
+                        bool site_query, const io::MoleculeReadOptions& read) {
+  const bool several = result.hits.size() > 1;
+  std::vector<std::filesystem::path> written;
+  try {
+    if (!files.aligned_out.empty()) {
+      const std::vector<screening::Hit>& hits = result.hits.front();
+      io::write_file_atomically(files.aligned_out, [&](std::ostream& out) {
+        if (site_query) {
+          screening::write_aligned_sites_pdb(out, library, hits, files.aligned_top, read);
+        } else {
+          screening::write_aligned_hits_sdf(out, library, hits, files.aligned_top);
+        }
+      });
+      written.emplace_back(files.aligned_out);
+    }
+    for (std::size_t q = 0; several && q < result.hits.size(); ++q) {
+      io::write_file_atomically(query_table(files.output, q + 1), [&](std::ostream& out) {
+        screening::write_hits_csv(out, library, result.hits[q]);
+      });
+      written.push_back(query_table(files.output, q + 1));
+    }
+    io::write_file_atomically(files.output, [&](std::ostream& out) {
+      if (several) {
+        screening::write_fused_csv(out, library, result.fused);
+      } else {
+        screening::write_hits_csv(out, library, result.hits.front());
+      }
+    });
+  } catch (...) {
+    for (const std::filesystem::path& path : written) std::filesystem::remove(path);
+    throw;
+  }
+}
+
 }  // namespace
 
 int screen(const std::vector<std::string>& args) {
@@ -261,36 +344,7 @@ int screen(const std::vector<std::string>& args) {
                 " entries, format version " + std::to_string(library.version()));
   // Every query is read and described before the library is: a query that cannot be stops the
   // command before any screening work.
-  std::vector<screening::ScreenQuery> queries;
-  for (const QuerySpec& spec : specs) {
-    matching::MatchInput query_input;
-    query_input.path = spec.path;
-    query_input = screening::screen_query_input(std::move(query_input), settings);
-    matching::MatchInputOptions query_options = screening::screen_query_options(settings);
-    query_options.input.read.record = spec.record;
-    try {
-      matching::check_match_input(query_input, query_options, "QUERY");
-      matching::PreparedInput prepared = matching::prepare_input(query_input, query_options);
-      if (!site_query && prepared.molecule) {
-        const std::string warning =
-            screening::macromolecule_query_warning(*prepared.molecule, spec.label());
-        if (!warning.empty()) {
-          std::fprintf(stderr,
-                       "surfcomp screen: warning: %s; to screen its binding site, give "
-                       "--site-ligand RES, --site-sphere x,y,z,r or --site-pocket N\n",
-                       warning.c_str());
-        }
-      }
-      queries.push_back(
-          screening::make_screen_query(std::move(prepared.descriptors), options, prepared.site,
-                                       prepared.molecule ? &*prepared.molecule : nullptr));
-    } catch (const Error& e) {
-      if (!several) throw;
-      throw InputError("query " + std::to_string(queries.size() + 1) + " (" + spec.label() +
-                       "): " + e.what());
-    }
-  }
-  screening::agree_on_chemistry(queries);
+  const std::vector<screening::ScreenQuery> queries = describe_queries(specs, settings, site_query);
   std::vector<const screening::ScreenQuery*> query_list(queries.size());
   for (std::size_t q = 0; q < queries.size(); ++q) query_list[q] = &queries[q];
   const double query_s = clock.elapsed_s();
@@ -306,37 +360,8 @@ int screen(const std::vector<std::string>& args) {
     result = screening::screen_queries(query_list, library, options);
   }
   const double total_s = clock.elapsed_s();
-  std::vector<std::filesystem::path> written;
-  try {
-    if (!aligned_out.empty()) {
-      const auto count = static_cast<std::size_t>(aligned_top);
-      const std::vector<screening::Hit>& hits = result.hits.front();
-      io::write_file_atomically(aligned_out, [&](std::ostream& out) {
-        if (site_query) {
-          screening::write_aligned_sites_pdb(out, library, hits, count, options.read);
-        } else {
-          screening::write_aligned_hits_sdf(out, library, hits, count);
-        }
-      });
-      written.emplace_back(aligned_out);
-    }
-    for (std::size_t q = 0; several && q < specs.size(); ++q) {
-      io::write_file_atomically(query_table(output, q + 1), [&](std::ostream& out) {
-        screening::write_hits_csv(out, library, result.hits[q]);
-      });
-      written.push_back(query_table(output, q + 1));
-    }
-    io::write_file_atomically(output, [&](std::ostream& out) {
-      if (several) {
-        screening::write_fused_csv(out, library, result.fused);
-      } else {
-        screening::write_hits_csv(out, library, result.hits.front());
-      }
-    });
-  } catch (...) {
-    for (const std::filesystem::path& path : written) std::filesystem::remove(path);
-    throw;
-  }
+  write_screen_files(result, library, {output, aligned_out, static_cast<std::size_t>(aligned_top)},
+                     site_query, options.read);
   if (!queries.empty() && queries.front().shape_weight > 0.0) {
     console::summary(
         "%s: hits ranked by %s of their pose (%s; --chemistry on ranks by the score with ESP, "
