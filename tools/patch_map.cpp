@@ -151,6 +151,211 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
+/// The critical points of a patch map's INPUT: the surface, the chosen points described, how
+/// many there are, and the unit the radii count in.
+struct ChosenPoints {
+  std::vector<Chosen> chosen;
+  mesh::Surface surface;
+  std::size_t total = 0;
+  double length_unit = 1.0;  ///< in the input's coordinates
+};
+
+/// The points `all` or `indices` choose, read from a .hsi (whose stored description options
+/// replace settings.descriptors) or described now.
+ChosenPoints choose_points(const std::filesystem::path& path, bool from_hsi, bool all,
+                           const std::vector<int>& chosen_indices,
+                           matching::MatchInputOptions& settings) {
+  ChosenPoints out;
+  std::vector<Chosen>& chosen = out.chosen;
+  mesh::Surface& surface = out.surface;
+  std::size_t& total = out.total;
+  double& length_unit = out.length_unit;
+  if (from_hsi) {
+    harmonic::SurfaceDescriptors stored = harmonic::io::read_hsi(path);
+    surface = std::move(stored.surface);
+    length_unit = stored.length_unit;
+    total = stored.critical_points.size();
+    settings.descriptors = stored.options;
+    for (std::size_t i = 0; i < total; ++i) {
+      if (all || std::count(chosen_indices.begin(), chosen_indices.end(), static_cast<int>(i)))
+        chosen.push_back({i, std::move(stored.critical_points[i])});
+    }
+  } else {
+    // Described in the input's length unit, as hsi-build and match describe it; the files are
+    // written in its own coordinates.
+    molsurf::LoadedSurface loaded = load_noted(path, settings.input);
+    length_unit = loaded.unit.value;
+    surface = std::move(loaded.surface);
+    const std::vector<mesh::CriticalPoint> points = mesh::detect_critical_points_in_unit(
+        surface, length_unit, settings.descriptors.critical_points);
+    total = points.size();
+    std::vector<std::size_t> indices;
+    std::vector<mesh::CriticalPoint> picked;
+    for (std::size_t i = 0; i < total; ++i) {
+      if (all || std::count(chosen_indices.begin(), chosen_indices.end(), static_cast<int>(i))) {
+        indices.push_back(i);
+        picked.push_back(points[i]);
+      }
+    }
+    std::vector<harmonic::CriticalPointDescriptor> descriptions =
+        harmonic::describe_points_in_unit(surface, picked, length_unit, settings.descriptors);
+    for (std::size_t k = 0; k < indices.size(); ++k)
+      chosen.push_back({indices[k], std::move(descriptions[k])});
+  }
+  return out;
+}
+
+/// The patch of `c` mapped by each of `methods`: each map's file (the harmonic one is the
+/// description's map) and the side-by-side figure written into `staging` (their names added to
+/// `staged` and to entry["files"]), entry["methods"] set, a table row printed per method.
+std::vector<harmonic::ParameterizationResult> compare_methods(
+    const Chosen& c, const std::vector<harmonic::Parameterization>& methods,
+    const matching::MatchInputOptions& settings, const std::filesystem::path& staging,
+    nlohmann::json& entry, std::vector<std::string>& staged) {
+  const std::string stem = "cp" + std::to_string(c.index);
+  const mesh::Patch& patch = c.descriptor.patch;
+  auto results = harmonic::compare_parameterizations(
+      patch.positions, patch.faces, patch.outer_boundary, methods, settings.descriptors.disk_map);
+  nlohmann::json compared = nlohmann::json::array();
+  std::vector<report::MethodMap> figure;
+  for (const harmonic::ParameterizationResult& r : results) {
+    const char* name = method_name(r.method);
+    if (!r.failure.empty()) {
+      compared.push_back({{"method", name}, {"failure", r.failure}});
+      figure.push_back({name, {}});
+      console::summary("%4zu %-19s failed: %s\n", c.index, name, r.failure.c_str());
+      continue;
+    }
+    // The harmonic column is the description's map, the one cpI.obj holds (the
+    // comparison recomputes it from the same patch and options).
+    harmonic::DiskMap map;
+    map.uv = r.method == harmonic::Parameterization::harmonic ? c.descriptor.map.uv
+             : harmonic::has_free_border(r.method)            ? report::fit_to_disk_square(r.uv)
+                                                              : r.uv;
+    const std::string file = stem + "_" + name + ".obj";
+    report::write_patch_obj(patch, map, staging / file,
+                            std::string(name) + (harmonic::has_free_border(r.method)
+                                                     ? " map, fitted into the unit disk's square,"
+                                                     : " map onto the unit disk"));
+    staged.push_back(file);
+    entry["files"].push_back(file);
+    figure.push_back({name, map.uv});
+    nlohmann::json one = distortion_json(r.distortion);
+    one["method"] = name;
+    one["ms"] = r.ms;
+    one["file"] = file;
+    compared.push_back(one);
+    console::summary("%4zu %-19s %10.3f %10.3f %10.4f %10.4f %7d %9.3f\n", c.index, name,
+                     r.distortion.angle_mean_degrees, r.distortion.angle_max_degrees,
+                     r.distortion.area_mean_log, r.distortion.area_max_log, r.distortion.flipped,
+                     r.ms);
+  }
+  const std::string side_by_side = stem + "_methods.png";
+  report::write_methods_png(patch, figure, staging / side_by_side);
+  staged.push_back(side_by_side);
+  entry["files"].push_back(side_by_side);
+  entry["methods"] = compared;
+  return results;
+}
+
+/// Each method's median distortions and time over the patches it mapped (and how many it
+/// failed), printed as a table and returned as JSON rows.
+nlohmann::json method_medians(
+    const std::vector<std::vector<harmonic::ParameterizationResult>>& by_point,
+    const std::vector<harmonic::Parameterization>& methods) {
+  nlohmann::json summary = nlohmann::json::array();
+  if (!methods.empty() && !by_point.empty()) {
+    console::summary("\nmedians over %zu patches:\n%-19s %10s %10s %10s %10s %7s %9s\n",
+                     by_point.size(), "method", "angle deg", "angle max", "area", "area max",
+                     "flipped", "ms");
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      std::vector<double> angle, angle_max, area, area_max, flipped, ms;
+      std::size_t failed = 0;
+      for (const auto& results : by_point) {
+        const harmonic::ParameterizationResult& r = results[m];
+        if (!r.failure.empty()) {
+          ++failed;
+          continue;
+        }
+        angle.push_back(r.distortion.angle_mean_degrees);
+        angle_max.push_back(r.distortion.angle_max_degrees);
+        area.push_back(r.distortion.area_mean_log);
+        area_max.push_back(r.distortion.area_max_log);
+        flipped.push_back(r.distortion.flipped);
+        ms.push_back(r.ms);
+      }
+      const char* name = method_name(methods[m]);
+      const std::vector<double> medians = {median(angle),    median(angle_max), median(area),
+                                           median(area_max), median(flipped),   median(ms)};
+      summary.push_back({{"method", name},
+                         {"angle_mean_degrees", medians[0]},
+                         {"angle_max_degrees", medians[1]},
+                         {"area_mean_log", medians[2]},
+                         {"area_max_log", medians[3]},
+                         {"flipped", medians[4]},
+                         {"ms", medians[5]},
+                         {"failed", failed}});
+      console::summary("%-19s %10.3f %10.3f %10.4f %10.4f %7.0f %9.3f%s\n", name, medians[0],
+                       medians[1], medians[2], medians[3], medians[4], medians[5],
+                       failed > 0 ? (" (failed on " + std::to_string(failed) + ")").c_str() : "");
+    }
+  }
+  return summary;
+}
+
+/// Throws before any file is written when a file the patch map writes into `folder` would
+/// replace a folder or special file, or one of `inputs`.
+void check_targets(const std::filesystem::path& folder, const std::vector<Chosen>& chosen,
+                   const std::vector<harmonic::Parameterization>& methods,
+                   const std::vector<std::filesystem::path>& inputs) {
+  std::error_code error;
+  std::vector<std::string> names;
+  for (const Chosen& c : chosen) {
+    if (c.descriptor.status != harmonic::PatchStatus::ok) continue;
+    const std::string stem = "cp" + std::to_string(c.index);
+    for (const char* suffix : {".obj", ".ply", "_image.png", "_grid.png"})
+      names.push_back(stem + suffix);
+    for (const harmonic::Parameterization method : methods)
+      names.push_back(stem + "_" + method_name(method) + ".obj");
+    if (!methods.empty()) names.push_back(stem + "_methods.png");
+  }
+  names.emplace_back("patch_maps.json");
+  for (const std::string& name : names) {
+    const std::filesystem::path target = folder / name;
+    if (std::filesystem::exists(target, error) &&
+        !std::filesystem::is_regular_file(target, error)) {
+      throw FileError(target.string(), "exists and is not a regular file");
+    }
+    for (const std::filesystem::path& input : inputs) {
+      if (!input.empty() && same_file(target, input)) {
+        throw OptionError(target.string() + " would overwrite the input " + input.string() +
+                          ": refusing to overwrite an input");
+      }
+    }
+  }
+}
+
+/// The patch of `c` mapped by CGAL's harmonic parameterization beside ours: the distance
+/// between the maps and both distortions, printed as a table row and returned as JSON.
+nlohmann::json compare_with_cgal(const Chosen& c, const matching::MatchInputOptions& settings) {
+  const mesh::Patch& patch = c.descriptor.patch;
+  const harmonic::DiskMapComparison m = harmonic::compare_with_cgal(
+      patch.positions, patch.faces, patch.outer_boundary, settings.descriptors.disk_map);
+  nlohmann::json row = {{"max_distance", m.max_distance},
+                        {"mean_distance", m.mean_distance},
+                        {"ours", distortion_json(m.ours_distortion)},
+                        {"cgal", distortion_json(m.cgal_distortion)},
+                        {"ours_ms", m.ours_ms},
+                        {"cgal_ms", m.cgal_ms}};
+  console::summary("%4zu %8ld %12.3g %12.3g %10.3f %10.3f %10.4f %10.4f %7d %7d %9.3f %9.3f\n",
+                   c.index, static_cast<long>(patch.positions.rows()), m.max_distance,
+                   m.mean_distance, m.ours_distortion.angle_mean_degrees,
+                   m.cgal_distortion.angle_mean_degrees, m.ours_distortion.area_mean_log,
+                   m.cgal_distortion.area_mean_log, m.ours_distortion.flipped,
+                   m.cgal_distortion.flipped, m.ours_ms, m.cgal_ms);
+  return row;
+}
+
 }  // namespace
 
 int patch_map(const std::vector<std::string>& args) {
@@ -214,42 +419,11 @@ int patch_map(const std::vector<std::string>& args) {
 
   // The critical points, and the chosen ones described.
   const Stopwatch clock;
-  std::vector<Chosen> chosen;
-  mesh::Surface surface;
-  std::size_t total = 0;
-  double length_unit = 1.0;  // the unit the radii count in, in the input's coordinates
-  if (from_hsi) {
-    harmonic::SurfaceDescriptors stored = harmonic::io::read_hsi(path);
-    surface = std::move(stored.surface);
-    length_unit = stored.length_unit;
-    total = stored.critical_points.size();
-    settings.descriptors = stored.options;
-    for (std::size_t i = 0; i < total; ++i) {
-      if (all || std::count(chosen_indices.begin(), chosen_indices.end(), static_cast<int>(i)))
-        chosen.push_back({i, std::move(stored.critical_points[i])});
-    }
-  } else {
-    // Described in the input's length unit, as hsi-build and match describe it; the files are
-    // written in its own coordinates.
-    molsurf::LoadedSurface loaded = load_noted(path, settings.input);
-    length_unit = loaded.unit.value;
-    surface = std::move(loaded.surface);
-    const std::vector<mesh::CriticalPoint> points = mesh::detect_critical_points_in_unit(
-        surface, length_unit, settings.descriptors.critical_points);
-    total = points.size();
-    std::vector<std::size_t> indices;
-    std::vector<mesh::CriticalPoint> picked;
-    for (std::size_t i = 0; i < total; ++i) {
-      if (all || std::count(chosen_indices.begin(), chosen_indices.end(), static_cast<int>(i))) {
-        indices.push_back(i);
-        picked.push_back(points[i]);
-      }
-    }
-    std::vector<harmonic::CriticalPointDescriptor> descriptions =
-        harmonic::describe_points_in_unit(surface, picked, length_unit, settings.descriptors);
-    for (std::size_t k = 0; k < indices.size(); ++k)
-      chosen.push_back({indices[k], std::move(descriptions[k])});
-  }
+  ChosenPoints picked = choose_points(path, from_hsi, all, chosen_indices, settings);
+  std::vector<Chosen>& chosen = picked.chosen;
+  const mesh::Surface& surface = picked.surface;
+  const std::size_t total = picked.total;
+  const double length_unit = picked.length_unit;
   for (const int i : chosen_indices) {
     if (static_cast<std::size_t>(i) >= total) {
       throw InputError(path.string() + ": --cp " + std::to_string(i) + ", but it has " +
@@ -261,31 +435,7 @@ int patch_map(const std::vector<std::string>& args) {
   // Every file's name is checked against the inputs, and against a folder or special file in
   // its place, before any is written. The files go into a staging folder inside DIR and move
   // into DIR once all are written, patch_maps.json last: a failure leaves DIR as it was.
-  std::vector<std::string> names;
-  for (const Chosen& c : chosen) {
-    if (c.descriptor.status != harmonic::PatchStatus::ok) continue;
-    const std::string stem = "cp" + std::to_string(c.index);
-    for (const char* suffix : {".obj", ".ply", "_image.png", "_grid.png"})
-      names.push_back(stem + suffix);
-    for (const harmonic::Parameterization method : methods)
-      names.push_back(stem + "_" + method_name(method) + ".obj");
-    if (!methods.empty()) names.push_back(stem + "_methods.png");
-  }
-  names.emplace_back("patch_maps.json");
-  for (const std::string& name : names) {
-    const std::filesystem::path target = folder / name;
-    if (std::filesystem::exists(target, error) &&
-        !std::filesystem::is_regular_file(target, error)) {
-      throw FileError(target.string(), "exists and is not a regular file");
-    }
-    for (const std::filesystem::path& input :
-         {path, std::filesystem::path(settings.input.molecule_file)}) {
-      if (!input.empty() && same_file(target, input)) {
-        throw OptionError(target.string() + " would overwrite the input " + input.string() +
-                          ": refusing to overwrite an input");
-      }
-    }
-  }
+  check_targets(folder, chosen, methods, {path, settings.input.molecule_file});
   const bool made_folder = !std::filesystem::exists(folder, error);
   std::filesystem::create_directories(folder, error);
   if (error) throw FileError(folder.string(), "cannot make the folder (" + error.message() + ")");
@@ -339,108 +489,13 @@ int patch_map(const std::vector<std::string>& args) {
         staged.push_back(file.filename().string());
         entry["files"].push_back(staged.back());
       }
-      if (compare) {
-        const harmonic::DiskMapComparison m = harmonic::compare_with_cgal(
-            patch.positions, patch.faces, patch.outer_boundary, settings.descriptors.disk_map);
-        entry["cgal"] = {{"max_distance", m.max_distance},
-                         {"mean_distance", m.mean_distance},
-                         {"ours", distortion_json(m.ours_distortion)},
-                         {"cgal", distortion_json(m.cgal_distortion)},
-                         {"ours_ms", m.ours_ms},
-                         {"cgal_ms", m.cgal_ms}};
-        console::summary(
-            "%4zu %8ld %12.3g %12.3g %10.3f %10.3f %10.4f %10.4f %7d %7d %9.3f %9.3f\n", c.index,
-            static_cast<long>(patch.positions.rows()), m.max_distance, m.mean_distance,
-            m.ours_distortion.angle_mean_degrees, m.cgal_distortion.angle_mean_degrees,
-            m.ours_distortion.area_mean_log, m.cgal_distortion.area_mean_log,
-            m.ours_distortion.flipped, m.cgal_distortion.flipped, m.ours_ms, m.cgal_ms);
-      }
-      if (!methods.empty()) {
-        const auto results =
-            harmonic::compare_parameterizations(patch.positions, patch.faces, patch.outer_boundary,
-                                                methods, settings.descriptors.disk_map);
-        nlohmann::json compared = nlohmann::json::array();
-        std::vector<report::MethodMap> figure;
-        for (const harmonic::ParameterizationResult& r : results) {
-          const char* name = method_name(r.method);
-          if (!r.failure.empty()) {
-            compared.push_back({{"method", name}, {"failure", r.failure}});
-            figure.push_back({name, {}});
-            console::summary("%4zu %-19s failed: %s\n", c.index, name, r.failure.c_str());
-            continue;
-          }
-          // The harmonic column is the description's map, the one cpI.obj holds (the
-          // comparison recomputes it from the same patch and options).
-          harmonic::DiskMap map;
-          map.uv = r.method == harmonic::Parameterization::harmonic ? c.descriptor.map.uv
-                   : harmonic::has_free_border(r.method) ? report::fit_to_disk_square(r.uv)
-                                                         : r.uv;
-          const std::string file = stem + "_" + name + ".obj";
-          report::write_patch_obj(
-              patch, map, staging / file,
-              std::string(name) + (harmonic::has_free_border(r.method)
-                                       ? " map, fitted into the unit disk's square,"
-                                       : " map onto the unit disk"));
-          staged.push_back(file);
-          entry["files"].push_back(file);
-          figure.push_back({name, map.uv});
-          nlohmann::json one = distortion_json(r.distortion);
-          one["method"] = name;
-          one["ms"] = r.ms;
-          one["file"] = file;
-          compared.push_back(one);
-          console::summary("%4zu %-19s %10.3f %10.3f %10.4f %10.4f %7d %9.3f\n", c.index, name,
-                           r.distortion.angle_mean_degrees, r.distortion.angle_max_degrees,
-                           r.distortion.area_mean_log, r.distortion.area_max_log,
-                           r.distortion.flipped, r.ms);
-        }
-        const std::string side_by_side = stem + "_methods.png";
-        report::write_methods_png(patch, figure, staging / side_by_side);
-        staged.push_back(side_by_side);
-        entry["files"].push_back(side_by_side);
-        entry["methods"] = compared;
-        by_point.push_back(results);
-      }
+      if (compare) entry["cgal"] = compare_with_cgal(c, settings);
+      if (!methods.empty())
+        by_point.push_back(compare_methods(c, methods, settings, staging, entry, staged));
       points.push_back(entry);
       ++written;
     }
-    nlohmann::json summary = nlohmann::json::array();
-    if (!methods.empty() && !by_point.empty()) {
-      console::summary("\nmedians over %zu patches:\n%-19s %10s %10s %10s %10s %7s %9s\n",
-                       by_point.size(), "method", "angle deg", "angle max", "area", "area max",
-                       "flipped", "ms");
-      for (std::size_t m = 0; m < methods.size(); ++m) {
-        std::vector<double> angle, angle_max, area, area_max, flipped, ms;
-        std::size_t failed = 0;
-        for (const auto& results : by_point) {
-          const harmonic::ParameterizationResult& r = results[m];
-          if (!r.failure.empty()) {
-            ++failed;
-            continue;
-          }
-          angle.push_back(r.distortion.angle_mean_degrees);
-          angle_max.push_back(r.distortion.angle_max_degrees);
-          area.push_back(r.distortion.area_mean_log);
-          area_max.push_back(r.distortion.area_max_log);
-          flipped.push_back(r.distortion.flipped);
-          ms.push_back(r.ms);
-        }
-        const char* name = method_name(methods[m]);
-        const std::vector<double> medians = {median(angle),    median(angle_max), median(area),
-                                             median(area_max), median(flipped),   median(ms)};
-        summary.push_back({{"method", name},
-                           {"angle_mean_degrees", medians[0]},
-                           {"angle_max_degrees", medians[1]},
-                           {"area_mean_log", medians[2]},
-                           {"area_max_log", medians[3]},
-                           {"flipped", medians[4]},
-                           {"ms", medians[5]},
-                           {"failed", failed}});
-        console::summary("%-19s %10.3f %10.3f %10.4f %10.4f %7.0f %9.3f%s\n", name, medians[0],
-                         medians[1], medians[2], medians[3], medians[4], medians[5],
-                         failed > 0 ? (" (failed on " + std::to_string(failed) + ")").c_str() : "");
-      }
-    }
+    const nlohmann::json summary = method_medians(by_point, methods);
     nlohmann::json document = {
         {"input", path.string()},
         {"critical_points", total},
