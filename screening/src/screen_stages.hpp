@@ -7,9 +7,13 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <set>
+#include <utility>
 #include <vector>
 
 namespace surfcomp::screening {
@@ -119,6 +123,130 @@ MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
                                 const std::vector<HitScore>& full,
                                 const std::vector<MoleculeScores>& molecules,
                                 const ScreenOptions& options, double shape_weight);
+
+/// What ranks a hit: its score, its shape term, or a weighted mean of the two
+/// (ScreenQuery::shape_weight).
+inline double ranking_score(const HitScore& score, double shape_weight) {
+  return shape_weight * score.shape + (1.0 - shape_weight) * score.score;
+}
+
+/// Ranks hits: the higher ranking_score first, ties to the lower entry.
+inline bool better_hit(const Hit& x, const Hit& y, double shape_weight = 0.0) {
+  const double a = ranking_score(x.score, shape_weight), b = ranking_score(y.score, shape_weight);
+  if (a != b) return a > b;
+  return x.entry < y.entry;
+}
+
+/// The `capacity` best items added (every one when capacity is 0) by `Better`, a strict order,
+/// as a heap whose top is the worst kept.
+template <class Item, class Better>
+class BestItems {
+ public:
+  explicit BestItems(std::size_t capacity, Better better = {})
+      : capacity_(capacity), better_(better) {}
+  void add(Item item) {
+    if (capacity_ > 0 && heap_.size() == capacity_) {
+      if (!better_(item, heap_.front())) return;
+      std::pop_heap(heap_.begin(), heap_.end(), better_);
+      heap_.back() = std::move(item);
+    } else {
+      heap_.push_back(std::move(item));
+    }
+    std::push_heap(heap_.begin(), heap_.end(), better_);
+  }
+  /// The items kept, best first.
+  std::vector<Item> sorted() const {
+    std::vector<Item> items = heap_;
+    std::sort(items.begin(), items.end(), better_);
+    return items;
+  }
+
+ private:
+  std::size_t capacity_;
+  Better better_;
+  std::vector<Item> heap_;
+};
+
+/// A molecule's best hit against one query and, with several queries, its scores against all.
+struct KeptHit {
+  Hit hit;
+  MoleculeScores all;
+};
+
+inline const Hit& hit_of(const Hit& hit) { return hit; }
+inline const Hit& hit_of(const KeptHit& kept) { return kept.hit; }
+
+/// better_hit of items that are or hold hits.
+struct BetterHit {
+  double shape_weight = 0.0;
+  template <class Item>
+  bool operator()(const Item& x, const Item& y) const {
+    return better_hit(hit_of(x), hit_of(y), shape_weight);
+  }
+};
+
+/// A query's best molecules (QueryScores::best) of those added, each once: the
+/// kept_molecules() best by score, and for a query ranked by another value (a shape weight
+/// above 0) the first options.candidates of them followed by the others best by that value.
+template <class Item>
+class KeptMolecules {
+ public:
+  KeptMolecules(const ScreenOptions& options, double shape_weight)
+      : candidates_(options.candidates),
+        capacity_(kept_molecules(options)),
+        by_score_(capacity_, BetterHit{0.0}) {
+    if (shape_weight != 0.0) by_rank_.emplace(capacity_, BetterHit{shape_weight});
+  }
+  void add(const Item& item) {
+    by_score_.add(item);
+    if (by_rank_) by_rank_->add(item);
+  }
+  std::vector<Item> sorted() const {
+    std::vector<Item> items = by_score_.sorted();
+    if (!by_rank_) return items;
+    items.resize(std::min(candidates_, items.size()));
+    std::set<std::size_t> candidates;
+    for (const Item& item : items) candidates.insert(hit_of(item).entry);
+    for (Item& item : by_rank_->sorted()) {
+      if (capacity_ > 0 && items.size() == capacity_) break;
+      if (candidates.count(hit_of(item).entry) == 0) items.push_back(std::move(item));
+    }
+    return items;
+  }
+
+ private:
+  std::size_t candidates_;
+  std::size_t capacity_;
+  BestItems<Item, BetterHit> by_score_;
+  std::optional<BestItems<Item, BetterHit>> by_rank_;
+};
+
+/// A molecule's scores fused by `fusion` (fuse_scores), and the query that scores it highest
+/// (ties to the first).
+inline std::pair<double, std::size_t> fused_score(const std::vector<MoleculeScore>& scores,
+                                                  Fusion fusion) {
+  double sum = 0.0;
+  std::size_t best = 0;
+  for (std::size_t q = 0; q < scores.size(); ++q) {
+    sum += scores[q].score;
+    if (scores[q].score > scores[best].score) best = q;
+  }
+  const double fused =
+      fusion == Fusion::max ? scores[best].score : sum / static_cast<double>(scores.size());
+  return {fused, best};
+}
+
+/// A molecule by its fused score: the higher first, ties to the lower molecule.
+struct FusedMolecule {
+  double score = 0.0;
+  MoleculeScores all;
+};
+struct BetterFused {
+  bool operator()(const FusedMolecule& x, const FusedMolecule& y) const {
+    if (x.score != y.score) return x.score > y.score;
+    return x.all.molecule < y.all.molecule;
+  }
+};
 
 /// score(i) for i in [0, count), in parallel into slots, reporting progress as `stage`.
 template <class Score>

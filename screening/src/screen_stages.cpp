@@ -1,3 +1,6 @@
+// The three stages of a screen on a range of molecules: the fast score of every entry, the
+// refinement of each molecule's best, the full match of a candidate; the checks of a library's
+// entries as they are read.
 #include "surfcomp/screening/screen.hpp"
 
 #include "screen_stages.hpp"
@@ -61,130 +64,6 @@ matching::PackedSample packed_entry(const LibraryEntry& entry, double sigma) {
 bool same_molecule(const LibraryEntryInfo& a, const LibraryEntryInfo& b) {
   return a.record == b.record && a.name == b.name && a.source == b.source;
 }
-
-/// What ranks a hit: its score, its shape term, or a weighted mean of the two
-/// (ScreenQuery::shape_weight).
-double ranking_score(const HitScore& score, double shape_weight) {
-  return shape_weight * score.shape + (1.0 - shape_weight) * score.score;
-}
-
-/// Ranks hits: the higher ranking_score first, ties to the lower entry.
-bool better_hit(const Hit& x, const Hit& y, double shape_weight = 0.0) {
-  const double a = ranking_score(x.score, shape_weight), b = ranking_score(y.score, shape_weight);
-  if (a != b) return a > b;
-  return x.entry < y.entry;
-}
-
-/// The `capacity` best items added (every one when capacity is 0) by `Better`, a strict order,
-/// as a heap whose top is the worst kept.
-template <class Item, class Better>
-class BestItems {
- public:
-  explicit BestItems(std::size_t capacity, Better better = {})
-      : capacity_(capacity), better_(better) {}
-  void add(Item item) {
-    if (capacity_ > 0 && heap_.size() == capacity_) {
-      if (!better_(item, heap_.front())) return;
-      std::pop_heap(heap_.begin(), heap_.end(), better_);
-      heap_.back() = std::move(item);
-    } else {
-      heap_.push_back(std::move(item));
-    }
-    std::push_heap(heap_.begin(), heap_.end(), better_);
-  }
-  /// The items kept, best first.
-  std::vector<Item> sorted() const {
-    std::vector<Item> items = heap_;
-    std::sort(items.begin(), items.end(), better_);
-    return items;
-  }
-
- private:
-  std::size_t capacity_;
-  Better better_;
-  std::vector<Item> heap_;
-};
-
-/// A molecule's best hit against one query and, with several queries, its scores against all.
-struct KeptHit {
-  Hit hit;
-  MoleculeScores all;
-};
-
-const Hit& hit_of(const Hit& hit) { return hit; }
-const Hit& hit_of(const KeptHit& kept) { return kept.hit; }
-
-/// better_hit of items that are or hold hits.
-struct BetterHit {
-  double shape_weight = 0.0;
-  template <class Item>
-  bool operator()(const Item& x, const Item& y) const {
-    return better_hit(hit_of(x), hit_of(y), shape_weight);
-  }
-};
-
-/// A query's best molecules (QueryScores::best) of those added, each once: the
-/// kept_molecules() best by score, and for a query ranked by another value (a shape weight
-/// above 0) the first options.candidates of them followed by the others best by that value.
-template <class Item>
-class KeptMolecules {
- public:
-  KeptMolecules(const ScreenOptions& options, double shape_weight)
-      : candidates_(options.candidates),
-        capacity_(kept_molecules(options)),
-        by_score_(capacity_, BetterHit{0.0}) {
-    if (shape_weight != 0.0) by_rank_.emplace(capacity_, BetterHit{shape_weight});
-  }
-  void add(const Item& item) {
-    by_score_.add(item);
-    if (by_rank_) by_rank_->add(item);
-  }
-  std::vector<Item> sorted() const {
-    std::vector<Item> items = by_score_.sorted();
-    if (!by_rank_) return items;
-    items.resize(std::min(candidates_, items.size()));
-    std::set<std::size_t> candidates;
-    for (const Item& item : items) candidates.insert(hit_of(item).entry);
-    for (Item& item : by_rank_->sorted()) {
-      if (capacity_ > 0 && items.size() == capacity_) break;
-      if (candidates.count(hit_of(item).entry) == 0) items.push_back(std::move(item));
-    }
-    return items;
-  }
-
- private:
-  std::size_t candidates_;
-  std::size_t capacity_;
-  BestItems<Item, BetterHit> by_score_;
-  std::optional<BestItems<Item, BetterHit>> by_rank_;
-};
-
-/// A molecule's scores fused by `fusion` (fuse_scores), and the query that scores it highest
-/// (ties to the first).
-std::pair<double, std::size_t> fused_score(const std::vector<MoleculeScore>& scores,
-                                           Fusion fusion) {
-  double sum = 0.0;
-  std::size_t best = 0;
-  for (std::size_t q = 0; q < scores.size(); ++q) {
-    sum += scores[q].score;
-    if (scores[q].score > scores[best].score) best = q;
-  }
-  const double fused =
-      fusion == Fusion::max ? scores[best].score : sum / static_cast<double>(scores.size());
-  return {fused, best};
-}
-
-/// A molecule by its fused score: the higher first, ties to the lower molecule.
-struct FusedMolecule {
-  double score = 0.0;
-  MoleculeScores all;
-};
-struct BetterFused {
-  bool operator()(const FusedMolecule& x, const FusedMolecule& y) const {
-    if (x.score != y.score) return x.score > y.score;
-    return x.all.molecule < y.all.molecule;
-  }
-};
 
 /// Entries a block of stage 1 scores before its molecules are refined and its pages released.
 constexpr std::size_t kBlockEntries = 1024;
@@ -259,87 +138,6 @@ void check_library_kind(const Library& library, bool site_query) {
                      "(screen_shapes)");
   }
   if (library.size() > 0) check_entry_kind(library, 0, library.info(0), site_query);
-}
-
-matching::MatchOptions query_match_options(const ScreenQuery& query, const ScreenOptions& options) {
-  matching::MatchOptions match = options.match;
-  match.mode =
-      query.site.empty() ? matching::MatchMode::whole_surfaces : matching::MatchMode::binding_sites;
-  // A hit is scored by its overlay: the coverage would add a third to each pair's match time.
-  match.coverage_distance = 0.0;
-  return match;
-}
-
-std::string macromolecule_query_warning(const Molecule& query, const std::string& source) {
-  std::size_t heavy = 0;
-  std::map<std::string, std::set<std::pair<int, std::string>>> chain_residues;
-  for (const Atom& atom : query.atoms) {
-    if (atom.element != "H") ++heavy;
-    if (protein_atom_lipophilicity(atom.residue_name, "CA"))
-      chain_residues[atom.chain].emplace(atom.residue_number, atom.residue_name);
-  }
-  std::size_t longest = 0;
-  for (const auto& [chain, residues] : chain_residues) longest = std::max(longest, residues.size());
-  if (heavy <= macromolecule_heavy_atoms && longest < macromolecule_chain_residues) return {};
-  return source + ": the query is a macromolecule (" + std::to_string(heavy) + " heavy atoms" +
-         (longest >= macromolecule_chain_residues
-              ? ", a chain of " + std::to_string(longest) + " amino-acid residues"
-              : std::string()) +
-         "): its whole surface is compared with the library's molecules";
-}
-
-double query_shape_weight(QueryChemistry chemistry, bool whole_molecule, const Molecule* molecule) {
-  if (!whole_molecule || chemistry == QueryChemistry::on) return 0.0;
-  if (chemistry == QueryChemistry::off) return 1.0;
-  return molecule != nullptr && !carries_ionic_group(*molecule) ? neutral_query_shape_weight : 0.0;
-}
-
-ScreenQuery make_screen_query(harmonic::SurfaceDescriptors descriptors,
-                              const ScreenOptions& options, std::vector<molsurf::SiteSphere> site,
-                              const Molecule* molecule) {
-  matching::require_match_properties(descriptors.surface);  // the entries are compared by ESP/LP
-  ScreenQuery query;
-  query.site = std::move(site);
-  const matching::OverlayOptions overlay =
-      matching::mode_overlay_options(query_match_options(query, options));
-  if (query.site.empty()) {
-    query.sample = matching::sample_surface(descriptors.surface, overlay.spacing);
-    query.atoms = matching::sample_atoms(descriptors.atoms);
-  } else {
-    query.site_points = matching::critical_points_in_site(descriptors, query.site);
-    const std::vector<bool> lining =
-        matching::pocket_lining(descriptors, &query.site_points, options.match.site.overlay_radius);
-    query.sample = matching::sample_surface(descriptors.surface, overlay.spacing, &lining);
-    // A site that no amino acid lines is scored by its overlay alone.
-    if (molecule != nullptr) query.lining = matching::lining_composition(*molecule, query.site);
-  }
-  if (query.sample.size() == 0) {
-    throw InputError(descriptors.surface.source() + (query.site.empty()
-                                                         ? ": the query's surface has no vertex"
-                                                         : ": the query site's pocket lining has "
-                                                           "no vertex"));
-  }
-  query.atom_sample = molecule != nullptr && query.site.empty()
-                          ? matching::sample_molecule(*molecule, overlay.spacing, options.surface)
-                          : query.sample;
-  if (query.atom_sample.size() == 0) query.atom_sample = query.sample;
-  query.packed = std::make_shared<const matching::PackedQuery>(matching::PackedSample(
-      query.sample, query.atoms, overlay.sigma, matching::SampleKind::surface));
-  query.atom_packed = std::make_shared<const matching::PackedQuery>(matching::PackedSample(
-      query.atom_sample, query.atoms, overlay.sigma, matching::SampleKind::atoms));
-  query.descriptors = std::move(descriptors);
-  query.shape_weight = query_shape_weight(options.chemistry, query.site.empty(), molecule);
-  return query;
-}
-
-void agree_on_chemistry(std::vector<ScreenQuery>& queries) {
-  const bool mixed =
-      std::adjacent_find(queries.begin(), queries.end(), [](const auto& a, const auto& b) {
-        return a.shape_weight != b.shape_weight;
-      }) != queries.end();
-  if (mixed) {
-    for (ScreenQuery& query : queries) query.shape_weight = 0.0;
-  }
 }
 
 HitScore fast_score(const ScreenQuery& query, const matching::PackedSampleView& entry,
@@ -529,15 +327,6 @@ StreamedScores score_molecules(const std::vector<const ScreenQuery*>& queries,
   return result;
 }
 
-std::vector<Hit> merge_best(const std::vector<std::vector<Hit>>& parts,
-                            const ScreenOptions& options, double shape_weight) {
-  KeptMolecules<Hit> kept(options, shape_weight);
-  for (const std::vector<Hit>& part : parts) {
-    for (const Hit& hit : part) kept.add(hit);
-  }
-  return kept.sorted();
-}
-
 HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
                     const ScreenOptions& options) {
   const matching::MatchOptions match = query_match_options(query, options);
@@ -581,82 +370,6 @@ HitScore full_score(const ScreenQuery& query, const LibraryEntry& entry,
   if (result.alignments.empty()) return {};
   const matching::Alignment& top = result.alignments.front();
   return from_overlay(top.overlay, top.transform);
-}
-
-std::vector<Hit> rank_hits(const std::vector<Hit>& best, const std::vector<HitScore>& full,
-                           std::size_t top, double shape_weight) {
-  const std::size_t k = std::min(full.size(), best.size());
-  std::vector<Hit> hits;
-  for (std::size_t i = 0; i < best.size(); ++i) {
-    hits.push_back(i < k ? Hit{best[i].entry, 3, full[i], best[i].fast_score} : best[i]);
-    hits.back().score.score = ranking_score(hits.back().score, shape_weight);
-  }
-  std::sort(hits.begin(), hits.begin() + static_cast<std::ptrdiff_t>(k), BetterHit{});
-  if (top > 0 && hits.size() > top) hits.resize(top);
-  return hits;
-}
-
-std::vector<FusedHit> fuse_scores(const std::vector<MoleculeScores>& molecules,
-                                  const std::vector<std::vector<Hit>>& ranked, Fusion fusion,
-                                  std::size_t top) {
-  if (ranked.empty()) throw InputError("fusion: no query");
-  // Each query's stage-3 scores by the entry they are of.
-  std::vector<std::map<std::size_t, double>> final_scores(ranked.size());
-  for (std::size_t q = 0; q < ranked.size(); ++q) {
-    for (const Hit& hit : ranked[q]) {
-      if (hit.stage == 3) final_scores[q][hit.entry] = hit.score.score;
-    }
-  }
-  std::vector<FusedMolecule> rows;
-  for (const MoleculeScores& molecule : molecules) {
-    if (molecule.scores.size() != ranked.size()) {
-      throw InputError("fusion: molecule " + std::to_string(molecule.molecule + 1) + " has " +
-                       std::to_string(molecule.scores.size()) + " scores for " +
-                       std::to_string(ranked.size()) + " queries");
-    }
-    FusedMolecule row{0.0, molecule};
-    for (std::size_t q = 0; q < ranked.size(); ++q) {
-      MoleculeScore& s = row.all.scores[q];
-      const auto full = final_scores[q].find(s.entry);
-      if (full != final_scores[q].end()) s.score = full->second;
-    }
-    row.score = fused_score(row.all.scores, fusion).first;
-    rows.push_back(std::move(row));
-  }
-  std::sort(rows.begin(), rows.end(), BetterFused());
-  if (top > 0 && rows.size() > top) rows.resize(top);
-  std::vector<FusedHit> fused;
-  for (const FusedMolecule& row : rows) {
-    FusedHit hit;
-    hit.query = fused_score(row.all.scores, fusion).second;
-    hit.entry = row.all.scores[hit.query].entry;
-    hit.score = row.score;
-    for (const MoleculeScore& s : row.all.scores) hit.scores.push_back(s.score);
-    fused.push_back(std::move(hit));
-  }
-  return fused;
-}
-
-MultiScreenResult rank_and_fuse(const std::vector<std::vector<Hit>>& best,
-                                const std::vector<HitScore>& full,
-                                const std::vector<MoleculeScores>& molecules,
-                                const ScreenOptions& options, double shape_weight) {
-  MultiScreenResult result;
-  std::vector<std::vector<Hit>> rows;  // each query's every row: its every stage-3 score
-  for (std::size_t q = 0, at = 0; q < best.size(); ++q) {
-    const std::size_t k = std::min(options.candidates, best[q].size());
-    if (at + k > full.size()) throw InputError("fusion: fewer stage-3 scores than candidates");
-    const std::vector<HitScore> mine(full.begin() + static_cast<std::ptrdiff_t>(at),
-                                     full.begin() + static_cast<std::ptrdiff_t>(at + k));
-    at += k;
-    rows.push_back(rank_hits(best[q], mine, 0, shape_weight));
-    const std::size_t shown =
-        options.top == 0 ? rows.back().size() : std::min(options.top, rows.back().size());
-    result.hits.emplace_back(rows.back().begin(),
-                             rows.back().begin() + static_cast<std::ptrdiff_t>(shown));
-  }
-  if (best.size() > 1) result.fused = fuse_scores(molecules, rows, options.fusion, options.top);
-  return result;
 }
 
 }  // namespace surfcomp::screening
