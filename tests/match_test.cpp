@@ -482,8 +482,8 @@ TEST(Match, AnAllTrueMaskInWholeSurfaceModeChangesNothing) {
 }
 
 // The options are checked before any work: a bad option is an OptionError naming it (a user's
-// option as the command line spells it, one no option sets by its field) even where the inputs
-// would fail later (images on different grids are an InputError of the match).
+// option by its field, as options::named spells it, one no option sets by its field path) even
+// where the inputs would fail later (images on different grids are an InputError of the match).
 TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   const auto expect_named = [](const matching::MatchOptions& options, const std::string& name) {
     try {
@@ -496,10 +496,10 @@ TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   EXPECT_NO_THROW(matching::validate(matching::MatchOptions{}));
   matching::MatchOptions o;
   o.graph.fuzzy_threshold = 1.5;
-  expect_named(o, "--fuzzy-threshold");
+  expect_named(o, "fuzzy_threshold");
   o = {};
   o.graph.overlap_tolerance_degrees = 190.0;
-  expect_named(o, "--overlap-tolerance");
+  expect_named(o, "overlap_tolerance");
   o = {};
   o.min_clique_size = 0;
   expect_named(o, "min_clique_size");
@@ -514,28 +514,28 @@ TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   expect_named(o, "ranking.vote_top_fraction");
   o = {};
   o.refine_top = -1;
-  expect_named(o, "--refine-top");
+  expect_named(o, "refine_top");
   o = {};
   o.principal_axes_starts = 5;
-  expect_named(o, "--principal-axes-starts");
+  expect_named(o, "principal_axes_starts");
   o = {};
   o.polish_top = -1;
-  expect_named(o, "--polish-top");
+  expect_named(o, "polish_top");
   o = {};
   o.overlay.sigma = 0.0;
-  expect_named(o, "--overlay-sigma");
+  expect_named(o, "overlay_sigma");
   o = {};
   o.overlay.iterations = -1;
   expect_named(o, "overlay.iterations");
   o = {};
   o.site.overlay_radius = std::nan("");
-  expect_named(o, "--site-overlay-radius");
+  expect_named(o, "site_overlay_radius");
   o = {};
   o.site.chem_weight = -1.0;
-  expect_named(o, "--site-chem-weight");
+  expect_named(o, "site_chem_weight");
   o = {};
   o.site.principal_axes_starts = 3;
-  expect_named(o, "--site-principal-axes-starts");
+  expect_named(o, "site_principal_axes_starts");
 
   harmonic::SurfaceDescriptors a, b;
   b.options.image.rings = a.options.image.rings + 1;

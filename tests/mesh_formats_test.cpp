@@ -230,7 +230,7 @@ TEST(MeshFormatsStl, NonManifoldSoupNamesRepairWhichMendsIt) {
   const std::string message = error_of([&] { io::read_mesh(path); });
   EXPECT_EQ(message.rfind(path.string() + ": face 8 makes the mesh non-manifold", 0), 0u)
       << message;
-  EXPECT_NE(message.find("--repair"), std::string::npos) << message;
+  EXPECT_NE(message.find("; repair splits"), std::string::npos) << message;
   EXPECT_THROW(io::read_stl(path), TopologyError);
   const RepairedMesh repaired = repair_mesh_file(path, 1000);
   expect_octahedron(repaired.surface);
@@ -380,9 +380,8 @@ TEST(MeshFormatsRegistry, ExtensionsAndMessagesComeFromOneTable) {
             (dir / "t.stl").string() +
                 ": expected an extension surfcomp writes (.ply .off .obj), found '.stl'");
   EXPECT_FALSE(fs::exists(dir / "t.stl"));
-  EXPECT_EQ(
-      error_of([&] { repair_mesh_file(dir / "t.vert", 1000); }),
-      (dir / "t.vert").string() + ": --repair reads .ply .stl .off .obj meshes, found '.vert'");
+  EXPECT_EQ(error_of([&] { repair_mesh_file(dir / "t.vert", 1000); }),
+            (dir / "t.vert").string() + ": repair reads .ply .stl .off .obj meshes, found '.vert'");
   // Every writer's output reads back through the same table.
   for (const io::MeshFormat& format : io::mesh_formats()) {
     if (format.write == nullptr) continue;
@@ -452,7 +451,7 @@ TEST(MeshFormatsReadMesh, ZeroAreaTrianglesAreNotedAndRepairRemovesThem) {
   EXPECT_EQ(s.n_faces(), 10u);  // noted, not dropped
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_EQ(notes[0],
-            path.string() + ": 1 zero-area triangle (face 9, counted from 0); --repair removes it");
+            path.string() + ": 1 zero-area triangle (face 9, counted from 0); repair removes it");
   const SurfaceMeasures m = measure_surface(s);
   EXPECT_EQ(m.euler_characteristic, 2);
   EXPECT_NEAR(m.area, octahedron_area, 1e-12);

@@ -52,7 +52,7 @@ TEST(MeshScale, TheAutomaticUnitIsATwelfthOfTheRmsRadius) {
   const mesh::LengthUnit given =
       mesh::general_mesh_unit({&sphere}, mesh::LengthScale::automatic, 0.25, "s");
   EXPECT_EQ(given.value, 0.25);
-  EXPECT_EQ(given.from, "--unit");
+  EXPECT_EQ(given.from, "given");
 }
 
 TEST(MeshScale, TheSameMeshGivesTheSameCriticalPointsAtAnyScale) {

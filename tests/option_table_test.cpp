@@ -1,11 +1,14 @@
 // The option tables: each option is defined once (an option of one name is the same in every
 // table that offers it), its default lies in its domain and reads back from the text --help
-// shows, and parsing and checking refuse what lies outside, naming the option.
+// shows, and parsing and checking refuse what lies outside, naming the option in the spelling
+// of the front end that installed one.
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
+#include "surfcomp/mesh/surface.hpp"
 #include "surfcomp/molsurf/load_surface.hpp"
 #include "surfcomp/screening/library_build.hpp"
 #include "surfcomp/screening/screen.hpp"
@@ -165,15 +168,67 @@ TEST(OptionTable, LibraryBuildConformersAndSeedShareTheirOptionalSettings) {
   EXPECT_FALSE(options.conformers);
 }
 
+/// The message of the InputError that `run` throws, or "" when it throws none.
+template <class Run>
+std::string refusal(Run run) {
+  try {
+    run();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// Installs a spelling for the test's length.
+class SpellingForTheTest {
+ public:
+  explicit SpellingForTheTest(options::Spelling spelling) : previous_(options::spelling()) {
+    options::set_spelling(spelling);
+  }
+  ~SpellingForTheTest() { options::set_spelling(previous_); }
+  SpellingForTheTest(const SpellingForTheTest&) = delete;
+  SpellingForTheTest& operator=(const SpellingForTheTest&) = delete;
+
+ private:
+  options::Spelling previous_;
+};
+
 TEST(OptionTable, TheLibraryChecksItsOptionsWithTheTablesRanges) {
   matching::MatchOptions options;
   options.overlay.sigma = 0.05;  // finite and > 0, but below the option's 0.1 A
-  try {
-    matching::validate(options);
-    ADD_FAILURE() << "sigma 0.05 accepted";
-  } catch (const OptionError& e) {
-    EXPECT_EQ(std::string(e.what()), "--overlay-sigma: value 0.05 is outside [0.1, 10]");
-  }
+  const auto validate = [&options] { matching::validate(options); };
+  const SpellingForTheTest field(nullptr);
+  EXPECT_EQ(refusal(validate), "overlay_sigma: value 0.05 is outside [0.1, 10]");
+  const SpellingForTheTest command_line(&options::command_line_spelling);
+  EXPECT_EQ(refusal(validate), "--overlay-sigma: value 0.05 is outside [0.1, 10]");
+}
+
+std::string shouted(const std::string& field) { return "<" + field + ">"; }
+
+TEST(OptionNames, MessagesNameTheFieldInTheFrontEndsSpelling) {
+  EXPECT_EQ(options::command_line_spelling("max_grid_cells"), "--max-grid-cells");
+  EXPECT_EQ(options::command_line_spelling("unit"), "--unit");
+  // A face that repeats a vertex: the message points to the repair option.
+  Eigen::MatrixX3d positions(3, 3);
+  positions << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  Eigen::MatrixX3i faces(1, 3);
+  faces << 0, 1, 1;
+  const auto build = [&] { mesh::Surface::from_arrays(positions, faces, "t"); };
+  const auto message = [&](options::Spelling spelling) {
+    const SpellingForTheTest installed(spelling);
+    try {
+      build();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message(nullptr).find("(repair removes degenerate faces)"), std::string::npos)
+      << message(nullptr);
+  EXPECT_NE(message(&options::command_line_spelling).find("(--repair removes"), std::string::npos)
+      << message(&options::command_line_spelling);
+  EXPECT_NE(message(&shouted).find("(<repair> removes"), std::string::npos) << message(&shouted);
+  EXPECT_EQ(options::spelling()("x"), "x");  // each installed spelling was taken back
 }
 
 }  // namespace

@@ -266,7 +266,7 @@ TEST(ReadRecords, MultiRecordSdfNeedsARecordAndReadsTheOneAsked) {
   const fs::path two =
       dir.write("two.sdf", methanol_sdf("first", 0.0) + methanol_sdf("second", -1.0));
   expect_error<InputError>([&] { io::read_molecule(two); },
-                           {two.string(), "2 molecules", "--record"});
+                           {two.string(), "2 molecules", "with record N"});
   io::MoleculeReadOptions options;
   options.record = 2;
   const Molecule second = io::read_molecule(two, options);
@@ -320,7 +320,7 @@ TEST(ReadRecords, LigandSelectionOnSdfIsRefused) {
   io::MoleculeReadOptions options;
   options.ligand = "ATP";
   expect_error<OptionError>([&] { io::read_molecule(sdf, options); },
-                            {sdf.string(), "--ligand ATP", "PDB or PQR"});
+                            {sdf.string(), "ligand ATP", "PDB or PQR"});
 }
 
 // ---- .hsi contents ---------------------------------------------------------------------------

@@ -52,7 +52,7 @@ TEST(SesLimits, AHugeRadiusIsRefusedByTheGridLimit) {
   const Atoms atoms = three_atoms(1000.0);
   const std::string message =
       refusal<InputError>([&] { molsurf::build_ses(atoms.centers, atoms.radii); });
-  EXPECT_TRUE(contains(message, "--max-grid-cells")) << message;
+  EXPECT_TRUE(contains(message, "max_grid_cells")) << message;
   EXPECT_TRUE(contains(message, "limit is 2e+08")) << message;
 }
 
@@ -62,7 +62,7 @@ TEST(SesLimits, AFineVoxelIsRefusedByTheGridLimit) {
   options.voxel_size = 0.01;
   const std::string message =
       refusal<InputError>([&] { molsurf::build_ses(atoms.centers, atoms.radii, options); });
-  EXPECT_TRUE(contains(message, "--max-grid-cells")) << message;
+  EXPECT_TRUE(contains(message, "max_grid_cells")) << message;
   // The automatic voxel needs a few thousand cells for three atoms.
   options.voxel_size = 0.0;
   options.max_grid_cells = 10.0;
@@ -99,11 +99,11 @@ TEST(SesLimits, AtomAndVertexLimits) {
   options.max_atoms = 2;
   std::string message =
       refusal<InputError>([&] { molsurf::build_ses(atoms.centers, atoms.radii, options); });
-  EXPECT_TRUE(contains(message, "3 atoms; the limit is 2 (raise it with --max-atoms")) << message;
+  EXPECT_TRUE(contains(message, "3 atoms; the limit is 2 (raise it with max_atoms")) << message;
   options.max_atoms = 3;
   options.max_vertices = 50;
   message = refusal<InputError>([&] { molsurf::build_sas(atoms.centers, atoms.radii, options); });
-  EXPECT_TRUE(contains(message, "--max-vertices")) << message;
+  EXPECT_TRUE(contains(message, "max_vertices")) << message;
   // The estimate is the grid mesh's area times the density: the result stays near it.
   options.max_vertices = molsurf::SesOptions{}.max_vertices;
   const mesh::Surface ses = molsurf::build_ses(atoms.centers, atoms.radii, options);
@@ -142,7 +142,7 @@ TEST(ImageLimits, TheImagesAreEstimatedBeforeTheyAreBuilt) {
       refusal<InputError>([&] { harmonic::describe_surface(surface, options); });
   EXPECT_TRUE(contains(message, "three.pqr: ")) << message;
   EXPECT_TRUE(contains(message, "16 rings x 180 sectors")) << message;
-  EXPECT_TRUE(contains(message, "--max-image-bytes")) << message;
+  EXPECT_TRUE(contains(message, "max_image_bytes")) << message;
   options = harmonic::DescriptorOptions{};
   options.max_image_bytes = 0;
   EXPECT_THROW(harmonic::describe_surface(surface, options), OptionError);

@@ -883,7 +883,7 @@ TEST(LibraryBuild, HsiFilesBecomeEntriesThatKeepTheirSurfaceAndFindThemselves) {
   const screening::LibraryBuildResult refused =
       screening::build_library({inputs[0]}, dir / "conformers.sclib", conformers);
   ASSERT_EQ(refused.skipped.size(), 1u);
-  EXPECT_NE(refused.skipped[0].reason.find("--conformers does not apply"), std::string::npos)
+  EXPECT_NE(refused.skipped[0].reason.find("conformers does not apply"), std::string::npos)
       << refused.skipped[0].reason;
 }
 
@@ -1232,9 +1232,9 @@ TEST(LibraryShards, AResumeOfOtherInputsOrOptionsOrADamagedShardIsRefusedChangin
     };
   };
 
-  // Without --resume the folder is in the way.
+  // Without resume the folder is in the way.
   expect_refused<FileError>(resume_with(records, one_conformer(2)), dir / "build/lib.sclib.d",
-                            "--resume");
+                            "continue that build with resume");
   screening::LibraryBuildOptions other_seed = resume;
   other_seed.conformers->seed = 4;
   expect_refused<InputError>(resume_with(records, other_seed), manifest,

@@ -134,7 +134,8 @@ TEST(SesPoints, BadInputIsRefused) {
     molsurf::ses_points(far.centers, far.radii);
     ADD_FAILURE() << "no error for a grid over the limit";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--max-grid-cells"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("raise it with max_grid_cells"), std::string::npos)
+        << e.what();
   }
   const Atoms nan = make_atoms({{0, 0, std::nan("")}}, {1.5});
   EXPECT_THROW(molsurf::ses_points(nan.centers, nan.radii), InputError);

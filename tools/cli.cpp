@@ -3,6 +3,7 @@
 #include "command.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 
 #include <boost/program_options/errors.hpp>
 
@@ -38,6 +39,21 @@ constexpr std::array kCommands{
             &surfcomp::tools::patch_map},
 };
 
+/// The command line's spelling of the options library messages name, for as long as it lives
+/// (Python's surfcomp.main() runs the command line inside a process that spells them its way).
+class CommandLineSpelling {
+ public:
+  CommandLineSpelling() : previous_(surfcomp::options::spelling()) {
+    surfcomp::options::set_spelling(&surfcomp::options::command_line_spelling);
+  }
+  ~CommandLineSpelling() { surfcomp::options::set_spelling(previous_); }
+  CommandLineSpelling(const CommandLineSpelling&) = delete;
+  CommandLineSpelling& operator=(const CommandLineSpelling&) = delete;
+
+ private:
+  surfcomp::options::Spelling previous_;
+};
+
 void print_usage(std::ostream& out) {
   out << "usage: surfcomp COMMAND [options]   (surfcomp COMMAND --help for its options)\n\n"
          "Compares molecular surfaces by critical points, harmonic shape images and cliques.\n\n"
@@ -54,6 +70,7 @@ void print_usage(std::ostream& out) {
 namespace surfcomp::tools {
 
 int run_command_line(const std::vector<std::string>& args) {
+  const CommandLineSpelling spelling;
   if (args.empty()) {
     print_usage(std::cerr);
     return 2;

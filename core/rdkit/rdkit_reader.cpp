@@ -9,6 +9,7 @@
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/core/protein_charges.hpp"
 
 #include <GraphMol/Descriptors/Crippen.h>
@@ -265,7 +266,8 @@ std::vector<double> gasteiger_charges(const RDKit::ROMol& mol, const Molecule& m
       }
       throw InputError(molecule.source + ": Gasteiger charges unavailable for the fragment of " +
                        describe_atom(molecule, first) + " (RDKit: " + one_line(e.what()) +
-                       "); use MMFF94 charges (--charges mmff) or a PQR file");
+                       "); use MMFF94 charges (" + options::named("charges") +
+                       " mmff) or a PQR file");
     }
     for (const RDKit::Atom* atom : fragment.atoms()) {
       const std::size_t index = static_cast<std::size_t>(mapping[f][atom->getIdx()]);
@@ -309,7 +311,8 @@ std::vector<double> mmff_charges(const RDKit::ROMol& mol, const std::string& sou
   if (!properties.isValid()) {
     throw InputError(source +
                      ": MMFF94 atom typing failed (RDKit found an atom without an "
-                     "MMFF94 type); use Gasteiger charges (--charges gasteiger)");
+                     "MMFF94 type); use Gasteiger charges (" +
+                     options::named("charges") + " gasteiger)");
   }
   std::vector<double> charges(with_h->getNumAtoms());
   for (unsigned int i = 0; i < with_h->getNumAtoms(); ++i) {
@@ -390,17 +393,18 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& wh
   const std::string source = path.string();
   if (trimmed(whole_text).empty()) throw InputError(source + ": the file is empty (no atoms)");
   if (format != RdkitFormat::pdb && !options.ligand.empty()) {
-    throw OptionError(source + ": --ligand " + options.ligand +
+    throw OptionError(source + ": " + options::named("ligand") + " " + options.ligand +
                       " selects a HETATM residue of a PDB or PQR file; an SDF, MOL or MOL2 "
-                      "file is the ligand itself (give no --ligand)");
+                      "file is the ligand itself (give no " +
+                      options::named("ligand") + ")");
   }
   if (format == RdkitFormat::pdb) {
     check_single_record(options.record, source);
     check_pdb_coordinates(whole_text, source);
   }
   if (format != RdkitFormat::pdb && options.min_plddt > 0.0) {
-    throw OptionError(source +
-                      ": --min-plddt reads the B-factor column of a PDB or mmCIF structure; an "
+    throw OptionError(source + ": " + options::named("min_plddt") +
+                      " reads the B-factor column of a PDB or mmCIF structure; an "
                       "SDF, MOL or MOL2 file has none");
   }
   const std::string text =

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <regex>
 
 namespace surfcomp::options {
 namespace {
@@ -96,13 +97,23 @@ std::string range_text(const Spec& spec) {
 }
 
 std::string help_line(const Spec& spec) {
+  // The options the help names, {field}, as the installed spelling writes them.
+  static const std::regex named_option(R"(\{([a-z][a-z0-9_]*)\})");
+  std::string help;
+  auto at = spec.help.cbegin();
+  for (std::sregex_iterator found(spec.help.begin(), spec.help.end(), named_option), end;
+       found != end; ++found) {
+    help.append(at, (*found)[0].first).append(named((*found)[1].str()));
+    at = (*found)[0].second;
+  }
+  help.append(at, spec.help.cend());
   std::string extra = spec.unit;
   const std::string range = range_text(spec);
   if (!range.empty() && spec.choices.empty()) extra += (extra.empty() ? "" : ", ") + range;
   if (!spec.choices.empty()) {
     for (const std::string& name : spec.choices) extra += (extra.empty() ? "" : " | ") + name;
   }
-  return extra.empty() ? spec.help : spec.help + " (" + extra + ")";
+  return extra.empty() ? help : help + " (" + extra + ")";
 }
 
 void check(const Spec& spec, const Value& value, const std::string& shown) {

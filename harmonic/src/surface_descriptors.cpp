@@ -1,6 +1,7 @@
 #include "surfcomp/harmonic/surface_descriptors.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/topology.hpp"
 
 #include <tbb/parallel_for.h>
@@ -124,8 +125,9 @@ SurfaceDescriptors describe_surface(
     message << surface.source() << ": " << count << " shape images of " << options.image.rings
             << " rings x " << options.image.sectors << " sectors would take about " << bytes
             << " bytes; the limit is " << options.max_image_bytes
-            << " (raise it with --max-image-bytes, or use a "
-               "smaller grid)";
+            << " (raise it with " + options::named("max_image_bytes") +
+                   ", or use a "
+                   "smaller grid)";
     throw InputError(message.str());
   }
   result.critical_points.resize(points.size());

@@ -2,6 +2,7 @@
 
 #include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/matching/fuzzy.hpp"
 
 #include <tbb/parallel_for.h>
@@ -332,8 +333,9 @@ AssociationGraph build_association_graph(const SurfaceDescriptors& a, const Surf
                      "the limit of " +
                      std::to_string(p.max_nodes) +
                      " (the distance filter and the clique search grow with the square of "
-                     "that count); match binding sites, raise --image-threshold or raise "
-                     "--max-graph-nodes");
+                     "that count); match binding sites, raise " +
+                     options::named("image_threshold") + " or raise " +
+                     options::named("max_graph_nodes"));
   }
   graph.edges = distance_filter(graph.nodes, a, b, p.distance_tolerance, p.min_distance);
   record("distance", false);

@@ -2,6 +2,7 @@
 
 #include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 
 #include <algorithm>
 #include <bitset>
@@ -207,8 +208,9 @@ std::vector<std::vector<int>> maximal_cliques(const AssociationGraph& g, int min
   CliqueResult result = maximal_cliques(g, options);
   if (!result.complete) {
     throw InputError("clique search: the search stopped after " + std::to_string(result.work) +
-                     " units of work and " + std::to_string(result.cliques.size()) +
-                     " cliques (--max-clique-work, --max-cliques); the list would be "
+                     " units of work and " + std::to_string(result.cliques.size()) + " cliques (" +
+                     options::named("max_clique_work") + ", " + options::named("max_cliques") +
+                     "); the list would be "
                      "incomplete");
   }
   return std::move(result.cliques);

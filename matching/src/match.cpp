@@ -2,6 +2,7 @@
 
 #include "option_checks.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/matching/cliques.hpp"
 #include "surfcomp/matching/site.hpp"
@@ -410,7 +411,9 @@ void require_match_properties(const mesh::Surface& surface) {
   for (const char* name : {mesh::property::esp, mesh::property::lp}) {
     if (surface.has_property(name)) continue;
     throw InputError(surface.source() + ": the surface has no vertex property '" + name +
-                     "', which the match compares (give the mesh's molecule with --molecule, "
+                     "', which the match compares (give the mesh's molecule with " +
+                     options::named("molecule") +
+                     ", "
                      "or a mesh file with 'esp' and 'lp' vertex properties)");
   }
 }

@@ -80,9 +80,11 @@ MatchInput with_site(MatchInput input, const PairSites& sites, bool reference) {
   return input;
 }
 
-const char* site_ligand_option(const PairSites& sites, bool reference) {
-  if (reference) return sites.reference_ligand.empty() ? "--site-ligand" : "--ref-site-ligand";
-  return sites.probe_ligand.empty() ? "--site-ligand" : "--probe-site-ligand";
+std::string site_ligand_option(const PairSites& sites, bool reference) {
+  if (reference) {
+    return options::named(sites.reference_ligand.empty() ? "site_ligand" : "ref_site_ligand");
+  }
+  return options::named(sites.probe_ligand.empty() ? "site_ligand" : "probe_site_ligand");
 }
 
 }  // namespace surfcomp::matching

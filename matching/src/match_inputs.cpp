@@ -3,6 +3,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
@@ -187,7 +188,7 @@ mesh::LengthUnit length_unit(const LoadedInput& ref, const MatchInput& reference
   if (input.unit > 0.0) {
     for (const auto& [side, given] : {std::pair{&ref, &reference}, std::pair{&prb, &probe}}) {
       if (is_molecular(*side, *given)) {
-        throw OptionError("--unit applies to general meshes; " + side->name +
+        throw OptionError(options::named("unit") + " applies to general meshes; " + side->name +
                           " is in A (a molecule, a mesh with ESP and LP, or a stored "
                           "description)");
       }
@@ -201,7 +202,8 @@ mesh::LengthUnit length_unit(const LoadedInput& ref, const MatchInput& reference
         stored_side->descriptors->length_unit != 1.0) {
       throw InputError(stored_side->name + ": a general mesh's description in a unit of " +
                        number_text(stored_side->descriptors->length_unit) +
-                       " cannot be matched with an input in A; rebuild it with --scale none");
+                       " cannot be matched with an input in A; rebuild it with " +
+                       options::named("scale") + " none");
     }
   }
   if (ref_in_angstrom || probe_in_angstrom) return {};
@@ -214,15 +216,15 @@ mesh::LengthUnit length_unit(const LoadedInput& ref, const MatchInput& reference
       throw InputError(ref.name + " and " + prb.name +
                        ": the .hsi files were described in different length units (" +
                        number_text(*stored) + " and " + number_text(unit) +
-                       "); rebuild one with the other's --unit");
+                       "); rebuild one with the other's " + options::named("unit"));
     }
     stored = unit;
   }
   if (stored) {
     if (input.unit > 0.0 && !same_unit(input.unit, *stored)) {
-      throw OptionError("--unit " + number_text(input.unit) +
+      throw OptionError(options::named("unit") + " " + number_text(input.unit) +
                         ": the stored description is in a unit of " + number_text(*stored) +
-                        "; give that unit or leave --unit out");
+                        "; give that unit or leave " + options::named("unit") + " out");
     }
     return {*stored, "stored"};
   }
@@ -353,10 +355,10 @@ void tell_clique_stop(const MatchResult& result, const MatchOptions& options, In
   if (result.cliques_complete) return;
   if (result.cliques >= options.max_cliques) {
     out.notes.push_back("the clique budget took the first " + std::to_string(result.cliques) +
-                        " cliques the search found (--max-cliques)");
+                        " cliques the search found (" + options::named("max_cliques") + ")");
   } else {
     out.warnings.push_back("clique search stopped after " + std::to_string(result.clique_work) +
-                           " units of work (--max-clique-work " +
+                           " units of work (" + options::named("max_clique_work") + " " +
                            std::to_string(options.max_clique_work) +
                            "); alignments may be missing");
   }
@@ -373,7 +375,9 @@ std::string MatchInput::name() const {
 }
 
 void check_match_input(const MatchInput& input, const MatchInputOptions& options, const char* role,
-                       const char* site_option) {
+                       const std::string& site_ligand_option) {
+  const std::string site_option =
+      site_ligand_option.empty() ? options::named("site_ligand") : site_ligand_option;
   const int given = static_cast<int>(!input.path.empty()) +
                     static_cast<int>(input.descriptors.has_value()) +
                     static_cast<int>(input.surface.has_value()) +
@@ -387,40 +391,42 @@ void check_match_input(const MatchInput& input, const MatchInputOptions& options
   const std::string name = std::string(role) + " " + input.name();
   if (!input.site_ligand.empty()) {
     if (is_water_residue(input.site_ligand)) {
-      throw OptionError(std::string(site_option) + " " + input.site_ligand +
+      throw OptionError(site_option + " " + input.site_ligand +
                         ": waters (HOH, WAT, DOD) are dropped when a structure is read, so a "
-                        "water cannot be a site ligand; give --site-sphere x,y,z,r around it");
+                        "water cannot be a site ligand; give " +
+                        options::named("site_sphere") + " x,y,z,r around it");
     }
     if (is_stored_description(input)) {
-      throw OptionError(name + ": " + site_option +
-                        " needs the structure, not a .hsi file; use --site-sphere");
+      throw OptionError(name + ": " + site_option + " needs the structure, not a .hsi file; use " +
+                        options::named("site_sphere"));
     }
     if (input.surface) {
-      throw OptionError(name + ": " + site_option +
-                        " needs the structure, not a surface; use --site-sphere");
+      throw OptionError(name + ": " + site_option + " needs the structure, not a surface; use " +
+                        options::named("site_sphere"));
     }
     if (!input.path.empty() && !io::is_molecule_file(input.path)) {
-      throw OptionError(name + ": " + site_option +
-                        " needs a molecule file (the structure); use --site-sphere");
+      throw OptionError(name + ": " + site_option + " needs a molecule file (the structure); use " +
+                        options::named("site_sphere"));
     }
     if (!options.input.read.ligand.empty())
-      throw OptionError("--ligand and --site-ligand cannot be combined");
+      throw OptionError(options::named("ligand") + " and " + options::named("site_ligand") +
+                        " cannot be combined");
   }
   if (input.site_pocket != 0) {
     if (input.site_pocket < 0) {
-      throw OptionError(name + ": --site-pocket " + std::to_string(input.site_pocket) +
-                        ": pockets are ranked from 1");
+      throw OptionError(name + ": " + options::named("site_pocket") + " " +
+                        std::to_string(input.site_pocket) + ": pockets are ranked from 1");
     }
     if (!input.site_ligand.empty() || !input.site_spheres.empty()) {
-      throw OptionError(name +
-                        ": --site-pocket is a whole site; it takes no --site-ligand or "
-                        "--site-sphere beside it");
+      throw OptionError(name + ": " + options::named("site_pocket") +
+                        " is a whole site; it takes no " + options::named("site_ligand") + " or " +
+                        options::named("site_sphere") + " beside it");
     }
     const bool structure_file = !input.path.empty() && !harmonic::io::is_hsi_file(input.path) &&
                                 io::is_molecule_file(input.path);
     if (!structure_file && !(input.molecule && !input.surface)) {
-      throw OptionError(name +
-                        ": --site-pocket needs a structure (a PDB or mmCIF file) to find "
+      throw OptionError(name + ": " + options::named("site_pocket") +
+                        " needs a structure (a PDB or mmCIF file) to find "
                         "pockets in");
     }
   }
@@ -442,7 +448,7 @@ PreparedInput prepare_input(const MatchInput& input, const MatchInputOptions& op
   }
   const bool general_mesh = !is_molecular(side, input);
   if (!general_mesh && options.input.unit > 0.0) {
-    throw OptionError("--unit applies to general meshes; " + side.name +
+    throw OptionError(options::named("unit") + " applies to general meshes; " + side.name +
                       " is in A (a molecule, a mesh with ESP and LP, or a stored description)");
   }
   const mesh::LengthUnit unit = general_mesh
@@ -472,8 +478,9 @@ InputMatch match_inputs(const MatchInput& reference, const MatchInput& probe,
                             (!side->path.empty() && io::is_molecule_file(side->path)) ||
                             (!side->path.empty() && !options.input.molecule_file.empty());
       if (molecule) {
-        throw OptionError("--unit applies to general meshes; " + side->name() +
-                          " is in A (a molecule, or a mesh with --molecule)");
+        throw OptionError(options::named("unit") + " applies to general meshes; " + side->name() +
+                          " is in A (a molecule, or a mesh with " + options::named("molecule") +
+                          ")");
       }
     }
   }

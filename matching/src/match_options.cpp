@@ -62,7 +62,7 @@ const options::Table<MatchOptions>& match_option_table() {
       options::field<M>(
           {"refine-top", Kind::integer,
            "refine this many alignments on the whole surfaces and rank them by their "
-           "overlay score (+ --atom-polish-weight x atom fit between molecules; 0: the "
+           "overlay score (+ {atom_polish_weight} x atom fit between molecules; 0: the "
            "seed's consensus ranking alone)",
            "", 0, 1e6},
           [](auto& m) -> auto& { return m.refine_top; }),
@@ -92,7 +92,7 @@ const options::Table<MatchOptions>& match_option_table() {
       options::field<M>(
           {"atom-polish-sigma", Kind::real,
            "where both inputs are molecules, polish the best alignments (match: the first "
-           "--polish-top) last on their heavy atoms, Gaussians of this width, like elements "
+           "{polish_top}) last on their heavy atoms, Gaussians of this width, like elements "
            "overlapping (0: no atom polish; else at least 0.05; not for site matches)",
            "A", 0.0, 5.0},
           [](auto& m) -> auto& { return m.atom_polish.sigma; }),
@@ -128,7 +128,7 @@ const options::Table<MatchOptions>& match_option_table() {
       options::field<M>(
           {"principal-axes-starts", Kind::integer,
            "also refine this many principal-axes superpositions of the whole "
-           "surfaces (with --refine-top > 0; so do the --site-* overlay options)",
+           "surfaces (with {refine_top} > 0; so do the site overlay options)",
            "", 0, 24, false, start_counts},
           [](auto& m) -> auto& { return m.principal_axes_starts; }),
       options::field<M>(
@@ -139,7 +139,7 @@ const options::Table<MatchOptions>& match_option_table() {
           [](auto& m) -> auto& { return m.site.overlay_radius; }),
       options::field<M>(
           {"site-chem-weight", Kind::real,
-           "site matches: --overlay-chem-weight for the pocket overlay", "", 0.0, 100.0},
+           "site matches: {overlay_chem_weight} for the pocket overlay", "", 0.0, 100.0},
           [](auto& m) -> auto& { return m.site.chem_weight; }),
       options::field<M>(
           {"site-lining-weight", Kind::real,
@@ -149,7 +149,7 @@ const options::Table<MatchOptions>& match_option_table() {
           [](auto& m) -> auto& { return m.site.lining_weight; }),
       options::field<M>(
           {"site-principal-axes-starts", Kind::integer,
-           "site matches: --principal-axes-starts for the pocket overlay", "", 0, 24, false,
+           "site matches: {principal_axes_starts} for the pocket overlay", "", 0, 24, false,
            start_counts},
           [](auto& m) -> auto& { return m.site.principal_axes_starts; }),
   };

@@ -2,6 +2,7 @@
 
 #include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 
 #include <CGAL/Eigen_svd.h>
 #include <CGAL/Monge_via_jet_fitting.h>
@@ -692,14 +693,16 @@ PrincipalCurvatures principal_curvatures(const Surface& surface, const Curvature
       case FitStatus::ok:
         continue;
       case FitStatus::no_normal:
-        throw NumericError(where +
-                           " has no defined normal (no triangle of non-zero area; --repair "
+        throw NumericError(where + " has no defined normal (no triangle of non-zero area; " +
+                           options::named("repair") +
+                           " "
                            "removes isolated vertices and degenerate faces)");
       case FitStatus::too_few_points:
-        throw TopologyError(
-            where + " is connected to fewer than " + std::to_string(sphere_coefficients - 1) +
-            " other vertices; the smallest fit (a sphere) needs " +
-            std::to_string(sphere_coefficients) + " points (--repair keeps the largest component)");
+        throw TopologyError(where + " is connected to fewer than " +
+                            std::to_string(sphere_coefficients - 1) +
+                            " other vertices; the smallest fit (a sphere) needs " +
+                            std::to_string(sphere_coefficients) + " points (" +
+                            options::named("repair") + " keeps the largest component)");
       case FitStatus::not_finite:
         throw NumericError(where + ": the local fit is degenerate (non-finite curvature)");
     }

@@ -1,6 +1,7 @@
 #include "surfcomp/mesh/length_unit.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 
 #include <Eigen/Geometry>
 
@@ -28,14 +29,13 @@ double rms_radius(const Surface& surface) {
 
 LengthUnit general_mesh_unit(const std::vector<const Surface*>& surfaces, LengthScale scale,
                              double unit, const std::string& names) {
-  if (unit > 0.0) return {unit, "--unit"};
+  if (unit > 0.0) return {unit, "given"};
   if (scale == LengthScale::none) return {1.0, "none"};
   double radius = 0.0;
   for (const Surface* surface : surfaces) radius = std::max(radius, rms_radius(*surface));
   if (!(radius > 0.0) || !std::isfinite(radius)) {
-    throw InputError(names +
-                     ": the surface has no extent to take a length unit from (--scale auto); "
-                     "give --unit");
+    throw InputError(names + ": the surface has no extent to take a length unit from (" +
+                     options::named("scale") + " auto); give " + options::named("unit"));
   }
   return {radius / auto_unit_divisor, "auto"};
 }

@@ -5,6 +5,7 @@
 #include "io/stl_soup.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/io/formats.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -172,7 +173,9 @@ void read_soup(const std::filesystem::path& path, const io::MeshFormat& format,
   } catch (const std::exception&) {
     read = false;
   }
-  if (!read) throw InputError(path.string() + ": cannot be read as a polygon mesh for --repair");
+  if (!read)
+    throw InputError(path.string() + ": cannot be read as a polygon mesh for " +
+                     options::named("repair"));
 }
 
 }  // namespace
@@ -180,7 +183,7 @@ void read_soup(const std::filesystem::path& path, const io::MeshFormat& format,
 RepairedMesh repair_mesh_file(const std::filesystem::path& path, std::size_t max_vertices) {
   const io::MeshFormat* format = io::find_mesh_format(path);
   if (format == nullptr || !format->repairable) {
-    throw InputError(path.string() + ": --repair reads " +
+    throw InputError(path.string() + ": " + options::named("repair") + " reads " +
                      io::mesh_extensions(io::MeshUse::repair) + " meshes, found '" +
                      path.extension().string() + "'");
   }
@@ -188,11 +191,13 @@ RepairedMesh repair_mesh_file(const std::filesystem::path& path, std::size_t max
   Polygons polygons;
   read_soup(path, *format, points, polygons);
   if (points.empty() || polygons.empty()) {
-    throw InputError(path.string() + ": cannot be read as a polygon mesh for --repair");
+    throw InputError(path.string() + ": cannot be read as a polygon mesh for " +
+                     options::named("repair"));
   }
   if (points.size() > max_vertices) {
     throw InputError(path.string() + ": " + std::to_string(points.size()) +
-                     " vertices, more than --max-vertices " + std::to_string(max_vertices));
+                     " vertices, more than " + options::named("max_vertices") + " " +
+                     std::to_string(max_vertices));
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Point& p = points[i];

@@ -2,6 +2,7 @@
 
 #include "surface_mesh.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 
 #include <OpenMesh/Core/System/omstream.hh>
 
@@ -105,12 +106,14 @@ Surface Surface::from_arrays(const Eigen::Ref<const Eigen::MatrixX3d>& positions
       tri[static_cast<std::size_t>(k)] = handles[static_cast<std::size_t>(v)];
     }
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-      throw TopologyError(source + ": face " + std::to_string(f) +
-                          " repeats a vertex (--repair removes degenerate faces)");
+      throw TopologyError(source + ": face " + std::to_string(f) + " repeats a vertex (" +
+                          options::named("repair") + " removes degenerate faces)");
     }
     if (!mesh.add_face(tri[0], tri[1], tri[2]).is_valid()) {
       throw TopologyError(source + ": face " + std::to_string(f) +
-                          " makes the mesh non-manifold (complex edge or vertex; --repair "
+                          " makes the mesh non-manifold (complex edge or vertex; " +
+                          options::named("repair") +
+                          " "
                           "splits such vertices and removes duplicate faces)");
     }
   }

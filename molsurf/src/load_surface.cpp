@@ -2,6 +2,7 @@
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/io/formats.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
 
@@ -15,17 +16,19 @@ std::string surface_input_formats() {
 void check_surface_input(const std::filesystem::path& path, const SurfaceInputOptions& options) {
   if (mesh::io::is_mesh_file(path)) {
     if (!options.read.ligand.empty())
-      throw OptionError("--ligand applies to a molecule INPUT, not a mesh");
+      throw OptionError(options::named("ligand") + " applies to a molecule INPUT, not a mesh");
     if (options.read.min_plddt > 0.0 && options.molecule_file.empty())
-      throw OptionError("--min-plddt applies to a PDB or mmCIF structure INPUT, not a mesh");
+      throw OptionError(options::named("min_plddt") +
+                        " applies to a PDB or mmCIF structure INPUT, not a mesh");
     if (options.unit > 0.0 && !options.molecule_file.empty())
-      throw OptionError("--unit applies to general meshes; " + path.string() +
-                        " is in A (a mesh with --molecule)");
+      throw OptionError(options::named("unit") + " applies to general meshes; " + path.string() +
+                        " is in A (a mesh with " + options::named("molecule") + ")");
   } else if (surfcomp::io::is_molecule_file(path)) {
-    if (!options.molecule_file.empty()) throw OptionError("--molecule applies to a mesh INPUT");
-    if (options.repair) throw OptionError("--repair applies to a mesh INPUT");
+    if (!options.molecule_file.empty())
+      throw OptionError(options::named("molecule") + " applies to a mesh INPUT");
+    if (options.repair) throw OptionError(options::named("repair") + " applies to a mesh INPUT");
     if (options.unit > 0.0)
-      throw OptionError("--unit applies to general meshes; " + path.string() +
+      throw OptionError(options::named("unit") + " applies to general meshes; " + path.string() +
                         " is in A (a molecule)");
   } else {
     throw InputError(path.string() + ": unknown input format (" + surface_input_formats() + ")");
@@ -36,7 +39,8 @@ void check_vertex_limit(const mesh::Surface& surface, const SurfaceInputOptions&
   const auto limit = static_cast<std::size_t>(options.surface.ses.max_vertices);
   if (surface.n_vertices() > limit) {
     throw InputError(surface.source() + ": " + std::to_string(surface.n_vertices()) +
-                     " vertices, more than --max-vertices " + std::to_string(limit));
+                     " vertices, more than " + options::named("max_vertices") + " " +
+                     std::to_string(limit));
   }
 }
 
@@ -79,7 +83,7 @@ void complete_mesh(LoadedSurface& loaded, const std::string& extension,
   const std::string& name = loaded.surface.source();
   if (!options.molecule_file.empty() || mesh::is_molecular_mesh(loaded.surface, extension)) {
     if (options.unit > 0.0) {
-      throw OptionError("--unit applies to general meshes; " + name +
+      throw OptionError(options::named("unit") + " applies to general meshes; " + name +
                         " is in A (a mesh with ESP and LP, or an MSMS surface)");
     }
     if (!options.molecule_file.empty())

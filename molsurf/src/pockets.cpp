@@ -3,6 +3,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/spatial_grid.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -47,20 +48,23 @@ struct AlphaSphere {
 
 void check_options(const PocketOptions& options) {
   if (!(std::isfinite(options.max_volume) && options.max_volume >= 0.0)) {
-    throw OptionError("--pocket-max-volume must be a finite volume >= 0 A^3 (0: no split)");
+    throw OptionError(options::named("pocket_max_volume") +
+                      " must be a finite volume >= 0 A^3 (0: no split)");
   }
   const auto positive = [](double value) { return std::isfinite(value) && value > 0.0; };
   if (!positive(options.min_sphere_radius) || !positive(options.max_sphere_radius) ||
       !(options.max_sphere_radius > options.min_sphere_radius)) {
-    throw OptionError("--pocket-max-radius must be larger than --pocket-min-radius (both > 0 A)");
+    throw OptionError(options::named("pocket_max_radius") + " must be larger than " +
+                      options::named("pocket_min_radius") + " (both > 0 A)");
   }
   if (!(options.min_buriedness >= 0.0 && options.min_buriedness <= 1.0)) {
-    throw OptionError("--pocket-buriedness must lie in [0, 1]");
+    throw OptionError(options::named("pocket_buriedness") + " must lie in [0, 1]");
   }
   if (!positive(options.buried_distance) || !positive(options.cluster_distance)) {
     throw OptionError("pocket detection: the buried and cluster distances must be finite and > 0");
   }
-  if (options.min_spheres < 1) throw OptionError("--pocket-min-spheres must be at least 1");
+  if (options.min_spheres < 1)
+    throw OptionError(options::named("pocket_min_spheres") + " must be at least 1");
 }
 
 /// Unit vectors spread evenly over the sphere (a Fibonacci lattice).
@@ -473,8 +477,8 @@ StructurePockets find_pockets(const std::filesystem::path& structure,
   const auto max_atoms = static_cast<std::size_t>(options.input.surface.ses.max_atoms);
   if (molecule.atoms.size() > max_atoms) {
     throw InputError(structure.string() + ": " + std::to_string(molecule.atoms.size()) +
-                     " atoms, more than the limit of " + std::to_string(max_atoms) +
-                     " (--max-atoms)");
+                     " atoms, more than the limit of " + std::to_string(max_atoms) + " (" +
+                     options::named("max_atoms") + ")");
   }
   found.protein_atoms = pocket_structure(molecule).atoms.size();
   found.pockets = detect_pockets(molecule, options.pockets);

@@ -8,6 +8,7 @@
 #include "ses_grid.hpp"
 #include "ses_vertices.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/remesh.hpp"
 
 #include <algorithm>
@@ -43,19 +44,21 @@ std::string number(double value) {
   return out.str();
 }
 
-void require_limit(const std::string& what, const char* name, double value) {
+/// Throws OptionError unless the limit in option `field` is at least 1.
+void require_limit(const std::string& what, const char* field, double value) {
   if (!(value >= 1.0)) {
-    throw OptionError(what + ": " + name + " " + number(value) + "; expected a limit >= 1");
+    throw OptionError(what + ": " + options::named(field) + " " + number(value) +
+                      "; expected a limit >= 1");
   }
 }
 
 /// Throws InputError "<what>: <description>; the limit is L (raise it with OPTION)" when
-/// `estimate` exceeds `limit`; `description` states the estimate.
+/// `estimate` exceeds `limit`, the value of option `field`; `description` states the estimate.
 void require_within(const std::string& what, const std::string& description, double estimate,
-                    double limit, const char* option) {
+                    double limit, const char* field) {
   if (estimate > limit) {
     throw InputError(what + ": " + description + "; the limit is " + number(limit) +
-                     " (raise it with " + option + ")");
+                     " (raise it with " + options::named(field) + ")");
   }
 }
 
@@ -78,7 +81,7 @@ void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   require_limit(what, "max_vertices", static_cast<double>(options.max_vertices));
   require_within(what, std::to_string(centers.rows()) + " atoms",
                  static_cast<double>(centers.rows()), static_cast<double>(options.max_atoms),
-                 "--max-atoms");
+                 "max_atoms");
   for (Eigen::Index i = 0; i < centers.rows(); ++i) {
     if (!centers.row(i).allFinite()) {
       throw InputError(what + ": atom " + std::to_string(i + 1) +
@@ -174,7 +177,7 @@ void check_grid_size(const Eigen::Ref<const Eigen::MatrixX3d>& centers, double r
   require_within(
       what,
       "the surface grid would span about " + number(cells) + " cells of " + number(voxel) + " A",
-      cells, max_cells, "--max-grid-cells");
+      cells, max_cells, "max_grid_cells");
 }
 
 /// The vertex count the surface will have: the grid mesh's, or after remeshing its area times
@@ -244,7 +247,7 @@ mesh::Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   stage_done(2);
   const double vertices = expected_vertices(soup, options);
   require_within(what, "the surface would have about " + number(std::round(vertices)) + " vertices",
-                 vertices, static_cast<double>(options.max_vertices), "--max-vertices");
+                 vertices, static_cast<double>(options.max_vertices), "max_vertices");
   mesh::Surface surface;
   if (!options.remesh) {
     surface = mesh::Surface::from_arrays(soup.positions, soup.faces, what);

@@ -2,6 +2,7 @@
 
 #include "ses_points_splat.hpp"
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/spatial_grid.hpp"
 
 #include <algorithm>
@@ -129,7 +130,8 @@ NodeGrid make_grid(const Eigen::Ref<const Eigen::MatrixX3d>& centers, const Eige
   if (!(cells <= options.max_grid_cells)) {
     throw InputError(std::string(what) + ": the grid would have about " + number(cells) +
                      " nodes of " + number(h) + " A; the limit is " +
-                     number(options.max_grid_cells) + " (raise it with --max-grid-cells)");
+                     number(options.max_grid_cells) + " (raise it with " +
+                     options::named("max_grid_cells") + ")");
   }
   NodeGrid grid;
   grid.spacing = h;

@@ -29,7 +29,7 @@ const options::Table<SurfaceInputOptions>& surface_input_option_table() {
           [](auto& s) -> auto& { return s.surface.esp.dielectric; }),
       options::field<S>(
           {"eps-distance-dependent", Kind::flag,
-           "use eps * d (d in A) as the dielectric, e.g. --eps 4 for 4d"},
+           "use eps * d (d in A) as the dielectric, e.g. {eps} 4 for 4d"},
           [](auto& s) -> auto& { return s.surface.esp.distance_dependent; }),
       options::choice<S>(
           {"lp-kernel", Kind::choice,
@@ -88,7 +88,7 @@ const options::Table<SurfaceInputOptions>& surface_input_option_table() {
           {"unit",
            Kind::real,
            "a general mesh's length, in its coordinates, that every length option counts as 1 A "
-           "(default: from --scale)",
+           "(default: from {scale})",
            "",
            0.0,
            1e12,

@@ -26,6 +26,7 @@
 #include "surfcomp/report/patch_files.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
+#include "surfcomp/screening/library_build.hpp"
 #include "surfcomp/screening/screen.hpp"
 #include "surfcomp/screening/shape_screen.hpp"
 
@@ -34,12 +35,12 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -290,12 +291,8 @@ mesh::Surface surface_of_arrays(const py::tuple& pair, bool repair) {
   if (repair) return mesh::repair_triangles(v, f, source).surface;
   try {
     return mesh::Surface::from_arrays(v, f, source);
-  } catch (const TopologyError& e) {  // the caller's arrays: bad input, in Python's words
-    std::string message = e.what();
-    const std::string cli = "--repair";
-    if (const auto at = message.find(cli); at != std::string::npos)
-      message.replace(at, cli.size(), "repair=True");
-    throw InputError(message);
+  } catch (const TopologyError& e) {  // the caller's arrays: bad input
+    throw InputError(e.what());
   }
 }
 
@@ -1149,18 +1146,31 @@ void add_error_classes(py::module_& m) {
   m.attr("FileError") = py::handle(c.file);
 }
 
-/// A library message as a Python user reads it: the options it names as the command line
-/// spells them (--max-vertices) become the keyword arguments (max_vertices).
-std::string python_message(const char* what) {
-  static const std::regex flag(R"((^|[\s(,;'"])--([a-z][a-z0-9]*(?:-[a-z0-9]+)*))");
-  std::string out;
-  std::string text = what;
-  std::smatch m;
-  while (std::regex_search(text, m, flag)) {
-    out += m.prefix().str() + m[1].str() + options::python_name(m[2].str());
-    text = m.suffix().str();
-  }
-  return out + text;
+/// The options of every table the module reads that are switches (Python passes them True).
+const std::vector<std::string>& flag_fields() {
+  static const std::vector<std::string> fields = [] {
+    std::vector<std::string> out;
+    const auto add = [&out](const auto& table) {
+      for (const auto& option : table) {
+        if (option.spec.kind == options::Kind::flag)
+          out.push_back(options::python_name(option.spec.name));
+      }
+    };
+    add(matching::pair_match_option_table());
+    add(matching::describe_option_table());
+    add(screening::screen_option_table());
+    add(molsurf::pocket_search_option_table());
+    add(screening::library_build_option_table());
+    return out;
+  }();
+  return fields;
+}
+
+/// Python's spelling of an option a library message names: the keyword argument, and a switch
+/// with the value that turns it on ("repair=True").
+std::string python_spelling(const std::string& field) {
+  const std::vector<std::string>& flags = flag_fields();
+  return std::find(flags.begin(), flags.end(), field) != flags.end() ? field + "=True" : field;
 }
 
 // pybind11 calls translators as void(std::exception_ptr).
@@ -1169,13 +1179,13 @@ void translate(std::exception_ptr error) {  // NOLINT(performance-unnecessary-va
   try {
     if (error) std::rethrow_exception(error);
   } catch (const FileError& e) {
-    PyErr_SetString(c.file, python_message(e.what()).c_str());
+    PyErr_SetString(c.file, e.what());
   } catch (const OptionError& e) {
-    PyErr_SetString(c.option, python_message(e.what()).c_str());
+    PyErr_SetString(c.option, e.what());
   } catch (const InputError& e) {
-    PyErr_SetString(c.input, python_message(e.what()).c_str());
+    PyErr_SetString(c.input, e.what());
   } catch (const Error& e) {
-    PyErr_SetString(c.error, python_message(e.what()).c_str());
+    PyErr_SetString(c.error, e.what());
   }
 }
 
@@ -1186,6 +1196,8 @@ PYBIND11_MODULE(_surfcomp, m) {
   namespace sp = surfcomp::python;
   m.doc() = "The C++ core of the surfcomp package; use `import surfcomp`.";
   sp::add_error_classes(m);
+  sp::flag_fields();  // the tables are built with the fields' own names, before Python's spelling
+  surfcomp::options::set_spelling(&sp::python_spelling);
   py::register_exception_translator(&sp::translate);
 
   py::class_<sp::MoleculeBlock>(m, "MoleculeBlock", "An RDKit molecule as an MDL block.")

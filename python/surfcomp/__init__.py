@@ -114,6 +114,7 @@ def _keyword_options(function_name: str):
         function.__signature__ = signature.replace(parameters=fixed + options)
         lines = [f"    {o['name']} (default {o['default']!r}): {o['help']}" for o in table]
         function.__doc__ = (function.__doc__ or "") + "\n\n    Options:\n\n" + "\n".join(lines)
+        function._option_table = function_name  # scripts/python_stub.py writes the stubs from it
         return function
 
     return decorate

@@ -5,6 +5,7 @@
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/decimate.hpp"
 
 #include <nlohmann/json.hpp>
@@ -170,7 +171,7 @@ std::filesystem::path find_viewer_script() {
 std::string html_report(const matching::InputMatch& compared, const matching::MatchOptions& options,
                         const HtmlReportOptions& report) {
   if (report.max_display_vertices < 4) {
-    throw OptionError("--max-display-vertices must be at least 4, got " +
+    throw OptionError(options::named("max_display_vertices") + " must be at least 4, got " +
                       std::to_string(report.max_display_vertices));
   }
   const std::filesystem::path viewer_path =

@@ -7,6 +7,7 @@
 #include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/harmonic/surface_descriptors.hpp"
@@ -42,23 +43,26 @@ void check_options(const LibraryBuildOptions& options) {
     throw OptionError("library spacing must be finite and > 0, got " +
                       std::to_string(options.spacing));
   if (!(options.sigma > 0.0) || !std::isfinite(options.sigma))
-    throw OptionError("--sigma must be finite and > 0, got " + std::to_string(options.sigma));
+    throw OptionError("library sigma must be finite and > 0, got " + std::to_string(options.sigma));
   if (options.batch < 1) throw OptionError("library build batch must be at least 1");
-  if (options.shard_records < 1) throw OptionError("--shard-records must be at least 1, got 0");
+  if (options.shard_records < 1)
+    throw OptionError(options::named("shard_records") + " must be at least 1, got 0");
   if (!(options.lining_radius > 0.0) || !std::isfinite(options.lining_radius))
-    throw OptionError("--site-overlay-radius must be finite and > 0, got " +
+    throw OptionError(options::named("site_overlay_radius") + " must be finite and > 0, got " +
                       std::to_string(options.lining_radius));
   if (!(options.site.sphere_radius > 0.0) || !std::isfinite(options.site.sphere_radius))
-    throw OptionError("--site-radius must be finite and > 0, got " +
+    throw OptionError(options::named("site_radius") + " must be finite and > 0, got " +
                       std::to_string(options.site.sphere_radius));
   if (!(options.site.surface_margin >= 0.0) || !std::isfinite(options.site.surface_margin))
-    throw OptionError("--site-margin must be finite and >= 0, got " +
+    throw OptionError(options::named("site_margin") + " must be finite and >= 0, got " +
                       std::to_string(options.site.surface_margin));
   if (options.conformers) {
     const ConformerOptions& c = *options.conformers;
     if (c.count < 1)
-      throw OptionError("--conformers must be at least 1, got " + std::to_string(c.count));
-    if (c.seed < 0) throw OptionError("--seed must be >= 0, got " + std::to_string(c.seed));
+      throw OptionError(options::named("conformers") + " must be at least 1, got " +
+                        std::to_string(c.count));
+    if (c.seed < 0)
+      throw OptionError(options::named("seed") + " must be >= 0, got " + std::to_string(c.seed));
     if (c.mmff_iterations < 0) throw OptionError("MMFF iterations must be >= 0");
   }
 }
@@ -227,7 +231,8 @@ std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
   if (is_mesh || record.format == io::RecordFormat::descriptors) {
     if (options.conformers) {
       throw InputError(std::string(is_mesh ? "a mesh" : "a .hsi file") +
-                       " has fixed coordinates: --conformers does not apply to it");
+                       " has fixed coordinates: " + options::named("conformers") +
+                       " does not apply to it");
     }
     const Stopwatch clock;
     std::vector<LibraryEntry> entries{is_mesh ? mesh_entry(record, options)
@@ -246,7 +251,8 @@ std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
     }
     if (times != nullptr) times->conformers += clock.elapsed_s();
   } else if (record.format == io::RecordFormat::smiles) {
-    throw InputError("a SMILES record has no coordinates: generate conformers (--conformers N)");
+    throw InputError("a SMILES record has no coordinates: generate conformers (" +
+                     options::named("conformers") + " N)");
   } else if (record.format == io::RecordFormat::structure && record.text.empty()) {
     throw InputError("a PQR structure cannot go into a library (write it as PDB or SDF)");
   } else {
@@ -671,7 +677,8 @@ void ShardedLibraryBuild::prepare() {
   if (!m.options.resume) {
     throw FileError(m.folder.string(),
                     "the shard folder of an earlier build is in the way; continue that build "
-                    "with --resume, or remove the folder");
+                    "with " +
+                        options::named("resume") + ", or remove the folder");
   }
   if (!fs::is_directory(m.folder)) throw FileError(m.folder.string(), "not a folder; remove it");
   m.check_manifest();
@@ -1010,7 +1017,8 @@ BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
 }
 
 void check_site_options(const LibraryBuildOptions& options) {
-  if (options.conformers) throw OptionError("--conformers does not apply to sites or pockets");
+  if (options.conformers)
+    throw OptionError(options::named("conformers") + " does not apply to sites or pockets");
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ const options::Table<LibraryBuildOptions>& library_build_option_table() {
              l.conformers->count = count;
            }
          }},
-        {{"seed", Kind::integer, "ETKDG's random seed (with --conformers)", "", 0, 2147483647.0},
+        {{"seed", Kind::integer, "ETKDG's random seed (with {conformers})", "", 0, 2147483647.0},
          [](const L& l) {
            return options::Value(
                std::int64_t{l.conformers ? l.conformers->seed : ConformerOptions{}.seed});

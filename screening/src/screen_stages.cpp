@@ -1,6 +1,7 @@
 // The three stages of a screen on a range of molecules: the fast score of every entry, the
 // refinement of each molecule's best, the full match of a candidate; the checks of a library's
 // entries as they are read.
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/screening/screen.hpp"
 
 #include "screen_stages.hpp"
@@ -121,12 +122,12 @@ void check_entry_kind(const Library& library, std::size_t e, const LibraryEntryI
                       bool site_query) {
   const bool site_entry = info.site_spheres > 0;
   if (site_entry == site_query) return;
-  throw InputError(library.path().string() + ": entry " + std::to_string(e + 1) + " (" + info.name +
-                   ") is " +
-                   (site_entry ? "a binding site: a pocket library needs a site query "
-                                 "(--site-ligand or --site-sphere)"
-                               : "a molecule: a site query needs a pocket library "
-                                 "(library build --sites)"));
+  throw InputError(
+      library.path().string() + ": entry " + std::to_string(e + 1) + " (" + info.name + ") is " +
+      (site_entry ? "a binding site: a pocket library needs a site query (" +
+                        options::named("site_ligand") + " or " + options::named("site_sphere") + ")"
+                  : "a molecule: a site query needs a pocket library (built with " +
+                        options::named("sites") + ")"));
 }
 
 }  // namespace

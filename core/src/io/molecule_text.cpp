@@ -3,6 +3,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/core/option_names.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -162,11 +163,13 @@ std::string drop_low_plddt_residues(const std::string& text, double min_plddt,
     out += line;
   }
   if (!kept_any) {
-    throw InputError(source + ": no residue has a pLDDT (B-factor) of at least " + [&] {
-      std::ostringstream number;
-      number << min_plddt;
-      return number.str();
-    }() + " (--min-plddt)");
+    throw InputError(source + ": no residue has a pLDDT (B-factor) of at least " +
+                     [&] {
+                       std::ostringstream number;
+                       number << min_plddt;
+                       return number.str();
+                     }() +
+                     " (" + options::named("min_plddt") + ")");
   }
   return out;
 }
@@ -184,7 +187,8 @@ std::string select_record(const std::string& text, RdkitFormat format, std::size
   }
   if (record == 0) {
     throw InputError(source + ": the file holds " + std::to_string(count) +
-                     " molecules; choose one with --record N (1 to " + std::to_string(count) + ")");
+                     " molecules; choose one with " + options::named("record") + " N (1 to " +
+                     std::to_string(count) + ")");
   }
   if (record > count) {
     throw InputError(source + ": record " + std::to_string(record) + " asked for, the file holds " +

@@ -4,6 +4,7 @@
 #include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/option_names.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -99,8 +100,8 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
                       "model applies");
   }
   if (options.min_plddt > 0.0) {
-    throw OptionError(source +
-                      ": --min-plddt reads the B-factor column of a PDB or mmCIF structure; a "
+    throw OptionError(source + ": " + options::named("min_plddt") +
+                      " reads the B-factor column of a PDB or mmCIF structure; a "
                       "PQR file holds radii there");
   }
   const std::string text = read_input_file(path);

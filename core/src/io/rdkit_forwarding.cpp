@@ -7,9 +7,11 @@
 namespace surfcomp::io::detail {
 namespace {
 
+/// The module, loaded by the first call, with the caller's spelling of options handed over.
 const RdkitModule& rdkit_module() {
   static const RdkitModule& module =
       *static_cast<const RdkitModule*>(module_symbol(kRdkitModuleFile, kRdkitModuleSymbol));
+  module.set_spelling(options::spelling());
   return module;
 }
 

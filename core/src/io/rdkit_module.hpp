@@ -15,6 +15,7 @@
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/core/option_names.hpp"
 
 #include <Eigen/Core>
 
@@ -27,7 +28,7 @@ namespace surfcomp::io::detail {
 
 /// The module file and its one exported symbol, a `const RdkitModule`.
 constexpr const char* kRdkitModuleFile = "libsurfcomp_rdkit.so";
-constexpr const char* kRdkitModuleSymbol = "surfcomp_rdkit_module_1";
+constexpr const char* kRdkitModuleSymbol = "surfcomp_rdkit_module_2";
 
 /// The module's entry points, each the function of core it is named after.
 struct RdkitModule {
@@ -47,6 +48,9 @@ struct RdkitModule {
   /// generate_conformers (conformers.hpp)
   std::vector<std::string> (*generate_conformers)(const MoleculeRecord& record,
                                                   const ConformerOptions& options);
+  /// options::set_spelling: the module holds its own copy of core, so the caller's spelling of
+  /// the options its messages name is handed over before each call.
+  void (*set_spelling)(options::Spelling spelling);
 };
 
 // The module's definitions (core/rdkit/), named apart from core's functions that call them.

@@ -1,6 +1,7 @@
 #include "surfcomp/mesh/io/read_mesh.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/io/formats.hpp"
 
 #include <Eigen/Geometry>
@@ -78,7 +79,7 @@ std::string zero_area_note(const std::string& source, const std::vector<Eigen::I
   const bool one = faces.size() == 1;
   return source + ": " + std::to_string(faces.size()) +
          (one ? " zero-area triangle (face " : " zero-area triangles (faces ") + list +
-         ", counted from 0); --repair removes " + (one ? "it" : "them");
+         ", counted from 0); " + options::named("repair") + " removes " + (one ? "it" : "them");
 }
 
 [[noreturn]] void unknown_extension(const std::filesystem::path& path, MeshUse use) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/option_names.hpp"
 
 #include <algorithm>
 #include <array>
@@ -61,7 +62,9 @@ struct Spec {
 
   std::string name;  ///< as typed after "--": lower case, words joined by '-'
   Kind kind = Kind::real;
-  std::string help;  ///< one line, no unit or range (those are added from the fields below)
+  /// One line, no unit or range (those are added from the fields below). An option it names is
+  /// written {field} ("with {refine_top} > 0"), and help_line() spells it as named() does.
+  std::string help;
   std::string unit;  ///< "A", "degrees", "bytes", ... or "" for a pure number
   /// Kind::real and integer: the value must lie in [lo, hi], or (lo, hi] with lo_open.
   double lo = 0.0, hi = 0.0;
@@ -99,7 +102,8 @@ std::string format(const Value& value);
 /// The range of a real or integer option as text ("[0, 10]", "(0, 100]"); "" for other kinds.
 std::string range_text(const Spec& spec);
 
-/// The help line with the unit and range appended: "probe radius (A, [0, 10])".
+/// The help line with the options it names spelled (named()) and the unit and range appended:
+/// "probe radius (A, [0, 10])".
 std::string help_line(const Spec& spec);
 
 /// Throws OptionError "SHOWN: ..." unless `value` is of the spec's kind and inside its domain:
@@ -125,11 +129,11 @@ const Option<Settings>* find(const Table<Settings>& table, const std::string& na
   return nullptr;
 }
 
-/// check() of every option's current value in `settings`, naming each as "--NAME".
+/// check() of every option's current value in `settings`, naming each as named() does.
 template <class Settings>
 void check_all(const Table<Settings>& table, const Settings& settings) {
   for (const Option<Settings>& option : table) {
-    check(option.spec, option.get(settings), "--" + option.spec.name);
+    check(option.spec, option.get(settings), named(python_name(option.spec.name)));
   }
 }
 

@@ -110,8 +110,8 @@ const options::Table<PairMatchOptions>& pair_match_option_table();
 MatchInput with_site(MatchInput input, const PairSites& sites, bool reference);
 
 /// The option that names REF's (`reference`) or PROBE's site ligand as `sites` holds it:
-/// "--ref-site-ligand" or "--probe-site-ligand" when that was given, else "--site-ligand".
-const char* site_ligand_option(const PairSites& sites, bool reference);
+/// ref_site_ligand or probe_site_ligand when that was given, else site_ligand (options::named).
+std::string site_ligand_option(const PairSites& sites, bool reference);
 
 /// A side ready to be matched.
 struct PreparedInput {
@@ -133,10 +133,10 @@ struct PreparedInput {
 /// exactly one input; a site ligand only on a molecule (a file or in memory), never a water
 /// (readers drop waters) and not with options.input.read.ligand; a file's extension and the
 /// surface options that apply to it (molsurf::check_surface_input). `role` ("REF", "PROBE",
-/// "QUERY") names the side and `site_option` the site ligand's option in messages. Throws
-/// OptionError or InputError.
+/// "QUERY") names the side and `site_option` the site ligand's option in messages (empty: the
+/// site_ligand option, as options::named spells it). Throws OptionError or InputError.
 void check_match_input(const MatchInput& input, const MatchInputOptions& options, const char* role,
-                       const char* site_option = "--site-ligand");
+                       const std::string& site_option = "");
 
 /// One side read or built and described as match_inputs does it (a site side: its surface
 /// built with site_surface_margin of options.descriptors' patch radius, described at its site's
@@ -162,7 +162,7 @@ struct InputMatch {
   /// The length unit the match ran at (SurfaceInputOptions::unit): 1 for molecules. The
   /// alignments, descriptions and sites above are in the inputs' coordinates whatever it is.
   double unit = 1.0;
-  /// How `unit` was chosen: "none" (1), "auto" or "--unit".
+  /// How `unit` was chosen: "none" (1), "auto", "given" (the unit option) or "stored".
   std::string unit_from = "none";
   /// True when the match set ESP, LP and atoms aside (MatchOptions::shape_only), asked or
   /// because a side carries no ESP and LP.

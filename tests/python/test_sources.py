@@ -1,0 +1,61 @@
+"""What the sources promise of themselves: the library's messages and help texts name options by
+their fields (options::named, {field} in a help text), never by a front end's spelling, and each
+field they name is an option the command line has."""
+import re
+import subprocess
+
+from conftest import SOURCE_DIR
+
+LIBRARY_MODULES = ("core", "mesh", "molsurf", "harmonic", "matching", "screening", "report")
+COMMANDS = ("surf-build", "cp-detect", "hsi-build", "match", "screen", "report", "pockets",
+            "patch-map", "library build", "library info", "library export")
+
+_LITERAL = re.compile(r'"(?:[^"\\\n]|\\.)*"')
+_FLAG = re.compile(r"(?<![\w-])--[a-z]")
+
+
+def _library_sources():
+    for module in LIBRARY_MODULES:
+        for path in sorted((SOURCE_DIR / module).rglob("*")):
+            if path.suffix in (".cpp", ".hpp") and "node_modules" not in path.parts:
+                yield path
+
+
+def _literals(line):
+    """The string literals of a line of C++ that come before its // comment."""
+    out, start = [], 0
+    for literal in _LITERAL.finditer(line):
+        if "//" in line[start:literal.start()]:
+            break
+        out.append(literal.group(0))
+        start = literal.end()
+    return out
+
+
+def test_library_messages_name_no_front_ends_flag():
+    found = []
+    for path in _library_sources():
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            if line.lstrip().startswith("//"):
+                continue
+            found += [f"{path.relative_to(SOURCE_DIR)}:{number}: {literal}"
+                      for literal in _literals(line) if _FLAG.search(literal)]
+    assert not found, "library messages spell options as the command line does (use " \
+        "options::named):\n" + "\n".join(found)
+
+
+def test_each_option_a_message_names_is_one_the_command_line_has(program):
+    fields = set()
+    for path in _library_sources():
+        fields |= set(re.findall(r'options::named\("([a-z0-9_]+)"\)', path.read_text()))
+        for line in path.read_text().splitlines():  # help texts name them {field}
+            for literal in _literals(line):
+                fields |= set(re.findall(r"\{([a-z][a-z0-9_]*)\}", literal))
+    ses = (SOURCE_DIR / "molsurf" / "src" / "ses.cpp").read_text()
+    fields |= set(re.findall(r'require_(?:limit|within)\([^;]*?"([a-z0-9_]+)"\);', ses, re.S))
+    assert {"repair", "unit", "max_vertices", "max_grid_cells", "refine_top"} <= fields, \
+        sorted(fields)
+    helps = "".join(subprocess.run([program, *command.split(), "--help"], capture_output=True,
+                                   text=True, check=True).stdout for command in COMMANDS)
+    missing = sorted(f for f in fields if "--" + f.replace("_", "-") not in helps)
+    assert not missing, f"messages name options no command has: {missing}"
