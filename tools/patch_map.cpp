@@ -356,6 +356,49 @@ nlohmann::json compare_with_cgal(const Chosen& c, const matching::MatchInputOpti
   return row;
 }
 
+/// Prints the headers of the tables the run prints: CGAL's comparison (`compare`) and the
+/// parameterizations' (`methods`).
+void print_table_headers(bool compare, bool methods) {
+  if (compare) {
+    console::summary("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s %9s %9s\n", "cp", "vertices",
+                     "max |d uv|", "mean |d uv|", "angle", "angle", "area", "area", "flipped",
+                     "flipped", "ours ms", "CGAL ms");
+    console::summary("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s\n", "", "", "", "", "ours deg",
+                     "CGAL deg", "ours", "CGAL", "ours", "CGAL");
+  }
+  if (methods) {
+    console::summary("%4s %-19s %10s %10s %10s %10s %7s %9s\n", "cp", "method", "angle deg",
+                     "angle max", "area", "area max", "flipped", "ms");
+  }
+}
+
+/// Writes critical point c's patch (OBJ, PLY) and image (two PNGs) into `staging`, adding their
+/// names to `staged` and to `entry`'s files, and the patch's size to `entry`.
+void write_point_files(const Chosen& c, const mesh::Surface& surface,
+                       const matching::MatchInputOptions& settings,
+                       const std::filesystem::path& staging, nlohmann::json& entry,
+                       std::vector<std::string>& staged) {
+  const std::string stem = "cp" + std::to_string(c.index);
+  const mesh::Patch& patch = c.descriptor.patch;
+  const std::vector<std::filesystem::path> files = {
+      staging / (stem + ".obj"), staging / (stem + ".ply"), staging / (stem + "_image.png"),
+      staging / (stem + "_grid.png")};
+  report::write_patch_obj(patch, c.descriptor.map, files[0]);
+  report::write_patch_ply(surface, patch, c.descriptor.map, files[1]);
+  report::ImagePngOptions png;
+  png.label = settings.descriptors.image_property == mesh::property::shape_index
+                  ? "shape index"
+                  : settings.descriptors.image_property;
+  report::write_image_png(c.descriptor.image, files[2], png);
+  report::write_image_grid_png(c.descriptor.image, files[3]);
+  entry["patch_vertices"] = patch.positions.rows();
+  entry["patch_faces"] = patch.faces.rows();
+  for (const std::filesystem::path& file : files) {
+    staged.push_back(file.filename().string());
+    entry["files"].push_back(staged.back());
+  }
+}
+
 }  // namespace
 
 int patch_map(const std::vector<std::string>& args) {
@@ -447,53 +490,22 @@ int patch_map(const std::vector<std::string>& args) {
   std::vector<std::string> staged;  // the files written into the staging folder, in order
   try {
     nlohmann::json points = nlohmann::json::array();
-    if (compare) {
-      console::summary("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s %9s %9s\n", "cp", "vertices",
-                       "max |d uv|", "mean |d uv|", "angle", "angle", "area", "area", "flipped",
-                       "flipped", "ours ms", "CGAL ms");
-      console::summary("%4s %8s %12s %12s %10s %10s %10s %10s %7s %7s\n", "", "", "", "",
-                       "ours deg", "CGAL deg", "ours", "CGAL", "ours", "CGAL");
-    }
+    print_table_headers(compare, !methods.empty());
     std::vector<std::vector<harmonic::ParameterizationResult>> by_point;
-    if (!methods.empty()) {
-      console::summary("%4s %-19s %10s %10s %10s %10s %7s %9s\n", "cp", "method", "angle deg",
-                       "angle max", "area", "area max", "flipped", "ms");
-    }
     for (const Chosen& c : chosen) {
-      const std::string stem = "cp" + std::to_string(c.index);
       nlohmann::json entry = {{"index", c.index},
                               {"type", mesh::type_name(c.descriptor.point.type)},
                               {"vertex", c.descriptor.point.vertex},
-                              {"status", harmonic::to_string(c.descriptor.status)}};
-      if (c.descriptor.status != harmonic::PatchStatus::ok) {
-        entry["files"] = nlohmann::json::array();
-        points.push_back(entry);
-        continue;
+                              {"status", harmonic::to_string(c.descriptor.status)},
+                              {"files", nlohmann::json::array()}};
+      if (c.descriptor.status == harmonic::PatchStatus::ok) {
+        write_point_files(c, surface, settings, staging, entry, staged);
+        if (compare) entry["cgal"] = compare_with_cgal(c, settings);
+        if (!methods.empty())
+          by_point.push_back(compare_methods(c, methods, settings, staging, entry, staged));
+        ++written;
       }
-      const mesh::Patch& patch = c.descriptor.patch;
-      const std::vector<std::filesystem::path> files = {
-          staging / (stem + ".obj"), staging / (stem + ".ply"), staging / (stem + "_image.png"),
-          staging / (stem + "_grid.png")};
-      report::write_patch_obj(patch, c.descriptor.map, files[0]);
-      report::write_patch_ply(surface, patch, c.descriptor.map, files[1]);
-      report::ImagePngOptions png;
-      png.label = settings.descriptors.image_property == mesh::property::shape_index
-                      ? "shape index"
-                      : settings.descriptors.image_property;
-      report::write_image_png(c.descriptor.image, files[2], png);
-      report::write_image_grid_png(c.descriptor.image, files[3]);
-      entry["patch_vertices"] = patch.positions.rows();
-      entry["patch_faces"] = patch.faces.rows();
-      entry["files"] = nlohmann::json::array();
-      for (const std::filesystem::path& file : files) {
-        staged.push_back(file.filename().string());
-        entry["files"].push_back(staged.back());
-      }
-      if (compare) entry["cgal"] = compare_with_cgal(c, settings);
-      if (!methods.empty())
-        by_point.push_back(compare_methods(c, methods, settings, staging, entry, staged));
       points.push_back(entry);
-      ++written;
     }
     const nlohmann::json summary = method_medians(by_point, methods);
     nlohmann::json document = {
