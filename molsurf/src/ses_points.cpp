@@ -1,5 +1,6 @@
 #include "surfcomp/molsurf/ses_points.hpp"
 
+#include "ses_nodes.hpp"
 #include "ses_points_splat.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/option_names.hpp"
@@ -17,7 +18,13 @@
 namespace surfcomp::molsurf {
 namespace {
 
-const char *const what = "<ses points>";
+using detail::kInside;
+using detail::kSolvent;
+using detail::node_states;
+using detail::NodeGrid;
+using detail::NodeStates;
+
+const char* const what = "<ses points>";
 
 std::string number(double value) {
   std::ostringstream out;
@@ -25,143 +32,52 @@ std::string number(double value) {
   return out.str();
 }
 
-void validate(const Eigen::Ref<const Eigen::MatrixX3d> &centers,
-              const Eigen::Ref<const Eigen::VectorXd> &radii,
-              const SesPointOptions &options) {
+void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+              const Eigen::Ref<const Eigen::VectorXd>& radii, const SesPointOptions& options) {
   if (centers.rows() == 0)
     throw InputError(std::string(what) + ": no atoms; expected at least one");
   if (centers.rows() != radii.size()) {
-    throw InputError(std::string(what) + ": " + std::to_string(centers.rows()) +
-                     " centres but " + std::to_string(radii.size()) +
-                     " radii; expected one radius per centre");
+    throw InputError(std::string(what) + ": " + std::to_string(centers.rows()) + " centres but " +
+                     std::to_string(radii.size()) + " radii; expected one radius per centre");
   }
   for (Eigen::Index i = 0; i < centers.rows(); ++i) {
-    if (!centers.row(i).allFinite() || !std::isfinite(radii(i)) ||
-        !(radii(i) > 0.0)) {
+    if (!centers.row(i).allFinite() || !std::isfinite(radii(i)) || !(radii(i) > 0.0)) {
       throw InputError(std::string(what) + ": atom " + std::to_string(i + 1) +
                        " has a non-finite centre or a radius that is not > 0");
     }
   }
   if (!std::isfinite(options.probe_radius) || options.probe_radius < 0.0) {
-    throw OptionError(std::string(what) + ": probe radius " +
-                      number(options.probe_radius) +
+    throw OptionError(std::string(what) + ": probe radius " + number(options.probe_radius) +
                       " A; expected a finite value >= 0");
   }
   if (!std::isfinite(options.grid_spacing) || !(options.grid_spacing > 0.0)) {
-    throw OptionError(std::string(what) + ": grid spacing " +
-                      number(options.grid_spacing) +
+    throw OptionError(std::string(what) + ": grid spacing " + number(options.grid_spacing) +
                       " A; expected a finite value > 0");
   }
   if (!(options.max_grid_cells >= 1.0)) {
-    throw OptionError(std::string(what) + ": max_grid_cells " +
-                      number(options.max_grid_cells) +
+    throw OptionError(std::string(what) + ": max_grid_cells " + number(options.max_grid_cells) +
                       "; expected a limit >= 1");
   }
 }
 
-/// Node states.
-enum : std::uint8_t { kSolvent = 0, kInside = 1, kUnreached = 2 };
-
-/// ceil and floor of x (|x| < 2^31), without the library calls that baseline
-/// x86-64 makes of std::ceil and std::floor.
-int ceil_int(double x) {
-  const int i = static_cast<int>(x);
-  return i + (x > i ? 1 : 0);
-}
-int floor_int(double x) {
-  const int i = static_cast<int>(x);
-  return i - (x < i ? 1 : 0);
-}
-
-/// A dense grid of nodes origin + spacing * (i, j, k), i fastest.
-struct NodeGrid {
-  Eigen::Vector3d origin;
-  double spacing = 1.0;
-  int nx = 0, ny = 0, nz = 0;
-
-  std::size_t size() const {
-    return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) *
-           static_cast<std::size_t>(nz);
-  }
-  std::size_t index(int i, int j, int k) const {
-    return (static_cast<std::size_t>(k) * static_cast<std::size_t>(ny) +
-            static_cast<std::size_t>(j)) *
-               static_cast<std::size_t>(nx) +
-           static_cast<std::size_t>(i);
-  }
-  Eigen::Vector3d position(int i, int j, int k) const {
-    return origin + spacing * Eigen::Vector3d(i, j, k);
-  }
-  /// The number of row (j, k), j fastest.
-  std::size_t row(int j, int k) const {
-    return static_cast<std::size_t>(k) * static_cast<std::size_t>(ny) +
-           static_cast<std::size_t>(j);
-  }
-  std::size_t rows() const {
-    return static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
-  }
-  /// The index step to the next node along `axis` (0: x, 1: y, 2: z).
-  std::size_t step(int axis) const {
-    return axis == 0 ? 1
-           : axis == 1
-               ? static_cast<std::size_t>(nx)
-               : static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
-  }
-  /// Calls row(first index, first i, count, dx of the first node in spacings,
-  /// squared distance of the row's line from `centre` in A^2) for each row of
-  /// nodes within `radius` of `centre` (the run of a row is found from its
-  /// chord).
-  template <class Row>
-  void for_each_row_in_ball(const Eigen::Vector3d &centre, double radius,
-                            Row &&row) const {
-    const Eigen::Vector3d local = (centre - origin) / spacing;
-    const double r = radius / spacing;
-    const int k0 = std::max(0, ceil_int(local.z() - r));
-    const int k1 = std::min(nz - 1, floor_int(local.z() + r));
-    const int j0 = std::max(0, ceil_int(local.y() - r));
-    const int j1 = std::min(ny - 1, floor_int(local.y() + r));
-    for (int k = k0; k <= k1; ++k) {
-      const double dz = k - local.z();
-      for (int j = j0; j <= j1; ++j) {
-        const double dy = j - local.y();
-        const double rest = r * r - dy * dy - dz * dz;
-        if (rest < 0.0)
-          continue;
-        const double chord = std::sqrt(rest);
-        const int i0 = std::max(0, ceil_int(local.x() - chord));
-        const int i1 = std::min(nx - 1, floor_int(local.x() + chord));
-        if (i1 < i0)
-          continue;
-        row(index(i0, j, k), i0, i1 - i0 + 1, i0 - local.x(),
-            (dy * dy + dz * dz) * spacing * spacing);
-      }
-    }
-  }
-};
-
-/// The grid over the probe-grown balls with two spare nodes on every side, so
-/// that the border is solvent. Throws InputError over the cell limit.
-NodeGrid make_grid(const Eigen::Ref<const Eigen::MatrixX3d> &centers,
-                   const Eigen::VectorXd &grown,
-                   const SesPointOptions &options) {
+/// The grid over the probe-grown balls with two spare nodes on every side, so that the border
+/// is solvent. Throws InputError over the cell limit.
+NodeGrid make_grid(const Eigen::Ref<const Eigen::MatrixX3d>& centers, const Eigen::VectorXd& grown,
+                   const SesPointOptions& options) {
   const double h = options.grid_spacing;
-  Eigen::Vector3d lo =
-      Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
   for (Eigen::Index a = 0; a < centers.rows(); ++a) {
-    lo = lo.cwiseMin(centers.row(a).transpose() -
-                     Eigen::Vector3d::Constant(grown(a)));
-    hi = hi.cwiseMax(centers.row(a).transpose() +
-                     Eigen::Vector3d::Constant(grown(a)));
+    lo = lo.cwiseMin(centers.row(a).transpose() - Eigen::Vector3d::Constant(grown(a)));
+    hi = hi.cwiseMax(centers.row(a).transpose() + Eigen::Vector3d::Constant(grown(a)));
   }
   const Eigen::Array3d extent = ((hi - lo) / h).array().ceil() + 5.0;
   const double cells = extent.prod();
   if (!(cells <= options.max_grid_cells)) {
-    throw InputError(std::string(what) + ": the grid would have about " +
-                     number(cells) + " nodes of " + number(h) +
-                     " A; the limit is " + number(options.max_grid_cells) +
-                     " (raise it with " + options::named("max_grid_cells") +
-                     ")");
+    throw InputError(std::string(what) + ": the grid would have about " + number(cells) +
+                     " nodes of " + number(h) + " A; the limit is " +
+                     number(options.max_grid_cells) + " (raise it with " +
+                     options::named("max_grid_cells") + ")");
   }
   NodeGrid grid;
   grid.spacing = h;
@@ -172,183 +88,13 @@ NodeGrid make_grid(const Eigen::Ref<const Eigen::MatrixX3d> &centers,
   return grid;
 }
 
-/// Runs [first, last] of nodes in each row (j + ny k) of a grid, in compressed
-/// rows.
-struct RowRuns {
-  std::vector<std::size_t>
-      offsets; ///< row r's runs are runs[offsets[r] .. offsets[r + 1])
-  std::vector<std::pair<int, int>> runs;
-
-  std::pair<const std::pair<int, int> *, const std::pair<int, int> *>
-  row(std::size_t r) const {
-    return {runs.data() + offsets[r], runs.data() + offsets[r + 1]};
-  }
-};
-
-/// The nodes inside the union of grown balls (each with an atom whose ball
-/// holds it), the solvent (the nodes outside that the border reaches,
-/// 6-connected) and the unreached rest (cavities), found on runs of rows rather
-/// than node by node.
-struct NodeStates {
-  std::vector<std::uint8_t> state;
-  std::vector<std::int32_t>
-      atom;       ///< for an inside node, an atom whose grown ball holds it
-  RowRuns inside; ///< the runs of inside nodes
-};
-
-/// A union-find over the gaps between inside runs.
-class Gaps {
-public:
-  explicit Gaps(std::size_t count) : parent_(count), border_(count, 0) {
-    for (std::size_t g = 0; g < count; ++g)
-      parent_[g] = static_cast<int>(g);
-  }
-  void mark_border(int g) { border_[static_cast<std::size_t>(g)] = 1; }
-  int find(int g) {
-    while (parent_[static_cast<std::size_t>(g)] != g) {
-      parent_[static_cast<std::size_t>(g)] = parent_[static_cast<std::size_t>(
-          parent_[static_cast<std::size_t>(g)])];
-      g = parent_[static_cast<std::size_t>(g)];
-    }
-    return g;
-  }
-  void join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b)
-      return;
-    parent_[static_cast<std::size_t>(b)] = a;
-    border_[static_cast<std::size_t>(a)] |=
-        border_[static_cast<std::size_t>(b)];
-  }
-  bool reaches_border(int g) {
-    return border_[static_cast<std::size_t>(find(g))] != 0;
-  }
-
-private:
-  std::vector<int> parent_;
-  std::vector<std::uint8_t> border_;
-};
-
-NodeStates node_states(const NodeGrid &grid,
-                       const Eigen::Ref<const Eigen::MatrixX3d> &centers,
-                       const Eigen::VectorXd &grown) {
-  NodeStates out;
-  const std::size_t rows =
-      static_cast<std::size_t>(grid.ny) * static_cast<std::size_t>(grid.nz);
-  const auto nx = static_cast<std::size_t>(grid.nx);
-  out.state.assign(grid.size(), kSolvent);
-  out.atom.assign(grid.size(), -1);
-  struct Chord {
-    std::size_t row;
-    int first, last;
-    bool operator<(const Chord &o) const {
-      return row != o.row       ? row < o.row
-             : first != o.first ? first < o.first
-                                : last < o.last;
-    }
-  };
-  std::vector<Chord> chords;
-  for (Eigen::Index a = 0; a < centers.rows(); ++a) {
-    grid.for_each_row_in_ball(
-        centers.row(a).transpose(), grown(a),
-        [&](std::size_t at, int i0, int count, double, double) {
-          std::fill_n(out.state.begin() + static_cast<std::ptrdiff_t>(at),
-                      count, kInside);
-          std::fill_n(out.atom.begin() + static_cast<std::ptrdiff_t>(at), count,
-                      static_cast<std::int32_t>(a));
-          chords.push_back({at / nx, i0, i0 + count - 1});
-        });
-  }
-  std::sort(chords.begin(), chords.end());
-  RowRuns &inside = out.inside;
-  inside.offsets.assign(rows + 1, 0);
-  for (const Chord &c : chords) {
-    if (!inside.runs.empty() && inside.offsets[c.row + 1] > 0 &&
-        c.first <= inside.runs.back().second + 1) {
-      inside.runs.back().second = std::max(inside.runs.back().second, c.last);
-      continue;
-    }
-    inside.runs.emplace_back(c.first, c.last);
-    inside.offsets[c.row + 1] = inside.runs.size();
-  }
-  for (std::size_t r = 0; r < rows; ++r)
-    inside.offsets[r + 1] = std::max(inside.offsets[r + 1], inside.offsets[r]);
-  // The gaps between inside runs of each row, joined with the overlapping gaps
-  // of the rows before it in y and in z; a gap at a row's end or in a border
-  // row is the solvent's.
-  RowRuns gaps;
-  gaps.offsets.assign(rows + 1, 0);
-  for (std::size_t r = 0; r < rows; ++r) {
-    int next = 0;
-    const auto [begin, end] = inside.row(r);
-    for (const auto *run = begin; run != end; ++run) {
-      if (run->first > next)
-        gaps.runs.emplace_back(next, run->first - 1);
-      next = run->second + 1;
-    }
-    if (next < grid.nx)
-      gaps.runs.emplace_back(next, grid.nx - 1);
-    gaps.offsets[r + 1] = gaps.runs.size();
-  }
-  Gaps sets(gaps.runs.size());
-  for (int k = 0; k < grid.nz; ++k) {
-    for (int j = 0; j < grid.ny; ++j) {
-      const std::size_t r =
-          static_cast<std::size_t>(k) * static_cast<std::size_t>(grid.ny) +
-          static_cast<std::size_t>(j);
-      const bool border_row =
-          j == 0 || k == 0 || j + 1 == grid.ny || k + 1 == grid.nz;
-      for (std::size_t g = gaps.offsets[r]; g < gaps.offsets[r + 1]; ++g) {
-        if (border_row || gaps.runs[g].first == 0 ||
-            gaps.runs[g].second == grid.nx - 1)
-          sets.mark_border(static_cast<int>(g));
-      }
-      for (int side = 0; side < 2; ++side) {
-        if ((side == 0 && j == 0) || (side == 1 && k == 0))
-          continue;
-        const std::size_t before =
-            side == 0 ? r - 1 : r - static_cast<std::size_t>(grid.ny);
-        std::size_t b = gaps.offsets[before];
-        for (std::size_t g = gaps.offsets[r]; g < gaps.offsets[r + 1]; ++g) {
-          while (b < gaps.offsets[before + 1] &&
-                 gaps.runs[b].second < gaps.runs[g].first)
-            ++b;
-          for (std::size_t c = b; c < gaps.offsets[before + 1] &&
-                                  gaps.runs[c].first <= gaps.runs[g].second;
-               ++c)
-            sets.join(static_cast<int>(g), static_cast<int>(c));
-        }
-      }
-    }
-  }
-  for (std::size_t r = 0; r < rows; ++r) {
-    for (std::size_t g = gaps.offsets[r]; g < gaps.offsets[r + 1]; ++g) {
-      if (sets.reaches_border(static_cast<int>(g)))
-        continue;
-      const std::size_t at = r * nx;
-      std::fill(out.state.begin() +
-                    static_cast<std::ptrdiff_t>(
-                        at + static_cast<std::size_t>(gaps.runs[g].first)),
-                out.state.begin() +
-                    static_cast<std::ptrdiff_t>(
-                        at + static_cast<std::size_t>(gaps.runs[g].second) + 1),
-                kUnreached);
-    }
-  }
-  return out;
-}
-
-/// For each atom, the atoms (itself included) whose grown balls come within
-/// `slack` of its own.
-std::vector<std::vector<std::int32_t>>
-atom_neighbours(const Eigen::Ref<const Eigen::MatrixX3d> &centers,
-                const Eigen::VectorXd &grown, double slack) {
+/// For each atom, the atoms (itself included) whose grown balls come within `slack` of its own.
+std::vector<std::vector<std::int32_t>> atom_neighbours(
+    const Eigen::Ref<const Eigen::MatrixX3d>& centers, const Eigen::VectorXd& grown, double slack) {
   const Eigen::Matrix3Xd points = centers.transpose();
   const double largest = grown.maxCoeff();
   const mesh::SpatialGrid grid(points, 2.0 * largest + slack);
-  std::vector<std::vector<std::int32_t>> out(
-      static_cast<std::size_t>(centers.rows()));
+  std::vector<std::vector<std::int32_t>> out(static_cast<std::size_t>(centers.rows()));
   for (Eigen::Index a = 0; a < centers.rows(); ++a) {
     grid.for_each_near(points.col(a), 2.0 * largest + slack, [&](int b) {
       if ((points.col(a) - points.col(b)).norm() <= grown(a) + grown(b) + slack)
@@ -358,23 +104,21 @@ atom_neighbours(const Eigen::Ref<const Eigen::MatrixX3d> &centers,
   return out;
 }
 
-/// Probe centres on the SAS, each with its outward SAS normal and the atom
-/// whose sphere it lies on (the nearer of the two on a crease).
+/// Probe centres on the SAS, each with its outward SAS normal and the atom whose sphere it lies on
+/// (the nearer of the two on a crease).
 struct Probes {
   std::vector<Eigen::Vector3f> centres, outward;
   std::vector<std::int32_t> atoms;
-  std::vector<std::int64_t>
-      cells; ///< the cell each falls in, for keeping one per cell
+  std::vector<std::int64_t> cells;  ///< the cell each falls in, for keeping one per cell
 
-  void add(const Eigen::Vector3d &centre, const Eigen::Vector3d &normal,
-           std::int32_t atom, const NodeGrid &grid, double cell) {
+  void add(const Eigen::Vector3d& centre, const Eigen::Vector3d& normal, std::int32_t atom,
+           const NodeGrid& grid, double cell) {
     const Eigen::Vector3d c = ((centre - grid.origin) / cell).array().floor();
-    const auto span =
-        static_cast<std::int64_t>(std::ceil(grid.spacing / cell)) + 1;
-    cells.push_back((static_cast<std::int64_t>(c.z()) * span * grid.ny +
-                     static_cast<std::int64_t>(c.y())) *
-                        span * grid.nx +
-                    static_cast<std::int64_t>(c.x()));
+    const auto span = static_cast<std::int64_t>(std::ceil(grid.spacing / cell)) + 1;
+    cells.push_back(
+        (static_cast<std::int64_t>(c.z()) * span * grid.ny + static_cast<std::int64_t>(c.y())) *
+            span * grid.nx +
+        static_cast<std::int64_t>(c.x()));
     centres.push_back(centre.cast<float>());
     outward.push_back(normal.cast<float>());
     atoms.push_back(atom);
@@ -384,16 +128,14 @@ struct Probes {
   void keep_one_per_cell() {
     std::vector<std::size_t> order(centres.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
-    std::stable_sort(
-        order.begin(), order.end(),
-        [&](std::size_t a, std::size_t b) { return cells[a] < cells[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return cells[a] < cells[b]; });
     std::vector<bool> keep(centres.size(), false);
     for (std::size_t q = 0; q < order.size(); ++q)
       keep[order[q]] = q == 0 || cells[order[q]] != cells[order[q - 1]];
     std::size_t kept = 0;
     for (std::size_t p = 0; p < centres.size(); ++p) {
-      if (!keep[p])
-        continue;
+      if (!keep[p]) continue;
       centres[kept] = centres[p];
       outward[kept] = outward[p];
       atoms[kept] = atoms[p];
@@ -406,7 +148,7 @@ struct Probes {
     cells.resize(kept);
   }
 
-  void append(const Probes &other) {
+  void append(const Probes& other) {
     centres.insert(centres.end(), other.centres.begin(), other.centres.end());
     outward.insert(outward.end(), other.outward.begin(), other.outward.end());
     atoms.insert(atoms.end(), other.atoms.begin(), other.atoms.end());
@@ -414,73 +156,61 @@ struct Probes {
   }
 };
 
-/// The atoms as the probe placement and the field read them: centres as
-/// columns, radii, the probe-grown radii and, for each atom, those whose grown
-/// balls come within two spacings.
+/// The atoms as the probe placement and the field read them: centres as columns, radii, the
+/// probe-grown radii and, for each atom, those whose grown balls come within two spacings.
 struct GrownAtoms {
   Eigen::Matrix3Xd points;
   Eigen::VectorXd radii, grown;
   std::vector<std::vector<std::int32_t>> neighbours;
 
-  /// The atom whose sphere the SES follows at x when x's nearest probe lies on
-  /// atom `a`'s grown sphere: `a`, where the probe rolling over it touches it
-  /// at x's radial projection (which is then solvent: inside no other grown
-  /// sphere); -1 where the surface is re-entrant there.
-  std::int32_t contact(const Eigen::Vector3d &x, std::int32_t a) const {
+  /// The atom whose sphere the SES follows at x when x's nearest probe lies on atom `a`'s grown
+  /// sphere: `a`, where the probe rolling over it touches it at x's radial projection (which is
+  /// then solvent: inside no other grown sphere); -1 where the surface is re-entrant there.
+  std::int32_t contact(const Eigen::Vector3d& x, std::int32_t a) const {
     const Eigen::Vector3d ca = points.col(a);
     const double from_centre = (x - ca).norm();
-    if (!(from_centre > 1e-9))
-      return -1;
+    if (!(from_centre > 1e-9)) return -1;
     const Eigen::Vector3d touching = ca + grown(a) / from_centre * (x - ca);
     for (const std::int32_t b : neighbours[static_cast<std::size_t>(a)]) {
-      if (b != a &&
-          (touching - points.col(b)).squaredNorm() < grown(b) * grown(b))
-        return -1;
+      if (b != a && (touching - points.col(b)).squaredNorm() < grown(b) * grown(b)) return -1;
     }
     return a;
   }
 };
 
-/// The solvent nodes next to an inside node: beside an inside run in its own
-/// row, or in a run of a neighbouring row (y or z), each once, in node order.
-std::vector<std::size_t> boundary_nodes(const NodeGrid &grid,
-                                        const NodeStates &nodes) {
+/// The solvent nodes next to an inside node: beside an inside run in its own row, or in a run of a
+/// neighbouring row (y or z), each once, in node order.
+std::vector<std::size_t> boundary_nodes(const NodeGrid& grid, const NodeStates& nodes) {
   std::vector<std::size_t> boundary;
   for (int k = 1; k + 1 < grid.nz; ++k) {
     for (int j = 1; j + 1 < grid.ny; ++j) {
       const std::size_t row_start = grid.index(0, j, k);
       const auto add = [&](int i) {
-        if (i < 1 || i + 1 >= grid.nx)
-          return;
+        if (i < 1 || i + 1 >= grid.nx) return;
         const std::size_t at = row_start + static_cast<std::size_t>(i);
-        if (nodes.state[at] == kSolvent)
-          boundary.push_back(at);
+        if (nodes.state[at] == kSolvent) boundary.push_back(at);
       };
       const auto [own_begin, own_end] = nodes.inside.row(grid.row(j, k));
-      for (const auto *run = own_begin; run != own_end; ++run) {
+      for (const auto* run = own_begin; run != own_end; ++run) {
         add(run->first - 1);
         add(run->second + 1);
       }
-      // Beside a neighbour row's inside run, the nodes of this row's gaps (not
-      // inside here).
-      for (const std::size_t r : {grid.row(j - 1, k), grid.row(j + 1, k),
-                                  grid.row(j, k - 1), grid.row(j, k + 1)}) {
-        const auto *own = own_begin;
+      // Beside a neighbour row's inside run, the nodes of this row's gaps (not inside here).
+      for (const std::size_t r :
+           {grid.row(j - 1, k), grid.row(j + 1, k), grid.row(j, k - 1), grid.row(j, k + 1)}) {
+        const auto* own = own_begin;
         const auto [begin, end] = nodes.inside.row(r);
-        for (const auto *run = begin; run != end; ++run) {
+        for (const auto* run = begin; run != end; ++run) {
           int i = run->first;
           while (i <= run->second) {
-            while (own != own_end && own->second < i)
-              ++own;
+            while (own != own_end && own->second < i) ++own;
             if (own != own_end && own->first <= i) {
               i = own->second + 1;
               continue;
             }
-            const int gap_end = own != own_end
-                                    ? std::min(run->second, own->first - 1)
-                                    : run->second;
-            for (; i <= gap_end; ++i)
-              add(i);
+            const int gap_end =
+                own != own_end ? std::min(run->second, own->first - 1) : run->second;
+            for (; i <= gap_end; ++i) add(i);
           }
         }
       }
@@ -491,17 +221,14 @@ std::vector<std::size_t> boundary_nodes(const NodeGrid &grid,
   return boundary;
 }
 
-/// Probe centres: each boundary node moved to its nearest point of the union's
-/// boundary (the nearest point of the union to a point outside it lies on the
-/// nearest sphere, and inside no other sphere). That sphere is within one
-/// spacing of the node, so it is a neighbour of the atom that holds the node's
-/// inside neighbour. Probes closer than these cells to an earlier one add
-/// little the surface can show: one per cell of two spacings is kept of the
-/// probes on one sphere, one per cell of a spacing of those on creases, which
-/// come last.
-Probes place_probes(const NodeGrid &grid, const NodeStates &nodes,
-                    const std::vector<std::size_t> &boundary,
-                    const GrownAtoms &atoms) {
+/// Probe centres: each boundary node moved to its nearest point of the union's boundary (the
+/// nearest point of the union to a point outside it lies on the nearest sphere, and inside no other
+/// sphere). That sphere is within one spacing of the node, so it is a neighbour of the atom that
+/// holds the node's inside neighbour. Probes closer than these cells to an earlier one add little
+/// the surface can show: one per cell of two spacings is kept of the probes on one sphere, one per
+/// cell of a spacing of those on creases, which come last.
+Probes place_probes(const NodeGrid& grid, const NodeStates& nodes,
+                    const std::vector<std::size_t>& boundary, const GrownAtoms& atoms) {
   const double h = grid.spacing;
   Probes probes, crease_probes;
   const double probe_cell = 2.0 * h, crease_cell = h;
@@ -510,22 +237,19 @@ Probes place_probes(const NodeGrid &grid, const NodeStates &nodes,
     for (int axis = 0; axis < 3; ++axis) {
       const std::size_t s = grid.step(axis);
       for (const std::size_t next : {at - s, at + s}) {
-        if (nodes.state[next] == kInside)
-          holder = nodes.atom[next];
+        if (nodes.state[next] == kInside) holder = nodes.atom[next];
       }
     }
     const int i = static_cast<int>(at % static_cast<std::size_t>(grid.nx));
     const int j = static_cast<int>(at / static_cast<std::size_t>(grid.nx) %
                                    static_cast<std::size_t>(grid.ny));
-    const int k = static_cast<int>(at / (static_cast<std::size_t>(grid.nx) *
-                                         static_cast<std::size_t>(grid.ny)));
+    const int k = static_cast<int>(
+        at / (static_cast<std::size_t>(grid.nx) * static_cast<std::size_t>(grid.ny)));
     const Eigen::Vector3d x = grid.position(i, j, k);
-    // The nearest sphere, and the second nearest where the node lies near their
-    // crease.
+    // The nearest sphere, and the second nearest where the node lies near their crease.
     double nearest = std::numeric_limits<double>::infinity(), second = nearest;
     std::int32_t which = -1, other = -1;
-    for (const std::int32_t a :
-         atoms.neighbours[static_cast<std::size_t>(holder)]) {
+    for (const std::int32_t a : atoms.neighbours[static_cast<std::size_t>(holder)]) {
       const double gap = (x - atoms.points.col(a)).norm() - atoms.grown(a);
       if (gap < nearest) {
         second = nearest;
@@ -540,41 +264,32 @@ Probes place_probes(const NodeGrid &grid, const NodeStates &nodes,
     const Eigen::Vector3d u = (x - atoms.points.col(which)).normalized();
     const Eigen::Vector3d s = atoms.points.col(which) + atoms.grown(which) * u;
     probes.add(s, u, which, grid, probe_cell);
-    // Near a crease, also the nearest point of the circle where the two spheres
-    // meet, when no other sphere holds it: the probe positions the re-entrant
-    // surface hangs from, which the projections onto one sphere only approach.
-    if (other < 0 || second - nearest > h)
-      continue;
-    const Eigen::Vector3d ci = atoms.points.col(which),
-                          cj = atoms.points.col(other);
+    // Near a crease, also the nearest point of the circle where the two spheres meet, when no
+    // other sphere holds it: the probe positions the re-entrant surface hangs from, which the
+    // projections onto one sphere only approach.
+    if (other < 0 || second - nearest > h) continue;
+    const Eigen::Vector3d ci = atoms.points.col(which), cj = atoms.points.col(other);
     const double d = (cj - ci).norm();
     const double ri = atoms.grown(which), rj = atoms.grown(other);
-    if (!(d > std::abs(ri - rj)) || !(d < ri + rj))
-      continue;
+    if (!(d > std::abs(ri - rj)) || !(d < ri + rj)) continue;
     const Eigen::Vector3d axis = (cj - ci) / d;
     const double along = (d * d + ri * ri - rj * rj) / (2.0 * d);
     const double rho = std::sqrt(std::max(0.0, ri * ri - along * along));
     const Eigen::Vector3d radial = (x - ci) - (x - ci).dot(axis) * axis;
-    if (!(radial.norm() > 1e-9))
-      continue;
-    const Eigen::Vector3d crease =
-        ci + along * axis + rho * radial.normalized();
+    if (!(radial.norm() > 1e-9)) continue;
+    const Eigen::Vector3d crease = ci + along * axis + rho * radial.normalized();
     bool free = true;
-    for (const std::int32_t a :
-         atoms.neighbours[static_cast<std::size_t>(holder)]) {
-      if (a == which || a == other)
-        continue;
+    for (const std::int32_t a : atoms.neighbours[static_cast<std::size_t>(holder)]) {
+      if (a == which || a == other) continue;
       if ((crease - atoms.points.col(a)).norm() < atoms.grown(a) - 1e-9) {
         free = false;
         break;
       }
     }
-    if (!free)
-      continue;
-    crease_probes.add(
-        crease,
-        ((crease - ci).normalized() + (crease - cj).normalized()).normalized(),
-        which, grid, crease_cell);
+    if (!free) continue;
+    crease_probes.add(crease,
+                      ((crease - ci).normalized() + (crease - cj).normalized()).normalized(), which,
+                      grid, crease_cell);
   }
   probes.keep_one_per_cell();
   crease_probes.keep_one_per_cell();
@@ -582,47 +297,44 @@ Probes place_probes(const NodeGrid &grid, const NodeStates &nodes,
   return probes;
 }
 
-/// The nodes within `reach` of a probe: each one's squared distance to the
-/// nearest probe centre and that probe (solvent nodes too: they are outside the
-/// SES whatever their distance), and each row's first and last node reached.
+/// The nodes within `reach` of a probe: each one's squared distance to the nearest probe centre and
+/// that probe (solvent nodes too: they are outside the SES whatever their distance), and each row's
+/// first and last node reached.
 struct ProbeReach {
   double reach = 0.0;
   std::vector<float> distance2;
-  std::vector<std::int32_t> owner; ///< -1 where no probe reaches
+  std::vector<std::int32_t> owner;  ///< -1 where no probe reaches
   std::vector<int> first,
-      last; ///< per row; first nx and last -1 where none is reached
+      last;  ///< per row; first nx and last -1 where none is reached
 
-  ProbeReach(const NodeGrid &grid, const Probes &probes, double reach_)
-      : reach(reach_), distance2(grid.size() + detail::row_padding,
-                                 std::numeric_limits<float>::infinity()),
+  ProbeReach(const NodeGrid& grid, const Probes& probes, double reach_)
+      : reach(reach_),
+        distance2(grid.size() + detail::row_padding, std::numeric_limits<float>::infinity()),
         owner(grid.size() + detail::row_padding, -1),
-        first(grid.rows(), grid.nx), last(grid.rows(), -1) {
+        first(grid.rows(), grid.nx),
+        last(grid.rows(), -1) {
     detail::SplatGrid splat;
-    for (int c = 0; c < 3; ++c)
-      splat.origin[c] = grid.origin(c);
+    for (int c = 0; c < 3; ++c) splat.origin[c] = grid.origin(c);
     splat.spacing = grid.spacing;
     splat.nx = grid.nx;
     splat.ny = grid.ny;
     splat.nz = grid.nz;
     std::vector<float> centres;
     centres.reserve(3 * probes.centres.size());
-    for (const Eigen::Vector3f &c : probes.centres)
+    for (const Eigen::Vector3f& c : probes.centres)
       centres.insert(centres.end(), {c.x(), c.y(), c.z()});
-    detail::splat_probes(splat, centres, reach, distance2.data(), owner.data(),
-                         first.data(), last.data());
+    detail::splat_probes(splat, centres, reach, distance2.data(), owner.data(), first.data(),
+                         last.data());
   }
 };
 
-/// f > 0 inside the SES: the distance to the solvent's probe centres less the
-/// probe radius, which is at least the distance to the solvent itself (the
-/// probes are some of its boundary points), by up to the sagitta between
-/// probes. Where the SES follows an atom's sphere, the distance to the solvent
-/// is exact, R_a - |x - c_a|: there the field is r_a - |x - c_a| instead, so
-/// that contact surfaces cross the grid where they are, not where the probes'
-/// spheres bulge.
-std::vector<float> ses_field(const NodeGrid &grid, const NodeStates &nodes,
-                             const Probes &probes, const ProbeReach &reached_by,
-                             const GrownAtoms &atoms, double probe) {
+// f > 0 inside the SES: the distance to the solvent's probe centres less the probe radius, which
+// is at least the distance to the solvent itself (the probes are some of its boundary points),
+// by up to the sagitta between probes. Where the SES follows an atom's sphere, the distance to
+// the solvent is exact, R_a - |x - c_a|: there the field is r_a - |x - c_a| instead, so that
+// contact surfaces cross the grid where they are, not where the probes' spheres bulge.
+std::vector<float> ses_field(const NodeGrid& grid, const NodeStates& nodes, const Probes& probes,
+                             const ProbeReach& reached_by, const GrownAtoms& atoms, double probe) {
   std::vector<float> field(grid.size());
   const double bulge = grid.spacing, reach = reached_by.reach;
   for (int k = 0; k < grid.nz; ++k) {
@@ -630,24 +342,20 @@ std::vector<float> ses_field(const NodeGrid &grid, const NodeStates &nodes,
       const std::size_t row = grid.row(j, k);
       for (int i = 0; i < grid.nx; ++i) {
         const std::size_t at = grid.index(i, j, k);
-        const bool reached =
-            i + 1 >= reached_by.first[row] && i <= reached_by.last[row] + 1;
+        const bool reached = i + 1 >= reached_by.first[row] && i <= reached_by.last[row] + 1;
         if (nodes.state[at] == kSolvent) {
           field[at] = static_cast<float>(-probe);
           continue;
         }
-        double f = (reached ? std::min(std::sqrt(static_cast<double>(
-                                           reached_by.distance2[at])),
-                                       reach)
-                            : reach) -
-                   probe;
+        double f =
+            (reached ? std::min(std::sqrt(static_cast<double>(reached_by.distance2[at])), reach)
+                     : reach) -
+            probe;
         const std::int32_t owner = reached_by.owner[at];
         if (reached && f > 0.0 && f <= bulge && owner >= 0) {
           const Eigen::Vector3d x = grid.position(i, j, k);
-          const std::int32_t a =
-              atoms.contact(x, probes.atoms[static_cast<std::size_t>(owner)]);
-          if (a >= 0)
-            f = atoms.radii(a) - (x - atoms.points.col(a)).norm();
+          const std::int32_t a = atoms.contact(x, probes.atoms[static_cast<std::size_t>(owner)]);
+          if (a >= 0) f = atoms.radii(a) - (x - atoms.points.col(a)).norm();
         }
         field[at] = static_cast<float>(f);
       }
@@ -656,15 +364,12 @@ std::vector<float> ses_field(const NodeGrid &grid, const NodeStates &nodes,
   return field;
 }
 
-/// The points where the field changes sign along the grid's edges, moved onto
-/// the surface they sample: an atom's sphere where the SES follows one (exact
-/// point and normal), else the nearest probe's sphere (re-entrant), each with
-/// the area of the grid face it stands for.
-SurfacePoints field_crossings(const NodeGrid &grid,
-                              const std::vector<float> &field,
-                              const Probes &probes,
-                              const ProbeReach &reached_by,
-                              const GrownAtoms &atoms, double probe) {
+/// The points where the field changes sign along the grid's edges, moved onto the surface they
+/// sample: an atom's sphere where the SES follows one (exact point and normal), else the nearest
+/// probe's sphere (re-entrant), each with the area of the grid face it stands for.
+SurfacePoints field_crossings(const NodeGrid& grid, const std::vector<float>& field,
+                              const Probes& probes, const ProbeReach& reached_by,
+                              const GrownAtoms& atoms, double probe) {
   std::vector<Eigen::Vector3d> points, normals;
   std::vector<double> areas;
   const double h = grid.spacing;
@@ -679,35 +384,26 @@ SurfacePoints field_crossings(const NodeGrid &grid,
         for (int axis = 0; axis < 3; ++axis) {
           const std::size_t next = at + grid.step(axis);
           const double fb = field[next];
-          if ((fa > 0.0) == (fb > 0.0))
-            continue;
+          if ((fa > 0.0) == (fb > 0.0)) continue;
           const bool a_in = fa > 0.0;
           const double f_in = a_in ? fa : fb;
           const double f_out = a_in ? fb : fa;
           const double t = f_in / (f_in - f_out);
           Eigen::Vector3d x = grid.position(i, j, k);
           x(axis) += (a_in ? t : 1.0 - t) * h;
-          // The nearer probe of the two ends': the surface there is that
-          // probe's sphere.
+          // The nearer probe of the two ends': the surface there is that probe's sphere.
           std::int32_t s = reached_by.owner[at];
           const std::int32_t other = reached_by.owner[next];
           if (other >= 0 &&
               (s < 0 ||
-               (x -
-                probes.centres[static_cast<std::size_t>(other)].cast<double>())
-                       .squaredNorm() <
-                   (x -
-                    probes.centres[static_cast<std::size_t>(s)].cast<double>())
-                       .squaredNorm()))
+               (x - probes.centres[static_cast<std::size_t>(other)].cast<double>()).squaredNorm() <
+                   (x - probes.centres[static_cast<std::size_t>(s)].cast<double>()).squaredNorm()))
             s = other;
-          if (s < 0)
-            continue;
-          // On an atom's sphere the point and normal are exact; elsewhere
-          // (re-entrant) they are the nearest probe's.
-          const std::int32_t a =
-              atoms.contact(x, probes.atoms[static_cast<std::size_t>(s)]);
-          const Eigen::Vector3d centre =
-              probes.centres[static_cast<std::size_t>(s)].cast<double>();
+          if (s < 0) continue;
+          // On an atom's sphere the point and normal are exact; elsewhere (re-entrant) they are
+          // the nearest probe's.
+          const std::int32_t a = atoms.contact(x, probes.atoms[static_cast<std::size_t>(s)]);
+          const Eigen::Vector3d centre = probes.centres[static_cast<std::size_t>(s)].cast<double>();
           const Eigen::Vector3d away = x - centre;
           Eigen::Vector3d n;
           if (a >= 0) {
@@ -740,11 +436,11 @@ SurfacePoints field_crossings(const NodeGrid &grid,
   return out;
 }
 
-} // namespace
+}  // namespace
 
-SurfacePoints ses_points(const Eigen::Ref<const Eigen::MatrixX3d> &centers,
-                         const Eigen::Ref<const Eigen::VectorXd> &radii,
-                         const SesPointOptions &options) {
+SurfacePoints ses_points(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+                         const Eigen::Ref<const Eigen::VectorXd>& radii,
+                         const SesPointOptions& options) {
   validate(centers, radii, options);
   const double probe = options.probe_radius;
   const double h = options.grid_spacing;
@@ -755,16 +451,12 @@ SurfacePoints ses_points(const Eigen::Ref<const Eigen::MatrixX3d> &centers,
   const NodeGrid grid = make_grid(centers, atoms.grown, options);
   const NodeStates nodes = node_states(grid, centers, atoms.grown);
   atoms.neighbours = atom_neighbours(centers, atoms.grown, 2.0 * h);
-  const Probes probes =
-      place_probes(grid, nodes, boundary_nodes(grid, nodes), atoms);
-  // Every edge the SES crosses has both ends within reach (|f| changes by at
-  // most a spacing along an edge), so the crossings are looked for only between
-  // each row's first and last node reached.
-  const ProbeReach reached_by(grid, probes,
-                              std::max(probe + 1.001 * h, 3.0 * h));
-  const std::vector<float> field =
-      ses_field(grid, nodes, probes, reached_by, atoms, probe);
+  const Probes probes = place_probes(grid, nodes, boundary_nodes(grid, nodes), atoms);
+  // Every edge the SES crosses has both ends within reach (|f| changes by at most a spacing along
+  // an edge), so the crossings are looked for only between each row's first and last node reached.
+  const ProbeReach reached_by(grid, probes, std::max(probe + 1.001 * h, 3.0 * h));
+  const std::vector<float> field = ses_field(grid, nodes, probes, reached_by, atoms, probe);
   return field_crossings(grid, field, probes, reached_by, atoms, probe);
 }
 
-} // namespace surfcomp::molsurf
+}  // namespace surfcomp::molsurf
