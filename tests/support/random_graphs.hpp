@@ -1,4 +1,4 @@
-// Random graphs for the clique search (tests/cliques_test.cpp against brute force,
+// Random graphs for the clique search (tests/matching/cliques_test.cpp against brute force,
 // bench/cliques_bench.cpp at the association graph's sizes).
 #pragma once
 
