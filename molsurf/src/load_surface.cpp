@@ -2,6 +2,7 @@
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
 #include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/io/formats.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
@@ -9,8 +10,8 @@
 namespace surfcomp::molsurf {
 
 std::string surface_input_formats() {
-  return "molecule: .sdf .mol .mol2 .pdb .ent .cif .mmcif .cif.gz .pqr; mesh: " +
-         mesh::io::mesh_extensions(mesh::io::MeshUse::read);
+  return "molecule: " + io::molecule_extensions(io::MoleculeUse::molecule) +
+         "; mesh: " + mesh::io::mesh_extensions(mesh::io::MeshUse::read);
 }
 
 void check_surface_input(const std::filesystem::path& path, const SurfaceInputOptions& options) {

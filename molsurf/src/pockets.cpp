@@ -1,6 +1,7 @@
 #include "surfcomp/molsurf/pockets.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/option_names.hpp"
@@ -465,8 +466,8 @@ const options::Table<PocketSearchOptions>& pocket_search_option_table() {
 StructurePockets find_pockets(const std::filesystem::path& structure,
                               const PocketSearchOptions& options) {
   if (!io::is_structure_file(structure)) {
-    throw InputError(structure.string() +
-                     ": not a structure file (expected .pdb .ent .cif .mmcif .cif.gz)");
+    throw InputError(structure.string() + ": not a structure file (expected " +
+                     io::molecule_extensions(io::MoleculeUse::structure) + ")");
   }
   StructurePockets found;
   io::MoleculeRecord record;  // the file read and converted once, its models counted

@@ -2,6 +2,7 @@
 
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
@@ -10,8 +11,8 @@ namespace surfcomp::report {
 
 std::vector<std::string> aligned_probe_formats(const std::filesystem::path& probe_path) {
   if (!io::is_molecule_file(probe_path)) return {".ply"};
-  const std::string extension = io::lowercase_extension(probe_path);
-  if (extension == ".sdf" || extension == ".mol" || extension == ".mol2") {
+  const io::MoleculeFormat* format = io::find_molecule_format(probe_path);
+  if (format->kind == io::MoleculeFileKind::mdl || format->kind == io::MoleculeFileKind::mol2) {
     return {".sdf", ".pdb", ".ply"};
   }
   return {".pdb", ".ply"};

@@ -3,6 +3,7 @@
 #include "library_build_items.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/option_names.hpp"
@@ -140,11 +141,10 @@ std::vector<io::MoleculeRecord> read_library_inputs(
     } else if (is_library_input(input)) {
       append(input);
     } else {
-      throw InputError(
-          input.string() +
-          ": not a molecule file or list (.sdf .mol .mol2 .pdb .ent .cif .cif.gz .pqr .smi .dat "
-          ".dat.gz), a .hsi file, a mesh (" +
-          mesh::io::mesh_extensions(mesh::io::MeshUse::read) + ") nor a directory");
+      throw InputError(input.string() + ": not a molecule file or list (" +
+                       io::molecule_extensions(io::MoleculeUse::records) +
+                       "), a .hsi file, a mesh (" +
+                       mesh::io::mesh_extensions(mesh::io::MeshUse::read) + ") nor a directory");
     }
   }
   const auto is_mesh = [](const io::MoleculeRecord& r) {

@@ -3,6 +3,7 @@
 #include "library_build_items.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/option_names.hpp"
@@ -92,8 +93,8 @@ std::vector<std::filesystem::path> structure_files(
     } else if (io::is_structure_file(input)) {
       files.push_back(input);
     } else {
-      throw InputError(input.string() +
-                       ": not a structure file (.pdb .ent .cif .mmcif .cif.gz) nor a directory");
+      throw InputError(input.string() + ": not a structure file (" +
+                       io::molecule_extensions(io::MoleculeUse::structure) + ") nor a directory");
     }
   }
   if (files.empty()) {

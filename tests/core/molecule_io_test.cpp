@@ -2,6 +2,8 @@
 // PDB structure, and a generated peptide that pins the protein lipophilicity table to RDKit's
 // Wildman-Crippen typing; plus the errors bad input must raise.
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
+#include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/pqr.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
@@ -666,6 +668,40 @@ TEST(MoleculeIo, ExtensionsAreRecognisedCaseInsensitively) {
   }
   for (const char* name : {"a.ply", "a.xyz", "a", "a.sdf.gz"}) {
     EXPECT_FALSE(is_molecule_file(name)) << name;
+  }
+}
+
+TEST(MoleculeFormats, ExtensionsAndMessagesComeFromOneTable) {
+  EXPECT_EQ(molecule_extensions(MoleculeUse::molecule),
+            ".sdf .mol .mol2 .pdb .ent .cif .mmcif .cif.gz .pqr");
+  EXPECT_EQ(molecule_extensions(MoleculeUse::records),
+            ".sdf .mol .mol2 .pdb .ent .cif .mmcif .cif.gz .pqr .smi .dat .dat.gz");
+  EXPECT_EQ(molecule_extensions(MoleculeUse::structure), ".pdb .ent .cif .mmcif .cif.gz");
+  for (const MoleculeFormat& format : molecule_formats()) {
+    const std::string name = "dir/X" + std::string(format.extension);
+    SCOPED_TRACE(name);
+    EXPECT_EQ(find_molecule_format(name), &format);
+    EXPECT_FALSE(format.name.empty());
+    EXPECT_TRUE(is_record_file(name));
+    EXPECT_EQ(is_molecule_file(name), serves(format, MoleculeUse::molecule));
+    EXPECT_EQ(is_structure_file(name), serves(format, MoleculeUse::structure));
+    EXPECT_EQ(is_smiles_file(name), !serves(format, MoleculeUse::molecule));
+  }
+  // The longest ending is the format: a gzipped mmCIF file, not a .gz of nothing known.
+  EXPECT_TRUE(is_mmcif_file("1abc.CIF.GZ"));
+  EXPECT_EQ(find_molecule_format("list.dat.gz")->kind, MoleculeFileKind::table);
+  EXPECT_EQ(find_molecule_format("x.gz"), nullptr);
+  EXPECT_EQ(find_molecule_format("x.xyz"), nullptr);
+  EXPECT_EQ(find_molecule_format(".sdf"), nullptr);  // a hidden file, not an extension
+  // Messages list the table's extensions.
+  try {
+    read_molecule("x.xyz");
+    ADD_FAILURE() << "x.xyz read";
+  } catch (const FormatError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("(expected " + molecule_extensions(MoleculeUse::molecule) + ")"),
+        std::string::npos)
+        << e.what();
   }
 }
 

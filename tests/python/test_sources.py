@@ -1,6 +1,7 @@
 """What the sources promise of themselves: the library's messages and help texts name options by
 their fields (options::named, {field} in a help text), never by a front end's spelling, and each
-field they name is an option the command line has."""
+field they name is an option the command line has; lists of file extensions come from the
+format tables."""
 import re
 import subprocess
 
@@ -42,6 +43,20 @@ def test_library_messages_name_no_front_ends_flag():
                       for literal in _literals(line) if _FLAG.search(literal)]
     assert not found, "library messages spell options as the command line does (use " \
         "options::named):\n" + "\n".join(found)
+
+
+def test_lists_of_file_extensions_come_from_the_format_tables():
+    # Two extensions in a row (".pdb .ent") in a library literal is a list written by hand: it
+    # belongs to io::molecule_extensions or mesh::io::mesh_extensions.
+    listed = re.compile(r"(?<![\w.])\.[a-z][a-z0-9]*(?:\.gz)? \.[a-z][a-z0-9]*\b")
+    found = []
+    for path in _library_sources():
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            if line.lstrip().startswith("//"):
+                continue
+            found += [f"{path.relative_to(SOURCE_DIR)}:{number}: {literal}"
+                      for literal in _literals(line) if listed.search(literal)]
+    assert not found, "extension lists written by hand:\n" + "\n".join(found)
 
 
 def test_each_option_a_message_names_is_one_the_command_line_has(program):

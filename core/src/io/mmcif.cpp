@@ -3,6 +3,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 
 // Debian's gemmi-dev ships without its bundled stb_sprintf; the C library's snprintf does. GCC
@@ -62,13 +63,13 @@ options::Spec min_plddt_spec() {
 }
 
 bool is_mmcif_file(const std::filesystem::path& path) {
-  const std::string name = lowercase_name(path);
-  return has_suffix(name, ".cif") || has_suffix(name, ".mmcif") || has_suffix(name, ".cif.gz");
+  const MoleculeFormat* format = find_molecule_format(path);
+  return format != nullptr && format->kind == MoleculeFileKind::mmcif;
 }
 
 bool is_structure_file(const std::filesystem::path& path) {
-  const std::string extension = lowercase_extension(path);
-  return extension == ".pdb" || extension == ".ent" || is_mmcif_file(path);
+  const MoleculeFormat* format = find_molecule_format(path);
+  return format != nullptr && serves(*format, MoleculeUse::structure);
 }
 
 std::string structure_stem(const std::filesystem::path& path) {

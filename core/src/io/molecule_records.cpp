@@ -5,6 +5,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -15,14 +16,11 @@
 namespace surfcomp::io {
 namespace {
 
-/// Whether the file name ends with ".dat.gz" (case-insensitive).
+/// Whether the file is a gzip-compressed SMILES table (.dat.gz).
 bool is_gzipped_list(const std::filesystem::path& path) {
-  const std::string name = path.filename().string();
-  if (name.size() < 7) return false;
-  std::string tail = name.substr(name.size() - 7);
-  std::transform(tail.begin(), tail.end(), tail.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return tail == ".dat.gz";
+  const MoleculeFormat* format = find_molecule_format(path);
+  return format != nullptr && format->kind == MoleculeFileKind::table &&
+         format->extension == ".dat.gz";
 }
 
 std::vector<std::string> split(const std::string& line, char separator) {
@@ -123,8 +121,9 @@ std::string title_of(const std::string& text, RecordFormat format) {
 }  // namespace
 
 bool is_smiles_file(const std::filesystem::path& path) {
-  const std::string extension = lowercase_extension(path);
-  return extension == ".smi" || extension == ".dat" || is_gzipped_list(path);
+  const MoleculeFormat* format = find_molecule_format(path);
+  return format != nullptr &&
+         (format->kind == MoleculeFileKind::smiles || format->kind == MoleculeFileKind::table);
 }
 
 bool is_record_file(const std::filesystem::path& path) {
@@ -158,10 +157,9 @@ std::vector<MoleculeRecord> read_molecule_records(const std::filesystem::path& p
     format = detail::RdkitFormat::mol2;
     record_format = RecordFormat::mol2;
   } else {
-    throw FormatError(
-        path.string(),
-        "unknown molecule list extension '" + extension +
-            "' (expected .sdf .mol .mol2 .pdb .ent .cif .mmcif .cif.gz .pqr .smi .dat .dat.gz)");
+    throw FormatError(path.string(), "unknown molecule list extension '" + extension +
+                                         "' (expected " +
+                                         molecule_extensions(MoleculeUse::records) + ")");
   }
   std::vector<MoleculeRecord> records;
   for (std::string& text : detail::split_records(read_input_file(path), format)) {

@@ -5,6 +5,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
 #include "surfcomp/core/io/pqr.hpp"
 #include "surfcomp/core/protein_lipophilicity.hpp"
 
@@ -63,9 +64,8 @@ void assign_bondi_radii(Molecule& molecule) {
 }  // namespace detail
 
 bool is_molecule_file(const std::filesystem::path& path) {
-  const std::string extension = lowercase_extension(path);
-  return extension == ".sdf" || extension == ".mol" || extension == ".mol2" ||
-         extension == ".pqr" || is_structure_file(path);
+  const MoleculeFormat* format = find_molecule_format(path);
+  return format != nullptr && serves(*format, MoleculeUse::molecule);
 }
 
 Molecule read_molecule(const std::filesystem::path& path, const MoleculeReadOptions& options) {
@@ -81,9 +81,9 @@ Molecule read_molecule(const std::filesystem::path& path, const MoleculeReadOpti
   } else if (extension == ".mol2") {
     format = detail::RdkitFormat::mol2;
   } else {
-    throw FormatError(path.string(),
-                      "unknown molecule file extension '" + extension +
-                          "' (expected .sdf .mol .mol2 .pdb .ent .cif .mmcif .cif.gz .pqr)");
+    throw FormatError(path.string(), "unknown molecule file extension '" + extension +
+                                         "' (expected " +
+                                         molecule_extensions(MoleculeUse::molecule) + ")");
   }
   const std::string text = read_input_file(path);
   return detail::read_with_rdkit(path, text, format, options);
