@@ -17,7 +17,8 @@ import surfcomp
 
 STUB = pathlib.Path(__file__).resolve().parents[1] / "python" / "surfcomp" / "__init__.pyi"
 
-_TYPES = {"real": "float", "integer": "int", "text": "str", "choice": "str", "flag": "bool",
+# The module takes a text option as str or os.PathLike (os.fsdecode), so PathLike, which is both.
+_TYPES = {"real": "float", "integer": "int", "text": "PathLike", "choice": "str", "flag": "bool",
           "spheres": "SiteSpheres"}
 _DEFINITION = re.compile(r"^def (\w+)\(\n(.*?)^\)( -> [^\n]*)$", re.M | re.S)
 _PARAMETER = re.compile(r"^    (\w+)\b")

@@ -39,21 +39,6 @@ constexpr std::array kCommands{
             &surfcomp::tools::patch_map},
 };
 
-/// The command line's spelling of the options library messages name, for as long as it lives
-/// (Python's surfcomp.main() runs the command line inside a process that spells them its way).
-class CommandLineSpelling {
- public:
-  CommandLineSpelling() : previous_(surfcomp::options::spelling()) {
-    surfcomp::options::set_spelling(&surfcomp::options::command_line_spelling);
-  }
-  ~CommandLineSpelling() { surfcomp::options::set_spelling(previous_); }
-  CommandLineSpelling(const CommandLineSpelling&) = delete;
-  CommandLineSpelling& operator=(const CommandLineSpelling&) = delete;
-
- private:
-  surfcomp::options::Spelling previous_;
-};
-
 void print_usage(std::ostream& out) {
   out << "usage: surfcomp COMMAND [options]   (surfcomp COMMAND --help for its options)\n\n"
          "Compares molecular surfaces by critical points, harmonic shape images and cliques.\n\n"
@@ -70,7 +55,8 @@ void print_usage(std::ostream& out) {
 namespace surfcomp::tools {
 
 int run_command_line(const std::vector<std::string>& args) {
-  const CommandLineSpelling spelling;
+  // The options library messages name, as the command line spells them, for the whole run.
+  const surfcomp::options::ScopedSpelling spelling(&surfcomp::options::command_line_spelling);
   if (args.empty()) {
     print_usage(std::cerr);
     return 2;

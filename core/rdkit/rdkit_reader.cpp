@@ -4,8 +4,8 @@
 #include "molecule_text.hpp"
 #include "rdkit_module.hpp"
 #include "surfcomp/core/error.hpp"
-#include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/input_file.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/molecule.hpp"
@@ -551,16 +551,14 @@ std::string rdkit_moved_mol_block(const std::filesystem::path& input,
                                   const Eigen::Matrix3d& rotation,
                                   const Eigen::Vector3d& translation, std::size_t record) {
   const std::string source = input.string();
-  const std::string extension = lowercase_extension(input);
-  detail::RdkitFormat format;
-  if (extension == ".sdf" || extension == ".mol") {
-    format = detail::RdkitFormat::mdl;
-  } else if (extension == ".mol2") {
-    format = detail::RdkitFormat::mol2;
-  } else {
+  const MoleculeFormat* found = find_molecule_format(input);
+  if (found == nullptr ||
+      (found->kind != MoleculeFileKind::mdl && found->kind != MoleculeFileKind::mol2)) {
     throw InputError(source +
                      ": a moved SDF copy needs an SDF, MOL or MOL2 input (write .pdb instead)");
   }
+  const detail::RdkitFormat format =
+      found->kind == MoleculeFileKind::mol2 ? detail::RdkitFormat::mol2 : detail::RdkitFormat::mdl;
   const std::string text = detail::select_record(read_input_file(input), format, record, source);
   return moved_block(text, format, source, rotation, translation) + "$$$$\n";
 }

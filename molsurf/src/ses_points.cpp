@@ -55,8 +55,8 @@ void validate(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                       " A; expected a finite value > 0");
   }
   if (!(options.max_grid_cells >= 1.0)) {
-    throw OptionError(std::string(what) + ": max_grid_cells " + number(options.max_grid_cells) +
-                      "; expected a limit >= 1");
+    throw OptionError(std::string(what) + ": " + options::named("max_grid_cells") + " " +
+                      number(options.max_grid_cells) + "; expected a limit >= 1");
   }
 }
 

@@ -5,6 +5,7 @@
 // library file or a sharded library.
 #pragma once
 
+#include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/binary_stream.hpp"
 #include "surfcomp/matching/overlay_sample.hpp"
 #include "surfcomp/screening/library.hpp"

@@ -17,6 +17,7 @@
 
 #include <cctype>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -179,27 +180,12 @@ std::string refusal(Run run) {
   return "";
 }
 
-/// Installs a spelling for the test's length.
-class SpellingForTheTest {
- public:
-  explicit SpellingForTheTest(options::Spelling spelling) : previous_(options::spelling()) {
-    options::set_spelling(spelling);
-  }
-  ~SpellingForTheTest() { options::set_spelling(previous_); }
-  SpellingForTheTest(const SpellingForTheTest&) = delete;
-  SpellingForTheTest& operator=(const SpellingForTheTest&) = delete;
-
- private:
-  options::Spelling previous_;
-};
-
 TEST(OptionTable, TheLibraryChecksItsOptionsWithTheTablesRanges) {
   matching::MatchOptions options;
   options.overlay.sigma = 0.05;  // finite and > 0, but below the option's 0.1 A
   const auto validate = [&options] { matching::validate(options); };
-  const SpellingForTheTest field(nullptr);
   EXPECT_EQ(refusal(validate), "overlay_sigma: value 0.05 is outside [0.1, 10]");
-  const SpellingForTheTest command_line(&options::command_line_spelling);
+  const options::ScopedSpelling command_line(&options::command_line_spelling);
   EXPECT_EQ(refusal(validate), "--overlay-sigma: value 0.05 is outside [0.1, 10]");
 }
 
@@ -215,7 +201,7 @@ TEST(OptionNames, MessagesNameTheFieldInTheFrontEndsSpelling) {
   faces << 0, 1, 1;
   const auto build = [&] { mesh::Surface::from_arrays(positions, faces, "t"); };
   const auto message = [&](options::Spelling spelling) {
-    const SpellingForTheTest installed(spelling);
+    const options::ScopedSpelling installed(spelling);
     try {
       build();
     } catch (const Error& e) {
@@ -229,6 +215,14 @@ TEST(OptionNames, MessagesNameTheFieldInTheFrontEndsSpelling) {
       << message(&options::command_line_spelling);
   EXPECT_NE(message(&shouted).find("(<repair> removes"), std::string::npos) << message(&shouted);
   EXPECT_EQ(options::spelling()("x"), "x");  // each installed spelling was taken back
+  // Overlapping scopes: the first installs, the last to end restores what was there before.
+  auto outer = std::make_unique<options::ScopedSpelling>(&options::command_line_spelling);
+  auto inner = std::make_unique<options::ScopedSpelling>(&shouted);
+  EXPECT_EQ(options::named("unit"), "--unit");
+  outer.reset();
+  EXPECT_EQ(options::named("unit"), "--unit");
+  inner.reset();
+  EXPECT_EQ(options::named("unit"), "unit");
 }
 
 }  // namespace

@@ -62,7 +62,8 @@ def test_lists_of_file_extensions_come_from_the_format_tables():
 def test_each_option_a_message_names_is_one_the_command_line_has(program):
     fields = set()
     for path in _library_sources():
-        fields |= set(re.findall(r'options::named\("([a-z0-9_]+)"\)', path.read_text()))
+        for call in re.finditer(r"options::named\(((?:[^()]|\([^()]*\))*)\)", path.read_text()):
+            fields |= set(re.findall(r'"([a-z0-9_]+)"', call.group(1)))
         for line in path.read_text().splitlines():  # help texts name them {field}
             for literal in _literals(line):
                 fields |= set(re.findall(r"\{([a-z][a-z0-9_]*)\}", literal))

@@ -131,36 +131,34 @@ bool is_record_file(const std::filesystem::path& path) {
 }
 
 std::vector<MoleculeRecord> read_molecule_records(const std::filesystem::path& path) {
-  const std::string extension = lowercase_extension(path);
-  if (is_gzipped_list(path)) return dat_records(path, read_gzip_input_file(path));
-  if (extension == ".dat") return dat_records(path, read_input_file(path));
-  if (extension == ".smi") return smi_records(path, read_input_file(path));
-  if (extension == ".pqr" || is_structure_file(path)) {
+  const MoleculeFormat* found = find_molecule_format(path);
+  if (found == nullptr) {
+    throw FormatError(path.string(), "unknown molecule list extension '" +
+                                         lowercase_extension(path) + "' (expected " +
+                                         molecule_extensions(MoleculeUse::records) + ")");
+  }
+  const MoleculeFileKind kind = found->kind;
+  if (kind == MoleculeFileKind::table) {
+    return dat_records(path,
+                       is_gzipped_list(path) ? read_gzip_input_file(path) : read_input_file(path));
+  }
+  if (kind == MoleculeFileKind::smiles) return smi_records(path, read_input_file(path));
+  if (kind == MoleculeFileKind::pqr || serves(*found, MoleculeUse::structure)) {
     MoleculeRecord record;
     record.source = path;
     record.name = structure_stem(path);
     record.format = RecordFormat::structure;
     // Readable now, not when the record is read; mmCIF is kept as PDB text.
-    if (extension == ".pqr") {
+    if (kind == MoleculeFileKind::pqr) {
       read_input_file(path);
     } else {
       record.text = read_structure_text(path);
     }
     return {record};
   }
-  detail::RdkitFormat format;
-  RecordFormat record_format;
-  if (extension == ".sdf" || extension == ".mol") {
-    format = detail::RdkitFormat::mdl;
-    record_format = RecordFormat::mdl;
-  } else if (extension == ".mol2") {
-    format = detail::RdkitFormat::mol2;
-    record_format = RecordFormat::mol2;
-  } else {
-    throw FormatError(path.string(), "unknown molecule list extension '" + extension +
-                                         "' (expected " +
-                                         molecule_extensions(MoleculeUse::records) + ")");
-  }
+  const bool mol2 = kind == MoleculeFileKind::mol2;  // else MDL: the table's last kind
+  const detail::RdkitFormat format = mol2 ? detail::RdkitFormat::mol2 : detail::RdkitFormat::mdl;
+  const RecordFormat record_format = mol2 ? RecordFormat::mol2 : RecordFormat::mdl;
   std::vector<MoleculeRecord> records;
   for (std::string& text : detail::split_records(read_input_file(path), format)) {
     MoleculeRecord record;

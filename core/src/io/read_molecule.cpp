@@ -69,24 +69,26 @@ bool is_molecule_file(const std::filesystem::path& path) {
 }
 
 Molecule read_molecule(const std::filesystem::path& path, const MoleculeReadOptions& options) {
-  const std::string extension = lowercase_extension(path);
-  if (extension == ".pqr") return read_pqr(path, options);
-  if (is_structure_file(path)) {
-    return detail::read_with_rdkit(path, read_structure_text(path), detail::RdkitFormat::pdb,
-                                   options);
-  }
-  detail::RdkitFormat format;
-  if (extension == ".sdf" || extension == ".mol") {
-    format = detail::RdkitFormat::mdl;
-  } else if (extension == ".mol2") {
-    format = detail::RdkitFormat::mol2;
-  } else {
-    throw FormatError(path.string(), "unknown molecule file extension '" + extension +
-                                         "' (expected " +
+  const MoleculeFormat* format = find_molecule_format(path);
+  if (format == nullptr || !serves(*format, MoleculeUse::molecule)) {
+    throw FormatError(path.string(), "unknown molecule file extension '" +
+                                         lowercase_extension(path) + "' (expected " +
                                          molecule_extensions(MoleculeUse::molecule) + ")");
   }
-  const std::string text = read_input_file(path);
-  return detail::read_with_rdkit(path, text, format, options);
+  switch (format->kind) {
+    case MoleculeFileKind::pqr:
+      return read_pqr(path, options);
+    case MoleculeFileKind::pdb:
+    case MoleculeFileKind::mmcif:
+      return detail::read_with_rdkit(path, read_structure_text(path), detail::RdkitFormat::pdb,
+                                     options);
+    default:
+      return detail::read_with_rdkit(path, read_input_file(path),
+                                     format->kind == MoleculeFileKind::mol2
+                                         ? detail::RdkitFormat::mol2
+                                         : detail::RdkitFormat::mdl,
+                                     options);
+  }
 }
 
 }  // namespace surfcomp::io

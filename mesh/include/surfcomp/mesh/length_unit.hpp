@@ -41,7 +41,7 @@ double rms_radius(const Surface& surface);
 /// A length unit and how it was chosen.
 struct LengthUnit {
   double value = 1.0;  ///< the coordinates' length that counts as 1 A (> 0)
-  /// "none" (1), "auto" (from the size), "--unit" (given) or "stored" (a .hsi file's).
+  /// "none" (1), "auto" (from the size), "given" (the unit option) or "stored" (a .hsi file's).
   std::string from = "none";
 };
 
