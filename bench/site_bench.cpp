@@ -53,8 +53,9 @@ namespace {
 namespace fs = std::filesystem;
 using namespace surfcomp;
 
-constexpr double kSiteRadius = 4.0;     // A, spheres around the ligand's atoms (the CLI's default)
-constexpr double kPatchRadius = 8.0;    // A, as in tests/matching/site_match_test.cpp (thermolysin sites)
+constexpr double kSiteRadius = 4.0;  // A, spheres around the ligand's atoms (the CLI's default)
+constexpr double kPatchRadius =
+    8.0;  // A, as in tests/matching/site_match_test.cpp (thermolysin sites)
 constexpr double kContactRadius = 5.0;  // A, a chain with an atom this close to the ligand is kept
 
 /// One line of entries.txt: `PDB ligand residue-number chain [altloc]`.

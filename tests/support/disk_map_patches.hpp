@@ -1,6 +1,7 @@
-// Test patches for the harmonic disk map (tests/harmonic/disk_map_test.cpp, bench/disk_map_bench.cpp):
-// analytic meshes cut the way a patch extractor does (method §3: a ball of vertices, dangling
-// triangles removed, border loops walked with the patch on their left, the longest outer).
+// Test patches for the harmonic disk map (tests/harmonic/disk_map_test.cpp,
+// bench/disk_map_bench.cpp): analytic meshes cut the way a patch extractor does (method §3: a ball
+// of vertices, dangling triangles removed, border loops walked with the patch on their left, the
+// longest outer).
 #pragma once
 
 #include "analytic_meshes.hpp"
