@@ -12,6 +12,7 @@
 #include "surfcomp/molsurf/load_surface.hpp"
 #include "surfcomp/screening/library_build.hpp"
 #include "surfcomp/screening/screen.hpp"
+#include "test_data.hpp"
 
 #include <gtest/gtest.h>
 
@@ -169,24 +170,13 @@ TEST(OptionTable, LibraryBuildConformersAndSeedShareTheirOptionalSettings) {
   EXPECT_FALSE(options.conformers);
 }
 
-/// The message of the InputError that `run` throws, or "" when it throws none.
-template <class Run>
-std::string refusal(Run run) {
-  try {
-    run();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(OptionTable, TheLibraryChecksItsOptionsWithTheTablesRanges) {
   matching::MatchOptions options;
   options.overlay.sigma = 0.05;  // finite and > 0, but below the option's 0.1 A
   const auto validate = [&options] { matching::validate(options); };
-  EXPECT_EQ(refusal(validate), "overlay_sigma: value 0.05 is outside [0.1, 10]");
+  EXPECT_EQ(test::error_of(validate), "overlay_sigma: value 0.05 is outside [0.1, 10]");
   const options::ScopedSpelling command_line(&options::command_line_spelling);
-  EXPECT_EQ(refusal(validate), "--overlay-sigma: value 0.05 is outside [0.1, 10]");
+  EXPECT_EQ(test::error_of(validate), "--overlay-sigma: value 0.05 is outside [0.1, 10]");
 }
 
 std::string shouted(const std::string& field) { return "<" + field + ">"; }
@@ -202,12 +192,7 @@ TEST(OptionNames, MessagesNameTheFieldInTheFrontEndsSpelling) {
   const auto build = [&] { mesh::Surface::from_arrays(positions, faces, "t"); };
   const auto message = [&](options::Spelling spelling) {
     const options::ScopedSpelling installed(spelling);
-    try {
-      build();
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
+    return test::error_of(build);
   };
   EXPECT_NE(message(nullptr).find("(repair removes degenerate faces)"), std::string::npos)
       << message(nullptr);
