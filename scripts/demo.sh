@@ -18,7 +18,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/install-deps.sh
 datasets/fetch.sh
 cmake --preset release >/dev/null
-cmake --build --preset release --target surfcomp _surfcomp
+cmake --build --preset release --target surfcomp _surfcomp _command_line
 site_packages=$(/usr/bin/python3 -c 'import site; print(site.getsitepackages()[0])')
 if [ "$(cat "$site_packages/surfcomp.pth" 2>/dev/null)" != "$PWD/build/release/python" ]; then
   sudo=""

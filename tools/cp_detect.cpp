@@ -1,12 +1,12 @@
 // surfcomp cp-detect: the shape critical points (peaks and valleys) of a surface, as JSON and,
 // for viewing, as PDB or PLY points.
 #include "command.hpp"
-#include "command_files.hpp"
 #include "console.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/command_files.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
@@ -57,7 +57,7 @@ int cp_detect(const std::vector<std::string>& args) {
   apply_table_options(mesh::critical_point_option_table(), vm, cp_options);
   const bool from_hsi = harmonic::io::is_hsi_file(path);
   if (!from_hsi) molsurf::check_surface_input(path, input);
-  check_command_files(
+  io::check_command_files(
       {{{"INPUT", path}, {"--molecule", input.molecule_file}},
        {{"--output", output, {}, ""}, {"--points-out", points_out, {".pdb", ".ply"}, ""}}});
 

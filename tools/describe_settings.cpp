@@ -24,11 +24,4 @@ std::function<void(std::int64_t, std::int64_t)> describe_progress() {
   return [line](std::int64_t done, std::int64_t total) { (*line)(done, total); };
 }
 
-std::unique_ptr<tbb::global_control> limit_threads(int threads) {
-  require_in_range("threads", threads, 0, 1024);
-  if (threads == 0) return nullptr;
-  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                               static_cast<std::size_t>(threads));
-}
-
 }  // namespace surfcomp::tools

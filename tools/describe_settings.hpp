@@ -6,11 +6,9 @@
 #include "surfcomp/matching/match_inputs.hpp"
 
 #include <boost/program_options.hpp>
-#include <tbb/global_control.h>
 
 #include <cstdint>
 #include <functional>
-#include <memory>
 
 namespace surfcomp::tools {
 
@@ -23,8 +21,5 @@ matching::MatchInputOptions describe_options_from(const boost::program_options::
 
 /// A progress line for describing critical points (console::ProgressLine), or none.
 std::function<void(std::int64_t, std::int64_t)> describe_progress();
-
-/// Limits TBB to `threads` worker threads while the result lives; nothing for 0 (all cores).
-std::unique_ptr<tbb::global_control> limit_threads(int threads);
 
 }  // namespace surfcomp::tools

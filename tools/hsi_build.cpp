@@ -1,13 +1,14 @@
 // surfcomp hsi-build: a surface's critical points, patches, harmonic maps and harmonic shape
 // images, stored in a .hsi file so that comparisons never rebuild them.
 #include "command.hpp"
-#include "command_files.hpp"
 #include "console.hpp"
 #include "describe_settings.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
+#include "surfcomp/core/io/command_files.hpp"
 #include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/core/thread_limit.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 
 #include <cstdio>
@@ -46,9 +47,9 @@ int hsi_build(const std::vector<std::string>& args) {
   const matching::MatchInputOptions settings = describe_options_from(vm);
   const molsurf::SurfaceInputOptions& input = settings.input;
   molsurf::check_surface_input(path, input);
-  check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
-                       {{"--output", output, {".hsi"}, ""}}});
-  const auto limit = limit_threads(settings.threads);
+  io::check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
+                           {{"--output", output, {".hsi"}, ""}}});
+  const ThreadLimit limit(settings.threads);
 
   Stopwatch clock;
   matching::MatchInput input_file;

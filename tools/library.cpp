@@ -2,7 +2,6 @@
 // of shards that the processes of an MPI job share), describe one, or export its conformers as
 // SDF.
 #include "command.hpp"
-#include "command_files.hpp"
 #include "console.hpp"
 #include "describe_settings.hpp"
 #include "mpi_loader.hpp"
@@ -11,7 +10,9 @@
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/command_files.hpp"
 #include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/core/thread_limit.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/library_build.hpp"
@@ -243,11 +244,11 @@ std::vector<std::filesystem::path> checked_inputs(const boost::program_options::
                                                   const std::string& output, const char* role) {
   std::vector<std::filesystem::path> inputs;
   for (const auto& input : vm["input"].as<std::vector<std::string>>()) inputs.emplace_back(input);
-  CommandFiles files;
+  io::CommandFiles files;
   for (const auto& input : inputs) files.inputs.push_back({role, input});
   files.outputs.push_back({"--output", output, {".sclib"}, ""});
   files.outputs.push_back({"the log", output + ".log", {}, ""});
-  check_command_files(files);
+  io::check_command_files(files);
   return inputs;
 }
 
@@ -278,10 +279,10 @@ int build(const std::vector<std::string>& args) {
   const std::filesystem::path library = output;
   if (!sites.empty()) {
     if (vm.count("input")) throw OptionError("--sites takes no INPUT: the sites are in its list");
-    check_command_files(
+    io::check_command_files(
         {{{"--sites", sites}},
          {{"--output", library, {".sclib"}, ""}, {"the log", output + ".log", {}, ""}}});
-    const auto limit = limit_threads(threads);
+    const ThreadLimit limit(threads);
     const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
     const std::vector<screening::SiteRequest> requests = screening::read_site_list(sites);
     return run_build([&](auto& plan, auto settings) { plan.emplace(requests, library, settings); },
@@ -293,7 +294,7 @@ int build(const std::vector<std::string>& args) {
   }
   const std::vector<std::filesystem::path> inputs =
       checked_inputs(vm, output, pockets ? "STRUCTURE" : "INPUT");
-  const auto limit = limit_threads(threads);
+  const ThreadLimit limit(threads);
   const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
   if (pockets) {
     const screening::PocketStructures structures{screening::structure_files(inputs)};
@@ -352,7 +353,7 @@ int export_sdf(const std::vector<std::string>& args) {
   if (!parse_command_line(args, described, 1, kUsage, vm)) return 0;
   if (!vm.count("input")) throw OptionError("missing LIB (see --help)");
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
-  check_command_files({{{"LIB", path}}, {{"--output", output, {".sdf"}, ""}}});
+  io::check_command_files({{{"LIB", path}}, {{"--output", output, {".sdf"}, ""}}});
   const screening::Library library(path);
   if (screening::is_mesh_library(library)) {
     throw InputError(path.string() +

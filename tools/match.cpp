@@ -1,14 +1,15 @@
 // surfcomp match: ranked rigid alignments of PROBE onto REF (method §5-7), as a table on
 // stdout and a JSON file other tools read; optionally PROBE moved by the top alignment.
 #include "command.hpp"
-#include "command_files.hpp"
 #include "console.hpp"
 #include "describe_settings.hpp"
 #include "match_settings.hpp"
 #include "options.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/command_files.hpp"
 #include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/core/thread_limit.hpp"
 #include "surfcomp/matching/match.hpp"
 #include "surfcomp/matching/site.hpp"
 #include "surfcomp/report/aligned_probe.hpp"
@@ -96,20 +97,20 @@ int match(const std::vector<std::string>& args) {
   const std::filesystem::path ref_path = inputs[0], probe_path = inputs[1];
   const PairInputs pair = pair_inputs(ref_path, probe_path, settings);
   const std::vector<std::string> aligned = report::aligned_probe_formats(probe_path);
-  check_command_files({{{"REF", ref_path},
-                        {"PROBE", probe_path},
-                        {"--molecule", settings.inputs.input.molecule_file}},
-                       {{"--output", output, {}, ""},
-                        {"--aligned-out", aligned_out, aligned,
-                         aligned.size() == 1   ? "PROBE is not a molecule"
-                         : aligned.size() == 2 ? "PROBE is not an SDF, MOL or MOL2 file"
-                                               : ""},
-                        {"--report", report_out, {".html"}, ""}}});
+  io::check_command_files({{{"REF", ref_path},
+                            {"PROBE", probe_path},
+                            {"--molecule", settings.inputs.input.molecule_file}},
+                           {{"--output", output, {}, ""},
+                            {"--aligned-out", aligned_out, aligned,
+                             aligned.size() == 1   ? "PROBE is not a molecule"
+                             : aligned.size() == 2 ? "PROBE is not an SDF, MOL or MOL2 file"
+                                                   : ""},
+                            {"--report", report_out, {".html"}, ""}}});
   report::HtmlReportOptions report_options;
   if (!report_out.empty())  // before the work, not after it
     report_options.viewer_script = report::find_viewer_script();
 
-  const auto limit = limit_threads(settings.inputs.threads);
+  const ThreadLimit limit(settings.inputs.threads);
   const matching::InputMatch compared =
       matching::match_inputs(pair.reference, pair.probe, settings.inputs);
   const matching::MatchResult& result = compared.result;

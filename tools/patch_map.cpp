@@ -2,7 +2,6 @@
 // for mesh-processing tools (OBJ with texture coordinates, PLY, PNG), optionally compared with
 // CGAL's parameterization of the same patch.
 #include "command.hpp"
-#include "command_files.hpp"
 #include "console.hpp"
 #include "describe_settings.hpp"
 #include "json_text.hpp"
@@ -10,7 +9,9 @@
 #include "surface_input.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/command_files.hpp"
 #include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/core/thread_limit.hpp"
 #include "surfcomp/harmonic/cgal_reference.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/mesh/critical_points.hpp"
@@ -327,7 +328,7 @@ void check_targets(const std::filesystem::path& folder, const std::vector<Chosen
       throw FileError(target.string(), "exists and is not a regular file");
     }
     for (const std::filesystem::path& input : inputs) {
-      if (!input.empty() && same_file(target, input)) {
+      if (!input.empty() && io::same_file(target, input)) {
         throw OptionError(target.string() + " would overwrite the input " + input.string() +
                           ": refusing to overwrite an input");
       }
@@ -452,13 +453,13 @@ int patch_map(const std::vector<std::string>& args) {
   std::error_code error;
   if (std::filesystem::exists(folder, error) && !std::filesystem::is_directory(folder, error))
     throw FileError(folder.string(), "exists and is not a folder");
-  check_command_files(
+  io::check_command_files(
       {{{"INPUT", path}, {"--molecule", settings.input.molecule_file}},
        {{"--output",
          std::filesystem::exists(folder, error) ? folder / "patch_maps.json" : folder,
          {},
          ""}}});
-  const auto limit = limit_threads(settings.threads);
+  const ThreadLimit limit(settings.threads);
 
   // The critical points, and the chosen ones described.
   const Stopwatch clock;

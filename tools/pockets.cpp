@@ -1,11 +1,11 @@
 // surfcomp pockets: the pockets of a protein structure, found from its atoms alone, as JSON
 // and, for viewing, as PDB alpha sphere centres.
 #include "command.hpp"
-#include "command_files.hpp"
 #include "console.hpp"
 #include "options.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/command_files.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/molsurf/pockets.hpp"
 #include "surfcomp/report/pocket_files.hpp"
@@ -48,8 +48,8 @@ int pockets(const std::vector<std::string>& args) {
   const std::filesystem::path path = inputs.front();
   molsurf::PocketSearchOptions options;
   apply_table_options(molsurf::pocket_search_option_table(), vm, options);
-  check_command_files({{{"STRUCTURE", path}},
-                       {{"--output", output, {}, ""}, {"--pdb-out", pdb_out, {".pdb"}, ""}}});
+  io::check_command_files({{{"STRUCTURE", path}},
+                           {{"--output", output, {}, ""}, {"--pdb-out", pdb_out, {".pdb"}, ""}}});
 
   Stopwatch clock;
   const report::PocketSet set{path.string(), options.pockets, molsurf::find_pockets(path, options)};

@@ -1,11 +1,12 @@
 // surfcomp report: the HTML report of a match, one self-contained file to open in a browser.
 #include "command.hpp"
-#include "command_files.hpp"
 #include "console.hpp"
 #include "describe_settings.hpp"
 #include "match_settings.hpp"
 #include "options.hpp"
 
+#include "surfcomp/core/io/command_files.hpp"
+#include "surfcomp/core/thread_limit.hpp"
 #include "surfcomp/report/html_report.hpp"
 
 #include <cstdint>
@@ -55,13 +56,13 @@ int report(const std::vector<std::string>& args) {
   options.max_display_vertices = static_cast<std::size_t>(max_vertices);
   const matching::PairMatchOptions settings = match_options_from(vm);
   const PairInputs pair = pair_inputs(inputs[0], inputs[1], settings);
-  check_command_files({{{"REF", inputs[0]},
-                        {"PROBE", inputs[1]},
-                        {"--molecule", settings.inputs.input.molecule_file}},
-                       {{"--output", output, {".html"}, ""}}});
+  io::check_command_files({{{"REF", inputs[0]},
+                            {"PROBE", inputs[1]},
+                            {"--molecule", settings.inputs.input.molecule_file}},
+                           {{"--output", output, {".html"}, ""}}});
   options.viewer_script = report::find_viewer_script();  // before the work, not after it
 
-  const auto limit = limit_threads(settings.inputs.threads);
+  const ThreadLimit limit(settings.inputs.threads);
   const matching::InputMatch compared =
       matching::match_inputs(pair.reference, pair.probe, settings.inputs);
   for (const std::string& note : compared.notes) console::note(note);

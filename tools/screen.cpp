@@ -1,7 +1,6 @@
 // surfcomp screen: one query against a screening library (.sclib), best molecules first, as a
 // CSV table; optionally the best hits moved onto the query (SDF).
 #include "command.hpp"
-#include "command_files.hpp"
 #include "console.hpp"
 #include "describe_settings.hpp"
 #include "options.hpp"
@@ -9,8 +8,10 @@
 #include "screen_settings.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/command_files.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/core/thread_limit.hpp"
 #include "surfcomp/harmonic/io/hsi_file.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/matching/site.hpp"
@@ -141,7 +142,7 @@ int screen_mesh(const std::filesystem::path& query_path, const screening::Librar
   refuse_molecule_options(vm, query_path);
   if (launched_by_mpi())
     throw OptionError("a mesh query is screened in one process (--threads T), not under mpirun");
-  const auto limit = limit_threads(settings.query.threads);
+  const ThreadLimit limit(settings.query.threads);
   screening::ShapeScreenOptions options;
   options.inputs = settings.query;
   options.top = static_cast<std::size_t>(settings.screen.top);
@@ -297,10 +298,10 @@ int screen(const std::vector<std::string>& args) {
       throw InputError(library_path.string() +
                        ": a library of meshes: its query is one mesh, screened by shape");
     }
-    CommandFiles files;
+    io::CommandFiles files;
     files.inputs.push_back({"QUERY", query_files.front()});
     files.outputs.push_back({"--output", output, {".csv"}, ""});
-    check_command_files(files);
+    io::check_command_files(files);
     return screen_mesh(query_files.front(), library, output, vm, settings);
   }
   for (const std::string& file : query_files) {
@@ -309,25 +310,25 @@ int screen(const std::vector<std::string>& args) {
                         ": a site query needs a molecule file (the structure), not a .hsi or mesh");
     }
   }
-  CommandFiles files;
+  io::CommandFiles files;
   for (const std::string& file : query_files) files.inputs.push_back({"QUERY", file});
   files.inputs.push_back({"LIB", library_path});
   files.outputs.push_back({"--output", output, {".csv"}, ""});
   files.outputs.push_back(
       site_query
-          ? OutputFile{"--aligned-out", aligned_out, {".pdb"}, "site hits are written as PDB"}
-          : OutputFile{"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"});
-  check_command_files(files);
+          ? io::OutputFile{"--aligned-out", aligned_out, {".pdb"}, "site hits are written as PDB"}
+          : io::OutputFile{"--aligned-out", aligned_out, {".sdf"}, "hits are written with bonds"});
+  io::check_command_files(files);
   const std::vector<QuerySpec> specs = query_specs(query_files, settings.query.input.read.record);
   const bool several = specs.size() > 1;
   if (several && !aligned_out.empty())
     throw OptionError("--aligned-out writes the hits of one query; " +
                       std::to_string(specs.size()) + " queries were given");
-  CommandFiles tables;
+  io::CommandFiles tables;
   for (std::size_t q = 0; several && q < specs.size(); ++q)
     tables.outputs.push_back({"a query's table", query_table(output, q + 1), {".csv"}, ""});
-  check_command_files(tables);
-  const auto limit = limit_threads(settings.query.threads);
+  io::check_command_files(tables);
+  const ThreadLimit limit(settings.query.threads);
   const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
   screening::ScreenOptions& options = settings.screen;
   if (console::progress_shown()) {

@@ -1,11 +1,11 @@
 // surfcomp surf-build: a molecule (SES built here) or a mesh in; a surface with per-vertex
 // normals, ESP, LP and curvature out; one summary line on stdout.
 #include "command.hpp"
-#include "command_files.hpp"
 #include "console.hpp"
 #include "options.hpp"
 #include "surface_input.hpp"
 
+#include "surfcomp/core/io/command_files.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
@@ -48,8 +48,8 @@ int surf_build(const std::vector<std::string>& args) {
   const std::filesystem::path path = vm["input"].as<std::vector<std::string>>().front();
   const molsurf::SurfaceInputOptions input = surface_options_from(vm);
   molsurf::check_surface_input(path, input);
-  check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
-                       {{"--output", output, {".ply", ".off", ".obj"}, ""}}});
+  io::check_command_files({{{"INPUT", path}, {"--molecule", input.molecule_file}},
+                           {{"--output", output, {".ply", ".off", ".obj"}, ""}}});
 
   Stopwatch clock;
   const molsurf::LoadedSurface loaded = load_noted(path, input);

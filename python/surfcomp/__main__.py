@@ -3,12 +3,12 @@ messages and exit statuses as the ``surfcomp`` program)."""
 
 import sys
 
-from . import _surfcomp
+from . import _command_line
 
 
 def main() -> int:
     sys.stdout.flush()
-    return _surfcomp.run_command_line(sys.argv[1:])
+    return _command_line.run_command_line(sys.argv[1:])
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 """What the sources promise of themselves: the library's messages and help texts name options by
 their fields (options::named, {field} in a help text), never by a front end's spelling, and each
 field they name is an option the command line has; lists of file extensions come from the
-format tables."""
+format tables; each module includes only the modules it stands on."""
 import re
 import subprocess
 
@@ -75,3 +75,43 @@ def test_each_option_a_message_names_is_one_the_command_line_has(program):
                                    text=True, check=True).stdout for command in COMMANDS)
     missing = sorted(f for f in fields if "--" + f.replace("_", "-") not in helps)
     assert not missing, f"messages name options no command has: {missing}"
+
+
+# Each module and what it may include (docs/architecture.md): the modules below it.
+_STANDS_ON = {
+    "core": (),
+    "mesh": ("core",),
+    "molsurf": ("core", "mesh"),
+    "harmonic": ("core", "mesh"),
+    "matching": ("core", "mesh", "molsurf", "harmonic"),
+    "screening": ("core", "mesh", "molsurf", "harmonic", "matching"),
+    "report": ("core", "mesh", "molsurf", "harmonic", "matching"),
+}
+_INCLUDE = re.compile(r'^#include "([^"]+)"', re.M)
+
+
+def test_the_modules_include_only_what_they_stand_on():
+    found = []
+    for path in _library_sources():
+        module = path.relative_to(SOURCE_DIR).parts[0]
+        for header in _INCLUDE.findall(path.read_text()):
+            parts = header.split("/")
+            if parts[0] == "surfcomp" and parts[1] not in (module,) + _STANDS_ON[module]:
+                found.append(f"{path.relative_to(SOURCE_DIR)} includes {header}")
+    # The Python module's library side reaches the libraries, not the command line: only the
+    # extension for `python3 -m surfcomp` includes tools/.
+    tools_headers = {p.name for p in (SOURCE_DIR / "tools").glob("*.hpp")}
+    for path in sorted((SOURCE_DIR / "python" / "src").glob("*.[ch]pp")):
+        if path.name == "command_line.cpp":
+            continue
+        found += [f"{path.relative_to(SOURCE_DIR)} includes {header}"
+                  for header in _INCLUDE.findall(path.read_text()) if header in tools_headers]
+    # No code outside screening/ reaches the screen's internals (its src/ headers); tests may.
+    internals = {p.name for p in (SOURCE_DIR / "screening" / "src").glob("*.hpp")}
+    for path in sorted(SOURCE_DIR.rglob("*.[ch]pp")):
+        relative = path.relative_to(SOURCE_DIR)
+        if relative.parts[0] in ("screening", "tests", "build") or "node_modules" in relative.parts:
+            continue
+        found += [f"{relative} includes {header}" for header in _INCLUDE.findall(path.read_text())
+                  if header in internals]
+    assert not found, "includes against the layering:\n" + "\n".join(found)

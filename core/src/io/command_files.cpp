@@ -1,4 +1,4 @@
-#include "command_files.hpp"
+#include "surfcomp/core/io/command_files.hpp"
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
@@ -8,7 +8,7 @@
 
 #include <unistd.h>
 
-namespace surfcomp::tools {
+namespace surfcomp::io {
 namespace {
 
 namespace fs = std::filesystem;
@@ -96,4 +96,4 @@ void check_command_files(const CommandFiles& files) {
   for (const OutputFile* output : given) check_writable(*output);
 }
 
-}  // namespace surfcomp::tools
+}  // namespace surfcomp::io

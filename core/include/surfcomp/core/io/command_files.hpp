@@ -1,13 +1,13 @@
-// The files a subcommand reads and writes, declared in one place before any work so that one
-// check refuses every output that could destroy an input or another output, or that could not
-// be written at the end of a long run.
+// The files one run of a front end (a subcommand, a Python call) reads and writes, declared in
+// one place before any work so that one check refuses every output that could destroy an input
+// or another output, or that could not be written at the end of a long run.
 #pragma once
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
-namespace surfcomp::tools {
+namespace surfcomp::io {
 
 /// A file the subcommand reads.
 struct InputFile {
@@ -42,4 +42,4 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
 /// output exists but is not a regular file, or its folder does not exist or cannot be written.
 void check_command_files(const CommandFiles& files);
 
-}  // namespace surfcomp::tools
+}  // namespace surfcomp::io

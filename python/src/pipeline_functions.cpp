@@ -1,0 +1,257 @@
+#include "functions.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/command_files.hpp"
+#include "surfcomp/core/thread_limit.hpp"
+#include "surfcomp/mesh/io/read_mesh.hpp"
+#include "surfcomp/molsurf/pockets.hpp"
+#include "surfcomp/report/html_report.hpp"
+#include "surfcomp/screening/hit_files.hpp"
+#include "surfcomp/screening/library.hpp"
+#include "surfcomp/screening/screen.hpp"
+#include "surfcomp/screening/shape_screen.hpp"
+
+#include <pybind11/stl.h>
+
+namespace surfcomp::python {
+namespace {
+
+/// A row of a screen's table: its rank and its molecule's entry, as Hit and FusedHit begin.
+py::dict entry_row(const screening::Library& library, std::size_t rank, std::size_t entry) {
+  const screening::LibraryEntryInfo info = library.info(entry);
+  py::dict d;
+  d["rank"] = rank;
+  d["entry"] = entry + 1;
+  d["name"] = info.name;
+  d["source"] = info.source;
+  d["record"] = info.record;
+  d["conformer"] = info.conformer;
+  return d;
+}
+
+/// One screen's rows as dicts (Hit's fields), with each hit's molecule moved onto the query
+/// ("aligned": its text and format) when `molecules`.
+py::list hit_list(const screening::Library& library, const std::vector<screening::Hit>& hits,
+                  const screening::QueryScreenOptions& settings, bool molecules) {
+  py::list rows;
+  for (std::size_t k = 0; k < hits.size(); ++k) {
+    const screening::Hit& hit = hits[k];
+    Eigen::Matrix<double, 4, 4, Eigen::RowMajor> transform = hit.score.transform;
+    py::dict d = entry_row(library, k + 1, hit.entry);
+    d["score"] = hit.score.score;
+    d["stage"] = hit.stage;
+    d["shape"] = hit.score.shape;
+    d["chem"] = hit.score.chem;
+    d["atoms"] = hit.score.atoms;
+    d["fast_score"] = hit.fast_score;
+    d["transform"] = owned_array(std::move(transform));
+    if (molecules) {
+      const bool site = screening::is_site_query(settings);
+      d["aligned"] = py::make_tuple(
+          site ? screening::aligned_site_model(library, hit, k + 1, settings.screen.read)
+               : screening::aligned_hit_record(library, hit, k + 1),
+          site ? "pdb" : "sdf");
+    }
+    rows.append(d);
+  }
+  return rows;
+}
+
+}  // namespace
+
+PySurface build_surface(const py::object& input, const py::dict& keywords) {
+  const auto settings = settings_from(molsurf::surface_input_option_table(), keywords);
+  matching::MatchInput in = input_of(input, settings);
+  py::gil_scoped_release release;
+  PySurface out;
+  if (in.molecule) {
+    out.surface = molsurf::build_molecular_surface(*in.molecule, settings.surface);
+    out.molecule = std::move(in.molecule);
+  } else {
+    molsurf::LoadedSurface loaded =
+        in.surface ? molsurf::load_mesh_surface(std::move(*in.surface), settings)
+                   : molsurf::load_surface(in.path, settings);
+    out.surface = std::move(loaded.surface);
+    out.molecule = std::move(loaded.molecule);
+    out.length_unit = loaded.unit.value;
+  }
+  return out;
+}
+
+PyDescriptors describe(const py::object& input, const py::dict& keywords) {
+  auto settings = settings_from(matching::describe_option_table(), keywords);
+  // A Surface built in a unit of its own is described in it unless another is asked for.
+  if (py::isinstance<PySurface>(input) && settings.input.unit == 0.0 &&
+      input.cast<const PySurface&>().length_unit != 1.0) {
+    settings.input.unit = input.cast<const PySurface&>().length_unit;
+  }
+  const matching::MatchInput in = input_of(input, settings.input);
+  py::gil_scoped_release release;
+  const ThreadLimit limit(settings.threads);
+  PyDescriptors out;
+  out.descriptors = matching::prepare_input(in, settings).descriptors;
+  return out;
+}
+
+py::dict match(const py::object& reference, const py::object& probe, const py::dict& keywords,
+               const std::string& report_path) {
+  const auto settings = settings_from(matching::pair_match_option_table(), keywords);
+  const matching::MatchInput ref =
+      matching::with_site(input_of(reference, settings.inputs.input), settings.sites, true);
+  const matching::MatchInput prb =
+      matching::with_site(input_of(probe, settings.inputs.input), settings.sites, false);
+  matching::check_match_input(ref, settings.inputs, "REF",
+                              matching::site_ligand_option(settings.sites, true));
+  matching::check_match_input(prb, settings.inputs, "PROBE",
+                              matching::site_ligand_option(settings.sites, false));
+  report::HtmlReportOptions report_options;
+  if (!report_path.empty()) {  // as the CLI checks --report: before the work
+    io::check_command_files(
+        {{{"REF", ref.path}, {"PROBE", prb.path}}, {{"report", report_path, {".html"}, ""}}});
+    report_options.viewer_script = report::find_viewer_script();
+  }
+  std::optional<matching::InputMatch> compared;
+  {
+    py::gil_scoped_release release;
+    const ThreadLimit limit(settings.inputs.threads);
+    compared = matching::match_inputs(ref, prb, settings.inputs);
+    if (!report_path.empty())
+      report::write_html_report(report_path, *compared, settings.inputs.match, report_options);
+  }
+  return match_dict(*compared, settings.inputs.match.site.lining_weight);
+}
+
+/// Every query of `queries` screened against the library in one pass: {"hits": one list of
+/// rows per query, "fused": the fused ranking's rows (several queries only)}.
+py::dict screen(const py::list& queries, const std::string& library_path, const py::dict& keywords,
+                bool molecules) {
+  const auto settings = settings_from(screening::screen_option_table(), keywords);
+  const matching::MatchInputOptions query_options = screening::screen_query_options(settings);
+  std::vector<matching::MatchInput> inputs;
+  for (const py::handle query : queries) {
+    inputs.push_back(screening::screen_query_input(input_of(query, query_options.input), settings));
+    matching::check_match_input(inputs.back(), query_options, "QUERY");
+  }
+  std::optional<screening::Library> library;
+  screening::MultiScreenResult result;
+  {
+    py::gil_scoped_release release;
+    const ThreadLimit limit(settings.query.threads);
+    library.emplace(library_path);
+    screening::check_library_kind(*library, screening::is_site_query(settings));
+    std::vector<screening::ScreenQuery> prepared_queries;
+    for (const matching::MatchInput& in : inputs) {
+      matching::PreparedInput prepared = matching::prepare_input(in, query_options);
+      prepared_queries.push_back(screening::make_screen_query(
+          std::move(prepared.descriptors), settings.screen, prepared.site,
+          prepared.molecule ? &*prepared.molecule : nullptr));
+    }
+    screening::agree_on_chemistry(prepared_queries);
+    std::vector<const screening::ScreenQuery*> pointers(prepared_queries.size());
+    for (std::size_t q = 0; q < pointers.size(); ++q) pointers[q] = &prepared_queries[q];
+    result = screening::screen_queries(pointers, *library, settings.screen);
+  }
+  py::list per_query;
+  for (const std::vector<screening::Hit>& hits : result.hits)
+    per_query.append(hit_list(*library, hits, settings, molecules));
+  py::list fused;
+  for (std::size_t k = 0; k < result.fused.size(); ++k) {
+    const screening::FusedHit& hit = result.fused[k];
+    py::dict d = entry_row(*library, k + 1, hit.entry);
+    d["score"] = hit.score;
+    d["query"] = hit.query + 1;
+    d["scores"] = py::tuple(py::cast(hit.scores));
+    fused.append(d);
+  }
+  py::dict out;
+  out["hits"] = per_query;
+  out["fused"] = fused;
+  return out;
+}
+
+/// A mesh query screened by shape against a library of meshes (screening::screen_shapes): one
+/// dict per hit (ShapeHit's fields), best first.
+py::list screen_shapes(const py::handle& query, const std::string& library_path,
+                       const py::dict& keywords, const py::dict& mesh_keywords) {
+  auto settings = settings_from(screening::screen_option_table(), keywords);
+  settings.query.input = settings_from(molsurf::surface_input_option_table(), mesh_keywords);
+  const matching::MatchInput input = input_of(query, settings.query.input);
+  std::optional<screening::Library> library;
+  std::vector<screening::ShapeHit> hits;
+  {
+    py::gil_scoped_release release;
+    const ThreadLimit limit(settings.query.threads);
+    mesh::Surface surface;
+    if (input.surface && !input.molecule) {
+      surface = *input.surface;
+    } else if (!input.path.empty() && mesh::io::is_mesh_file(input.path)) {
+      molsurf::check_surface_input(input.path, settings.query.input);
+      surface = molsurf::read_mesh_input(input.path, settings.query.input).surface;
+    } else {
+      throw InputError(input.name() +
+                       ": a shape screen's query is a mesh (a mesh file, (V, F) or a Surface "
+                       "built from one)");
+    }
+    library.emplace(library_path);
+    screening::ShapeScreenOptions options;
+    options.inputs = settings.query;
+    options.top = static_cast<std::size_t>(settings.screen.top);
+    hits = screening::screen_shapes(surface, *library, options);
+  }
+  py::list rows;
+  for (std::size_t k = 0; k < hits.size(); ++k) {
+    const screening::ShapeHit& hit = hits[k];
+    py::dict d = entry_row(*library, k + 1, hit.entry);
+    d.attr("pop")("record");
+    d.attr("pop")("conformer");
+    d["score"] = hit.score;
+    d["entry_coverage"] = hit.entry_coverage;
+    d["overlay"] = hit.overlay;
+    d["unit"] = hit.unit;
+    d["transform"] = owned_array(Eigen::Matrix4d(hit.transform));
+    d["note"] = hit.note;
+    rows.append(d);
+  }
+  return rows;
+}
+
+py::list pockets(const std::string& structure, const py::dict& keywords) {
+  const auto settings = settings_from(molsurf::pocket_search_option_table(), keywords);
+  molsurf::StructurePockets found;
+  {
+    py::gil_scoped_release release;
+    found = molsurf::find_pockets(structure, settings);
+  }
+  py::list out;
+  for (const molsurf::Pocket& pocket : found.pockets) {
+    py::list spheres;
+    for (const molsurf::SiteSphere& s : pocket.spheres) {
+      spheres.append(py::make_tuple(s.center.x(), s.center.y(), s.center.z(), s.radius));
+    }
+    out.append(py::dict(
+        py::arg("rank") = pocket.rank, py::arg("score") = pocket.score,
+        py::arg("volume") = pocket.volume, py::arg("buriedness") = pocket.buriedness,
+        py::arg("cavity") = pocket.cavity,
+        py::arg("center") = py::make_tuple(pocket.center.x(), pocket.center.y(), pocket.center.z()),
+        py::arg("lining_residues") = pocket.lining_residues, py::arg("spheres") = spheres));
+  }
+  return out;
+}
+
+py::list option_table(const std::string& function) {
+  if (function == "build_surface") return table_list(molsurf::surface_input_option_table());
+  if (function == "describe") return table_list(matching::describe_option_table());
+  if (function == "match") return table_list(matching::pair_match_option_table());
+  if (function == "screen") return table_list(screening::screen_option_table());
+  if (function == "pockets") return table_list(molsurf::pocket_search_option_table());
+  for (const char* name : {"curvatures", "critical_points", "patch", "disk_map", "shape_image"}) {
+    if (function == name) return table_list(array_option_table(function));
+  }
+  throw py::value_error("no function '" + function +
+                        "' with options (build_surface, describe, match, screen, pockets, "
+                        "curvatures, critical_points, patch, disk_map, shape_image)");
+}
+
+/// The module's exception classes: Error, the base of all; InputError (also a ValueError) and
+
+}  // namespace surfcomp::python
