@@ -43,6 +43,12 @@ ResidueTable build_table() {
   const double aromatic_ch = united("C18", 1);
   const double carboxylate_o = mean(united("O9"), united("O12"));
   const double benzyl_cb = united("C10", 2);
+  const std::map<std::string, double> phenyl{
+      {"CB", benzyl_cb},    {"CG", united("C21")}, {"CD1", aromatic_ch}, {"CD2", aromatic_ch},
+      {"CE1", aromatic_ch}, {"CE2", aromatic_ch},  {"CZ", aromatic_ch}};
+  std::map<std::string, double> tyrosyl = phenyl;
+  tyrosyl["CZ"] = united("C23");
+  tyrosyl["OH"] = united("O2", 1, "H2");
   const std::map<std::string, std::map<std::string, double>> side_chains{
       {"ALA", {{"CB", united("C1", 3)}}},
       {"ARG",
@@ -120,14 +126,7 @@ ResidueTable build_table() {
         {"CG", united("C3", 2)},
         {"SD", united("S1")},
         {"CE", united("C3", 3)}}},
-      {"PHE",
-       {{"CB", benzyl_cb},
-        {"CG", united("C21")},
-        {"CD1", aromatic_ch},
-        {"CD2", aromatic_ch},
-        {"CE1", aromatic_ch},
-        {"CE2", aromatic_ch},
-        {"CZ", aromatic_ch}}},
+      {"PHE", phenyl},
       {"PRO",
        {{"N", united("N7")},
         {"CB", united("C1", 2)},
@@ -146,15 +145,7 @@ ResidueTable build_table() {
         {"CZ2", aromatic_ch},
         {"CZ3", aromatic_ch},
         {"CH2", aromatic_ch}}},
-      {"TYR",
-       {{"CB", benzyl_cb},
-        {"CG", united("C21")},
-        {"CD1", aromatic_ch},
-        {"CD2", aromatic_ch},
-        {"CE1", aromatic_ch},
-        {"CE2", aromatic_ch},
-        {"CZ", united("C23")},
-        {"OH", united("O2", 1, "H2")}}},
+      {"TYR", tyrosyl},
       {"VAL", {{"CB", united("C2", 1)}, {"CG1", united("C1", 3)}, {"CG2", united("C1", 3)}}},
   };
   ResidueTable table;

@@ -45,6 +45,96 @@ bool move_keeps_orientation(const mesh::TriMesh& mesh, mesh::TriMesh::VertexHand
   return true;
 }
 
+/// A crease point or SAS vertex and the spheres it lies on.
+struct CreasePoint {
+  Vec3 point;
+  Spheres spheres;
+};
+
+/// The crease point or SAS vertex of a sphere of `a` with a sphere of `b` nearest `middle` and
+/// within `within` A of it; `middle` on no spheres (all -1) when there is none.
+CreasePoint nearest_crease(const SasGeometry& sas, const Spheres& a, const Spheres& b,
+                           const Vec3& middle, double within) {
+  const Spheres none{-1, -1, -1};
+  CreasePoint nearest{middle, none};
+  double best = within;
+  const auto consider = [&](const Vec3& p, const Spheres& s) {
+    const double d = (p - middle).norm();
+    if (d < best) {
+      best = d;
+      nearest = {p, s};
+    }
+  };
+  std::vector<int> all;
+  for (const int x : a) {
+    if (x < 0) continue;
+    all.push_back(x);
+    for (const int y : b) {
+      Vec3 p;
+      if (y >= 0 && sas.crease_point(x, y, middle, p)) consider(p, sorted_spheres(x, y));
+    }
+  }
+  for (const int y : b) {
+    if (y >= 0) all.push_back(y);
+  }
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    for (std::size_t j = i + 1; j < all.size(); ++j) {
+      for (std::size_t k = j + 1; k < all.size(); ++k) {
+        const Spheres s = sorted_spheres(all[i], all[j], all[k]);
+        Vec3 p;
+        if (sas.vertex_point(s, middle, best, p)) consider(p, s);
+      }
+    }
+  }
+  return nearest;
+}
+
+/// Collapses the short edges the crease splits left (shorter than collapse_fraction *
+/// `edge_length`), keeping the vertex on more spheres, where the collapse keeps every triangle's
+/// orientation and area (`min_area`); a collapse can shorten edges already visited, so it passes
+/// again while any changes. Marks the removed elements deleted (no garbage collection).
+void collapse_short_edges(mesh::TriMesh& mesh, const OpenMesh::VPropHandleT<Spheres>& label,
+                          double edge_length, double min_area) {
+  const Spheres none{-1, -1, -1};
+  const double shortest = collapse_fraction * edge_length;
+  for (int pass = 0; pass < collapse_passes; ++pass) {
+    bool changed = false;
+    for (auto e : mesh.edges()) {
+      if (mesh.status(e).deleted()) continue;
+      const double length = mesh.calc_edge_length(e);
+      if (length >= shortest) continue;
+      const bool coincident = length <= coincident_fraction * edge_length;
+      auto h = mesh.halfedge_handle(e, 0);
+      const Spheres& a = mesh.property(label, mesh.from_vertex_handle(h));
+      const Spheres& b = mesh.property(label, mesh.to_vertex_handle(h));
+      if (a == none || b == none) continue;
+      // Ends with as many spheres but different ones are distinct crease points, unless they
+      // coincide: two labels of one point where more than three spheres meet.
+      if (sphere_count(a) > sphere_count(b)) {
+        h = mesh.opposite_halfedge_handle(h);
+      } else if (sphere_count(a) == sphere_count(b) && a != b && !coincident) {
+        continue;
+      }
+      const auto removed = mesh.from_vertex_handle(h);
+      const auto kept = mesh.to_vertex_handle(h);
+      if (!mesh.is_collapse_ok(h)) continue;
+      bool compatible = true;
+      for (auto w : mesh.vv_range(removed)) {
+        if (!share_sphere(mesh.property(label, w), mesh.property(label, kept))) compatible = false;
+      }
+      // Coincident ends collapse unconditionally.
+      if (!coincident &&
+          (!compatible ||
+           !move_keeps_orientation(mesh, removed, to_vec(mesh.point(kept)), kept, min_area))) {
+        continue;
+      }
+      mesh.collapse(h);
+      changed = true;
+    }
+    if (!changed) break;
+  }
+}
+
 }  // namespace
 
 void place_sas_vertices(mesh::Surface& surface, const SasGeometry& sas, double reach,
@@ -86,39 +176,7 @@ void place_sas_vertices(mesh::Surface& surface, const SasGeometry& sas, double r
       const Vec3 pb = to_vec(mesh.point(vb));
       const Vec3 middle = 0.5 * (pa + pb);
       const double length = (pb - pa).norm();
-      // The nearest crease point or vertex of a sphere of a with a sphere of b.
-      Vec3 point = middle;
-      Spheres spheres = none;
-      double best = length;
-      const auto consider = [&](const Vec3& p, const Spheres& s) {
-        const double d = (p - middle).norm();
-        if (d < best) {
-          best = d;
-          point = p;
-          spheres = s;
-        }
-      };
-      std::vector<int> all;
-      for (const int x : a) {
-        if (x < 0) continue;
-        all.push_back(x);
-        for (const int y : b) {
-          Vec3 p;
-          if (y >= 0 && sas.crease_point(x, y, middle, p)) consider(p, sorted_spheres(x, y));
-        }
-      }
-      for (const int y : b) {
-        if (y >= 0) all.push_back(y);
-      }
-      for (std::size_t i = 0; i < all.size(); ++i) {
-        for (std::size_t j = i + 1; j < all.size(); ++j) {
-          for (std::size_t k = j + 1; k < all.size(); ++k) {
-            const Spheres s = sorted_spheres(all[i], all[j], all[k]);
-            Vec3 p;
-            if (sas.vertex_point(s, middle, best, p)) consider(p, s);
-          }
-        }
-      }
+      auto [point, spheres] = nearest_crease(sas, a, b, middle, length);
       if (spheres == none) {
         // No crease of these spheres nearby: a third sphere lies between; split at the
         // surface point nearest the midpoint, a later round finds the creases on each side.
@@ -139,45 +197,7 @@ void place_sas_vertices(mesh::Surface& surface, const SasGeometry& sas, double r
       mesh.property(label, v) = spheres;
     }
   }
-  // Collapse the short edges the splits left, keeping the vertex on more spheres; a collapse
-  // can shorten edges already visited, so pass again while any changes.
-  const double shortest = collapse_fraction * edge_length;
-  for (int pass = 0; pass < collapse_passes; ++pass) {
-    bool changed = false;
-    for (auto e : mesh.edges()) {
-      if (mesh.status(e).deleted()) continue;
-      const double length = mesh.calc_edge_length(e);
-      if (length >= shortest) continue;
-      const bool coincident = length <= coincident_fraction * edge_length;
-      auto h = mesh.halfedge_handle(e, 0);
-      const Spheres& a = mesh.property(label, mesh.from_vertex_handle(h));
-      const Spheres& b = mesh.property(label, mesh.to_vertex_handle(h));
-      if (a == none || b == none) continue;
-      // Ends with as many spheres but different ones are distinct crease points, unless they
-      // coincide: two labels of one point where more than three spheres meet.
-      if (sphere_count(a) > sphere_count(b)) {
-        h = mesh.opposite_halfedge_handle(h);
-      } else if (sphere_count(a) == sphere_count(b) && a != b && !coincident) {
-        continue;
-      }
-      const auto removed = mesh.from_vertex_handle(h);
-      const auto kept = mesh.to_vertex_handle(h);
-      if (!mesh.is_collapse_ok(h)) continue;
-      bool compatible = true;
-      for (auto w : mesh.vv_range(removed)) {
-        if (!share_sphere(mesh.property(label, w), mesh.property(label, kept))) compatible = false;
-      }
-      // Coincident ends collapse unconditionally.
-      if (!coincident &&
-          (!compatible ||
-           !move_keeps_orientation(mesh, removed, to_vec(mesh.point(kept)), kept, min_area))) {
-        continue;
-      }
-      mesh.collapse(h);
-      changed = true;
-    }
-    if (!changed) break;
-  }
+  collapse_short_edges(mesh, label, edge_length, min_area);
   mesh.garbage_collection();
 
   const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
@@ -194,15 +214,7 @@ void place_sas_vertices(mesh::Surface& surface, const SasGeometry& sas, double r
     if (sphere_count(s) == 1) curvature(v.idx()) = 1.0 / sas.radius(s[0]);
   }
   mesh.remove_property(label);
-  if ((normals.rowwise().squaredNorm().array() == 0.0).any()) {
-    surface.compute_normals();
-    const Eigen::MatrixX3d mesh_normals = surface.normals();
-    for (Eigen::Index v = 0; v < n; ++v) {
-      if (normals.row(v).squaredNorm() == 0.0) normals.row(v) = mesh_normals.row(v);
-    }
-  }
-  surface.set_normals(normals);
-  if (compensate) compensate_chord_gaps(surface, normals, curvature);
+  finish_placement(surface, normals, curvature, compensate);
 }
 
 }  // namespace surfcomp::molsurf::detail

@@ -26,11 +26,16 @@ void place_ses_vertices(mesh::Surface& surface, const SasGeometry& sas, double r
     const Eigen::Index v = vh.idx();
     mesh.set_point(vh, mesh::TriMesh::Point(positions(v, 0), positions(v, 1), positions(v, 2)));
   }
+  // A vertex with no surface point within reach keeps its place and takes the mesh normal.
+  finish_placement(surface, normals, curvature, compensate);
+}
+
+void finish_placement(mesh::Surface& surface, Eigen::MatrixX3d& normals,
+                      const Eigen::VectorXd& curvature, bool compensate) {
   if ((normals.rowwise().squaredNorm().array() == 0.0).any()) {
-    // A vertex with no surface point within reach keeps its place and the mesh normal.
     surface.compute_normals();
     const Eigen::MatrixX3d mesh_normals = surface.normals();
-    for (Eigen::Index v = 0; v < n; ++v) {
+    for (Eigen::Index v = 0; v < normals.rows(); ++v) {
       if (normals.row(v).squaredNorm() == 0.0) normals.row(v) = mesh_normals.row(v);
     }
   }

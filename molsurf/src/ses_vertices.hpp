@@ -29,6 +29,12 @@ void place_ses_vertices(mesh::Surface& surface, const SasGeometry& sas, double r
 void place_sas_vertices(mesh::Surface& surface, const SasGeometry& sas, double reach,
                         double edge_length, bool compensate);
 
+/// The step both placements end with: a vertex whose exact normal is unknown (a zero row of
+/// `normals`, #V by 3) takes the mesh normal; the normals are set on `surface` and, with
+/// `compensate`, the vertices move by the chord gap (compensate_chord_gaps).
+void finish_placement(mesh::Surface& surface, Eigen::MatrixX3d& normals,
+                      const Eigen::VectorXd& curvature, bool compensate);
+
 /// Moves each vertex along its unit normal (#V by 3) by the mean gap between its flat triangles
 /// and the curved surface of mean curvature curvature(v) (1/A), H * (a^2 + b^2 + c^2) / 24
 /// averaged over its triangles: the mean height of a sphere of mean curvature H over a chord
