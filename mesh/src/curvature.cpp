@@ -261,6 +261,37 @@ struct HeightJet {
   Eigen::Matrix2d hessian = Eigen::Matrix2d::Zero();
 };
 
+/// The value, gradient and Hessian at the origin of a pass's P = Q(x, y) + g P'^2 + (h x + i y) P'
+/// (q = a..f, g, h, i of quadric_fit) by the chain rule, from `previous`, the jet of P'.
+HeightJet next_jet(const Eigen::Matrix<double, 9, 1>& q, const HeightJet& previous) {
+  const double g = q(6), h = q(7), i = q(8);
+  const double p0 = previous.value;
+  const Eigen::Vector2d dp = previous.gradient;
+  HeightJet next;
+  next.value = q(5) + g * p0 * p0;
+  next.gradient << q(3) + 2 * g * p0 * dp(0) + h * p0, q(4) + 2 * g * p0 * dp(1) + i * p0;
+  next.hessian << 2 * q(0), q(1), q(1), 2 * q(2);
+  next.hessian += 2 * g * (dp * dp.transpose() + p0 * previous.hessian);
+  const Eigen::Vector2d ex = Eigen::Vector2d::UnitX(), ey = Eigen::Vector2d::UnitY();
+  next.hessian += h * (ex * dp.transpose() + dp * ex.transpose());
+  next.hessian += i * (ey * dp.transpose() + dp * ey.transpose());
+  return next;
+}
+
+/// The principal curvatures (k1 >= k2) at the origin of the graph z = P(x, y) of `jet`, fitted
+/// in units of `scale` (the results are per length). With the upward normal (the vertex
+/// normal): first fundamental form I = 1 + p p^T, second II = Hessian / sqrt(1 + |p|^2);
+/// z = k x^2 / 2 bends towards the normal for k > 0, so a convex surface under an outward normal
+/// has k < 0 (the seed's sign).
+std::pair<double, double> graph_curvatures(const HeightJet& jet, double scale) {
+  const Eigen::Vector2d p = jet.gradient;
+  const Eigen::Matrix2d first = Eigen::Matrix2d::Identity() + p * p.transpose();
+  const Eigen::Matrix2d shape = first.inverse() * jet.hessian / std::sqrt(1.0 + p.squaredNorm());
+  const double mean = 0.5 * shape.trace();
+  const double root = std::sqrt(std::max(0.0, mean * mean - shape.determinant()));
+  return {(mean + root) / scale, (mean - root) / scale};
+}
+
 /// Principal curvatures (k1 >= k2, seed sign as above) at the first of `members` from a
 /// quadric fitted in the tangent frame (t1, t2, n) of the vertex normal. The implicit quadric
 ///   z = a x^2 + b xy + c y^2 + d x + e y + f + g z^2 + h xz + i yz
@@ -419,28 +450,9 @@ std::pair<double, double> quadric_fit(const Eigen::MatrixX3d& positions,
       q = pivoted_least_squares<9>(work, right);
     }
     predicted = rows * q;
-    const double g = q(6), h = q(7), i = q(8);
-    const double p0 = jet.value;
-    const Eigen::Vector2d dp = jet.gradient;
-    HeightJet next;
-    next.value = q(5) + g * p0 * p0;
-    next.gradient << q(3) + 2 * g * p0 * dp(0) + h * p0, q(4) + 2 * g * p0 * dp(1) + i * p0;
-    next.hessian << 2 * q(0), q(1), q(1), 2 * q(2);
-    next.hessian += 2 * g * (dp * dp.transpose() + p0 * jet.hessian);
-    const Eigen::Vector2d ex = Eigen::Vector2d::UnitX(), ey = Eigen::Vector2d::UnitY();
-    next.hessian += h * (ex * dp.transpose() + dp * ex.transpose());
-    next.hessian += i * (ey * dp.transpose() + dp * ey.transpose());
-    jet = next;
+    jet = next_jet(q, jet);
   }
-  // Graph z = P(x, y) with upward normal (the vertex normal): first fundamental form
-  // I = 1 + p p^T, second II = Hessian / sqrt(1 + |p|^2); z = k x^2 / 2 bends towards the
-  // normal for k > 0, so a convex surface under an outward normal has k < 0 (the seed's sign).
-  const Eigen::Vector2d p = jet.gradient;
-  const Eigen::Matrix2d first = Eigen::Matrix2d::Identity() + p * p.transpose();
-  const Eigen::Matrix2d shape = first.inverse() * jet.hessian / std::sqrt(1.0 + p.squaredNorm());
-  const double mean = 0.5 * shape.trace();
-  const double root = std::sqrt(std::max(0.0, mean * mean - shape.determinant()));
-  return {(mean + root) / scale, (mean - root) / scale};
+  return graph_curvatures(jet, scale);
 }
 
 /// Neighbourhoods of up to this many points are fitted in matrices of a fixed capacity, which

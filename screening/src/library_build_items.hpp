@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace surfcomp::screening {
+namespace surfcomp::screening::detail {
 
 /// Where item `index` of a build comes from, for the list of skipped items.
 struct ItemOrigin {
@@ -87,4 +87,4 @@ std::string hex64(std::uint64_t value);
 /// The 64-bit hash of what items [begin, end) are built from (BuildItems::identity).
 std::uint64_t input_hash(const BuildItems& items, std::size_t begin, std::size_t end);
 
-}  // namespace surfcomp::screening
+}  // namespace surfcomp::screening::detail

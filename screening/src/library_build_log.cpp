@@ -17,7 +17,7 @@ namespace {
 
 /// `text` as one field of a log line: a tab, like a line break, becomes a space.
 std::string log_field(std::string text) {
-  text = one_line(std::move(text));
+  text = detail::one_line(std::move(text));
   std::replace(text.begin(), text.end(), '\t', ' ');
   return text;
 }
@@ -26,7 +26,7 @@ constexpr const char* kLogColumns = "# source\trecord\tname\treason";
 
 }  // namespace
 
-void file_identity(const std::filesystem::path& file, io::BinaryWriter& bytes) {
+void detail::file_identity(const std::filesystem::path& file, io::BinaryWriter& bytes) {
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(file, error);
   bytes.string(file.string());
@@ -35,7 +35,7 @@ void file_identity(const std::filesystem::path& file, io::BinaryWriter& bytes) {
   bytes.u64(error ? 0 : static_cast<std::uint64_t>(modified.time_since_epoch().count()));
 }
 
-LibraryBuildResult read_build_log(const std::filesystem::path& path) {
+LibraryBuildResult detail::read_build_log(const std::filesystem::path& path) {
   std::istringstream lines(io::read_input_file(path));
   LibraryBuildResult result;
   std::string line;
@@ -66,13 +66,13 @@ LibraryBuildResult read_build_log(const std::filesystem::path& path) {
   return result;
 }
 
-std::string hex64(std::uint64_t value) {
+std::string detail::hex64(std::uint64_t value) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
   return text;
 }
 
-std::uint64_t input_hash(const BuildItems& items, std::size_t begin, std::size_t end) {
+std::uint64_t detail::input_hash(const BuildItems& items, std::size_t begin, std::size_t end) {
   io::BinaryWriter bytes;
   for (std::size_t i = begin; i < end; ++i) items.identity(i, bytes);
   return io::xxh3_64(bytes.bytes().data(), bytes.bytes().size());

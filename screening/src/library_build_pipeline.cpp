@@ -15,16 +15,17 @@
 
 namespace surfcomp::screening {
 
-std::string one_line(std::string text) {
+std::string detail::one_line(std::string text) {
   for (char& c : text) {
     if (c == '\n' || c == '\r') c = ' ';
   }
   return text;
 }
 
-LibraryBuildResult build_in_order(const BuildItems& items, std::size_t begin, std::size_t end,
-                                  const std::filesystem::path& output, const std::string& settings,
-                                  const LibraryBuildOptions& options) {
+LibraryBuildResult detail::build_in_order(const BuildItems& items, std::size_t begin,
+                                          std::size_t end, const std::filesystem::path& output,
+                                          const std::string& settings,
+                                          const LibraryBuildOptions& options) {
   const Stopwatch clock;
   const std::size_t count = end - begin;
   LibraryBuildResult result;
@@ -63,7 +64,7 @@ LibraryBuildResult build_in_order(const BuildItems& items, std::size_t begin, st
                     } catch (const std::bad_alloc&) {
                       built->error = "out of memory";
                     } catch (const std::exception& e) {
-                      built->error = one_line(e.what());
+                      built->error = detail::one_line(e.what());
                       if (built->error.empty()) built->error = "unknown error";
                     }
                     return built;
@@ -75,7 +76,7 @@ LibraryBuildResult build_in_order(const BuildItems& items, std::size_t begin, st
                     result.skipped.insert(result.skipped.end(), built->skipped.begin(),
                                           built->skipped.end());
                     if (!built->error.empty()) {
-                      ItemOrigin o = items.origin(begin + built->index);
+                      detail::ItemOrigin o = items.origin(begin + built->index);
                       result.skipped.push_back(
                           {std::move(o.source), o.record, std::move(o.name), built->error});
                     } else {
@@ -97,16 +98,16 @@ LibraryBuildResult build_in_order(const BuildItems& items, std::size_t begin, st
   return result;
 }
 
-BuildItems record_items(const std::vector<io::MoleculeRecord>& records,
-                        const LibraryBuildOptions& options) {
-  BuildItems items;
+detail::BuildItems detail::record_items(const std::vector<io::MoleculeRecord>& records,
+                                        const LibraryBuildOptions& options) {
+  detail::BuildItems items;
   items.count = records.size();
   items.build = [&records, &options](std::size_t i, BuildTimes& times,
                                      std::vector<SkippedRecord>&) {
     return build_entries(records[i], options, &times);
   };
   items.origin = [&records](std::size_t i) {
-    return ItemOrigin{records[i].source.string(), records[i].record, records[i].name};
+    return detail::ItemOrigin{records[i].source.string(), records[i].record, records[i].name};
   };
   items.identity = [&records](std::size_t i, io::BinaryWriter& bytes) {
     bytes.string(records[i].source.string());

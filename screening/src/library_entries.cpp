@@ -103,7 +103,7 @@ LibraryEntry hsi_entry(const io::MoleculeRecord& record, const LibraryBuildOptio
 
 }  // namespace
 
-std::uint32_t heavy_atom_count(const Molecule& molecule) {
+std::uint32_t detail::heavy_atom_count(const Molecule& molecule) {
   return static_cast<std::uint32_t>(
       std::count_if(molecule.atoms.begin(), molecule.atoms.end(),
                     [](const Atom& atom) { return atom.element != "H"; }));
@@ -225,7 +225,7 @@ std::vector<LibraryEntry> build_entries(const io::MoleculeRecord& record,
     entry.info.source = record.source.string();
     entry.info.record = static_cast<std::uint32_t>(record.record);
     entry.info.conformer = options.conformers ? static_cast<std::uint32_t>(c + 1) : 0;
-    entry.info.heavy_atoms = heavy_atom_count(*molecule);
+    entry.info.heavy_atoms = detail::heavy_atom_count(*molecule);
     entry.molecule = std::move(conformations[c]);
     entry.sample = matching::sample_molecule(*molecule, options.spacing, options.surface);
     entry.atoms = matching::sample_atoms(harmonic::surface_atoms(*molecule));

@@ -22,7 +22,7 @@
 
 namespace surfcomp::screening {
 
-void check_build_options(const LibraryBuildOptions& options) {
+void detail::check_build_options(const LibraryBuildOptions& options) {
   if (!(options.spacing > 0.0) || !std::isfinite(options.spacing))
     throw OptionError("library spacing must be finite and > 0, got " +
                       std::to_string(options.spacing));
@@ -68,9 +68,9 @@ struct ShardedLibraryBuild::Impl {
   /// Plans the build of `items_` (made with this object's options): checks the options, cuts
   /// the items into shards and hashes each shard's inputs. Throws OptionError for options
   /// outside their domain, InputError when there is no item.
-  void plan(BuildItems items_);
+  void plan(detail::BuildItems items_);
 
-  BuildItems items;
+  detail::BuildItems items;
   std::filesystem::path output, folder;
   LibraryBuildOptions options;
   std::string settings;               // items.settings: the index's, and each shard's first lines
@@ -95,7 +95,7 @@ struct ShardedLibraryBuild::Impl {
   std::string shard_settings(std::size_t k) const {
     return settings + "shard " + std::to_string(k + 1) + " of " + std::to_string(count) +
            ": records " + std::to_string(begin(k) + 1) + "-" + std::to_string(end(k)) + " of " +
-           std::to_string(items.count) + ", inputs " + hex64(hashes[k]) + "\n";
+           std::to_string(items.count) + ", inputs " + detail::hex64(hashes[k]) + "\n";
   }
   std::string manifest() const {
     std::ostringstream text;
@@ -105,7 +105,7 @@ struct ShardedLibraryBuild::Impl {
     for (std::string line; std::getline(lines, line);) text << "settings " << line << "\n";
     for (std::size_t k = 0; k < count; ++k) {
       text << "shard " << library_file(k).stem().string() << " records " << begin(k) + 1 << "-"
-           << end(k) << " inputs " << hex64(hashes[k]) << "\n";
+           << end(k) << " inputs " << detail::hex64(hashes[k]) << "\n";
     }
     return text.str();
   }
@@ -113,7 +113,7 @@ struct ShardedLibraryBuild::Impl {
   /// were skipped, its library file there), else none.
   std::optional<LibraryBuildResult> finished(std::size_t k) const {
     if (!std::filesystem::exists(log_file(k))) return std::nullopt;
-    LibraryBuildResult log = read_build_log(log_file(k));
+    LibraryBuildResult log = detail::read_build_log(log_file(k));
     if (log.entries > 0 && !std::filesystem::exists(library_file(k))) return std::nullopt;
     return log;
   }
@@ -171,8 +171,8 @@ void ShardedLibraryBuild::Impl::verify_shards() const {
   }
 }
 
-void ShardedLibraryBuild::Impl::plan(BuildItems items_) {
-  check_build_options(options);
+void ShardedLibraryBuild::Impl::plan(detail::BuildItems items_) {
+  detail::check_build_options(options);
   items = std::move(items_);
   if (items.count == 0)
     throw InputError(output.string() + ": no " + items.noun + " to build it from");
@@ -181,14 +181,15 @@ void ShardedLibraryBuild::Impl::plan(BuildItems items_) {
   count = (items.count + options.shard_records - 1) / options.shard_records;
   if (count == 1) return;  // one library file: no shard to name
   hashes.resize(count);
-  tbb::parallel_for(std::size_t{0}, count,
-                    [&](std::size_t k) { hashes[k] = input_hash(items, begin(k), end(k)); });
+  tbb::parallel_for(std::size_t{0}, count, [&](std::size_t k) {
+    hashes[k] = detail::input_hash(items, begin(k), end(k));
+  });
 }
 
 ShardedLibraryBuild::ShardedLibraryBuild(const std::vector<io::MoleculeRecord>& records,
                                          std::filesystem::path output, LibraryBuildOptions options)
     : impl_(std::make_unique<Impl>(std::move(output), std::move(options))) {
-  impl_->plan(record_items(records, impl_->options));
+  impl_->plan(detail::record_items(records, impl_->options));
 }
 
 ShardedLibraryBuild::~ShardedLibraryBuild() = default;
@@ -255,7 +256,7 @@ LibraryBuildResult ShardedLibraryBuild::build(std::size_t rank, std::size_t rank
     }
     const std::filesystem::path file = m.library_file(k);
     const LibraryBuildResult shard =
-        build_in_order(m.items, m.begin(k), m.end(k), file, m.shard_settings(k), options);
+        detail::build_in_order(m.items, m.begin(k), m.end(k), file, m.shard_settings(k), options);
     io::write_file_atomically(m.log_file(k),
                               [&](std::ostream& out) { write_build_log(out, file, shard); });
     result.records += shard.records;
@@ -298,7 +299,7 @@ LibraryBuildResult ShardedLibraryBuild::finish() const {
 LibraryBuildResult ShardedLibraryBuild::run() {
   Impl& m = *impl_;
   if (m.count == 1)
-    return build_in_order(m.items, 0, m.items.count, m.output, m.settings, m.options);
+    return detail::build_in_order(m.items, 0, m.items.count, m.output, m.settings, m.options);
   const Stopwatch clock;
   prepare();
   const LibraryBuildResult built = build();
@@ -311,15 +312,15 @@ LibraryBuildResult ShardedLibraryBuild::run() {
 ShardedLibraryBuild::ShardedLibraryBuild(const std::vector<SiteRequest>& sites,
                                          std::filesystem::path output, LibraryBuildOptions options)
     : impl_(std::make_unique<Impl>(std::move(output), std::move(options))) {
-  check_site_options(impl_->options);
-  impl_->plan(site_items(sites, impl_->options));
+  detail::check_site_options(impl_->options);
+  impl_->plan(detail::site_items(sites, impl_->options));
 }
 
 ShardedLibraryBuild::ShardedLibraryBuild(const PocketStructures& structures,
                                          std::filesystem::path output, LibraryBuildOptions options)
     : impl_(std::make_unique<Impl>(std::move(output), std::move(options))) {
-  check_site_options(impl_->options);
-  impl_->plan(pocket_items(structures.files, impl_->options));
+  detail::check_site_options(impl_->options);
+  impl_->plan(detail::pocket_items(structures.files, impl_->options));
 }
 
 }  // namespace surfcomp::screening

@@ -133,7 +133,7 @@ LibraryEntry site_entry(const Molecule& structure, const SiteRequest& request,
                                         site.surface_margin + molsurf::neighbourhood_beyond_margin),
       pdb);
   entry.molecule.text = pdb.str();
-  entry.info.heavy_atoms = heavy_atom_count(site.structure);
+  entry.info.heavy_atoms = detail::heavy_atom_count(site.structure);
   site.structure = io::read_record_molecule(entry.molecule, site_entry_read_options(options.read));
   const harmonic::SurfaceDescriptors described = matching::describe_site(
       molsurf::build_site_surface(site, options.surface), site.structure, site.spheres, describing);
@@ -170,8 +170,9 @@ std::string site_settings(const LibraryBuildOptions& options, bool detects_pocke
 
 }  // namespace
 
-BuildItems site_items(const std::vector<SiteRequest>& sites, const LibraryBuildOptions& options) {
-  BuildItems items;
+detail::BuildItems detail::site_items(const std::vector<SiteRequest>& sites,
+                                      const LibraryBuildOptions& options) {
+  detail::BuildItems items;
   items.count = sites.size();
   items.build = [&sites, &options](std::size_t i, BuildTimes& times, std::vector<SkippedRecord>&) {
     const Stopwatch clock;
@@ -180,11 +181,11 @@ BuildItems site_items(const std::vector<SiteRequest>& sites, const LibraryBuildO
     return entries;
   };
   items.origin = [&sites](std::size_t i) {
-    return ItemOrigin{sites[i].structure.string(), sites[i].line, sites[i].name};
+    return detail::ItemOrigin{sites[i].structure.string(), sites[i].line, sites[i].name};
   };
   items.identity = [&sites](std::size_t i, io::BinaryWriter& bytes) {
     const SiteRequest& site = sites[i];
-    file_identity(site.structure, bytes);
+    detail::file_identity(site.structure, bytes);
     bytes.u64(site.line);
     bytes.string(site.name);
     bytes.string(site.ligand ? site.ligand->residue_name + ":" + site.ligand->chain.value_or("")
@@ -203,9 +204,9 @@ BuildItems site_items(const std::vector<SiteRequest>& sites, const LibraryBuildO
   return items;
 }
 
-BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
-                        const LibraryBuildOptions& options) {
-  BuildItems items;
+detail::BuildItems detail::pocket_items(const std::vector<std::filesystem::path>& structures,
+                                        const LibraryBuildOptions& options) {
+  detail::BuildItems items;
   items.count = structures.size();
   items.build = [&structures, &options](std::size_t i, BuildTimes& times,
                                         std::vector<SkippedRecord>& skipped) {
@@ -233,7 +234,7 @@ BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
       } catch (const std::bad_alloc&) {
         errors[k] = "out of memory";
       } catch (const std::exception& e) {
-        errors[k] = one_line(e.what());
+        errors[k] = detail::one_line(e.what());
       }
       seconds[k] = pocket_clock.elapsed_s();
     });
@@ -251,17 +252,17 @@ BuildItems pocket_items(const std::vector<std::filesystem::path>& structures,
     return entries;
   };
   items.origin = [&structures](std::size_t i) {
-    return ItemOrigin{structures[i].string(), 0, io::structure_stem(structures[i])};
+    return detail::ItemOrigin{structures[i].string(), 0, io::structure_stem(structures[i])};
   };
   items.identity = [&structures](std::size_t i, io::BinaryWriter& bytes) {
-    file_identity(structures[i], bytes);
+    detail::file_identity(structures[i], bytes);
   };
   items.settings = build_settings(options, true) + site_settings(options, true);
   items.noun = "structure";
   return items;
 }
 
-void check_site_options(const LibraryBuildOptions& options) {
+void detail::check_site_options(const LibraryBuildOptions& options) {
   if (options.conformers)
     throw OptionError(options::named("conformers") + " does not apply to sites or pockets");
 }
