@@ -1,5 +1,5 @@
 # Install rules and the CMake package a C++ user finds with find_package(surfcomp CONFIG):
-# the seven static libraries as surfcomp::core, ::mesh, ::molsurf, ::harmonic, ::matching,
+# the eight static libraries as surfcomp::core, ::mesh, ::molsurf, ::harmonic, ::matching, ::docking,
 # ::screening and ::report (with the 3Dmol.js viewer the report inlines, in share/surfcomp, when it was found),
 # their public headers, the surfcomp program and its loadable modules (lib/surfcomp/), and
 # lib/cmake/surfcomp/ with the config, its version file and the exported targets.

@@ -44,6 +44,13 @@ Eigen::Matrix4d RigidTransform::matrix() const {
   return m;
 }
 
+RigidTransform RigidTransform::from_matrix(const Eigen::Matrix4d& matrix) {
+  RigidTransform t;
+  t.rotation = matrix.topLeftCorner<3, 3>();
+  t.translation = matrix.topRightCorner<3, 1>();
+  return t;
+}
+
 Eigen::Matrix3Xd RigidTransform::apply(const Eigen::Ref<const Eigen::Matrix3Xd>& points) const {
   return (rotation * points).colwise() + translation;
 }

@@ -32,13 +32,6 @@ std::string general(double value) {
   return text;
 }
 
-matching::RigidTransform rigid(const Eigen::Matrix4d& matrix) {
-  matching::RigidTransform transform;
-  transform.rotation = matrix.topLeftCorner<3, 3>();
-  transform.translation = matrix.topRightCorner<3, 1>();
-  return transform;
-}
-
 /// The length unit a mesh entry's curvature was fitted at (library_build: automatic).
 double entry_unit(const mesh::Surface& surface) {
   return mesh::general_mesh_unit({&surface}, mesh::LengthScale::automatic, 0.0, surface.source())
@@ -99,7 +92,8 @@ ShapeHit match_entry(const mesh::Surface& query, double query_extent, const Libr
     std::size_t measured = 0;
     for (const matching::Alignment& alignment : found.result.alignments) {
       if (alignment.repeat_of != 0) continue;
-      const matching::CoverageScore coverage = fit.coverage(rigid(alignment.transform), distance);
+      const matching::CoverageScore coverage =
+          fit.coverage(matching::RigidTransform::from_matrix(alignment.transform), distance);
       if (measured == 0 || coverage.probe > hit.score) {
         hit.score = coverage.probe;
         hit.entry_coverage = coverage.reference;

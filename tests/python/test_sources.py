@@ -7,8 +7,9 @@ import subprocess
 
 from conftest import SOURCE_DIR
 
-LIBRARY_MODULES = ("core", "mesh", "molsurf", "harmonic", "matching", "screening", "report")
-COMMANDS = ("surf-build", "cp-detect", "hsi-build", "match", "screen", "report", "pockets",
+LIBRARY_MODULES = ("core", "mesh", "molsurf", "harmonic", "matching", "docking", "screening",
+                   "report")
+COMMANDS = ("surf-build", "cp-detect", "hsi-build", "match", "dock", "screen", "report", "pockets",
             "patch-map", "library build", "library info", "library export")
 
 _LITERAL = re.compile(r'"(?:[^"\\\n]|\\.)*"')
@@ -84,8 +85,9 @@ _STANDS_ON = {
     "molsurf": ("core", "mesh"),
     "harmonic": ("core", "mesh"),
     "matching": ("core", "mesh", "molsurf", "harmonic"),
+    "docking": ("core", "mesh", "molsurf", "harmonic", "matching"),
     "screening": ("core", "mesh", "molsurf", "harmonic", "matching"),
-    "report": ("core", "mesh", "molsurf", "harmonic", "matching"),
+    "report": ("core", "mesh", "molsurf", "harmonic", "matching", "docking"),
 }
 _INCLUDE = re.compile(r'^#include "([^"]+)"', re.M)
 

@@ -1,0 +1,133 @@
+// How well a ligand's surface fits a receptor's (docs/method.md#152-the-complementarity-score):
+// contact rewarded, interpenetration penalised, and over the contact the product of the two
+// sides' ESP (opposite signs attract) and the agreement of their LP (like faces like). The
+// receptor's side is tabulated once on a grid over its site (ReceptorField); a pose is then
+// scored from a sample of the ligand's surface points in a few microseconds per point.
+#pragma once
+
+#include "surfcomp/core/molecule.hpp"
+#include "surfcomp/matching/rigid_fit.hpp"
+#include "surfcomp/mesh/surface.hpp"
+#include "surfcomp/molsurf/site.hpp"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <vector>
+
+namespace surfcomp::docking {
+
+/// The terms and weights of the complementarity score.
+struct ComplementarityOptions {
+  /// Default 0.3 A. The gap, from a ligand surface point to the receptor's van der Waals
+  /// surface, at which contact counts fully: atoms in van der Waals contact leave about this.
+  /// Finite.
+  double contact_gap = 0.3;
+  /// Default 0.8 A. The width (standard deviation) of the contact term about contact_gap.
+  /// Finite, > 0.
+  double contact_width = 0.8;
+  /// Default 0.5 A. A ligand surface point may lie this deep inside the receptor's van der
+  /// Waals surface before it counts as a clash (hydrogen bonds bring atoms that close).
+  /// Finite, >= 0.
+  double clash_tolerance = 0.5;
+  /// Default 100 per A^2. The weight of the clash term, the mean squared depth beyond
+  /// clash_tolerance: a point 0.1 A beyond the tolerance costs as much as one point's full
+  /// contact, so that no gain in contact pays for pushing into the receptor. Finite, >= 0.
+  double clash_weight = 100.0;
+  /// Default 0.2. The weight of the ESP term. Finite, >= 0.
+  double esp_weight = 0.2;
+  /// Default 0.2. The weight of the LP term. Finite, >= 0.
+  double lp_weight = 0.2;
+  /// Default 1 per A^2. The weight of the site restraint: the squared distance by which the
+  /// centre of the ligand's sample lies outside the site's spheres (a docking box's walls).
+  /// Finite, >= 0.
+  double site_weight = 1.0;
+  /// Default 0.4 A. The spacing of the receptor's grid. Finite, in [0.1, 2].
+  double spacing = 0.4;
+  /// Default 6 A. The grid reaches this far beyond the site's spheres. Finite, >= 0.
+  double margin = 6.0;
+  /// Default 1 A. The ligand's surface is sampled at about one point per cell of this size.
+  /// Finite, > 0.
+  double sample_spacing = 1.0;
+};
+
+/// Throws OptionError naming the first option outside its domain.
+void validate(const ComplementarityOptions& options);
+
+/// A pose's complementarity and its terms, each a mean over the ligand's surface sample.
+struct ComplementarityScore {
+  /// contact + esp_weight esp + lp_weight lp - clash_weight clash - site_weight outside^2.
+  double score = 0.0;
+  double contact = 0.0;  ///< [0, 1]: the fraction of the ligand's surface in contact
+  double clash = 0.0;    ///< A^2: mean squared depth beyond the clash tolerance
+  double esp = 0.0;      ///< over the contact: minus the product of the sides' ESP z-scores
+  double lp = 0.0;       ///< over the contact: the product of the sides' LP z-scores
+  double outside = 0.0;  ///< A: how far the sample's centre lies outside the site
+  /// A: the largest depth of a ligand surface point inside the receptor's van der Waals
+  /// surface (0 when none is inside).
+  double deepest = 0.0;
+};
+
+/// A ligand's surface as the score reads it: points about ComplementarityOptions::
+/// sample_spacing apart, with the z-scores (over the whole surface) of their ESP and LP.
+struct LigandSample {
+  Eigen::Matrix3Xd points;  ///< A, the ligand's frame
+  Eigen::VectorXd esp;      ///< z-scores, clipped to [-3, 3]; 0 without the property
+  Eigen::VectorXd lp;       ///< z-scores, clipped to [-3, 3]; 0 without the property
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the points
+};
+
+/// The sample of `surface` (a ligand's, with "esp" and "lp" when it has them): the vertex
+/// nearest the centre of each occupied cell of a grid of `spacing`, in vertex order. Throws
+/// InputError for an empty surface.
+LigandSample sample_ligand(const mesh::Surface& surface, double spacing);
+
+/// The receptor's side of the score on a grid over its site: at each node the signed distance
+/// to the receptor's van der Waals surface (negative inside; capped at +-4 A), and the z-scores
+/// of the receptor's ESP and LP (molsurf::electrostatic_potential, lipophilic_potential; the
+/// z-scores over the nodes within 2 A outside the surface). Outside the grid a point is in free
+/// space: no contact, no clash.
+class ReceptorField {
+ public:
+  /// Tabulates `receptor` (its atoms' positions, radii, charges and lipophilicities) around
+  /// `site` (at least one sphere). Throws InputError for an empty receptor or site, OptionError
+  /// for options outside their domain (validate) and for a grid of more than 64 million nodes.
+  ReceptorField(const Molecule& receptor, const std::vector<molsurf::SiteSphere>& site,
+                const ComplementarityOptions& options = {});
+
+  /// The score of the ligand `sample` moved by `pose` (ligand frame -> receptor frame).
+  ComplementarityScore score(const LigandSample& sample,
+                             const matching::RigidTransform& pose) const;
+
+  /// The signed distance to the receptor's van der Waals surface at `x` (A, trilinear; +4
+  /// outside the grid).
+  double signed_distance(const Eigen::Vector3d& x) const;
+
+  /// A^3: the volume of the grid nodes inside `site`'s spheres that lie outside the receptor's
+  /// van der Waals surface, the room a ligand has there.
+  double free_volume(const std::vector<molsurf::SiteSphere>& site) const;
+
+  /// Whether free space (nodes at least 0.5 A outside the receptor's atoms) joins a node inside
+  /// `site`'s spheres to the grid's border: false for a site buried with no opening.
+  bool site_opens(const std::vector<molsurf::SiteSphere>& site) const;
+
+  const ComplementarityOptions& options() const { return options_; }
+  Eigen::Vector3d lower() const { return origin_; }  ///< the grid's lowest corner, A
+  Eigen::Vector3d upper() const;                     ///< the grid's highest corner, A
+
+ private:
+  struct Node {
+    float distance, esp, lp;
+  };
+  /// The node values at `x` (trilinear), or nullopt-like: `inside` false outside the grid.
+  bool sample(const Eigen::Vector3d& x, Node& out) const;
+  Eigen::Vector3d node_position(std::size_t n) const;
+
+  ComplementarityOptions options_;
+  std::vector<molsurf::SiteSphere> site_;
+  Eigen::Vector3d origin_;
+  Eigen::Vector3i size_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace surfcomp::docking

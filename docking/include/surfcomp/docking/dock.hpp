@@ -1,0 +1,105 @@
+// A ligand placed into a receptor's pocket by its surface (docs/method.md#15-complementarity):
+// the pocket's description matched against the complement of the ligand's (complement.hpp) by
+// the similarity machinery (association graph, cliques, rigid fits, merging, consensus), the
+// first poses refined on the complementarity score (complementarity.hpp) and ranked by it.
+#pragma once
+
+#include "surfcomp/core/option_table.hpp"
+#include "surfcomp/docking/complementarity.hpp"
+#include "surfcomp/matching/match_inputs.hpp"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace surfcomp::docking {
+
+/// How dock reads, describes, matches and refines.
+struct DockOptions {
+  /// How both sides are read and described, the receptor's site (site, pockets) and the
+  /// association graph's filters (match.graph); the rest of `match` is set by dock.
+  matching::MatchInputOptions inputs;
+  /// The receptor's site, as a user gives it: a ligand residue to take out (the crystal's
+  /// site), spheres, or pocket N of molsurf::detect_pockets; none of the three: pocket 1.
+  std::string site_ligand;
+  std::vector<molsurf::SiteSphere> site_spheres;
+  int site_pocket = 0;
+  ComplementarityOptions complementarity;  ///< the score poses are refined and ranked on
+  /// Default 9. The most poses reported, best first. >= 1.
+  int poses = 9;
+  /// Default 40. The first clique poses (consensus order) refined on the score. >= 1.
+  int refine_top = 40;
+  /// Default 60. Besides the clique poses, the ligand's sample centred on the site's centre in
+  /// this many orientations (a fixed, even spread of rotations) is refined too. >= 0.
+  int orientation_starts = 60;
+  /// Default 1 A. Two refined poses whose ligand heavy atoms lie within this RMSD of each other
+  /// are one pose (the better is kept). Finite, >= 0.
+  double distinct_rmsd = 1.0;
+  /// Default 3. A ligand whose volume exceeds this many times the free volume of the site is
+  /// refused before any matching. Finite, > 0.
+  double max_ligand_to_site = 3.0;
+};
+
+/// The user's options of a dock, with their ranges: the surface and description options, the
+/// site's, the graph's filters, the score's terms and the pose counts.
+const options::Table<DockOptions>& dock_option_table();
+
+/// Throws OptionError naming the first of the dock's own options outside its domain.
+void validate(const DockOptions& options);
+
+/// One placement of the ligand in the receptor.
+struct DockPose {
+  int rank = 0;  ///< 1-based, best first
+  /// Moves the ligand's coordinates into the receptor's frame.
+  Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
+  ComplementarityScore score;  ///< of the refined pose
+  /// The consensus rank (1-based) of the clique alignment it was refined from; 0 for an
+  /// orientation start (DockOptions::orientation_starts).
+  int start = 0;
+  /// (receptor critical point, ligand critical point) of that alignment.
+  std::vector<std::pair<int, int>> cp_pairs;
+  /// True when a ligand surface point lies deeper inside the receptor than twice the clash
+  /// tolerance: such poses are ranked after every pose that does not.
+  bool intersects = false;
+};
+
+struct DockResult {
+  matching::PreparedInput ligand, receptor;               ///< the two sides as described
+  std::vector<DockPose> poses;                            ///< best first
+  std::size_t starts = 0;                                 ///< clique alignments found
+  std::vector<matching::TraceStage> trace;                ///< the association graph's stages
+  double site_volume = 0.0;                               ///< A^3: the site's free volume
+  double ligand_volume = 0.0;                             ///< A^3: the ligand's surface's volume
+  std::vector<std::string> notes;                         ///< what a reader may want to know
+  std::vector<std::pair<std::string, double>> timing_ms;  ///< per step, in order
+};
+
+/// `receptor` with the site of `options` (site_ligand, site_spheres, site_pocket), or pocket 1
+/// when neither it nor the options name one.
+matching::MatchInput with_dock_site(matching::MatchInput receptor, const DockOptions& options);
+
+/// Checks from names and options alone, before any work, that a dock can be run as asked:
+/// the options in their domains, the ligand a molecule without a site, the receptor a
+/// structure (with_dock_site gives it its site). Throws OptionError or InputError.
+void check_dock_inputs(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
+                       const DockOptions& options);
+
+/// Docks `ligand` into `receptor`'s site (with_dock_site). The receptor's site surface and the
+/// ligand's surface are built and described with common parameters (matching::prepare_input); the
+/// receptor needs protein atoms, and a ligand more than max_ligand_to_site times the site's free
+/// volume is refused (InputError). Then the site's critical points are matched against the ligand's
+/// complement (matching::match_surfaces, consensus ranking), the first refine_top alignments
+/// are refined on the complementarity score, and the distinct poses ranked by it.
+DockResult dock(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
+                const DockOptions& options = {});
+
+/// `start` refined on `field`'s score of `sample` by a pattern search over rotations about the
+/// sample's centre and translations, from steps of 1 A and 10 degrees down to 0.05 A and 0.5
+/// degrees. Deterministic.
+matching::RigidTransform refine_pose(const ReceptorField& field, const LigandSample& sample,
+                                     const matching::RigidTransform& start);
+
+}  // namespace surfcomp::docking

@@ -1,0 +1,359 @@
+#include "surfcomp/docking/dock.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/option_names.hpp"
+#include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/docking/complement.hpp"
+#include "surfcomp/mesh/topology.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <utility>
+
+namespace surfcomp::docking {
+namespace {
+
+/// The match that finds the starting poses: the user's graph and clique settings, ranked by
+/// the consensus alone (the similarity overlay, atom polish, coverage and ICP would judge a
+/// pose by likeness, which a dock does not seek).
+matching::MatchOptions start_options(const matching::MatchOptions& asked) {
+  matching::MatchOptions m = asked;
+  m.mode = matching::MatchMode::whole_surfaces;
+  m.refine_top = 0;
+  m.polish_top = 0;
+  m.atom_polish.sigma = 0.0;
+  m.coverage_distance = 0.0;
+  m.icp_top = 0;
+  return m;
+}
+
+std::size_t protein_atoms(const Molecule& molecule) {
+  return static_cast<std::size_t>(std::count_if(molecule.atoms.begin(), molecule.atoms.end(),
+                                                [](const Atom& a) { return !a.hetero; }));
+}
+
+Eigen::Matrix3Xd heavy_atoms(const harmonic::SurfaceDescriptors& d) {
+  Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(d.atoms.size()));
+  for (std::size_t i = 0; i < d.atoms.size(); ++i)
+    points.col(static_cast<Eigen::Index>(i)) = d.atoms[i].position;
+  return points;
+}
+
+double rms_between(const Eigen::Matrix3Xd& points, const matching::RigidTransform& a,
+                   const matching::RigidTransform& b) {
+  if (points.cols() == 0) return 0.0;
+  const Eigen::Matrix3Xd pa = a.apply(points), pb = b.apply(points);
+  return std::sqrt((pa - pb).colwise().squaredNorm().mean());
+}
+
+/// `count` rotations spread evenly: unit quaternions of a deterministic low-discrepancy sequence
+/// (Shoemake's map of three coordinates of the 3D Halton sequence, bases 2, 3, 5).
+std::vector<Eigen::Matrix3d> spread_rotations(int count) {
+  constexpr double pi = 3.14159265358979323846;
+  const auto halton = [](int index, int base) {
+    double f = 1.0, r = 0.0;
+    for (int i = index; i > 0; i /= base) {
+      f /= base;
+      r += f * (i % base);
+    }
+    return r;
+  };
+  std::vector<Eigen::Matrix3d> out;
+  for (int k = 0; k < count; ++k) {
+    const double u = halton(k + 1, 2), v = halton(k + 1, 3), w = halton(k + 1, 5);
+    const Eigen::Quaterniond q(
+        std::sqrt(u) * std::cos(2 * pi * w), std::sqrt(1 - u) * std::sin(2 * pi * v),
+        std::sqrt(1 - u) * std::cos(2 * pi * v), std::sqrt(u) * std::sin(2 * pi * w));
+    out.push_back(q.normalized().toRotationMatrix());
+  }
+  return out;
+}
+
+Eigen::Vector3d site_centre(const std::vector<molsurf::SiteSphere>& site) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double weight = 0.0;
+  for (const molsurf::SiteSphere& s : site) {
+    const double w = s.radius * s.radius * s.radius;
+    sum += w * s.center;
+    weight += w;
+  }
+  return weight > 0.0 ? Eigen::Vector3d(sum / weight) : sum;
+}
+
+}  // namespace
+
+const options::Table<DockOptions>& dock_option_table() {
+  using options::Kind;
+  using D = DockOptions;
+  static const options::Table<D> table = [] {
+    options::Table<D> t;
+    options::append(
+        t, molsurf::surface_input_option_table(), [](auto& d) -> auto& { return d.inputs.input; });
+    options::append(
+        t, harmonic::descriptor_option_table(),
+        [](auto& d) -> auto& { return d.inputs.descriptors; },
+        {"critical-point-radius", "disc-radius", "image-rings", "image-sectors", "weights"});
+    options::append(
+        t,
+        options::pick(matching::match_option_table(),
+                      {"fuzzy-threshold", "image-threshold", "distance-tolerance", "min-distance",
+                       "overlap-tolerance", "max-graph-nodes", "max-clique-work", "max-cliques",
+                       "rmsd-cut", "ranking"}),
+        [](auto& d) -> auto& { return d.inputs.match; });
+    options::append(
+        t, molsurf::binding_site_option_table(), [](auto& d) -> auto& { return d.inputs.site; });
+    options::append(
+        t, molsurf::pocket_option_table(), [](auto& d) -> auto& { return d.inputs.pockets; });
+    using C = ComplementarityOptions;
+    const auto score = [](options::Spec spec, double C::*member) {
+      return options::field<D>(
+          std::move(spec), [member](auto& d) -> auto& { return d.complementarity.*member; });
+    };
+    t.push_back(score({"contact-gap", Kind::real,
+                       "gap from the ligand's surface to the receptor's atoms at which contact "
+                       "counts fully",
+                       "A", -2.0, 2.0},
+                      &C::contact_gap));
+    t.push_back(score({"contact-width", Kind::real, "width of the contact term about the gap", "A",
+                       0.0, 5.0, true},
+                      &C::contact_width));
+    t.push_back(score({"clash-tolerance", Kind::real,
+                       "depth inside the receptor's atoms a ligand surface point may reach "
+                       "before it clashes",
+                       "A", 0.0, 3.0},
+                      &C::clash_tolerance));
+    t.push_back(score({"clash-weight", Kind::real, "weight of the clash term", "1/A^2", 0.0, 1e3},
+                      &C::clash_weight));
+    t.push_back(score({"esp-weight", Kind::real,
+                       "weight of the ESP term (opposite ESP across the contact)", "", 0.0, 100.0},
+                      &C::esp_weight));
+    t.push_back(score({"lp-weight", Kind::real,
+                       "weight of the LP term (like LP across the contact)", "", 0.0, 100.0},
+                      &C::lp_weight));
+    t.push_back(score(
+        {"site-weight", Kind::real,
+         "weight of the restraint that keeps the ligand's centre in the site", "1/A^2", 0.0, 1e3},
+        &C::site_weight));
+    t.push_back(score({"grid-spacing", Kind::real, "spacing of the receptor's grid", "A", 0.1, 2.0},
+                      &C::spacing));
+    t.push_back(
+        score({"grid-margin", Kind::real, "the grid's reach beyond the site", "A", 0.0, 50.0},
+              &C::margin));
+    t.push_back(score({"sample-spacing", Kind::real,
+                       "spacing of the ligand surface points the score reads", "A", 0.2, 5.0},
+                      &C::sample_spacing));
+    t.push_back(options::field<D>(
+        {"poses", Kind::integer, "poses reported", "", 1, 1000},
+        [](auto& d) -> auto& { return d.poses; }));
+    t.push_back(options::field<D>(
+        {"refine-top", Kind::integer, "clique poses refined on the complementarity score", "", 1,
+         10000},
+        [](auto& d) -> auto& { return d.refine_top; }));
+    t.push_back(options::field<D>(
+        {"orientation-starts", Kind::integer,
+         "orientations of the ligand at the site's centre refined besides the clique poses", "", 0,
+         100000},
+        [](auto& d) -> auto& { return d.orientation_starts; }));
+    t.push_back(options::field<D>(
+        {"distinct-rmsd", Kind::real, "poses whose ligand atoms lie closer than this are one pose",
+         "A", 0.0, 100.0},
+        [](auto& d) -> auto& { return d.distinct_rmsd; }));
+    t.push_back(options::field<D>(
+        {"max-ligand-to-site", Kind::real,
+         "refuse a ligand of more than this many times the site's free volume", "", 0.0, 1e6, true},
+        [](auto& d) -> auto& { return d.max_ligand_to_site; }));
+    t.push_back(options::field<D>(
+        molsurf::site_ligand_spec(), [](auto& d) -> auto& { return d.site_ligand; }));
+    t.push_back(molsurf::sphere_option<D>(
+        molsurf::site_sphere_spec(), [](auto& d) -> auto& { return d.site_spheres; }));
+    t.push_back(options::field<D>(
+        molsurf::site_pocket_spec(), [](auto& d) -> auto& { return d.site_pocket; }));
+    t.push_back(options::threads_option<D>([](auto& d) -> auto& { return d.inputs.threads; }));
+    return t;
+  }();
+  return table;
+}
+
+void validate(const DockOptions& options) {
+  docking::validate(options.complementarity);
+  const auto require = [](bool ok, const char* field, double value, const char* domain) {
+    if (!ok) {
+      throw OptionError(options::named(field) + ": " + std::to_string(value) + " is not " + domain);
+    }
+  };
+  require(options.poses >= 1, "poses", options.poses, ">= 1");
+  require(options.refine_top >= 1, "refine_top", options.refine_top, ">= 1");
+  require(options.orientation_starts >= 0, "orientation_starts", options.orientation_starts,
+          ">= 0");
+  require(std::isfinite(options.distinct_rmsd) && options.distinct_rmsd >= 0.0, "distinct_rmsd",
+          options.distinct_rmsd, "finite and >= 0");
+  require(std::isfinite(options.max_ligand_to_site) && options.max_ligand_to_site > 0.0,
+          "max_ligand_to_site", options.max_ligand_to_site, "finite and > 0");
+}
+
+matching::MatchInput with_dock_site(matching::MatchInput receptor, const DockOptions& options) {
+  if (!options.site_ligand.empty()) receptor.site_ligand = options.site_ligand;
+  receptor.site_spheres.insert(receptor.site_spheres.end(), options.site_spheres.begin(),
+                               options.site_spheres.end());
+  if (options.site_pocket != 0) receptor.site_pocket = options.site_pocket;
+  if (receptor.site_ligand.empty() && receptor.site_spheres.empty() && receptor.site_pocket == 0)
+    receptor.site_pocket = 1;  // the best detected pocket
+  return receptor;
+}
+
+void check_dock_inputs(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
+                       const DockOptions& options) {
+  validate(options);
+  matching::check_match_input(ligand, options.inputs, "LIGAND");
+  matching::check_match_input(with_dock_site(receptor, options), options.inputs, "RECEPTOR");
+  if (!ligand.path.empty() && !io::is_molecule_file(ligand.path))
+    throw InputError(ligand.path.string() + ": a ligand is a molecule file");
+  if (!receptor.path.empty() && !io::is_structure_file(receptor.path))
+    throw InputError(receptor.path.string() + ": a receptor is a structure file");
+  if (!ligand.site_ligand.empty() || !ligand.site_spheres.empty() || ligand.site_pocket != 0)
+    throw OptionError(ligand.name() + ": a site is the receptor's, not the ligand's");
+}
+
+matching::RigidTransform refine_pose(const ReceptorField& field, const LigandSample& sample,
+                                     const matching::RigidTransform& start) {
+  constexpr double pi = 3.14159265358979323846;
+  matching::RigidTransform pose = start;
+  double best = field.score(sample, pose).score;
+  double step = 1.0;                // A
+  double turn = 10.0 * pi / 180.0;  // radians
+  while (step >= 0.05) {
+    bool improved = false;
+    for (int axis = 0; axis < 6; ++axis) {
+      for (const double sign : {1.0, -1.0}) {
+        matching::RigidTransform trial = pose;
+        if (axis < 3) {
+          trial.translation(axis) += sign * step;
+        } else {
+          const Eigen::Vector3d centre = pose.rotation * sample.centroid + pose.translation;
+          const Eigen::Matrix3d q =
+              Eigen::AngleAxisd(sign * turn, Eigen::Vector3d::Unit(axis - 3)).toRotationMatrix();
+          trial.rotation = q * pose.rotation;
+          trial.translation = q * (pose.translation - centre) + centre;
+        }
+        const double s = field.score(sample, trial).score;
+        if (s > best + 1e-12) {
+          best = s;
+          pose = trial;
+          improved = true;
+        }
+      }
+    }
+    if (!improved) {
+      step *= 0.5;
+      turn *= 0.5;
+    }
+  }
+  return pose;
+}
+
+DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchInput& receptor_in,
+                const DockOptions& options) {
+  check_dock_inputs(ligand_input, receptor_in, options);
+  const matching::MatchInput receptor_input = with_dock_site(receptor_in, options);
+  DockResult result;
+  Stopwatch clock;
+  result.receptor = matching::prepare_input(receptor_input, options.inputs);
+  const Molecule& receptor = *result.receptor.molecule;
+  if (protein_atoms(receptor) == 0) {
+    throw InputError(result.receptor.name +
+                     ": the receptor has no protein atoms (ATOM records); a receptor is a protein "
+                     "structure");
+  }
+  result.ligand = matching::prepare_input(ligand_input, options.inputs);
+  result.timing_ms.emplace_back("surfaces and descriptions", clock.elapsed_ms());
+
+  clock.restart();
+  const ReceptorField field(receptor, result.receptor.site, options.complementarity);
+  result.site_volume = field.free_volume(result.receptor.site);
+  result.ligand_volume = mesh::measure_surface(result.ligand.descriptors.surface).volume;
+  if (result.ligand_volume > options.max_ligand_to_site * result.site_volume) {
+    throw InputError(result.ligand.name + ": the ligand (" +
+                     std::to_string(std::lround(result.ligand_volume)) + " A^3) is more than " +
+                     options::named("max_ligand_to_site") + " " +
+                     std::to_string(options.max_ligand_to_site) + " times the free volume of " +
+                     result.receptor.name + "'s site (" +
+                     std::to_string(std::lround(result.site_volume)) + " A^3)");
+  }
+  if (!field.site_opens(result.receptor.site)) {
+    throw InputError(result.receptor.name +
+                     ": the site is buried: no path of free space leads from it out of the "
+                     "grid, so no ligand can enter it");
+  }
+  const LigandSample sample =
+      sample_ligand(result.ligand.descriptors.surface, options.complementarity.sample_spacing);
+  result.timing_ms.emplace_back("receptor field", clock.elapsed_ms());
+
+  clock.restart();
+  const matching::MatchResult starts = matching::match_surfaces(
+      result.receptor.descriptors, complement(result.ligand.descriptors),
+      start_options(options.inputs.match), &result.receptor.site_points, nullptr);
+  result.trace = starts.trace;
+  result.timing_ms.emplace_back("complementary match", clock.elapsed_ms());
+
+  clock.restart();
+  std::vector<DockPose> refined;
+  for (const matching::Alignment& a : starts.alignments) {
+    if (a.repeat_of != 0) continue;
+    ++result.starts;
+    if (static_cast<int>(refined.size()) >= options.refine_top) continue;
+    DockPose pose;
+    const matching::RigidTransform moved =
+        refine_pose(field, sample, matching::RigidTransform::from_matrix(a.transform));
+    pose.transform = moved.matrix();
+    pose.score = field.score(sample, moved);
+    pose.start = a.rank;
+    pose.cp_pairs = a.cp_pairs;
+    pose.intersects = pose.score.deepest > 2.0 * options.complementarity.clash_tolerance;
+    refined.push_back(std::move(pose));
+  }
+  const Eigen::Vector3d centre = site_centre(result.receptor.site);
+  for (const Eigen::Matrix3d& rotation : spread_rotations(options.orientation_starts)) {
+    matching::RigidTransform start;
+    start.rotation = rotation;
+    start.translation = centre - rotation * sample.centroid;
+    DockPose pose;
+    const matching::RigidTransform moved = refine_pose(field, sample, start);
+    pose.transform = moved.matrix();
+    pose.score = field.score(sample, moved);
+    pose.intersects = pose.score.deepest > 2.0 * options.complementarity.clash_tolerance;
+    refined.push_back(std::move(pose));
+  }
+  std::stable_sort(refined.begin(), refined.end(), [](const DockPose& x, const DockPose& y) {
+    if (x.intersects != y.intersects) return !x.intersects;
+    return x.score.score > y.score.score;
+  });
+  const Eigen::Matrix3Xd atoms = heavy_atoms(result.ligand.descriptors);
+  for (DockPose& pose : refined) {
+    if (static_cast<int>(result.poses.size()) >= options.poses) break;
+    const matching::RigidTransform t = matching::RigidTransform::from_matrix(pose.transform);
+    const bool repeats =
+        std::any_of(result.poses.begin(), result.poses.end(), [&](const DockPose& p) {
+          return rms_between(atoms, matching::RigidTransform::from_matrix(p.transform), t) <
+                 options.distinct_rmsd;
+        });
+    if (repeats) continue;
+    pose.rank = static_cast<int>(result.poses.size()) + 1;
+    result.poses.push_back(std::move(pose));
+  }
+  if (result.starts == 0)
+    result.notes.push_back("no clique of the complementary association graph: no pose");
+  if (!starts.cliques_complete) {
+    result.notes.push_back("the clique search stopped at its budget (" +
+                           options::named("max_clique_work") + ", " +
+                           options::named("max_cliques") + "): poses may be missing");
+  }
+  result.timing_ms.emplace_back("refinement", clock.elapsed_ms());
+  return result;
+}
+
+}  // namespace surfcomp::docking

@@ -1,0 +1,95 @@
+#include "surfcomp/report/dock_files.hpp"
+
+#include "surfcomp/core/io/write_molecule.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <sstream>
+
+namespace surfcomp::report {
+namespace {
+
+nlohmann::ordered_json matrix_json(const Eigen::Matrix4d& m) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (int r = 0; r < 4; ++r) rows.push_back({m(r, 0), m(r, 1), m(r, 2), m(r, 3)});
+  return rows;
+}
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4f", x);
+  return text;
+}
+
+}  // namespace
+
+std::string dock_json(const docking::DockResult& docked, const docking::DockOptions& options) {
+  nlohmann::ordered_json doc;
+  doc["ligand"] = docked.ligand.name;
+  doc["receptor"] = docked.receptor.name;
+  nlohmann::ordered_json spheres = nlohmann::ordered_json::array();
+  for (const molsurf::SiteSphere& s : docked.receptor.site)
+    spheres.push_back({s.center.x(), s.center.y(), s.center.z(), s.radius});
+  doc["site"] = {{"spheres", spheres},
+                 {"free_volume", docked.site_volume},
+                 {"ligand_volume", docked.ligand_volume}};
+  nlohmann::ordered_json poses = nlohmann::ordered_json::array();
+  for (const docking::DockPose& p : docked.poses) {
+    nlohmann::ordered_json cp = nlohmann::ordered_json::array();
+    for (const auto& [receptor, ligand] : p.cp_pairs) cp.push_back({receptor, ligand});
+    poses.push_back({{"rank", p.rank},
+                     {"score", p.score.score},
+                     {"contact", p.score.contact},
+                     {"clash", p.score.clash},
+                     {"esp", p.score.esp},
+                     {"lp", p.score.lp},
+                     {"deepest", p.score.deepest},
+                     {"intersects", p.intersects},
+                     {"transform", matrix_json(p.transform)},
+                     {"start", p.start},
+                     {"cp_pairs", cp}});
+  }
+  doc["poses"] = poses;
+  doc["starts"] = docked.starts;
+  nlohmann::ordered_json trace = nlohmann::ordered_json::array();
+  for (const matching::TraceStage& stage : docked.trace)
+    trace.push_back({{"stage", stage.stage}, {"nodes", stage.nodes}, {"edges", stage.edges}});
+  doc["trace"] = trace;
+  doc["notes"] = docked.notes;
+  const docking::ComplementarityOptions& c = options.complementarity;
+  doc["parameters"] = {{"contact_gap", c.contact_gap},
+                       {"contact_width", c.contact_width},
+                       {"clash_tolerance", c.clash_tolerance},
+                       {"clash_weight", c.clash_weight},
+                       {"esp_weight", c.esp_weight},
+                       {"lp_weight", c.lp_weight},
+                       {"grid_spacing", c.spacing},
+                       {"refine_top", options.refine_top}};
+  nlohmann::ordered_json timing;
+  for (const auto& [step, ms] : docked.timing_ms) timing[step] = ms;
+  doc["timing_ms"] = timing;
+  return doc.dump(2) + "\n";
+}
+
+std::string dock_poses_sdf(const docking::DockResult& docked, const std::filesystem::path& ligand,
+                           std::size_t record) {
+  std::ostringstream out;
+  for (const docking::DockPose& p : docked.poses) {
+    std::string block = io::moved_mol_block(ligand, p.transform.topLeftCorner<3, 3>(),
+                                            p.transform.topRightCorner<3, 1>(), record);
+    const std::size_t end = block.rfind("$$$$");
+    if (end != std::string::npos) block.erase(end);
+    out << block << ">  <surfcomp_rank>\n"
+        << p.rank << "\n\n"
+        << ">  <surfcomp_score>\n"
+        << number(p.score.score) << "\n\n"
+        << ">  <surfcomp_contact>\n"
+        << number(p.score.contact) << "\n\n"
+        << ">  <surfcomp_clash>\n"
+        << number(p.score.clash) << "\n\n$$$$\n";
+  }
+  return out.str();
+}
+
+}  // namespace surfcomp::report

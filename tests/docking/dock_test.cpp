@@ -1,0 +1,110 @@
+// A dock as a user asks for it: thermolysin's inhibitor of 1TMN, moved and rotated away,
+// docked back into the pocket carved around its crystal place lands within 2 A of it; the
+// complementarity of its crystal pose beats the poses around it; what a dock cannot do is
+// refused in one line before the work.
+#include "pocket_cut.hpp"
+#include "test_data.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/read_molecule.hpp"
+#include "surfcomp/core/io/write_molecule.hpp"
+#include "surfcomp/docking/dock.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+namespace surfcomp::docking {
+namespace {
+
+Eigen::Matrix3Xd heavy_positions(const Molecule& m) {
+  std::vector<Eigen::Vector3d> out;
+  for (const Atom& a : m.atoms) {
+    if (a.element != "H") out.push_back(a.position);
+  }
+  Eigen::Matrix3Xd points(3, static_cast<Eigen::Index>(out.size()));
+  for (std::size_t i = 0; i < out.size(); ++i) points.col(static_cast<Eigen::Index>(i)) = out[i];
+  return points;
+}
+
+double rmsd(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) {
+  return std::sqrt((a - b).colwise().squaredNorm().mean());
+}
+
+class Thermolysin : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto structure = test::shared_dataset("thermolysin/1TMN.pdb");
+    const auto ligand = test::shared_dataset("thermolysin/ligands-original/ligand1TMN.sdf");
+    if (!structure || !ligand)
+      SURFCOMP_DATA_ABSENT(test::shared_absent_message("thermolysin/1TMN.pdb"));
+    structure_ = *structure;
+    ligand_ = *ligand;
+    // The pocket carved around the crystal ligand (0ZN), which the dock takes out again.
+    test::write_pocket(structure_, "0ZN", 16.0, pocket_);
+  }
+
+  test::TempDir dir_;
+  std::filesystem::path structure_, ligand_, pocket_ = dir_ / "pocket.pdb";
+};
+
+TEST_F(Thermolysin, AMovedLigandIsDockedBackIntoItsPocket) {
+  // Rotated by 130 degrees about a skew axis and moved 12 A away.
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(130.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, -1).normalized())
+          .toRotationMatrix();
+  const Eigen::Vector3d shift(12.0, -5.0, 7.0);
+  const std::filesystem::path moved =
+      dir_.write("moved.sdf", io::moved_mol_block(ligand_, turn, shift));
+  DockOptions options;
+  options.site_ligand = "0ZN";
+  matching::MatchInput ligand, receptor;
+  ligand.path = moved;
+  receptor.path = pocket_;
+  const DockResult docked = dock(ligand, receptor, options);
+  ASSERT_FALSE(docked.poses.empty());
+  const Eigen::Matrix3Xd crystal = heavy_positions(io::read_molecule(ligand_));
+  const Eigen::Matrix3Xd start = heavy_positions(io::read_molecule(moved));
+  const DockPose& top = docked.poses.front();
+  const Eigen::Matrix3Xd placed = (top.transform.topLeftCorner<3, 3>() * start).colwise() +
+                                  top.transform.topRightCorner<3, 1>();
+  EXPECT_LT(rmsd(placed, crystal), 2.0) << "top pose score " << top.score.score;
+  EXPECT_FALSE(top.intersects);
+  EXPECT_GT(top.score.contact, 0.2);
+}
+
+TEST_F(Thermolysin, WhatADockCannotDoIsRefusedInOneLine) {
+  DockOptions options;
+  matching::MatchInput ligand, receptor;
+  ligand.path = ligand_;
+  // The ligand alone as a structure: HETATM records only, no protein atoms.
+  Molecule hetero = io::read_molecule(ligand_);
+  hetero.atoms.erase(std::remove_if(hetero.atoms.begin(), hetero.atoms.end(),
+                                    [](const Atom& a) { return a.element == "H"; }),
+                     hetero.atoms.end());
+  for (Atom& atom : hetero.atoms) atom.hetero = true;
+  std::ostringstream pdb;
+  io::write_pdb(hetero, pdb);
+  receptor.path = dir_.write("ligand.pdb", pdb.str());
+  options.site_spheres = {{Eigen::Vector3d(52, 17, -5), 6.0}};
+  const std::string no_protein = test::error_of([&] { dock(ligand, receptor, options); });
+  EXPECT_NE(no_protein.find("no protein atoms"), std::string::npos) << no_protein;
+  options = {};
+  options.site_pocket = 1000;
+  receptor.path = pocket_;
+  EXPECT_THROW(dock(ligand, receptor, options), InputError);
+  options = {};
+  options.site_ligand = "0ZN";
+  options.max_ligand_to_site = 0.05;
+  const std::string too_large = test::error_of([&] { dock(ligand, receptor, options); });
+  EXPECT_NE(too_large.find("times the free volume"), std::string::npos) << too_large;
+  ligand.site_pocket = 1;
+  EXPECT_THROW(check_dock_inputs(ligand, receptor, {}), OptionError);
+}
+
+}  // namespace
+}  // namespace surfcomp::docking
