@@ -7,6 +7,7 @@
 #include "surfcomp/docking/complement.hpp"
 #include "surfcomp/mesh/topology.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -72,6 +73,21 @@ std::vector<Eigen::Matrix3d> spread_rotations(int count) {
     out.push_back(q.normalized().toRotationMatrix());
   }
   return out;
+}
+
+/// The ligand sample's principal axes as the columns of a rotation, each axis signed so that
+/// the sample's third moment along it is positive: the same axes, relative to the ligand, in
+/// whatever frame the ligand was given, so that the orientation starts do not depend on it.
+Eigen::Matrix3d principal_frame(const LigandSample& sample) {
+  const Eigen::Matrix3Xd centred = sample.points.colwise() - sample.centroid;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(centred * centred.transpose());
+  Eigen::Matrix3d axes = solver.eigenvectors();
+  for (int a = 0; a < 3; ++a) {
+    const double skew = (centred.transpose() * axes.col(a)).array().cube().sum();
+    if (skew < 0.0) axes.col(a) = -axes.col(a);
+  }
+  if (axes.determinant() < 0.0) axes.col(0) = -axes.col(0);
+  return axes;
 }
 
 Eigen::Vector3d site_centre(const std::vector<molsurf::SiteSphere>& site) {
@@ -317,9 +333,10 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
     refined.push_back(std::move(pose));
   }
   const Eigen::Vector3d centre = site_centre(result.receptor.site);
+  const Eigen::Matrix3d frame = principal_frame(sample);
   for (const Eigen::Matrix3d& rotation : spread_rotations(options.orientation_starts)) {
     matching::RigidTransform start;
-    start.rotation = rotation;
+    start.rotation = rotation * frame.transpose();
     start.translation = centre - rotation * sample.centroid;
     DockPose pose;
     const matching::RigidTransform moved = refine_pose(field, sample, start);

@@ -33,7 +33,8 @@ struct DockOptions {
   /// Default 40. The first clique poses (consensus order) refined on the score. >= 1.
   int refine_top = 40;
   /// Default 60. Besides the clique poses, the ligand's sample centred on the site's centre in
-  /// this many orientations (a fixed, even spread of rotations) is refined too. >= 0.
+  /// this many orientations (a fixed, even spread of rotations of its principal axes, so that
+  /// they do not depend on the frame the ligand comes in) is refined too. >= 0.
   int orientation_starts = 60;
   /// Default 1 A. Two refined poses whose ligand heavy atoms lie within this RMSD of each other
   /// are one pose (the better is kept). Finite, >= 0.
