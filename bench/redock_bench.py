@@ -28,13 +28,10 @@ COMPLEXES = (("1THL", "0DB"), ("1TLP", "RDF"), ("1TMN", "0ZN"), ("4TMN", "0PK"))
 
 
 def random_rotation(rng):
-    """A rotation matrix from a uniform random unit quaternion."""
-    a, b, c, d = rng.normal(size=4)
-    n = np.sqrt(a * a + b * b + c * c + d * d)
-    a, b, c, d = a / n, b / n, c / n, d / n
-    return np.array([[a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)],
-                     [2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)],
-                     [2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d]])
+    """A uniform random rotation: the Q of a Gaussian matrix's QR, signs fixed (Mezzadri)."""
+    q, r = np.linalg.qr(rng.normal(size=(3, 3)))
+    q = q @ np.diag(np.sign(np.diag(r)))
+    return q if np.linalg.det(q) > 0 else -q
 
 
 def heavy_positions(mol):
