@@ -23,12 +23,13 @@ constexpr const char* kUsage =
     "Places LIGAND into RECEPTOR's pocket where its surface fits: the pocket's critical points\n"
     "are paired with the complement of the ligand's (its peaks with the pocket's valleys, its\n"
     "images against the mirror of the pocket's, ESP of opposite and LP of like sign), cliques\n"
-    "of pairs give rigid fits and a consensus order, and the first --refine-top fits are refined\n"
-    "on the complementarity score (contact rewarded, interpenetration penalised, ESP product and\n"
-    "LP agreement over the contact; docs/method.md §15) and ranked by it. A pose that sinks a\n"
+    "of pairs give rigid fits and a consensus order; the first --refine-top fits and\n"
+    "--orientation-starts orientations of the ligand at the site's centre are refined on the\n"
+    "complementarity score (contact rewarded, interpenetration penalised, ESP product and LP\n"
+    "agreement over the contact; docs/method.md section 15) and ranked by it. A pose that sinks a\n"
     "ligand surface point deeper than twice --clash-tolerance into the receptor's atoms is\n"
-    "ranked after every pose that does not (column 'clash!').\n\n"
-    "LIGAND    a molecule (%s)\n"
+    "ranked after every pose that does not (marked ! after its 'deepest').\n\n"
+    "LIGAND    a molecule file (.sdf .mol .mol2 for the -o poses)\n"
     "RECEPTOR  a protein structure (.pdb .ent .cif .cif.gz .pqr)\n"
     "The pocket: --site-ligand RES (the crystal's: that HETATM residue is taken out and its\n"
     "neighbourhood is the site), --site-sphere x,y,z,r (repeatable), or --site-pocket N, pocket\n"
@@ -48,7 +49,7 @@ int dock(const std::vector<std::string>& args) {
   // clang-format on
   add_table_options(described, docking::dock_option_table());
   po::variables_map vm;
-  if (!parse_command_line(args, described, 2, with_formats(kUsage).c_str(), vm)) return 0;
+  if (!parse_command_line(args, described, 2, kUsage, vm)) return 0;
   const auto inputs =
       vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
   if (inputs.size() != 2) throw OptionError("expected LIGAND and RECEPTOR (see --help)");
