@@ -215,9 +215,9 @@ Eigen::Vector3d ReceptorField::node_position(std::size_t n) const {
   const auto nx = static_cast<std::size_t>(size_.x());
   const auto ny = static_cast<std::size_t>(size_.y());
   const double h = options_.spacing;
-  return {origin_.x() + h * static_cast<double>(n % nx),
-          origin_.y() + h * static_cast<double>((n / nx) % ny),
-          origin_.z() + h * static_cast<double>(n / (nx * ny))};
+  const std::size_t x = n % nx, y = (n / nx) % ny, z = n / (nx * ny);  // the node's indices
+  return {origin_.x() + h * static_cast<double>(x), origin_.y() + h * static_cast<double>(y),
+          origin_.z() + h * static_cast<double>(z)};
 }
 
 double ReceptorField::free_volume(const std::vector<molsurf::SiteSphere>& site) const {
