@@ -7,6 +7,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -261,55 +263,81 @@ Eigen::Vector3d ReceptorField::upper() const {
   return origin_ + options_.spacing * (size_ - Eigen::Vector3i::Ones()).cast<double>();
 }
 
-bool ReceptorField::sample(const Eigen::Vector3d& x, Node& out) const {
+bool ReceptorField::sample(const Eigen::Vector3d& x, Eigen::Vector3d& out,
+                           Eigen::Matrix3d* gradient) const {
   const Eigen::Vector3d g = (x - origin_) / options_.spacing;
   const Eigen::Vector3d top = (size_ - Eigen::Vector3i::Ones()).cast<double>();
   if (!((g.array() >= 0.0).all() && (g.array() < top.array()).all())) return false;
   const Eigen::Vector3i i = g.array().floor().cast<int>();
-  const Eigen::Vector3d f = g - i.cast<double>();
+  const double fx = g.x() - i.x(), fy = g.y() - i.y(), fz = g.z() - i.z();
   const auto nx = static_cast<std::size_t>(size_.x());
   const auto nxy = nx * static_cast<std::size_t>(size_.y());
   const std::size_t base = static_cast<std::size_t>(i.z()) * nxy +
                            static_cast<std::size_t>(i.y()) * nx + static_cast<std::size_t>(i.x());
-  double d = 0.0, e = 0.0, l = 0.0;
-  for (int corner = 0; corner < 8; ++corner) {
-    const int cx = corner & 1, cy = (corner >> 1) & 1, cz = (corner >> 2) & 1;
-    const double w =
-        (cx ? f.x() : 1.0 - f.x()) * (cy ? f.y() : 1.0 - f.y()) * (cz ? f.z() : 1.0 - f.z());
-    const Node& node = nodes_[base + static_cast<std::size_t>(cz) * nxy +
-                              static_cast<std::size_t>(cy) * nx + static_cast<std::size_t>(cx)];
-    d += w * node.distance;
-    e += w * node.esp;
-    l += w * node.lp;
+  // The corners' (distance, esp, lp), vYZ running along x: v00 is (y, z) = (0, 0).
+  const auto at = [this](std::size_t n) {
+    const Node& node = nodes_[n];
+    return Eigen::Array3d(node.distance, node.esp, node.lp);
+  };
+  const Eigen::Array3d v000 = at(base), v100 = at(base + 1);
+  const Eigen::Array3d v010 = at(base + nx), v110 = at(base + nx + 1);
+  const Eigen::Array3d v001 = at(base + nxy), v101 = at(base + nxy + 1);
+  const Eigen::Array3d v011 = at(base + nxy + nx), v111 = at(base + nxy + nx + 1);
+  const Eigen::Array3d c00 = v000 + fx * (v100 - v000), c10 = v010 + fx * (v110 - v010);
+  const Eigen::Array3d c01 = v001 + fx * (v101 - v001), c11 = v011 + fx * (v111 - v011);
+  const Eigen::Array3d c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
+  out = (c0 + fz * (c1 - c0)).matrix();
+  if (gradient != nullptr) {
+    const Eigen::Array3d dx0 = (v100 - v000) + fy * ((v110 - v010) - (v100 - v000));
+    const Eigen::Array3d dx1 = (v101 - v001) + fy * ((v111 - v011) - (v101 - v001));
+    const double inverse = 1.0 / options_.spacing;
+    gradient->row(0) = inverse * (dx0 + fz * (dx1 - dx0)).matrix().transpose();
+    gradient->row(1) =
+        inverse * ((c10 - c00) + fz * ((c11 - c01) - (c10 - c00))).matrix().transpose();
+    gradient->row(2) = inverse * (c1 - c0).matrix().transpose();
   }
-  out = Node{static_cast<float>(d), static_cast<float>(e), static_cast<float>(l)};
   return true;
 }
 
 double ReceptorField::signed_distance(const Eigen::Vector3d& x) const {
-  Node node{};
-  return sample(x, node) ? static_cast<double>(node.distance) : distance_cap;
+  Eigen::Vector3d value;
+  return sample(x, value) ? value(0) : distance_cap;
 }
 
 ComplementarityScore ReceptorField::score(const LigandSample& ligand,
-                                          const matching::RigidTransform& pose) const {
+                                          const matching::RigidTransform& pose,
+                                          Eigen::Matrix<double, 6, 1>* gradient) const {
   const ComplementarityOptions& o = options_;
   const double inverse_width = 1.0 / (2.0 * o.contact_width * o.contact_width);
   ComplementarityScore s;
   const Eigen::Index n = ligand.points.cols();
+  const Eigen::Vector3d centre = pose.rotation * ligand.centroid + pose.translation;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d slope;
   for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Vector3d x = pose.rotation * ligand.points.col(k) + pose.translation;
-    Node node{};
-    if (!sample(x, node)) continue;
-    const double d = node.distance;
+    Eigen::Vector3d node;  // distance, esp, lp
+    if (!sample(x, node, gradient != nullptr ? &slope : nullptr)) continue;
+    const double d = node(0);
     const double gap = d - o.contact_gap;
     const double contact = std::exp(-gap * gap * inverse_width);
     const double depth = std::max(0.0, -d - o.clash_tolerance);
+    const double esp = -ligand.esp(k) * node(1), lp = ligand.lp(k) * node(2);
     s.contact += contact;
     s.clash += depth * depth;
-    s.esp -= contact * ligand.esp(k) * node.esp;
-    s.lp += contact * ligand.lp(k) * node.lp;
+    s.esp += contact * esp;
+    s.lp += contact * lp;
     s.deepest = std::max(s.deepest, -d);
+    if (gradient != nullptr) {
+      // d(score term)/d(distance, esp, lp) at this point, then through the grid's gradients.
+      const double dcontact = -contact * gap * 2.0 * inverse_width;
+      const Eigen::Vector3d by_value(
+          dcontact * (1.0 + o.esp_weight * esp + o.lp_weight * lp) + 2.0 * o.clash_weight * depth,
+          -o.esp_weight * contact * ligand.esp(k), o.lp_weight * contact * ligand.lp(k));
+      const Eigen::Vector3d g = slope * by_value;
+      force += g;
+      torque += (x - centre).cross(g);
+    }
   }
   if (n > 0) {
     const double inverse = 1.0 / static_cast<double>(n);
@@ -317,14 +345,25 @@ ComplementarityScore ReceptorField::score(const LigandSample& ligand,
     s.clash *= inverse;
     s.esp *= inverse;
     s.lp *= inverse;
+    force *= inverse;
+    torque *= inverse;
   }
-  const Eigen::Vector3d centre = pose.rotation * ligand.centroid + pose.translation;
   double outside = std::numeric_limits<double>::infinity();
-  for (const molsurf::SiteSphere& sphere : site_)
-    outside = std::min(outside, (centre - sphere.center).norm() - sphere.radius);
+  Eigen::Vector3d away = Eigen::Vector3d::Zero();
+  for (const molsurf::SiteSphere& sphere : site_) {
+    const double beyond = (centre - sphere.center).norm() - sphere.radius;
+    if (beyond < outside) {
+      outside = beyond;
+      away = (centre - sphere.center).normalized();
+    }
+  }
   s.outside = std::max(0.0, outside);
   s.score = s.contact + o.esp_weight * s.esp + o.lp_weight * s.lp - o.clash_weight * s.clash -
             o.site_weight * s.outside * s.outside;
+  if (gradient != nullptr) {
+    force -= 2.0 * o.site_weight * s.outside * away;
+    *gradient << force, torque;
+  }
   return s;
 }
 

@@ -7,7 +7,6 @@
 #include "surfcomp/docking/complement.hpp"
 #include "surfcomp/mesh/topology.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -52,53 +51,54 @@ double rms_between(const Eigen::Matrix3Xd& points, const matching::RigidTransfor
   return std::sqrt((pa - pb).colwise().squaredNorm().mean());
 }
 
-/// `count` rotations spread evenly: unit quaternions of a deterministic low-discrepancy sequence
-/// (Shoemake's map of three coordinates of the 3D Halton sequence, bases 2, 3, 5).
-std::vector<Eigen::Matrix3d> spread_rotations(int count) {
-  constexpr double pi = 3.14159265358979323846;
-  const auto halton = [](int index, int base) {
-    double f = 1.0, r = 0.0;
-    for (int i = index; i > 0; i /= base) {
-      f /= base;
-      r += f * (i % base);
-    }
-    return r;
-  };
-  std::vector<Eigen::Matrix3d> out;
-  for (int k = 0; k < count; ++k) {
-    const double u = halton(k + 1, 2), v = halton(k + 1, 3), w = halton(k + 1, 5);
-    const Eigen::Quaterniond q(
-        std::sqrt(u) * std::cos(2 * pi * w), std::sqrt(1 - u) * std::sin(2 * pi * v),
-        std::sqrt(1 - u) * std::cos(2 * pi * v), std::sqrt(u) * std::sin(2 * pi * w));
-    out.push_back(q.normalized().toRotationMatrix());
-  }
+DockPose scored_pose(const ReceptorField& field, const LigandSample& sample,
+                     const matching::RigidTransform& pose) {
+  DockPose out;
+  out.transform = pose.matrix();
+  out.score = field.score(sample, pose);
+  out.intersects = out.score.deepest > 2.0 * field.options().clash_tolerance;
   return out;
 }
 
-/// The ligand sample's principal axes as the columns of a rotation, each axis signed so that
-/// the sample's third moment along it is positive: the same axes, relative to the ligand, in
-/// whatever frame the ligand was given, so that the orientation starts do not depend on it.
-Eigen::Matrix3d principal_frame(const LigandSample& sample) {
-  const Eigen::Matrix3Xd centred = sample.points.colwise() - sample.centroid;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(centred * centred.transpose());
-  Eigen::Matrix3d axes = solver.eigenvectors();
-  for (int a = 0; a < 3; ++a) {
-    const double skew = (centred.transpose() * axes.col(a)).array().cube().sum();
-    if (skew < 0.0) axes.col(a) = -axes.col(a);
-  }
-  if (axes.determinant() < 0.0) axes.col(0) = -axes.col(0);
-  return axes;
+void rank(std::vector<DockPose>& poses) {
+  std::stable_sort(poses.begin(), poses.end(), [](const DockPose& x, const DockPose& y) {
+    if (x.intersects != y.intersects) return !x.intersects;
+    return x.score.score > y.score.score;
+  });
 }
 
-Eigen::Vector3d site_centre(const std::vector<molsurf::SiteSphere>& site) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  double weight = 0.0;
-  for (const molsurf::SiteSphere& s : site) {
-    const double w = s.radius * s.radius * s.radius;
-    sum += w * s.center;
-    weight += w;
+/// The first options.poses distinct candidates by (intersects, score), after the best
+/// 4 options.poses of them are refined to convergence (the search stops its optimisations
+/// early).
+std::vector<DockPose> best_distinct(const ReceptorField& field, const LigandSample& sample,
+                                    const Eigen::Matrix3Xd& atoms, std::vector<DockPose> candidates,
+                                    const DockOptions& options) {
+  rank(candidates);
+  const std::size_t polished =
+      std::min(candidates.size(), 4 * static_cast<std::size_t>(options.poses));
+  for (std::size_t k = 0; k < polished; ++k) {
+    DockPose& pose = candidates[k];
+    const matching::RigidTransform moved =
+        refine_pose(field, sample, matching::RigidTransform::from_matrix(pose.transform));
+    DockPose refined = scored_pose(field, sample, moved);
+    refined.start = pose.start;
+    refined.cp_pairs = std::move(pose.cp_pairs);
+    pose = std::move(refined);
   }
-  return weight > 0.0 ? Eigen::Vector3d(sum / weight) : sum;
+  rank(candidates);
+  std::vector<DockPose> out;
+  for (DockPose& pose : candidates) {
+    if (static_cast<int>(out.size()) >= options.poses) break;
+    const matching::RigidTransform t = matching::RigidTransform::from_matrix(pose.transform);
+    const bool repeats = std::any_of(out.begin(), out.end(), [&](const DockPose& p) {
+      return rms_between(atoms, matching::RigidTransform::from_matrix(p.transform), t) <
+             options.distinct_rmsd;
+    });
+    if (repeats) continue;
+    pose.rank = static_cast<int>(out.size()) + 1;
+    out.push_back(std::move(pose));
+  }
+  return out;
 }
 
 }  // namespace
@@ -171,10 +171,19 @@ const options::Table<DockOptions>& dock_option_table() {
          10000},
         [](auto& d) -> auto& { return d.refine_top; }));
     t.push_back(options::field<D>(
-        {"orientation-starts", Kind::integer,
-         "orientations of the ligand at the site's centre refined besides the clique poses", "", 0,
-         100000},
-        [](auto& d) -> auto& { return d.orientation_starts; }));
+        {"search-chains", Kind::integer,
+         "Monte Carlo chains over the site, each from a random pose in it", "", 0, 100000},
+        [](auto& d) -> auto& { return d.search.chains; }));
+    t.push_back(options::field<D>(
+        {"search-steps", Kind::integer,
+         "moves per Monte Carlo chain, each followed by a local "
+         "optimisation",
+         "", 0, 100000},
+        [](auto& d) -> auto& { return d.search.steps; }));
+    t.push_back(options::field<D>(
+        {"search-temperature", Kind::real, "the Monte Carlo chains' temperature", "score", 1e-6,
+         100.0},
+        [](auto& d) -> auto& { return d.search.temperature; }));
     t.push_back(options::field<D>(
         {"distinct-rmsd", Kind::real, "poses whose ligand atoms lie closer than this are one pose",
          "A", 0.0, 100.0},
@@ -197,6 +206,7 @@ const options::Table<DockOptions>& dock_option_table() {
 
 void validate(const DockOptions& options) {
   docking::validate(options.complementarity);
+  docking::validate(options.search);
   const auto require = [](bool ok, const char* field, double value, const char* domain) {
     if (!ok) {
       throw OptionError(options::named(field) + ": " + std::to_string(value) + " is not " + domain);
@@ -204,8 +214,6 @@ void validate(const DockOptions& options) {
   };
   require(options.poses >= 1, "poses", options.poses, ">= 1");
   require(options.refine_top >= 1, "refine_top", options.refine_top, ">= 1");
-  require(options.orientation_starts >= 0, "orientation_starts", options.orientation_starts,
-          ">= 0");
   require(std::isfinite(options.distinct_rmsd) && options.distinct_rmsd >= 0.0, "distinct_rmsd",
           options.distinct_rmsd, "finite and >= 0");
   require(std::isfinite(options.max_ligand_to_site) && options.max_ligand_to_site > 0.0,
@@ -233,43 +241,6 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
     throw InputError(receptor.path.string() + ": a receptor is a structure file");
   if (!ligand.site_ligand.empty() || !ligand.site_spheres.empty() || ligand.site_pocket != 0)
     throw OptionError(ligand.name() + ": a site is the receptor's, not the ligand's");
-}
-
-matching::RigidTransform refine_pose(const ReceptorField& field, const LigandSample& sample,
-                                     const matching::RigidTransform& start) {
-  constexpr double pi = 3.14159265358979323846;
-  matching::RigidTransform pose = start;
-  double best = field.score(sample, pose).score;
-  double step = 1.0;                // A
-  double turn = 10.0 * pi / 180.0;  // radians
-  while (step >= 0.05) {
-    bool improved = false;
-    for (int axis = 0; axis < 6; ++axis) {
-      for (const double sign : {1.0, -1.0}) {
-        matching::RigidTransform trial = pose;
-        if (axis < 3) {
-          trial.translation(axis) += sign * step;
-        } else {
-          const Eigen::Vector3d centre = pose.rotation * sample.centroid + pose.translation;
-          const Eigen::Matrix3d q =
-              Eigen::AngleAxisd(sign * turn, Eigen::Vector3d::Unit(axis - 3)).toRotationMatrix();
-          trial.rotation = q * pose.rotation;
-          trial.translation = q * (pose.translation - centre) + centre;
-        }
-        const double s = field.score(sample, trial).score;
-        if (s > best + 1e-12) {
-          best = s;
-          pose = trial;
-          improved = true;
-        }
-      }
-    }
-    if (!improved) {
-      step *= 0.5;
-      turn *= 0.5;
-    }
-  }
-  return pose;
 }
 
 DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchInput& receptor_in,
@@ -317,53 +288,25 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
   result.timing_ms.emplace_back("complementary match", clock.elapsed_ms());
 
   clock.restart();
-  std::vector<DockPose> refined;
+  std::vector<DockPose> candidates;
   for (const matching::Alignment& a : starts.alignments) {
     if (a.repeat_of != 0) continue;
     ++result.starts;
-    if (static_cast<int>(refined.size()) >= options.refine_top) continue;
-    DockPose pose;
-    const matching::RigidTransform moved =
-        refine_pose(field, sample, matching::RigidTransform::from_matrix(a.transform));
-    pose.transform = moved.matrix();
-    pose.score = field.score(sample, moved);
+    if (static_cast<int>(candidates.size()) >= options.refine_top) continue;
+    const matching::RigidTransform moved = refine_pose(
+        field, sample, matching::RigidTransform::from_matrix(a.transform), options.search.min_gain);
+    DockPose pose = scored_pose(field, sample, moved);
     pose.start = a.rank;
     pose.cp_pairs = a.cp_pairs;
-    pose.intersects = pose.score.deepest > 2.0 * options.complementarity.clash_tolerance;
-    refined.push_back(std::move(pose));
+    candidates.push_back(std::move(pose));
   }
-  const Eigen::Vector3d centre = site_centre(result.receptor.site);
-  const Eigen::Matrix3d frame = principal_frame(sample);
-  for (const Eigen::Matrix3d& rotation : spread_rotations(options.orientation_starts)) {
-    matching::RigidTransform start;
-    start.rotation = rotation * frame.transpose();
-    start.translation = centre - rotation * sample.centroid;
-    DockPose pose;
-    const matching::RigidTransform moved = refine_pose(field, sample, start);
-    pose.transform = moved.matrix();
-    pose.score = field.score(sample, moved);
-    pose.intersects = pose.score.deepest > 2.0 * options.complementarity.clash_tolerance;
-    refined.push_back(std::move(pose));
-  }
-  std::stable_sort(refined.begin(), refined.end(), [](const DockPose& x, const DockPose& y) {
-    if (x.intersects != y.intersects) return !x.intersects;
-    return x.score.score > y.score.score;
-  });
-  const Eigen::Matrix3Xd atoms = heavy_atoms(result.ligand.descriptors);
-  for (DockPose& pose : refined) {
-    if (static_cast<int>(result.poses.size()) >= options.poses) break;
-    const matching::RigidTransform t = matching::RigidTransform::from_matrix(pose.transform);
-    const bool repeats =
-        std::any_of(result.poses.begin(), result.poses.end(), [&](const DockPose& p) {
-          return rms_between(atoms, matching::RigidTransform::from_matrix(p.transform), t) <
-                 options.distinct_rmsd;
-        });
-    if (repeats) continue;
-    pose.rank = static_cast<int>(result.poses.size()) + 1;
-    result.poses.push_back(std::move(pose));
-  }
+  for (const SearchedPose& found : search_site(field, sample, result.receptor.site, options.search))
+    candidates.push_back(scored_pose(field, sample, found.pose));
+  result.poses = best_distinct(field, sample, heavy_atoms(result.ligand.descriptors),
+                               std::move(candidates), options);
   if (result.starts == 0)
-    result.notes.push_back("no clique of the complementary association graph: no pose");
+    result.notes.push_back(
+        "no clique of the complementary association graph: the poses are the search's alone");
   if (!starts.cliques_complete) {
     result.notes.push_back("the clique search stopped at its budget (" +
                            options::named("max_clique_work") + ", " +

@@ -65,7 +65,10 @@ std::string dock_json(const docking::DockResult& docked, const docking::DockOpti
                        {"esp_weight", c.esp_weight},
                        {"lp_weight", c.lp_weight},
                        {"grid_spacing", c.spacing},
-                       {"refine_top", options.refine_top}};
+                       {"refine_top", options.refine_top},
+                       {"search_chains", options.search.chains},
+                       {"search_steps", options.search.steps},
+                       {"search_temperature", options.search.temperature}};
   nlohmann::ordered_json timing;
   for (const auto& [step, ms] : docked.timing_ms) timing[step] = ms;
   doc["timing_ms"] = timing;

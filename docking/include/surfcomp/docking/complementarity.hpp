@@ -95,9 +95,12 @@ class ReceptorField {
   ReceptorField(const Molecule& receptor, const std::vector<molsurf::SiteSphere>& site,
                 const ComplementarityOptions& options = {});
 
-  /// The score of the ligand `sample` moved by `pose` (ligand frame -> receptor frame).
-  ComplementarityScore score(const LigandSample& sample,
-                             const matching::RigidTransform& pose) const;
+  /// The score of the ligand `sample` moved by `pose` (ligand frame -> receptor frame). With
+  /// `gradient`, also the score's gradient for a motion of the moved sample: entries 0-2 per A
+  /// of translation, 3-5 per radian of rotation about the moved sample's centroid (the
+  /// derivative of the trilinear interpolant, so exact within grid cells).
+  ComplementarityScore score(const LigandSample& sample, const matching::RigidTransform& pose,
+                             Eigen::Matrix<double, 6, 1>* gradient = nullptr) const;
 
   /// The signed distance to the receptor's van der Waals surface at `x` (A, trilinear; +4
   /// outside the grid).
@@ -119,8 +122,10 @@ class ReceptorField {
   struct Node {
     float distance, esp, lp;
   };
-  /// The node values at `x` (trilinear), or nullopt-like: `inside` false outside the grid.
-  bool sample(const Eigen::Vector3d& x, Node& out) const;
+  /// The node values at `x` (trilinear) as (distance, esp, lp), false outside the grid. With
+  /// `gradient`, their gradients too, as its columns.
+  bool sample(const Eigen::Vector3d& x, Eigen::Vector3d& out,
+              Eigen::Matrix3d* gradient = nullptr) const;
   Eigen::Vector3d node_position(std::size_t n) const;
 
   ComplementarityOptions options_;

@@ -1,11 +1,13 @@
 // A ligand placed into a receptor's pocket by its surface (docs/method.md#15-complementarity):
 // the pocket's description matched against the complement of the ligand's (complement.hpp) by
-// the similarity machinery (association graph, cliques, rigid fits, merging, consensus), the
-// first poses refined on the complementarity score (complementarity.hpp) and ranked by it.
+// the similarity machinery (association graph, cliques, rigid fits, merging, consensus) and a
+// Monte Carlo search of the site (search.hpp) give poses, optimised on the complementarity
+// score (complementarity.hpp) and ranked by it.
 #pragma once
 
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/docking/complementarity.hpp"
+#include "surfcomp/docking/search.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 
 #include <Eigen/Core>
@@ -32,10 +34,8 @@ struct DockOptions {
   int poses = 9;
   /// Default 40. The first clique poses (consensus order) refined on the score. >= 1.
   int refine_top = 40;
-  /// Default 60. Besides the clique poses, the ligand's sample centred on the site's centre in
-  /// this many orientations (a fixed, even spread of rotations of its principal axes, so that
-  /// they do not depend on the frame the ligand comes in) is refined too. >= 0.
-  int orientation_starts = 60;
+  /// Besides the clique poses, the Monte Carlo search of the site (search_site).
+  SearchOptions search;
   /// Default 1 A. Two refined poses whose ligand heavy atoms lie within this RMSD of each other
   /// are one pose (the better is kept). Finite, >= 0.
   double distinct_rmsd = 1.0;
@@ -91,16 +91,12 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
 /// Docks `ligand` into `receptor`'s site (with_dock_site). The receptor's site surface and the
 /// ligand's surface are built and described with common parameters (matching::prepare_input); the
 /// receptor needs protein atoms, and a ligand more than max_ligand_to_site times the site's free
-/// volume is refused (InputError). Then the site's critical points are matched against the ligand's
-/// complement (matching::match_surfaces, consensus ranking), the first refine_top alignments
-/// are refined on the complementarity score, and the distinct poses ranked by it.
+/// volume is refused (InputError). The candidates are the first refine_top alignments of the
+/// site's critical points with the ligand's complement (matching::match_surfaces, consensus
+/// ranking) and the local optima of the Monte Carlo search (search_site), each optimised on the
+/// complementarity score (refine_pose); the best are optimised to convergence and the distinct
+/// poses ranked by it.
 DockResult dock(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
                 const DockOptions& options = {});
-
-/// `start` refined on `field`'s score of `sample` by a pattern search over rotations about the
-/// sample's centre and translations, from steps of 1 A and 10 degrees down to 0.05 A and 0.5
-/// degrees. Deterministic.
-matching::RigidTransform refine_pose(const ReceptorField& field, const LigandSample& sample,
-                                     const matching::RigidTransform& start);
 
 }  // namespace surfcomp::docking
