@@ -206,14 +206,18 @@ matching::MatchInput input_of(const py::handle& object,
 
 // --- results ------------------------------------------------------------------------------------
 
+py::array pair_array(const std::vector<std::pair<int, int>>& pairs) {
+  Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor> out(
+      static_cast<Eigen::Index>(pairs.size()), 2);
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    out(static_cast<Eigen::Index>(k), 0) = pairs[k].first;
+    out(static_cast<Eigen::Index>(k), 1) = pairs[k].second;
+  }
+  return owned_array(std::move(out));
+}
+
 py::dict alignment_dict(const matching::Alignment& a) {
   Eigen::Matrix<double, 4, 4, Eigen::RowMajor> transform = a.transform;
-  Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor> pairs(
-      static_cast<Eigen::Index>(a.cp_pairs.size()), 2);
-  for (std::size_t k = 0; k < a.cp_pairs.size(); ++k) {
-    pairs(static_cast<Eigen::Index>(k), 0) = a.cp_pairs[k].first;
-    pairs(static_cast<Eigen::Index>(k), 1) = a.cp_pairs[k].second;
-  }
   py::dict d;
   d["rank"] = a.rank;
   d["source"] = matching::alignment_source_names[static_cast<std::size_t>(a.source)];
@@ -231,7 +235,7 @@ py::dict alignment_dict(const matching::Alignment& a) {
                py::arg("probe") = a.coverage.probe);
   d["icp"] = a.icp;
   d["repeat_of"] = a.repeat_of > 0 ? py::object(py::int_(a.repeat_of)) : py::object(py::none());
-  d["cp_pairs"] = owned_array(std::move(pairs));
+  d["cp_pairs"] = pair_array(a.cp_pairs);
   d["parent"] = a.parent > 0 ? py::object(py::int_(a.parent)) : py::object(py::none());
   d["children"] = a.children;
   return d;

@@ -138,6 +138,9 @@ matching::MatchInput input_of(const py::handle& object,
 
 // --- results ------------------------------------------------------------------------------------
 
+/// (k, 2) int array of index pairs, a row each.
+py::array pair_array(const std::vector<std::pair<int, int>>& pairs);
+
 py::dict alignment_dict(const matching::Alignment& a);
 
 py::dict match_dict(const matching::InputMatch& compared, double lining_weight);

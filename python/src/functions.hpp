@@ -1,7 +1,8 @@
 // The functions the module binds (python/src/ only), one per function of the package: each
 // takes Python objects and the keyword options as a dict, sets the options through the library's
 // tables (convert.hpp), runs the library with the GIL released and returns Python values.
-// pipeline_functions.cpp: the method's steps (surfaces, descriptions, matches, screens, pockets);
+// pipeline_functions.cpp: the method's steps (surfaces, descriptions, matches, screens, pockets,
+// docks);
 // array_functions.cpp: its stages on (V, F) arrays.
 #pragma once
 
@@ -40,6 +41,11 @@ py::list screen_shapes(const py::handle& query, const std::string& library_path,
 
 /// surfcomp.pockets: a structure's detected pockets, best first.
 py::list pockets(const std::string& structure, const py::dict& keywords);
+
+/// surfcomp.dock: a ligand's poses in a receptor's site, best first; with `output_path`, also
+/// written there as SDF records.
+py::dict dock(const py::object& ligand, const py::object& receptor, const py::dict& keywords,
+              const std::string& output_path);
 
 /// The keyword options of the package's function `function`, as table_list gives them.
 py::list option_table(const std::string& function);

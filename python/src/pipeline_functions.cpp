@@ -1,10 +1,13 @@
 #include "functions.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/command_files.hpp"
 #include "surfcomp/core/thread_limit.hpp"
+#include "surfcomp/docking/dock.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
 #include "surfcomp/molsurf/pockets.hpp"
+#include "surfcomp/report/dock_files.hpp"
 #include "surfcomp/report/html_report.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
@@ -238,17 +241,59 @@ py::list pockets(const std::string& structure, const py::dict& keywords) {
   return out;
 }
 
+py::dict dock(const py::object& ligand, const py::object& receptor, const py::dict& keywords,
+              const std::string& output_path) {
+  const auto settings = settings_from(docking::dock_option_table(), keywords);
+  const matching::MatchInput lig = input_of(ligand, settings.inputs.input);
+  const matching::MatchInput rec = input_of(receptor, settings.inputs.input);
+  docking::check_dock_inputs(lig, rec, settings);
+  if (!output_path.empty()) {  // as the CLI checks -o: before the work
+    if (lig.path.empty()) throw OptionError("output: the poses are records of a LIGAND file");
+    io::check_command_files(
+        {{{"LIGAND", lig.path}, {"RECEPTOR", rec.path}}, {{"output", output_path, {".sdf"}, ""}}});
+  }
+  docking::DockResult docked;
+  {
+    py::gil_scoped_release release;
+    const ThreadLimit limit(settings.inputs.threads);
+    docked = docking::dock(lig, rec, settings);
+    if (!output_path.empty()) {
+      const std::string poses =
+          report::dock_poses_sdf(docked, lig.path, settings.inputs.input.read.record);
+      io::write_file_atomically(output_path, [&](std::ostream& out) { out << poses; });
+    }
+  }
+  py::list poses;
+  for (const docking::DockPose& p : docked.poses) {
+    Eigen::Matrix<double, 4, 4, Eigen::RowMajor> transform = p.transform;
+    poses.append(
+        py::dict(py::arg("rank") = p.rank, py::arg("score") = p.score.score,
+                 py::arg("contact") = p.score.contact, py::arg("clash") = p.score.clash,
+                 py::arg("esp") = p.score.esp, py::arg("lp") = p.score.lp,
+                 py::arg("deepest") = p.score.deepest, py::arg("intersects") = p.intersects,
+                 py::arg("transform") = owned_array(std::move(transform)),
+                 py::arg("start") = p.start, py::arg("cp_pairs") = pair_array(p.cp_pairs)));
+  }
+  py::dict timing;
+  for (const auto& [step, ms] : docked.timing_ms) timing[py::str(step)] = ms;
+  return py::dict(py::arg("poses") = poses, py::arg("starts") = docked.starts,
+                  py::arg("site_volume") = docked.site_volume,
+                  py::arg("ligand_volume") = docked.ligand_volume, py::arg("notes") = docked.notes,
+                  py::arg("timing_ms") = timing);
+}
+
 py::list option_table(const std::string& function) {
   if (function == "build_surface") return table_list(molsurf::surface_input_option_table());
   if (function == "describe") return table_list(matching::describe_option_table());
   if (function == "match") return table_list(matching::pair_match_option_table());
   if (function == "screen") return table_list(screening::screen_option_table());
   if (function == "pockets") return table_list(molsurf::pocket_search_option_table());
+  if (function == "dock") return table_list(docking::dock_option_table());
   for (const char* name : {"curvatures", "critical_points", "patch", "disk_map", "shape_image"}) {
     if (function == name) return table_list(array_option_table(function));
   }
   throw py::value_error("no function '" + function +
-                        "' with options (build_surface, describe, match, screen, pockets, "
+                        "' with options (build_surface, describe, match, screen, pockets, dock, "
                         "curvatures, critical_points, patch, disk_map, shape_image)");
 }
 

@@ -44,10 +44,12 @@ from ._surfcomp import Descriptors, Error, FileError, InputError, OptionError, S
 
 __all__ = [
     "Alignment", "CoverageScore", "CriticalPointSet", "CriticalPoints", "Curvatures",
-    "DescriptionParameters", "Descriptors", "Error", "FileError", "FusedHit", "GeodesicPatch",
+    "DescriptionParameters", "Descriptors", "DockPose", "DockResult", "Error", "FileError",
+    "FusedHit", "GeodesicPatch",
     "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
     "OverlayScore", "Patch", "Pocket", "Screens", "ShapeHit", "Surface", "SurfaceMeasures",
-    "build_surface", "critical_points", "curvatures", "describe", "disk_map", "geodesic_distances",
+    "build_surface", "critical_points", "curvatures", "describe", "disk_map", "dock",
+    "geodesic_distances",
     "library_info", "load_descriptors", "match", "option_table", "patch", "pockets", "screen",
     "screen_queries", "screen_shapes", "shape_image",
 ]
@@ -464,6 +466,51 @@ _documented(LibraryEntry, entry="1-based entry number", name="the molecule's nam
             site_spheres="spheres of a pocket entry's site (0 for a molecule)")
 
 
+class DockPose(NamedTuple):
+    """A pose of a ligand in a receptor's site (:func:`dock`), with its complementarity score
+    and the score's terms, each a mean over the ligand's surface sample."""
+
+    rank: int
+    score: float
+    contact: float
+    clash: float
+    esp: float
+    lp: float
+    deepest: float
+    intersects: bool
+    transform: np.ndarray
+    start: int
+    cp_pairs: np.ndarray
+
+
+_documented(DockPose, rank="1-based, best first",
+            score="contact + w_esp esp + w_lp lp - w_clash clash - w_site outside^2",
+            contact="the fraction of the ligand's surface in contact with the receptor, 0 to 1",
+            clash="A^2, the mean squared depth beyond clash_tolerance inside the receptor's atoms",
+            esp="over the contact, minus the product of the two sides' ESP z-scores",
+            lp="over the contact, the product of the two sides' LP z-scores",
+            deepest="A, the largest depth of a ligand surface point inside the receptor's atoms",
+            intersects="deeper than twice clash_tolerance: ranked after every pose that is not",
+            transform="4 x 4, moves the ligand as given into the receptor's frame",
+            start="the clique alignment it started from (1-based), 0 for the Monte Carlo search",
+            cp_pairs="(k, 2) (receptor, ligand) critical-point indices of that clique")
+
+
+class DockResult(list):
+    """The distinct poses of a dock, best first (a list of :class:`DockPose`), with what the
+    dock did."""
+
+    #: Clique alignments of the complementary association graph.
+    starts: int
+    #: A^3: the free volume of the receptor's site, and the ligand's surface's volume.
+    site_volume: float
+    ligand_volume: float
+    #: What a reader may want to know, one line each.
+    notes: List[str]
+    #: Milliseconds per step of the dock.
+    timing_ms: Dict[str, float]
+
+
 class Pocket(NamedTuple):
     """A pocket of a protein structure, found without a ligand (:func:`pockets`)."""
 
@@ -751,9 +798,27 @@ def pockets(structure, **options) -> List[Pocket]:
     return [Pocket(**p) for p in _surfcomp.pockets(os.fspath(structure), options)]
 
 
+@_keyword_options("dock")
+def dock(probe, receptor, *, output: Union[str, os.PathLike, None] = None,
+         **options) -> DockResult:
+    """Places ``probe``, the ligand (a molecule file or RDKit molecule), into ``receptor``'s site
+    (a protein structure path) as ``surfcomp dock`` does and returns the distinct poses, best
+    first (the keywords ``ligand`` and ``molecule`` pick a residue or record of a file, as for
+    :func:`match`). The site is given as to
+    :func:`match`: site_ligand, site_sphere ``(x, y, z, r)`` or a list of them, site_pocket;
+    none of them: pocket 1. With ``output``, the poses are also written there as SDF records of
+    the ligand's file in the receptor's frame."""
+    raw = _surfcomp.dock(_input(probe), _input(receptor), options,
+                         os.fspath(output) if output is not None else "")
+    result = DockResult(DockPose(**p) for p in raw["poses"])
+    for key in ("starts", "site_volume", "ligand_volume", "notes", "timing_ms"):
+        setattr(result, key, raw[key])
+    return result
+
+
 def option_table(function: str) -> List[Dict[str, Any]]:
     """The keyword options of ``build_surface``, ``describe``, ``match``, ``screen``,
-    ``pockets``, ``curvatures``, ``critical_points``, ``patch``, ``disk_map`` or ``shape_image``
+    ``pockets``, ``dock``, ``curvatures``, ``critical_points``, ``patch``, ``disk_map`` or ``shape_image``
     as the library defines them, in order: ``name`` (the keyword), ``option`` (the command
     line's), ``kind``, ``default``, ``help`` (with unit and range), ``unit``, ``range`` and
     ``choices``."""

@@ -510,6 +510,33 @@ def test_pockets_are_the_programs_and_a_pocket_is_a_site(program, shared, tmp_pa
     assert itself.site["fields"]["coverage"] == pytest.approx(1.0, abs=1e-9)
 
 
+def test_dock_is_the_programs_and_writes_its_poses(program, shared, tmp_path):
+    folder = shared / "thermolysin"
+    pdb, ligand = folder / "1TMN.pdb", folder / "ligands-original" / "ligand1TMN.sdf"
+    quick = {"site_ligand": "0ZN", "search_chains": 6, "search_steps": 10}
+    poses = surfcomp.dock(ligand, pdb, output=tmp_path / "p.sdf", threads=1, **quick)
+    cli = run([program, "dock", ligand, pdb, "--site-ligand", "0ZN", "--search-chains", "6",
+               "--search-steps", "10", "--json", tmp_path / "d.json"])
+    assert cli.returncode == 0, cli.stderr
+    import json
+    written = json.loads((tmp_path / "d.json").read_text())["poses"]
+    # The same poses whatever the threads (the program used all).
+    assert [p.score for p in poses] == pytest.approx([w["score"] for w in written], abs=1e-12)
+    assert [p.rank for p in poses] == list(range(1, len(poses) + 1))
+    # Each SDF record is the ligand moved by its pose's transform.
+    crystal = Chem.MolFromMolFile(str(ligand), removeHs=False).GetConformer().GetPositions()
+    records = list(Chem.SDMolSupplier(str(tmp_path / "p.sdf"), removeHs=False))
+    assert len(records) == len(poses)
+    for record, pose in zip(records, poses):
+        moved = crystal @ pose.transform[:3, :3].T + pose.transform[:3, 3]
+        assert np.abs(record.GetConformer().GetPositions() - moved).max() < 1e-3
+        assert int(record.GetProp("surfcomp_rank")) == pose.rank
+    with pytest.raises(surfcomp.OptionError, match="search_chains"):
+        surfcomp.dock(ligand, pdb, site_ligand="0ZN", search_chains=-1)
+    with pytest.raises(surfcomp.InputError, match="pocket 1000 was asked for"):
+        surfcomp.dock(ligand, pdb, site_pocket=1000)
+
+
 def _sphere_arrays(radius, levels):
     """An octahedron subdivided `levels` times onto the sphere of `radius`: (V, F)."""
     vertices = [np.array(v, float) for v in
