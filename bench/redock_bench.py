@@ -1,30 +1,47 @@
 #!/usr/bin/python3
-"""Redocking: each thermolysin inhibitor, moved away, docked back into its own structure.
+"""Redocking: each crystal ligand, moved away, docked back into its own structure.
 
-Each crystal ligand of ../shared/datasets/thermolysin/ligands-original (its entry's own frame,
-its crystal conformer) is moved by a random rigid motion (a uniform random rotation and a
-translation of 10 A per axis, numpy's generator seeded by --seed), then
-`surfcomp dock MOVED ENTRY.pdb --site-ligand RES` docks it into its entry, that residue taken
-out. Reported per complex: the heavy-atom RMSD of the top pose to the crystal pose, the best
-RMSD among the poses, the top pose's score and the wall time; then the top-1 success rate
-(RMSD <= 2 A). 3TMN's ligand is two residues (VAL, TRP), which --site-ligand cannot name as one,
-and is left out. The peer the issue names, AutoDock Vina, is not run yet.
+Sets (--set): thermolysin (four complexes of ../shared/datasets/thermolysin; 3TMN's ligand is
+two residues, which --site-ligand cannot name as one, and is left out) and kahraman (the 36
+entries of kahraman-dev: ATP, HEM and FMN, each the copy entries.txt names, its bond orders
+perceived by Open Babel from the PDB residue, bonds to metals cut so that RDKit reads it).
+
+Each ligand, in its crystal conformer, is moved by a random rigid motion (a uniform random
+rotation and a translation of 10 A per axis, numpy's generator seeded by --seed) and docked
+back into its structure with the structure's waters and its other copies of the ligand residue
+removed:
+- `surfcomp dock MOVED RECEPTOR.pdb --site-ligand RES --threads 1` (the site: the crystal
+  ligand's neighbourhood, that residue taken out);
+- with --vina, AutoDock Vina (`vina --cpu 1 --seed 1`, exhaustiveness 8) in the same run, on
+  PDBQT files Open Babel makes (`obabel -xr` for the receptor without the ligand, `obabel -h`
+  for the moved ligand) and a box around the crystal ligand's atoms 4 A beyond them on each side.
+
+Reported per complex and program: the heavy-atom RMSD of the top pose to the crystal pose, the
+best RMSD among the poses and the wall time; then each program's top-1 success rate (RMSD
+<= 2 A) and median time. The RMSD pairs atoms of one element by the assignment that minimises it
+(Open Babel reorders a ligand's atoms in PDBQT), for both programs alike.
 
     /usr/bin/python3 bench/redock_bench.py --program build/release/tools/surfcomp \\
-        [--shared ../shared/datasets] [--seed 20261203] [--work /tmp/redock]
+        [--set thermolysin|kahraman|all] [--vina] [--shared ../shared/datasets] \\
+        [--seed 20261203] [--work /tmp/redock] [-- dock options]
 """
 
 import argparse
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
 import time
 
 import numpy as np
-from rdkit import Chem
+from rdkit import Chem, RDLogger
 
-COMPLEXES = (("1THL", "0DB"), ("1TLP", "RDF"), ("1TMN", "0ZN"), ("4TMN", "0PK"))
+RDLogger.DisableLog("rdApp.*")
+
+THERMOLYSIN = (("1THL", "0DB"), ("1TLP", "RDF"), ("1TMN", "0ZN"), ("4TMN", "0PK"))
+METALS = {"Fe", "Mg", "Mn", "Zn", "Co", "Cu", "Ni", "Ca"}
+WATERS = {"HOH", "WAT", "DOD", "H2O"}
 
 
 def random_rotation(rng):
@@ -34,56 +51,215 @@ def random_rotation(rng):
     return q if np.linalg.det(q) > 0 else -q
 
 
-def heavy_positions(mol):
-    heavy = [a.GetIdx() for a in mol.GetAtoms() if a.GetAtomicNum() > 1]
-    return mol.GetConformer().GetPositions()[heavy]
+def assignment(cost):
+    """The permutation p minimising sum cost[i, p[i]] (Hungarian method, square cost)."""
+    n = cost.shape[0]
+    u, v = np.zeros(n + 1), np.zeros(n + 1)
+    match, way = np.zeros(n + 1, dtype=int), np.zeros(n + 1, dtype=int)
+    for i in range(1, n + 1):
+        match[0], column = i, 0
+        low, used = np.full(n + 1, np.inf), np.zeros(n + 1, dtype=bool)
+        while True:
+            used[column] = True
+            row, delta, nxt = match[column], np.inf, 0
+            for j in range(1, n + 1):
+                if used[j]:
+                    continue
+                reduced = cost[row - 1, j - 1] - u[row] - v[j]
+                if reduced < low[j]:
+                    low[j], way[j] = reduced, column
+                if low[j] < delta:
+                    delta, nxt = low[j], j
+            for j in range(n + 1):
+                if used[j]:
+                    u[match[j]] += delta
+                    v[j] -= delta
+                else:
+                    low[j] -= delta
+            column = nxt
+            if match[column] == 0:
+                break
+        while column:
+            previous = way[column]
+            match[column] = match[previous]
+            column = previous
+    out = np.zeros(n, dtype=int)
+    for j in range(1, n + 1):
+        out[match[j] - 1] = j - 1
+    return out
+
+
+def heavy_atoms(mol):
+    """(elements, positions) of a molecule's heavy atoms."""
+    keep = [a.GetIdx() for a in mol.GetAtoms() if a.GetAtomicNum() > 1]
+    symbols = np.array([mol.GetAtomWithIdx(i).GetSymbol() for i in keep])
+    return symbols, mol.GetConformer().GetPositions()[keep]
+
+
+def rmsd(pose, reference):
+    """Heavy-atom RMSD, atoms of one element paired by the assignment that minimises it."""
+    (pose_elements, x), (elements, y) = pose, reference
+    if sorted(pose_elements) != sorted(elements):
+        return float("nan")
+    total = 0.0
+    for element in set(elements):
+        a, b = x[pose_elements == element], y[elements == element]
+        cost = ((a[:, None, :] - b[None, :, :]) ** 2).sum(2)
+        total += cost[np.arange(len(a)), assignment(cost)].sum()
+    return float(np.sqrt(total / len(elements)))
+
+
+def without_metal_bonds(mol):
+    editable = Chem.RWMol(mol)
+    for bond in list(mol.GetBonds()):
+        if {bond.GetBeginAtom().GetSymbol(), bond.GetEndAtom().GetSymbol()} & METALS:
+            editable.RemoveBond(bond.GetBeginAtomIdx(), bond.GetEndAtomIdx())
+    out = editable.GetMol()
+    Chem.SanitizeMol(out)
+    return out
+
+
+def thermolysin_cases(shared, work):
+    folder = os.path.join(shared, "thermolysin")
+    for entry, residue in THERMOLYSIN:
+        crystal = Chem.MolFromMolFile(os.path.join(folder, "ligands-original",
+                                                   f"ligand{entry}.sdf"), removeHs=False)
+        yield entry, residue, crystal, os.path.join(folder, f"{entry}.pdb")
+
+
+def kahraman_cases(shared, work):
+    folder = os.path.join(shared, "kahraman-dev")
+    with open(os.path.join(folder, "entries.txt")) as f:
+        entries = [line.split() for line in f if line.strip()]
+    for entry, residue, number, chain, altloc in entries:
+        altlocs = {" ", "A" if altloc == "-" else altloc}
+        receptor, ligand = [], []
+        with open(os.path.join(folder, "pdb", f"{entry}.pdb")) as f:
+            for line in f:
+                if not line.startswith(("ATOM", "HETATM")):
+                    if line.startswith(("END", "TER")):
+                        receptor.append(line)
+                    continue
+                name = line[17:20].strip()
+                if name in WATERS or line[16] not in altlocs:
+                    continue
+                if name == residue:
+                    if line[21] == chain and int(line[22:26]) == int(number):
+                        ligand.append(line)
+                        receptor.append(line)
+                    continue
+                receptor.append(line)
+        receptor_file = os.path.join(work, f"{entry}_receptor.pdb")
+        with open(receptor_file, "w") as f:
+            f.writelines(receptor)
+        ligand_pdb = os.path.join(work, f"{entry}_ligand.pdb")
+        with open(ligand_pdb, "w") as f:
+            f.writelines(ligand + ["END\n"])
+        ligand_sdf = os.path.join(work, f"{entry}_ligand.sdf")
+        subprocess.run(["obabel", ligand_pdb, "-O", ligand_sdf], check=True,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        crystal = Chem.MolFromMolFile(ligand_sdf, sanitize=False, removeHs=False)
+        try:
+            crystal = without_metal_bonds(crystal)
+        except Exception as error:  # noqa: BLE001 - RDKit raises several kinds
+            print(f"{entry}: left out, RDKit cannot read its ligand ({error})")
+            continue
+        yield entry, residue, crystal, receptor_file
+
+
+def run_surfcomp(program, moved_file, receptor, residue, work, entry, extra):
+    poses_file = os.path.join(work, f"{entry}_poses.sdf")
+    start = time.perf_counter()
+    subprocess.run([program, "dock", moved_file, receptor, "--site-ligand", residue,
+                    "-o", poses_file, "--json", os.path.join(work, f"{entry}_dock.json"),
+                    "--threads", "1"] + extra,
+                   check=True, stdout=subprocess.DEVNULL)
+    seconds = time.perf_counter() - start
+    return list(Chem.SDMolSupplier(poses_file, removeHs=False)), seconds
+
+
+def run_vina(moved_file, receptor, residue, crystal, work, entry):
+    receptor_pdb = os.path.join(work, f"{entry}_vina_receptor.pdb")
+    with open(receptor) as f, open(receptor_pdb, "w") as out:
+        out.writelines(line for line in f if not (line.startswith("HETATM")
+                                                  and line[17:20].strip() == residue))
+    receptor_pdbqt = os.path.join(work, f"{entry}_receptor.pdbqt")
+    ligand_pdbqt = os.path.join(work, f"{entry}_moved.pdbqt")
+    out_pdbqt = os.path.join(work, f"{entry}_vina.pdbqt")
+    out_sdf = os.path.join(work, f"{entry}_vina.sdf")
+    quiet = {"check": True, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    _, positions = heavy_atoms(crystal)
+    centre = (positions.min(0) + positions.max(0)) / 2
+    size = positions.max(0) - positions.min(0) + 8.0
+    start = time.perf_counter()
+    subprocess.run(["obabel", receptor_pdb, "-xr", "-O", receptor_pdbqt], **quiet)
+    subprocess.run(["obabel", moved_file, "-h", "-O", ligand_pdbqt], **quiet)
+    box = [f"--center_{a}={c:.3f}" for a, c in zip("xyz", centre)]
+    box += [f"--size_{a}={s:.3f}" for a, s in zip("xyz", size)]
+    subprocess.run(["vina", "--receptor", receptor_pdbqt, "--ligand", ligand_pdbqt, "--cpu", "1",
+                    "--seed", "1", "--exhaustiveness", "8", "--out", out_pdbqt] + box, **quiet)
+    seconds = time.perf_counter() - start
+    subprocess.run(["obabel", out_pdbqt, "-O", out_sdf], **quiet)
+    poses = [m for m in Chem.SDMolSupplier(out_sdf, sanitize=False, removeHs=False) if m]
+    return poses, seconds
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--program", required=True, help="the surfcomp program")
+    parser.add_argument("--set", choices=("thermolysin", "kahraman", "all"), default="thermolysin")
+    parser.add_argument("--vina", action="store_true", help="run AutoDock Vina too")
     parser.add_argument("--shared", default=os.path.join(os.path.dirname(__file__), "..", "..",
                                                          "shared", "datasets"))
     parser.add_argument("--seed", type=int, default=20261203)
     parser.add_argument("--work", default=None, help="folder for the moved ligands and poses")
     parser.add_argument("options", nargs="*", help="dock options after --, e.g. -- --poses 20")
     args = parser.parse_args()
-    extra = list(args.options)
-    folder = os.path.join(args.shared, "thermolysin")
-    if not os.path.isdir(folder):
-        print(f"skipped: {folder} is absent")
+    if not os.path.isdir(args.shared):
+        print(f"skipped: {args.shared} is absent")
         return 0
+    if args.vina:
+        missing = [p for p in ("vina", "obabel") if shutil.which(p) is None]
+        if missing:
+            print(f"redock_bench: --vina needs {' and '.join(missing)} "
+                  "(apt install autodock-vina openbabel)", file=sys.stderr)
+            return 2
     work = args.work or tempfile.mkdtemp(prefix="redock_")
     os.makedirs(work, exist_ok=True)
     rng = np.random.default_rng(args.seed)
-    print(f"{'complex':8s} {'top-1 A':>8s} {'best A':>8s} {'score':>7s} {'seconds':>8s}")
-    successes = 0
-    for entry, residue in COMPLEXES:
-        crystal = Chem.MolFromMolFile(os.path.join(folder, "ligands-original",
-                                                   f"ligand{entry}.sdf"), removeHs=False)
-        moved = Chem.Mol(crystal)
-        rotation, shift = random_rotation(rng), rng.normal(scale=10.0, size=3)
-        conformer = moved.GetConformer()
-        for i, p in enumerate(conformer.GetPositions()):
-            conformer.SetAtomPosition(i, (rotation @ p + shift).tolist())
-        moved_file = os.path.join(work, f"{entry}_moved.sdf")
-        Chem.MolToMolFile(moved, moved_file)
-        poses_file = os.path.join(work, f"{entry}_poses.sdf")
-        start = time.perf_counter()
-        subprocess.run([args.program, "dock", moved_file, os.path.join(folder, f"{entry}.pdb"),
-                        "--site-ligand", residue, "-o", poses_file, "--threads", "1"] + extra,
-                       check=True, stdout=subprocess.DEVNULL)
-        seconds = time.perf_counter() - start
-        reference = heavy_positions(crystal)
-        rmsds, scores = [], []
-        for pose in Chem.SDMolSupplier(poses_file, removeHs=False):
-            rmsds.append(float(np.sqrt(((heavy_positions(pose) - reference) ** 2).sum(1).mean())))
-            scores.append(float(pose.GetProp("surfcomp_score")))
-        top = rmsds[0] if rmsds else float("nan")
-        successes += top <= 2.0
-        print(f"{entry:8s} {top:8.2f} {min(rmsds, default=float('nan')):8.2f} "
-              f"{scores[0] if scores else float('nan'):7.3f} {seconds:8.1f}")
-    print(f"top-1 within 2 A: {successes}/{len(COMPLEXES)}")
+    sets = ("thermolysin", "kahraman") if args.set == "all" else (args.set,)
+    programs = ("surfcomp", "vina") if args.vina else ("surfcomp",)
+    print(f"{'complex':8s} " + " ".join(f"{p + ' top-1':>14s} {'best':>6s} {'s':>6s}"
+                                        for p in programs))
+    results = {p: [] for p in programs}
+    for name in sets:
+        cases = thermolysin_cases if name == "thermolysin" else kahraman_cases
+        for entry, residue, crystal, receptor in cases(args.shared, work):
+            moved = Chem.Mol(crystal)
+            rotation, shift = random_rotation(rng), rng.normal(scale=10.0, size=3)
+            conformer = moved.GetConformer()
+            for i, p in enumerate(conformer.GetPositions()):
+                conformer.SetAtomPosition(i, (rotation @ p + shift).tolist())
+            moved_file = os.path.join(work, f"{entry}_moved.sdf")
+            Chem.MolToMolFile(moved, moved_file)
+            reference = heavy_atoms(crystal)
+            row = f"{entry:8s} "
+            for program in programs:
+                if program == "surfcomp":
+                    poses, seconds = run_surfcomp(args.program, moved_file, receptor, residue,
+                                                  work, entry, list(args.options))
+                else:
+                    poses, seconds = run_vina(moved_file, receptor, residue, crystal, work, entry)
+                rmsds = [rmsd(heavy_atoms(p), reference) for p in poses]
+                top = rmsds[0] if rmsds else float("nan")
+                results[program].append((top, seconds))
+                row += f"{top:14.2f} {min(rmsds, default=float('nan')):6.2f} {seconds:6.1f} "
+            print(row, flush=True)
+    for program in programs:
+        tops = [t for t, _ in results[program]]
+        times = [s for _, s in results[program]]
+        print(f"{program}: top-1 within 2 A {sum(t <= 2.0 for t in tops)}/{len(tops)}, "
+              f"median {np.median(times):.1f} s per complex")
     return 0
 
 
