@@ -233,6 +233,16 @@ matching::MatchInput with_dock_site(matching::MatchInput receptor, const DockOpt
 void check_dock_inputs(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
                        const DockOptions& options) {
   validate(options);
+  // A dock reads atoms: the receptor's for its grid, the ligand's to tell poses apart.
+  if (ligand.path.empty() && !ligand.molecule) {
+    throw InputError(
+        ligand.name() +
+        ": a ligand is a molecule (a file or its atoms), not a surface or a description");
+  }
+  if (receptor.path.empty() && !receptor.molecule) {
+    throw InputError(receptor.name() +
+                     ": a receptor is a protein structure, not a surface or a description");
+  }
   matching::check_match_input(ligand, options.inputs, "LIGAND");
   matching::check_match_input(with_dock_site(receptor, options), options.inputs, "RECEPTOR");
   if (!ligand.path.empty() && !io::is_molecule_file(ligand.path))
@@ -250,8 +260,7 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
   DockResult result;
   Stopwatch clock;
   result.receptor = matching::prepare_input(receptor_input, options.inputs);
-  const Molecule& receptor = *result.receptor.molecule;
-  if (protein_atoms(receptor) == 0) {
+  if (!result.receptor.molecule || protein_atoms(*result.receptor.molecule) == 0) {
     throw InputError(result.receptor.name +
                      ": the receptor has no protein atoms (ATOM records); a receptor is a protein "
                      "structure");
@@ -260,7 +269,8 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
   result.timing_ms.emplace_back("surfaces and descriptions", clock.elapsed_ms());
 
   clock.restart();
-  const ReceptorField field(receptor, result.receptor.site, options.complementarity);
+  const ReceptorField field(*result.receptor.molecule, result.receptor.site,
+                            options.complementarity);
   result.site_volume = field.free_volume(result.receptor.site);
   result.ligand_volume = mesh::measure_surface(result.ligand.descriptors.surface).volume;
   if (result.ligand_volume > options.max_ligand_to_site * result.site_volume) {
@@ -304,9 +314,12 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
     candidates.push_back(scored_pose(field, sample, found.pose));
   result.poses = best_distinct(field, sample, heavy_atoms(result.ligand.descriptors),
                                std::move(candidates), options);
-  if (result.starts == 0)
+  if (result.starts == 0 && !result.poses.empty())
     result.notes.push_back(
         "no clique of the complementary association graph: the poses are the search's alone");
+  if (result.poses.empty())
+    result.notes.push_back("no pose: no clique, and no search (" + options::named("search_chains") +
+                           " 0)");
   if (!starts.cliques_complete) {
     result.notes.push_back("the clique search stopped at its budget (" +
                            options::named("max_clique_work") + ", " +

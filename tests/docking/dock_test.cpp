@@ -75,8 +75,8 @@ TEST_F(Thermolysin, TheCrystalPoseLiesInABasinOfTheScore) {
 
 TEST_F(Thermolysin, AMovedLigandIsDockedBackToItsCrystalPose) {
   // Rotated by 130 degrees about a skew axis and moved 12 A away, the inhibitor comes back
-  // within 2 A of its crystal pose (0.84-1.06 A measured by bench/redock_bench.py over four
-  // random motions), and the other poses are distinct, ordered and in the site.
+  // within 2 A of its crystal pose (0.84-1.06 A measured for 1TMN by bench/redock_bench.py over
+  // four random motions), and the other poses are distinct, ordered and in the site.
   const Eigen::Matrix3d turn =
       Eigen::AngleAxisd(130.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, -1).normalized())
           .toRotationMatrix();
@@ -134,6 +134,11 @@ TEST_F(Thermolysin, WhatADockCannotDoIsRefusedInOneLine) {
   options.site_spheres = {{Eigen::Vector3d(52, 17, -5), 6.0}};
   const std::string no_protein = test::error_of([&] { dock(ligand, receptor, options); });
   EXPECT_NE(no_protein.find("no protein atoms"), std::string::npos) << no_protein;
+  // A description alone has no atoms to build the receptor's grid from.
+  matching::MatchInput described;
+  described.descriptors.emplace();
+  const std::string no_atoms = test::error_of([&] { dock(ligand, described, options); });
+  EXPECT_NE(no_atoms.find("a receptor is a protein structure"), std::string::npos) << no_atoms;
   options = {};
   options.site_pocket = 1000;
   receptor.path = pocket_;

@@ -535,6 +535,9 @@ def test_dock_is_the_programs_and_writes_its_poses(program, shared, tmp_path):
         surfcomp.dock(ligand, pdb, site_ligand="0ZN", search_chains=-1)
     with pytest.raises(surfcomp.InputError, match="pocket 1000 was asked for"):
         surfcomp.dock(ligand, pdb, site_pocket=1000)
+    # A mesh has no atoms to dock into.
+    with pytest.raises(surfcomp.InputError, match="a receptor is a protein structure"):
+        surfcomp.dock(ligand, _sphere_arrays(5.0, 1), site_sphere=(0, 0, 0, 5))
 
 
 def _sphere_arrays(radius, levels):

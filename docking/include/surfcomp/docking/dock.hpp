@@ -57,8 +57,8 @@ struct DockPose {
   /// Moves the ligand's coordinates into the receptor's frame.
   Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
   ComplementarityScore score;  ///< of the refined pose
-  /// The consensus rank (1-based) of the clique alignment it was refined from; 0 for an
-  /// orientation start (DockOptions::orientation_starts).
+  /// The consensus rank (1-based) of the clique alignment it was refined from; 0 for a pose of
+  /// the Monte Carlo search (DockOptions::search).
   int start = 0;
   /// (receptor critical point, ligand critical point) of that alignment.
   std::vector<std::pair<int, int>> cp_pairs;
@@ -94,8 +94,9 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
 /// volume is refused (InputError). The candidates are the first refine_top alignments of the
 /// site's critical points with the ligand's complement (matching::match_surfaces, consensus
 /// ranking) and the local optima of the Monte Carlo search (search_site), each optimised on the
-/// complementarity score (refine_pose); the best are optimised to convergence and the distinct
-/// poses ranked by it.
+/// complementarity score (refine_pose); the best 4 x poses candidates are optimised further and
+/// the distinct poses ranked by it. Throws InputError for a ligand or receptor given as a
+/// surface or a description alone: a dock reads their atoms.
 DockResult dock(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
                 const DockOptions& options = {});
 

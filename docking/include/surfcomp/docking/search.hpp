@@ -26,7 +26,7 @@ struct SearchOptions {
   /// this much is kept with probability 1/e. Finite, > 0.
   double temperature = 0.05;
   /// Default 1e-5. The chains' local optimisations stop when a step gains less than this
-  /// (refine_pose's min_gain; the poses a dock reports are refined further). Finite, > 0.
+  /// (refine_pose's min_gain; dock optimises its best candidates further). Finite, > 0.
   double min_gain = 1e-5;
   /// Default 1. Seeds the chains' random numbers: the same seed, the same poses, whatever the
   /// number of threads.
@@ -38,8 +38,9 @@ void validate(const SearchOptions& options);
 
 /// `start` moved to a local maximum of `field`'s score of `sample`: BFGS over three translations
 /// and three rotations about the moved sample's centroid (the rotations scaled by the sample's
-/// radius of gyration), with a backtracking line search whose steps are at most 1 A. Ends after
-/// `max_iterations` or when a step gains less than `min_gain`. Deterministic.
+/// radius of gyration), with a backtracking line search whose steps are at most 1 A in those
+/// scaled variables (a rotation's step of 1 moves a point at the radius of gyration 1 A). Ends
+/// after `max_iterations` or when a step gains less than `min_gain`. Deterministic.
 matching::RigidTransform refine_pose(const ReceptorField& field, const LigandSample& sample,
                                      const matching::RigidTransform& start, double min_gain = 1e-7,
                                      int max_iterations = 200);
