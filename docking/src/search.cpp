@@ -80,6 +80,13 @@ void validate(const SearchOptions& o) {
     fail("search_temperature", std::to_string(o.temperature), "finite and > 0");
   if (!(std::isfinite(o.min_gain) && o.min_gain > 0.0))
     fail("search_min_gain", std::to_string(o.min_gain), "finite and > 0");
+  // Every optimum visited is kept (about 200 bytes each): a bound on memory.
+  const auto optima = static_cast<long long>(o.chains) * (static_cast<long long>(o.steps) + 1);
+  if (optima > kMaxSearchOptima) {
+    throw OptionError(options::named("search_chains") + " x (" + options::named("search_steps") +
+                      " + 1) = " + std::to_string(optima) + " is more than " +
+                      std::to_string(kMaxSearchOptima) + " optima to keep");
+  }
 }
 
 matching::RigidTransform refine_pose(const ReceptorField& field, const LigandSample& sample,

@@ -149,6 +149,14 @@ TEST(Search, OptionsOutsideTheirDomainAreRefused) {
   o = {};
   o.steps = -3;
   EXPECT_THROW(validate(o), OptionError);
+  // Within each range, but too many optima to keep: refused before any memory is taken.
+  o = {};
+  o.chains = 100000;
+  o.steps = 100000;
+  EXPECT_THROW(validate(o), OptionError);
+  o.chains = 2000;
+  o.steps = 999;
+  EXPECT_NO_THROW(validate(o));  // exactly the bound
 }
 
 }  // namespace

@@ -33,7 +33,11 @@ struct SearchOptions {
   std::uint64_t seed = 1;
 };
 
-/// Throws OptionError naming the first option outside its domain.
+/// The most optima a search keeps, chains x (steps + 1): 2 million, about 400 MB.
+inline constexpr long long kMaxSearchOptima = 2'000'000;
+
+/// Throws OptionError naming the first option outside its domain, or chains x (steps + 1)
+/// above kMaxSearchOptima.
 void validate(const SearchOptions& options);
 
 /// `start` moved to a local maximum of `field`'s score of `sample`: BFGS over three translations
