@@ -5,6 +5,8 @@
 #include "surfcomp/mesh/surface.hpp"
 #include "surfcomp/molsurf/potentials.hpp"
 
+#include "require_option.hpp"
+
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Geometry>
@@ -21,12 +23,6 @@ namespace {
 
 constexpr double distance_cap = 4.0;  // A: the signed distance saturates here
 constexpr double z_clip = 3.0;
-
-void require(bool ok, const char* field, double value, const char* domain) {
-  if (!ok) {
-    throw OptionError(options::named(field) + ": " + std::to_string(value) + " is not " + domain);
-  }
-}
 
 /// z-scores of `values` by the mean and standard deviation of those flagged in `use`, clipped
 /// to [-z_clip, z_clip]; all 0 when fewer than two are flagged or they are constant.
@@ -53,6 +49,7 @@ Eigen::VectorXd z_scores(const Eigen::VectorXd& values, const std::vector<bool>&
 }  // namespace
 
 void validate(const ComplementarityOptions& o) {
+  const auto require = detail::require_option;
   require(std::isfinite(o.contact_gap), "contact_gap", o.contact_gap, "finite");
   require(std::isfinite(o.contact_width) && o.contact_width > 0.0, "contact_width", o.contact_width,
           "finite and > 0");

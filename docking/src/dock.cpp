@@ -7,6 +7,8 @@
 #include "surfcomp/docking/complement.hpp"
 #include "surfcomp/mesh/topology.hpp"
 
+#include "require_option.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -51,12 +53,12 @@ double rms_between(const Eigen::Matrix3Xd& points, const matching::RigidTransfor
   return std::sqrt((pa - pb).colwise().squaredNorm().mean());
 }
 
-DockPose scored_pose(const ReceptorField& field, const LigandSample& sample,
-                     const matching::RigidTransform& pose) {
+DockPose scored_pose(const ReceptorField& field, const matching::RigidTransform& pose,
+                     const ComplementarityScore& score) {
   DockPose out;
   out.transform = pose.matrix();
-  out.score = field.score(sample, pose);
-  out.intersects = out.score.deepest > 2.0 * field.options().clash_tolerance;
+  out.score = score;
+  out.intersects = score.deepest > 2.0 * field.options().clash_tolerance;
   return out;
 }
 
@@ -80,7 +82,7 @@ std::vector<DockPose> best_distinct(const ReceptorField& field, const LigandSamp
     DockPose& pose = candidates[k];
     const matching::RigidTransform moved =
         refine_pose(field, sample, matching::RigidTransform::from_matrix(pose.transform));
-    DockPose refined = scored_pose(field, sample, moved);
+    DockPose refined = scored_pose(field, moved, field.score(sample, moved));
     refined.start = pose.start;
     refined.cp_pairs = std::move(pose.cp_pairs);
     pose = std::move(refined);
@@ -207,11 +209,7 @@ const options::Table<DockOptions>& dock_option_table() {
 void validate(const DockOptions& options) {
   docking::validate(options.complementarity);
   docking::validate(options.search);
-  const auto require = [](bool ok, const char* field, double value, const char* domain) {
-    if (!ok) {
-      throw OptionError(options::named(field) + ": " + std::to_string(value) + " is not " + domain);
-    }
-  };
+  const auto require = detail::require_option;
   require(options.poses >= 1, "poses", options.poses, ">= 1");
   require(options.refine_top >= 1, "refine_top", options.refine_top, ">= 1");
   require(std::isfinite(options.distinct_rmsd) && options.distinct_rmsd >= 0.0, "distinct_rmsd",
@@ -305,13 +303,13 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
     if (static_cast<int>(candidates.size()) >= options.refine_top) continue;
     const matching::RigidTransform moved = refine_pose(
         field, sample, matching::RigidTransform::from_matrix(a.transform), options.search.min_gain);
-    DockPose pose = scored_pose(field, sample, moved);
+    DockPose pose = scored_pose(field, moved, field.score(sample, moved));
     pose.start = a.rank;
     pose.cp_pairs = a.cp_pairs;
     candidates.push_back(std::move(pose));
   }
   for (const SearchedPose& found : search_site(field, sample, result.receptor.site, options.search))
-    candidates.push_back(scored_pose(field, sample, found.pose));
+    candidates.push_back(scored_pose(field, found.pose, found.score));
   result.poses = best_distinct(field, sample, heavy_atoms(result.ligand.descriptors),
                                std::move(candidates), options);
   if (result.starts == 0 && !result.poses.empty())

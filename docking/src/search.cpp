@@ -3,6 +3,8 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/option_names.hpp"
 
+#include "require_option.hpp"
+
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Geometry>
@@ -71,15 +73,13 @@ Eigen::Vector3d random_site_point(const std::vector<molsurf::SiteSphere>& site,
 }  // namespace
 
 void validate(const SearchOptions& o) {
-  const auto fail = [](const char* field, const std::string& value, const char* domain) {
-    throw OptionError(options::named(field) + ": " + value + " is not " + domain);
-  };
-  if (o.chains < 0) fail("search_chains", std::to_string(o.chains), ">= 0");
-  if (o.steps < 0) fail("search_steps", std::to_string(o.steps), ">= 0");
-  if (!(std::isfinite(o.temperature) && o.temperature > 0.0))
-    fail("search_temperature", std::to_string(o.temperature), "finite and > 0");
-  if (!(std::isfinite(o.min_gain) && o.min_gain > 0.0))
-    fail("search_min_gain", std::to_string(o.min_gain), "finite and > 0");
+  const auto require = detail::require_option;
+  require(o.chains >= 0, "search_chains", o.chains, ">= 0");
+  require(o.steps >= 0, "search_steps", o.steps, ">= 0");
+  require(std::isfinite(o.temperature) && o.temperature > 0.0, "search_temperature", o.temperature,
+          "finite and > 0");
+  require(std::isfinite(o.min_gain) && o.min_gain > 0.0, "search_min_gain", o.min_gain,
+          "finite and > 0");
   // Every optimum visited is kept (about 200 bytes each): a bound on memory.
   const auto optima = static_cast<long long>(o.chains) * (static_cast<long long>(o.steps) + 1);
   if (optima > kMaxSearchOptima) {

@@ -75,8 +75,8 @@ TEST_F(Thermolysin, TheCrystalPoseLiesInABasinOfTheScore) {
 
 TEST_F(Thermolysin, AMovedLigandIsDockedBackToItsCrystalPose) {
   // Rotated by 130 degrees about a skew axis and moved 12 A away, the inhibitor comes back
-  // within 2 A of its crystal pose (0.84-1.06 A measured for 1TMN by bench/redock_bench.py over
-  // four random motions), and the other poses are distinct, ordered and in the site.
+  // within 2 A of its crystal pose (bench/redock_bench.py's 1TMN redock: docs/benchmarks.md),
+  // and the other poses are distinct, ordered and in the site.
   const Eigen::Matrix3d turn =
       Eigen::AngleAxisd(130.0 * M_PI / 180.0, Eigen::Vector3d(1, 2, -1).normalized())
           .toRotationMatrix();
