@@ -28,7 +28,9 @@ constexpr const char* kUsage =
     "complementarity score (contact rewarded, interpenetration penalised, ESP product and LP\n"
     "agreement over the contact; docs/method.md section 15) and ranked by it. A pose that sinks a\n"
     "ligand surface point deeper than twice --clash-tolerance into the receptor's atoms is\n"
-    "ranked after every pose that does not (marked ! after its 'deepest').\n\n"
+    "ranked after every pose that does not (marked ! after its 'deepest'). With --conformers N,\n"
+    "N RDKit conformers of the ligand (ETKDG + MMFF, from its bonds) are docked instead of its\n"
+    "own coordinates and the best poses over all kept ('conf' names the conformer, 0: its own).\n\n"
     "LIGAND    a molecule file (.sdf .mol .mol2 for the -o poses)\n"
     "RECEPTOR  a protein structure (.pdb .ent .cif .cif.gz .pqr)\n"
     "The pocket: --site-ligand RES (the crystal's: that HETATM residue is taken out and its\n"
@@ -74,14 +76,14 @@ int dock(const std::vector<std::string>& args) {
   console::summary("%s into %s: %zu poses from %zu clique alignments, %.0f ms\n", inputs[0].c_str(),
                    inputs[1].c_str(), docked.poses.size(), docked.starts, total_ms);
   if (!docked.poses.empty()) {
-    console::summary("%5s %8s %8s %8s %8s %8s %8s %6s  %s\n", "rank", "score", "contact", "clash",
-                     "esp", "lp", "deepest", "start", "translation (A)");
+    console::summary("%5s %8s %8s %8s %8s %8s %8s %6s %5s  %s\n", "rank", "score", "contact",
+                     "clash", "esp", "lp", "deepest", "start", "conf", "translation (A)");
   }
   for (const docking::DockPose& p : docked.poses) {
-    console::summary("%5d %8.3f %8.3f %8.3f %8.3f %8.3f %7.2f%s %6d  (%.2f, %.2f, %.2f)\n", p.rank,
-                     p.score.score, p.score.contact, p.score.clash, p.score.esp, p.score.lp,
-                     p.score.deepest, p.intersects ? "!" : " ", p.start, p.transform(0, 3),
-                     p.transform(1, 3), p.transform(2, 3));
+    console::summary("%5d %8.3f %8.3f %8.3f %8.3f %8.3f %7.2f%s %6d %5d  (%.2f, %.2f, %.2f)\n",
+                     p.rank, p.score.score, p.score.contact, p.score.clash, p.score.esp, p.score.lp,
+                     p.score.deepest, p.intersects ? "!" : " ", p.start, p.conformer,
+                     p.transform(0, 3), p.transform(1, 3), p.transform(2, 3));
   }
   // Outputs last, each atomic; a failure of a later one removes the earlier ones.
   std::vector<std::filesystem::path> written;

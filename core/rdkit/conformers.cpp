@@ -63,6 +63,7 @@ std::vector<std::string> embed(const io::MoleculeRecord& record, const Conformer
       RDKit::MMFF::MMFFOptimizeMoleculeConfs(*mol, results, 1, options.mmff_iterations);
     }
   }
+  if (!options.hydrogens) RDKit::MolOps::removeHs(*mol);
   mol->setProp(RDKit::common_properties::_Name, record.name);
   std::vector<std::string> blocks;
   blocks.reserve(ids.size());

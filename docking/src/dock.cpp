@@ -1,6 +1,8 @@
 #include "surfcomp/docking/dock.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/molecule_formats.hpp"
+#include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/option_names.hpp"
 #include "surfcomp/core/stopwatch.hpp"
@@ -46,13 +48,6 @@ Eigen::Matrix3Xd heavy_atoms(const harmonic::SurfaceDescriptors& d) {
   return points;
 }
 
-double rms_between(const Eigen::Matrix3Xd& points, const matching::RigidTransform& a,
-                   const matching::RigidTransform& b) {
-  if (points.cols() == 0) return 0.0;
-  const Eigen::Matrix3Xd pa = a.apply(points), pb = b.apply(points);
-  return std::sqrt((pa - pb).colwise().squaredNorm().mean());
-}
-
 DockPose scored_pose(const ReceptorField& field, const matching::RigidTransform& pose,
                      const ComplementarityScore& score) {
   DockPose out;
@@ -69,36 +64,82 @@ void rank(std::vector<DockPose>& poses) {
   });
 }
 
+/// One docked conformation of the ligand: what the score reads of it, and its heavy atoms to
+/// tell poses apart.
+struct Conformation {
+  LigandSample sample;
+  Eigen::Matrix3Xd atoms;
+};
+
+/// The index into `ligands` of pose's conformation (DockPose::conformer counts from 1 when the
+/// ligand's own coordinates are not docked).
+std::size_t slot(const DockPose& pose) {
+  return pose.conformer == 0 ? 0 : static_cast<std::size_t>(pose.conformer - 1);
+}
+
 /// The first options.poses distinct candidates by (intersects, score), after the best
 /// 4 options.poses of them are refined to convergence (the search stops its optimisations
-/// early).
-std::vector<DockPose> best_distinct(const ReceptorField& field, const LigandSample& sample,
-                                    const Eigen::Matrix3Xd& atoms, std::vector<DockPose> candidates,
-                                    const DockOptions& options) {
+/// early). Two poses are one when their heavy atoms, each conformation's moved by its pose,
+/// lie within distinct_rmsd (the conformers of one record share their atom order).
+std::vector<DockPose> best_distinct(const ReceptorField& field,
+                                    const std::vector<Conformation>& ligands,
+                                    std::vector<DockPose> candidates, const DockOptions& options) {
   rank(candidates);
   const std::size_t polished =
       std::min(candidates.size(), 4 * static_cast<std::size_t>(options.poses));
   for (std::size_t k = 0; k < polished; ++k) {
     DockPose& pose = candidates[k];
+    const LigandSample& sample = ligands[slot(pose)].sample;
     const matching::RigidTransform moved =
         refine_pose(field, sample, matching::RigidTransform::from_matrix(pose.transform));
     DockPose refined = scored_pose(field, moved, field.score(sample, moved));
     refined.start = pose.start;
+    refined.conformer = pose.conformer;
     refined.cp_pairs = std::move(pose.cp_pairs);
     pose = std::move(refined);
   }
   rank(candidates);
   std::vector<DockPose> out;
+  std::vector<Eigen::Matrix3Xd> kept;  // out's heavy atoms, placed
   for (DockPose& pose : candidates) {
     if (static_cast<int>(out.size()) >= options.poses) break;
-    const matching::RigidTransform t = matching::RigidTransform::from_matrix(pose.transform);
-    const bool repeats = std::any_of(out.begin(), out.end(), [&](const DockPose& p) {
-      return rms_between(atoms, matching::RigidTransform::from_matrix(p.transform), t) <
-             options.distinct_rmsd;
+    const Eigen::Matrix3Xd placed =
+        matching::RigidTransform::from_matrix(pose.transform).apply(ligands[slot(pose)].atoms);
+    const bool repeats = std::any_of(kept.begin(), kept.end(), [&](const Eigen::Matrix3Xd& p) {
+      return p.cols() > 0 &&
+             std::sqrt((p - placed).colwise().squaredNorm().mean()) < options.distinct_rmsd;
     });
     if (repeats) continue;
     pose.rank = static_cast<int>(out.size()) + 1;
     out.push_back(std::move(pose));
+    kept.push_back(placed);
+  }
+  return out;
+}
+
+/// The ligand sides a dock places: `ligand` itself, or its record's conformers (their MDL
+/// blocks in `blocks`), each with the ligand's name.
+std::vector<matching::MatchInput> ligand_conformations(const matching::MatchInput& ligand,
+                                                       const DockOptions& options,
+                                                       std::vector<std::string>& blocks) {
+  if (!options.conformers) return {ligand};
+  const io::MoleculeReadOptions& read = options.inputs.input.read;
+  const Molecule own = io::read_molecule(ligand.path, read);  // the record, checked as read
+  const std::vector<io::MoleculeRecord> records = io::read_molecule_records(ligand.path);
+  const io::MoleculeRecord& record = records.at(read.record == 0 ? 0 : read.record - 1);
+  ConformerOptions asked = *options.conformers;
+  asked.hydrogens = std::any_of(own.atoms.begin(), own.atoms.end(),
+                                [](const Atom& a) { return a.element == "H"; });
+  blocks = generate_conformers(record, asked);
+  std::vector<matching::MatchInput> out;
+  for (const std::string& block : blocks) {
+    io::MoleculeRecord conformer = record;
+    conformer.format = io::RecordFormat::mdl;
+    conformer.text = block;
+    matching::MatchInput side;
+    side.molecule = io::read_record_molecule(conformer, read);
+    side.molecule->source = ligand.path.string();
+    out.push_back(std::move(side));
   }
   return out;
 }
@@ -186,6 +227,34 @@ const options::Table<DockOptions>& dock_option_table() {
         {"search-temperature", Kind::real, "the Monte Carlo chains' temperature", "score", 1e-6,
          100.0},
         [](auto& d) -> auto& { return d.search.temperature; }));
+    // Both live in the optional ConformerOptions: --conformers 0 leaves it unset (the ligand's
+    // own coordinates), and --conformer-seed, applied after it, only matters when it is set.
+    t.push_back({{"conformers", Kind::integer,
+                  "dock this many ETKDG + MMFF conformers of the ligand instead of its own "
+                  "coordinates (0: its own)",
+                  "", 0, 1000},
+                 [](const D& d) {
+                   return options::Value(std::int64_t{d.conformers ? d.conformers->count : 0});
+                 },
+                 [](D& d, const options::Value& v) {
+                   const auto count = static_cast<int>(std::get<std::int64_t>(v));
+                   if (count == 0) {
+                     d.conformers.reset();
+                   } else {
+                     if (!d.conformers) d.conformers = ConformerOptions{};
+                     d.conformers->count = count;
+                   }
+                 }});
+    t.push_back({{"conformer-seed", Kind::integer, "ETKDG's random seed (with {conformers})", "", 0,
+                  2147483647.0},
+                 [](const D& d) {
+                   return options::Value(
+                       std::int64_t{d.conformers ? d.conformers->seed : ConformerOptions{}.seed});
+                 },
+                 [](D& d, const options::Value& v) {
+                   if (d.conformers)
+                     d.conformers->seed = static_cast<int>(std::get<std::int64_t>(v));
+                 }});
     t.push_back(options::field<D>(
         {"distinct-rmsd", Kind::real, "poses whose ligand atoms lie closer than this are one pose",
          "A", 0.0, 100.0},
@@ -216,6 +285,10 @@ void validate(const DockOptions& options) {
           options.distinct_rmsd, "finite and >= 0");
   require(std::isfinite(options.max_ligand_to_site) && options.max_ligand_to_site > 0.0,
           "max_ligand_to_site", options.max_ligand_to_site, "finite and > 0");
+  if (options.conformers) {
+    require(options.conformers->count >= 1, "conformers", options.conformers->count, ">= 1");
+    require(options.conformers->seed >= 0, "conformer_seed", options.conformers->seed, ">= 0");
+  }
 }
 
 matching::MatchInput with_dock_site(matching::MatchInput receptor, const DockOptions& options) {
@@ -249,6 +322,16 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
     throw InputError(receptor.path.string() + ": a receptor is a structure file");
   if (!ligand.site_ligand.empty() || !ligand.site_spheres.empty() || ligand.site_pocket != 0)
     throw OptionError(ligand.name() + ": a site is the receptor's, not the ligand's");
+  if (options.conformers) {
+    const io::MoleculeFormat* format = io::find_molecule_format(ligand.path);
+    if (format == nullptr ||
+        (format->kind != io::MoleculeFileKind::mdl && format->kind != io::MoleculeFileKind::mol2)) {
+      throw OptionError(options::named("conformers") +
+                        ": conformers are made from the bonds of "
+                        "an SDF or MOL2 ligand file's record, and " +
+                        ligand.name() + " is not one");
+    }
+  }
 }
 
 DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchInput& receptor_in,
@@ -263,8 +346,10 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
                      ": the receptor has no protein atoms (ATOM records); a receptor is a protein "
                      "structure");
   }
-  result.ligand = matching::prepare_input(ligand_input, options.inputs);
-  result.timing_ms.emplace_back("surfaces and descriptions", clock.elapsed_ms());
+  const std::vector<matching::MatchInput> sides =
+      ligand_conformations(ligand_input, options, result.conformers);
+  result.ligand = matching::prepare_input(sides.front(), options.inputs);
+  double surfaces_ms = clock.elapsed_ms();
 
   clock.restart();
   const ReceptorField field(*result.receptor.molecule, result.receptor.site,
@@ -284,46 +369,72 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
                      ": the site is buried: no path of free space leads from it out of the "
                      "grid, so no ligand can enter it");
   }
-  const LigandSample sample =
-      sample_ligand(result.ligand.descriptors.surface, options.complementarity.sample_spacing);
-  result.timing_ms.emplace_back("receptor field", clock.elapsed_ms());
+  const double field_ms = clock.elapsed_ms();
 
-  clock.restart();
-  const matching::MatchResult starts = matching::match_surfaces(
-      result.receptor.descriptors, complement(result.ligand.descriptors),
-      start_options(options.inputs.match), &result.receptor.site_points, nullptr);
-  result.trace = starts.trace;
-  result.timing_ms.emplace_back("complementary match", clock.elapsed_ms());
-
-  clock.restart();
+  std::vector<Conformation> ligands;
   std::vector<DockPose> candidates;
-  for (const matching::Alignment& a : starts.alignments) {
-    if (a.repeat_of != 0) continue;
-    ++result.starts;
-    if (static_cast<int>(candidates.size()) >= options.refine_top) continue;
-    const matching::RigidTransform moved = refine_pose(
-        field, sample, matching::RigidTransform::from_matrix(a.transform), options.search.min_gain);
-    DockPose pose = scored_pose(field, moved, field.score(sample, moved));
-    pose.start = a.rank;
-    pose.cp_pairs = a.cp_pairs;
-    candidates.push_back(std::move(pose));
+  double match_ms = 0.0, search_ms = 0.0;
+  for (std::size_t k = 0; k < sides.size(); ++k) {
+    clock.restart();
+    matching::PreparedInput other;
+    if (k > 0) other = matching::prepare_input(sides[k], options.inputs);
+    const matching::PreparedInput& ligand = k == 0 ? result.ligand : other;
+    ligands.push_back(
+        {sample_ligand(ligand.descriptors.surface, options.complementarity.sample_spacing),
+         heavy_atoms(ligand.descriptors)});
+    surfaces_ms += clock.elapsed_ms();
+
+    clock.restart();
+    const matching::MatchResult starts = matching::match_surfaces(
+        result.receptor.descriptors, complement(ligand.descriptors),
+        start_options(options.inputs.match), &result.receptor.site_points, nullptr);
+    if (k == 0) result.trace = starts.trace;
+    if (!starts.cliques_complete && result.notes.empty()) {
+      result.notes.push_back("the clique search stopped at its budget (" +
+                             options::named("max_clique_work") + ", " +
+                             options::named("max_cliques") + "): poses may be missing");
+    }
+    match_ms += clock.elapsed_ms();
+
+    clock.restart();
+    const int conformer = options.conformers ? static_cast<int>(k) + 1 : 0;
+    const LigandSample& sample = ligands.back().sample;
+    int refined = 0;
+    for (const matching::Alignment& a : starts.alignments) {
+      if (a.repeat_of != 0) continue;
+      ++result.starts;
+      if (refined >= options.refine_top) continue;
+      ++refined;
+      const matching::RigidTransform moved =
+          refine_pose(field, sample, matching::RigidTransform::from_matrix(a.transform),
+                      options.search.min_gain);
+      DockPose pose = scored_pose(field, moved, field.score(sample, moved));
+      pose.start = a.rank;
+      pose.cp_pairs = a.cp_pairs;
+      pose.conformer = conformer;
+      candidates.push_back(std::move(pose));
+    }
+    SearchOptions search = options.search;
+    search.seed += k;  // each conformer's chains start elsewhere
+    for (const SearchedPose& found : search_site(field, sample, result.receptor.site, search)) {
+      candidates.push_back(scored_pose(field, found.pose, found.score));
+      candidates.back().conformer = conformer;
+    }
+    search_ms += clock.elapsed_ms();
   }
-  for (const SearchedPose& found : search_site(field, sample, result.receptor.site, options.search))
-    candidates.push_back(scored_pose(field, found.pose, found.score));
-  result.poses = best_distinct(field, sample, heavy_atoms(result.ligand.descriptors),
-                               std::move(candidates), options);
+  clock.restart();
+  result.poses = best_distinct(field, ligands, std::move(candidates), options);
+  search_ms += clock.elapsed_ms();
   if (result.starts == 0 && !result.poses.empty())
     result.notes.push_back(
         "no clique of the complementary association graph: the poses are the search's alone");
   if (result.poses.empty())
     result.notes.push_back("no pose: no clique, and no search (" + options::named("search_chains") +
                            " 0)");
-  if (!starts.cliques_complete) {
-    result.notes.push_back("the clique search stopped at its budget (" +
-                           options::named("max_clique_work") + ", " +
-                           options::named("max_cliques") + "): poses may be missing");
-  }
-  result.timing_ms.emplace_back("refinement", clock.elapsed_ms());
+  result.timing_ms = {{"surfaces and descriptions", surfaces_ms},
+                      {"receptor field", field_ms},
+                      {"complementary match", match_ms},
+                      {"refinement", search_ms}};
   return result;
 }
 

@@ -266,18 +266,18 @@ py::dict dock(const py::object& ligand, const py::object& receptor, const py::di
   py::list poses;
   for (const docking::DockPose& p : docked.poses) {
     Eigen::Matrix<double, 4, 4, Eigen::RowMajor> transform = p.transform;
-    poses.append(
-        py::dict(py::arg("rank") = p.rank, py::arg("score") = p.score.score,
-                 py::arg("contact") = p.score.contact, py::arg("clash") = p.score.clash,
-                 py::arg("esp") = p.score.esp, py::arg("lp") = p.score.lp,
-                 py::arg("deepest") = p.score.deepest, py::arg("intersects") = p.intersects,
-                 py::arg("transform") = owned_array(std::move(transform)),
-                 py::arg("start") = p.start, py::arg("cp_pairs") = pair_array(p.cp_pairs)));
+    poses.append(py::dict(
+        py::arg("rank") = p.rank, py::arg("score") = p.score.score,
+        py::arg("contact") = p.score.contact, py::arg("clash") = p.score.clash,
+        py::arg("esp") = p.score.esp, py::arg("lp") = p.score.lp,
+        py::arg("deepest") = p.score.deepest, py::arg("intersects") = p.intersects,
+        py::arg("transform") = owned_array(std::move(transform)), py::arg("start") = p.start,
+        py::arg("conformer") = p.conformer, py::arg("cp_pairs") = pair_array(p.cp_pairs)));
   }
   py::dict timing;
   for (const auto& [step, ms] : docked.timing_ms) timing[py::str(step)] = ms;
-  return py::dict(py::arg("poses") = poses, py::arg("starts") = docked.starts,
-                  py::arg("site_volume") = docked.site_volume,
+  return py::dict(py::arg("poses") = poses, py::arg("conformers") = docked.conformers,
+                  py::arg("starts") = docked.starts, py::arg("site_volume") = docked.site_volume,
                   py::arg("ligand_volume") = docked.ligand_volume, py::arg("notes") = docked.notes,
                   py::arg("timing_ms") = timing);
 }

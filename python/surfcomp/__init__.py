@@ -480,6 +480,7 @@ class DockPose(NamedTuple):
     intersects: bool
     transform: np.ndarray
     start: int
+    conformer: int
     cp_pairs: np.ndarray
 
 
@@ -493,6 +494,7 @@ _documented(DockPose, rank="1-based, best first",
             intersects="deeper than twice clash_tolerance: ranked after every pose that is not",
             transform="4 x 4, moves the ligand as given into the receptor's frame",
             start="the clique alignment it started from (1-based), 0 for the Monte Carlo search",
+            conformer="0: the ligand as given; k: DockResult.conformers[k - 1] (conformers=N)",
             cp_pairs="(k, 2) (receptor, ligand) critical-point indices of that clique")
 
 
@@ -500,6 +502,8 @@ class DockResult(list):
     """The distinct poses of a dock, best first (a list of :class:`DockPose`), with what the
     dock did."""
 
+    #: With conformers=N: the docked conformers as MDL mol blocks (DockPose.conformer).
+    conformers: List[str]
     #: Clique alignments of the complementary association graph.
     starts: int
     #: A^3: the free volume of the receptor's site, and the ligand's surface's volume.
@@ -806,12 +810,13 @@ def dock(probe, receptor, *, output: Union[str, os.PathLike, None] = None,
     first (the keywords ``ligand`` and ``molecule`` pick a residue or record of a file, as for
     :func:`match`). The site is given as to
     :func:`match`: site_ligand, site_sphere ``(x, y, z, r)`` or a list of them, site_pocket;
-    none of them: pocket 1. With ``output``, the poses are also written there as SDF records of
-    the ligand's file in the receptor's frame."""
+    none of them: pocket 1. ``conformers=N`` docks N RDKit conformers of a ligand file's record
+    instead of its coordinates. With ``output``, the poses are also written there as SDF records
+    of the ligand's file (or of their conformers) in the receptor's frame."""
     raw = _surfcomp.dock(_input(probe), _input(receptor), options,
                          os.fspath(output) if output is not None else "")
     result = DockResult(DockPose(**p) for p in raw["poses"])
-    for key in ("starts", "site_volume", "ligand_volume", "notes", "timing_ms"):
+    for key in ("conformers", "starts", "site_volume", "ligand_volume", "notes", "timing_ms"):
         setattr(result, key, raw[key])
     return result
 

@@ -252,9 +252,11 @@ class DockPose(NamedTuple):
     intersects: bool
     transform: npt.NDArray[np.float64]
     start: int
+    conformer: int
     cp_pairs: npt.NDArray[np.int32]
 
 class DockResult(List[DockPose]):
+    conformers: List[str]
     starts: int
     site_volume: float
     ligand_volume: float
@@ -513,6 +515,8 @@ def dock(
     search_chains: int = 48,
     search_steps: int = 40,
     search_temperature: float = 0.05,
+    conformers: int = 0,
+    conformer_seed: int = 42,
     distinct_rmsd: float = 1.0,
     max_ligand_to_site: float = 3.0,
     site_ligand: Optional[PathLike] = None,

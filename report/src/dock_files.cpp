@@ -1,5 +1,6 @@
 #include "surfcomp/report/dock_files.hpp"
 
+#include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 
 #include <nlohmann/json.hpp>
@@ -48,6 +49,7 @@ std::string dock_json(const docking::DockResult& docked, const docking::DockOpti
                      {"intersects", p.intersects},
                      {"transform", matrix_json(p.transform)},
                      {"start", p.start},
+                     {"conformer", p.conformer},
                      {"cp_pairs", cp}});
   }
   doc["poses"] = poses;
@@ -65,6 +67,7 @@ std::string dock_json(const docking::DockResult& docked, const docking::DockOpti
                        {"esp_weight", c.esp_weight},
                        {"lp_weight", c.lp_weight},
                        {"grid_spacing", c.spacing},
+                       {"conformers", options.conformers ? options.conformers->count : 0},
                        {"refine_top", options.refine_top},
                        {"search_chains", options.search.chains},
                        {"search_steps", options.search.steps},
@@ -79,11 +82,23 @@ std::string dock_poses_sdf(const docking::DockResult& docked, const std::filesys
                            std::size_t record) {
   std::ostringstream out;
   for (const docking::DockPose& p : docked.poses) {
-    std::string block = io::moved_mol_block(ligand, p.transform.topLeftCorner<3, 3>(),
-                                            p.transform.topRightCorner<3, 1>(), record);
+    const Eigen::Matrix3d rotation = p.transform.topLeftCorner<3, 3>();
+    const Eigen::Vector3d translation = p.transform.topRightCorner<3, 1>();
+    std::string block;
+    if (p.conformer == 0) {
+      block = io::moved_mol_block(ligand, rotation, translation, record);
+    } else {  // a generated conformer: its own block, moved
+      io::MoleculeRecord conformer;
+      conformer.source = ligand;
+      conformer.text = docked.conformers.at(static_cast<std::size_t>(p.conformer - 1));
+      block = io::moved_record_block(conformer, rotation, translation);
+    }
     const std::size_t end = block.rfind("$$$$");
     if (end != std::string::npos) block.erase(end);
-    out << block << ">  <surfcomp_rank>\n"
+    if (block.empty() || block.back() != '\n') block += '\n';
+    out << block;
+    if (p.conformer > 0) out << ">  <surfcomp_conformer>\n" << p.conformer << "\n\n";
+    out << ">  <surfcomp_rank>\n"
         << p.rank << "\n\n"
         << ">  <surfcomp_score>\n"
         << number(p.score.score) << "\n\n"

@@ -5,9 +5,11 @@
 #include "test_data.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 #include "surfcomp/docking/dock.hpp"
+#include "surfcomp/report/dock_files.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -118,6 +120,53 @@ TEST_F(Thermolysin, AMovedLigandIsDockedBackToItsCrystalPose) {
   }
 }
 
+TEST_F(Thermolysin, ConformersAreDockedInsteadOfTheLigandsCoordinates) {
+  // --conformers: RDKit's conformers of the inhibitor, made from its bonds, are docked and its
+  // own coordinates are not; each pose names its conformer, whose atoms (hydrogens as the file
+  // has them) are placed in the site. The search is shortened: this asserts the plumbing, and
+  // bench/redock_bench.py measures the accuracy (docs/benchmarks.md).
+  DockOptions options;
+  options.site_ligand = "0ZN";
+  options.conformers = ConformerOptions{};
+  options.conformers->count = 3;
+  options.search.chains = 6;
+  options.refine_top = 5;
+  options.poses = 4;
+  matching::MatchInput ligand, receptor;
+  ligand.path = ligand_;
+  receptor.path = pocket_;
+  const DockResult docked = dock(ligand, receptor, options);
+  ASSERT_FALSE(docked.conformers.empty());
+  EXPECT_LE(docked.conformers.size(), 3u);
+  ASSERT_FALSE(docked.poses.empty());
+  const Molecule own = io::read_molecule(ligand_);
+  for (const std::string& block : docked.conformers) {
+    const auto positions = io::mdl_coordinates(block);
+    ASSERT_TRUE(positions);
+    EXPECT_EQ(positions->size(), own.atoms.size());
+  }
+  const std::string sdf = report::dock_poses_sdf(docked, ligand_);
+  for (const DockPose& pose : docked.poses) {
+    EXPECT_GE(pose.conformer, 1);
+    EXPECT_LE(pose.conformer, static_cast<int>(docked.conformers.size()));
+    EXPECT_LT(pose.score.outside, 1.0);  // its centre in the site
+  }
+  EXPECT_NE(sdf.find(">  <surfcomp_conformer>\n" + std::to_string(docked.poses[0].conformer)),
+            std::string::npos);
+  // The first record is the top pose's conformer, moved by its transform.
+  const auto first = io::mdl_coordinates(sdf.substr(0, sdf.find("$$$$")));
+  const auto unmoved = io::mdl_coordinates(
+      docked.conformers[static_cast<std::size_t>(docked.poses[0].conformer - 1)]);
+  ASSERT_TRUE(first && unmoved);
+  ASSERT_EQ(first->size(), unmoved->size());
+  const Eigen::Matrix4d& top = docked.poses[0].transform;
+  for (std::size_t i = 0; i < first->size(); ++i) {
+    const Eigen::Vector3d expected =
+        top.topLeftCorner<3, 3>() * (*unmoved)[i] + top.topRightCorner<3, 1>();
+    EXPECT_LT(((*first)[i] - expected).norm(), 1e-3);  // the block's four decimals
+  }
+}
+
 TEST_F(Thermolysin, WhatADockCannotDoIsRefusedInOneLine) {
   DockOptions options;
   matching::MatchInput ligand, receptor;
@@ -150,6 +199,14 @@ TEST_F(Thermolysin, WhatADockCannotDoIsRefusedInOneLine) {
   EXPECT_NE(too_large.find("times the free volume"), std::string::npos) << too_large;
   ligand.site_pocket = 1;
   EXPECT_THROW(check_dock_inputs(ligand, receptor, {}), OptionError);
+  // Conformers come from an SDF or MOL2 record's bonds, not from a PDB ligand.
+  ligand = {};
+  ligand.path = dir_.write("ligand_as.pdb", pdb.str());
+  options = {};
+  options.conformers = ConformerOptions{};
+  const std::string no_bonds =
+      test::error_of([&] { check_dock_inputs(ligand, receptor, options); });
+  EXPECT_NE(no_bonds.find("SDF or MOL2"), std::string::npos) << no_bonds;
 }
 
 }  // namespace

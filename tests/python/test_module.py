@@ -531,6 +531,13 @@ def test_dock_is_the_programs_and_writes_its_poses(program, shared, tmp_path):
         moved = crystal @ pose.transform[:3, :3].T + pose.transform[:3, 3]
         assert np.abs(record.GetConformer().GetPositions() - moved).max() < 1e-3
         assert int(record.GetProp("surfcomp_rank")) == pose.rank
+    assert poses.conformers == [] and {p.conformer for p in poses} == {0}
+    # conformers=N docks RDKit's conformers of the record instead, each pose naming its own.
+    flexible = surfcomp.dock(ligand, pdb, conformers=2, threads=1, **quick)
+    assert 1 <= len(flexible.conformers) <= 2
+    assert {p.conformer for p in flexible} <= set(range(1, len(flexible.conformers) + 1))
+    with pytest.raises(surfcomp.OptionError, match="SDF or MOL2"):
+        surfcomp.dock(folder / "ligand1TMN.pdb", pdb, conformers=2, **quick)
     with pytest.raises(surfcomp.OptionError, match="search_chains"):
         surfcomp.dock(ligand, pdb, site_ligand="0ZN", search_chains=-1)
     with pytest.raises(surfcomp.InputError, match="pocket 1000 was asked for"):

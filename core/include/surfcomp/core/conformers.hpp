@@ -19,13 +19,16 @@ struct ConformerOptions {
   /// Default 200. Most MMFF94 minimisation steps per conformer; 0 keeps the ETKDG geometry.
   /// A molecule MMFF94 cannot type keeps its ETKDG geometry. >= 0.
   int mmff_iterations = 200;
+  /// Default true: the conformers keep the hydrogens made explicit for embedding. False: they
+  /// are removed after minimisation, for a caller whose molecule lists none (a crystal ligand).
+  bool hydrogens = true;
 };
 
 /// The conformers of `record`'s molecule (SMILES, SDF or MOL2 record; its coordinates, if any,
-/// are not used), hydrogens made explicit, each as an MDL mol block ending with "$$$$" whose
-/// title is record.name, in ETKDG's order. Runs on the calling thread only.
-/// Throws OptionError for options outside their domain; InputError naming the record when RDKit
-/// cannot parse or sanitise it, when it is a PDB/PQR structure, or when no conformer can be
+/// are not used), hydrogens made explicit (or removed: options.hydrogens), each as an MDL mol block
+/// ending with "$$$$" whose title is record.name, in ETKDG's order. Runs on the calling thread
+/// only. Throws OptionError for options outside their domain; InputError naming the record when
+/// RDKit cannot parse or sanitise it, when it is a PDB/PQR structure, or when no conformer can be
 /// embedded.
 std::vector<std::string> generate_conformers(const io::MoleculeRecord& record,
                                              const ConformerOptions& options = {});

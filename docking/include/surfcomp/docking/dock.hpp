@@ -5,6 +5,7 @@
 // score (complementarity.hpp) and ranked by it.
 #pragma once
 
+#include "surfcomp/core/conformers.hpp"
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/docking/complementarity.hpp"
 #include "surfcomp/docking/search.hpp"
@@ -13,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +32,11 @@ struct DockOptions {
   std::vector<molsurf::SiteSphere> site_spheres;
   int site_pocket = 0;
   ComplementarityOptions complementarity;  ///< the score poses are refined and ranked on
+  /// Default none: the ligand's own coordinates are docked. Set: its record's conformers
+  /// (generate_conformers from the bonds alone; hydrogens as the ligand file has them) are
+  /// docked instead, each matched and searched (its search seeded apart), and the distinct best
+  /// poses over all of them kept. The ligand is then a file's SDF or MOL2 record.
+  std::optional<ConformerOptions> conformers;
   /// Default 9. The most poses reported, best first. >= 1.
   int poses = 9;
   /// Default 40. The first clique poses (consensus order) refined on the score. >= 1.
@@ -65,16 +72,21 @@ struct DockPose {
   /// True when a ligand surface point lies deeper inside the receptor than twice the clash
   /// tolerance: such poses are ranked after every pose that does not.
   bool intersects = false;
+  /// 0: the ligand's own coordinates; k >= 1: DockResult::conformers[k - 1] (moved by transform).
+  int conformer = 0;
 };
 
 struct DockResult {
-  matching::PreparedInput ligand, receptor;               ///< the two sides as described
-  std::vector<DockPose> poses;                            ///< best first
-  std::size_t starts = 0;                                 ///< clique alignments found
-  std::vector<matching::TraceStage> trace;                ///< the association graph's stages
-  double site_volume = 0.0;                               ///< A^3: the site's free volume
-  double ligand_volume = 0.0;                             ///< A^3: the ligand's surface's volume
-  std::vector<std::string> notes;                         ///< what a reader may want to know
+  /// The two sides as described: the ligand in its own coordinates, or its first conformer.
+  matching::PreparedInput ligand, receptor;
+  /// With DockOptions::conformers: the docked conformers as MDL mol blocks, in ETKDG's order.
+  std::vector<std::string> conformers;
+  std::vector<DockPose> poses;              ///< best first
+  std::size_t starts = 0;                   ///< clique alignments found (over every conformer)
+  std::vector<matching::TraceStage> trace;  ///< the association graph's stages (`ligand`'s)
+  double site_volume = 0.0;                 ///< A^3: the site's free volume
+  double ligand_volume = 0.0;               ///< A^3: the ligand's surface's volume
+  std::vector<std::string> notes;           ///< what a reader may want to know
   std::vector<std::pair<std::string, double>> timing_ms;  ///< per step, in order
 };
 
@@ -95,8 +107,10 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
 /// site's critical points with the ligand's complement (matching::match_surfaces, consensus
 /// ranking) and the local optima of the Monte Carlo search (search_site), each optimised on the
 /// complementarity score (refine_pose); the best 4 x poses candidates are optimised further and
-/// the distinct poses ranked by it. Throws InputError for a ligand or receptor given as a
-/// surface or a description alone: a dock reads their atoms.
+/// the distinct poses ranked by it. With options.conformers, each conformer of the ligand is
+/// docked so against the one receptor field and the poses of all are ranked together. Throws
+/// InputError for a ligand or receptor given as a surface or a description alone (a dock reads
+/// their atoms), and for conformers asked of a ligand that is not an SDF or MOL2 file.
 DockResult dock(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
                 const DockOptions& options = {});
 

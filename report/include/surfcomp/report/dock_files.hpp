@@ -12,14 +12,16 @@ namespace surfcomp::report {
 
 /// The result document of `docked` as JSON text indented by two spaces, ending with a newline:
 /// the inputs, the poses (rank, transform, score and its terms, the clique alignment each was
-/// refined from and its critical-point pairs), the graph trace, the volumes, the notes and the
-/// timings.
+/// refined from and its critical-point pairs, the conformer), the graph trace, the volumes, the
+/// notes and the timings.
 std::string dock_json(const docking::DockResult& docked, const docking::DockOptions& options);
 
 /// Each pose of `docked` as an SDF record of the ligand file `ligand` (record `record` as
 /// MoleculeReadOptions::record gives it) moved into the receptor's frame, with its rank and
 /// score as SD data items (surfcomp_rank, surfcomp_score, surfcomp_contact, surfcomp_clash),
-/// best first. Throws as io::moved_mol_block (the ligand must be an SDF, MOL or MOL2 file).
+/// best first; a pose of a generated conformer (DockPose::conformer) is that conformer's record,
+/// with surfcomp_conformer before them. Throws as io::moved_mol_block (the ligand must be an SDF,
+/// MOL or MOL2 file).
 std::string dock_poses_sdf(const docking::DockResult& docked, const std::filesystem::path& ligand,
                            std::size_t record = 0);
 
