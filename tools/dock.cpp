@@ -19,7 +19,8 @@ namespace surfcomp::tools {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: surfcomp dock LIGAND RECEPTOR [-o poses.sdf] [--json result.json] [options]\n\n"
+    "usage: surfcomp dock LIGAND RECEPTOR [-o poses.sdf] [--json result.json]\n"
+    "                     [--report dock.html] [options]\n\n"
     "Places LIGAND into RECEPTOR's pocket where its surface fits: the pocket's critical points\n"
     "are paired with the complement of the ligand's (its peaks with the pocket's valleys, its\n"
     "images against the mirror of the pocket's, ESP of opposite and LP of like sign), cliques\n"
@@ -41,13 +42,15 @@ constexpr const char* kUsage =
 
 int dock(const std::vector<std::string>& args) {
   namespace po = boost::program_options;
-  std::string output, json;
+  std::string output, json, report_out;
   po::options_description described("options");
   // clang-format off
   described.add_options()
       ("help,h", "print this help")
       ("output,o", po::value(&output), "write the poses as SDF records in RECEPTOR's frame (.sdf)")
-      ("json", po::value(&json), "write the result as JSON (poses, scores, trace, timing_ms)");
+      ("json", po::value(&json), "write the result as JSON (poses, scores, trace, timing_ms)")
+      ("report", po::value(&report_out),
+       "write the HTML report (.html): the ligand's poses in the pocket, offline in a browser");
   // clang-format on
   add_table_options(described, docking::dock_option_table());
   po::variables_map vm;
@@ -66,7 +69,12 @@ int dock(const std::vector<std::string>& args) {
   receptor.path = inputs[1];
   docking::check_dock_inputs(ligand, receptor, options);
   io::check_command_files({{{"LIGAND", ligand.path}, {"RECEPTOR", receptor.path}},
-                           {{"--output", output, {".sdf"}, ""}, {"--json", json, {}, ""}}});
+                           {{"--output", output, {".sdf"}, ""},
+                            {"--json", json, {}, ""},
+                            {"--report", report_out, {".html"}, ""}}});
+  report::HtmlReportOptions report_options;
+  if (!report_out.empty())  // before the work, not after it
+    report_options.viewer_script = report::find_viewer_script();
 
   const ThreadLimit limit(options.inputs.threads);
   const docking::DockResult docked = docking::dock(ligand, receptor, options);
@@ -98,6 +106,10 @@ int dock(const std::vector<std::string>& args) {
       const std::string document = report::dock_json(docked, options);
       io::write_file_atomically(json, [&](std::ostream& out) { out << document; });
       written.emplace_back(json);
+    }
+    if (!report_out.empty()) {
+      report::write_dock_html_report(report_out, docked, options, report_options);
+      written.emplace_back(report_out);
     }
   } catch (...) {
     for (const auto& path : written) std::filesystem::remove(path);

@@ -421,6 +421,8 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
       candidates.back().conformer = conformer;
     }
     search_ms += clock.elapsed_ms();
+    if (options.conformers)
+      result.conformer_inputs.push_back(k == 0 ? result.ligand : std::move(other));
   }
   clock.restart();
   result.poses = best_distinct(field, ligands, std::move(candidates), options);

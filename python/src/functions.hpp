@@ -43,9 +43,9 @@ py::list screen_shapes(const py::handle& query, const std::string& library_path,
 py::list pockets(const std::string& structure, const py::dict& keywords);
 
 /// surfcomp.dock: a ligand's poses in a receptor's site, best first; with `output_path`, also
-/// written there as SDF records.
+/// written there as SDF records, and with `report_path` its HTML report.
 py::dict dock(const py::object& ligand, const py::object& receptor, const py::dict& keywords,
-              const std::string& output_path);
+              const std::string& output_path, const std::string& report_path);
 
 /// The keyword options of the package's function `function`, as table_list gives them.
 py::list option_table(const std::string& function);

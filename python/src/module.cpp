@@ -227,7 +227,7 @@ PYBIND11_MODULE(_surfcomp, m) {
         py::arg("options"), py::arg("mesh_options"));
   m.def("pockets", &sp::pockets, py::arg("structure"), py::arg("options"));
   m.def("dock", &sp::dock, py::arg("ligand"), py::arg("receptor"), py::arg("options"),
-        py::arg("output") = std::string());
+        py::arg("output") = std::string(), py::arg("report") = std::string());
   m.def("option_table", &sp::option_table, py::arg("function"));
   m.def("curvatures", &sp::curvatures, py::arg("mesh"), py::arg("options"));
   m.def("critical_points", &sp::critical_points, py::arg("mesh"), py::arg("options"));

@@ -242,16 +242,20 @@ py::list pockets(const std::string& structure, const py::dict& keywords) {
 }
 
 py::dict dock(const py::object& ligand, const py::object& receptor, const py::dict& keywords,
-              const std::string& output_path) {
+              const std::string& output_path, const std::string& report_path) {
   const auto settings = settings_from(docking::dock_option_table(), keywords);
   const matching::MatchInput lig = input_of(ligand, settings.inputs.input);
   const matching::MatchInput rec = input_of(receptor, settings.inputs.input);
   docking::check_dock_inputs(lig, rec, settings);
-  if (!output_path.empty()) {  // as the CLI checks -o: before the work
-    if (lig.path.empty()) throw OptionError("output: the poses are records of a LIGAND file");
-    io::check_command_files(
-        {{{"LIGAND", lig.path}, {"RECEPTOR", rec.path}}, {{"output", output_path, {".sdf"}, ""}}});
+  if (!output_path.empty() && lig.path.empty())
+    throw OptionError("output: the poses are records of a LIGAND file");
+  if (!output_path.empty() || !report_path.empty()) {  // as the CLI checks -o and --report
+    io::check_command_files({{{"LIGAND", lig.path}, {"RECEPTOR", rec.path}},
+                             {{"output", output_path, {".sdf"}, ""},
+                              {"report", report_path, {".html"}, ""}}});
   }
+  report::HtmlReportOptions report_options;
+  if (!report_path.empty()) report_options.viewer_script = report::find_viewer_script();
   docking::DockResult docked;
   {
     py::gil_scoped_release release;
@@ -262,6 +266,8 @@ py::dict dock(const py::object& ligand, const py::object& receptor, const py::di
           report::dock_poses_sdf(docked, lig.path, settings.inputs.input.read.record);
       io::write_file_atomically(output_path, [&](std::ostream& out) { out << poses; });
     }
+    if (!report_path.empty())
+      report::write_dock_html_report(report_path, docked, settings, report_options);
   }
   py::list poses;
   for (const docking::DockPose& p : docked.poses) {

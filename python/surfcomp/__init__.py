@@ -804,7 +804,7 @@ def pockets(structure, **options) -> List[Pocket]:
 
 @_keyword_options("dock")
 def dock(probe, receptor, *, output: Union[str, os.PathLike, None] = None,
-         **options) -> DockResult:
+         report: Union[str, os.PathLike, None] = None, **options) -> DockResult:
     """Places ``probe``, the ligand (a molecule file or RDKit molecule), into ``receptor``'s site
     (a protein structure path) as ``surfcomp dock`` does and returns the distinct poses, best
     first (the keywords ``ligand`` and ``molecule`` pick a residue or record of a file, as for
@@ -812,9 +812,11 @@ def dock(probe, receptor, *, output: Union[str, os.PathLike, None] = None,
     :func:`match`: site_ligand, site_sphere ``(x, y, z, r)`` or a list of them, site_pocket;
     none of them: pocket 1. ``conformers=N`` docks N RDKit conformers of a ligand file's record
     instead of its coordinates. With ``output``, the poses are also written there as SDF records
-    of the ligand's file (or of their conformers) in the receptor's frame."""
+    of the ligand's file (or of their conformers) in the receptor's frame; with ``report``, the
+    HTML report of the dock."""
     raw = _surfcomp.dock(_input(probe), _input(receptor), options,
-                         os.fspath(output) if output is not None else "")
+                         os.fspath(output) if output is not None else "",
+                         os.fspath(report) if report is not None else "")
     result = DockResult(DockPose(**p) for p in raw["poses"])
     for key in ("conformers", "starts", "site_volume", "ligand_volume", "notes", "timing_ms"):
         setattr(result, key, raw[key])

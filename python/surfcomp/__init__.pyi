@@ -464,6 +464,7 @@ def dock(
     receptor: PathLike,
     *,
     output: Optional[PathLike] = None,
+    report: Optional[PathLike] = None,
     probe_radius: float = 1.4,
     density: float = 2.5,
     voxel: float = 0.0,

@@ -1,6 +1,7 @@
 #include "surfcomp/report/html_report.hpp"
 
 #include "match_document.hpp"
+#include "report_page.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/input_file.hpp"
@@ -62,58 +63,6 @@ nlohmann::json molecule_json(const matching::PreparedInput& side) {
   return {{"format", "pdb"}, {"text", pdb.str()}};
 }
 
-nlohmann::json side_json(const matching::PreparedInput& side, const matching::MatchOptions& options,
-                         double unit, const HtmlReportOptions& report) {
-  const mesh::Surface& surface = side.descriptors.surface;
-  const mesh::DecimatedSurface shown = mesh::decimate(surface, report.max_display_vertices);
-  mesh::Surface display = shown.surface;
-  if (!display.has_normals()) display.compute_normals();
-  nlohmann::json properties = nlohmann::json::object();
-  for (const char* name : {mesh::property::esp, mesh::property::lp, mesh::property::shape_index,
-                           mesh::property::curvedness}) {
-    if (display.has_property(name)) properties[name] = flat_floats(display.property(name));
-  }
-  const Eigen::MatrixX3i faces = display.faces();
-  nlohmann::json face_indices = nlohmann::json::array();
-  for (Eigen::Index f = 0; f < faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) face_indices.push_back(faces(f, k));
-
-  nlohmann::json points = nlohmann::json::array();
-  for (std::size_t i = 0; i < side.descriptors.critical_points.size(); ++i) {
-    const mesh::CriticalPoint& p = side.descriptors.critical_points[i].point;
-    const bool in_site = side.site_points.empty() || side.site_points[i];
-    points.push_back({{"position", {p.position.x(), p.position.y(), p.position.z()}},
-                      {"type", mesh::type_name(p.type)},
-                      {"in_site", in_site}});
-  }
-  nlohmann::json lining = nullptr;
-  if (!side.site.empty()) {
-    const std::vector<bool> lined =
-        matching::pocket_lining(side.descriptors, &side.site_points,
-                                options.site.overlay_radius * unit);  // the inputs' coordinates
-    lining = nlohmann::json::array();
-    for (std::size_t v = 0; v < shown.original.size(); ++v) {
-      if (lined[static_cast<std::size_t>(shown.original[v])]) lining.push_back(v);
-    }
-  }
-  const bool decimated = display.n_vertices() < surface.n_vertices();
-  return {{"path", side.name},
-          {"surface",
-           {{"vertices", flat_floats(display.positions())},
-            {"normals", flat_floats(display.normals())},
-            {"faces", face_indices},
-            {"properties", properties},
-            {"vertices_before_decimation",
-             decimated ? nlohmann::json(surface.n_vertices()) : nlohmann::json(nullptr)}}},
-          {"molecule", molecule_json(side)},
-          {"critical_points", points},
-          {"site_lining", lining}};
-}
-
-std::string file_name(const std::string& path) {
-  return std::filesystem::path(path).filename().string();
-}
-
 /// `document` as text that may stand inside a <script> element: every '<' (only ever inside a
 /// JSON string) as the JSON escape \u003c, so that no "</script" or "<!--" can end or disturb
 /// the element.
@@ -138,6 +87,13 @@ bool contains_ignoring_case(const std::string& text, const std::string& needle) 
                std::tolower(static_cast<unsigned char>(b));
       });
   return found != text.end();
+}
+
+void require_display_vertices(const HtmlReportOptions& report) {
+  if (report.max_display_vertices < 4) {
+    throw OptionError(options::named("max_display_vertices") + " must be at least 4, got " +
+                      std::to_string(report.max_display_vertices));
+  }
 }
 
 std::filesystem::path running_program() {
@@ -168,36 +124,70 @@ std::filesystem::path find_viewer_script() {
                       "); run scripts/install-deps.sh, or set SURFCOMP_VIEWER_SCRIPT to the file");
 }
 
-std::string html_report(const matching::InputMatch& compared, const matching::MatchOptions& options,
-                        const HtmlReportOptions& report) {
-  if (report.max_display_vertices < 4) {
-    throw OptionError(options::named("max_display_vertices") + " must be at least 4, got " +
-                      std::to_string(report.max_display_vertices));
+namespace detail {
+
+nlohmann::json side_json(const matching::PreparedInput& side, double lining_radius,
+                         const HtmlReportOptions& report) {
+  require_display_vertices(report);
+  const mesh::Surface& surface = side.descriptors.surface;
+  const mesh::DecimatedSurface shown = mesh::decimate(surface, report.max_display_vertices);
+  mesh::Surface display = shown.surface;
+  if (!display.has_normals()) display.compute_normals();
+  nlohmann::json properties = nlohmann::json::object();
+  for (const char* name : {mesh::property::esp, mesh::property::lp, mesh::property::shape_index,
+                           mesh::property::curvedness}) {
+    if (display.has_property(name)) properties[name] = flat_floats(display.property(name));
   }
+  const Eigen::MatrixX3i faces = display.faces();
+  nlohmann::json face_indices = nlohmann::json::array();
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) face_indices.push_back(faces(f, k));
+
+  nlohmann::json points = nlohmann::json::array();
+  for (std::size_t i = 0; i < side.descriptors.critical_points.size(); ++i) {
+    const mesh::CriticalPoint& p = side.descriptors.critical_points[i].point;
+    const bool in_site = side.site_points.empty() || side.site_points[i];
+    points.push_back({{"position", {p.position.x(), p.position.y(), p.position.z()}},
+                      {"type", mesh::type_name(p.type)},
+                      {"in_site", in_site}});
+  }
+  nlohmann::json lining = nullptr;
+  if (!side.site.empty()) {
+    const std::vector<bool> lined =
+        matching::pocket_lining(side.descriptors, &side.site_points, lining_radius);
+    lining = nlohmann::json::array();
+    for (std::size_t v = 0; v < shown.original.size(); ++v) {
+      if (lined[static_cast<std::size_t>(shown.original[v])]) lining.push_back(v);
+    }
+  }
+  const bool decimated = display.n_vertices() < surface.n_vertices();
+  return {{"path", side.name},
+          {"surface",
+           {{"vertices", flat_floats(display.positions())},
+            {"normals", flat_floats(display.normals())},
+            {"faces", face_indices},
+            {"properties", properties},
+            {"vertices_before_decimation",
+             decimated ? nlohmann::json(surface.n_vertices()) : nlohmann::json(nullptr)}}},
+          {"molecule", molecule_json(side)},
+          {"critical_points", points},
+          {"site_lining", lining}};
+}
+
+std::string file_name(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
+
+std::string report_page(nlohmann::json document, const HtmlReportOptions& report) {
+  require_display_vertices(report);
   const std::filesystem::path viewer_path =
       report.viewer_script.empty() ? find_viewer_script() : report.viewer_script;
   const std::string viewer = io::read_input_file(viewer_path);
   if (contains_ignoring_case(viewer, "</script")) {
     throw FormatError(viewer_path.string(), "holds '</script', so it cannot be inlined in a page");
   }
-
-  nlohmann::json document = detail::match_document(compared, options);
-  nlohmann::json& alignments = document["alignments"];
-  if (report.top > 0 && alignments.size() > report.top) {
-    alignments.erase(alignments.begin() + static_cast<std::ptrdiff_t>(report.top),
-                     alignments.end());
-  }
-  const bool sites = !compared.reference.site.empty() || !compared.probe.site.empty();
-  document["title"] = file_name(compared.reference.name) + " vs " + file_name(compared.probe.name);
   document["generated_by"] = std::string("surfcomp ") + SURFCOMP_VERSION;
-  document["mode"] = sites ? "binding_sites" : "molecules";
-  document["total_ms"] = {{"surfaces and descriptors", compared.prepare_ms},
-                          {"match", compared.match_ms}};
-  document["reference"] = side_json(compared.reference, options, compared.unit, report);
-  document["probe"] = side_json(compared.probe, options, compared.unit, report);
-  for (const std::string& note : compared.notes) document["warnings"].push_back(note);
-
-  std::string page = detail::report_template;
+  std::string page = report_template;
   const std::size_t viewer_at = page.find(kViewerMark);
   const std::size_t data_at = page.find(kDataMark);
   if (viewer_at == std::string::npos || data_at == std::string::npos || viewer_at > data_at)
@@ -206,6 +196,30 @@ std::string html_report(const matching::InputMatch& compared, const matching::Ma
   page.replace(data_at, std::string(kDataMark).size(), data);
   page.replace(viewer_at, std::string(kViewerMark).size(), viewer);
   return page;
+}
+
+}  // namespace detail
+
+std::string html_report(const matching::InputMatch& compared, const matching::MatchOptions& options,
+                        const HtmlReportOptions& report) {
+  nlohmann::json document = detail::match_document(compared, options);
+  nlohmann::json& alignments = document["alignments"];
+  if (report.top > 0 && alignments.size() > report.top) {
+    alignments.erase(alignments.begin() + static_cast<std::ptrdiff_t>(report.top),
+                     alignments.end());
+  }
+  const bool sites = !compared.reference.site.empty() || !compared.probe.site.empty();
+  document["title"] =
+      detail::file_name(compared.reference.name) + " vs " + detail::file_name(compared.probe.name);
+  document["mode"] = sites ? "binding_sites" : "molecules";
+  document["total_ms"] = {{"surfaces and descriptors", compared.prepare_ms},
+                          {"match", compared.match_ms}};
+  // The lining's radius is in the inputs' coordinates.
+  const double lining = options.site.overlay_radius * compared.unit;
+  document["reference"] = detail::side_json(compared.reference, lining, report);
+  document["probe"] = detail::side_json(compared.probe, lining, report);
+  for (const std::string& note : compared.notes) document["warnings"].push_back(note);
+  return detail::report_page(std::move(document), report);
 }
 
 void write_html_report(const std::filesystem::path& path, const matching::InputMatch& compared,

@@ -130,6 +130,26 @@ def test_a_binding_site_report_shows_the_pocket(program, shared, tmp_path):
     assert distinct > 300 and painted > 0.10
 
 
+def test_a_dock_report_shows_each_pose_of_its_conformer_in_the_pocket(program, shared, tmp_path):
+    out = tmp_path / "dock.html"
+    thermolysin = shared / "thermolysin"
+    result = run([program, "dock", thermolysin / "ligands-original" / "ligand1TMN.sdf",
+                  thermolysin / "1TMN.pdb", "--site-ligand", "0ZN", "--conformers", "2",
+                  "--search-chains", "6", "--search-steps", "10", "--report", out])
+    assert result.returncode == 0, result.stderr
+    state, dom = page_state(out.as_uri())
+    assert state["status"] == "ready" and state["errors"] == "0"
+    assert "<th>contact</th>" in dom and "<th>conformer</th>" in dom
+    assert "ligand placed in the receptor" in dom
+    image = viewer_pixels(out.as_uri(), state["viewer-rect"], tmp_path / "dock.png")
+    distinct, painted, _, _ = colour_census(image)
+    assert distinct > 300 and painted > 0.10
+    # Another pose (of either conformer) is drawn without an error.
+    chosen, dom = page_state(out.as_uri() + "#alignment=2")
+    assert chosen["selected"] == "1" and chosen["errors"] == "0"
+    assert re.search(r"Pose 2</b>", dom)
+
+
 def test_bad_input_leaves_no_report(program, cache, tmp_path):
     out = tmp_path / "bad.html"
     bad = tmp_path / "empty.sdf"

@@ -79,8 +79,10 @@ struct DockPose {
 struct DockResult {
   /// The two sides as described: the ligand in its own coordinates, or its first conformer.
   matching::PreparedInput ligand, receptor;
-  /// With DockOptions::conformers: the docked conformers as MDL mol blocks, in ETKDG's order.
+  /// With DockOptions::conformers: the docked conformers as MDL mol blocks, in ETKDG's order,
+  /// and as described (the first is also `ligand`); DockPose::conformer k is item k - 1.
   std::vector<std::string> conformers;
+  std::vector<matching::PreparedInput> conformer_inputs;
   std::vector<DockPose> poses;              ///< best first
   std::size_t starts = 0;                   ///< clique alignments found (over every conformer)
   std::vector<matching::TraceStage> trace;  ///< the association graph's stages (`ligand`'s)

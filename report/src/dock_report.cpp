@@ -1,0 +1,88 @@
+// A dock's HTML report: the page of a match's report in its dock mode, the receptor's site as
+// the reference, each pose's ligand (or conformer) as the probe.
+#include "surfcomp/report/dock_files.hpp"
+
+#include "report_page.hpp"
+#include "surfcomp/core/io/atomic_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace surfcomp::report {
+namespace {
+
+nlohmann::json pose_json(const docking::DockPose& p) {
+  nlohmann::json transform = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) {
+    transform.push_back(
+        {p.transform(r, 0), p.transform(r, 1), p.transform(r, 2), p.transform(r, 3)});
+  }
+  nlohmann::json pairs = nlohmann::json::array();
+  for (const auto& [receptor, ligand] : p.cp_pairs) pairs.push_back({receptor, ligand});
+  return {{"rank", p.rank},
+          {"transform", transform},
+          {"cp_pairs", pairs},
+          {"probe", p.conformer == 0 ? 0 : p.conformer - 1},
+          {"dock",
+           {{"score", p.score.score},
+            {"contact", p.score.contact},
+            {"clash", p.score.clash},
+            {"esp", p.score.esp},
+            {"lp", p.score.lp},
+            {"deepest", p.score.deepest},
+            {"intersects", p.intersects},
+            {"start", p.start},
+            {"conformer", p.conformer}}}};
+}
+
+}  // namespace
+
+std::string dock_html_report(const docking::DockResult& docked, const docking::DockOptions& options,
+                             const HtmlReportOptions& report) {
+  nlohmann::json document;
+  document["title"] =
+      detail::file_name(docked.ligand.name) + " in " + detail::file_name(docked.receptor.name);
+  document["mode"] = "dock";
+  const double lining = options.inputs.match.site.overlay_radius;  // A: molecules only
+  document["reference"] = detail::side_json(docked.receptor, lining, report);
+  document["probe"] = detail::side_json(docked.ligand, lining, report);
+  if (!docked.conformer_inputs.empty()) {
+    nlohmann::json probes = nlohmann::json::array();
+    for (const matching::PreparedInput& conformer : docked.conformer_inputs)
+      probes.push_back(detail::side_json(conformer, lining, report));
+    document["probes"] = probes;
+  }
+  nlohmann::json poses = nlohmann::json::array();
+  for (const docking::DockPose& p : docked.poses) {
+    if (report.top > 0 && poses.size() >= report.top) break;
+    poses.push_back(pose_json(p));
+  }
+  document["alignments"] = poses;
+  nlohmann::json trace = nlohmann::json::array();
+  for (const matching::TraceStage& stage : docked.trace)
+    trace.push_back({{"stage", stage.stage}, {"nodes", stage.nodes}, {"edges", stage.edges}});
+  document["trace"] = trace;
+  nlohmann::json timing = nlohmann::json::object();
+  for (const auto& [step, ms] : docked.timing_ms) timing[step] = ms;
+  document["timing_ms"] = timing;
+  document["warnings"] = docked.notes;
+  const docking::ComplementarityOptions& c = options.complementarity;
+  document["parameters"] = {{"site free volume (A^3)", docked.site_volume},
+                            {"ligand volume (A^3)", docked.ligand_volume},
+                            {"clique alignments", docked.starts},
+                            {"conformers", docked.conformers.size()},
+                            {"contact_gap", c.contact_gap},
+                            {"clash_tolerance", c.clash_tolerance},
+                            {"esp_weight", c.esp_weight},
+                            {"lp_weight", c.lp_weight},
+                            {"search_chains", options.search.chains},
+                            {"search_steps", options.search.steps}};
+  return detail::report_page(std::move(document), report);
+}
+
+void write_dock_html_report(const std::filesystem::path& path, const docking::DockResult& docked,
+                            const docking::DockOptions& options, const HtmlReportOptions& report) {
+  const std::string page = dock_html_report(docked, options, report);
+  io::write_file_atomically(path, [&](std::ostream& out) { out << page; });
+}
+
+}  // namespace surfcomp::report
