@@ -5,6 +5,7 @@
 #include "describe_settings.hpp"
 #include "options.hpp"
 #include "screen_mpi.hpp"
+#include "screen_receptor.hpp"
 #include "screen_settings.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
@@ -40,7 +41,9 @@ constexpr const char* kUsage =
     "                       | --site-pocket N -o hits.csv [--aligned-out hits.pdb] ...\n"
     "       mpirun -np R surfcomp screen ...   (the library split over R processes)\n"
     "       surfcomp screen SCAN.ply MESHES.sclib -o hits.csv [--top N] [--scale auto|none]\n"
-    "                       [--unit L] [--repair] [--threads T]\n\n"
+    "                       [--unit L] [--repair] [--threads T]\n"
+    "       surfcomp screen --receptor RECEPTOR.pdb LIB.sclib -o hits.csv [--site-ligand RES]\n"
+    "                       ...   (ranked by fit into its pocket: --receptor R --help)\n\n"
     "Ranks the molecules of a library (surfcomp library build) by how well their surfaces\n"
     "overlay QUERY's, in three stages: every conformer gets a fast score (the overlay score of\n"
     "its stored surface sample at the four principal-axes superpositions onto the query, no\n"
@@ -265,6 +268,7 @@ void write_screen_files(const screening::MultiScreenResult& result,
 }  // namespace
 
 int screen(const std::vector<std::string>& args) {
+  if (asks_receptor_screen(args)) return screen_receptor(args);
   namespace po = boost::program_options;
   std::string output, aligned_out;
   double aligned_top = 10;

@@ -115,6 +115,20 @@ LigandSample sample_ligand(const mesh::Surface& surface, double spacing) {
   return sample;
 }
 
+LigandSample pooled_sample(const Eigen::Matrix3Xd& points, const Eigen::VectorXd& esp,
+                           const Eigen::VectorXd& lp, const std::string& source) {
+  if (points.cols() == 0) throw InputError(source + ": the surface sample has no point");
+  if (esp.size() != points.cols() || lp.size() != points.cols())
+    throw InputError(source + ": the surface sample's ESP or LP values do not match its points");
+  const std::vector<bool> all(static_cast<std::size_t>(points.cols()), true);
+  LigandSample sample;
+  sample.points = points;
+  sample.esp = z_scores(esp, all);
+  sample.lp = z_scores(lp, all);
+  sample.centroid = points.rowwise().mean();
+  return sample;
+}
+
 ReceptorField::ReceptorField(const Molecule& receptor, const std::vector<molsurf::SiteSphere>& site,
                              const ComplementarityOptions& options)
     : options_(options), site_(site) {

@@ -144,6 +144,18 @@ std::vector<matching::MatchInput> ligand_conformations(const matching::MatchInpu
   return out;
 }
 
+/// Throws InputError unless `receptor` is a structure whose atoms can be read (a dock builds
+/// the receptor's grid from them), and as check_match_input for it with its dock site.
+void check_dock_receptor(const matching::MatchInput& receptor, const DockOptions& options) {
+  if (receptor.path.empty() && !receptor.molecule) {
+    throw InputError(receptor.name() +
+                     ": a receptor is a protein structure, not a surface or a description");
+  }
+  matching::check_match_input(with_dock_site(receptor, options), options.inputs, "RECEPTOR");
+  if (!receptor.path.empty() && !io::is_structure_file(receptor.path))
+    throw InputError(receptor.path.string() + ": a receptor is a structure file");
+}
+
 }  // namespace
 
 const options::Table<DockOptions>& dock_option_table() {
@@ -301,25 +313,16 @@ matching::MatchInput with_dock_site(matching::MatchInput receptor, const DockOpt
   return receptor;
 }
 
-void check_dock_inputs(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
-                       const DockOptions& options) {
-  validate(options);
-  // A dock reads atoms: the receptor's for its grid, the ligand's to tell poses apart.
+void check_dock_ligand(const matching::MatchInput& ligand, const DockOptions& options) {
+  // A dock reads atoms: the ligand's to tell poses apart.
   if (ligand.path.empty() && !ligand.molecule) {
     throw InputError(
         ligand.name() +
         ": a ligand is a molecule (a file or its atoms), not a surface or a description");
   }
-  if (receptor.path.empty() && !receptor.molecule) {
-    throw InputError(receptor.name() +
-                     ": a receptor is a protein structure, not a surface or a description");
-  }
   matching::check_match_input(ligand, options.inputs, "LIGAND");
-  matching::check_match_input(with_dock_site(receptor, options), options.inputs, "RECEPTOR");
   if (!ligand.path.empty() && !io::is_molecule_file(ligand.path))
     throw InputError(ligand.path.string() + ": a ligand is a molecule file");
-  if (!receptor.path.empty() && !io::is_structure_file(receptor.path))
-    throw InputError(receptor.path.string() + ": a receptor is a structure file");
   if (!ligand.site_ligand.empty() || !ligand.site_spheres.empty() || ligand.site_pocket != 0)
     throw OptionError(ligand.name() + ": a site is the receptor's, not the ligand's");
   if (options.conformers) {
@@ -334,27 +337,60 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
   }
 }
 
-DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchInput& receptor_in,
-                const DockOptions& options) {
-  check_dock_inputs(ligand_input, receptor_in, options);
-  const matching::MatchInput receptor_input = with_dock_site(receptor_in, options);
-  DockResult result;
+void check_dock_inputs(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
+                       const DockOptions& options) {
+  validate(options);
+  check_dock_ligand(ligand, options);
+  check_dock_receptor(receptor, options);
+}
+
+DockSite prepare_dock_site(const matching::MatchInput& receptor, const DockOptions& options) {
+  validate(options);
+  check_dock_receptor(receptor, options);
+  const matching::MatchInput receptor_input = with_dock_site(receptor, options);
+  DockSite site;
   Stopwatch clock;
-  result.receptor = matching::prepare_input(receptor_input, options.inputs);
-  if (!result.receptor.molecule || protein_atoms(*result.receptor.molecule) == 0) {
-    throw InputError(result.receptor.name +
+  site.receptor = matching::prepare_input(receptor_input, options.inputs);
+  if (!site.receptor.molecule || protein_atoms(*site.receptor.molecule) == 0) {
+    throw InputError(site.receptor.name +
                      ": the receptor has no protein atoms (ATOM records); a receptor is a protein "
                      "structure");
   }
+  site.timing_ms.emplace_back("receptor surface and description", clock.elapsed_ms());
+  clock.restart();
+  site.field = std::make_shared<const ReceptorField>(*site.receptor.molecule, site.receptor.site,
+                                                     options.complementarity);
+  site.free_volume = site.field->free_volume(site.receptor.site);
+  if (!site.field->site_opens(site.receptor.site)) {
+    throw InputError(site.receptor.name +
+                     ": the site is buried: no path of free space leads from it out of the "
+                     "grid, so no ligand can enter it");
+  }
+  site.timing_ms.emplace_back("receptor field", clock.elapsed_ms());
+  return site;
+}
+
+DockResult dock(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
+                const DockOptions& options) {
+  check_dock_inputs(ligand, receptor, options);
+  const DockSite site = prepare_dock_site(receptor, options);
+  DockResult result = dock(ligand, site, options);
+  result.timing_ms.insert(result.timing_ms.begin(), site.timing_ms.begin(), site.timing_ms.end());
+  return result;
+}
+
+DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
+                const DockOptions& options) {
+  validate(options);
+  check_dock_ligand(ligand_input, options);
+  DockResult result;
+  result.receptor = site.receptor;
+  result.site_volume = site.free_volume;
+  const ReceptorField& field = *site.field;
+  Stopwatch clock;
   const std::vector<matching::MatchInput> sides =
       ligand_conformations(ligand_input, options, result.conformers);
   result.ligand = matching::prepare_input(sides.front(), options.inputs);
-  double surfaces_ms = clock.elapsed_ms();
-
-  clock.restart();
-  const ReceptorField field(*result.receptor.molecule, result.receptor.site,
-                            options.complementarity);
-  result.site_volume = field.free_volume(result.receptor.site);
   result.ligand_volume = mesh::measure_surface(result.ligand.descriptors.surface).volume;
   if (result.ligand_volume > options.max_ligand_to_site * result.site_volume) {
     throw InputError(result.ligand.name + ": the ligand (" +
@@ -364,12 +400,7 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
                      result.receptor.name + "'s site (" +
                      std::to_string(std::lround(result.site_volume)) + " A^3)");
   }
-  if (!field.site_opens(result.receptor.site)) {
-    throw InputError(result.receptor.name +
-                     ": the site is buried: no path of free space leads from it out of the "
-                     "grid, so no ligand can enter it");
-  }
-  const double field_ms = clock.elapsed_ms();
+  double surfaces_ms = clock.elapsed_ms();
 
   std::vector<Conformation> ligands;
   std::vector<DockPose> candidates;
@@ -433,8 +464,7 @@ DockResult dock(const matching::MatchInput& ligand_input, const matching::MatchI
   if (result.poses.empty())
     result.notes.push_back("no pose: no clique, and no search (" + options::named("search_chains") +
                            " 0)");
-  result.timing_ms = {{"surfaces and descriptions", surfaces_ms},
-                      {"receptor field", field_ms},
+  result.timing_ms = {{"ligand surfaces and descriptions", surfaces_ms},
                       {"complementary match", match_ms},
                       {"refinement", search_ms}};
   return result;

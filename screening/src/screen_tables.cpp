@@ -1,4 +1,5 @@
 // The hit tables of a screen, as CSV.
+#include "surfcomp/screening/receptor_screen.hpp"
 #include "surfcomp/screening/screen.hpp"
 
 #include "surfcomp/screening/hit_files.hpp"
@@ -43,6 +44,27 @@ void write_hits_csv(std::ostream& out, const Library& library, const std::vector
         << fixed(hit.score.chem) << ',' << fixed(hit.score.atoms) << ',' << fixed(hit.fast_score);
     for (int r = 0; r < 4; ++r) {
       for (int c = 0; c < 4; ++c) out << ',' << fixed(hit.score.transform(r, c));
+    }
+    out << "\n";
+  }
+}
+
+void write_receptor_hits_csv(std::ostream& out, const Library& library,
+                             const std::vector<ReceptorHit>& hits) {
+  out << "rank,entry,name,source,record,conformer,score,stage,contact,clash,esp,lp,deepest,"
+         "fast_score";
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) out << ",t" << r << c;
+  }
+  out << "\n";
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const ReceptorHit& hit = hits[i];
+    write_entry_columns(out, library, i + 1, hit.entry);
+    out << fixed(hit.score.score) << ',' << hit.stage << ',' << fixed(hit.score.contact) << ','
+        << fixed(hit.score.clash) << ',' << fixed(hit.score.esp) << ',' << fixed(hit.score.lp)
+        << ',' << fixed(hit.score.deepest) << ',' << fixed(hit.fast_score);
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) out << ',' << fixed(hit.transform(r, c));
     }
     out << "\n";
   }

@@ -28,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -646,6 +647,46 @@ TEST_F(CliScreen, SiteQueryFindsItsOwnPocketInAPocketLibrary) {
     EXPECT_NE(r.err.find(words), std::string::npos) << arguments << "\n" << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "x.csv")) << arguments;
     EXPECT_FALSE(fs::exists(dir_ / "x.sclib")) << arguments;
+  }
+}
+
+TEST_F(CliScreen, AReceptorScreenRanksEachMoleculeByItsFitIntoThePocket) {
+  SURFCOMP_SHARED_OR_SKIP(pdb_4tmn, "thermolysin/4TMN.pdb");
+  test::write_pocket(pdb_4tmn, "0PK", 12.0, dir_ / "4TMN_receptor.pdb");
+  const std::string quick =
+      " --fast-chains 2 --fast-steps 3 --search-chains 4 --search-steps 5 --refine-top 3";
+  const ProgramRun screened =
+      run("screen --receptor 4TMN_receptor.pdb lib.sclib --site-ligand 0PK -o receptor.csv "
+          "--candidates 1" +
+          quick);
+  ASSERT_EQ(screened.status, 0) << screened.err;
+  const std::vector<std::string> rows = lines_of(file_bytes(dir_ / "receptor.csv"));
+  ASSERT_EQ(rows.size(), 4u);  // the header and the library's three molecules
+  EXPECT_EQ(rows[0].rfind("rank,entry,name,source,record,conformer,score,stage,contact", 0), 0u);
+  std::set<std::string> names;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const std::vector<std::string> fields = fields_of(rows[i]);
+    ASSERT_EQ(fields.size(), 30u) << rows[i];
+    names.insert(fields[2]);
+    EXPECT_EQ(fields[7], i == 1 ? "2" : "1");  // the one candidate's full dock first
+  }
+  EXPECT_EQ(names.size(), 3u);
+
+  // What a receptor screen cannot do: one line, no output.
+  for (const auto& [arguments, status, words] :
+       std::vector<std::tuple<std::string, int, std::string>>{
+           {"screen --receptor lib.sclib lib.sclib --site-ligand 0PK -o x.csv", 2,
+            "RECEPTOR lib.sclib"},
+           {"screen --receptor 4TMN_receptor.pdb lib.sclib --site-pocket 1000 -o x.csv", 1, "1000"},
+           {"screen --receptor 4TMN_receptor.pdb lib.sclib --conformers 2 -o x.csv", 2,
+            "conformers"},
+           {"screen --receptor 4TMN_receptor.pdb lib.sclib --site-ligand 0PK -o x.txt", 2,
+            ".csv"}}) {
+    const ProgramRun r = run(arguments + quick);
+    EXPECT_EQ(r.status, status) << arguments << "\n" << r.err;
+    EXPECT_EQ(lines_of(r.err).size(), 1u) << arguments << "\n" << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << arguments << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x.csv")) << arguments;
   }
 }
 

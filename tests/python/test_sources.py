@@ -9,8 +9,9 @@ from conftest import SOURCE_DIR
 
 LIBRARY_MODULES = ("core", "mesh", "molsurf", "harmonic", "matching", "docking", "screening",
                    "report")
-COMMANDS = ("surf-build", "cp-detect", "hsi-build", "match", "dock", "screen", "report", "pockets",
-            "patch-map", "library build", "library info", "library export")
+COMMANDS = ("surf-build", "cp-detect", "hsi-build", "match", "dock", "screen",
+            "screen --receptor R", "report", "pockets", "patch-map", "library build",
+            "library info", "library export")
 
 _LITERAL = re.compile(r'"(?:[^"\\\n]|\\.)*"')
 _FLAG = re.compile(r"(?<![\w-])--[a-z]")
@@ -86,7 +87,7 @@ _STANDS_ON = {
     "harmonic": ("core", "mesh"),
     "matching": ("core", "mesh", "molsurf", "harmonic"),
     "docking": ("core", "mesh", "molsurf", "harmonic", "matching"),
-    "screening": ("core", "mesh", "molsurf", "harmonic", "matching"),
+    "screening": ("core", "mesh", "molsurf", "harmonic", "matching", "docking"),
     "report": ("core", "mesh", "molsurf", "harmonic", "matching", "docking"),
 }
 _INCLUDE = re.compile(r'^#include "([^"]+)"', re.M)

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace surfcomp::docking {
@@ -81,6 +82,12 @@ struct LigandSample {
 /// nearest the centre of each occupied cell of a grid of `spacing`, in vertex order. Throws
 /// InputError for an empty surface.
 LigandSample sample_ligand(const mesh::Surface& surface, double spacing);
+
+/// A sample of points already pooled (a screening library's stored surface sample): `points`
+/// with the z-scores over them of `esp` and `lp` (one value per point). Throws InputError naming
+/// `source` for no point or values of another count.
+LigandSample pooled_sample(const Eigen::Matrix3Xd& points, const Eigen::VectorXd& esp,
+                           const Eigen::VectorXd& lp, const std::string& source);
 
 /// The receptor's side of the score on a grid over its site: at each node the signed distance
 /// to the receptor's van der Waals surface (negative inside; capped at +-4 A), and the z-scores

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -96,6 +97,25 @@ struct DockResult {
 /// when neither it nor the options name one.
 matching::MatchInput with_dock_site(matching::MatchInput receptor, const DockOptions& options);
 
+/// A receptor's site made ready for docks into it (prepare_dock_site): its site surface built and
+/// described, and its score's grid. Docks share one (it is only read).
+struct DockSite {
+  matching::PreparedInput receptor;            ///< the receptor's site side, as described
+  std::shared_ptr<const ReceptorField> field;  ///< the score's grid over the site
+  double free_volume = 0.0;                    ///< A^3: the site's free volume
+  std::vector<std::pair<std::string, double>> timing_ms;  ///< per step, in order
+};
+
+/// The receptor's site of `options` (with_dock_site) prepared for docks: its surface built and
+/// described as dock describes it, its grid tabulated. Throws as dock does for the receptor: a
+/// structure without protein atoms, a site with no way out, a pocket out of range.
+DockSite prepare_dock_site(const matching::MatchInput& receptor, const DockOptions& options);
+
+/// Checks from names and options alone, before any work, that `ligand` can be docked as asked:
+/// a molecule without a site (an SDF or MOL2 file with options.conformers). Throws OptionError
+/// or InputError.
+void check_dock_ligand(const matching::MatchInput& ligand, const DockOptions& options);
+
 /// Checks from names and options alone, before any work, that a dock can be run as asked:
 /// the options in their domains, the ligand a molecule without a site, the receptor a
 /// structure (with_dock_site gives it its site). Throws OptionError or InputError.
@@ -114,6 +134,12 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
 /// InputError for a ligand or receptor given as a surface or a description alone (a dock reads
 /// their atoms), and for conformers asked of a ligand that is not an SDF or MOL2 file.
 DockResult dock(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
+                const DockOptions& options = {});
+
+/// `ligand` docked into a prepared site, as dock above does after preparing it (the site's
+/// options in `options` are not read again; the rest are). Its timing_ms has the ligand's steps
+/// only.
+DockResult dock(const matching::MatchInput& ligand, const DockSite& site,
                 const DockOptions& options = {});
 
 }  // namespace surfcomp::docking

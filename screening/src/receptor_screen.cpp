@@ -1,0 +1,184 @@
+#include "surfcomp/screening/receptor_screen.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/core/io/molecule_records.hpp"
+#include "surfcomp/core/option_names.hpp"
+#include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/screening/screen.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <tuple>
+
+namespace surfcomp::screening {
+namespace {
+
+/// The order of rows and poses: poses that do not intersect the receptor first, then by score.
+bool better(const docking::ComplementarityScore& a, const docking::ComplementarityScore& b,
+            double clash_tolerance) {
+  const bool ai = a.deepest > 2.0 * clash_tolerance, bi = b.deepest > 2.0 * clash_tolerance;
+  if (ai != bi) return !ai;
+  return a.score > b.score;
+}
+
+/// The best optimum of a short search of the site with `entry`'s stored surface sample.
+ReceptorHit fast_dock(const docking::DockSite& site, const LibraryEntry& entry,
+                      const ReceptorScreenOptions& options) {
+  const docking::LigandSample sample = docking::pooled_sample(entry.sample.points, entry.sample.esp,
+                                                              entry.sample.lp, entry.info.name);
+  docking::SearchOptions search = options.dock.search;
+  search.chains = options.fast_chains;
+  search.steps = options.fast_steps;
+  ReceptorHit hit;
+  bool found = false;
+  const double tolerance = options.dock.complementarity.clash_tolerance;
+  for (const docking::SearchedPose& p :
+       docking::search_site(*site.field, sample, site.receptor.site, search)) {
+    if (!found || better(p.score, hit.score, tolerance)) {
+      hit.score = p.score;
+      hit.transform = p.pose.matrix();
+      found = true;
+    }
+  }
+  hit.fast_score = hit.score.score;
+  return hit;
+}
+
+/// True when entries a and b are conformers of one molecule (one name, source and record).
+bool same_molecule(const LibraryEntryInfo& a, const LibraryEntryInfo& b) {
+  return std::tie(a.name, a.source, a.record) == std::tie(b.name, b.source, b.record);
+}
+
+}  // namespace
+
+const options::Table<ReceptorScreenOptions>& receptor_screen_option_table() {
+  using options::Kind;
+  using R = ReceptorScreenOptions;
+  static const options::Table<R> table = [] {
+    options::Table<R> t;
+    // A library holds the conformers, and stage 2 keeps one pose of each candidate.
+    options::append(t, docking::dock_option_table(), [](auto& r) -> auto& { return r.dock; },
+                    {"conformers", "conformer-seed", "poses"});
+    t.push_back(options::field<R>(
+        {"fast-chains", Kind::integer, "stage 1: Monte Carlo chains per conformer", "", 1, 10000},
+        [](auto& r) -> auto& { return r.fast_chains; }));
+    t.push_back(options::field<R>(
+        {"fast-steps", Kind::integer, "stage 1: moves per chain", "", 0, 10000},
+        [](auto& r) -> auto& { return r.fast_steps; }));
+    t.push_back(options::field<R>(
+        {"candidates", Kind::integer,
+         "molecules, best stage-1 score first, whose best conformer gets the full dock", "", 0,
+         1e6},
+        [](auto& r) -> auto& { return r.candidates; }));
+    t.push_back(options::field<R>(
+        {"top", Kind::integer, "rows written (0: all)", "", 0, 1e12},
+        [](auto& r) -> auto& { return r.top; }));
+    return t;
+  }();
+  return table;
+}
+
+void validate(const ReceptorScreenOptions& options) {
+  docking::validate(options.dock);
+  if (options.dock.conformers) {
+    throw OptionError(options::named("conformers") +
+                      " does not apply to a screen: the library holds the conformers");
+  }
+  if (options.fast_chains < 1) {
+    throw OptionError(options::named("fast_chains") + " must be at least 1, got " +
+                      std::to_string(options.fast_chains));
+  }
+  if (options.fast_steps < 0 || options.candidates < 0 || options.top < 0) {
+    throw OptionError(options::named(options.fast_steps < 0   ? "fast_steps"
+                                     : options.candidates < 0 ? "candidates"
+                                                              : "top") +
+                      " must be >= 0");
+  }
+  docking::SearchOptions fast = options.dock.search;
+  fast.chains = options.fast_chains;
+  fast.steps = options.fast_steps;
+  docking::validate(fast);
+}
+
+ReceptorScreenResult receptor_screen(const matching::MatchInput& receptor, const Library& library,
+                                     const ReceptorScreenOptions& options) {
+  validate(options);
+  check_library_kind(library, false);
+  ReceptorScreenResult result;
+  Stopwatch clock;
+  const docking::DockSite site = docking::prepare_dock_site(receptor, options.dock);
+  result.timing_ms = site.timing_ms;
+
+  // Stage 1: every conformer, in parallel; each search is seeded alike, so rows do not depend
+  // on the threads.
+  clock.restart();
+  const std::size_t n = library.size();
+  std::vector<ReceptorHit> fast(n);
+  std::atomic<std::int64_t> done{0};
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+    fast[i] = fast_dock(site, library.entry(i), options);
+    fast[i].entry = i;
+    const std::int64_t now = ++done;
+    if (options.progress) options.progress(1, now, static_cast<std::int64_t>(n));
+  });
+  // A molecule by its best conformer (the first of equals).
+  const double tolerance = options.dock.complementarity.clash_tolerance;
+  std::vector<ReceptorHit> molecules;
+  LibraryEntryInfo last;
+  for (std::size_t i = 0; i < n; ++i) {
+    const LibraryEntryInfo info = library.info(i);
+    if (molecules.empty() || !same_molecule(info, last)) {
+      molecules.push_back(fast[i]);
+    } else if (better(fast[i].score, molecules.back().score, tolerance)) {
+      molecules.back() = fast[i];
+    }
+    last = info;
+  }
+  const auto order = [tolerance](const ReceptorHit& a, const ReceptorHit& b) {
+    if (a.stage != b.stage) return a.stage > b.stage;
+    if (better(a.score, b.score, tolerance)) return true;
+    if (better(b.score, a.score, tolerance)) return false;
+    return a.entry < b.entry;
+  };
+  std::sort(molecules.begin(), molecules.end(), order);
+  result.timing_ms.emplace_back("stage 1 (fast docks)", clock.elapsed_ms());
+
+  // Stage 2: the candidates' best conformers, each docked in full into the one site.
+  clock.restart();
+  const std::size_t candidates =
+      std::min(molecules.size(), static_cast<std::size_t>(options.candidates));
+  for (std::size_t k = 0; k < candidates; ++k) {
+    ReceptorHit& hit = molecules[k];
+    const LibraryEntry entry = library.entry(hit.entry);
+    matching::MatchInput ligand;
+    ligand.molecule = io::read_record_molecule(entry.molecule, options.dock.inputs.input.read);
+    ligand.molecule->source = entry.info.name;
+    try {
+      docking::DockOptions one = options.dock;
+      one.poses = 1;
+      const docking::DockResult docked = docking::dock(ligand, site, one);
+      if (!docked.poses.empty()) {
+        hit.stage = 2;
+        hit.score = docked.poses.front().score;
+        hit.transform = docked.poses.front().transform;
+      }
+    } catch (const InputError& error) {
+      result.notes.push_back(entry.info.name + ": no full dock (" + error.what() + ")");
+    }
+    if (options.progress)
+      options.progress(2, static_cast<std::int64_t>(k + 1), static_cast<std::int64_t>(candidates));
+  }
+  std::sort(molecules.begin(), molecules.end(), order);
+  if (options.top > 0 && molecules.size() > static_cast<std::size_t>(options.top))
+    molecules.resize(static_cast<std::size_t>(options.top));
+  result.hits = std::move(molecules);
+  result.timing_ms.emplace_back("stage 2 (full docks)", clock.elapsed_ms());
+  return result;
+}
+
+}  // namespace surfcomp::screening
