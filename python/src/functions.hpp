@@ -34,6 +34,11 @@ py::dict match(const py::object& reference, const py::object& probe, const py::d
 py::dict screen(const py::list& queries, const std::string& library_path, const py::dict& keywords,
                 bool molecules);
 
+/// A library ranked by its fit into `receptor`'s site (screening::receptor_screen): one dict
+/// per molecule (ReceptorHit's fields), best first.
+py::list screen_receptor(const py::object& receptor, const std::string& library_path,
+                         const py::dict& keywords);
+
 /// A mesh query screened by shape against a library of meshes (screening::screen_shapes): one
 /// dict per hit (ShapeHit's fields), best first.
 py::list screen_shapes(const py::handle& query, const std::string& library_path,

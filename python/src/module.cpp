@@ -15,6 +15,7 @@
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
 #include "surfcomp/screening/library_build.hpp"
+#include "surfcomp/screening/receptor_screen.hpp"
 #include "surfcomp/screening/screen.hpp"
 
 #include <pybind11/numpy.h>
@@ -77,6 +78,7 @@ const std::vector<std::string>& flag_fields() {
     add(matching::pair_match_option_table());
     add(matching::describe_option_table());
     add(screening::screen_option_table());
+    add(screening::receptor_screen_option_table());
     add(molsurf::pocket_search_option_table());
     add(screening::library_build_option_table());
     return out;
@@ -223,6 +225,8 @@ PYBIND11_MODULE(_surfcomp, m) {
         py::arg("report") = std::string());
   m.def("screen", &sp::screen, py::arg("query"), py::arg("library"), py::arg("options"),
         py::arg("molecules"));
+  m.def("screen_receptor", &sp::screen_receptor, py::arg("receptor"), py::arg("library"),
+        py::arg("options"));
   m.def("screen_shapes", &sp::screen_shapes, py::arg("query"), py::arg("library"),
         py::arg("options"), py::arg("mesh_options"));
   m.def("pockets", &sp::pockets, py::arg("structure"), py::arg("options"));

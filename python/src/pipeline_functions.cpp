@@ -11,6 +11,7 @@
 #include "surfcomp/report/html_report.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
+#include "surfcomp/screening/receptor_screen.hpp"
 #include "surfcomp/screening/screen.hpp"
 #include "surfcomp/screening/shape_screen.hpp"
 
@@ -172,6 +173,38 @@ py::dict screen(const py::list& queries, const std::string& library_path, const 
   return out;
 }
 
+py::list screen_receptor(const py::object& receptor, const std::string& library_path,
+                         const py::dict& keywords) {
+  const auto settings = settings_from(screening::receptor_screen_option_table(), keywords);
+  screening::validate(settings);
+  const matching::MatchInput input = input_of(receptor, settings.dock.inputs.input);
+  std::optional<screening::Library> library;
+  screening::ReceptorScreenResult result;
+  {
+    py::gil_scoped_release release;
+    const ThreadLimit limit(settings.dock.inputs.threads);
+    library.emplace(library_path);
+    result = screening::receptor_screen(input, *library, settings);
+  }
+  py::list rows;
+  for (std::size_t k = 0; k < result.hits.size(); ++k) {
+    const screening::ReceptorHit& hit = result.hits[k];
+    py::dict d = entry_row(*library, k + 1, hit.entry);
+    d["score"] = hit.score.score;
+    d["stage"] = hit.stage;
+    d["contact"] = hit.score.contact;
+    d["clash"] = hit.score.clash;
+    d["esp"] = hit.score.esp;
+    d["lp"] = hit.score.lp;
+    d["deepest"] = hit.score.deepest;
+    d["fast_score"] = hit.fast_score;
+    Eigen::Matrix<double, 4, 4, Eigen::RowMajor> transform = hit.transform;
+    d["transform"] = owned_array(std::move(transform));
+    rows.append(d);
+  }
+  return rows;
+}
+
 /// A mesh query screened by shape against a library of meshes (screening::screen_shapes): one
 /// dict per hit (ShapeHit's fields), best first.
 py::list screen_shapes(const py::handle& query, const std::string& library_path,
@@ -295,11 +328,14 @@ py::list option_table(const std::string& function) {
   if (function == "screen") return table_list(screening::screen_option_table());
   if (function == "pockets") return table_list(molsurf::pocket_search_option_table());
   if (function == "dock") return table_list(docking::dock_option_table());
+  if (function == "screen_receptor")
+    return table_list(screening::receptor_screen_option_table());
   for (const char* name : {"curvatures", "critical_points", "patch", "disk_map", "shape_image"}) {
     if (function == name) return table_list(array_option_table(function));
   }
   throw py::value_error("no function '" + function +
                         "' with options (build_surface, describe, match, screen, pockets, dock, "
+                        "screen_receptor, "
                         "curvatures, critical_points, patch, disk_map, shape_image)");
 }
 

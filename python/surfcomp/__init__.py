@@ -47,11 +47,12 @@ __all__ = [
     "DescriptionParameters", "Descriptors", "DockPose", "DockResult", "Error", "FileError",
     "FusedHit", "GeodesicPatch",
     "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
-    "OverlayScore", "Patch", "Pocket", "Screens", "ShapeHit", "Surface", "SurfaceMeasures",
+    "OverlayScore", "Patch", "Pocket", "ReceptorHit", "Screens", "ShapeHit", "Surface",
+    "SurfaceMeasures",
     "build_surface", "critical_points", "curvatures", "describe", "disk_map", "dock",
     "geodesic_distances",
     "library_info", "load_descriptors", "match", "option_table", "patch", "pockets", "screen",
-    "screen_queries", "screen_shapes", "shape_image",
+    "screen_queries", "screen_receptor", "screen_shapes", "shape_image",
 ]
 __version__ = "0.1.0"
 
@@ -315,6 +316,46 @@ _documented(
     transform="(4, 4) moving the hit into the query's frame",
     molecule="with screen(..., molecules=True): the hit as an RDKit molecule moved onto the "
              "query (a pocket hit: its structure), else None")
+
+
+class ReceptorHit(NamedTuple):
+    """One molecule of a screen into a receptor's pocket (:func:`screen_receptor`), best
+    first."""
+
+    rank: int
+    entry: int
+    name: str
+    source: str
+    record: int
+    conformer: int
+    score: float
+    stage: int
+    contact: float
+    clash: float
+    esp: float
+    lp: float
+    deepest: float
+    fast_score: float
+    transform: np.ndarray
+
+
+_documented(
+    ReceptorHit,
+    rank="1-based position, best first",
+    entry="1-based library entry of the molecule's best conformer",
+    name="the molecule's name",
+    source="the file the molecule came from",
+    record="1-based record of that file",
+    conformer="the conformer's number (0: the record's own coordinates)",
+    score="the complementarity score of the stage's best pose (DockPose.score)",
+    stage="2: the full dock (the candidates, ranked first); 1: the fast dock",
+    contact="the score's terms, as DockPose's",
+    clash="A^2",
+    esp="over the contact",
+    lp="over the contact",
+    deepest="A",
+    fast_score="the stage-1 score of that conformer",
+    transform="(4, 4) moving the entry's molecule into the receptor's frame")
 
 
 class FusedHit(NamedTuple):
@@ -800,6 +841,16 @@ def pockets(structure, **options) -> List[Pocket]:
     alone as ``surfcomp pockets`` finds them, best first. A pocket's rank is what
     ``match(..., site_pocket=N)`` and ``screen(..., site_pocket=N)`` take."""
     return [Pocket(**p) for p in _surfcomp.pockets(os.fspath(structure), options)]
+
+
+@_keyword_options("screen_receptor")
+def screen_receptor(receptor, library, **options) -> List[ReceptorHit]:
+    """Ranks the molecules of a screening library by how well they fit ``receptor``'s pocket
+    (a protein structure path), as ``surfcomp screen --receptor`` does: a fast dock of every
+    conformer, then the full dock of the ``candidates`` best molecules. The site is given as to
+    :func:`dock`; none: pocket 1."""
+    rows = _surfcomp.screen_receptor(_input(receptor), os.fspath(library), options)
+    return [ReceptorHit(**row) for row in rows]
 
 
 @_keyword_options("dock")

@@ -241,6 +241,23 @@ class LibraryEntry(NamedTuple):
     heavy_atoms: int
     site_spheres: int
 
+class ReceptorHit(NamedTuple):
+    rank: int
+    entry: int
+    name: str
+    source: str
+    record: int
+    conformer: int
+    score: float
+    stage: int
+    contact: float
+    clash: float
+    esp: float
+    lp: float
+    deepest: float
+    fast_score: float
+    transform: npt.NDArray[np.float64]
+
 class DockPose(NamedTuple):
     rank: int
     score: float
@@ -458,6 +475,72 @@ def screen_queries(
     pocket_max_volume: float = 0.0,
     threads: int = 0,
 ) -> Screens: ...
+
+def screen_receptor(
+    receptor: PathLike,
+    library: PathLike,
+    *,
+    probe_radius: float = 1.4,
+    density: float = 2.5,
+    voxel: float = 0.0,
+    charges: str = 'file',
+    eps: float = 1.0,
+    eps_distance_dependent: bool = False,
+    lp_kernel: str = 'fauchere',
+    ligand: Optional[PathLike] = None,
+    record: Optional[int] = None,
+    min_plddt: float = 0.0,
+    molecule: Optional[PathLike] = None,
+    repair: bool = False,
+    scale: str = 'auto',
+    unit: Optional[float] = None,
+    max_atoms: int = 2000000,
+    max_grid_cells: float = 200000000.0,
+    max_vertices: int = 20000000,
+    patch_radius: float = 5.0,
+    max_image_bytes: int = 1073741824,
+    fuzzy_threshold: float = 0.3,
+    image_threshold: float = 0.5,
+    distance_tolerance: float = 1.5,
+    min_distance: float = 2.0,
+    overlap_tolerance: float = 30.0,
+    max_graph_nodes: int = 20000,
+    max_clique_work: int = 100000000,
+    max_cliques: int = 1000,
+    rmsd_cut: float = 4.0,
+    ranking: str = 'rank',
+    site_radius: float = 4.0,
+    site_margin: float = 16.0,
+    pocket_min_radius: float = 3.2,
+    pocket_max_radius: float = 6.4,
+    pocket_buriedness: float = 0.6,
+    pocket_min_spheres: int = 12,
+    pocket_max_volume: float = 0.0,
+    contact_gap: float = 0.3,
+    contact_width: float = 0.8,
+    clash_tolerance: float = 0.5,
+    clash_weight: float = 100.0,
+    esp_weight: float = 0.2,
+    lp_weight: float = 0.2,
+    site_weight: float = 1.0,
+    grid_spacing: float = 0.4,
+    grid_margin: float = 6.0,
+    sample_spacing: float = 1.0,
+    refine_top: int = 40,
+    search_chains: int = 48,
+    search_steps: int = 40,
+    search_temperature: float = 0.05,
+    distinct_rmsd: float = 1.0,
+    max_ligand_to_site: float = 3.0,
+    site_ligand: Optional[PathLike] = None,
+    site_sphere: Optional[SiteSpheres] = None,
+    site_pocket: Optional[int] = None,
+    threads: int = 0,
+    fast_chains: int = 8,
+    fast_steps: int = 10,
+    candidates: int = 20,
+    top: int = 0,
+) -> List[ReceptorHit]: ...
 
 def dock(
     probe: Union[PathLike, Molecule],

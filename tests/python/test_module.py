@@ -547,6 +547,30 @@ def test_dock_is_the_programs_and_writes_its_poses(program, shared, tmp_path):
         surfcomp.dock(ligand, _sphere_arrays(5.0, 1), site_sphere=(0, 0, 0, 5))
 
 
+def test_screen_receptor_is_the_programs(program, shared, tmp_path):
+    folder = shared / "thermolysin"
+    pdb = folder / "1TMN.pdb"
+    (tmp_path / "set.smi").write_text("CC(=O)Nc1ccc(O)cc1 paracetamol\n"
+                                      "OC(=O)c1ccccc1O salicylic_acid\n")
+    built = run([program, "library", "build", tmp_path / "set.smi", "--conformers", "2", "-o",
+                 tmp_path / "lib.sclib"])
+    assert built.returncode == 0, built.stderr
+    quick = {"site_ligand": "0ZN", "candidates": 1, "fast_chains": 2, "fast_steps": 3,
+             "search_chains": 4, "search_steps": 5}
+    hits = surfcomp.screen_receptor(pdb, tmp_path / "lib.sclib", **quick)
+    cli = run([program, "screen", "--receptor", pdb, tmp_path / "lib.sclib", "-o",
+               tmp_path / "hits.csv"] + [x for k, v in quick.items()
+                                         for x in ("--" + k.replace("_", "-"), str(v))])
+    assert cli.returncode == 0, cli.stderr
+    import csv
+    rows = list(csv.DictReader((tmp_path / "hits.csv").open()))
+    assert [h.name for h in hits] == [r["name"] for r in rows] and len(hits) == 2
+    assert [h.stage for h in hits] == [2, 1]
+    assert [h.score for h in hits] == pytest.approx([float(r["score"]) for r in rows], abs=1e-6)
+    with pytest.raises(surfcomp.OptionError, match="fast_chains"):
+        surfcomp.screen_receptor(pdb, tmp_path / "lib.sclib", site_ligand="0ZN", fast_chains=0)
+
+
 def _sphere_arrays(radius, levels):
     """An octahedron subdivided `levels` times onto the sphere of `radius`: (V, F)."""
     vertices = [np.array(v, float) for v in
