@@ -122,12 +122,14 @@ std::vector<DockPose> best_distinct(const ReceptorField& field,
 std::vector<matching::MatchInput> ligand_conformations(const matching::MatchInput& ligand,
                                                        const DockOptions& options,
                                                        std::vector<std::string>& blocks) {
-  if (!options.conformers) return {ligand};
+  if (options.conformers == 0) return {ligand};
   const io::MoleculeReadOptions& read = options.inputs.input.read;
   const Molecule own = io::read_molecule(ligand.path, read);  // the record, checked as read
   const std::vector<io::MoleculeRecord> records = io::read_molecule_records(ligand.path);
   const io::MoleculeRecord& record = records.at(read.record == 0 ? 0 : read.record - 1);
-  ConformerOptions asked = *options.conformers;
+  ConformerOptions asked;
+  asked.count = options.conformers;
+  asked.seed = options.conformer_seed;
   asked.hydrogens = std::any_of(own.atoms.begin(), own.atoms.end(),
                                 [](const Atom& a) { return a.element == "H"; });
   blocks = generate_conformers(record, asked);
@@ -239,34 +241,16 @@ const options::Table<DockOptions>& dock_option_table() {
         {"search-temperature", Kind::real, "the Monte Carlo chains' temperature", "score", 1e-6,
          100.0},
         [](auto& d) -> auto& { return d.search.temperature; }));
-    // Both live in the optional ConformerOptions: --conformers 0 leaves it unset (the ligand's
-    // own coordinates), and --conformer-seed, applied after it, only matters when it is set.
-    t.push_back({{"conformers", Kind::integer,
-                  "dock this many ETKDG + MMFF conformers of the ligand instead of its own "
-                  "coordinates (0: its own)",
-                  "", 0, 1000},
-                 [](const D& d) {
-                   return options::Value(std::int64_t{d.conformers ? d.conformers->count : 0});
-                 },
-                 [](D& d, const options::Value& v) {
-                   const auto count = static_cast<int>(std::get<std::int64_t>(v));
-                   if (count == 0) {
-                     d.conformers.reset();
-                   } else {
-                     if (!d.conformers) d.conformers = ConformerOptions{};
-                     d.conformers->count = count;
-                   }
-                 }});
-    t.push_back({{"conformer-seed", Kind::integer, "ETKDG's random seed (with {conformers})", "", 0,
-                  2147483647.0},
-                 [](const D& d) {
-                   return options::Value(
-                       std::int64_t{d.conformers ? d.conformers->seed : ConformerOptions{}.seed});
-                 },
-                 [](D& d, const options::Value& v) {
-                   if (d.conformers)
-                     d.conformers->seed = static_cast<int>(std::get<std::int64_t>(v));
-                 }});
+    t.push_back(options::field<D>(
+        {"conformers", Kind::integer,
+         "dock this many ETKDG + MMFF conformers of the ligand instead of its own coordinates "
+         "(0: its own)",
+         "", 0, 1000},
+        [](auto& d) -> auto& { return d.conformers; }));
+    t.push_back(options::field<D>(
+        {"conformer-seed", Kind::integer, "ETKDG's random seed (with {conformers})", "", 0,
+         2147483647.0},
+        [](auto& d) -> auto& { return d.conformer_seed; }));
     t.push_back(options::field<D>(
         {"distinct-rmsd", Kind::real, "poses whose ligand atoms lie closer than this are one pose",
          "A", 0.0, 100.0},
@@ -297,10 +281,9 @@ void validate(const DockOptions& options) {
           options.distinct_rmsd, "finite and >= 0");
   require(std::isfinite(options.max_ligand_to_site) && options.max_ligand_to_site > 0.0,
           "max_ligand_to_site", options.max_ligand_to_site, "finite and > 0");
-  if (options.conformers) {
-    require(options.conformers->count >= 1, "conformers", options.conformers->count, ">= 1");
-    require(options.conformers->seed >= 0, "conformer_seed", options.conformers->seed, ">= 0");
-  }
+  require(options.conformers >= 0 && options.conformers <= 1000, "conformers", options.conformers,
+          "in [0, 1000]");
+  require(options.conformer_seed >= 0, "conformer_seed", options.conformer_seed, ">= 0");
 }
 
 matching::MatchInput with_dock_site(matching::MatchInput receptor, const DockOptions& options) {
@@ -325,7 +308,7 @@ void check_dock_ligand(const matching::MatchInput& ligand, const DockOptions& op
     throw InputError(ligand.path.string() + ": a ligand is a molecule file");
   if (!ligand.site_ligand.empty() || !ligand.site_spheres.empty() || ligand.site_pocket != 0)
     throw OptionError(ligand.name() + ": a site is the receptor's, not the ligand's");
-  if (options.conformers) {
+  if (options.conformers > 0) {
     const io::MoleculeFormat* format = io::find_molecule_format(ligand.path);
     if (format == nullptr ||
         (format->kind != io::MoleculeFileKind::mdl && format->kind != io::MoleculeFileKind::mol2)) {
@@ -383,6 +366,7 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
                 const DockOptions& options) {
   validate(options);
   check_dock_ligand(ligand_input, options);
+  if (!site.field) throw InputError(site.receptor.name + ": the dock site was not prepared");
   DockResult result;
   result.receptor = site.receptor;
   result.site_volume = site.free_volume;
@@ -428,7 +412,7 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
     match_ms += clock.elapsed_ms();
 
     clock.restart();
-    const int conformer = options.conformers ? static_cast<int>(k) + 1 : 0;
+    const int conformer = options.conformers > 0 ? static_cast<int>(k) + 1 : 0;
     const LigandSample& sample = ligands.back().sample;
     int refined = 0;
     for (const matching::Alignment& a : starts.alignments) {
@@ -452,7 +436,7 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
       candidates.back().conformer = conformer;
     }
     search_ms += clock.elapsed_ms();
-    if (options.conformers)
+    if (options.conformers > 0)
       result.conformer_inputs.push_back(k == 0 ? result.ligand : std::move(other));
   }
   clock.restart();
@@ -464,6 +448,12 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
   if (result.poses.empty())
     result.notes.push_back("no pose: no clique, and no search (" + options::named("search_chains") +
                            " 0)");
+  const io::MoleculeFormat* format = io::find_molecule_format(ligand_input.path);
+  if (options.conformers > 0 && format != nullptr && format->kind == io::MoleculeFileKind::mol2 &&
+      options.inputs.input.read.charges == io::ChargeModel::file) {
+    result.notes.push_back(
+        "the conformers carry no charges of the MOL2 file: theirs are computed (Gasteiger)");
+  }
   result.timing_ms = {{"ligand surfaces and descriptions", surfaces_ms},
                       {"complementary match", match_ms},
                       {"refinement", search_ms}};

@@ -17,6 +17,8 @@
 
 #include <pybind11/stl.h>
 
+#include <filesystem>
+
 namespace surfcomp::python {
 namespace {
 
@@ -197,6 +199,7 @@ py::list screen_receptor(const py::object& receptor, const std::string& library_
     d["esp"] = hit.score.esp;
     d["lp"] = hit.score.lp;
     d["deepest"] = hit.score.deepest;
+    d["area"] = hit.area;
     d["fast_score"] = hit.fast_score;
     Eigen::Matrix<double, 4, 4, Eigen::RowMajor> transform = hit.transform;
     d["transform"] = owned_array(std::move(transform));
@@ -283,9 +286,9 @@ py::dict dock(const py::object& ligand, const py::object& receptor, const py::di
   if (!output_path.empty() && lig.path.empty())
     throw OptionError("output: the poses are records of a LIGAND file");
   if (!output_path.empty() || !report_path.empty()) {  // as the CLI checks -o and --report
-    io::check_command_files({{{"LIGAND", lig.path}, {"RECEPTOR", rec.path}},
-                             {{"output", output_path, {".sdf"}, ""},
-                              {"report", report_path, {".html"}, ""}}});
+    io::check_command_files(
+        {{{"LIGAND", lig.path}, {"RECEPTOR", rec.path}},
+         {{"output", output_path, {".sdf"}, ""}, {"report", report_path, {".html"}, ""}}});
   }
   report::HtmlReportOptions report_options;
   if (!report_path.empty()) report_options.viewer_script = report::find_viewer_script();
@@ -294,13 +297,19 @@ py::dict dock(const py::object& ligand, const py::object& receptor, const py::di
     py::gil_scoped_release release;
     const ThreadLimit limit(settings.inputs.threads);
     docked = docking::dock(lig, rec, settings);
+    // Outputs last, each atomic; a failure of the report removes the poses (as the CLI does).
     if (!output_path.empty()) {
       const std::string poses =
           report::dock_poses_sdf(docked, lig.path, settings.inputs.input.read.record);
       io::write_file_atomically(output_path, [&](std::ostream& out) { out << poses; });
     }
-    if (!report_path.empty())
-      report::write_dock_html_report(report_path, docked, settings, report_options);
+    try {
+      if (!report_path.empty())
+        report::write_dock_html_report(report_path, docked, settings, report_options);
+    } catch (...) {
+      if (!output_path.empty()) std::filesystem::remove(output_path);
+      throw;
+    }
   }
   py::list poses;
   for (const docking::DockPose& p : docked.poses) {
@@ -328,8 +337,7 @@ py::list option_table(const std::string& function) {
   if (function == "screen") return table_list(screening::screen_option_table());
   if (function == "pockets") return table_list(molsurf::pocket_search_option_table());
   if (function == "dock") return table_list(docking::dock_option_table());
-  if (function == "screen_receptor")
-    return table_list(screening::receptor_screen_option_table());
+  if (function == "screen_receptor") return table_list(screening::receptor_screen_option_table());
   for (const char* name : {"curvatures", "critical_points", "patch", "disk_map", "shape_image"}) {
     if (function == name) return table_list(array_option_table(function));
   }

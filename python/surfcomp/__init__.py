@@ -335,6 +335,7 @@ class ReceptorHit(NamedTuple):
     esp: float
     lp: float
     deepest: float
+    area: float
     fast_score: float
     transform: np.ndarray
 
@@ -354,6 +355,8 @@ _documented(
     esp="over the contact",
     lp="over the contact",
     deepest="A",
+    area="A^2, of the ligand's surface the score is a mean over (``rank_by='total'``: score x "
+         "area ranks)",
     fast_score="the stage-1 score of that conformer",
     transform="(4, 4) moving the entry's molecule into the receptor's frame")
 
@@ -533,7 +536,8 @@ _documented(DockPose, rank="1-based, best first",
             lp="over the contact, the product of the two sides' LP z-scores",
             deepest="A, the largest depth of a ligand surface point inside the receptor's atoms",
             intersects="deeper than twice clash_tolerance: ranked after every pose that is not",
-            transform="4 x 4, moves the ligand as given into the receptor's frame",
+            transform="4 x 4, moves the ligand as given (or its conformer) into the receptor's "
+                      "frame",
             start="the clique alignment it started from (1-based), 0 for the Monte Carlo search",
             conformer="0: the ligand as given; k: DockResult.conformers[k - 1] (conformers=N)",
             cp_pairs="(k, 2) (receptor, ligand) critical-point indices of that clique")

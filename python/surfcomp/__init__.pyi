@@ -255,6 +255,7 @@ class ReceptorHit(NamedTuple):
     esp: float
     lp: float
     deepest: float
+    area: float
     fast_score: float
     transform: npt.NDArray[np.float64]
 
@@ -540,6 +541,7 @@ def screen_receptor(
     fast_steps: int = 10,
     candidates: int = 20,
     top: int = 0,
+    rank_by: str = 'mean',
 ) -> List[ReceptorHit]: ...
 
 def dock(

@@ -53,6 +53,7 @@ std::string dock_json(const docking::DockResult& docked, const docking::DockOpti
                      {"cp_pairs", cp}});
   }
   doc["poses"] = poses;
+  doc["conformers"] = docked.conformers;  // the blocks a pose's conformer k (1-based) names
   doc["starts"] = docked.starts;
   nlohmann::ordered_json trace = nlohmann::ordered_json::array();
   for (const matching::TraceStage& stage : docked.trace)
@@ -67,7 +68,8 @@ std::string dock_json(const docking::DockResult& docked, const docking::DockOpti
                        {"esp_weight", c.esp_weight},
                        {"lp_weight", c.lp_weight},
                        {"grid_spacing", c.spacing},
-                       {"conformers", options.conformers ? options.conformers->count : 0},
+                       {"conformers", options.conformers},
+                       {"conformer_seed", options.conformer_seed},
                        {"refine_top", options.refine_top},
                        {"search_chains", options.search.chains},
                        {"search_steps", options.search.steps},

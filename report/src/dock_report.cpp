@@ -7,10 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
+
 namespace surfcomp::report {
 namespace {
 
-nlohmann::json pose_json(const docking::DockPose& p) {
+nlohmann::json pose_json(const docking::DockPose& p, int probe) {
   nlohmann::json transform = nlohmann::json::array();
   for (int r = 0; r < 4; ++r) {
     transform.push_back(
@@ -21,7 +23,7 @@ nlohmann::json pose_json(const docking::DockPose& p) {
   return {{"rank", p.rank},
           {"transform", transform},
           {"cp_pairs", pairs},
-          {"probe", p.conformer == 0 ? 0 : p.conformer - 1},
+          {"probe", probe},
           {"dock",
            {{"score", p.score.score},
             {"contact", p.score.contact},
@@ -45,17 +47,25 @@ std::string dock_html_report(const docking::DockResult& docked, const docking::D
   const double lining = options.inputs.match.site.overlay_radius;  // A: molecules only
   document["reference"] = detail::side_json(docked.receptor, lining, report);
   document["probe"] = detail::side_json(docked.ligand, lining, report);
-  if (!docked.conformer_inputs.empty()) {
-    nlohmann::json probes = nlohmann::json::array();
-    for (const matching::PreparedInput& conformer : docked.conformer_inputs)
-      probes.push_back(detail::side_json(conformer, lining, report));
-    document["probes"] = probes;
-  }
+  // A probe side per conformer that a listed pose places, in the order the poses first name
+  // them (a page of 1000 conformers' surfaces would be of little use).
   nlohmann::json poses = nlohmann::json::array();
+  nlohmann::json probes = nlohmann::json::array();
+  std::map<int, int> probe_of;  // conformer -> index into probes
   for (const docking::DockPose& p : docked.poses) {
     if (report.top > 0 && poses.size() >= report.top) break;
-    poses.push_back(pose_json(p));
+    int probe = 0;
+    if (p.conformer > 0) {
+      const auto [at, added] = probe_of.try_emplace(p.conformer, static_cast<int>(probes.size()));
+      if (added) {
+        probes.push_back(detail::side_json(
+            docked.conformer_inputs.at(static_cast<std::size_t>(p.conformer - 1)), lining, report));
+      }
+      probe = at->second;
+    }
+    poses.push_back(pose_json(p, probe));
   }
+  if (!probes.empty()) document["probes"] = probes;
   document["alignments"] = poses;
   nlohmann::json trace = nlohmann::json::array();
   for (const matching::TraceStage& stage : docked.trace)

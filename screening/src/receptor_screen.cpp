@@ -4,6 +4,7 @@
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/option_names.hpp"
 #include "surfcomp/core/stopwatch.hpp"
+#include "surfcomp/mesh/surface.hpp"
 #include "surfcomp/screening/screen.hpp"
 
 #include <tbb/parallel_for.h>
@@ -18,12 +19,15 @@
 namespace surfcomp::screening {
 namespace {
 
-/// The order of rows and poses: poses that do not intersect the receptor first, then by score.
-bool better(const docking::ComplementarityScore& a, const docking::ComplementarityScore& b,
-            double clash_tolerance) {
-  const bool ai = a.deepest > 2.0 * clash_tolerance, bi = b.deepest > 2.0 * clash_tolerance;
+/// The order of rows and poses: poses that do not intersect the receptor first, then by the
+/// score, or by the score times the ligand's area (ReceptorRanking::total).
+bool better(const ReceptorHit& a, const ReceptorHit& b, const ReceptorScreenOptions& options) {
+  const double limit = 2.0 * options.dock.complementarity.clash_tolerance;
+  const bool ai = a.score.deepest > limit, bi = b.score.deepest > limit;
   if (ai != bi) return !ai;
-  return a.score > b.score;
+  if (options.ranking == ReceptorRanking::total)
+    return a.score.score * a.area > b.score.score * b.area;
+  return a.score.score > b.score.score;
 }
 
 /// The best optimum of a short search of the site with `entry`'s stored surface sample.
@@ -35,11 +39,13 @@ ReceptorHit fast_dock(const docking::DockSite& site, const LibraryEntry& entry,
   search.chains = options.fast_chains;
   search.steps = options.fast_steps;
   ReceptorHit hit;
+  hit.area = entry.sample.weights.sum();
   bool found = false;
-  const double tolerance = options.dock.complementarity.clash_tolerance;
   for (const docking::SearchedPose& p :
        docking::search_site(*site.field, sample, site.receptor.site, search)) {
-    if (!found || better(p.score, hit.score, tolerance)) {
+    ReceptorHit candidate = hit;
+    candidate.score = p.score;
+    if (!found || better(candidate, hit, options)) {
       hit.score = p.score;
       hit.transform = p.pose.matrix();
       found = true;
@@ -78,6 +84,11 @@ const options::Table<ReceptorScreenOptions>& receptor_screen_option_table() {
     t.push_back(options::field<R>(
         {"top", Kind::integer, "rows written (0: all)", "", 0, 1e12},
         [](auto& r) -> auto& { return r.top; }));
+    t.push_back(options::choice<R>(
+        {"rank-by", Kind::choice,
+         "mean (the score, a mean over the ligand's surface) or total (the score times the "
+         "ligand's surface area)"},
+        [](auto& r) -> auto& { return r.ranking; }, receptor_ranking_names));
     return t;
   }();
   return table;
@@ -85,7 +96,7 @@ const options::Table<ReceptorScreenOptions>& receptor_screen_option_table() {
 
 void validate(const ReceptorScreenOptions& options) {
   docking::validate(options.dock);
-  if (options.dock.conformers) {
+  if (options.dock.conformers > 0) {
     throw OptionError(options::named("conformers") +
                       " does not apply to a screen: the library holds the conformers");
   }
@@ -114,35 +125,41 @@ ReceptorScreenResult receptor_screen(const matching::MatchInput& receptor, const
   const docking::DockSite site = docking::prepare_dock_site(receptor, options.dock);
   result.timing_ms = site.timing_ms;
 
-  // Stage 1: every conformer, in parallel; each search is seeded alike, so rows do not depend
-  // on the threads.
+  // Stage 1: every conformer, in parallel, a chunk of the library at a time (its pages released
+  // after it, so that memory does not grow with the library); each search is seeded alike, so
+  // the rows do not depend on the threads. A molecule counts by its best conformer (the first of
+  // equals).
   clock.restart();
   const std::size_t n = library.size();
-  std::vector<ReceptorHit> fast(n);
-  std::atomic<std::int64_t> done{0};
-  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-    fast[i] = fast_dock(site, library.entry(i), options);
-    fast[i].entry = i;
-    const std::int64_t now = ++done;
-    if (options.progress) options.progress(1, now, static_cast<std::int64_t>(n));
-  });
-  // A molecule by its best conformer (the first of equals).
-  const double tolerance = options.dock.complementarity.clash_tolerance;
+  constexpr std::size_t chunk = 1024;
   std::vector<ReceptorHit> molecules;
   LibraryEntryInfo last;
-  for (std::size_t i = 0; i < n; ++i) {
-    const LibraryEntryInfo info = library.info(i);
-    if (molecules.empty() || !same_molecule(info, last)) {
-      molecules.push_back(fast[i]);
-    } else if (better(fast[i].score, molecules.back().score, tolerance)) {
-      molecules.back() = fast[i];
+  std::atomic<std::int64_t> done{0};
+  for (std::size_t e0 = 0; e0 < n; e0 += chunk) {
+    const std::size_t e1 = std::min(n, e0 + chunk);
+    std::vector<ReceptorHit> fast(e1 - e0);
+    tbb::parallel_for(e0, e1, [&](std::size_t i) {
+      fast[i - e0] = fast_dock(site, library.entry(i), options);
+      fast[i - e0].entry = i;
+      const std::int64_t now = ++done;
+      if (options.progress) options.progress(1, now, static_cast<std::int64_t>(n));
+    });
+    for (std::size_t i = e0; i < e1; ++i) {
+      const LibraryEntryInfo info = library.info(i);
+      const ReceptorHit& hit = fast[i - e0];
+      if (molecules.empty() || !same_molecule(info, last)) {
+        molecules.push_back(hit);
+      } else if (better(hit, molecules.back(), options)) {
+        molecules.back() = hit;
+      }
+      last = info;
     }
-    last = info;
+    library.release(e0, e1);
   }
-  const auto order = [tolerance](const ReceptorHit& a, const ReceptorHit& b) {
+  const auto order = [&options](const ReceptorHit& a, const ReceptorHit& b) {
     if (a.stage != b.stage) return a.stage > b.stage;
-    if (better(a.score, b.score, tolerance)) return true;
-    if (better(b.score, a.score, tolerance)) return false;
+    if (better(a, b, options)) return true;
+    if (better(b, a, options)) return false;
     return a.entry < b.entry;
   };
   std::sort(molecules.begin(), molecules.end(), order);
@@ -155,10 +172,10 @@ ReceptorScreenResult receptor_screen(const matching::MatchInput& receptor, const
   for (std::size_t k = 0; k < candidates; ++k) {
     ReceptorHit& hit = molecules[k];
     const LibraryEntry entry = library.entry(hit.entry);
-    matching::MatchInput ligand;
-    ligand.molecule = io::read_record_molecule(entry.molecule, options.dock.inputs.input.read);
-    ligand.molecule->source = entry.info.name;
     try {
+      matching::MatchInput ligand;
+      ligand.molecule = io::read_record_molecule(entry.molecule, options.dock.inputs.input.read);
+      ligand.molecule->source = entry.info.name;
       docking::DockOptions one = options.dock;
       one.poses = 1;
       const docking::DockResult docked = docking::dock(ligand, site, one);
@@ -166,8 +183,11 @@ ReceptorScreenResult receptor_screen(const matching::MatchInput& receptor, const
         hit.stage = 2;
         hit.score = docked.poses.front().score;
         hit.transform = docked.poses.front().transform;
+        hit.area = mesh::measure_surface(docked.ligand.descriptors.surface).area;
       }
-    } catch (const InputError& error) {
+    } catch (const OptionError&) {
+      throw;                        // the options, not this molecule
+    } catch (const Error& error) {  // this molecule alone: it keeps its stage-1 row
       result.notes.push_back(entry.info.name + ": no full dock (" + error.what() + ")");
     }
     if (options.progress)

@@ -51,7 +51,7 @@ void write_hits_csv(std::ostream& out, const Library& library, const std::vector
 
 void write_receptor_hits_csv(std::ostream& out, const Library& library,
                              const std::vector<ReceptorHit>& hits) {
-  out << "rank,entry,name,source,record,conformer,score,stage,contact,clash,esp,lp,deepest,"
+  out << "rank,entry,name,source,record,conformer,score,stage,contact,clash,esp,lp,deepest,area,"
          "fast_score";
   for (int r = 0; r < 4; ++r) {
     for (int c = 0; c < 4; ++c) out << ",t" << r << c;
@@ -62,7 +62,8 @@ void write_receptor_hits_csv(std::ostream& out, const Library& library,
     write_entry_columns(out, library, i + 1, hit.entry);
     out << fixed(hit.score.score) << ',' << hit.stage << ',' << fixed(hit.score.contact) << ','
         << fixed(hit.score.clash) << ',' << fixed(hit.score.esp) << ',' << fixed(hit.score.lp)
-        << ',' << fixed(hit.score.deepest) << ',' << fixed(hit.fast_score);
+        << ',' << fixed(hit.score.deepest) << ',' << fixed(hit.area) << ','
+        << fixed(hit.fast_score);
     for (int r = 0; r < 4; ++r) {
       for (int c = 0; c < 4; ++c) out << ',' << fixed(hit.transform(r, c));
     }

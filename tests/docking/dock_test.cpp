@@ -127,8 +127,7 @@ TEST_F(Thermolysin, ConformersAreDockedInsteadOfTheLigandsCoordinates) {
   // bench/redock_bench.py measures the accuracy (docs/benchmarks.md).
   DockOptions options;
   options.site_ligand = "0ZN";
-  options.conformers = ConformerOptions{};
-  options.conformers->count = 3;
+  options.conformers = 3;
   options.search.chains = 6;
   options.refine_top = 5;
   options.poses = 4;
@@ -203,7 +202,7 @@ TEST_F(Thermolysin, WhatADockCannotDoIsRefusedInOneLine) {
   ligand = {};
   ligand.path = dir_.write("ligand_as.pdb", pdb.str());
   options = {};
-  options.conformers = ConformerOptions{};
+  options.conformers = 2;
   const std::string no_bonds =
       test::error_of([&] { check_dock_inputs(ligand, receptor, options); });
   EXPECT_NE(no_bonds.find("SDF or MOL2"), std::string::npos) << no_bonds;

@@ -565,7 +565,7 @@ def test_screen_receptor_is_the_programs(program, shared, tmp_path):
     import csv
     rows = list(csv.DictReader((tmp_path / "hits.csv").open()))
     assert [h.name for h in hits] == [r["name"] for r in rows] and len(hits) == 2
-    assert [h.stage for h in hits] == [2, 1]
+    assert [h.stage for h in hits] == [2, 1] and all(h.area > 50.0 for h in hits)
     assert [h.score for h in hits] == pytest.approx([float(r["score"]) for r in rows], abs=1e-6)
     with pytest.raises(surfcomp.OptionError, match="fast_chains"):
         surfcomp.screen_receptor(pdb, tmp_path / "lib.sclib", site_ligand="0ZN", fast_chains=0)

@@ -8,6 +8,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/thread_limit.hpp"
+#include "surfcomp/mesh/surface.hpp"
 #include "surfcomp/screening/library_build.hpp"
 #include "surfcomp/screening/receptor_screen.hpp"
 
@@ -96,12 +97,39 @@ TEST_F(ThermolysinScreen, RanksEachMoleculeOnceWithTheFullDocksFirst) {
   EXPECT_EQ(csv_again.str(), text);
 }
 
+TEST_F(ThermolysinScreen, RankedByTotalTheRowsGoByScoreTimesArea) {
+  const Library library(library_path_);
+  matching::MatchInput receptor;
+  receptor.path = pocket_;
+  ReceptorScreenOptions options = options_;
+  options.candidates = 0;
+  options.ranking = ReceptorRanking::total;
+  const ReceptorScreenResult screened = receptor_screen(receptor, library, options);
+  ASSERT_EQ(screened.hits.size(), 5u);
+  const double limit = 2.0 * options.dock.complementarity.clash_tolerance;
+  for (std::size_t k = 0; k < screened.hits.size(); ++k) {
+    const ReceptorHit& hit = screened.hits[k];
+    EXPECT_EQ(hit.stage, 1);
+    // The area of the stored sample is the molecule's surface area, as its built surface has it.
+    matching::MatchInput ligand;
+    ligand.molecule = io::read_record_molecule(library.entry(hit.entry).molecule);
+    const double built =
+        mesh::measure_surface(matching::prepare_input(ligand, {}).descriptors.surface).area;
+    EXPECT_NEAR(hit.area, built, 0.1 * built) << hit.entry;
+    if (k == 0) continue;
+    const ReceptorHit& before = screened.hits[k - 1];
+    const bool a = before.score.deepest > limit, b = hit.score.deepest > limit;
+    EXPECT_TRUE(a < b ||
+                (a == b && before.score.score * before.area >= hit.score.score * hit.area));
+  }
+}
+
 TEST_F(ThermolysinScreen, WhatAReceptorScreenCannotDoIsRefused) {
   const Library library(library_path_);
   matching::MatchInput receptor;
   receptor.path = pocket_;
   ReceptorScreenOptions options = options_;
-  options.dock.conformers = ConformerOptions{};
+  options.dock.conformers = 2;
   const std::string conformers =
       test::error_of([&] { receptor_screen(receptor, library, options); });
   EXPECT_NE(conformers.find("the library holds the conformers"), std::string::npos) << conformers;

@@ -15,7 +15,6 @@
 
 #include <cstddef>
 #include <memory>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,11 +32,14 @@ struct DockOptions {
   std::vector<molsurf::SiteSphere> site_spheres;
   int site_pocket = 0;
   ComplementarityOptions complementarity;  ///< the score poses are refined and ranked on
-  /// Default none: the ligand's own coordinates are docked. Set: its record's conformers
-  /// (generate_conformers from the bonds alone; hydrogens as the ligand file has them) are
-  /// docked instead, each matched and searched (its search seeded apart), and the distinct best
-  /// poses over all of them kept. The ligand is then a file's SDF or MOL2 record.
-  std::optional<ConformerOptions> conformers;
+  /// Default 0: the ligand's own coordinates are docked. N >= 1: N conformers of its record
+  /// (generate_conformers from the bonds alone, ETKDG seeded by conformer_seed; hydrogens as the
+  /// ligand file has them) are docked instead, each matched and searched (its search seeded
+  /// apart), and the distinct best poses over all of them kept. The ligand is then a file's SDF
+  /// or MOL2 record. In [0, 1000].
+  int conformers = 0;
+  /// Default 42. ETKDG's seed for `conformers`. >= 0.
+  int conformer_seed = ConformerOptions{}.seed;
   /// Default 9. The most poses reported, best first. >= 1.
   int poses = 9;
   /// Default 40. The first clique poses (consensus order) refined on the score. >= 1.
@@ -136,9 +138,11 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
 DockResult dock(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
                 const DockOptions& options = {});
 
-/// `ligand` docked into a prepared site, as dock above does after preparing it (the site's
-/// options in `options` are not read again; the rest are). Its timing_ms has the ligand's steps
-/// only.
+/// `ligand` docked into a prepared site, as dock above does after preparing it. The site, its
+/// grid and the score's terms and weights are `site`'s (prepare_dock_site read them from its
+/// options); of `options` the ligand's reading and description, the match, the search, the
+/// conformers, sample_spacing, poses and the distinct and size limits are read. Its timing_ms has
+/// the ligand's steps only. Throws InputError for a site that was not prepared (no field).
 DockResult dock(const matching::MatchInput& ligand, const DockSite& site,
                 const DockOptions& options = {});
 

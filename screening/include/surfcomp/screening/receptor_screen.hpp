@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -24,6 +25,15 @@
 #include <vector>
 
 namespace surfcomp::screening {
+
+/// What ranks the molecules of a receptor screen.
+enum class ReceptorRanking {
+  mean,   ///< the complementarity score, a mean over the ligand's surface
+  total,  ///< that score times the ligand's surface area (A^2): a sum over its surface
+};
+
+/// The names of ReceptorRanking's values, as --rank-by spells them.
+inline constexpr std::array<const char*, 2> receptor_ranking_names = {"mean", "total"};
 
 struct ReceptorScreenOptions {
   /// The receptor's site (site_ligand, site_spheres, site_pocket), the score and the full dock of
@@ -38,6 +48,9 @@ struct ReceptorScreenOptions {
   int candidates = 20;
   /// Default 0: every molecule. The rows kept, best first.
   std::int64_t top = 0;
+  /// Default mean. What ranks the conformers and molecules (poses that intersect the receptor
+  /// after the others, whichever).
+  ReceptorRanking ranking = ReceptorRanking::mean;
   /// Told (stage 1 or 2, done, total) as the work goes; may be empty.
   std::function<void(int stage, std::int64_t done, std::int64_t total)> progress;
 };
@@ -55,6 +68,9 @@ struct ReceptorHit {
   int stage = 1;                        ///< 2: `score` is the full dock's; 1: the fast dock's
   docking::ComplementarityScore score;  ///< of the stage's best pose
   double fast_score = 0.0;              ///< its conformer's stage-1 score
+  /// A^2: the area of the ligand's surface the score is a mean over (stage 1: the stored
+  /// sample's; stage 2: the built surface's).
+  double area = 0.0;
   /// Moves the entry's molecule into the receptor's frame (the stage's best pose).
   Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
 };
@@ -75,7 +91,8 @@ ReceptorScreenResult receptor_screen(const matching::MatchInput& receptor, const
                                      const ReceptorScreenOptions& options = {});
 
 /// `hits` as CSV: rank,entry (1-based),name,source,record,conformer,score,stage,contact,clash,esp,
-/// lp,deepest,fast_score,t00..t33 (the transform moving the entry into the receptor's frame).
+/// lp,deepest,area,fast_score,t00..t33 (the transform moving the entry into the receptor's
+/// frame).
 void write_receptor_hits_csv(std::ostream& out, const Library& library,
                              const std::vector<ReceptorHit>& hits);
 
