@@ -55,8 +55,9 @@ struct ReceptorScreenOptions {
   std::function<void(int stage, std::int64_t done, std::int64_t total)> progress;
 };
 
-/// The user's options: the dock's (docking::dock_option_table, without conformers) and
-/// --fast-chains, --fast-steps, --candidates, --top.
+/// The user's options: the dock's (docking::dock_option_table, without conformers,
+/// conformer-seed, poses, and the options of a ligand file or a mesh: record, ligand, molecule,
+/// repair, scale, unit) and --fast-chains, --fast-steps, --candidates, --top, --rank-by.
 const options::Table<ReceptorScreenOptions>& receptor_screen_option_table();
 
 /// Throws OptionError naming the first option outside its domain.
