@@ -53,7 +53,7 @@ DockPose scored_pose(const ReceptorField& field, const matching::RigidTransform&
   DockPose out;
   out.transform = pose.matrix();
   out.score = score;
-  out.intersects = score.deepest > 2.0 * field.options().clash_tolerance;
+  out.intersects = intersects(score, field.options());
   return out;
 }
 

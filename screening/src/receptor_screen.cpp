@@ -22,8 +22,8 @@ namespace {
 /// The order of rows and poses: poses that do not intersect the receptor first, then by the
 /// score, or by the score times the ligand's area (ReceptorRanking::total).
 bool better(const ReceptorHit& a, const ReceptorHit& b, const ReceptorScreenOptions& options) {
-  const double limit = 2.0 * options.dock.complementarity.clash_tolerance;
-  const bool ai = a.score.deepest > limit, bi = b.score.deepest > limit;
+  const bool ai = docking::intersects(a.score, options.dock.complementarity);
+  const bool bi = docking::intersects(b.score, options.dock.complementarity);
   if (ai != bi) return !ai;
   if (options.ranking == ReceptorRanking::total)
     return a.score.score * a.area > b.score.score * b.area;

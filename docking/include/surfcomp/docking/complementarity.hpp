@@ -69,6 +69,13 @@ struct ComplementarityScore {
   double deepest = 0.0;
 };
 
+/// True when `score`'s deepest ligand surface point lies deeper inside the receptor than twice
+/// the clash tolerance: such a pose intersects the receptor, and ranks after every one that does
+/// not (dock, screen --receptor).
+inline bool intersects(const ComplementarityScore& score, const ComplementarityOptions& options) {
+  return score.deepest > 2.0 * options.clash_tolerance;
+}
+
 /// A ligand's surface as the score reads it: points about ComplementarityOptions::
 /// sample_spacing apart, with the z-scores (over the whole surface) of their ESP and LP.
 struct LigandSample {
