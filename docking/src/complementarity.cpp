@@ -208,7 +208,10 @@ ReceptorField::ReceptorField(const Molecule& receptor, const std::vector<molsurf
   Eigen::MatrixX3d points(static_cast<Eigen::Index>(shell.size()), 3);
   for (std::size_t k = 0; k < shell.size(); ++k)
     points.row(static_cast<Eigen::Index>(k)) = position(shell[k]).transpose();
-  if (shell.empty()) return;
+  if (shell.empty()) {
+    mark_far_cells();
+    return;
+  }
   const Eigen::VectorXd esp = molsurf::electrostatic_potential(points, receptor);
   const Eigen::VectorXd lp = molsurf::lipophilic_potential(points, receptor);
   std::vector<bool> near_surface(shell.size());
@@ -221,6 +224,23 @@ ReceptorField::ReceptorField(const Molecule& receptor, const std::vector<molsurf
   for (std::size_t k = 0; k < shell.size(); ++k) {
     nodes_[shell[k]].esp = static_cast<float>(esp_z(static_cast<Eigen::Index>(k)));
     nodes_[shell[k]].lp = static_cast<float>(lp_z(static_cast<Eigen::Index>(k)));
+  }
+  mark_far_cells();
+}
+
+void ReceptorField::mark_far_cells() {
+  const auto nx = static_cast<std::size_t>(size_.x());
+  const auto nxy = nx * static_cast<std::size_t>(size_.y());
+  const auto at_cap = [this](std::size_t n) {
+    const Node& node = nodes_[n];
+    return node.distance == static_cast<float>(distance_cap) && node.esp == 0.0f && node.lp == 0.0f;
+  };
+  far_cells_.assign(nodes_.size(), 0);
+  // The last node of each axis starts no cell: sample never reads its flag.
+  for (std::size_t n = 0; n + nxy + nx + 1 < nodes_.size(); ++n) {
+    far_cells_[n] = at_cap(n) && at_cap(n + 1) && at_cap(n + nx) && at_cap(n + nx + 1) &&
+                    at_cap(n + nxy) && at_cap(n + nxy + 1) && at_cap(n + nxy + nx) &&
+                    at_cap(n + nxy + nx + 1);
   }
 }
 
@@ -274,17 +294,18 @@ Eigen::Vector3d ReceptorField::upper() const {
   return origin_ + options_.spacing * (size_ - Eigen::Vector3i::Ones()).cast<double>();
 }
 
-bool ReceptorField::sample(const Eigen::Vector3d& x, Eigen::Vector3d& out,
-                           Eigen::Matrix3d* gradient) const {
+ReceptorField::Where ReceptorField::sample(const Eigen::Vector3d& x, Eigen::Vector3d& out,
+                                           Eigen::Matrix3d* gradient) const {
   const Eigen::Vector3d g = (x - origin_) / options_.spacing;
   const Eigen::Vector3d top = (size_ - Eigen::Vector3i::Ones()).cast<double>();
-  if (!((g.array() >= 0.0).all() && (g.array() < top.array()).all())) return false;
+  if (!((g.array() >= 0.0).all() && (g.array() < top.array()).all())) return Where::outside;
   const Eigen::Vector3i i = g.array().floor().cast<int>();
-  const double fx = g.x() - i.x(), fy = g.y() - i.y(), fz = g.z() - i.z();
   const auto nx = static_cast<std::size_t>(size_.x());
   const auto nxy = nx * static_cast<std::size_t>(size_.y());
   const std::size_t base = static_cast<std::size_t>(i.z()) * nxy +
                            static_cast<std::size_t>(i.y()) * nx + static_cast<std::size_t>(i.x());
+  if (far_cells_[base] != 0) return Where::far;
+  const double fx = g.x() - i.x(), fy = g.y() - i.y(), fz = g.z() - i.z();
   // The corners' (distance, esp, lp), vYZ running along x: v00 is (y, z) = (0, 0).
   const auto at = [this](std::size_t n) {
     const Node& node = nodes_[n];
@@ -307,12 +328,12 @@ bool ReceptorField::sample(const Eigen::Vector3d& x, Eigen::Vector3d& out,
         inverse * ((c10 - c00) + fz * ((c11 - c01) - (c10 - c00))).matrix().transpose();
     gradient->row(2) = inverse * (c1 - c0).matrix().transpose();
   }
-  return true;
+  return Where::near;
 }
 
 double ReceptorField::signed_distance(const Eigen::Vector3d& x) const {
   Eigen::Vector3d value;
-  return sample(x, value) ? value(0) : distance_cap;
+  return sample(x, value) == Where::near ? value(0) : distance_cap;
 }
 
 ComplementarityScore ReceptorField::score(const LigandSample& ligand,
@@ -325,10 +346,20 @@ ComplementarityScore ReceptorField::score(const LigandSample& ligand,
   const Eigen::Vector3d centre = pose.rotation * ligand.centroid + pose.translation;
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
   Eigen::Matrix3d slope;
+  // A point in a far cell adds the capped distance's contact, and nothing else: no ESP or LP
+  // there, no clash, and no gradient.
+  const double far_gap = distance_cap - o.contact_gap;
+  const double far_contact = std::exp(-far_gap * far_gap * inverse_width);
+  std::size_t far = 0;
   for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Vector3d x = pose.rotation * ligand.points.col(k) + pose.translation;
     Eigen::Vector3d node;  // distance, esp, lp
-    if (!sample(x, node, gradient != nullptr ? &slope : nullptr)) continue;
+    const Where where = sample(x, node, gradient != nullptr ? &slope : nullptr);
+    if (where == Where::outside) continue;
+    if (where == Where::far) {
+      ++far;
+      continue;
+    }
     const double d = node(0);
     const double gap = d - o.contact_gap;
     const double contact = std::exp(-gap * gap * inverse_width);
@@ -350,6 +381,7 @@ ComplementarityScore ReceptorField::score(const LigandSample& ligand,
       torque += (x - centre).cross(g);
     }
   }
+  s.contact += static_cast<double>(far) * far_contact;
   if (n > 0) {
     const double inverse = 1.0 / static_cast<double>(n);
     s.contact *= inverse;

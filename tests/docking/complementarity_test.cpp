@@ -83,6 +83,22 @@ TEST(Complementarity, ASampleAtTheContactGapIsAllContactAndNoClash) {
   EXPECT_NEAR(s.score, s.contact, 1e-12);  // no ESP or LP anywhere
 }
 
+TEST(Complementarity, ASampleInFreeSpaceScoresTheCappedDistancesContactAlone) {
+  // Points more than the 4 A cap (plus a grid cell) from the atom, inside the grid: every node
+  // about them holds the cap, so each adds the Gaussian at the cap and nothing else.
+  const ComplementarityOptions o;
+  const ReceptorField field(one_atom(1.7, 0.5), around_origin);
+  const LigandSample far = sample_of(sphere_points({0, 0, 0}, 1.7 + 4.0 + 1.0, 100), 1.0, 1.0);
+  Eigen::Matrix<double, 6, 1> gradient;
+  const ComplementarityScore s = field.score(far, {}, &gradient);
+  const double gap = 4.0 - o.contact_gap;
+  EXPECT_NEAR(s.contact, std::exp(-gap * gap / (2 * o.contact_width * o.contact_width)), 1e-15);
+  EXPECT_DOUBLE_EQ(s.esp, 0.0);
+  EXPECT_DOUBLE_EQ(s.lp, 0.0);
+  EXPECT_DOUBLE_EQ(s.clash, 0.0);
+  EXPECT_DOUBLE_EQ(gradient.norm(), 0.0);
+}
+
 TEST(Complementarity, ASampleInsideTheAtomClashesByItsDepthBeyondTheTolerance) {
   const ComplementarityOptions o;
   // A large atom, so that the grid's interpolation error (0.04 / r, see above) stays small.

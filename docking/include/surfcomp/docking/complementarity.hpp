@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -136,17 +137,23 @@ class ReceptorField {
   struct Node {
     float distance, esp, lp;
   };
-  /// The node values at `x` (trilinear) as (distance, esp, lp), false outside the grid. With
-  /// `gradient`, their gradients too, as its columns.
-  bool sample(const Eigen::Vector3d& x, Eigen::Vector3d& out,
-              Eigen::Matrix3d* gradient = nullptr) const;
+  /// Where a point falls: outside the grid, in a cell whose eight nodes all hold the capped
+  /// distance and no ESP or LP (the values there are constant), or in another cell.
+  enum class Where { outside, far, near };
+  /// The node values at `x` (trilinear) as (distance, esp, lp). With `gradient`, their
+  /// gradients too, as its columns. `out` and `gradient` are set only for Where::near.
+  Where sample(const Eigen::Vector3d& x, Eigen::Vector3d& out,
+               Eigen::Matrix3d* gradient = nullptr) const;
   Eigen::Vector3d node_position(std::size_t n) const;
+  void mark_far_cells();  ///< sets far_cells_ from nodes_
 
   ComplementarityOptions options_;
   std::vector<molsurf::SiteSphere> site_;
   Eigen::Vector3d origin_;
   Eigen::Vector3i size_;
   std::vector<Node> nodes_;
+  /// Per node, 1 when the cell it is the lowest corner of is far (Where::far).
+  std::vector<std::uint8_t> far_cells_;
 };
 
 }  // namespace surfcomp::docking
