@@ -422,7 +422,7 @@ Molecule read_unguarded(const std::filesystem::path& path, const std::string& wh
   if (format == RdkitFormat::pdb) {
     std::vector<std::size_t> keep;
     if (!options.ligand.empty()) {
-      keep = select_ligand(molecule, LigandSelector{options.ligand, {}, {}});
+      keep = select_ligand(molecule, parse_ligand_selector(options.ligand));
     } else {
       whole_structure = true;
       for (std::size_t i = 0; i < molecule.atoms.size(); ++i) {

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <exception>
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace surfcomp {
 std::string residue_key(std::string_view name) {
@@ -42,6 +44,39 @@ std::string listed(const std::vector<std::string>& items, std::size_t most) {
 }
 
 }  // namespace
+
+LigandSelector parse_ligand_selector(std::string_view text) {
+  std::vector<std::string> fields(1);
+  for (const char c : text) {
+    if (c == ':') {
+      fields.emplace_back();
+    } else {
+      fields.back().push_back(c);
+    }
+  }
+  const auto refuse = [&](const std::string& why) {
+    throw OptionError("'" + std::string(text) +
+                      "' is not a ligand RESIDUE[:CHAIN[:NUMBER]]: " + why);
+  };
+  if (fields.size() > 3) refuse("more than three fields");
+  LigandSelector selector;
+  selector.residue_name = without_blanks(fields[0]);
+  if (selector.residue_name.empty()) refuse("no residue name");
+  if (fields.size() > 1 && !without_blanks(fields[1]).empty()) selector.chain = fields[1];
+  if (fields.size() > 2 && !without_blanks(fields[2]).empty()) {
+    const std::string number = without_blanks(fields[2]);
+    std::size_t used = 0;
+    int value = 0;
+    try {
+      value = std::stoi(number, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != number.size()) refuse("the residue number '" + number + "' is not an integer");
+    selector.residue_number = value;
+  }
+  return selector;
+}
 
 std::vector<std::size_t> select_ligand(const Molecule& molecule, const LigandSelector& selector) {
   using Copy = std::pair<std::string, int>;  // chain, residue number

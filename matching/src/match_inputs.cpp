@@ -59,7 +59,7 @@ void load_site(LoadedInput& side, const Molecule& structure, const MatchInput& i
           ? molsurf::pocket_site(structure, input.site_pocket, options.pockets, options.site)
       : input.site_ligand.empty()
           ? molsurf::binding_site(structure, input.site_spheres, options.site)
-          : molsurf::binding_site(structure, LigandSelector{input.site_ligand, {}, {}},
+          : molsurf::binding_site(structure, parse_ligand_selector(input.site_ligand),
                                   options.site);
   if (!input.site_ligand.empty()) {  // spheres add to the ligand's
     site.spheres.insert(site.spheres.end(), input.site_spheres.begin(), input.site_spheres.end());
@@ -390,7 +390,13 @@ void check_match_input(const MatchInput& input, const MatchInputOptions& options
   }
   const std::string name = std::string(role) + " " + input.name();
   if (!input.site_ligand.empty()) {
-    if (is_water_residue(input.site_ligand)) {
+    LigandSelector selector;
+    try {
+      selector = parse_ligand_selector(input.site_ligand);
+    } catch (const OptionError& error) {
+      throw OptionError(site_option + " " + error.what());
+    }
+    if (is_water_residue(selector.residue_name)) {
       throw OptionError(site_option + " " + input.site_ligand +
                         ": waters (HOH, WAT, DOD) are dropped when a structure is read, so a "
                         "water cannot be a site ligand; give " +

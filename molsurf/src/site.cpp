@@ -209,7 +209,8 @@ std::vector<SiteSphere> site_spheres(const std::vector<options::Sphere>& values)
 options::Spec site_ligand_spec() {
   return {"site-ligand",
           options::Kind::text,
-          "a binding site: the site of one copy of this ligand residue (match: on both inputs)",
+          "a binding site: the site of one copy of this ligand residue, RES[:CHAIN[:NUMBER]] "
+          "(match: on both inputs)",
           "",
           0,
           0,

@@ -38,8 +38,8 @@ const options::Table<SurfaceInputOptions>& surface_input_option_table() {
       options::field<S>(
           {"ligand",
            Kind::text,
-           "PDB/PQR input: use this residue name only (default: the whole "
-           "structure without water)",
+           "PDB/PQR input: use one copy of this residue only, RES[:CHAIN[:NUMBER]] (default: "
+           "the whole structure without water)",
            "",
            0,
            0,

@@ -109,6 +109,28 @@ TEST(SelectLigand, NarrowsByChainAndResidueNumber) {
   }
 }
 
+TEST(SelectLigand, ParsesResidueChainAndNumberAsAUserWritesThem) {
+  const Molecule m = structure_with_copies();
+  const auto picked = [&](const char* text) {
+    return copies(m, select_ligand(m, parse_ligand_selector(text)));
+  };
+  EXPECT_EQ(picked("LIG"), (Copies{{"A", 7}}));
+  EXPECT_EQ(picked("LIG:B"), (Copies{{"B", 5}}));
+  EXPECT_EQ(picked("lig:A:9"), (Copies{{"A", 9}}));
+  EXPECT_EQ(picked("LIG::9"), (Copies{{"A", 9}}));
+  EXPECT_EQ(picked("LIG:"), (Copies{{"A", 7}}));    // an empty chain is any
+  EXPECT_EQ(picked("LIG:A:"), (Copies{{"A", 7}}));  // an empty number is any
+  for (const char* bad : {"", ":A", "LIG:A:9x", "LIG:A:9:1", "LIG:A:99999999999"}) {
+    try {
+      parse_ligand_selector(bad);
+      ADD_FAILURE() << "'" << bad << "' parsed";
+    } catch (const OptionError& e) {
+      EXPECT_NE(std::string(e.what()).find("RESIDUE[:CHAIN[:NUMBER]]"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(SelectLigand, AnAbsentLigandNamesTheFileAndTheResiduesPresent) {
   const Molecule m = structure_with_copies();
   try {

@@ -175,7 +175,7 @@ Molecule read_pqr(const std::filesystem::path& path, const MoleculeReadOptions& 
       throw InputError(source + ": no atoms left besides water and excluded residues");
   }
   if (!options.ligand.empty()) {
-    const auto selected = select_ligand(molecule, LigandSelector{options.ligand, {}, {}});
+    const auto selected = select_ligand(molecule, parse_ligand_selector(options.ligand));
     std::vector<Atom> atoms;
     atoms.reserve(selected.size());
     for (std::size_t i : selected) atoms.push_back(molecule.atoms[i]);

@@ -67,6 +67,11 @@ struct LigandSelector {
   std::optional<int> residue_number;
 };
 
+/// The selector a user writes as RESIDUE[:CHAIN[:NUMBER]] ("ATP", "ATP:B", "ATP:B:501",
+/// "ATP::501"; an empty chain or number is any). Throws OptionError naming `text` when the
+/// residue is empty, the number is not an integer or there are more than three fields.
+LigandSelector parse_ligand_selector(std::string_view text);
+
 /// Indices into molecule.atoms, in order, of one copy of a ligand residue: the HETATM atoms
 /// named selector.residue_name, narrowed to selector.chain and selector.residue_number when
 /// they are given; a copy is one (chain, residue number), and of several copies the one with
