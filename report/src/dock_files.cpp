@@ -1,5 +1,6 @@
 #include "surfcomp/report/dock_files.hpp"
 
+#include "dock_pose_terms.hpp"
 #include "surfcomp/core/io/molecule_records.hpp"
 #include "surfcomp/core/io/write_molecule.hpp"
 
@@ -7,6 +8,7 @@
 
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 namespace surfcomp::report {
 namespace {
@@ -39,18 +41,13 @@ std::string dock_json(const docking::DockResult& docked, const docking::DockOpti
   for (const docking::DockPose& p : docked.poses) {
     nlohmann::ordered_json cp = nlohmann::ordered_json::array();
     for (const auto& [receptor, ligand] : p.cp_pairs) cp.push_back({receptor, ligand});
-    poses.push_back({{"rank", p.rank},
-                     {"score", p.score.score},
-                     {"contact", p.score.contact},
-                     {"clash", p.score.clash},
-                     {"esp", p.score.esp},
-                     {"lp", p.score.lp},
-                     {"deepest", p.score.deepest},
-                     {"intersects", p.intersects},
-                     {"transform", matrix_json(p.transform)},
-                     {"start", p.start},
-                     {"conformer", p.conformer},
-                     {"cp_pairs", cp}});
+    nlohmann::ordered_json pose = {{"rank", p.rank}};
+    pose.update(detail::dock_pose_terms<nlohmann::ordered_json>(p));
+    pose["transform"] = matrix_json(p.transform);
+    pose["start"] = p.start;
+    pose["conformer"] = p.conformer;
+    pose["cp_pairs"] = cp;
+    poses.push_back(std::move(pose));
   }
   doc["poses"] = poses;
   doc["conformers"] = docked.conformers;  // the blocks a pose's conformer k (1-based) names

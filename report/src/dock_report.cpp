@@ -2,6 +2,7 @@
 // the reference, each pose's ligand (or conformer) as the probe.
 #include "surfcomp/report/dock_files.hpp"
 
+#include "dock_pose_terms.hpp"
 #include "report_page.hpp"
 #include "surfcomp/core/io/atomic_file.hpp"
 
@@ -20,20 +21,14 @@ nlohmann::json pose_json(const docking::DockPose& p, int probe) {
   }
   nlohmann::json pairs = nlohmann::json::array();
   for (const auto& [receptor, ligand] : p.cp_pairs) pairs.push_back({receptor, ligand});
+  nlohmann::json terms = detail::dock_pose_terms<nlohmann::json>(p);
+  terms["start"] = p.start;
+  terms["conformer"] = p.conformer;
   return {{"rank", p.rank},
           {"transform", transform},
           {"cp_pairs", pairs},
           {"probe", probe},
-          {"dock",
-           {{"score", p.score.score},
-            {"contact", p.score.contact},
-            {"clash", p.score.clash},
-            {"esp", p.score.esp},
-            {"lp", p.score.lp},
-            {"deepest", p.score.deepest},
-            {"intersects", p.intersects},
-            {"start", p.start},
-            {"conformer", p.conformer}}}};
+          {"dock", terms}};
 }
 
 }  // namespace
