@@ -67,7 +67,8 @@ void rank(std::vector<DockPose>& poses) {
 /// One docked conformation of the ligand: what the score reads of it, and its heavy atoms to
 /// tell poses apart.
 struct Conformation {
-  LigandSample sample;
+  LigandSample sample;  ///< the score's (ComplementarityOptions::sample_spacing)
+  LigandSample coarse;  ///< the search's (SearchOptions::sample_spacing)
   Eigen::Matrix3Xd atoms;
 };
 
@@ -238,6 +239,17 @@ const options::Table<DockOptions>& dock_option_table() {
          "", 0, 100000},
         [](auto& d) -> auto& { return d.search.steps; }));
     t.push_back(options::field<D>(
+        {"search-sample-spacing", Kind::real,
+         "spacing of the ligand surface points the search scores (the best poses are then "
+         "optimised on {sample_spacing}'s)",
+         "A", 0.2, 5.0},
+        [](auto& d) -> auto& { return d.search.sample_spacing; }));
+    t.push_back(options::field<D>(
+        {"search-min-gain", Kind::real,
+         "the chains' local optimisations stop when a step gains less than this", "score", 1e-12,
+         1.0},
+        [](auto& d) -> auto& { return d.search.min_gain; }));
+    t.push_back(options::field<D>(
         {"search-temperature", Kind::real, "the Monte Carlo chains' temperature", "score", 1e-6,
          100.0},
         [](auto& d) -> auto& { return d.search.temperature; }));
@@ -394,9 +406,10 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
     matching::PreparedInput other;
     if (k > 0) other = matching::prepare_input(sides[k], options.inputs);
     const matching::PreparedInput& ligand = k == 0 ? result.ligand : other;
-    ligands.push_back(
-        {sample_ligand(ligand.descriptors.surface, options.complementarity.sample_spacing),
-         heavy_atoms(ligand.descriptors)});
+    const mesh::Surface& surface = ligand.descriptors.surface;
+    ligands.push_back({sample_ligand(surface, options.complementarity.sample_spacing),
+                       sample_ligand(surface, options.search.sample_spacing),
+                       heavy_atoms(ligand.descriptors)});
     surfaces_ms += clock.elapsed_ms();
 
     clock.restart();
@@ -413,7 +426,9 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
 
     clock.restart();
     const int conformer = options.conformers > 0 ? static_cast<int>(k) + 1 : 0;
+    // Optimised on the coarse sample, scored on the score's own.
     const LigandSample& sample = ligands.back().sample;
+    const LigandSample& coarse = ligands.back().coarse;
     int refined = 0;
     for (const matching::Alignment& a : starts.alignments) {
       if (a.repeat_of != 0) continue;
@@ -421,7 +436,7 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
       if (refined >= options.refine_top) continue;
       ++refined;
       const matching::RigidTransform moved =
-          refine_pose(field, sample, matching::RigidTransform::from_matrix(a.transform),
+          refine_pose(field, coarse, matching::RigidTransform::from_matrix(a.transform),
                       options.search.min_gain);
       DockPose pose = scored_pose(field, moved, field.score(sample, moved));
       pose.start = a.rank;
@@ -431,8 +446,8 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
     }
     SearchOptions search = options.search;
     search.seed += k;  // each conformer's chains start elsewhere
-    for (const SearchedPose& found : search_site(field, sample, result.receptor.site, search)) {
-      candidates.push_back(scored_pose(field, found.pose, found.score));
+    for (const SearchedPose& found : search_site(field, coarse, result.receptor.site, search)) {
+      candidates.push_back(scored_pose(field, found.pose, field.score(sample, found.pose)));
       candidates.back().conformer = conformer;
     }
     search_ms += clock.elapsed_ms();

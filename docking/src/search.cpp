@@ -80,6 +80,8 @@ void validate(const SearchOptions& o) {
           "finite and > 0");
   require(std::isfinite(o.min_gain) && o.min_gain > 0.0, "search_min_gain", o.min_gain,
           "finite and > 0");
+  require(std::isfinite(o.sample_spacing) && o.sample_spacing > 0.0, "search_sample_spacing",
+          o.sample_spacing, "finite and > 0");
   // Every optimum visited is kept (about 200 bytes each): a bound on memory.
   const auto optima = static_cast<long long>(o.chains) * (static_cast<long long>(o.steps) + 1);
   if (optima > kMaxSearchOptima) {

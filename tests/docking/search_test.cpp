@@ -149,6 +149,9 @@ TEST(Search, OptionsOutsideTheirDomainAreRefused) {
   o = {};
   o.steps = -3;
   EXPECT_THROW(validate(o), OptionError);
+  o = {};
+  o.sample_spacing = 0.0;
+  EXPECT_THROW(validate(o), OptionError);
   // Within each range, but too many optima to keep: refused before any memory is taken.
   o = {};
   o.chains = 100000;

@@ -130,8 +130,10 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
 /// volume is refused (InputError). The candidates are the first refine_top alignments of the
 /// site's critical points with the ligand's complement (matching::match_surfaces, consensus
 /// ranking) and the local optima of the Monte Carlo search (search_site), each optimised on the
-/// complementarity score (refine_pose); the best 4 x poses candidates are optimised further and
-/// the distinct poses ranked by it. With options.conformers, each conformer of the ligand is
+/// complementarity score (refine_pose) of the ligand's coarse sample (SearchOptions::
+/// sample_spacing) and scored on its fine one (ComplementarityOptions::sample_spacing); the best
+/// 4 x poses candidates are optimised further on the fine sample and the distinct poses ranked
+/// by it. With options.conformers, each conformer of the ligand is
 /// docked so against the one receptor field and the poses of all are ranked together. Throws
 /// InputError for a ligand or receptor given as a surface or a description alone (a dock reads
 /// their atoms), and for conformers asked of a ligand that is not an SDF or MOL2 file.

@@ -28,6 +28,12 @@ struct SearchOptions {
   /// Default 1e-5. The chains' local optimisations stop when a step gains less than this
   /// (refine_pose's min_gain; dock optimises its best candidates further). Finite, > 0.
   double min_gain = 1e-5;
+  /// Default 2 A. The spacing of the ligand surface sample (sample_ligand) that dock's search
+  /// chains and its clique poses' first optimisation score: coarser than the score's
+  /// sample_spacing (1 A), a quarter of its points and of the search's cost. dock then scores
+  /// every candidate on the score's own sample and optimises the best further on it. Finite,
+  /// > 0.
+  double sample_spacing = 2.0;
   /// Default 1. Seeds the chains' random numbers: the same seed, the same poses, whatever the
   /// number of threads.
   std::uint64_t seed = 1;
