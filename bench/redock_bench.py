@@ -18,7 +18,8 @@ removed:
   ligand's atoms 4 A beyond them on each side.
 
 Vina's answer does not depend on surfcomp's commit: with --vina-cache DIR each complex's Vina
-result (its poses and CPU time, keyed by complex and seed) is kept in DIR and read back by later
+result (its poses and CPU time, keyed by complex and the moved ligand's file, whose motion
+depends on the seed and on the sets drawn before it) is kept in DIR and read back by later
 runs, so that a run too long for one sitting (5-13 minutes per complex) can be finished in
 several; --vina-only runs Vina alone, --only ENTRY,... a few complexes.
 
@@ -35,6 +36,7 @@ the prepared site: its timing_ms without the receptor's surface and field). The 
 """
 
 import argparse
+import hashlib
 import json
 import os
 import resource
@@ -193,7 +195,7 @@ def children_cpu_seconds():
 
 
 def run_surfcomp(program, moved_file, receptor, residue, work, entry, extra):
-    """The poses, the wall time and the time of the ligand's steps alone (a dock into the
+    """The poses, the CPU time and the time of the ligand's steps alone (a dock into the
     prepared site, from the result's timing_ms)."""
     poses_file = os.path.join(work, f"{entry}_poses.sdf")
     result_file = os.path.join(work, f"{entry}_dock.json")
@@ -208,9 +210,16 @@ def run_surfcomp(program, moved_file, receptor, residue, work, entry, extra):
     return list(Chem.SDMolSupplier(poses_file, removeHs=False)), seconds, prepared
 
 
-def run_vina(moved_file, receptor, residue, crystal, work, entry, cache, seed):
-    """Vina's poses and CPU time; from the cache when it holds this complex and seed."""
-    kept = os.path.join(cache, f"{entry}_{seed}_vina.sdf") if cache else None
+def vina_cache_file(cache, entry, moved_file):
+    """Where the cache keeps Vina's poses of `entry` docked from `moved_file`."""
+    with open(moved_file, "rb") as f:
+        digest = hashlib.sha1(f.read()).hexdigest()[:16]
+    return os.path.join(cache, f"{entry}_{digest}_vina.sdf")
+
+
+def run_vina(moved_file, receptor, residue, crystal, work, entry, cache):
+    """Vina's poses and CPU time; from the cache when it holds this complex and moved ligand."""
+    kept = vina_cache_file(cache, entry, moved_file) if cache else None
     if kept and os.path.exists(kept):
         with open(kept + ".json") as f:
             seconds = json.load(f)["cpu_seconds"]
@@ -248,7 +257,7 @@ def run_vina(moved_file, receptor, residue, crystal, work, entry, cache, seed):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--program", required=True, help="the surfcomp program")
+    parser.add_argument("--program", help="the surfcomp program (not with --vina-only)")
     parser.add_argument("--set", choices=("thermolysin", "kahraman", "all"), default="thermolysin")
     parser.add_argument("--vina", action="store_true", help="run AutoDock Vina too")
     parser.add_argument("--shared", default=os.path.join(os.path.dirname(__file__), "..", "..",
@@ -266,6 +275,8 @@ def main():
         return 0
     if args.vina_only:
         args.vina = True
+    elif not args.program:
+        parser.error("--program is required (unless --vina-only)")
     if args.vina:
         missing = [p for p in ("vina", "obabel") if shutil.which(p) is None]
         if missing:
@@ -306,7 +317,7 @@ def main():
                     in_site.append(prepared)
                 else:
                     poses, seconds = run_vina(moved_file, receptor, residue, crystal, work, entry,
-                                              args.vina_cache, args.seed)
+                                              args.vina_cache)
                 rmsds = [rmsd(heavy_atoms(p), reference) for p in poses]
                 top = rmsds[0] if rmsds else float("nan")
                 results[program].append((top, seconds))
