@@ -3,6 +3,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/file_extension.hpp"
 #include "surfcomp/core/io/molecule_formats.hpp"
+#include "surfcomp/core/molecule.hpp"
 #include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/io/formats.hpp"
 #include "surfcomp/mesh/io/read_mesh.hpp"
@@ -25,6 +26,13 @@ void check_surface_input(const std::filesystem::path& path, const SurfaceInputOp
       throw OptionError(options::named("unit") + " applies to general meshes; " + path.string() +
                         " is in A (a mesh with " + options::named("molecule") + ")");
   } else if (surfcomp::io::is_molecule_file(path)) {
+    if (!options.read.ligand.empty()) {
+      try {
+        parse_ligand_selector(options.read.ligand);
+      } catch (const OptionError& error) {
+        throw OptionError(options::named("ligand") + " " + error.what());
+      }
+    }
     if (!options.molecule_file.empty())
       throw OptionError(options::named("molecule") + " applies to a mesh INPUT");
     if (options.repair) throw OptionError(options::named("repair") + " applies to a mesh INPUT");

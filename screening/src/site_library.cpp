@@ -65,7 +65,11 @@ std::vector<SiteRequest> read_site_list(const std::filesystem::path& list) {
         throw InputError(where + "expected 'STRUCTURE LIGAND [CHAIN]', got " +
                          std::to_string(words.size()) + " fields");
       }
-      site.ligand = LigandSelector{words[1], {}, {}};
+      try {
+        site.ligand = parse_ligand_selector(words[1]);
+      } catch (const OptionError& error) {
+        throw InputError(where + error.what());
+      }
       site.name = stem + ":" + words[1];
       if (words.size() == 3) {
         site.ligand->chain = words[2];

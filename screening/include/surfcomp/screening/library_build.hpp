@@ -165,7 +165,8 @@ struct PocketStructures {
   std::vector<std::filesystem::path> files;  ///< structure_files' order
 };
 
-/// The sites of a site list: one per line, `STRUCTURE LIGAND [CHAIN]`,
+/// The sites of a site list: one per line, `STRUCTURE LIGAND [CHAIN]` (LIGAND as
+/// parse_ligand_selector reads it, RES[:CHAIN[:NUMBER]]; a third word sets the chain),
 /// `STRUCTURE x,y,z,r [x,y,z,r ...]` or `STRUCTURE pocket N` (the structure's pocket N, named
 /// "<stem>:pocketN"; whitespace-separated; blank lines and lines starting with '#' are skipped).
 /// Throws FileError when the list cannot be read or lists no site, and InputError naming the list

@@ -30,9 +30,10 @@ inline constexpr std::array<const char*, 3> charge_model_names = {"file", "gaste
 struct MoleculeReadOptions {
   /// Charge model; default ChargeModel::file. PQR files accept only ChargeModel::file.
   ChargeModel charges = ChargeModel::file;
-  /// PDB/PQR: read only one copy of the HETATM residue with this name, the one select_ligand
-  /// takes (the lowest chain, then residue number); default "" = the whole structure. Refused
-  /// (OptionError) for SDF/MOL/MOL2, whose molecule is the ligand itself.
+  /// PDB/PQR: read only one copy of a HETATM residue, written RES[:CHAIN[:NUMBER]]
+  /// (parse_ligand_selector), the one select_ligand takes (by default the lowest chain, then
+  /// residue number); default "" = the whole structure. Refused (OptionError) for SDF/MOL/MOL2,
+  /// whose molecule is the ligand itself.
   std::string ligand;
   /// SDF/MOL/MOL2: which molecule of the file to read, 1-based; default 0 = the file's only
   /// molecule, and a file holding several is refused (InputError naming their count). PDB/PQR
