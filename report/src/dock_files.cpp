@@ -57,20 +57,7 @@ std::string dock_json(const docking::DockResult& docked, const docking::DockOpti
     trace.push_back({{"stage", stage.stage}, {"nodes", stage.nodes}, {"edges", stage.edges}});
   doc["trace"] = trace;
   doc["notes"] = docked.notes;
-  const docking::ComplementarityOptions& c = options.complementarity;
-  doc["parameters"] = {{"contact_gap", c.contact_gap},
-                       {"contact_width", c.contact_width},
-                       {"clash_tolerance", c.clash_tolerance},
-                       {"clash_weight", c.clash_weight},
-                       {"esp_weight", c.esp_weight},
-                       {"lp_weight", c.lp_weight},
-                       {"grid_spacing", c.spacing},
-                       {"conformers", options.conformers},
-                       {"conformer_seed", options.conformer_seed},
-                       {"refine_top", options.refine_top},
-                       {"search_chains", options.search.chains},
-                       {"search_steps", options.search.steps},
-                       {"search_temperature", options.search.temperature}};
+  doc["parameters"] = detail::dock_parameters<nlohmann::ordered_json>(options);
   nlohmann::ordered_json timing;
   for (const auto& [step, ms] : docked.timing_ms) timing[step] = ms;
   doc["timing_ms"] = timing;

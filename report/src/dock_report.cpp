@@ -70,17 +70,12 @@ std::string dock_html_report(const docking::DockResult& docked, const docking::D
   for (const auto& [step, ms] : docked.timing_ms) timing[step] = ms;
   document["timing_ms"] = timing;
   document["warnings"] = docked.notes;
-  const docking::ComplementarityOptions& c = options.complementarity;
-  document["parameters"] = {{"site free volume (A^3)", docked.site_volume},
-                            {"ligand volume (A^3)", docked.ligand_volume},
-                            {"clique alignments", docked.starts},
-                            {"conformers", docked.conformers.size()},
-                            {"contact_gap", c.contact_gap},
-                            {"clash_tolerance", c.clash_tolerance},
-                            {"esp_weight", c.esp_weight},
-                            {"lp_weight", c.lp_weight},
-                            {"search_chains", options.search.chains},
-                            {"search_steps", options.search.steps}};
+  nlohmann::json parameters = detail::dock_parameters<nlohmann::json>(options);
+  parameters["site free volume (A^3)"] = docked.site_volume;
+  parameters["ligand volume (A^3)"] = docked.ligand_volume;
+  parameters["clique alignments"] = docked.starts;
+  parameters["conformers docked"] = docked.conformers.size();
+  document["parameters"] = parameters;
   return detail::report_page(std::move(document), report);
 }
 
