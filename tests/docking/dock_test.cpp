@@ -100,9 +100,18 @@ TEST_F(Thermolysin, AMovedLigandIsDockedBackToItsCrystalPose) {
       rmsd((top.topLeftCorner<3, 3>() * start).colwise() + top.topRightCorner<3, 1>(), crystal),
       2.0);
   EXPECT_FALSE(docked.poses.front().intersects);
+  // The search reads a coarser sample of the ligand's surface; every pose's score is that of
+  // the score's own sample, as a user would recompute it.
+  const ReceptorField field(*docked.receptor.molecule, docked.receptor.site,
+                            options.complementarity);
+  const LigandSample fine =
+      sample_ligand(docked.ligand.descriptors.surface, options.complementarity.sample_spacing);
   for (std::size_t k = 0; k < docked.poses.size(); ++k) {
     const DockPose& pose = docked.poses[k];
     EXPECT_EQ(pose.rank, static_cast<int>(k) + 1);
+    EXPECT_NEAR(pose.score.score,
+                field.score(fine, matching::RigidTransform::from_matrix(pose.transform)).score,
+                1e-12);
     const auto place = [&](const DockPose& p) {
       return Eigen::Matrix3Xd((p.transform.topLeftCorner<3, 3>() * start).colwise() +
                               p.transform.topRightCorner<3, 1>());
