@@ -199,19 +199,21 @@ ReceptorField::ReceptorField(const Molecule& receptor, const std::vector<molsurf
     }
     nodes_[n].distance = static_cast<float>(std::max(best, -distance_cap));
   });
+  tabulate_potentials(receptor);
+  mark_far_cells();
+}
+
+void ReceptorField::tabulate_potentials(const Molecule& receptor) {
   // ESP and LP where a ligand's surface can touch: from just inside the surface to the cap.
   std::vector<std::size_t> shell;
-  for (std::size_t n = 0; n < node_count; ++n) {
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
     if (nodes_[n].distance > -1.5f && nodes_[n].distance < static_cast<float>(distance_cap))
       shell.push_back(n);
   }
   Eigen::MatrixX3d points(static_cast<Eigen::Index>(shell.size()), 3);
   for (std::size_t k = 0; k < shell.size(); ++k)
-    points.row(static_cast<Eigen::Index>(k)) = position(shell[k]).transpose();
-  if (shell.empty()) {
-    mark_far_cells();
-    return;
-  }
+    points.row(static_cast<Eigen::Index>(k)) = node_position(shell[k]).transpose();
+  if (shell.empty()) return;
   const Eigen::VectorXd esp = molsurf::electrostatic_potential(points, receptor);
   const Eigen::VectorXd lp = molsurf::lipophilic_potential(points, receptor);
   std::vector<bool> near_surface(shell.size());
@@ -225,7 +227,6 @@ ReceptorField::ReceptorField(const Molecule& receptor, const std::vector<molsurf
     nodes_[shell[k]].esp = static_cast<float>(esp_z(static_cast<Eigen::Index>(k)));
     nodes_[shell[k]].lp = static_cast<float>(lp_z(static_cast<Eigen::Index>(k)));
   }
-  mark_far_cells();
 }
 
 void ReceptorField::mark_far_cells() {

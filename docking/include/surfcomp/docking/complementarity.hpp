@@ -145,6 +145,8 @@ class ReceptorField {
   Where sample(const Eigen::Vector3d& x, Eigen::Vector3d& out,
                Eigen::Matrix3d* gradient = nullptr) const;
   Eigen::Vector3d node_position(std::size_t n) const;
+  /// Sets the ESP and LP z-scores of the nodes near the receptor's surface.
+  void tabulate_potentials(const Molecule& receptor);
   void mark_far_cells();  ///< sets far_cells_ from nodes_
 
   ComplementarityOptions options_;
