@@ -31,7 +31,9 @@ constexpr const char* kUsage =
     "ligand surface point deeper than twice --clash-tolerance into the receptor's atoms is\n"
     "ranked after every pose that does not (marked ! after its 'deepest'). With --conformers N,\n"
     "N RDKit conformers of the ligand (ETKDG + MMFF, from its bonds) are docked instead of its\n"
-    "own coordinates and the best poses over all kept ('conf' names the conformer, 0: its own).\n\n"
+    "own coordinates and the best poses over all kept ('conf' names the conformer, 0: its own).\n"
+    "--local-only optimises the ligand's own pose on the score and --score-only scores it as\n"
+    "it is (a crystal pose, or another program's): one pose, no match and no search.\n\n"
     "LIGAND    a molecule file (.sdf .mol .mol2 for the -o poses)\n"
     "RECEPTOR  a protein structure (.pdb .ent .cif .cif.gz .pqr)\n"
     "The pocket: --site-ligand RES (the crystal's: that HETATM residue is taken out and its\n"
@@ -81,8 +83,14 @@ int dock(const std::vector<std::string>& args) {
   for (const std::string& note : docked.notes) console::note(note);
   double total_ms = 0.0;
   for (const auto& [step, ms] : docked.timing_ms) total_ms += ms;
-  console::summary("%s into %s: %zu poses from %zu clique alignments, %.0f ms\n", inputs[0].c_str(),
-                   inputs[1].c_str(), docked.poses.size(), docked.starts, total_ms);
+  if (options.local_only || options.score_only) {
+    console::summary("%s into %s: its own pose, %s, %.0f ms\n", inputs[0].c_str(),
+                     inputs[1].c_str(), options.local_only ? "optimised" : "as it is", total_ms);
+  } else {
+    console::summary("%s into %s: %zu poses from %zu clique alignments, %.0f ms\n",
+                     inputs[0].c_str(), inputs[1].c_str(), docked.poses.size(), docked.starts,
+                     total_ms);
+  }
   if (!docked.poses.empty()) {
     console::summary("%5s %8s %8s %8s %8s %8s %8s %6s %5s  %s\n", "rank", "score", "contact",
                      "clash", "esp", "lp", "deepest", "start", "conf", "translation (A)");

@@ -268,6 +268,14 @@ const options::Table<DockOptions>& dock_option_table() {
          "A", 0.0, 100.0},
         [](auto& d) -> auto& { return d.distinct_rmsd; }));
     t.push_back(options::field<D>(
+        {"local-only", Kind::flag,
+         "optimise the ligand's own pose on the score and report it alone (no match, no "
+         "search)"},
+        [](auto& d) -> auto& { return d.local_only; }));
+    t.push_back(options::field<D>(
+        {"score-only", Kind::flag, "score the ligand's own pose as it is and report it alone"},
+        [](auto& d) -> auto& { return d.score_only; }));
+    t.push_back(options::field<D>(
         {"max-ligand-to-site", Kind::real,
          "refuse a ligand of more than this many times the site's free volume", "", 0.0, 1e6, true},
         [](auto& d) -> auto& { return d.max_ligand_to_site; }));
@@ -296,6 +304,15 @@ void validate(const DockOptions& options) {
   require(options.conformers >= 0 && options.conformers <= 1000, "conformers", options.conformers,
           "in [0, 1000]");
   require(options.conformer_seed >= 0, "conformer_seed", options.conformer_seed, ">= 0");
+  if (options.local_only && options.score_only) {
+    throw OptionError(options::named("local_only") + " and " + options::named("score_only") +
+                      " are two answers to one question: give one");
+  }
+  if ((options.local_only || options.score_only) && options.conformers > 0) {
+    throw OptionError(options::named(options.local_only ? "local_only" : "score_only") +
+                      " keeps the ligand's own pose, and " + options::named("conformers") +
+                      " docks new conformers in its place: give one");
+  }
 }
 
 matching::MatchInput with_dock_site(matching::MatchInput receptor, const DockOptions& options) {
@@ -397,6 +414,18 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
                      std::to_string(std::lround(result.site_volume)) + " A^3)");
   }
   double surfaces_ms = clock.elapsed_ms();
+  if (options.local_only || options.score_only) {
+    clock.restart();
+    const LigandSample sample =
+        sample_ligand(result.ligand.descriptors.surface, options.complementarity.sample_spacing);
+    matching::RigidTransform pose;
+    if (options.local_only) pose = refine_pose(field, sample, pose);
+    result.poses.push_back(scored_pose(field, pose, field.score(sample, pose)));
+    result.poses.back().rank = 1;
+    result.timing_ms = {{"ligand surfaces and descriptions", surfaces_ms},
+                        {options.local_only ? "refinement" : "score", clock.elapsed_ms()}};
+    return result;
+  }
 
   std::vector<Conformation> ligands;
   std::vector<DockPose> candidates;

@@ -608,6 +608,8 @@ def dock(
     conformers: int = 0,
     conformer_seed: int = 42,
     distinct_rmsd: float = 1.0,
+    local_only: bool = False,
+    score_only: bool = False,
     max_ligand_to_site: float = 3.0,
     site_ligand: Optional[PathLike] = None,
     site_sphere: Optional[SiteSpheres] = None,

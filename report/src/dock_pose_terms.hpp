@@ -31,6 +31,8 @@ Json dock_parameters(const docking::DockOptions& options) {
               {"grid_spacing", c.spacing},
               {"grid_margin", c.margin},
               {"sample_spacing", c.sample_spacing},
+              {"local_only", options.local_only},
+              {"score_only", options.score_only},
               {"conformers", options.conformers},
               {"conformer_seed", options.conformer_seed},
               {"refine_top", options.refine_top},

@@ -70,8 +70,8 @@ const options::Table<ReceptorScreenOptions>& receptor_screen_option_table() {
     // A library holds the conformers, stage 2 keeps one pose of each candidate, and the
     // receptor is one structure read whole: the ligand file's and the meshes' options go.
     options::append(t, docking::dock_option_table(), [](auto& r) -> auto& { return r.dock; },
-                    {"conformers", "conformer-seed", "poses", "record", "ligand", "molecule",
-                     "repair", "scale", "unit"});
+                    {"conformers", "conformer-seed", "poses", "local-only", "score-only", "record",
+                     "ligand", "molecule", "repair", "scale", "unit"});
     t.push_back(options::field<R>(
         {"fast-chains", Kind::integer, "stage 1: Monte Carlo chains per conformer", "", 1, 10000},
         [](auto& r) -> auto& { return r.fast_chains; }));

@@ -129,6 +129,47 @@ TEST_F(Thermolysin, AMovedLigandIsDockedBackToItsCrystalPose) {
   }
 }
 
+TEST_F(Thermolysin, LocalAndScoreOnlyJudgeTheLigandsOwnPose) {
+  // --score-only scores the crystal pose as it is; --local-only moves it to the score's nearest
+  // optimum, within 2 A of the crystal and scoring at least as well. Each is the one pose, and
+  // its score is the score's own sample's at its transform.
+  DockOptions options;
+  options.site_ligand = "0ZN";
+  matching::MatchInput ligand, receptor;
+  ligand.path = ligand_;
+  receptor.path = pocket_;
+  options.score_only = true;
+  const DockResult scored = dock(ligand, receptor, options);
+  options.score_only = false;
+  options.local_only = true;
+  const DockResult local = dock(ligand, receptor, options);
+  ASSERT_EQ(scored.poses.size(), 1u);
+  ASSERT_EQ(local.poses.size(), 1u);
+  EXPECT_EQ(local.poses.front().rank, 1);
+  EXPECT_TRUE(scored.poses.front().transform.isIdentity(0.0));
+  const ReceptorField field(*local.receptor.molecule, local.receptor.site, options.complementarity);
+  const LigandSample fine =
+      sample_ligand(local.ligand.descriptors.surface, options.complementarity.sample_spacing);
+  const auto score_of = [&](const DockPose& p) {
+    return field.score(fine, matching::RigidTransform::from_matrix(p.transform)).score;
+  };
+  EXPECT_NEAR(scored.poses.front().score.score, score_of(scored.poses.front()), 1e-12);
+  EXPECT_NEAR(local.poses.front().score.score, score_of(local.poses.front()), 1e-12);
+  EXPECT_GE(local.poses.front().score.score, scored.poses.front().score.score);
+  const Eigen::Matrix3Xd crystal = heavy_positions(io::read_molecule(ligand_));
+  const Eigen::Matrix4d& moved = local.poses.front().transform;
+  const Eigen::Matrix3Xd placed =
+      (moved.topLeftCorner<3, 3>() * crystal).colwise() + moved.topRightCorner<3, 1>();
+  EXPECT_LT(rmsd(placed, crystal), 2.0);
+  EXPECT_EQ(local.starts, 0u);
+
+  options.score_only = true;  // with local_only: one question at a time
+  EXPECT_THROW(validate(options), OptionError);
+  options.score_only = false;
+  options.conformers = 2;
+  EXPECT_THROW(validate(options), OptionError);
+}
+
 TEST_F(Thermolysin, ConformersAreDockedInsteadOfTheLigandsCoordinates) {
   // --conformers: RDKit's conformers of the inhibitor, made from its bonds, are docked and its
   // own coordinates are not; each pose names its conformer, whose atoms (hydrogens as the file

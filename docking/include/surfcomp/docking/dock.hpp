@@ -52,6 +52,14 @@ struct DockOptions {
   /// Default 3. A ligand whose volume exceeds this many times the free volume of the site is
   /// refused before any matching. Finite, > 0.
   double max_ligand_to_site = 3.0;
+  /// Default false. The ligand's own pose alone, optimised on the score to its nearest local
+  /// maximum (refine_pose) and reported as the one pose: no clique match and no search. Asks
+  /// how the score judges a known pose, a crystal ligand's, after a small move. Not with
+  /// conformers or score_only.
+  bool local_only = false;
+  /// Default false. The ligand's own pose alone, scored as it is and reported as the one pose.
+  /// Not with conformers or local_only.
+  bool score_only = false;
 };
 
 /// The user's options of a dock, with their ranges: the surface and description options, the
