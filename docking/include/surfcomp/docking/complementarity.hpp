@@ -21,13 +21,14 @@ namespace surfcomp::docking {
 
 /// The terms and weights of the complementarity score.
 struct ComplementarityOptions {
-  /// Default 0.3 A. The gap, from a ligand surface point to the receptor's van der Waals
+  /// Default 0.5 A. The gap, from a ligand surface point to the receptor's van der Waals
   /// surface, at which contact counts fully: atoms in van der Waals contact leave about this.
-  /// Finite.
-  double contact_gap = 0.3;
-  /// Default 0.8 A. The width (standard deviation) of the contact term about contact_gap.
+  /// With contact_width, chosen so that the score's optimum lies nearest crystal poses
+  /// (docs/decisions.md#the-contact-terms-gap-and-width). Finite.
+  double contact_gap = 0.5;
+  /// Default 0.5 A. The width (standard deviation) of the contact term about contact_gap.
   /// Finite, > 0.
-  double contact_width = 0.8;
+  double contact_width = 0.5;
   /// Default 0.5 A. A ligand surface point may lie this deep inside the receptor's van der
   /// Waals surface before it counts as a clash (hydrogen bonds bring atoms that close).
   /// Finite, >= 0.
