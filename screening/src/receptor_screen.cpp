@@ -102,6 +102,11 @@ void validate(const ReceptorScreenOptions& options) {
     throw OptionError(options::named("conformers") +
                       " does not apply to a screen: the library holds the conformers");
   }
+  if (options.dock.local_only || options.dock.score_only) {
+    throw OptionError(options::named(options.dock.local_only ? "local_only" : "score_only") +
+                      " does not apply to a screen: a library's conformers have no pose in the "
+                      "receptor");
+  }
   if (options.fast_chains < 1) {
     throw OptionError(options::named("fast_chains") + " must be at least 1, got " +
                       std::to_string(options.fast_chains));

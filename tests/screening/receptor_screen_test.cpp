@@ -134,6 +134,12 @@ TEST_F(ThermolysinScreen, WhatAReceptorScreenCannotDoIsRefused) {
       test::error_of([&] { receptor_screen(receptor, library, options); });
   EXPECT_NE(conformers.find("the library holds the conformers"), std::string::npos) << conformers;
   options = options_;
+  options.dock.local_only = true;
+  const std::string local = test::error_of([&] { receptor_screen(receptor, library, options); });
+  EXPECT_NE(local.find("does not apply to a screen: a library's conformers have no pose"),
+            std::string::npos)
+      << local;
+  options = options_;
   options.fast_chains = 0;
   EXPECT_THROW(receptor_screen(receptor, library, options), OptionError);
   options = options_;

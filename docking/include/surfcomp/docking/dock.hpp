@@ -142,7 +142,9 @@ void check_dock_inputs(const matching::MatchInput& ligand, const matching::Match
 /// sample_spacing) and scored on its fine one (ComplementarityOptions::sample_spacing); the best
 /// 4 x poses candidates are optimised further on the fine sample and the distinct poses ranked
 /// by it. With options.conformers, each conformer of the ligand is
-/// docked so against the one receptor field and the poses of all are ranked together. Throws
+/// docked so against the one receptor field and the poses of all are ranked together. With
+/// options.local_only or score_only, the one pose is the ligand's own, optimised (refine_pose on
+/// the fine sample) or as it is, with no match and no search. Throws
 /// InputError for a ligand or receptor given as a surface or a description alone (a dock reads
 /// their atoms), and for conformers asked of a ligand that is not an SDF or MOL2 file.
 DockResult dock(const matching::MatchInput& ligand, const matching::MatchInput& receptor,
@@ -151,7 +153,8 @@ DockResult dock(const matching::MatchInput& ligand, const matching::MatchInput& 
 /// `ligand` docked into a prepared site, as dock above does after preparing it. The site, its
 /// grid and the score's terms and weights are `site`'s (prepare_dock_site read them from its
 /// options); of `options` the ligand's reading and description, the match, the search, the
-/// conformers, sample_spacing, poses and the distinct and size limits are read. Its timing_ms has
+/// conformers, sample_spacing, poses, local_only, score_only and the distinct and size limits
+/// are read. Its timing_ms has
 /// the ligand's steps only. Throws InputError for a site that was not prepared (no field).
 DockResult dock(const matching::MatchInput& ligand, const DockSite& site,
                 const DockOptions& options = {});

@@ -56,7 +56,7 @@ struct ReceptorScreenOptions {
 };
 
 /// The user's options: the dock's (docking::dock_option_table, without conformers,
-/// conformer-seed, poses, and the options of a ligand file or a mesh: record, ligand, molecule,
+/// conformer-seed, poses, local-only, score-only, and the options of a ligand file or a mesh: record, ligand, molecule,
 /// repair, scale, unit) and --fast-chains, --fast-steps, --candidates, --top, --rank-by.
 const options::Table<ReceptorScreenOptions>& receptor_screen_option_table();
 
