@@ -56,8 +56,9 @@ struct ReceptorScreenOptions {
 };
 
 /// The user's options: the dock's (docking::dock_option_table, without conformers,
-/// conformer-seed, poses, local-only, score-only, and the options of a ligand file or a mesh: record, ligand, molecule,
-/// repair, scale, unit) and --fast-chains, --fast-steps, --candidates, --top, --rank-by.
+/// conformer-seed, poses, local-only, score-only, and the options of a ligand file or a mesh:
+/// record, ligand, molecule, repair, scale, unit) and --fast-chains, --fast-steps, --candidates,
+/// --top, --rank-by.
 const options::Table<ReceptorScreenOptions>& receptor_screen_option_table();
 
 /// Throws OptionError naming the first option outside its domain.
