@@ -1,5 +1,6 @@
 #include "surfcomp/docking/complementarity.hpp"
 
+#include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/option_names.hpp"
 #include "surfcomp/mesh/surface.hpp"
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <tuple>
 
@@ -23,6 +25,21 @@ namespace {
 
 constexpr double distance_cap = 4.0;  // A: the signed distance saturates here
 constexpr double z_clip = 3.0;
+constexpr double unknown_radius = 1.7;  // A: carbon's, for a symbol that is not an element
+
+/// Whether `element` (a capitalised symbol) is a metal: any element but the non-metals and the
+/// metalloids.
+bool is_metal(const std::string& element) {
+  static const std::set<std::string> others{"H",  "He", "B",  "C",  "N",  "O",  "F",  "Ne",
+                                            "Si", "P",  "S",  "Cl", "Ar", "Ge", "As", "Se",
+                                            "Br", "Kr", "Sb", "Te", "I",  "Xe", "At", "Rn"};
+  return !element.empty() && others.count(element) == 0;
+}
+
+/// The radius a receptor atom counts with: its own, a metal's less `allowance`.
+double counted_radius(const Atom& atom, double allowance) {
+  return is_metal(atom.element) ? std::max(0.0, atom.radius - allowance) : atom.radius;
+}
 
 /// z-scores of `values` by the mean and standard deviation of those flagged in `use`, clipped
 /// to [-z_clip, z_clip]; all 0 when fewer than two are flagged or they are constant.
@@ -57,6 +74,8 @@ void validate(const ComplementarityOptions& o) {
           o.clash_tolerance, "finite and >= 0");
   require(std::isfinite(o.clash_weight) && o.clash_weight >= 0.0, "clash_weight", o.clash_weight,
           "finite and >= 0");
+  require(std::isfinite(o.metal_allowance) && o.metal_allowance >= 0.0, "metal_allowance",
+          o.metal_allowance, "finite and >= 0");
   require(std::isfinite(o.esp_weight) && o.esp_weight >= 0.0, "esp_weight", o.esp_weight,
           "finite and >= 0");
   require(std::isfinite(o.lp_weight) && o.lp_weight >= 0.0, "lp_weight", o.lp_weight,
@@ -113,6 +132,31 @@ LigandSample sample_ligand(const mesh::Surface& surface, double spacing) {
   }
   sample.centroid = sample.points.rowwise().mean();
   return sample;
+}
+
+void lift_metal_points(LigandSample& sample, const std::vector<harmonic::SurfaceAtom>& atoms,
+                       double allowance) {
+  sample.lift.resize(0);
+  std::vector<double> radii;
+  bool metal = false;
+  for (const harmonic::SurfaceAtom& atom : atoms) {
+    radii.push_back(bondi_radius(atom.element).value_or(unknown_radius));
+    metal = metal || is_metal(atom.element);
+  }
+  if (!metal || allowance == 0.0) return;
+  sample.lift = Eigen::VectorXd::Zero(sample.points.cols());
+  for (Eigen::Index k = 0; k < sample.points.cols(); ++k) {
+    double nearest = std::numeric_limits<double>::infinity();
+    std::size_t owner = 0;
+    for (std::size_t i = 0; i < atoms.size(); ++i) {
+      const double d = (sample.points.col(k) - atoms[i].position).norm() - radii[i];
+      if (d < nearest) {
+        nearest = d;
+        owner = i;
+      }
+    }
+    if (is_metal(atoms[owner].element)) sample.lift(k) = allowance;
+  }
 }
 
 LigandSample pooled_sample(const Eigen::Matrix3Xd& points, const Eigen::VectorXd& esp,
@@ -192,7 +236,8 @@ ReceptorField::ReceptorField(const Molecule& receptor, const std::vector<molsurf
           if ((k.array() < 0).any() || (k.array() >= cells.array()).any()) continue;
           for (const int i : atoms_in[cell_index(k)]) {
             const Atom& atom = receptor.atoms[static_cast<std::size_t>(i)];
-            best = std::min(best, (x - atom.position).norm() - atom.radius);
+            best = std::min(
+                best, (x - atom.position).norm() - counted_radius(atom, options.metal_allowance));
           }
         }
       }
@@ -361,7 +406,7 @@ ComplementarityScore ReceptorField::score(const LigandSample& ligand,
       ++far;
       continue;
     }
-    const double d = node(0);
+    const double d = node(0) + (ligand.lift.size() == n ? ligand.lift(k) : 0.0);
     const double gap = d - o.contact_gap;
     const double contact = std::exp(-gap * gap * inverse_width);
     const double depth = std::max(0.0, -d - o.clash_tolerance);

@@ -48,6 +48,15 @@ Eigen::Matrix3Xd heavy_atoms(const harmonic::SurfaceDescriptors& d) {
   return points;
 }
 
+/// The sample of a described ligand's surface at `spacing` that `field`'s score reads, its metal
+/// atoms' points lifted (lift_metal_points).
+LigandSample scored_sample(const harmonic::SurfaceDescriptors& ligand, double spacing,
+                           const ReceptorField& field) {
+  LigandSample sample = sample_ligand(ligand.surface, spacing);
+  lift_metal_points(sample, ligand.atoms, field.options().metal_allowance);
+  return sample;
+}
+
 DockPose scored_pose(const ReceptorField& field, const matching::RigidTransform& pose,
                      const ComplementarityScore& score) {
   DockPose out;
@@ -201,6 +210,11 @@ const options::Table<DockOptions>& dock_option_table() {
                        "before it clashes",
                        "A", 0.0, 3.0},
                       &C::clash_tolerance));
+    t.push_back(score({"metal-allowance", Kind::real,
+                       "how much smaller than their van der Waals radius metal atoms count "
+                       "(coordination bonds are short)",
+                       "A", 0.0, 3.0},
+                      &C::metal_allowance));
     t.push_back(score({"clash-weight", Kind::real, "weight of the clash term", "1/A^2", 0.0, 1e3},
                       &C::clash_weight));
     t.push_back(score({"esp-weight", Kind::real,
@@ -417,7 +431,7 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
   if (options.local_only || options.score_only) {
     clock.restart();
     const LigandSample sample =
-        sample_ligand(result.ligand.descriptors.surface, options.complementarity.sample_spacing);
+        scored_sample(result.ligand.descriptors, options.complementarity.sample_spacing, field);
     matching::RigidTransform pose;
     if (options.local_only) pose = refine_pose(field, sample, pose);
     result.poses.push_back(scored_pose(field, pose, field.score(sample, pose)));
@@ -435,10 +449,10 @@ DockResult dock(const matching::MatchInput& ligand_input, const DockSite& site,
     matching::PreparedInput other;
     if (k > 0) other = matching::prepare_input(sides[k], options.inputs);
     const matching::PreparedInput& ligand = k == 0 ? result.ligand : other;
-    const mesh::Surface& surface = ligand.descriptors.surface;
-    ligands.push_back({sample_ligand(surface, options.complementarity.sample_spacing),
-                       sample_ligand(surface, options.search.sample_spacing),
-                       heavy_atoms(ligand.descriptors)});
+    ligands.push_back(
+        {scored_sample(ligand.descriptors, options.complementarity.sample_spacing, field),
+         scored_sample(ligand.descriptors, options.search.sample_spacing, field),
+         heavy_atoms(ligand.descriptors)});
     surfaces_ms += clock.elapsed_ms();
 
     clock.restart();

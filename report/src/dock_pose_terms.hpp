@@ -25,6 +25,7 @@ Json dock_parameters(const docking::DockOptions& options) {
               {"contact_width", c.contact_width},
               {"clash_tolerance", c.clash_tolerance},
               {"clash_weight", c.clash_weight},
+              {"metal_allowance", c.metal_allowance},
               {"esp_weight", c.esp_weight},
               {"lp_weight", c.lp_weight},
               {"site_weight", c.site_weight},

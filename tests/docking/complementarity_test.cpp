@@ -117,6 +117,51 @@ TEST(Complementarity, ASampleInsideTheAtomClashesByItsDepthBeyondTheTolerance) {
   EXPECT_NEAR(s.score, s.contact - o.clash_weight * s.clash, 1e-12);
 }
 
+TEST(Complementarity, AReceptorMetalCountsSmallerByTheAllowance) {
+  // A zinc atom (1.39 A): its sphere counts 1.39 - metal_allowance, and a carbon atom's whole.
+  ComplementarityOptions o;
+  o.metal_allowance = 1.0;
+  Molecule zinc = one_atom(3.0, 0.0);
+  zinc.atoms[0].element = "Zn";
+  const ReceptorField shrunk(zinc, {{Eigen::Vector3d::Zero(), 5.0}}, o);
+  const ReceptorField carbon(one_atom(3.0, 0.0), {{Eigen::Vector3d::Zero(), 5.0}}, o);
+  const Eigen::Vector3d x(3.5, 0.3, -0.2);
+  const double error = 0.04 / x.norm();  // the grid's interpolation, as above
+  EXPECT_NEAR(shrunk.signed_distance(x), x.norm() - 2.0, error);
+  EXPECT_NEAR(carbon.signed_distance(x), x.norm() - 3.0, error);
+  o.metal_allowance = -0.1;
+  EXPECT_THROW(validate(o), OptionError);
+}
+
+TEST(Complementarity, ALigandMetalsPointsAreLiftedOutOfTheClash) {
+  // An iron atom and a carbon beside it; each sample point belongs to the atom whose sphere it
+  // lies nearest.
+  const std::vector<harmonic::SurfaceAtom> atoms{{"Fe", Eigen::Vector3d::Zero()},
+                                                 {"C", Eigen::Vector3d(3.0, 0, 0)}};
+  LigandSample sample =
+      sample_of((Eigen::Matrix3Xd(3, 3) << -2, 0, 5, 0, 2, 0, 0, 0, 0).finished());
+  lift_metal_points(sample, atoms, 1.0);
+  ASSERT_EQ(sample.lift.size(), 3);
+  EXPECT_DOUBLE_EQ(sample.lift(0), 1.0);  // on the iron's sphere (2.00 A)
+  EXPECT_DOUBLE_EQ(sample.lift(1), 1.0);
+  EXPECT_DOUBLE_EQ(sample.lift(2), 0.0);  // on the carbon's
+  LigandSample organic = sample;
+  lift_metal_points(organic, {{"C", Eigen::Vector3d::Zero()}}, 1.0);
+  EXPECT_EQ(organic.lift.size(), 0);
+
+  // Points 1 A deep in a receptor atom: lifted by 1 A they sit on its surface, no clash.
+  const ComplementarityOptions o;
+  const ReceptorField field(one_atom(3.0, 0.0), {{Eigen::Vector3d::Zero(), 5.0}});
+  LigandSample inside = sample_of(sphere_points({0, 0, 0}, 2.0, 200));
+  EXPECT_GT(field.score(inside, {}).clash, 0.0);
+  inside.lift = Eigen::VectorXd::Constant(200, 1.0);
+  const ComplementarityScore lifted = field.score(inside, {});
+  EXPECT_DOUBLE_EQ(lifted.clash, 0.0);
+  EXPECT_NEAR(lifted.deepest, 0.0, 0.04 / 2.0);
+  const double gap = o.contact_gap;
+  EXPECT_NEAR(lifted.contact, std::exp(-gap * gap / (2 * o.contact_width * o.contact_width)), 0.04);
+}
+
 TEST(Complementarity, OppositeEspAcrossTheContactScoresAndLikeEspCosts) {
   // Two atoms of opposite charge 12 A apart: the receptor's ESP is positive about the first
   // and negative about the second, and its z-scores with it.

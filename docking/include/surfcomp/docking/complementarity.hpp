@@ -6,6 +6,7 @@
 #pragma once
 
 #include "surfcomp/core/molecule.hpp"
+#include "surfcomp/harmonic/surface_descriptors.hpp"
 #include "surfcomp/matching/rigid_fit.hpp"
 #include "surfcomp/mesh/surface.hpp"
 #include "surfcomp/molsurf/site.hpp"
@@ -37,6 +38,11 @@ struct ComplementarityOptions {
   /// clash_tolerance: a point 0.1 A beyond the tolerance costs as much as one point's full
   /// contact, so that no gain in contact pays for pushing into the receptor. Finite, >= 0.
   double clash_weight = 100.0;
+  /// Default 1 A. Metal atoms, the receptor's and the ligand's, count this much smaller than
+  /// their van der Waals radius in the distances the contact and clash terms read: a
+  /// coordination bond (Fe-N, Fe-S, Zn-O: 2.0-2.3 A) is 1.3-1.7 A shorter than van der Waals
+  /// contact, which clash_tolerance covers only in part. Finite, >= 0.
+  double metal_allowance = 1.0;
   /// Default 0.2. The weight of the ESP term. Finite, >= 0.
   double esp_weight = 0.2;
   /// Default 0.2. The weight of the LP term. Finite, >= 0.
@@ -84,6 +90,10 @@ struct LigandSample {
   Eigen::Matrix3Xd points;  ///< A, the ligand's frame
   Eigen::VectorXd esp;      ///< z-scores, clipped to [-3, 3]; 0 without the property
   Eigen::VectorXd lp;       ///< z-scores, clipped to [-3, 3]; 0 without the property
+  /// A, one per point or empty (all 0): added to the receptor's signed distance at the point.
+  /// A point on a metal atom's sphere lies ComplementarityOptions::metal_allowance beyond the
+  /// smaller sphere the metal counts as (lift_metal_points).
+  Eigen::VectorXd lift;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the points
 };
 
@@ -91,6 +101,12 @@ struct LigandSample {
 /// nearest the centre of each occupied cell of a grid of `spacing`, in vertex order. Throws
 /// InputError for an empty surface.
 LigandSample sample_ligand(const mesh::Surface& surface, double spacing);
+
+/// Sets `sample.lift` from the ligand's heavy atoms `atoms` (in the sample's frame): at each
+/// point whose nearest atom, by the distance to its van der Waals sphere, is a metal,
+/// `allowance`; 0 elsewhere. Leaves `sample` without lift when no atom is a metal.
+void lift_metal_points(LigandSample& sample, const std::vector<harmonic::SurfaceAtom>& atoms,
+                       double allowance);
 
 /// A sample of points already pooled (a screening library's stored surface sample): `points`
 /// with the z-scores over them of `esp` and `lp` (one value per point). Throws InputError naming
@@ -101,7 +117,8 @@ LigandSample pooled_sample(const Eigen::Matrix3Xd& points, const Eigen::VectorXd
 /// The receptor's side of the score on a grid over its site: at each node the signed distance
 /// to the receptor's van der Waals surface (negative inside; capped at +-4 A), and the z-scores
 /// of the receptor's ESP and LP (molsurf::electrostatic_potential, lipophilic_potential; the
-/// z-scores over the nodes within 2 A outside the surface). Outside the grid a point is in free
+/// z-scores over the nodes within 2 A outside the surface). A metal atom's sphere is its radius
+/// less ComplementarityOptions::metal_allowance. Outside the grid a point is in free
 /// space: no contact, no clash.
 class ReceptorField {
  public:
