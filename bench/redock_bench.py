@@ -248,7 +248,8 @@ def own_pose_options(options):
 def vina_cache_file(cache, entry, moved_file):
     """Where the cache keeps Vina's poses of `entry` docked from `moved_file`."""
     with open(moved_file, "rb") as f:
-        digest = hashlib.sha1(f.read()).hexdigest()[:16]
+        # Without the title line, which names the work folder: the key is the moved ligand.
+        digest = hashlib.sha1(b"".join(f.readlines()[1:])).hexdigest()[:16]
     return os.path.join(cache, f"{entry}_{digest}_vina.sdf")
 
 
