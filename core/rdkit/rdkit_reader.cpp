@@ -3,6 +3,7 @@
 #include "molecule_reader_detail.hpp"
 #include "molecule_text.hpp"
 #include "rdkit_module.hpp"
+#include "surfcomp/core/elements.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/input_file.hpp"
 #include "surfcomp/core/io/molecule_formats.hpp"
@@ -223,21 +224,13 @@ void keep_atoms(std::unique_ptr<RDKit::RWMol>& mol, Molecule& molecule,
   molecule.atoms = std::move(atoms);
 }
 
-bool is_metal(int atomic_number) {
-  static const std::vector<int> nonmetals{1,  2,  5,  6,  7,  8,  9,  10, 14, 15, 16,
-                                          17, 18, 33, 34, 35, 36, 52, 53, 54, 85, 86};
-  return atomic_number > 0 &&
-         std::find(nonmetals.begin(), nonmetals.end(), atomic_number) == nonmetals.end();
-}
-
 // PDB files do not encode metal coordination, and RDKit's proximity rule bonds an ion to the
 // atoms around it (Ca and Zn to Asp/Glu/His in thermolysin). Those bonds are dropped: metals
 // are treated as free ions.
 void disconnect_metals(RDKit::RWMol& mol) {
   std::vector<std::pair<unsigned int, unsigned int>> metal_bonds;
   for (const RDKit::Bond* bond : mol.bonds()) {
-    if (is_metal(bond->getBeginAtom()->getAtomicNum()) ||
-        is_metal(bond->getEndAtom()->getAtomicNum())) {
+    if (is_metal(bond->getBeginAtom()->getSymbol()) || is_metal(bond->getEndAtom()->getSymbol())) {
       metal_bonds.emplace_back(bond->getBeginAtomIdx(), bond->getEndAtomIdx());
     }
   }

@@ -1,5 +1,6 @@
 #include "surfcomp/core/elements.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <string>
@@ -42,6 +43,15 @@ constexpr std::array kRadii{
 };
 
 }  // namespace
+
+bool is_metal(std::string_view element) {
+  static constexpr std::array<std::string_view, 22> others{
+      "H",  "He", "B",  "C",  "N",  "O",  "F",  "Ne", "Si", "P",  "S",
+      "Cl", "Ar", "As", "Se", "Br", "Kr", "Te", "I",  "Xe", "At", "Rn"};
+  const std::string symbol = normalize_element(element);
+  return !symbol.empty() && symbol != "*" &&
+         std::find(others.begin(), others.end(), symbol) == others.end();
+}
 
 std::string normalize_element(std::string_view symbol) {
   std::string out;

@@ -16,7 +16,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
 #include <string>
 #include <tuple>
 
@@ -26,15 +25,6 @@ namespace {
 constexpr double distance_cap = 4.0;  // A: the signed distance saturates here
 constexpr double z_clip = 3.0;
 constexpr double unknown_radius = 1.7;  // A: carbon's, for a symbol that is not an element
-
-/// Whether `element` (a capitalised symbol) is a metal: any element but the non-metals and the
-/// metalloids.
-bool is_metal(const std::string& element) {
-  static const std::set<std::string> others{"H",  "He", "B",  "C",  "N",  "O",  "F",  "Ne",
-                                            "Si", "P",  "S",  "Cl", "Ar", "Ge", "As", "Se",
-                                            "Br", "Kr", "Sb", "Te", "I",  "Xe", "At", "Rn"};
-  return !element.empty() && others.count(element) == 0;
-}
 
 /// The radius a receptor atom counts with: its own, a metal's less `allowance`.
 double counted_radius(const Atom& atom, double allowance) {
@@ -155,7 +145,8 @@ void lift_metal_points(LigandSample& sample, const std::vector<harmonic::Surface
         owner = i;
       }
     }
-    if (is_metal(atoms[owner].element)) sample.lift(k) = allowance;
+    // The metal's sphere, `allowance` smaller, shrinks at most to its centre (as the receptor's).
+    if (is_metal(atoms[owner].element)) sample.lift(k) = std::min(allowance, radii[owner]);
   }
 }
 
@@ -396,6 +387,10 @@ ComplementarityScore ReceptorField::score(const LigandSample& ligand,
   // there, no clash, and no gradient.
   const double far_gap = distance_cap - o.contact_gap;
   const double far_contact = std::exp(-far_gap * far_gap * inverse_width);
+  if (ligand.lift.size() != 0 && ligand.lift.size() != n) {
+    throw InputError("a ligand sample of " + std::to_string(n) + " points has " +
+                     std::to_string(ligand.lift.size()) + " lifts");
+  }
   std::size_t far = 0;
   for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Vector3d x = pose.rotation * ligand.points.col(k) + pose.translation;
@@ -406,7 +401,7 @@ ComplementarityScore ReceptorField::score(const LigandSample& ligand,
       ++far;
       continue;
     }
-    const double d = node(0) + (ligand.lift.size() == n ? ligand.lift(k) : 0.0);
+    const double d = node(0) + (ligand.lift.size() != 0 ? ligand.lift(k) : 0.0);
     const double gap = d - o.contact_gap;
     const double contact = std::exp(-gap * gap * inverse_width);
     const double depth = std::max(0.0, -d - o.clash_tolerance);

@@ -118,7 +118,8 @@ TEST(Complementarity, ASampleInsideTheAtomClashesByItsDepthBeyondTheTolerance) {
 }
 
 TEST(Complementarity, AReceptorMetalCountsSmallerByTheAllowance) {
-  // A zinc atom (1.39 A): its sphere counts 1.39 - metal_allowance, and a carbon atom's whole.
+  // A zinc atom of 3 A (large, for the grid's interpolation): its sphere counts 3 - 1 A, and a
+  // carbon atom's its whole 3 A.
   ComplementarityOptions o;
   o.metal_allowance = 1.0;
   Molecule zinc = one_atom(3.0, 0.0);
@@ -133,7 +134,7 @@ TEST(Complementarity, AReceptorMetalCountsSmallerByTheAllowance) {
   EXPECT_THROW(validate(o), OptionError);
 }
 
-TEST(Complementarity, ALigandMetalsPointsAreLiftedOutOfTheClash) {
+TEST(Complementarity, ALigandMetalPointsAreLiftedOutOfTheClash) {
   // An iron atom and a carbon beside it; each sample point belongs to the atom whose sphere it
   // lies nearest.
   const std::vector<harmonic::SurfaceAtom> atoms{{"Fe", Eigen::Vector3d::Zero()},

@@ -59,38 +59,47 @@ const std::vector<molsurf::SiteSphere> site{{Eigen::Vector3d(0, 0, 0.5), 2.0}};
 
 TEST(Search, TheGradientIsTheScoresDerivative) {
   // Central differences of a step of 1e-6 stay within one trilinear cell for nearly every
-  // point; the gradient must match them to a part in 10^4 of its size.
+  // point; the gradient must match them to a part in 10^4 of its size. The second sample lifts
+  // half its points, as a metal's are (lift_metal_points).
   ComplementarityOptions o;
   o.clash_weight = 5.0;  // a pose with some clash, so that every term has a slope
   o.clash_tolerance = 0.1;
   const ReceptorField field(cleft(), site, o);
-  const LigandSample sample = ligand();
-  matching::RigidTransform pose;
-  pose.rotation =
-      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
-  pose.translation = Eigen::Vector3d(0.31, -0.27, 0.93) - pose.rotation * sample.centroid;
-  Vector6d gradient;
-  const ComplementarityScore at = field.score(sample, pose, &gradient);
-  ASSERT_GT(at.contact, 0.1);
-  ASSERT_GT(at.clash, 0.0) << at.deepest << " " << at.contact;
-  const Eigen::Vector3d centre = pose.rotation * sample.centroid + pose.translation;
-  const double h = 1e-6;
-  for (int axis = 0; axis < 6; ++axis) {
-    const auto moved = [&](double sign) {
-      matching::RigidTransform t = pose;
-      if (axis < 3) {
-        t.translation(axis) += sign * h;
-      } else {
-        const Eigen::Matrix3d q =
-            Eigen::AngleAxisd(sign * h, Eigen::Vector3d::Unit(axis - 3)).toRotationMatrix();
-        t.rotation = q * pose.rotation;
-        t.translation = q * (pose.translation - centre) + centre;
-      }
-      return field.score(sample, t).score;
-    };
-    const double numeric = (moved(1.0) - moved(-1.0)) / (2 * h);
-    EXPECT_NEAR(gradient(axis), numeric, 1e-4 * gradient.norm() + 1e-7) << axis;
+  LigandSample lifted = ligand();
+  lifted.lift = Eigen::VectorXd::Zero(lifted.points.cols());
+  for (Eigen::Index k = 0; k < lifted.points.cols(); k += 2) lifted.lift(k) = 0.3;
+  for (const LigandSample& sample : {ligand(), lifted}) {
+    matching::RigidTransform pose;
+    pose.rotation =
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+    pose.translation = Eigen::Vector3d(0.31, -0.27, 0.93) - pose.rotation * sample.centroid;
+    Vector6d gradient;
+    const ComplementarityScore at = field.score(sample, pose, &gradient);
+    ASSERT_GT(at.contact, 0.1);
+    ASSERT_GT(at.clash, 0.0) << at.deepest << " " << at.contact;
+    const Eigen::Vector3d centre = pose.rotation * sample.centroid + pose.translation;
+    const double h = 1e-6;
+    for (int axis = 0; axis < 6; ++axis) {
+      const auto moved = [&](double sign) {
+        matching::RigidTransform t = pose;
+        if (axis < 3) {
+          t.translation(axis) += sign * h;
+        } else {
+          const Eigen::Matrix3d q =
+              Eigen::AngleAxisd(sign * h, Eigen::Vector3d::Unit(axis - 3)).toRotationMatrix();
+          t.rotation = q * pose.rotation;
+          t.translation = q * (pose.translation - centre) + centre;
+        }
+        return field.score(sample, t).score;
+      };
+      const double numeric = (moved(1.0) - moved(-1.0)) / (2 * h);
+      EXPECT_NEAR(gradient(axis), numeric, 1e-4 * gradient.norm() + 1e-7)
+          << axis << (sample.lift.size() > 0 ? " lifted" : "");
+    }
   }
+  LigandSample wrong = ligand();
+  wrong.lift = Eigen::VectorXd::Zero(3);
+  EXPECT_THROW(field.score(wrong, {}), InputError);
 }
 
 TEST(Search, RefinementClimbsToALocalMaximum) {

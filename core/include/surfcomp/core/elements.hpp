@@ -14,6 +14,11 @@ namespace surfcomp {
 /// 5806 (2009).
 std::optional<double> bondi_radius(std::string_view element);
 
+/// Whether `element` (a symbol, any case) is a metal: any element but the non-metals and the
+/// metalloids boron, silicon, arsenic and tellurium (H, He, B, C, N, O, F, Ne, Si, P, S, Cl,
+/// Ar, As, Se, Br, Kr, Te, I, Xe, At, Rn). False for an empty symbol and a dummy atom ("*").
+bool is_metal(std::string_view element);
+
 /// Normalises an element symbol: trims blanks, first letter upper, rest lower ("CL" -> "Cl").
 std::string normalize_element(std::string_view symbol);
 

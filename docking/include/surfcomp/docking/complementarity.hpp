@@ -72,8 +72,8 @@ struct ComplementarityScore {
   double esp = 0.0;      ///< over the contact: minus the product of the sides' ESP z-scores
   double lp = 0.0;       ///< over the contact: the product of the sides' LP z-scores
   double outside = 0.0;  ///< A: how far the sample's centre lies outside the site
-  /// A: the largest depth of a ligand surface point inside the receptor's van der Waals
-  /// surface (0 when none is inside).
+  /// A: the largest depth of a ligand surface point (lifted) inside the receptor's van der
+  /// Waals surface, its metals counted smaller (0 when none is inside).
   double deepest = 0.0;
 };
 
@@ -92,7 +92,8 @@ struct LigandSample {
   Eigen::VectorXd lp;       ///< z-scores, clipped to [-3, 3]; 0 without the property
   /// A, one per point or empty (all 0): added to the receptor's signed distance at the point.
   /// A point on a metal atom's sphere lies ComplementarityOptions::metal_allowance beyond the
-  /// smaller sphere the metal counts as (lift_metal_points).
+  /// smaller sphere the metal counts as (lift_metal_points). ReceptorField::score throws
+  /// InputError for a lift of another size than the points.
   Eigen::VectorXd lift;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< of the points
 };
@@ -104,7 +105,8 @@ LigandSample sample_ligand(const mesh::Surface& surface, double spacing);
 
 /// Sets `sample.lift` from the ligand's heavy atoms `atoms` (in the sample's frame): at each
 /// point whose nearest atom, by the distance to its van der Waals sphere, is a metal,
-/// `allowance`; 0 elsewhere. Leaves `sample` without lift when no atom is a metal.
+/// `allowance` (at most the metal's radius); 0 elsewhere. Leaves `sample` without lift when no atom
+/// is a metal.
 void lift_metal_points(LigandSample& sample, const std::vector<harmonic::SurfaceAtom>& atoms,
                        double allowance);
 
@@ -135,8 +137,8 @@ class ReceptorField {
   ComplementarityScore score(const LigandSample& sample, const matching::RigidTransform& pose,
                              Eigen::Matrix<double, 6, 1>* gradient = nullptr) const;
 
-  /// The signed distance to the receptor's van der Waals surface at `x` (A, trilinear; +4
-  /// outside the grid).
+  /// The signed distance to the receptor's van der Waals surface, its metals counted smaller
+  /// (ComplementarityOptions::metal_allowance), at `x` (A, trilinear; +4 outside the grid).
   double signed_distance(const Eigen::Vector3d& x) const;
 
   /// A^3: the volume of the grid nodes inside `site`'s spheres that lie outside the receptor's
