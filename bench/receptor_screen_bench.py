@@ -18,7 +18,7 @@ residue (`obabel -xr`) in a box 4 A beyond the site ligand's atoms (`vina --cpu 
 their best affinity. Each dock's affinity and CPU time are kept in --vina-cache DIR (keyed by
 site, ligand and exhaustiveness) and read back by later runs: a site costs Vina 36 docks (1-5
 minutes each at 8), so the table can be filled over several sittings; --vina-only runs Vina
-alone, --only ENTRY,... some sites.
+alone, --only ENTRY,... some sites (of any ligand type).
 
     /usr/bin/python3 bench/receptor_screen_bench.py --program build/release/tools/surfcomp \\
         [--ligand ATP|HEM|FMN|all] [--conformers 3] [--shared ../shared/datasets] \\
@@ -157,6 +157,8 @@ def main():
                        stdout=subprocess.DEVNULL)
     vina_ligand_files = vina_ligands(cases, work) if args.vina else {}
     only = set(args.only.split(",")) if args.only else None
+    if only is not None:
+        args.ligand = "all"  # the sites named, whatever their ligand
     results = {"surfcomp": ([], []), "vina": ([], [])}  # AUCs, seconds
     programs = (() if args.vina_only else ("surfcomp",)) + (("vina",) if args.vina else ())
     print(f"{'site':8s} " + " ".join(f"{p + ' AUC':>13s} {'own rank':>8s} {'s':>7s}"
@@ -184,7 +186,10 @@ def main():
                                                   args.vina_exhaustiveness)
                 names = sorted(affinities, key=lambda name: (affinities[name], name))
             labels = [name.endswith("_" + residue) for name in names]
-            auc = roc_auc(-np.arange(len(names)), labels)
+            if program == "surfcomp":
+                auc = roc_auc(-np.arange(len(names)), labels)  # the order of hits.csv
+            else:  # Vina's affinities (0.1 kcal/mol) tie: their mid-ranks count
+                auc = roc_auc(np.array([-min(affinities[n], 1e9) for n in names]), labels)
             own = names.index(f"{entry}_{residue}") + 1 if f"{entry}_{residue}" in names else 0
             results[program][0].append(auc)
             results[program][1].append(seconds)
