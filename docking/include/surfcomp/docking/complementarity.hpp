@@ -40,7 +40,7 @@ struct ComplementarityOptions {
   double clash_weight = 100.0;
   /// Default 1 A. Metal atoms, the receptor's and the ligand's, count this much smaller than
   /// their van der Waals radius in the distances the contact and clash terms read: a
-  /// coordination bond (Fe-N, Fe-S, Zn-O: 2.0-2.3 A) is 1.3-1.7 A shorter than van der Waals
+  /// coordination bond (Fe-N, Fe-S, Zn-O: 2.0-2.4 A) is 1.2-1.6 A shorter than van der Waals
   /// contact, which clash_tolerance covers only in part. Finite, >= 0.
   double metal_allowance = 1.0;
   /// Default 0.2. The weight of the ESP term. Finite, >= 0.
