@@ -30,7 +30,6 @@ import argparse
 import csv
 import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -42,7 +41,8 @@ from rdkit.Chem import AllChem
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from dud_screen_bench import roc_auc  # noqa: E402
-from redock_bench import children_cpu_seconds, heavy_atoms, kahraman_cases  # noqa: E402
+from redock_bench import (children_cpu_seconds, kahraman_cases, vina_box,  # noqa: E402
+                          vina_missing, vina_receptor)
 
 RDLogger.DisableLog("rdApp.*")
 
@@ -73,11 +73,7 @@ def vina_screen(site, residue, crystal, receptor, ligands, work, cache, exhausti
     seconds; each dock from the cache when it holds it."""
     quiet = {"check": True, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
     receptor_pdbqt = os.path.join(work, f"{site}_vina_receptor.pdbqt")
-    _, positions = heavy_atoms(crystal)
-    centre = (positions.min(0) + positions.max(0)) / 2
-    size = positions.max(0) - positions.min(0) + 8.0
-    box = [f"--center_{a}={c:.3f}" for a, c in zip("xyz", centre)]
-    box += [f"--size_{a}={s:.3f}" for a, s in zip("xyz", size)]
+    box = vina_box(crystal)
     affinities, seconds = {}, 0.0
     for name, ligand in ligands.items():
         kept = os.path.join(cache, f"{site}_{name}_e{exhaustiveness}.json") if cache else None
@@ -86,11 +82,8 @@ def vina_screen(site, residue, crystal, receptor, ligands, work, cache, exhausti
                 record = json.load(f)
         else:
             if not os.path.exists(receptor_pdbqt):
-                receptor_pdb = os.path.join(work, f"{site}_vina_receptor.pdb")
-                with open(receptor) as f, open(receptor_pdb, "w") as out:
-                    out.writelines(line for line in f if not (line.startswith("HETATM")
-                                                              and line[17:20].strip() == residue))
-                subprocess.run(["obabel", receptor_pdb, "-xr", "-O", receptor_pdbqt], **quiet)
+                vina_receptor(receptor, residue, os.path.join(work, f"{site}_vina_receptor.pdb"),
+                              receptor_pdbqt)
             out_pdbqt = os.path.join(work, f"{site}_{name}_vina.pdbqt")
             start = children_cpu_seconds()
             subprocess.run(["vina", "--receptor", receptor_pdbqt, "--ligand", ligand, "--cpu", "1",
@@ -133,12 +126,8 @@ def main():
         print(f"skipped: {args.shared}/kahraman-dev is absent")
         return 0
     args.vina = args.vina or args.vina_only
-    if args.vina:
-        missing = [p for p in ("vina", "obabel") if shutil.which(p) is None]
-        if missing:
-            print(f"receptor_screen_bench: --vina needs {' and '.join(missing)} "
-                  "(apt install autodock-vina openbabel)", file=sys.stderr)
-            return 2
+    if args.vina and vina_missing("receptor_screen_bench"):
+        return 2
     work = args.work or tempfile.mkdtemp(prefix="receptor_screen_")
     os.makedirs(work, exist_ok=True)
     cases = list(kahraman_cases(args.shared, work))

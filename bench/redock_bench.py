@@ -253,6 +253,33 @@ def vina_cache_file(cache, entry, moved_file):
     return os.path.join(cache, f"{entry}_{digest}_vina.sdf")
 
 
+def vina_missing(bench):
+    """True, having said what to install, when Vina or Open Babel is not on the PATH."""
+    missing = [p for p in ("vina", "obabel") if shutil.which(p) is None]
+    if missing:
+        print(f"{bench}: --vina needs {' and '.join(missing)} "
+              "(apt install autodock-vina openbabel)", file=sys.stderr)
+    return bool(missing)
+
+
+def vina_box(crystal):
+    """Vina's box options: the crystal ligand's atoms and 4 A beyond them on each side."""
+    _, positions = heavy_atoms(crystal)
+    centre = (positions.min(0) + positions.max(0)) / 2
+    size = positions.max(0) - positions.min(0) + 8.0
+    return ([f"--center_{a}={c:.3f}" for a, c in zip("xyz", centre)]
+            + [f"--size_{a}={s:.3f}" for a, s in zip("xyz", size)])
+
+
+def vina_receptor(receptor, residue, pdb, pdbqt):
+    """The receptor as Vina reads it (`obabel -xr`), without the ligand residue's HETATMs."""
+    with open(receptor) as f, open(pdb, "w") as out:
+        out.writelines(line for line in f if not (line.startswith("HETATM")
+                                                  and line[17:20].strip() == residue))
+    subprocess.run(["obabel", pdb, "-xr", "-O", pdbqt], check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+
+
 def run_vina(moved_file, receptor, residue, crystal, work, entry, cache):
     """Vina's poses and CPU time; from the cache when it holds this complex and moved ligand."""
     kept = vina_cache_file(cache, entry, moved_file) if cache else None
@@ -260,25 +287,17 @@ def run_vina(moved_file, receptor, residue, crystal, work, entry, cache):
         with open(kept + ".json") as f:
             seconds = json.load(f)["cpu_seconds"]
         return [m for m in Chem.SDMolSupplier(kept, sanitize=False, removeHs=False) if m], seconds
-    receptor_pdb = os.path.join(work, f"{entry}_vina_receptor.pdb")
-    with open(receptor) as f, open(receptor_pdb, "w") as out:
-        out.writelines(line for line in f if not (line.startswith("HETATM")
-                                                  and line[17:20].strip() == residue))
     receptor_pdbqt = os.path.join(work, f"{entry}_receptor.pdbqt")
     ligand_pdbqt = os.path.join(work, f"{entry}_moved.pdbqt")
     out_pdbqt = os.path.join(work, f"{entry}_vina.pdbqt")
     out_sdf = os.path.join(work, f"{entry}_vina.sdf")
     quiet = {"check": True, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
-    _, positions = heavy_atoms(crystal)
-    centre = (positions.min(0) + positions.max(0)) / 2
-    size = positions.max(0) - positions.min(0) + 8.0
     start = children_cpu_seconds()
-    subprocess.run(["obabel", receptor_pdb, "-xr", "-O", receptor_pdbqt], **quiet)
+    vina_receptor(receptor, residue, os.path.join(work, f"{entry}_vina_receptor.pdb"),
+                  receptor_pdbqt)
     subprocess.run(["obabel", moved_file, "-h", "-r", "-O", ligand_pdbqt], **quiet)
-    box = [f"--center_{a}={c:.3f}" for a, c in zip("xyz", centre)]
-    box += [f"--size_{a}={s:.3f}" for a, s in zip("xyz", size)]
     subprocess.run(["vina", "--receptor", receptor_pdbqt, "--ligand", ligand_pdbqt, "--cpu", "1",
-                    "--seed", "1", "--exhaustiveness", "8", "--out", out_pdbqt] + box, **quiet)
+                    "--seed", "1", "--exhaustiveness", "8", "--out", out_pdbqt] + vina_box(crystal), **quiet)
     seconds = children_cpu_seconds() - start
     subprocess.run(["obabel", out_pdbqt, "-O", out_sdf], **quiet)
     if kept:
@@ -316,12 +335,8 @@ def main():
         args.vina = True
     elif not args.program:
         parser.error("--program is required (unless --vina-only)")
-    if args.vina:
-        missing = [p for p in ("vina", "obabel") if shutil.which(p) is None]
-        if missing:
-            print(f"redock_bench: --vina needs {' and '.join(missing)} "
-                  "(apt install autodock-vina openbabel)", file=sys.stderr)
-            return 2
+    if args.vina and vina_missing("redock_bench"):
+        return 2
     work = args.work or tempfile.mkdtemp(prefix="redock_")
     os.makedirs(work, exist_ok=True)
     rng = np.random.default_rng(args.seed)
