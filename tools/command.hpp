@@ -28,6 +28,7 @@ int cp_detect(const std::vector<std::string>& args);
 int hsi_build(const std::vector<std::string>& args);
 int match(const std::vector<std::string>& args);
 int dock(const std::vector<std::string>& args);
+int matrix(const std::vector<std::string>& args);
 int library(const std::vector<std::string>& args);
 int screen(const std::vector<std::string>& args);
 int report(const std::vector<std::string>& args);

@@ -566,5 +566,44 @@ TEST_F(Cli, StageToolsDescribeAMeshAtItsOwnScale) {
   }
 }
 
+TEST_F(Cli, MatrixWritesTheSetsScoresAndRefusesWhatCannotRun) {
+  SURFCOMP_SHARED_OR_SKIP(first, "thermolysin/ligands-original/ligand1THL.sdf");
+  SURFCOMP_SHARED_OR_SKIP(second, "thermolysin/ligands-original/ligand1TMN.sdf");
+  const fs::path csv = scratch("similarity.csv");
+  const ProgramRun r =
+      run("matrix " + first.string() + " " + second.string() + " -o " + csv.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(csv);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(std::count(lines[0].begin(), lines[0].end(), ','), 2) << lines[0];
+  // The diagonal is the self-match, the pair's score is match's (checked in matrix_test).
+  EXPECT_NE(lines[1].find(",1.0000,"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[2].rfind(",1.0000"), std::string::npos) << lines[2];
+  fs::remove(csv);
+  struct Case {
+    std::string arguments, expected;
+  };
+  const Case cases[] = {
+      {"matrix " + first.string(), "a set of one molecule has no pair"},
+      {"matrix " + first.string() + " " + second.string() + " --max-pairs 2",
+       "3 pairs (2 x 2 molecules) is more than --max-pairs 2"},
+      {"matrix /nonexistent/a.sdf " + first.string(), "a.sdf"},
+      {"matrix " + first.string() + " --against " + second.string() + " --fuzzy-threshold 2",
+       "fuzzy-threshold"},
+  };
+  for (const Case& c : cases) {
+    const ProgramRun bad = run(c.arguments + " -o " + csv.string());
+    EXPECT_NE(bad.status, 0) << c.arguments;
+    EXPECT_NE(bad.err.find(c.expected), std::string::npos) << c.arguments << "\n" << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << "not one line: " << bad.err;
+    EXPECT_FALSE(fs::exists(csv)) << c.arguments;
+  }
+  const ProgramRun no_output = run("matrix " + first.string() + " " + second.string());
+  EXPECT_EQ(no_output.status, 2);
+  EXPECT_NE(no_output.err.find("--output"), std::string::npos) << no_output.err;
+}
+
 }  // namespace
 }  // namespace surfcomp

@@ -9,7 +9,7 @@ from conftest import SOURCE_DIR
 
 LIBRARY_MODULES = ("core", "mesh", "molsurf", "harmonic", "matching", "docking", "screening",
                    "report")
-COMMANDS = ("surf-build", "cp-detect", "hsi-build", "match", "dock", "screen",
+COMMANDS = ("surf-build", "cp-detect", "hsi-build", "match", "dock", "matrix", "screen",
             "screen --receptor R", "report", "pockets", "patch-map", "library build",
             "library info", "library export")
 

@@ -1,0 +1,80 @@
+// All against all: each molecule of a set read and described once, then every pair matched as
+// `surfcomp match` matches two molecules, into a similarity matrix (the top alignment's overlay
+// score, docs/method.md §13), in parallel (TBB), the same whatever the thread count.
+#pragma once
+
+#include "surfcomp/core/option_table.hpp"
+#include "surfcomp/matching/match_inputs.hpp"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace surfcomp::screening {
+
+struct MatrixOptions {
+  /// How the molecules are read, surfaced, described and matched; default as `surfcomp match`.
+  matching::MatchInputOptions inputs;
+  /// Default 10^7. A matrix of more pairs than this is refused before any work (its memory:
+  /// 8 bytes per pair, 136 with the transforms). >= 1.
+  std::int64_t max_pairs = 10'000'000;
+  /// Default false. Keep each pair's top transform (SimilarityMatrix::transforms).
+  bool transforms = false;
+  /// Default none. Told (pairs done, pairs) as the pairs are matched, for a progress line.
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// The user's options of a matrix: the surface, description and match options of a pair match
+/// without its sites, --max-pairs and --threads.
+const options::Table<MatrixOptions>& matrix_option_table();
+
+/// One molecule of a set: a record of a molecule file.
+struct MatrixMember {
+  std::string name;              ///< its record's name (io::MoleculeRecord::name)
+  std::filesystem::path source;  ///< its file
+  std::size_t record = 1;        ///< its 1-based position in the file
+};
+
+struct SimilarityMatrix {
+  /// The molecules compared: the rows, and the columns (the same set for all against all),
+  /// in file order, without those left out.
+  std::vector<MatrixMember> rows, columns;
+  /// True when rows and columns are one set: the pairs i < j are matched once (row i as REF)
+  /// and the matrix is symmetric, the diagonal the self-matches.
+  bool symmetric = false;
+  /// rows x columns. score(i, j): the top alignment's overlay score of columns[j] aligned onto
+  /// rows[i] (0 when no alignment), in [0, 1].
+  Eigen::MatrixXd score;
+  /// With MatrixOptions::transforms, row-major (i * columns + j): the 4x4 rigid transform that
+  /// moves columns[j] onto rows[i] (identity without an alignment).
+  std::vector<Eigen::Matrix4d> transforms;
+  /// The records left out, one line each: the file, the record and why.
+  std::vector<std::string> left_out;
+  double describe_ms = 0.0;  ///< reading, surfaces and descriptions
+  double match_ms = 0.0;     ///< the pairs
+};
+
+/// Every record of the molecule files `set` (SDF, MOL2, PDB, mmCIF, PQR; each file's records
+/// in order) read and described once as prepare_input describes a molecule, then matched all
+/// against all (`against` empty) or each of `set` (rows) against each of `against` (columns),
+/// as match_surfaces matches two prepared molecules. A record that cannot be read or described
+/// is left out and named in SimilarityMatrix::left_out. Throws, before any work, OptionError
+/// for options outside their domain, InputError for a file that is not a molecule file (a
+/// mesh, a SMILES list: no coordinates), an empty set, a set of one without `against`, or more
+/// pairs than options.max_pairs; after reading, InputError when fewer than two molecules (or
+/// none on a side) are left.
+SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set,
+                                   const std::vector<std::filesystem::path>& against = {},
+                                   const MatrixOptions& options = {});
+
+/// The matrix as CSV: a header "name" then the columns' names, one line per row (its name,
+/// then its scores to 4 decimals); names quoted when they hold a comma or a quote.
+void write_matrix_csv(std::ostream& out, const SimilarityMatrix& matrix);
+
+}  // namespace surfcomp::screening

@@ -1,0 +1,167 @@
+// The similarity matrix: its entries are `surfcomp match`'s top overlay scores and transforms,
+// pair by pair; all against all it is symmetric, its diagonal the self-match (score 1 at the
+// identity); the same with one thread and two; a record that cannot be read is left out and
+// named while the others are compared; an empty set, a set of one, too many pairs and a file
+// that is not a molecule file are refused before any work.
+#include "test_data.hpp"
+
+#include "surfcomp/core/error.hpp"
+#include "surfcomp/matching/match_inputs.hpp"
+#include "surfcomp/screening/matrix.hpp"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace surfcomp {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Three thermolysin inhibitors (each an SDF file of one record), or none when the shared data
+/// sets are absent.
+std::vector<fs::path> thermolysin_ligands() {
+  std::vector<fs::path> files;
+  for (const char* entry : {"1THL", "1TLP", "1TMN"}) {
+    const auto path =
+        test::shared_dataset(std::string("thermolysin/ligands-original/ligand") + entry + ".sdf");
+    if (!path) return {};
+    files.push_back(*path);
+  }
+  return files;
+}
+
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+class Matrix : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ligands_ = thermolysin_ligands();
+    if (ligands_.empty()) SURFCOMP_DATA_ABSENT(test::shared_absent_message("thermolysin"));
+  }
+  std::vector<fs::path> ligands_;
+};
+
+TEST_F(Matrix, EntriesAreMatchsTopScoresAndTransforms) {
+  screening::MatrixOptions options;
+  options.transforms = true;
+  const screening::SimilarityMatrix matrix = screening::similarity_matrix(ligands_, {}, options);
+  ASSERT_EQ(matrix.rows.size(), 3u);
+  ASSERT_TRUE(matrix.symmetric);
+  EXPECT_TRUE(matrix.left_out.empty());
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t j = i; j < 3; ++j) {
+      matching::MatchInput reference, probe;
+      reference.path = ligands_[i];
+      probe.path = ligands_[j];
+      const matching::InputMatch pair = matching::match_inputs(reference, probe);
+      ASSERT_FALSE(pair.result.alignments.empty());
+      const matching::Alignment& top = pair.result.alignments.front();
+      const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
+      EXPECT_NEAR(matrix.score(r, c), top.overlay.score, 1e-12) << i << ", " << j;
+      EXPECT_EQ(matrix.score(r, c), matrix.score(c, r));
+      EXPECT_TRUE(matrix.transforms[i * 3 + j].isApprox(top.transform, 1e-12));
+      // The mirrored entry moves row i's molecule onto column j's: the inverse.
+      EXPECT_TRUE((matrix.transforms[j * 3 + i] * matrix.transforms[i * 3 + j])
+                      .isApprox(Eigen::Matrix4d::Identity(), 1e-12));
+      if (i == j) {
+        // A self-match: the identity, at the self-overlay's score.
+        EXPECT_NEAR(matrix.score(r, r), 1.0, 1e-6);
+        EXPECT_TRUE(top.transform.isApprox(Eigen::Matrix4d::Identity(), 1e-6));
+      } else {
+        // The reverse pair, matched on its own, scores within what the fits' order moves.
+        probe.path = ligands_[i];
+        reference.path = ligands_[j];
+        const matching::InputMatch reverse = matching::match_inputs(reference, probe);
+        EXPECT_NEAR(matrix.score(r, c), reverse.result.alignments.front().overlay.score, 1e-3);
+        EXPECT_LT(matrix.score(r, c), 0.99);
+      }
+    }
+  }
+}
+
+TEST_F(Matrix, OneAndTwoThreadsGiveTheSameMatrix) {
+  Eigen::MatrixXd one, two;
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = screening::similarity_matrix(ligands_).score;
+  }
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = screening::similarity_matrix(ligands_).score;
+  }
+  EXPECT_EQ(one, two);
+}
+
+TEST_F(Matrix, AgainstASecondSetGivesItsRowsAndColumns) {
+  test::TempDir dir;
+  // One file of two records: both are read, in order.
+  const fs::path both = dir.write("two.sdf", text_of(ligands_[1]) + text_of(ligands_[2]));
+  const screening::SimilarityMatrix all = screening::similarity_matrix(ligands_);
+  const screening::SimilarityMatrix against = screening::similarity_matrix({ligands_[0]}, {both});
+  EXPECT_FALSE(against.symmetric);
+  ASSERT_EQ(against.score.rows(), 1);
+  ASSERT_EQ(against.score.cols(), 2);
+  EXPECT_EQ(against.columns[1].record, 2u);
+  EXPECT_EQ(against.columns[1].source, both);
+  EXPECT_EQ(against.score(0, 0), all.score(0, 1));
+  EXPECT_EQ(against.score(0, 1), all.score(0, 2));
+}
+
+TEST_F(Matrix, AnUnreadableRecordIsLeftOutAndNamed) {
+  test::TempDir dir;
+  const fs::path set =
+      dir.write("set.sdf", text_of(ligands_[0]) + "broken\n  no atoms here\n\nM  END\n$$$$\n" +
+                               text_of(ligands_[2]));
+  const screening::SimilarityMatrix matrix = screening::similarity_matrix({set});
+  ASSERT_EQ(matrix.rows.size(), 2u);
+  EXPECT_EQ(matrix.rows[1].record, 3u);
+  ASSERT_EQ(matrix.left_out.size(), 1u);
+  EXPECT_NE(matrix.left_out[0].find("set.sdf record 2 (broken)"), std::string::npos)
+      << matrix.left_out[0];
+  EXPECT_GT(matrix.score(0, 1), 0.0);
+}
+
+TEST_F(Matrix, ImpossibleSetsAreRefusedBeforeAnyWork) {
+  test::TempDir dir;
+  const fs::path empty = dir.write("empty.sdf", "");
+  EXPECT_NE(test::error_of([&] { screening::similarity_matrix({empty}); }).find("no molecule"),
+            std::string::npos);
+  EXPECT_NE(test::error_of([&] {
+              screening::similarity_matrix({ligands_[0]});
+            }).find("a set of one molecule has no pair"),
+            std::string::npos);
+  screening::MatrixOptions few;
+  few.max_pairs = 5;  // three molecules make six pairs with the diagonal
+  EXPECT_NE(test::error_of([&] {
+              screening::similarity_matrix(ligands_, {}, few);
+            }).find("6 pairs (3 x 3 molecules) is more than max_pairs 5"),
+            std::string::npos);
+  const fs::path mesh = dir.write("a.ply", "ply\n");
+  EXPECT_NE(test::error_of([&] {
+              screening::similarity_matrix({ligands_[0], mesh});
+            }).find("a.ply: not a molecule file"),
+            std::string::npos);
+}
+
+TEST_F(Matrix, TheCsvHasAHeaderAndARowPerMolecule) {
+  screening::SimilarityMatrix matrix;
+  matrix.rows = {{"a,b", "x.sdf", 1}, {"c", "x.sdf", 2}};
+  matrix.columns = matrix.rows;
+  matrix.score.resize(2, 2);
+  matrix.score << 1.0, 0.25, 0.25, 1.0;
+  std::ostringstream out;
+  screening::write_matrix_csv(out, matrix);
+  EXPECT_EQ(out.str(), "name,\"a,b\",c\n\"a,b\",1.0000,0.2500\nc,0.2500,1.0000\n");
+}
+
+}  // namespace
+}  // namespace surfcomp

@@ -1,0 +1,74 @@
+// surfcomp matrix: every molecule of a set described once and matched against every other (or
+// against a second set), as a CSV similarity matrix.
+#include "command.hpp"
+#include "console.hpp"
+#include "options.hpp"
+
+#include "surfcomp/core/io/atomic_file.hpp"
+#include "surfcomp/core/io/command_files.hpp"
+#include "surfcomp/core/thread_limit.hpp"
+#include "surfcomp/screening/matrix.hpp"
+
+#include <memory>
+
+namespace surfcomp::tools {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: surfcomp matrix SET... [--against SET...] -o similarity.csv [options]\n\n"
+    "Reads and describes every molecule of the SET files once (each record of an SDF or MOL2\n"
+    "file; a PDB, mmCIF or PQR file is one molecule), then aligns every pair as `surfcomp\n"
+    "match` aligns two molecules and writes the top alignment's overlay score (0-1) as a\n"
+    "matrix: all against all, symmetric, its diagonal each molecule's self-match; or with\n"
+    "--against, SET's molecules (rows) against those of the --against files (columns). A record\n"
+    "that cannot be read or described is left out, with a note naming it.";
+
+}  // namespace
+
+int matrix(const std::vector<std::string>& args) {
+  namespace po = boost::program_options;
+  std::string output;
+  std::vector<std::string> against;
+  po::options_description described("options");
+  // clang-format off
+  described.add_options()
+      ("help,h", "print this help")
+      ("output,o", po::value(&output), "write the matrix as CSV (.csv): a row per molecule")
+      ("against", po::value(&against)->multitoken(),
+       "compare SET's molecules with these files' (rows x columns) instead of all against all");
+  // clang-format on
+  add_table_options(described, screening::matrix_option_table());
+  po::variables_map vm;
+  if (!parse_command_line(args, described, -1, kUsage, vm)) return 0;
+  const auto inputs =
+      vm.count("input") ? vm["input"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  if (inputs.empty()) throw OptionError("expected one or more SET files (see --help)");
+  if (output.empty()) throw OptionError("expected --output FILE.csv (see --help)");
+  screening::MatrixOptions options;
+  apply_table_options(screening::matrix_option_table(), vm, options);
+  std::vector<io::InputFile> files;
+  files.reserve(inputs.size() + against.size());
+  for (const std::string& input : inputs) files.push_back({"SET", input});
+  for (const std::string& input : against) files.push_back({"--against", input});
+  io::check_command_files({files, {{"--output", output, {".csv"}, ""}}});
+  if (console::progress_shown()) {
+    auto line = std::make_shared<console::ProgressLine>("matrix", "pairs");
+    options.progress = [line](std::size_t done, std::size_t total) {
+      (*line)(static_cast<std::int64_t>(done), static_cast<std::int64_t>(total));
+    };
+  }
+
+  const ThreadLimit limit(options.inputs.threads);
+  const std::vector<std::filesystem::path> set(inputs.begin(), inputs.end());
+  const std::vector<std::filesystem::path> others(against.begin(), against.end());
+  const screening::SimilarityMatrix matrix = screening::similarity_matrix(set, others, options);
+  for (const std::string& line : matrix.left_out) console::note("left out: " + line);
+  console::summary("%zu x %zu molecules (%zu left out): described in %.0f ms, matched in %.0f ms\n",
+                   matrix.rows.size(), matrix.columns.size(), matrix.left_out.size(),
+                   matrix.describe_ms, matrix.match_ms);
+  io::write_file_atomically(output,
+                            [&](std::ostream& out) { screening::write_matrix_csv(out, matrix); });
+  return 0;
+}
+
+}  // namespace surfcomp::tools
