@@ -52,6 +52,13 @@ py::list pockets(const std::string& structure, const py::dict& keywords);
 py::dict dock(const py::object& ligand, const py::object& receptor, const py::dict& keywords,
               const std::string& output_path, const std::string& report_path);
 
+/// surfcomp.matrix: the molecules of the `set` files matched all against all, or against those
+/// of the `against` files: "scores" (rows x columns), with `transforms` "transforms" (rows x
+/// columns x 4 x 4), "rows" and "columns" (each molecule's name, file and record), "left_out",
+/// "describe_ms" and "match_ms"; with `output_path`, also written there as CSV.
+py::dict matrix(const std::vector<std::string>& set, const std::vector<std::string>& against,
+                const py::dict& keywords, bool transforms, const std::string& output_path);
+
 /// The keyword options of the package's function `function`, as table_list gives them.
 py::list option_table(const std::string& function);
 

@@ -230,6 +230,8 @@ PYBIND11_MODULE(_surfcomp, m) {
   m.def("screen_shapes", &sp::screen_shapes, py::arg("query"), py::arg("library"),
         py::arg("options"), py::arg("mesh_options"));
   m.def("pockets", &sp::pockets, py::arg("structure"), py::arg("options"));
+  m.def("matrix", &sp::matrix, py::arg("set"), py::arg("against"), py::arg("options"),
+        py::arg("transforms"), py::arg("output"));
   m.def("dock", &sp::dock, py::arg("ligand"), py::arg("receptor"), py::arg("options"),
         py::arg("output") = std::string(), py::arg("report") = std::string());
   m.def("option_table", &sp::option_table, py::arg("function"));

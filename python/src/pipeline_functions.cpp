@@ -11,6 +11,7 @@
 #include "surfcomp/report/html_report.hpp"
 #include "surfcomp/screening/hit_files.hpp"
 #include "surfcomp/screening/library.hpp"
+#include "surfcomp/screening/matrix.hpp"
 #include "surfcomp/screening/receptor_screen.hpp"
 #include "surfcomp/screening/screen.hpp"
 #include "surfcomp/screening/shape_screen.hpp"
@@ -330,6 +331,58 @@ py::dict dock(const py::object& ligand, const py::object& receptor, const py::di
                   py::arg("timing_ms") = timing);
 }
 
+py::dict matrix(const std::vector<std::string>& set, const std::vector<std::string>& against,
+                const py::dict& keywords, bool transforms, const std::string& output_path) {
+  auto settings = settings_from(screening::matrix_option_table(), keywords);
+  settings.transforms = transforms;
+  if (!output_path.empty()) {  // as the CLI checks -o
+    std::vector<io::InputFile> inputs;
+    inputs.reserve(set.size() + against.size());
+    for (const std::string& file : set) inputs.push_back({"set", file});
+    for (const std::string& file : against) inputs.push_back({"against", file});
+    io::check_command_files({inputs, {{"output", output_path, {".csv"}, ""}}});
+  }
+  screening::SimilarityMatrix computed;
+  {
+    py::gil_scoped_release release;
+    const ThreadLimit limit(settings.inputs.threads);
+    computed = screening::similarity_matrix({set.begin(), set.end()},
+                                            {against.begin(), against.end()}, settings);
+    if (!output_path.empty()) {
+      io::write_file_atomically(
+          output_path, [&](std::ostream& out) { screening::write_matrix_csv(out, computed); });
+    }
+  }
+  const auto members = [](const std::vector<screening::MatrixMember>& list) {
+    py::list out;
+    for (const screening::MatrixMember& m : list) {
+      out.append(py::dict(py::arg("name") = m.name, py::arg("source") = m.source.string(),
+                          py::arg("record") = m.record));
+    }
+    return out;
+  };
+  py::object moves = py::none();
+  if (transforms) {
+    const auto rows = static_cast<py::ssize_t>(computed.rows.size());
+    const auto columns = static_cast<py::ssize_t>(computed.columns.size());
+    py::array_t<double> all({rows, columns, py::ssize_t{4}, py::ssize_t{4}});
+    auto view = all.mutable_unchecked<4>();
+    for (py::ssize_t i = 0; i < rows; ++i) {
+      for (py::ssize_t j = 0; j < columns; ++j) {
+        const Eigen::Matrix4d& t = computed.transforms[static_cast<std::size_t>(i * columns + j)];
+        for (int a = 0; a < 4; ++a)
+          for (int b = 0; b < 4; ++b) view(i, j, a, b) = t(a, b);
+      }
+    }
+    moves = std::move(all);
+  }
+  return py::dict(
+      py::arg("scores") = owned_array(std::move(computed.score)), py::arg("transforms") = moves,
+      py::arg("rows") = members(computed.rows), py::arg("columns") = members(computed.columns),
+      py::arg("symmetric") = computed.symmetric, py::arg("left_out") = computed.left_out,
+      py::arg("describe_ms") = computed.describe_ms, py::arg("match_ms") = computed.match_ms);
+}
+
 py::list option_table(const std::string& function) {
   if (function == "build_surface") return table_list(molsurf::surface_input_option_table());
   if (function == "describe") return table_list(matching::describe_option_table());
@@ -337,13 +390,14 @@ py::list option_table(const std::string& function) {
   if (function == "screen") return table_list(screening::screen_option_table());
   if (function == "pockets") return table_list(molsurf::pocket_search_option_table());
   if (function == "dock") return table_list(docking::dock_option_table());
+  if (function == "matrix") return table_list(screening::matrix_option_table());
   if (function == "screen_receptor") return table_list(screening::receptor_screen_option_table());
   for (const char* name : {"curvatures", "critical_points", "patch", "disk_map", "shape_image"}) {
     if (function == name) return table_list(array_option_table(function));
   }
   throw py::value_error("no function '" + function +
                         "' with options (build_surface, describe, match, screen, pockets, dock, "
-                        "screen_receptor, "
+                        "screen_receptor, matrix, "
                         "curvatures, critical_points, patch, disk_map, shape_image)");
 }
 

@@ -46,12 +46,14 @@ __all__ = [
     "Alignment", "CoverageScore", "CriticalPointSet", "CriticalPoints", "Curvatures",
     "DescriptionParameters", "Descriptors", "DockPose", "DockResult", "Error", "FileError",
     "FusedHit", "GeodesicPatch",
-    "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "OptionError",
-    "OverlayScore", "Patch", "Pocket", "ReceptorHit", "Screens", "ShapeHit", "Surface",
+    "Hit", "InputError", "LibraryEntry", "LibraryInfo", "MatchResult", "MatrixMember",
+    "OptionError",
+    "OverlayScore", "Patch", "Pocket", "ReceptorHit", "Screens", "ShapeHit",
+    "SimilarityMatrix", "Surface",
     "SurfaceMeasures",
     "build_surface", "critical_points", "curvatures", "describe", "disk_map", "dock",
     "geodesic_distances",
-    "library_info", "load_descriptors", "match", "option_table", "patch", "pockets", "screen",
+    "library_info", "load_descriptors", "match", "matrix", "option_table", "patch", "pockets", "screen",
     "screen_queries", "screen_receptor", "screen_shapes", "shape_image",
 ]
 __version__ = "0.1.0"
@@ -878,9 +880,71 @@ def dock(probe, receptor, *, output: Union[str, os.PathLike, None] = None,
     return result
 
 
+class MatrixMember(NamedTuple):
+    """A molecule of a :func:`matrix`: a record of one of its files."""
+
+    name: str
+    source: str
+    record: int
+
+
+_documented(MatrixMember, name="the record's name (its title line; FILE:N when it has none)",
+            source="the file it comes from", record="its 1-based position in the file")
+
+
+class SimilarityMatrix(NamedTuple):
+    """The molecules of one or two sets compared pair by pair (:func:`matrix`)."""
+
+    scores: Any
+    transforms: Any
+    rows: List[MatrixMember]
+    columns: List[MatrixMember]
+    symmetric: bool
+    left_out: List[str]
+    describe_ms: float
+    match_ms: float
+
+
+_documented(
+    SimilarityMatrix,
+    scores="(rows, columns) float array: the top alignment's overlay score (0-1) of columns[j] "
+           "aligned onto rows[i], 0 without an alignment",
+    transforms="with transforms=True, (rows, columns, 4, 4): the rigid transform that moves "
+               "columns[j] onto rows[i]; else None",
+    rows="the molecules of the set, in file order, without those left out",
+    columns="the molecules of ``against`` (the set's own when all against all)",
+    symmetric="all against all: each pair matched once, the diagonal the self-matches",
+    left_out="the records that could not be read or described, one line each: file, record, why",
+    describe_ms="milliseconds reading, surfacing and describing the molecules",
+    match_ms="milliseconds matching the pairs")
+
+
+@_keyword_options("matrix")
+def matrix(set, against=None, *, transforms: bool = False,
+           output: Union[str, os.PathLike, None] = None, **options) -> SimilarityMatrix:
+    """Describes every molecule of the ``set`` files (a path or a list of paths: each record of
+    an SDF or MOL2 file; a PDB, mmCIF or PQR file is one molecule) once and aligns every pair as
+    :func:`match` aligns two molecules, as ``surfcomp matrix`` does: all against all, or the
+    set's molecules (rows) against those of the ``against`` files (columns). A record that
+    cannot be read or described is left out and named in ``left_out``. With ``output``, the
+    matrix is also written there as CSV."""
+    def paths(files):
+        if files is None:
+            return []
+        if isinstance(files, (str, os.PathLike)):
+            return [os.fspath(files)]
+        return [os.fspath(f) for f in files]
+
+    raw = _surfcomp.matrix(paths(set), paths(against), options, transforms,
+                           os.fspath(output) if output is not None else "")
+    raw["rows"] = [MatrixMember(**m) for m in raw["rows"]]
+    raw["columns"] = [MatrixMember(**m) for m in raw["columns"]]
+    return SimilarityMatrix(**raw)
+
+
 def option_table(function: str) -> List[Dict[str, Any]]:
     """The keyword options of ``build_surface``, ``describe``, ``match``, ``screen``,
-    ``pockets``, ``dock``, ``curvatures``, ``critical_points``, ``patch``, ``disk_map`` or ``shape_image``
+    ``pockets``, ``dock``, ``matrix``, ``curvatures``, ``critical_points``, ``patch``, ``disk_map`` or ``shape_image``
     as the library defines them, in order: ``name`` (the keyword), ``option`` (the command
     line's), ``kind``, ``default``, ``help`` (with unit and range), ``unit``, ``range`` and
     ``choices``."""

@@ -291,6 +291,21 @@ class Pocket(NamedTuple):
     lining_residues: List[str]
     spheres: List[Tuple[float, float, float, float]]
 
+class MatrixMember(NamedTuple):
+    name: str
+    source: str
+    record: int
+
+class SimilarityMatrix(NamedTuple):
+    scores: Any
+    transforms: Any
+    rows: List[MatrixMember]
+    columns: List[MatrixMember]
+    symmetric: bool
+    left_out: List[str]
+    describe_ms: float
+    match_ms: float
+
 class LibraryInfo(NamedTuple):
     version: int
     settings: str
@@ -641,6 +656,53 @@ def screen_shapes(
     repair: bool = False,
     threads: int = 0,
 ) -> List[ShapeHit]: ...
+
+def matrix(
+    set: Union[PathLike, Sequence[PathLike]],
+    against: Union[PathLike, Sequence[PathLike], None] = None,
+    *,
+    transforms: bool = False,
+    output: Optional[PathLike] = None,
+    probe_radius: float = 1.4,
+    density: float = 2.5,
+    voxel: float = 0.0,
+    charges: str = 'file',
+    eps: float = 1.0,
+    eps_distance_dependent: bool = False,
+    lp_kernel: str = 'fauchere',
+    ligand: Optional[PathLike] = None,
+    min_plddt: float = 0.0,
+    max_atoms: int = 2000000,
+    max_grid_cells: float = 200000000.0,
+    max_vertices: int = 20000000,
+    patch_radius: float = 5.0,
+    max_image_bytes: int = 1073741824,
+    shape_only: bool = False,
+    fuzzy_threshold: float = 0.3,
+    image_threshold: float = 0.5,
+    distance_tolerance: float = 1.5,
+    min_distance: float = 2.0,
+    overlap_tolerance: float = 30.0,
+    max_graph_nodes: int = 20000,
+    max_clique_work: int = 100000000,
+    max_cliques: int = 1000,
+    rmsd_cut: float = 4.0,
+    ranking: str = 'rank',
+    refine_top: int = 10,
+    overlay_sigma: float = 1.0,
+    overlay_chem_weight: float = 6.0,
+    overlay_atom_weight: float = 14.0,
+    polish_top: int = 5,
+    atom_polish_sigma: float = 0.5,
+    atom_polish_weight: float = 1.0,
+    overlay_tolerance: float = 0.1,
+    coverage_distance: float = 1.0,
+    icp_top: int = 0,
+    icp_max_distance: float = 1.5,
+    principal_axes_starts: int = 24,
+    max_pairs: int = 10000000,
+    threads: int = 0,
+) -> SimilarityMatrix: ...
 
 def library_info(path: PathLike) -> LibraryInfo: ...
 def option_table(function: str) -> List[Dict[str, Any]]: ...

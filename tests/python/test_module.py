@@ -547,6 +547,32 @@ def test_dock_is_the_programs_and_writes_its_poses(program, shared, tmp_path):
         surfcomp.dock(ligand, _sphere_arrays(5.0, 1), site_sphere=(0, 0, 0, 5))
 
 
+def test_matrix_is_the_programs_and_matchs(program, shared, tmp_path):
+    folder = shared / "thermolysin" / "ligands-original"
+    files = [folder / f"ligand{e}.sdf" for e in ("1THL", "1TMN")]
+    computed = surfcomp.matrix(files, transforms=True, output=tmp_path / "m.csv", threads=1)
+    assert computed.symmetric and computed.left_out == []
+    assert [m.source for m in computed.rows] == [str(f) for f in files]
+    assert computed.scores.shape == (2, 2) and computed.transforms.shape == (2, 2, 4, 4)
+    # Each entry is match's top score and transform; the diagonal the self-match.
+    pair = surfcomp.match(files[0], files[1], threads=1)
+    assert computed.scores[0, 1] == pytest.approx(pair[0].overlay.score, abs=1e-12)
+    assert computed.transforms[0, 1] == pytest.approx(pair[0].transform, abs=1e-12)
+    assert computed.scores[1, 0] == computed.scores[0, 1]
+    assert np.diag(computed.scores) == pytest.approx([1.0, 1.0], abs=1e-6)
+    # The program writes the same CSV.
+    cli = run([program, "matrix", *files, "-o", tmp_path / "cli.csv"])
+    assert cli.returncode == 0, cli.stderr
+    assert (tmp_path / "cli.csv").read_text() == (tmp_path / "m.csv").read_text()
+    against = surfcomp.matrix(files[0], against=files[1])
+    assert against.scores.shape == (1, 1) and against.transforms is None
+    assert against.scores[0, 0] == computed.scores[0, 1]
+    with pytest.raises(surfcomp.InputError, match="a set of one molecule"):
+        surfcomp.matrix(files[0])
+    with pytest.raises(surfcomp.OptionError, match="max_pairs"):
+        surfcomp.matrix(files, max_pairs=0)
+
+
 def test_screen_receptor_is_the_programs(program, shared, tmp_path):
     folder = shared / "thermolysin"
     pdb = folder / "1TMN.pdb"
