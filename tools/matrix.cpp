@@ -9,6 +9,7 @@
 #include "surfcomp/core/thread_limit.hpp"
 #include "surfcomp/screening/matrix.hpp"
 
+#include <cstdio>
 #include <memory>
 
 namespace surfcomp::tools {
@@ -21,7 +22,8 @@ constexpr const char* kUsage =
     "match` aligns two molecules and writes the top alignment's overlay score (0-1) as a\n"
     "matrix: all against all, symmetric, its diagonal each molecule's self-match; or with\n"
     "--against, SET's molecules (rows) against those of the --against files (columns). A record\n"
-    "that cannot be read or described is left out, with a note naming it.";
+    "that cannot be read or described is left out, with a note naming it; a pair that cannot be\n"
+    "matched (a limit such as --max-graph-nodes) scores nan, with a warning naming it.";
 
 }  // namespace
 
@@ -63,6 +65,8 @@ int matrix(const std::vector<std::string>& args) {
   const std::vector<std::filesystem::path> others(against.begin(), against.end());
   const screening::SimilarityMatrix matrix = screening::similarity_matrix(set, others, options);
   for (const std::string& line : matrix.left_out) console::note("left out: " + line);
+  for (const std::string& line : matrix.warnings)
+    std::fprintf(stderr, "surfcomp matrix: warning: %s\n", line.c_str());
   console::summary("%zu x %zu molecules (%zu left out): described in %.0f ms, matched in %.0f ms\n",
                    matrix.rows.size(), matrix.columns.size(), matrix.left_out.size(),
                    matrix.describe_ms, matrix.match_ms);

@@ -380,7 +380,8 @@ py::dict matrix(const std::vector<std::string>& set, const std::vector<std::stri
       py::arg("scores") = owned_array(std::move(computed.score)), py::arg("transforms") = moves,
       py::arg("rows") = members(computed.rows), py::arg("columns") = members(computed.columns),
       py::arg("symmetric") = computed.symmetric, py::arg("left_out") = computed.left_out,
-      py::arg("describe_ms") = computed.describe_ms, py::arg("match_ms") = computed.match_ms);
+      py::arg("warnings") = computed.warnings, py::arg("describe_ms") = computed.describe_ms,
+      py::arg("match_ms") = computed.match_ms);
 }
 
 py::list option_table(const std::string& function) {

@@ -53,7 +53,8 @@ __all__ = [
     "SurfaceMeasures",
     "build_surface", "critical_points", "curvatures", "describe", "disk_map", "dock",
     "geodesic_distances",
-    "library_info", "load_descriptors", "match", "matrix", "option_table", "patch", "pockets", "screen",
+    "library_info", "load_descriptors", "match", "matrix", "option_table", "patch", "pockets",
+    "screen",
     "screen_queries", "screen_receptor", "screen_shapes", "shape_image",
 ]
 __version__ = "0.1.0"
@@ -888,7 +889,7 @@ class MatrixMember(NamedTuple):
     record: int
 
 
-_documented(MatrixMember, name="the record's name (its title line; FILE:N when it has none)",
+_documented(MatrixMember, name="the record's name (its title line; STEM:N when it has none)",
             source="the file it comes from", record="its 1-based position in the file")
 
 
@@ -901,20 +902,24 @@ class SimilarityMatrix(NamedTuple):
     columns: List[MatrixMember]
     symmetric: bool
     left_out: List[str]
+    warnings: List[str]
     describe_ms: float
     match_ms: float
 
 
 _documented(
     SimilarityMatrix,
-    scores="(rows, columns) float array: the top alignment's overlay score (0-1) of columns[j] "
-           "aligned onto rows[i], 0 without an alignment",
+    scores="(rows, columns) float array: the top alignment's overlay score (0-1) of "
+           "columns[j] aligned onto rows[i], 0 without an alignment, NaN for a pair not matched",
     transforms="with transforms=True, (rows, columns, 4, 4): the rigid transform that moves "
                "columns[j] onto rows[i]; else None",
     rows="the molecules of the set, in file order, without those left out",
     columns="the molecules of ``against`` (the set's own when all against all)",
     symmetric="all against all: each pair matched once, the diagonal the self-matches",
-    left_out="the records that could not be read or described, one line each: file, record, why",
+    left_out="the records that could not be read or described, one line each: file, record, "
+             "why",
+    warnings="what the matching cut, one line each: a pair not matched (its score NaN), the "
+             "pairs whose clique search stopped at its budget",
     describe_ms="milliseconds reading, surfacing and describing the molecules",
     match_ms="milliseconds matching the pairs")
 
@@ -944,7 +949,8 @@ def matrix(set, against=None, *, transforms: bool = False,
 
 def option_table(function: str) -> List[Dict[str, Any]]:
     """The keyword options of ``build_surface``, ``describe``, ``match``, ``screen``,
-    ``pockets``, ``dock``, ``matrix``, ``curvatures``, ``critical_points``, ``patch``, ``disk_map`` or ``shape_image``
+    ``pockets``, ``dock``, ``matrix``, ``curvatures``, ``critical_points``, ``patch``,
+    ``disk_map`` or ``shape_image``
     as the library defines them, in order: ``name`` (the keyword), ``option`` (the command
     line's), ``kind``, ``default``, ``help`` (with unit and range), ``unit``, ``range`` and
     ``choices``."""

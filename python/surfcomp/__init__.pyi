@@ -303,6 +303,7 @@ class SimilarityMatrix(NamedTuple):
     columns: List[MatrixMember]
     symmetric: bool
     left_out: List[str]
+    warnings: List[str]
     describe_ms: float
     match_ms: float
 

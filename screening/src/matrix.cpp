@@ -10,17 +10,22 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
+#include <limits>
 #include <mutex>
+#include <new>
 #include <optional>
 #include <utility>
 
 namespace surfcomp::screening {
 namespace {
 
-/// A set's records, before any is read: each file's records in order.
-std::vector<io::MoleculeRecord> set_records(const std::vector<std::filesystem::path>& files) {
+/// A set's records, before any is read: each file's records in order, each file checked as
+/// `match` checks its inputs (its extension, the options that apply to it); a file without a
+/// record is noted in `left_out`.
+std::vector<io::MoleculeRecord> set_records(const std::vector<std::filesystem::path>& files,
+                                            const MatrixOptions& options,
+                                            std::vector<std::string>& left_out) {
   std::vector<io::MoleculeRecord> records;
   for (const std::filesystem::path& file : files) {
     if (!io::is_molecule_file(file)) {
@@ -28,11 +33,28 @@ std::vector<io::MoleculeRecord> set_records(const std::vector<std::filesystem::p
                        ": not a molecule file (a matrix compares molecules with coordinates: " +
                        io::molecule_extensions(io::MoleculeUse::molecule) + ")");
     }
+    matching::MatchInput input;
+    input.path = file;
+    matching::check_match_input(input, options.inputs, "SET");
     std::vector<io::MoleculeRecord> read = io::read_molecule_records(file);
+    if (read.empty()) left_out.push_back(file.string() + ": no molecule");
     records.insert(records.end(), std::make_move_iterator(read.begin()),
                    std::make_move_iterator(read.end()));
   }
   return records;
+}
+
+/// The files' names for a message: "a.sdf, b.sdf".
+std::string names_of(const std::vector<std::filesystem::path>& files) {
+  std::string out;
+  for (const std::filesystem::path& file : files) out += (out.empty() ? "" : ", ") + file.string();
+  return out;
+}
+
+/// A record as messages name it: "FILE record N (NAME)".
+std::string record_name(const MatrixMember& member) {
+  return member.source.string() + " record " + std::to_string(member.record) + " (" + member.name +
+         ")";
 }
 
 struct Described {
@@ -46,14 +68,20 @@ Described describe_records(const std::vector<io::MoleculeRecord>& records,
   std::vector<std::optional<matching::PreparedInput>> prepared(records.size());
   std::vector<std::string> why(records.size());
   matching::MatchInputOptions quiet = options.inputs;
-  quiet.log = nullptr;  // the log is not thread-safe; each record's steps are not told apart
+  // Neither is told apart by molecule, and several molecules are described at once.
+  quiet.log = nullptr;
+  quiet.descriptors.progress = nullptr;
   tbb::parallel_for(std::size_t{0}, records.size(), [&](std::size_t k) {
     try {
       matching::MatchInput input;
       input.molecule = io::read_record_molecule(records[k], options.inputs.input.read);
       prepared[k] = matching::prepare_input(input, quiet);
-    } catch (const InputError& error) {
+    } catch (const OptionError&) {
+      throw;  // an option that cannot run, not a record that cannot be read
+    } catch (const Error& error) {
       why[k] = error.what();
+    } catch (const std::bad_alloc&) {
+      why[k] = "out of memory";
     }
   });
   Described out;
@@ -102,12 +130,13 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
                                    const MatrixOptions& options) {
   options::check_all(matrix_option_table(), options);
   matching::validate(options.inputs.match);
-  const std::vector<io::MoleculeRecord> row_records = set_records(set);
-  const std::vector<io::MoleculeRecord> column_records = set_records(against);
+  SimilarityMatrix out;
+  const std::vector<io::MoleculeRecord> row_records = set_records(set, options, out.left_out);
+  const std::vector<io::MoleculeRecord> column_records =
+      set_records(against, options, out.left_out);
   const bool symmetric = against.empty();
-  if (row_records.empty()) throw InputError("the set holds no molecule");
-  if (!symmetric && column_records.empty())
-    throw InputError("the set to compare against holds no molecule");
+  if (row_records.empty()) throw InputError(names_of(set) + ": no molecule");
+  if (!symmetric && column_records.empty()) throw InputError(names_of(against) + ": no molecule");
   if (symmetric && row_records.size() == 1) {
     throw InputError(row_records.front().source.string() +
                      ": a set of one molecule has no pair to compare");
@@ -125,55 +154,87 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
     throw InputError(line);
   }
 
-  SimilarityMatrix out;
   out.symmetric = symmetric;
   Stopwatch clock;
-  Described rows = describe_records(row_records, options, out.left_out);
+  std::vector<std::string> row_failures, column_failures;
+  Described rows = describe_records(row_records, options, row_failures);
   Described columns;
-  if (!symmetric) columns = describe_records(column_records, options, out.left_out);
+  if (!symmetric) columns = describe_records(column_records, options, column_failures);
   out.describe_ms = clock.elapsed_ms();
   const Described& cols = symmetric ? rows : columns;
-  if (rows.inputs.empty() || cols.inputs.empty() || (symmetric && rows.inputs.size() < 2)) {
-    throw InputError("too few molecules could be read and described to make a matrix (" +
-                     std::to_string(out.left_out.size()) +
-                     " left out; the first: " + out.left_out.front() + ")");
-  }
+  const auto too_few = [](const std::vector<std::filesystem::path>& files,
+                          const std::vector<std::string>& failures) {
+    return InputError(names_of(files) + ": too few molecules could be read and described (" +
+                      std::to_string(failures.size()) +
+                      " left out; the first: " + failures.front() + ")");
+  };
+  if (rows.inputs.empty() || (symmetric && rows.inputs.size() < 2))
+    throw too_few(set, row_failures);
+  if (cols.inputs.empty()) throw too_few(against, column_failures);
+  out.left_out.insert(out.left_out.end(), row_failures.begin(), row_failures.end());
+  out.left_out.insert(out.left_out.end(), column_failures.begin(), column_failures.end());
 
   clock.restart();
   const std::size_t n = rows.inputs.size(), m = cols.inputs.size();
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = symmetric ? i : 0; j < m; ++j) pairs.emplace_back(i, j);
+  const std::size_t total = symmetric ? n * (n + 1) / 2 : n * m;
   out.score = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
   if (options.transforms) out.transforms.assign(n * m, Eigen::Matrix4d::Identity());
-  std::atomic<std::size_t> done{0};
+  // Per pair (row-major, i * m + j): why it failed, and whether its clique search was cut.
+  std::vector<std::string> failed(n * m);
+  std::vector<char> cut(n * m, 0);
+  std::size_t done = 0;
   std::mutex progress;
-  tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
-    const auto [i, j] = pairs[k];
-    const matching::MatchResult result = matching::match_surfaces(
-        rows.inputs[i].descriptors, cols.inputs[j].descriptors, options.inputs.match);
-    if (!result.alignments.empty()) {
-      const matching::Alignment& top = result.alignments.front();
-      const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
-      out.score(r, c) = top.overlay.score;
-      if (symmetric) out.score(c, r) = top.overlay.score;
-      if (options.transforms) {
-        out.transforms[i * m + j] = top.transform;
-        if (symmetric) {
-          Eigen::Matrix4d inverse = Eigen::Matrix4d::Identity();
-          inverse.topLeftCorner<3, 3>() = top.transform.topLeftCorner<3, 3>().transpose();
-          inverse.topRightCorner<3, 1>() =
-              -inverse.topLeftCorner<3, 3>() * top.transform.topRightCorner<3, 1>();
-          out.transforms[j * m + i] = inverse;
+  const auto match_pair = [&](std::size_t i, std::size_t j) {
+    const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
+    try {
+      const matching::MatchResult result = matching::match_surfaces(
+          rows.inputs[i].descriptors, cols.inputs[j].descriptors, options.inputs.match);
+      cut[i * m + j] = result.cliques_complete ? 0 : 1;
+      if (!result.alignments.empty()) {
+        const matching::Alignment& top = result.alignments.front();
+        out.score(r, c) = top.overlay.score;
+        if (symmetric) out.score(c, r) = top.overlay.score;
+        if (options.transforms) {
+          out.transforms[i * m + j] = top.transform;
+          if (symmetric && i != j) {  // the rigid inverse: R^T, -R^T t
+            Eigen::Matrix4d inverse = Eigen::Matrix4d::Identity();
+            inverse.topLeftCorner<3, 3>() = top.transform.topLeftCorner<3, 3>().transpose();
+            inverse.topRightCorner<3, 1>() =
+                -inverse.topLeftCorner<3, 3>() * top.transform.topRightCorner<3, 1>();
+            out.transforms[j * m + i] = inverse;
+          }
         }
       }
+    } catch (const Error& error) {
+      failed[i * m + j] = error.what();
+      out.score(r, c) = std::numeric_limits<double>::quiet_NaN();
+      if (symmetric) out.score(c, r) = out.score(r, c);
     }
-    const std::size_t finished = ++done;
     if (options.progress) {
       const std::lock_guard<std::mutex> lock(progress);
-      options.progress(finished, pairs.size());
+      options.progress(++done, total);
     }
+  };
+  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+    tbb::parallel_for(symmetric ? i : std::size_t{0}, m, [&](std::size_t j) { match_pair(i, j); });
   });
+  std::size_t cuts = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = symmetric ? i : 0; j < m; ++j) {
+      if (!failed[i * m + j].empty()) {
+        out.warnings.push_back(record_name(rows.members[i]) + " and " +
+                               record_name(cols.members[j]) +
+                               ": not matched (its score is nan): " + failed[i * m + j]);
+      }
+      cuts += static_cast<std::size_t>(cut[i * m + j]);
+    }
+  }
+  if (cuts > 0) {
+    out.warnings.push_back(std::to_string(cuts) + " of " + std::to_string(total) +
+                           " pairs: the clique search stopped at its budget (" +
+                           options::named("max_clique_work") + ", " +
+                           options::named("max_cliques") + "): alignments may be missing");
+  }
   out.match_ms = clock.elapsed_ms();
   out.rows = std::move(rows.members);
   out.columns = symmetric ? out.rows : std::move(columns.members);

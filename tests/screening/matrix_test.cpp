@@ -16,6 +16,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace surfcomp {
@@ -50,7 +51,7 @@ class Matrix : public ::testing::Test {
   std::vector<fs::path> ligands_;
 };
 
-TEST_F(Matrix, EntriesAreMatchsTopScoresAndTransforms) {
+TEST_F(Matrix, EntriesAreTheTopScoresAndTransformsOfMatch) {
   screening::MatrixOptions options;
   options.transforms = true;
   const screening::SimilarityMatrix matrix = screening::similarity_matrix(ligands_, {}, options);
@@ -81,6 +82,7 @@ TEST_F(Matrix, EntriesAreMatchsTopScoresAndTransforms) {
         probe.path = ligands_[i];
         reference.path = ligands_[j];
         const matching::InputMatch reverse = matching::match_inputs(reference, probe);
+        // Measured within 1e-5 for these three; bzr's ligands differ by up to 2e-3.
         EXPECT_NEAR(matrix.score(r, c), reverse.result.alignments.front().overlay.score, 1e-3);
         EXPECT_LT(matrix.score(r, c), 0.99);
       }
@@ -89,24 +91,38 @@ TEST_F(Matrix, EntriesAreMatchsTopScoresAndTransforms) {
 }
 
 TEST_F(Matrix, OneAndTwoThreadsGiveTheSameMatrix) {
-  Eigen::MatrixXd one, two;
+  screening::MatrixOptions options;
+  options.transforms = true;
+  std::vector<std::pair<std::size_t, std::size_t>> told;
+  options.progress = [&](std::size_t done, std::size_t total) { told.emplace_back(done, total); };
+  screening::SimilarityMatrix one, two;
   {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = screening::similarity_matrix(ligands_).score;
+    one = screening::similarity_matrix(ligands_, {}, options);
   }
   {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-    two = screening::similarity_matrix(ligands_).score;
+    two = screening::similarity_matrix(ligands_, {}, options);
   }
-  EXPECT_EQ(one, two);
+  EXPECT_EQ(one.score, two.score);
+  ASSERT_EQ(one.transforms.size(), two.transforms.size());
+  for (std::size_t k = 0; k < one.transforms.size(); ++k)
+    EXPECT_EQ(one.transforms[k], two.transforms[k]) << k;
+  // Each run tells 1 to 6 of its six pairs, in order.
+  ASSERT_EQ(told.size(), 12u);
+  for (std::size_t k = 0; k < told.size(); ++k)
+    EXPECT_EQ(told[k], std::make_pair(k % 6 + 1, std::size_t{6}));
 }
 
 TEST_F(Matrix, AgainstASecondSetGivesItsRowsAndColumns) {
   test::TempDir dir;
   // One file of two records: both are read, in order.
   const fs::path both = dir.write("two.sdf", text_of(ligands_[1]) + text_of(ligands_[2]));
-  const screening::SimilarityMatrix all = screening::similarity_matrix(ligands_);
-  const screening::SimilarityMatrix against = screening::similarity_matrix({ligands_[0]}, {both});
+  screening::MatrixOptions options;
+  options.transforms = true;
+  const screening::SimilarityMatrix all = screening::similarity_matrix(ligands_, {}, options);
+  const screening::SimilarityMatrix against =
+      screening::similarity_matrix({ligands_[0]}, {both}, options);
   EXPECT_FALSE(against.symmetric);
   ASSERT_EQ(against.score.rows(), 1);
   ASSERT_EQ(against.score.cols(), 2);
@@ -114,6 +130,29 @@ TEST_F(Matrix, AgainstASecondSetGivesItsRowsAndColumns) {
   EXPECT_EQ(against.columns[1].source, both);
   EXPECT_EQ(against.score(0, 0), all.score(0, 1));
   EXPECT_EQ(against.score(0, 1), all.score(0, 2));
+  ASSERT_EQ(against.transforms.size(), 2u);
+  EXPECT_EQ(against.transforms[0], all.transforms[1]);
+  EXPECT_EQ(against.transforms[1], all.transforms[2]);
+}
+
+TEST_F(Matrix, APairThatCannotBeMatchedIsNamedAndScoresNan) {
+  screening::MatrixOptions options;
+  options.inputs.match.graph.max_nodes = 1;  // every pair has more critical-point pairs
+  const screening::SimilarityMatrix matrix =
+      screening::similarity_matrix({ligands_[0], ligands_[2]}, {}, options);
+  EXPECT_TRUE(matrix.score.array().isNaN().all()) << matrix.score;
+  ASSERT_EQ(matrix.warnings.size(), 3u);
+  EXPECT_NE(matrix.warnings[1].find("ligand1THL.sdf record 1 ("), std::string::npos);
+  EXPECT_NE(matrix.warnings[1].find("ligand1TMN.sdf record 1 ("), std::string::npos)
+      << matrix.warnings[1];
+  // A clique search cut at its budget is told, as match tells it.
+  options.inputs.match.graph.max_nodes = matching::MatchOptions{}.graph.max_nodes;
+  options.inputs.match.max_clique_work = 1;
+  const screening::SimilarityMatrix cut =
+      screening::similarity_matrix({ligands_[0], ligands_[2]}, {}, options);
+  ASSERT_EQ(cut.warnings.size(), 1u);
+  EXPECT_NE(cut.warnings[0].find("of 3 pairs: the clique search stopped"), std::string::npos)
+      << cut.warnings[0];
 }
 
 TEST_F(Matrix, AnUnreadableRecordIsLeftOutAndNamed) {
@@ -133,8 +172,9 @@ TEST_F(Matrix, AnUnreadableRecordIsLeftOutAndNamed) {
 TEST_F(Matrix, ImpossibleSetsAreRefusedBeforeAnyWork) {
   test::TempDir dir;
   const fs::path empty = dir.write("empty.sdf", "");
-  EXPECT_NE(test::error_of([&] { screening::similarity_matrix({empty}); }).find("no molecule"),
-            std::string::npos);
+  EXPECT_NE(
+      test::error_of([&] { screening::similarity_matrix({empty}); }).find("empty.sdf: no molecule"),
+      std::string::npos);
   EXPECT_NE(test::error_of([&] {
               screening::similarity_matrix({ligands_[0]});
             }).find("a set of one molecule has no pair"),
@@ -145,6 +185,9 @@ TEST_F(Matrix, ImpossibleSetsAreRefusedBeforeAnyWork) {
               screening::similarity_matrix(ligands_, {}, few);
             }).find("6 pairs (3 x 3 molecules) is more than max_pairs 5"),
             std::string::npos);
+  screening::MatrixOptions bad_ligand;
+  bad_ligand.inputs.input.read.ligand = "???";  // an option, not a record, that cannot be read
+  EXPECT_THROW(screening::similarity_matrix(ligands_, {}, bad_ligand), OptionError);
   const fs::path mesh = dir.write("a.ply", "ply\n");
   EXPECT_NE(test::error_of([&] {
               screening::similarity_matrix({ligands_[0], mesh});

@@ -1,6 +1,6 @@
 // All against all: each molecule of a set read and described once, then every pair matched as
 // `surfcomp match` matches two molecules, into a similarity matrix (the top alignment's overlay
-// score, docs/method.md §13), in parallel (TBB), the same whatever the thread count.
+// score, docs/method.md §12.1), in parallel (TBB), the same whatever the thread count.
 #pragma once
 
 #include "surfcomp/core/option_table.hpp"
@@ -21,8 +21,9 @@ namespace surfcomp::screening {
 struct MatrixOptions {
   /// How the molecules are read, surfaced, described and matched; default as `surfcomp match`.
   matching::MatchInputOptions inputs;
-  /// Default 10^7. A matrix of more pairs than this is refused before any work (its memory:
-  /// 8 bytes per pair, 136 with the transforms). >= 1.
+  /// Default 10^7. A matrix of more pairs than this is refused before any work. The matrix
+  /// takes 8 bytes a cell (both triangles), 136 with the transforms; each molecule's
+  /// description about 2 MB more (a drug-sized ligand). >= 1.
   std::int64_t max_pairs = 10'000'000;
   /// Default false. Keep each pair's top transform (SimilarityMatrix::transforms).
   bool transforms = false;
@@ -49,13 +50,18 @@ struct SimilarityMatrix {
   /// and the matrix is symmetric, the diagonal the self-matches.
   bool symmetric = false;
   /// rows x columns. score(i, j): the top alignment's overlay score of columns[j] aligned onto
-  /// rows[i] (0 when no alignment), in [0, 1].
+  /// rows[i] (0 when no alignment; NaN when the pair could not be matched, see `warnings`).
   Eigen::MatrixXd score;
   /// With MatrixOptions::transforms, row-major (i * columns + j): the 4x4 rigid transform that
   /// moves columns[j] onto rows[i] (identity without an alignment).
   std::vector<Eigen::Matrix4d> transforms;
-  /// The records left out, one line each: the file, the record and why.
+  /// The records left out, one line each: the file, the record and why (a file without a
+  /// record: the file).
   std::vector<std::string> left_out;
+  /// What the matching cut, one line each: a pair that could not be matched (a limit such as
+  /// max_graph_nodes; its score is NaN), and how many pairs' clique searches stopped at their
+  /// budget (alignments may be missing).
+  std::vector<std::string> warnings;
   double describe_ms = 0.0;  ///< reading, surfaces and descriptions
   double match_ms = 0.0;     ///< the pairs
 };
@@ -64,17 +70,20 @@ struct SimilarityMatrix {
 /// in order) read and described once as prepare_input describes a molecule, then matched all
 /// against all (`against` empty) or each of `set` (rows) against each of `against` (columns),
 /// as match_surfaces matches two prepared molecules. A record that cannot be read or described
-/// is left out and named in SimilarityMatrix::left_out. Throws, before any work, OptionError
-/// for options outside their domain, InputError for a file that is not a molecule file (a
-/// mesh, a SMILES list: no coordinates), an empty set, a set of one without `against`, or more
-/// pairs than options.max_pairs; after reading, InputError when fewer than two molecules (or
-/// none on a side) are left.
+/// is left out and named in SimilarityMatrix::left_out; a pair that cannot be matched is named
+/// in SimilarityMatrix::warnings. Throws, before any work, OptionError for options outside
+/// their domain or that do not apply to a file (check_match_input), InputError for a file that
+/// is not a molecule file (a mesh, a SMILES list: no coordinates), an empty set, a set of one
+/// without `against`, or more pairs than options.max_pairs; after reading, InputError when
+/// fewer than two molecules (or none on a side) are left; OptionError for an option no record
+/// can be read with.
 SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set,
                                    const std::vector<std::filesystem::path>& against = {},
                                    const MatrixOptions& options = {});
 
 /// The matrix as CSV: a header "name" then the columns' names, one line per row (its name,
-/// then its scores to 4 decimals); names quoted when they hold a comma or a quote.
+/// then its scores to 4 decimals, "nan" for a pair not matched); names quoted when they hold a
+/// comma or a quote.
 void write_matrix_csv(std::ostream& out, const SimilarityMatrix& matrix);
 
 }  // namespace surfcomp::screening
