@@ -10,11 +10,13 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <limits>
 #include <mutex>
 #include <new>
 #include <optional>
+#include <tuple>
 #include <utility>
 
 namespace surfcomp::screening {
@@ -179,17 +181,18 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
   const std::size_t total = symmetric ? n * (n + 1) / 2 : n * m;
   out.score = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
   if (options.transforms) out.transforms.assign(n * m, Eigen::Matrix4d::Identity());
-  // Per pair (row-major, i * m + j): why it failed, and whether its clique search was cut.
-  std::vector<std::string> failed(n * m);
-  std::vector<char> cut(n * m, 0);
+  // The pairs that failed (row, column, why), in the order they ended, and how many pairs'
+  // clique searches were cut; few, so kept apart from the matrix's cells.
+  std::vector<std::tuple<std::size_t, std::size_t, std::string>> failed;
+  std::atomic<std::size_t> cuts{0};
   std::size_t done = 0;
-  std::mutex progress;
+  std::mutex tell;  // failed, done and the progress callback
   const auto match_pair = [&](std::size_t i, std::size_t j) {
     const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
     try {
       const matching::MatchResult result = matching::match_surfaces(
           rows.inputs[i].descriptors, cols.inputs[j].descriptors, options.inputs.match);
-      cut[i * m + j] = result.cliques_complete ? 0 : 1;
+      if (!result.cliques_complete) ++cuts;
       if (!result.alignments.empty()) {
         const matching::Alignment& top = result.alignments.front();
         out.score(r, c) = top.overlay.score;
@@ -206,31 +209,26 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
         }
       }
     } catch (const Error& error) {
-      failed[i * m + j] = error.what();
       out.score(r, c) = std::numeric_limits<double>::quiet_NaN();
       if (symmetric) out.score(c, r) = out.score(r, c);
+      const std::lock_guard<std::mutex> lock(tell);
+      failed.emplace_back(i, j, error.what());
     }
     if (options.progress) {
-      const std::lock_guard<std::mutex> lock(progress);
+      const std::lock_guard<std::mutex> lock(tell);
       options.progress(++done, total);
     }
   };
   tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
     tbb::parallel_for(symmetric ? i : std::size_t{0}, m, [&](std::size_t j) { match_pair(i, j); });
   });
-  std::size_t cuts = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = symmetric ? i : 0; j < m; ++j) {
-      if (!failed[i * m + j].empty()) {
-        out.warnings.push_back(record_name(rows.members[i]) + " and " +
-                               record_name(cols.members[j]) +
-                               ": not matched (its score is nan): " + failed[i * m + j]);
-      }
-      cuts += static_cast<std::size_t>(cut[i * m + j]);
-    }
+  std::sort(failed.begin(), failed.end());  // in pair order, whatever the threads
+  for (const auto& [i, j, why] : failed) {
+    out.warnings.push_back(record_name(rows.members[i]) + " and " + record_name(cols.members[j]) +
+                           ": not matched (its score is nan): " + why);
   }
   if (cuts > 0) {
-    out.warnings.push_back(std::to_string(cuts) + " of " + std::to_string(total) +
+    out.warnings.push_back(std::to_string(cuts.load()) + " of " + std::to_string(total) +
                            " pairs: the clique search stopped at its budget (" +
                            options::named("max_clique_work") + ", " +
                            options::named("max_cliques") + "): alignments may be missing");
