@@ -44,6 +44,13 @@ Eigen::Matrix4d RigidTransform::matrix() const {
   return m;
 }
 
+RigidTransform RigidTransform::inverse() const {
+  RigidTransform t;
+  t.rotation = rotation.transpose();
+  t.translation = -(t.rotation * translation);
+  return t;
+}
+
 RigidTransform RigidTransform::from_matrix(const Eigen::Matrix4d& matrix) {
   RigidTransform t;
   t.rotation = matrix.topLeftCorner<3, 3>();

@@ -2,6 +2,7 @@
 
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/protein_charges.hpp"
+#include "surfcomp/matching/rigid_fit.hpp"
 #include "surfcomp/mesh/spatial_grid.hpp"
 
 #include <algorithm>
@@ -301,10 +302,7 @@ AlignedInteractions aligned_interactions(const std::vector<InteractionPoint>& a,
   }
   AlignedInteractions result;
   if (a.empty() || b.empty()) return result;
-  // The rigid inverse: R^T, -R^T t.
-  Eigen::Matrix4d a_to_b = Eigen::Matrix4d::Identity();
-  a_to_b.topLeftCorner<3, 3>() = b_to_a.topLeftCorner<3, 3>().transpose();
-  a_to_b.topRightCorner<3, 1>() = -a_to_b.topLeftCorner<3, 3>() * b_to_a.topRightCorner<3, 1>();
+  const Eigen::Matrix4d a_to_b = RigidTransform::from_matrix(b_to_a).inverse().matrix();
   const double of_a = agreement(a, a_to_b, b, grid_of(b, contact), contact);
   const double of_b = agreement(b, b_to_a, a, grid_of(a, contact), contact);
   result.similarity = (of_a + of_b) / static_cast<double>(a.size() + b.size());
