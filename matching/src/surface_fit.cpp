@@ -1,6 +1,7 @@
 #include "surfcomp/matching/surface_fit.hpp"
 
 #include "surfcomp/core/error.hpp"
+#include "surfcomp/mesh/spatial_grid.hpp"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -25,6 +26,9 @@ using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 Kernel::Point_3 to_cgal(const Eigen::Vector3d& x) { return {x.x(), x.y(), x.z()}; }
 Eigen::Vector3d to_eigen(const Kernel::Point_3& p) { return {p.x(), p.y(), p.z()}; }
 
+/// The longest edge, against the mean, up to which `Side::within` tests the corners first.
+constexpr double kCornerTestEdgeRatio = 4.0;
+
 /// One surface as the fit measures it: its kept triangles, indexed, and the vertices it is
 /// measured at.
 struct Side {
@@ -35,6 +39,12 @@ struct Side {
   /// triangles share).
   std::vector<Eigen::Matrix3d> corner_normals;
   Tree tree;
+  /// The kept triangles' corners, gridded (none when an edge is far longer than the mean), and
+  /// the longest edge: a first answer to `within`.
+  Eigen::Matrix3Xd corner_points;
+  mesh::SpatialGrid corner_grid;
+  double longest_edge = 0.0;
+  bool corner_test = false;
   Eigen::Matrix3Xd points;   ///< the measured vertices
   Eigen::Matrix3Xd normals;  ///< their unit normals
   Eigen::VectorXd weights;   ///< their barycentric areas
@@ -48,6 +58,8 @@ struct Side {
                        " vertices");
     }
     const auto kept = [&](int v) { return !mask || (*mask)[static_cast<std::size_t>(v)]; };
+    std::vector<int> corner_vertices;
+    double edge_sum = 0.0;
     const Eigen::MatrixX3d positions = surface.positions();
     const Eigen::MatrixX3i faces = surface.faces();
     mesh::Surface with_normals = surface;
@@ -62,6 +74,9 @@ struct Side {
       const double norm = cross.norm();
       if (!(norm > 0.0)) continue;  // a degenerate triangle has no plane to measure to
       triangles.emplace_back(to_cgal(a), to_cgal(b), to_cgal(c));
+      for (int k = 0; k < 3; ++k) corner_vertices.push_back(faces(f, k));
+      longest_edge = std::max({longest_edge, (b - a).norm(), (c - b).norm(), (a - c).norm()});
+      edge_sum += (b - a).norm() + (c - b).norm() + (a - c).norm();
       unit_normals.push_back(cross / norm);
       Eigen::Matrix3d corners;
       for (int k = 0; k < 3; ++k) corners.col(k) = vertex_normals.row(faces(f, k)).transpose();
@@ -72,6 +87,18 @@ struct Side {
       throw InputError(surface.source() + ": surface fit: no triangle of positive area" +
                        (mask ? " within the compared part" : ""));
     }
+    std::sort(corner_vertices.begin(), corner_vertices.end());
+    corner_vertices.erase(std::unique(corner_vertices.begin(), corner_vertices.end()),
+                          corner_vertices.end());
+    corner_points.resize(3, static_cast<Eigen::Index>(corner_vertices.size()));
+    for (std::size_t k = 0; k < corner_vertices.size(); ++k)
+      corner_points.col(static_cast<Eigen::Index>(k)) =
+          positions.row(corner_vertices[k]).transpose();
+    // A mesh with an edge far longer than most would make a corner search visit most corners:
+    // the tree alone answers there.
+    const double mean_edge = edge_sum / (3.0 * static_cast<double>(triangles.size()));
+    corner_test = longest_edge <= kCornerTestEdgeRatio * mean_edge;
+    if (corner_test) corner_grid = mesh::SpatialGrid(corner_points, longest_edge);
     tree.insert(triangles.begin(), triangles.end());
     tree.build();
     tree.accelerate_distance_queries();
@@ -96,15 +123,26 @@ struct Side {
     }
   }
 
-  /// Whether a triangle lies within `distance` of x. The search starts from a made-up closest
-  /// point just beyond `distance` (the tree's hint), so that it descends only into boxes nearer
-  /// than that: a point far from the surface, as most are under a wrong pose, is answered at
-  /// the top of the tree, where a plain nearest-point search would descend to find how far it
-  /// is.
+  /// Whether a triangle lies within `distance` of x. The corners answer first: one within
+  /// `distance` is a point of the surface that near; with none within distance + the longest
+  /// edge, no triangle is that near (a triangle's points lie within its longest edge of each of
+  /// its corners). Between the two, the tree's search starts from a made-up closest point just
+  /// beyond `distance` (its hint), so that it descends only into boxes nearer than that.
   bool within(const Eigen::Vector3d& x, double distance) const {
-    const double reach = distance * (1.0 + 1e-9);
-    const Kernel::Point_3 hint = to_cgal(x + Eigen::Vector3d(reach, 0.0, 0.0));
-    return tree.squared_distance(to_cgal(x), hint) <= distance * distance;
+    const double squared = distance * distance;
+    const double reach = distance + longest_edge;
+    if (corner_test) {
+      bool corner_within = false, corner_in_reach = false;
+      corner_grid.for_each_near(x, reach, [&](int k) {
+        const double d2 = (corner_points.col(k) - x).squaredNorm();
+        corner_within = corner_within || d2 <= squared;
+        corner_in_reach = corner_in_reach || d2 <= reach * reach;
+      });
+      if (corner_within) return true;
+      if (!corner_in_reach) return false;
+    }
+    const Kernel::Point_3 hint = to_cgal(x + Eigen::Vector3d(distance * (1.0 + 1e-9), 0.0, 0.0));
+    return tree.squared_distance(to_cgal(x), hint) <= squared;
   }
 
   /// The unit normal at `q`, a point of triangle `face`: its corners' vertex normals
@@ -134,13 +172,6 @@ struct Side {
   }
 };
 
-RigidTransform inverse(const RigidTransform& t) {
-  RigidTransform inv;
-  inv.rotation = t.rotation.transpose();
-  inv.translation = -(inv.rotation * t.translation);
-  return inv;
-}
-
 }  // namespace
 
 struct SurfaceFit::Impl {
@@ -169,7 +200,7 @@ CoverageScore SurfaceFit::coverage(const RigidTransform& transform, double dista
   }
   CoverageScore out;
   out.probe = impl_->probe.covered_by(impl_->reference, transform, distance);
-  out.reference = impl_->reference.covered_by(impl_->probe, inverse(transform), distance);
+  out.reference = impl_->reference.covered_by(impl_->probe, transform.inverse(), distance);
   out.score = std::max(out.probe, out.reference);
   return out;
 }
