@@ -109,11 +109,16 @@ def main():
     parser.add_argument("--crop", choices=["standard", "hard", "both"], default="standard",
                         help="crops of 30-70 %% of the area, 20-30 %%, or one of each per seed")
     parser.add_argument("--icp-top", type=int, default=1, help="surfcomp's icp_top (0: no ICP)")
+    parser.add_argument("--fine-top", type=int, default=None,
+                        help="surfcomp's fine_top (default: the library's; 0: every start "
+                             "refined in double precision)")
     parser.add_argument("--wrong", action="store_true",
                         help="also match each copy onto the next mesh (a wrong shape)")
     parser.add_argument("--only", help="comma-separated mesh names to run (default: all)")
     args = parser.parse_args()
     options = {"icp_top": args.icp_top}
+    if args.fine_top is not None:
+        options["fine_top"] = args.fine_top
     if not args.no_repair:
         options["repair"] = True
     crops = {"standard": [None], "hard": ["hard"], "both": [None, "hard"]}[args.crop]

@@ -16,12 +16,14 @@
 // a failure counted): bzr top-1 >= 85 % and median <= 0.15 A; therm top-1 >= 80 % and median
 // <= 0.6 A; five ligands median <= 0.4 A; time per pair at most 10 % above issue 27's.
 //
-// Usage: overlay_bench [--quick] [--seed N] [--principal-axes-starts N] [--atom-polish-sigma A]
-//                      [--atom-polish-weight W] [--threads N]
+// Usage: overlay_bench [--quick] [--seed N] [--principal-axes-starts N] [--fine-top N]
+//                      [--atom-polish-sigma A] [--atom-polish-weight W] [--threads N]
 //   --quick          1 pose per five-ligand pair and 20 therm and bzr pairs instead of 5 and 100
 //   --seed N         seed of the std::mt19937 drawing poses and pairs (default 20261122)
 //   --principal-axes-starts N
 //                    MatchOptions::principal_axes_starts for our match (0, 4 or 24; default 24)
+//   --fine-top N     MatchOptions::fine_top for our match (default 2; 0: every start refined in
+//                    double precision)
 //   --atom-polish-sigma A, --atom-polish-weight W
 //                    MatchOptions::atom_polish for our match (default 0.5 A and 1; sigma 0: off)
 //   --threads N      worker threads for our match and descriptions (default all cores)
@@ -598,6 +600,15 @@ int main(int argc, char** argv) {
         return 2;
       }
       options.principal_axes_starts = static_cast<int>(*n);
+    } else if (arg == "--fine-top" && i + 1 < argc) {
+      const std::optional<long> n = whole_number(argv[++i]);
+      if (!n || *n < 0 || *n > 1000) {
+        std::fprintf(stderr,
+                     "overlay_bench: --fine-top must be a number from 0 to 1000, got '%s'\n",
+                     argv[i]);
+        return 2;
+      }
+      options.fine_top = static_cast<int>(*n);
     } else if ((arg == "--atom-polish-sigma" || arg == "--atom-polish-weight") && i + 1 < argc) {
       char* end = nullptr;
       const double value = std::strtod(argv[++i], &end);
@@ -619,8 +630,8 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "overlay_bench: unknown argument '%s' (expected --quick, --seed N, "
-                   "--principal-axes-starts N, --atom-polish-sigma A, --atom-polish-weight W or "
-                   "--threads N)\n",
+                   "--principal-axes-starts N, --fine-top N, --atom-polish-sigma A, "
+                   "--atom-polish-weight W or --threads N)\n",
                    arg.c_str());
       return 2;
     }

@@ -5,10 +5,12 @@
 #include "surfcomp/core/option_names.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/matching/cliques.hpp"
+#include "surfcomp/matching/packed_overlay.hpp"
 #include "surfcomp/matching/site.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
@@ -55,6 +57,9 @@ struct Refinement {
   /// The surfaces (or linings) indexed for the coverage and the ICP polish; none when neither
   /// is asked for, or when a site's lining keeps no whole triangle.
   std::optional<SurfaceFit> fit;
+  /// The two samples packed for the single-precision refinement (MatchOptions::fine_top > 0).
+  std::optional<PackedQuery> packed_reference;
+  PackedSample packed_probe;
 };
 
 /// The Refinement of a match in options.mode: the whole surfaces with options.overlay, the
@@ -91,6 +96,16 @@ std::optional<Refinement> prepare_refinement(const harmonic::SurfaceDescriptors&
   std::vector<RigidTransform> axes_starts;
   if (n_axes_starts > 0)
     axes_starts = principal_axes_starts(reference_sample, probe_sample, n_axes_starts == 24);
+  AtomSample reference_atoms = site ? AtomSample{} : sample_atoms(reference.atoms);
+  AtomSample probe_atoms = site ? AtomSample{} : sample_atoms(probe.atoms);
+  std::optional<PackedQuery> packed_reference;
+  PackedSample packed_probe;
+  if (options.fine_top > 0) {
+    packed_reference.emplace(PackedSample(reference_sample, reference_atoms, overlay_options.sigma,
+                                          SampleKind::surface));
+    packed_probe =
+        PackedSample(probe_sample, probe_atoms, overlay_options.sigma, SampleKind::surface);
+  }
   std::optional<SurfaceFit> fit;
   if (options.coverage_distance > 0.0 || options.icp_top > 0) {
     try {
@@ -102,9 +117,8 @@ std::optional<Refinement> prepare_refinement(const harmonic::SurfaceDescriptors&
   }
   return Refinement{
       SurfaceOverlay(std::move(reference_sample), std::move(probe_sample), overlay_options,
-                     site ? AtomSample{} : sample_atoms(reference.atoms),
-                     site ? AtomSample{} : sample_atoms(probe.atoms)),
-      std::move(axes_starts), std::move(fit)};
+                     std::move(reference_atoms), std::move(probe_atoms)),
+      std::move(axes_starts), std::move(fit), std::move(packed_reference), std::move(packed_probe)};
 }
 
 /// The largest distance between a sampled probe point moved by `x` and moved by `y`, A.
@@ -114,6 +128,24 @@ double largest_move(const SurfaceOverlay& overlay, const RigidTransform& x,
   return (x.apply(points) - y.apply(points)).colwise().norm().maxCoeff();
 }
 
+/// Of the first `n` alignments of `placed`, those to refine: each whose transform is not within
+/// kRepeatDistance of an earlier one's (merge-tree neighbours often share their transform, and
+/// would refine to the same pose); the others are scored where they are.
+std::vector<std::size_t> distinct_head(std::vector<Placed>& placed, std::size_t n,
+                                       const SurfaceOverlay& overlay) {
+  std::vector<std::size_t> distinct;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (std::none_of(distinct.begin(), distinct.end(), [&](std::size_t d) {
+          return largest_move(overlay, placed[d].transform, placed[k].transform) <= kRepeatDistance;
+        })) {
+      distinct.push_back(k);
+    } else {
+      placed[k].overlay = overlay.score(placed[k].transform);
+    }
+  }
+  return distinct;
+}
+
 /// Refines the first `n` alignments of `placed` on the overlay and gives them their overlay
 /// score. A start within kRepeatDistance of an earlier refined start (merge-tree neighbours
 /// often share their transform) would refine to the same pose: it is scored where it is. The
@@ -121,18 +153,7 @@ double largest_move(const SurfaceOverlay& overlay, const RigidTransform& x,
 /// does not depend on the thread count.
 void refine_consensus_head(std::vector<Placed>& placed, std::size_t n,
                            const SurfaceOverlay& overlay) {
-  std::vector<RigidTransform> starts;
-  std::vector<std::size_t> to_refine;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (std::none_of(starts.begin(), starts.end(), [&](const RigidTransform& s) {
-          return largest_move(overlay, s, placed[k].transform) <= kRepeatDistance;
-        })) {
-      starts.push_back(placed[k].transform);
-      to_refine.push_back(k);
-    } else {
-      placed[k].overlay = overlay.score(placed[k].transform);
-    }
-  }
+  const std::vector<std::size_t> to_refine = distinct_head(placed, n, overlay);
   tbb::parallel_for(std::size_t{0}, to_refine.size(), [&](std::size_t i) {
     Placed& p = placed[to_refine[i]];
     const RefineResult refined = overlay.refine(p.transform);
@@ -175,6 +196,73 @@ std::vector<Placed> refine_axes_starts(const std::vector<RigidTransform>& starts
     if (p) out.push_back(*p);
   }
   return out;
+}
+
+/// Coarse to fine (MatchOptions::fine_top): the first `n` alignments of `placed` (one that
+/// repeats an earlier start is scored where it is, as refine_consensus_head does) and the
+/// principal-axes starts refined in single precision on the packed samples and scored in double
+/// precision there, then the `fine_top` best of them, distinct poses only, refined again in
+/// double precision from there, until the fine_top best are all so refined; the others keep
+/// their single-precision pose. The head's poses are set in
+/// `placed`; the principal-axes poses are returned, in the order of the starts. In parallel
+/// (TBB, one slot each): the result does not depend on the thread count.
+std::vector<Placed> refine_coarse_to_fine(std::vector<Placed>& placed, std::size_t n,
+                                          const Refinement& refinement, int fine_top) {
+  const SurfaceOverlay& overlay = refinement.overlay;
+  // The alignments of `placed` refined, then the axes starts.
+  const std::vector<std::size_t> head = distinct_head(placed, n, overlay);
+  std::vector<RigidTransform> starts;
+  for (const std::size_t k : head) starts.push_back(placed[k].transform);
+  starts.insert(starts.end(), refinement.axes_starts.begin(), refinement.axes_starts.end());
+  const PackedSampleView probe = refinement.packed_probe.view();
+  std::vector<RefineResult> coarse(starts.size());
+  tbb::parallel_for(std::size_t{0}, starts.size(), [&](std::size_t i) {
+    coarse[i] = refinement.packed_reference->refine(probe, starts[i], overlay.options());
+  });
+  // Each pose scored in double precision where it stopped; then, until the fine_top best
+  // distinct poses by that score are all refined in double precision, those that are not yet
+  // are (a refinement can move a pose past another), so that the poses given are converged in
+  // double precision, not where single precision stopped.
+  std::vector<Placed> poses(starts.size());
+  tbb::parallel_for(std::size_t{0}, starts.size(), [&](std::size_t i) {
+    poses[i].transform = coarse[i].transform;
+    poses[i].overlay = overlay.score(coarse[i].transform);
+    poses[i].refined = true;
+  });
+  std::vector<bool> fine(starts.size(), false);
+  for (;;) {
+    std::vector<std::size_t> order(starts.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+      return poses[x].overlay.score > poses[y].overlay.score;
+    });
+    std::vector<std::size_t> best, unrefined;
+    for (const std::size_t i : order) {
+      if (best.size() == static_cast<std::size_t>(fine_top)) break;
+      if (std::any_of(best.begin(), best.end(), [&](std::size_t b) {
+            return largest_move(overlay, poses[b].transform, poses[i].transform) <= kRepeatDistance;
+          })) {
+        continue;
+      }
+      best.push_back(i);
+      if (!fine[i]) unrefined.push_back(i);
+    }
+    if (unrefined.empty()) break;
+    tbb::parallel_for(std::size_t{0}, unrefined.size(), [&](std::size_t k) {
+      Placed& p = poses[unrefined[k]];
+      const RefineResult refined = overlay.refine(p.transform);
+      p.transform = refined.transform;
+      p.overlay = refined.score;
+    });
+    for (const std::size_t i : unrefined) fine[i] = true;
+  }
+  for (std::size_t k = 0; k < head.size(); ++k) {
+    Placed& p = placed[head[k]];
+    p.transform = poses[k].transform;
+    p.overlay = poses[k].overlay;
+    p.refined = true;
+  }
+  return {poses.begin() + static_cast<std::ptrdiff_t>(head.size()), poses.end()};
 }
 
 /// Poses ordered best overlay score first, the distinct ones ahead of the repeats.
@@ -296,11 +384,19 @@ std::vector<Placed> refine_and_order(
   probe_points = overlay.probe_points();
   const std::size_t n_refined =
       std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
-  refine_consensus_head(placed, n_refined, overlay);
+  std::vector<Placed> axes_poses;
+  if (options.fine_top > 0) {
+    axes_poses = refine_coarse_to_fine(placed, n_refined, *refinement, options.fine_top);
+  } else {
+    refine_consensus_head(placed, n_refined, overlay);
+    axes_poses = refine_axes_starts(
+        refinement->axes_starts,
+        std::vector<Placed>(placed.begin(),
+                            placed.begin() + static_cast<std::ptrdiff_t>(n_refined)),
+        overlay);
+  }
   std::vector<Placed> candidates(placed.begin(),
                                  placed.begin() + static_cast<std::ptrdiff_t>(n_refined));
-  const std::vector<Placed> axes_poses =
-      refine_axes_starts(refinement->axes_starts, candidates, overlay);
   candidates.insert(candidates.end(), axes_poses.begin(), axes_poses.end());
   Ordered ordered = order_distinct_then_repeats(std::move(candidates), overlay);
   if (overlay.uses_atoms() && options.polish_top > 0)
@@ -372,6 +468,7 @@ void validate(const MatchOptions& options) {
   detail::check_clustering_options(options.clustering, {caller, "clustering."});
   detail::check_ranking_options(options.ranking, {caller, "ranking."});
   check.require(options.refine_top >= 0, "refine_top", options.refine_top, ">= 0");
+  check.require(options.fine_top >= 0, "fine_top", options.fine_top, ">= 0");
   detail::check_axes_start_count(options.principal_axes_starts, "principal_axes_starts", check);
   check.require(options.polish_top >= 0, "polish_top", options.polish_top, ">= 0");
   check.require(std::isfinite(options.coverage_distance) && options.coverage_distance >= 0.0,

@@ -67,6 +67,12 @@ const options::Table<MatchOptions>& match_option_table() {
            "", 0, 1e6},
           [](auto& m) -> auto& { return m.refine_top; }),
       options::field<M>(
+          {"fine-top", Kind::integer,
+           "refine every start in single precision first, then only this many of the best "
+           "again in double precision (0: every start in double precision)",
+           "", 0, 1e6},
+          [](auto& m) -> auto& { return m.fine_top; }),
+      options::field<M>(
           {"overlay-sigma", Kind::real, "Gaussian width of the whole-surface overlay", "A", 0.1,
            10.0},
           [](auto& m) -> auto& { return m.overlay.sigma; }),

@@ -55,7 +55,8 @@ const options::Table<QueryScreenOptions>& screen_option_table() {
         [](auto& q) -> auto& { return q.query.input; });
     options::append(
         t,
-        options::pick(matching::match_option_table(), {"atom-polish-sigma", "atom-polish-weight"}),
+        options::pick(matching::match_option_table(),
+                      {"atom-polish-sigma", "atom-polish-weight", "fine-top"}),
         [](auto& q) -> auto& { return q.screen.match; });
     options::append(
         t, molsurf::binding_site_option_table(), [](auto& q) -> auto& { return q.screen.site; });

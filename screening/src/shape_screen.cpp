@@ -85,7 +85,13 @@ ShapeHit match_entry(const mesh::Surface& query, double query_extent, const Libr
   matching::MatchInput probe;
   probe.surface = query;
   try {
-    const matching::InputMatch found = matching::match_inputs(reference, probe, options.inputs);
+    // The poses whose coverage is measured are refined in double precision, not left where
+    // the single-precision refinement stopped (MatchOptions::fine_top).
+    matching::MatchInputOptions inputs = options.inputs;
+    if (inputs.match.fine_top > 0) {
+      inputs.match.fine_top = std::max(inputs.match.fine_top, static_cast<int>(options.poses));
+    }
+    const matching::InputMatch found = matching::match_inputs(reference, probe, inputs);
     hit.unit = found.unit;
     const matching::SurfaceFit fit(found.reference.descriptors.surface,
                                    found.probe.descriptors.surface);

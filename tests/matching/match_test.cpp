@@ -484,6 +484,37 @@ TEST(Match, AnAllTrueMaskInWholeSurfaceModeChangesNothing) {
 // The options are checked before any work: a bad option is an OptionError naming it (a user's
 // option by its field, as options::named spells it, one no option sets by its field path) even
 // where the inputs would fail later (images on different grids are an InputError of the match).
+TEST(Match, CoarseToFineEndsWhereEveryStartRefinedInDoublePrecisionEnds) {
+  SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1TMN_ligand.sdf");
+  const auto [reference, probe, motion] = moved_copy(file, 4242u);
+  matching::MatchOptions options;
+  options.fine_top = 0;
+  const auto every = matching::match_surfaces(reference, probe, options);
+  options.fine_top = 2;
+  const auto coarse = matching::match_surfaces(reference, probe, options);
+  ASSERT_FALSE(every.alignments.empty());
+  ASSERT_FALSE(coarse.alignments.empty());
+  // The top pose: the moved copy recovered, at the score of the refinement in double precision.
+  const auto [angle, shift] =
+      transform_error(coarse.alignments[0].transform, motion.inverse(), centroid(probe.surface));
+  const auto [every_angle, every_shift] =
+      transform_error(every.alignments[0].transform, motion.inverse(), centroid(probe.surface));
+  std::printf(
+      "[ coarse   ] top-1 %.4f deg, %.4f A (every start in double: %.4f deg, %.4f A); "
+      "score %.6f against %.6f\n",
+      angle, shift, every_angle, every_shift, coarse.alignments[0].overlay.score,
+      every.alignments[0].overlay.score);
+  EXPECT_LT(angle, 1.1);
+  EXPECT_LT(shift, 0.04);
+  EXPECT_NEAR(coarse.alignments[0].overlay.score, every.alignments[0].overlay.score, 1e-4);
+  // Every start is still listed, refined and scored: as many distinct poses, or nearly.
+  const auto scored = [](const matching::MatchResult& r) {
+    return std::count_if(r.alignments.begin(), r.alignments.end(),
+                         [](const matching::Alignment& a) { return a.refined; });
+  };
+  EXPECT_NEAR(static_cast<double>(scored(coarse)), static_cast<double>(scored(every)), 3.0);
+}
+
 TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   const auto expect_named = [](const matching::MatchOptions& options, const std::string& name) {
     try {
@@ -521,6 +552,9 @@ TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   o = {};
   o.polish_top = -1;
   expect_named(o, "polish_top");
+  o = {};
+  o.fine_top = -1;
+  expect_named(o, "fine_top");
   o = {};
   o.overlay.sigma = 0.0;
   expect_named(o, "overlay_sigma");

@@ -469,15 +469,22 @@ def test_a_partial_copy_finds_its_mesh_in_a_library_of_meshes(program, elephant,
     assert hits[0].entry_coverage == pytest.approx(case.area_fraction, abs=0.1)
     # The transform moves the mesh into the copy's frame.
     assert _mesh_cases().motion_error(case, np.linalg.inv(hits[0].transform)) < 0.02
-    # The program's table gives the same ranking and scores.
+    # The program's table gives the same ranking and scores as the module's on the same file.
+    # Through the file (9 digits) the copy is found alike; a wrong shape's coverage can move by
+    # a few thousandths, where single-precision refinements of nearly tied starts part ways.
     scan = tmp_path / "scan.off"
     _mesh_cases().write_off(scan, case.vertices, case.faces)
+    from_file = surfcomp.screen_shapes(scan, library, top=0)
+    assert [h.name for h in from_file] == [h.name for h in hits]
+    assert [h.score for h in from_file] == pytest.approx([h.score for h in hits], abs=5e-3)
+    assert from_file[0].score == pytest.approx(hits[0].score, abs=1e-6)
     done = run([program, "screen", scan, library, "-o", tmp_path / "hits.csv", "--top", "0"])
     assert done.returncode == 0, done.stderr
     with open(tmp_path / "hits.csv") as table:
         rows = list(csv.DictReader(table))
-    assert [r["name"] for r in rows] == [h.name for h in hits]
-    assert [float(r["score"]) for r in rows] == pytest.approx([h.score for h in hits], abs=1e-6)
+    assert [r["name"] for r in rows] == [h.name for h in from_file]
+    assert [float(r["score"]) for r in rows] == pytest.approx([h.score for h in from_file],
+                                                             abs=1e-6)
     with pytest.raises(surfcomp.InputError, match="a shape screen's query is a mesh"):
         surfcomp.screen_shapes(SOURCE_DIR / "README.md", library)
     # The molecule screen points at the shape screen.

@@ -84,6 +84,13 @@ struct MatchOptions {
   /// any order) are refined too and listed among the refined alignments (source
   /// principal_axes) unless they reach a pose already found. 0, 4 or 24.
   int principal_axes_starts = 24;
+  /// Default 2 (docs/decisions.md, "Coarse to fine in a match"). With refine_top > 0, every
+  /// start (the refine_top alignments and the principal-axes superpositions) is refined first in
+  /// single precision on the packed samples (PackedQuery::refine, packed_overlay.hpp), and only
+  /// the fine_top best of those distinct poses again in double precision (SurfaceOverlay::refine);
+  /// the others keep their single-precision pose, scored in double. 0: every start refined in
+  /// double precision alone. >= 0.
+  int fine_top = 2;
   /// Default 5. Where the overlay uses atoms (OverlayOptions::atom_weight), the first
   /// polish_top distinct refined alignments are refined again on the whole score, heteroatoms
   /// pulled too, and ordered again. 0 leaves them as refined. >= 0.
