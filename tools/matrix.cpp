@@ -1,5 +1,5 @@
-// surfcomp matrix: every molecule of a set described once and matched against every other (or
-// against a second set), as a CSV similarity matrix.
+// surfcomp matrix: every molecule of a set described once and compared with every other (or
+// with a second set), as a CSV similarity matrix.
 #include "command.hpp"
 #include "console.hpp"
 #include "options.hpp"
@@ -18,12 +18,14 @@ namespace {
 constexpr const char* kUsage =
     "usage: surfcomp matrix SET... [--against SET...] -o similarity.csv [options]\n\n"
     "Reads and describes every molecule of the SET files once (each record of an SDF or MOL2\n"
-    "file; a PDB, mmCIF or PQR file is one molecule), then aligns every pair as `surfcomp\n"
-    "match` aligns two molecules and writes the top alignment's overlay score (0-1) as a\n"
-    "matrix: all against all, symmetric, its diagonal each molecule's self-match; or with\n"
-    "--against, SET's molecules (rows) against those of the --against files (columns). A record\n"
-    "that cannot be read or described is left out, with a note naming it; a pair that cannot be\n"
-    "matched (a limit such as --max-graph-nodes) scores nan, with a warning naming it.";
+    "file; a PDB, mmCIF or PQR file is one molecule), then compares every pair coarse to fine:\n"
+    "each pair's overlay refined from the principal-axes superpositions (as a screen's stages 1\n"
+    "and 2), then each molecule's --candidates best neighbours aligned as `surfcomp match`\n"
+    "aligns two molecules (--exact: every pair). Writes the overlay scores (0-1) as a matrix:\n"
+    "all against all, symmetric, its diagonal each molecule's self-overlay; or with --against,\n"
+    "SET's molecules (rows) against those of the --against files (columns). A record that\n"
+    "cannot be read or described is left out, with a note naming it; a pair whose full match\n"
+    "fails (a limit such as --max-graph-nodes) scores nan, with a warning naming it.";
 
 }  // namespace
 

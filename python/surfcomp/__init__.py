@@ -897,6 +897,7 @@ class SimilarityMatrix(NamedTuple):
     """The molecules of one or two sets compared pair by pair (:func:`matrix`)."""
 
     scores: Any
+    full: Any
     transforms: Any
     rows: List[MatrixMember]
     columns: List[MatrixMember]
@@ -909,8 +910,12 @@ class SimilarityMatrix(NamedTuple):
 
 _documented(
     SimilarityMatrix,
-    scores="(rows, columns) float array: the top alignment's overlay score (0-1) of "
-           "columns[j] aligned onto rows[i], 0 without an alignment, NaN for a pair not matched",
+    scores="(rows, columns) float array: the overlay score (0-1) of columns[j] aligned onto "
+           "rows[i], the full match's top alignment's where ``full``, else the refined overlay's; "
+           "0 without an alignment, NaN for a pair whose full match failed",
+    full="(rows, columns) bool array: where ``scores`` is the full match's (each molecule's "
+         "``candidates`` best neighbours by the refined overlay, or every pair with "
+         "``exact=True``)",
     transforms="with transforms=True, (rows, columns, 4, 4): the rigid transform that moves "
                "columns[j] onto rows[i]; else None",
     rows="the molecules of the set, in file order, without those left out",
@@ -928,9 +933,11 @@ _documented(
 def matrix(set, against=None, *, transforms: bool = False,
            output: Union[str, os.PathLike, None] = None, **options) -> SimilarityMatrix:
     """Describes every molecule of the ``set`` files (a path or a list of paths: each record of
-    an SDF or MOL2 file; a PDB, mmCIF or PQR file is one molecule) once and aligns every pair as
-    :func:`match` aligns two molecules, as ``surfcomp matrix`` does: all against all, or the
-    set's molecules (rows) against those of the ``against`` files (columns). A record that
+    an SDF or MOL2 file; a PDB, mmCIF or PQR file is one molecule) once and compares every pair,
+    as ``surfcomp matrix`` does: all against all, or the set's molecules (rows) against those of
+    the ``against`` files (columns). Every pair's overlay is refined from the principal-axes
+    superpositions (a screen's stages 1 and 2); each molecule's ``candidates`` best neighbours
+    are then aligned as :func:`match` aligns two molecules (every pair with ``exact=True``). A record that
     cannot be read or described is left out and named in ``left_out``. With ``output``, the
     matrix is also written there as CSV."""
     def paths(files):

@@ -298,6 +298,7 @@ class MatrixMember(NamedTuple):
 
 class SimilarityMatrix(NamedTuple):
     scores: Any
+    full: Any
     transforms: Any
     rows: List[MatrixMember]
     columns: List[MatrixMember]
@@ -405,6 +406,7 @@ def match(
     rmsd_cut: float = 4.0,
     ranking: str = 'rank',
     refine_top: int = 10,
+    fine_top: int = 2,
     overlay_sigma: float = 1.0,
     overlay_chem_weight: float = 6.0,
     overlay_atom_weight: float = 14.0,
@@ -454,6 +456,7 @@ def screen(
     site_sphere: Optional[SiteSpheres] = None,
     site_pocket: Optional[int] = None,
     record: Optional[int] = None,
+    fine_top: int = 2,
     atom_polish_sigma: float = 0.5,
     atom_polish_weight: float = 1.0,
     site_radius: float = 4.0,
@@ -481,6 +484,7 @@ def screen_queries(
     site_sphere: Optional[SiteSpheres] = None,
     site_pocket: Optional[int] = None,
     record: Optional[int] = None,
+    fine_top: int = 2,
     atom_polish_sigma: float = 0.5,
     atom_polish_weight: float = 1.0,
     site_radius: float = 4.0,
@@ -690,6 +694,7 @@ def matrix(
     rmsd_cut: float = 4.0,
     ranking: str = 'rank',
     refine_top: int = 10,
+    fine_top: int = 2,
     overlay_sigma: float = 1.0,
     overlay_chem_weight: float = 6.0,
     overlay_atom_weight: float = 14.0,
@@ -701,6 +706,8 @@ def matrix(
     icp_top: int = 0,
     icp_max_distance: float = 1.5,
     principal_axes_starts: int = 24,
+    candidates: int = 2,
+    exact: bool = False,
     max_pairs: int = 10000000,
     threads: int = 0,
 ) -> SimilarityMatrix: ...

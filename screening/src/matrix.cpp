@@ -6,6 +6,8 @@
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
 #include "surfcomp/matching/match.hpp"
+#include "surfcomp/matching/rigid_fit.hpp"
+#include "surfcomp/screening/screen.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -16,6 +18,7 @@
 #include <mutex>
 #include <new>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <utility>
 
@@ -61,23 +64,34 @@ std::string record_name(const MatrixMember& member) {
 
 struct Described {
   std::vector<MatrixMember> members;
-  std::vector<matching::PreparedInput> inputs;
+  /// Each molecule's descriptors (the full match) and packed samples (the refined overlay).
+  std::vector<ScreenQuery> queries;
 };
+
+/// The screen's options of the refined overlays: the match's overlay options, every start refined.
+ScreenOptions screen_options(const MatrixOptions& options) {
+  ScreenOptions screen;
+  screen.match = options.inputs.match;
+  screen.refine_starts = 0;
+  return screen;
+}
 
 /// Each record read and described once (in parallel), those that fail left out with a line.
 Described describe_records(const std::vector<io::MoleculeRecord>& records,
                            const MatrixOptions& options, std::vector<std::string>& left_out) {
-  std::vector<std::optional<matching::PreparedInput>> prepared(records.size());
+  std::vector<std::optional<ScreenQuery>> prepared(records.size());
   std::vector<std::string> why(records.size());
   matching::MatchInputOptions quiet = options.inputs;
   // Neither is told apart by molecule, and several molecules are described at once.
   quiet.log = nullptr;
   quiet.descriptors.progress = nullptr;
+  const ScreenOptions screen = screen_options(options);
   tbb::parallel_for(std::size_t{0}, records.size(), [&](std::size_t k) {
     try {
       matching::MatchInput input;
       input.molecule = io::read_record_molecule(records[k], options.inputs.input.read);
-      prepared[k] = matching::prepare_input(input, quiet);
+      prepared[k] =
+          make_screen_query(std::move(matching::prepare_input(input, quiet).descriptors), screen);
     } catch (const OptionError&) {
       throw;  // an option that cannot run, not a record that cannot be read
     } catch (const Error& error) {
@@ -95,9 +109,39 @@ Described describe_records(const std::vector<io::MoleculeRecord>& records,
       continue;
     }
     out.members.push_back({record.name, record.source, record.record});
-    out.inputs.push_back(std::move(*prepared[k]));
+    out.queries.push_back(std::move(*prepared[k]));
   }
   return out;
+}
+
+/// The pairs (row, column) given the full match: every pair with `exact`; otherwise each row's
+/// `candidates` best columns by `score` (ties to the lower column; all against all, not the
+/// diagonal, and a pair once, as (lower, higher)). In order.
+std::vector<std::pair<std::size_t, std::size_t>> full_match_pairs(const Eigen::MatrixXd& score,
+                                                                  bool symmetric,
+                                                                  const MatrixOptions& options) {
+  const auto n = static_cast<std::size_t>(score.rows()), m = static_cast<std::size_t>(score.cols());
+  std::set<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<std::size_t> columns;
+    for (std::size_t j = 0; j < m; ++j)
+      if (options.exact ? (!symmetric || j >= i) : (!symmetric || j != i)) columns.push_back(j);
+    if (!options.exact) {
+      const auto value = [&](std::size_t j) {
+        return score(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+      };
+      const std::size_t k = std::min(options.candidates, columns.size());
+      std::partial_sort(columns.begin(), columns.begin() + static_cast<std::ptrdiff_t>(k),
+                        columns.end(), [&](std::size_t x, std::size_t y) {
+                          if (value(x) != value(y)) return value(x) > value(y);
+                          return x < y;
+                        });
+      columns.resize(k);
+    }
+    for (const std::size_t j : columns)
+      pairs.emplace(symmetric ? std::min(i, j) : i, symmetric ? std::max(i, j) : j);
+  }
+  return {pairs.begin(), pairs.end()};
 }
 
 }  // namespace
@@ -117,6 +161,17 @@ const options::Table<MatrixOptions>& matrix_option_table() {
                     [](auto& m) -> auto& { return m.inputs.match; },
                     {"site-overlay-radius", "site-chem-weight", "site-lining-weight",
                      "site-principal-axes-starts"});
+    t.push_back(options::field<M>(
+        {"candidates", options::Kind::integer,
+         "each molecule's best neighbours, by the refined overlay, given the full match (0: "
+         "none)",
+         "", 0, 1e6},
+        [](auto& m) -> auto& { return m.candidates; }));
+    t.push_back(options::field<M>(
+        {"exact", options::Kind::flag,
+         "give every pair the full match, not only each molecule's candidates (slow: 20-50 ms "
+         "a pair of ligands)"},
+        [](auto& m) -> auto& { return m.exact; }));
     t.push_back(options::field<M>(
         {"max-pairs", options::Kind::integer,
          "refuse a matrix of more pairs than this, before any work", "", 1, 1e12},
@@ -170,57 +225,81 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
                       std::to_string(failures.size()) +
                       " left out; the first: " + failures.front() + ")");
   };
-  if (rows.inputs.empty() || (symmetric && rows.inputs.size() < 2))
+  if (rows.queries.empty() || (symmetric && rows.queries.size() < 2))
     throw too_few(set, row_failures);
-  if (cols.inputs.empty()) throw too_few(against, column_failures);
+  if (cols.queries.empty()) throw too_few(against, column_failures);
   out.left_out.insert(out.left_out.end(), row_failures.begin(), row_failures.end());
   out.left_out.insert(out.left_out.end(), column_failures.begin(), column_failures.end());
 
   clock.restart();
-  const std::size_t n = rows.inputs.size(), m = cols.inputs.size();
-  const std::size_t total = symmetric ? n * (n + 1) / 2 : n * m;
+  const std::size_t n = rows.queries.size(), m = cols.queries.size();
   out.score = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
+  out.full.setConstant(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m), false);
   if (options.transforms) out.transforms.assign(n * m, Eigen::Matrix4d::Identity());
+  // A cell and, all against all, its mirror: the same score, the inverse transform.
+  const auto set_cell = [&](std::size_t i, std::size_t j, double score,
+                            const Eigen::Matrix4d& transform) {
+    const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
+    out.score(r, c) = score;
+    if (symmetric) out.score(c, r) = score;
+    if (!options.transforms) return;
+    out.transforms[i * m + j] = transform;
+    if (symmetric && i != j) {
+      out.transforms[j * m + i] =
+          matching::RigidTransform::from_matrix(transform).inverse().matrix();
+    }
+  };
+  std::size_t done = 0, total = 0;
+  std::mutex tell;  // failed, done and the progress callback
+  const auto told = [&] {
+    if (!options.progress) return;
+    const std::lock_guard<std::mutex> lock(tell);
+    options.progress(++done, total);
+  };
+
+  if (!options.exact) {
+    const ScreenOptions screen = screen_options(options);
+    total = symmetric ? n * (n + 1) / 2 : n * m;
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+      tbb::parallel_for(symmetric ? i : std::size_t{0}, m, [&](std::size_t j) {
+        const HitScore hit =
+            refined_score(rows.queries[i], cols.queries[j].packed->sample().view(), screen);
+        set_cell(i, j, hit.score, hit.transform);
+        told();
+      });
+    });
+  }
+
+  const std::vector<std::pair<std::size_t, std::size_t>> pairs =
+      full_match_pairs(out.score, symmetric, options);
+  done = 0;
+  total = pairs.size();
   // The pairs that failed (row, column, why), in the order they ended, and how many pairs'
   // clique searches were cut; few, so kept apart from the matrix's cells.
   std::vector<std::tuple<std::size_t, std::size_t, std::string>> failed;
   std::atomic<std::size_t> cuts{0};
-  std::size_t done = 0;
-  std::mutex tell;  // failed, done and the progress callback
-  const auto match_pair = [&](std::size_t i, std::size_t j) {
-    const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
+  // The matrix keeps the top score alone: no alignment's coverage is measured.
+  matching::MatchOptions full_match = options.inputs.match;
+  full_match.coverage_distance = 0.0;
+  tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+    const auto [i, j] = pairs[k];
     try {
       const matching::MatchResult result = matching::match_surfaces(
-          rows.inputs[i].descriptors, cols.inputs[j].descriptors, options.inputs.match);
+          rows.queries[i].descriptors, cols.queries[j].descriptors, full_match);
       if (!result.cliques_complete) ++cuts;
+      // Without an alignment the refined overlay's stays (0 with exact).
       if (!result.alignments.empty()) {
         const matching::Alignment& top = result.alignments.front();
-        out.score(r, c) = top.overlay.score;
-        if (symmetric) out.score(c, r) = top.overlay.score;
-        if (options.transforms) {
-          out.transforms[i * m + j] = top.transform;
-          if (symmetric && i != j) {  // the rigid inverse: R^T, -R^T t
-            Eigen::Matrix4d inverse = Eigen::Matrix4d::Identity();
-            inverse.topLeftCorner<3, 3>() = top.transform.topLeftCorner<3, 3>().transpose();
-            inverse.topRightCorner<3, 1>() =
-                -inverse.topLeftCorner<3, 3>() * top.transform.topRightCorner<3, 1>();
-            out.transforms[j * m + i] = inverse;
-          }
-        }
+        set_cell(i, j, top.overlay.score, top.transform);
+        out.full(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = true;
+        if (symmetric) out.full(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i)) = true;
       }
     } catch (const Error& error) {
-      out.score(r, c) = std::numeric_limits<double>::quiet_NaN();
-      if (symmetric) out.score(c, r) = out.score(r, c);
+      set_cell(i, j, std::numeric_limits<double>::quiet_NaN(), Eigen::Matrix4d::Identity());
       const std::lock_guard<std::mutex> lock(tell);
       failed.emplace_back(i, j, error.what());
     }
-    if (options.progress) {
-      const std::lock_guard<std::mutex> lock(tell);
-      options.progress(++done, total);
-    }
-  };
-  tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-    tbb::parallel_for(symmetric ? i : std::size_t{0}, m, [&](std::size_t j) { match_pair(i, j); });
+    told();
   });
   std::sort(failed.begin(), failed.end());  // in pair order, whatever the threads
   for (const auto& [i, j, why] : failed) {
@@ -228,8 +307,8 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
                            ": not matched (its score is nan): " + why);
   }
   if (cuts > 0) {
-    out.warnings.push_back(std::to_string(cuts.load()) + " of " + std::to_string(total) +
-                           " pairs: the clique search stopped at its budget (" +
+    out.warnings.push_back(std::to_string(cuts.load()) + " of " + std::to_string(pairs.size()) +
+                           " full matches: the clique search stopped at its budget (" +
                            options::named("max_clique_work") + ", " +
                            options::named("max_cliques") + "): alignments may be missing");
   }

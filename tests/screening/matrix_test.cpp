@@ -1,6 +1,7 @@
-// The similarity matrix: its entries are `surfcomp match`'s top overlay scores and transforms,
-// pair by pair; all against all it is symmetric, its diagonal the self-match (score 1 at the
-// identity); the same with one thread and two; a record that cannot be read is left out and
+// The similarity matrix: exact, its entries are `surfcomp match`'s top overlay scores and
+// transforms, pair by pair; by default the refined overlays of a screen's stage 2, each row's
+// best then given match's; all against all it is symmetric, its diagonal the self-match (score 1
+// at the identity); the same with one thread and two; a record that cannot be read is left out and
 // named while the others are compared; an empty set, a set of one, too many pairs and a file
 // that is not a molecule file are refused before any work.
 #include "test_data.hpp"
@@ -8,6 +9,7 @@
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
 #include "surfcomp/screening/matrix.hpp"
+#include "surfcomp/screening/screen.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -51,13 +53,15 @@ class Matrix : public ::testing::Test {
   std::vector<fs::path> ligands_;
 };
 
-TEST_F(Matrix, EntriesAreTheTopScoresAndTransformsOfMatch) {
+TEST_F(Matrix, ExactEntriesAreTheTopScoresAndTransformsOfMatch) {
   screening::MatrixOptions options;
   options.transforms = true;
+  options.exact = true;
   const screening::SimilarityMatrix matrix = screening::similarity_matrix(ligands_, {}, options);
   ASSERT_EQ(matrix.rows.size(), 3u);
   ASSERT_TRUE(matrix.symmetric);
   EXPECT_TRUE(matrix.left_out.empty());
+  EXPECT_TRUE(matrix.full.all());
   for (std::size_t i = 0; i < 3; ++i) {
     for (std::size_t j = i; j < 3; ++j) {
       matching::MatchInput reference, probe;
@@ -82,8 +86,9 @@ TEST_F(Matrix, EntriesAreTheTopScoresAndTransformsOfMatch) {
         probe.path = ligands_[i];
         reference.path = ligands_[j];
         const matching::InputMatch reverse = matching::match_inputs(reference, probe);
-        // Not equal: the fits and their refinements start from the other side.
-        EXPECT_NEAR(matrix.score(r, c), reverse.result.alignments.front().overlay.score, 1e-3);
+        // Not equal: the fits and their refinements start from the other side (0.0015 apart
+        // at most, measured on these three).
+        EXPECT_NEAR(matrix.score(r, c), reverse.result.alignments.front().overlay.score, 2e-3);
         EXPECT_LT(matrix.score(r, c), 0.99);
       }
     }
@@ -108,10 +113,69 @@ TEST_F(Matrix, OneAndTwoThreadsGiveTheSameMatrix) {
   ASSERT_EQ(one.transforms.size(), two.transforms.size());
   for (std::size_t k = 0; k < one.transforms.size(); ++k)
     EXPECT_EQ(one.transforms[k], two.transforms[k]) << k;
-  // Each run tells 1 to 6 of its six pairs, in order.
-  ASSERT_EQ(told.size(), 12u);
-  for (std::size_t k = 0; k < told.size(); ++k)
-    EXPECT_EQ(told[k], std::make_pair(k % 6 + 1, std::size_t{6}));
+  // Each run tells 1 to 6 of its six refined overlays, then 1 to 3 of its three full matches
+  // (every pair off the diagonal is among its rows' two best), in order.
+  ASSERT_EQ(told.size(), 18u);
+  for (std::size_t k = 0; k < told.size(); ++k) {
+    const std::size_t at = k % 9;
+    EXPECT_EQ(told[k], at < 6 ? std::make_pair(at + 1, std::size_t{6})
+                              : std::make_pair(at - 5, std::size_t{3}))
+        << k;
+  }
+}
+
+TEST_F(Matrix, TheRefinedOverlayRanksAndEachRowsBestGetsTheFullMatch) {
+  screening::MatrixOptions options;
+  options.transforms = true;
+  options.candidates = 0;
+  const screening::SimilarityMatrix refined = screening::similarity_matrix(ligands_, {}, options);
+  EXPECT_FALSE(refined.full.any());
+  // Each entry is a screen's stage 2 of the column's molecule against the row's, described alone.
+  std::vector<screening::ScreenQuery> queries;
+  for (const fs::path& ligand : ligands_) {
+    matching::MatchInput input;
+    input.path = ligand;
+    queries.push_back(
+        screening::make_screen_query(matching::prepare_input(input, {}).descriptors, {}));
+  }
+  screening::ScreenOptions every_start;
+  every_start.refine_starts = 0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    for (std::size_t j = i; j < 3; ++j) {
+      const screening::HitScore hit =
+          screening::refined_score(queries[i], queries[j].packed->sample().view(), every_start);
+      const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
+      EXPECT_NEAR(refined.score(r, c), hit.score, 1e-12) << i << ", " << j;
+      EXPECT_EQ(refined.score(c, r), refined.score(r, c));
+      EXPECT_TRUE(refined.transforms[i * 3 + j].isApprox(hit.transform, 1e-12));
+      // A self-overlay: the identity at score 1, in single precision.
+      if (i == j) {
+        EXPECT_NEAR(hit.score, 1.0, 1e-5);
+        EXPECT_TRUE(hit.transform.isApprox(Eigen::Matrix4d::Identity(), 1e-5));
+      }
+    }
+  }
+  // One candidate a row: the row's best off the diagonal gets match's score, the rest stay.
+  options.candidates = 1;
+  const screening::SimilarityMatrix one = screening::similarity_matrix(ligands_, {}, options);
+  options.exact = true;
+  const screening::SimilarityMatrix exact = screening::similarity_matrix(ligands_, {}, options);
+  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> best =
+      Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(3, 3, false);
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    Eigen::VectorXd row = refined.score.row(i);
+    row(i) = -1.0;
+    Eigen::Index j = 0;
+    row.maxCoeff(&j);
+    best(i, j) = best(j, i) = true;
+  }
+  EXPECT_EQ(one.full, best);
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    for (Eigen::Index j = 0; j < 3; ++j) {
+      EXPECT_EQ(one.score(i, j), best(i, j) ? exact.score(i, j) : refined.score(i, j))
+          << i << ", " << j;
+    }
+  }
 }
 
 TEST_F(Matrix, AgainstASecondSetGivesItsRowsAndColumns) {
@@ -137,6 +201,7 @@ TEST_F(Matrix, AgainstASecondSetGivesItsRowsAndColumns) {
 
 TEST_F(Matrix, APairThatCannotBeMatchedIsNamedAndScoresNan) {
   screening::MatrixOptions options;
+  options.exact = true;
   options.inputs.match.graph.max_nodes = 1;  // every pair has more critical-point pairs
   const screening::SimilarityMatrix matrix =
       screening::similarity_matrix({ligands_[0], ligands_[2]}, {}, options);
@@ -151,7 +216,7 @@ TEST_F(Matrix, APairThatCannotBeMatchedIsNamedAndScoresNan) {
   const screening::SimilarityMatrix cut =
       screening::similarity_matrix({ligands_[0], ligands_[2]}, {}, options);
   ASSERT_EQ(cut.warnings.size(), 1u);
-  EXPECT_NE(cut.warnings[0].find("of 3 pairs: the clique search stopped"), std::string::npos)
+  EXPECT_NE(cut.warnings[0].find("of 3 full matches: the clique search stopped"), std::string::npos)
       << cut.warnings[0];
 }
 

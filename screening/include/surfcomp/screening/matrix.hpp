@@ -1,6 +1,9 @@
-// All against all: each molecule of a set read and described once, then every pair matched as
-// `surfcomp match` matches two molecules, into a similarity matrix (the top alignment's overlay
-// score, docs/method.md §12.1), in parallel (TBB), the same whatever the thread count.
+// All against all: each molecule of a set read and described once, then every pair compared,
+// into a similarity matrix of overlay scores (docs/method.md §12.1), coarse to fine as a screen
+// ranks (screen.hpp): every pair's overlay refined from the principal-axes superpositions of the
+// two surfaces' samples (a screen's stages 1 and 2), then each molecule's best few given the full
+// match (`surfcomp match`, a screen's stage 3), whose top alignment's score replaces it; or every
+// pair given the full match. In parallel (TBB), the same whatever the thread count.
 #pragma once
 
 #include "surfcomp/core/option_table.hpp"
@@ -25,6 +28,12 @@ struct MatrixOptions {
   /// takes 8 bytes a cell (both triangles), 136 with the transforms; each molecule's
   /// description about 2 MB more (a drug-sized ligand). >= 1.
   std::int64_t max_pairs = 10'000'000;
+  /// Default 2 (docs/decisions.md, "Matrix candidates"). The columns of each row, best refined
+  /// overlay score first (the diagonal excepted), given the full match. 0: none.
+  std::size_t candidates = 2;
+  /// Default false. Every pair given the full match, the refined overlays skipped (20-50 ms a
+  /// pair of drug-sized ligands, against under 1 ms for a refined overlay).
+  bool exact = false;
   /// Default false. Keep each pair's top transform (SimilarityMatrix::transforms).
   bool transforms = false;
   /// Default none. Told (pairs done, pairs) as the pairs are matched, for a progress line.
@@ -32,7 +41,7 @@ struct MatrixOptions {
 };
 
 /// The user's options of a matrix: the surface, description and match options of a pair match
-/// without its sites, --max-pairs and --threads.
+/// without its sites, --candidates, --exact, --max-pairs and --threads.
 const options::Table<MatrixOptions>& matrix_option_table();
 
 /// One molecule of a set: a record of a molecule file.
@@ -49,9 +58,12 @@ struct SimilarityMatrix {
   /// True when rows and columns are one set: the pairs i < j are matched once (row i as REF)
   /// and the matrix is symmetric, the diagonal the self-matches.
   bool symmetric = false;
-  /// rows x columns. score(i, j): the top alignment's overlay score of columns[j] aligned onto
-  /// rows[i] (0 when no alignment; NaN when the pair could not be matched, see `warnings`).
+  /// rows x columns. score(i, j): the overlay score of columns[j] aligned onto rows[i]: the full
+  /// match's top alignment's where `full`, the refined overlay's elsewhere (0 when neither found
+  /// an alignment; NaN when the full match failed, see `warnings`).
   Eigen::MatrixXd score;
+  /// rows x columns: true where score is the full match's (MatrixOptions::candidates, exact).
+  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> full;
   /// With MatrixOptions::transforms, row-major (i * columns + j): the 4x4 rigid transform that
   /// moves columns[j] onto rows[i] (identity without an alignment).
   std::vector<Eigen::Matrix4d> transforms;
@@ -63,13 +75,17 @@ struct SimilarityMatrix {
   /// budget (alignments may be missing).
   std::vector<std::string> warnings;
   double describe_ms = 0.0;  ///< reading, surfaces and descriptions
-  double match_ms = 0.0;     ///< the pairs
+  double match_ms = 0.0;     ///< the pairs: their refined overlays and full matches
 };
 
 /// Every record of the molecule files `set` (SDF, MOL2, PDB, mmCIF, PQR; each file's records
-/// in order) read and described once as prepare_input describes a molecule, then matched all
-/// against all (`against` empty) or each of `set` (rows) against each of `against` (columns),
-/// as match_surfaces matches two prepared molecules. A record that cannot be read or described
+/// in order) read and described once as prepare_input describes a molecule, then compared all
+/// against all (`against` empty) or each of `set` (rows) against each of `against` (columns):
+/// every pair by the refined overlay of a screen's stage 2 (refined_score, every start), then
+/// each row's options.candidates best by the full match (match_surfaces, as for two prepared
+/// molecules), or with options.exact every pair by the full match. All against all, a pair is
+/// compared once (the lower index as the reference) and its mirrored cell gets the inverse
+/// transform. A record that cannot be read or described
 /// is left out and named in SimilarityMatrix::left_out; a pair that cannot be matched is named
 /// in SimilarityMatrix::warnings. Throws, before any work, OptionError for options outside
 /// their domain or that do not apply to a file (check_match_input), InputError for a file that
