@@ -20,7 +20,7 @@ constexpr const char* kUsage =
     "Reads and describes every molecule of the SET files once (each record of an SDF or MOL2\n"
     "file; a PDB, mmCIF or PQR file is one molecule), then compares every pair coarse to fine:\n"
     "each pair's overlay refined from the principal-axes superpositions (as a screen's stages 1\n"
-    "and 2), then each molecule's --candidates best neighbours aligned as `surfcomp match`\n"
+    "and 2), then each molecule's --full-matches best neighbours aligned as `surfcomp match`\n"
     "aligns two molecules (--exact: every pair). Writes the overlay scores (0-1) as a matrix:\n"
     "all against all, symmetric, its diagonal each molecule's self-overlay; or with --against,\n"
     "SET's molecules (rows) against those of the --against files (columns). A record that\n"

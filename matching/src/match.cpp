@@ -101,10 +101,15 @@ std::optional<Refinement> prepare_refinement(const harmonic::SurfaceDescriptors&
   std::optional<PackedQuery> packed_reference;
   PackedSample packed_probe;
   if (options.fine_top > 0) {
-    packed_reference.emplace(PackedSample(reference_sample, reference_atoms, overlay_options.sigma,
-                                          SampleKind::surface));
-    packed_probe =
-        PackedSample(probe_sample, probe_atoms, overlay_options.sigma, SampleKind::surface);
+    try {
+      packed_reference.emplace(PackedSample(reference_sample, reference_atoms,
+                                            overlay_options.sigma, SampleKind::surface));
+      packed_probe =
+          PackedSample(probe_sample, probe_atoms, overlay_options.sigma, SampleKind::surface);
+    } catch (const InputError&) {
+      // A sample too large for the packed index (2^26 cells): every start in double precision.
+      packed_reference.reset();
+    }
   }
   std::optional<SurfaceFit> fit;
   if (options.coverage_distance > 0.0 || options.icp_top > 0) {
@@ -203,15 +208,16 @@ std::vector<Placed> refine_axes_starts(const std::vector<RigidTransform>& starts
 /// principal-axes starts refined in single precision on the packed samples and scored in double
 /// precision there, then the `fine_top` best of them, distinct poses only, refined again in
 /// double precision from there, until the fine_top best are all so refined; the others keep
-/// their single-precision pose. The head's poses are set in
-/// `placed`; the principal-axes poses are returned, in the order of the starts. In parallel
-/// (TBB, one slot each): the result does not depend on the thread count.
+/// their single-precision pose. The head's poses are set in `placed`; the principal-axes poses
+/// are returned, in the order of the starts. In parallel (TBB, one slot each): the result does
+/// not depend on the thread count.
 std::vector<Placed> refine_coarse_to_fine(std::vector<Placed>& placed, std::size_t n,
                                           const Refinement& refinement, int fine_top) {
   const SurfaceOverlay& overlay = refinement.overlay;
   // The alignments of `placed` refined, then the axes starts.
   const std::vector<std::size_t> head = distinct_head(placed, n, overlay);
   std::vector<RigidTransform> starts;
+  starts.reserve(head.size() + refinement.axes_starts.size());
   for (const std::size_t k : head) starts.push_back(placed[k].transform);
   starts.insert(starts.end(), refinement.axes_starts.begin(), refinement.axes_starts.end());
   const PackedSampleView probe = refinement.packed_probe.view();
@@ -359,13 +365,14 @@ void polish_and_cover(Ordered& ordered, const MatchOptions& options, const Surfa
   });
 }
 
-/// The consensus order with its first options.refine_top alignments refined on the overlay
-/// (refine_consensus_head) and moved ahead together with the refined principal-axes starts
-/// (refine_axes_starts), best overlay score first, repeats after the distinct ones
-/// (order_distinct_then_repeats), the first polish_top of them polished where the overlay
-/// uses atoms (polish), polished by ICP and given their coverage (polish_and_cover); the rest
-/// follow in the consensus order, unscored. `probe_points` is set to the probe points the poses
-/// are compared on (the overlay's sample).
+/// The consensus order with its first options.refine_top alignments refined on the overlay and
+/// moved ahead together with the refined principal-axes starts, coarse to fine with
+/// options.fine_top (refine_coarse_to_fine), else each in double precision
+/// (refine_consensus_head, refine_axes_starts), best overlay score first, repeats after the
+/// distinct ones (order_distinct_then_repeats), the first polish_top of them polished where the
+/// overlay uses atoms (polish), polished by ICP and given their coverage (polish_and_cover); the
+/// rest follow in the consensus order, unscored. `probe_points` is set to the probe points the
+/// poses are compared on (the overlay's sample).
 std::vector<Placed> refine_and_order(
     const std::vector<RankedAlignment>& ranking, const std::vector<Cluster>& clusters,
     const harmonic::SurfaceDescriptors& reference, const harmonic::SurfaceDescriptors& probe,
@@ -385,7 +392,7 @@ std::vector<Placed> refine_and_order(
   const std::size_t n_refined =
       std::min(placed.size(), static_cast<std::size_t>(options.refine_top));
   std::vector<Placed> axes_poses;
-  if (options.fine_top > 0) {
+  if (refinement->packed_reference) {
     axes_poses = refine_coarse_to_fine(placed, n_refined, *refinement, options.fine_top);
   } else {
     refine_consensus_head(placed, n_refined, overlay);

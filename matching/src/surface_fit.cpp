@@ -130,7 +130,7 @@ struct Side {
   /// beyond `distance` (its hint), so that it descends only into boxes nearer than that.
   bool within(const Eigen::Vector3d& x, double distance) const {
     const double squared = distance * distance;
-    const double reach = distance + longest_edge;
+    const double reach = (distance + longest_edge) * (1.0 + 1e-9);  // rounding kept inside
     if (corner_test) {
       bool corner_within = false, corner_in_reach = false;
       corner_grid.for_each_near(x, reach, [&](int k) {

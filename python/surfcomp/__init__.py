@@ -914,7 +914,7 @@ _documented(
            "rows[i], the full match's top alignment's where ``full``, else the refined overlay's; "
            "0 without an alignment, NaN for a pair whose full match failed",
     full="(rows, columns) bool array: where ``scores`` is the full match's (each molecule's "
-         "``candidates`` best neighbours by the refined overlay, or every pair with "
+         "``full_matches`` best neighbours by the refined overlay, or every pair with "
          "``exact=True``)",
     transforms="with transforms=True, (rows, columns, 4, 4): the rigid transform that moves "
                "columns[j] onto rows[i]; else None",
@@ -936,10 +936,10 @@ def matrix(set, against=None, *, transforms: bool = False,
     an SDF or MOL2 file; a PDB, mmCIF or PQR file is one molecule) once and compares every pair,
     as ``surfcomp matrix`` does: all against all, or the set's molecules (rows) against those of
     the ``against`` files (columns). Every pair's overlay is refined from the principal-axes
-    superpositions (a screen's stages 1 and 2); each molecule's ``candidates`` best neighbours
-    are then aligned as :func:`match` aligns two molecules (every pair with ``exact=True``). A record that
-    cannot be read or described is left out and named in ``left_out``. With ``output``, the
-    matrix is also written there as CSV."""
+    superpositions (a screen's stages 1 and 2); each molecule's ``full_matches`` best neighbours
+    are then aligned as :func:`match` aligns two molecules (every pair with ``exact=True``). A
+    record that cannot be read or described is left out and named in ``left_out``. With
+    ``output``, the matrix is also written there as CSV."""
     def paths(files):
         if files is None:
             return []

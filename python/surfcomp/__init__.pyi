@@ -706,7 +706,7 @@ def matrix(
     icp_top: int = 0,
     icp_max_distance: float = 1.5,
     principal_axes_starts: int = 24,
-    candidates: int = 2,
+    full_matches: int = 2,
     exact: bool = False,
     max_pairs: int = 10000000,
     threads: int = 0,

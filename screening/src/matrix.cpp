@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <mutex>
@@ -64,7 +65,8 @@ std::string record_name(const MatrixMember& member) {
 
 struct Described {
   std::vector<MatrixMember> members;
-  /// Each molecule's descriptors (the full match) and packed samples (the refined overlay).
+  /// Each molecule's descriptors (the full match) and, unless exact, its packed samples (the
+  /// refined overlay).
   std::vector<ScreenQuery> queries;
 };
 
@@ -90,8 +92,14 @@ Described describe_records(const std::vector<io::MoleculeRecord>& records,
     try {
       matching::MatchInput input;
       input.molecule = io::read_record_molecule(records[k], options.inputs.input.read);
-      prepared[k] =
-          make_screen_query(std::move(matching::prepare_input(input, quiet).descriptors), screen);
+      harmonic::SurfaceDescriptors described =
+          std::move(matching::prepare_input(input, quiet).descriptors);
+      if (options.exact) {  // the full matches alone: no sample to pack
+        prepared[k].emplace();
+        prepared[k]->descriptors = std::move(described);
+      } else {
+        prepared[k] = make_screen_query(std::move(described), screen);
+      }
     } catch (const OptionError&) {
       throw;  // an option that cannot run, not a record that cannot be read
     } catch (const Error& error) {
@@ -115,8 +123,8 @@ Described describe_records(const std::vector<io::MoleculeRecord>& records,
 }
 
 /// The pairs (row, column) given the full match: every pair with `exact`; otherwise each row's
-/// `candidates` best columns by `score` (ties to the lower column; all against all, not the
-/// diagonal, and a pair once, as (lower, higher)). In order.
+/// `full_matches` best columns by `score` (a NaN last, ties to the lower column; all against all,
+/// not the diagonal, and a pair once, as (lower, higher)). In order.
 std::vector<std::pair<std::size_t, std::size_t>> full_match_pairs(const Eigen::MatrixXd& score,
                                                                   bool symmetric,
                                                                   const MatrixOptions& options) {
@@ -130,9 +138,11 @@ std::vector<std::pair<std::size_t, std::size_t>> full_match_pairs(const Eigen::M
       const auto value = [&](std::size_t j) {
         return score(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
       };
-      const std::size_t k = std::min(options.candidates, columns.size());
+      const std::size_t k = std::min(options.full_matches, columns.size());
       std::partial_sort(columns.begin(), columns.begin() + static_cast<std::ptrdiff_t>(k),
                         columns.end(), [&](std::size_t x, std::size_t y) {
+                          if (std::isnan(value(x)) != std::isnan(value(y)))
+                            return !std::isnan(value(x));
                           if (value(x) != value(y)) return value(x) > value(y);
                           return x < y;
                         });
@@ -162,15 +172,15 @@ const options::Table<MatrixOptions>& matrix_option_table() {
                     {"site-overlay-radius", "site-chem-weight", "site-lining-weight",
                      "site-principal-axes-starts"});
     t.push_back(options::field<M>(
-        {"candidates", options::Kind::integer,
+        {"full-matches", options::Kind::integer,
          "each molecule's best neighbours, by the refined overlay, given the full match (0: "
          "none)",
          "", 0, 1e6},
-        [](auto& m) -> auto& { return m.candidates; }));
+        [](auto& m) -> auto& { return m.full_matches; }));
     t.push_back(options::field<M>(
         {"exact", options::Kind::flag,
-         "give every pair the full match, not only each molecule's candidates (slow: 20-50 ms "
-         "a pair of ligands)"},
+         "give every pair the full match, not only each molecule's best by the refined overlay "
+         "(slow: tens of ms a pair of ligands)"},
         [](auto& m) -> auto& { return m.exact; }));
     t.push_back(options::field<M>(
         {"max-pairs", options::Kind::integer,

@@ -89,7 +89,8 @@ ShapeHit match_entry(const mesh::Surface& query, double query_extent, const Libr
     // the single-precision refinement stopped (MatchOptions::fine_top).
     matching::MatchInputOptions inputs = options.inputs;
     if (inputs.match.fine_top > 0) {
-      inputs.match.fine_top = std::max(inputs.match.fine_top, static_cast<int>(options.poses));
+      inputs.match.fine_top = std::max(
+          inputs.match.fine_top, static_cast<int>(std::min<std::size_t>(options.poses, 1000)));
     }
     const matching::InputMatch found = matching::match_inputs(reference, probe, inputs);
     hit.unit = found.unit;

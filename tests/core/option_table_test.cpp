@@ -11,6 +11,7 @@
 #include "surfcomp/mesh/surface.hpp"
 #include "surfcomp/molsurf/load_surface.hpp"
 #include "surfcomp/screening/library_build.hpp"
+#include "surfcomp/screening/matrix.hpp"
 #include "surfcomp/screening/screen.hpp"
 #include "test_data.hpp"
 
@@ -49,7 +50,8 @@ std::vector<Described> every_table() {
           described("describe", matching::describe_option_table()),
           described("pair match", matching::pair_match_option_table()),
           described("screen", screening::screen_option_table()),
-          described("library build", screening::library_build_option_table())};
+          described("library build", screening::library_build_option_table()),
+          described("matrix", screening::matrix_option_table())};
 }
 
 bool same_spec(const options::Spec& a, const options::Spec& b) {

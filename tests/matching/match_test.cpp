@@ -481,9 +481,8 @@ TEST(Match, AnAllTrueMaskInWholeSurfaceModeChangesNothing) {
   EXPECT_EQ(lining.atoms, 0.0);
 }
 
-// The options are checked before any work: a bad option is an OptionError naming it (a user's
-// option by its field, as options::named spells it, one no option sets by its field path) even
-// where the inputs would fail later (images on different grids are an InputError of the match).
+// Coarse to fine (fine_top) ends at the pose and score that refining every start in double
+// precision reaches, the moved copy recovered.
 TEST(Match, CoarseToFineEndsWhereEveryStartRefinedInDoublePrecisionEnds) {
   SURFCOMP_SHARED_OR_SKIP(file, std::string(kLigands) + "1TMN_ligand.sdf");
   const auto [reference, probe, motion] = moved_copy(file, 4242u);
@@ -515,6 +514,9 @@ TEST(Match, CoarseToFineEndsWhereEveryStartRefinedInDoublePrecisionEnds) {
   EXPECT_NEAR(static_cast<double>(scored(coarse)), static_cast<double>(scored(every)), 3.0);
 }
 
+// The options are checked before any work: a bad option is an OptionError naming it (a user's
+// option by its field, as options::named spells it, one no option sets by its field path) even
+// where the inputs would fail later (images on different grids are an InputError of the match).
 TEST(Match, OptionsAreValidatedOnEntryWithTheirNames) {
   const auto expect_named = [](const matching::MatchOptions& options, const std::string& name) {
     try {

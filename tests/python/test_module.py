@@ -561,12 +561,14 @@ def test_matrix_is_the_programs_and_matchs(program, shared, tmp_path):
     assert computed.symmetric and computed.left_out == []
     assert [m.source for m in computed.rows] == [str(f) for f in files]
     assert computed.scores.shape == (2, 2) and computed.transforms.shape == (2, 2, 4, 4)
-    # Each entry is match's top score and transform; the diagonal the self-match.
+    # The pair, one of each row's best two, is match's top score and transform; the diagonal the
+    # self-overlay (1 in single precision).
     pair = surfcomp.match(files[0], files[1], threads=1)
     assert computed.scores[0, 1] == pytest.approx(pair[0].overlay.score, abs=1e-12)
     assert computed.transforms[0, 1] == pytest.approx(pair[0].transform, abs=1e-12)
     assert computed.scores[1, 0] == computed.scores[0, 1]
-    assert np.diag(computed.scores) == pytest.approx([1.0, 1.0], abs=1e-6)
+    assert np.diag(computed.scores) == pytest.approx([1.0, 1.0], abs=1e-5)
+    assert computed.full.tolist() == [[False, True], [True, False]]
     # The program writes the same CSV.
     cli = run([program, "matrix", *files, "-o", tmp_path / "cli.csv"])
     assert cli.returncode == 0, cli.stderr

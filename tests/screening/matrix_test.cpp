@@ -127,7 +127,7 @@ TEST_F(Matrix, OneAndTwoThreadsGiveTheSameMatrix) {
 TEST_F(Matrix, TheRefinedOverlayRanksAndEachRowsBestGetsTheFullMatch) {
   screening::MatrixOptions options;
   options.transforms = true;
-  options.candidates = 0;
+  options.full_matches = 0;
   const screening::SimilarityMatrix refined = screening::similarity_matrix(ligands_, {}, options);
   EXPECT_FALSE(refined.full.any());
   // Each entry is a screen's stage 2 of the column's molecule against the row's, described alone.
@@ -156,7 +156,7 @@ TEST_F(Matrix, TheRefinedOverlayRanksAndEachRowsBestGetsTheFullMatch) {
     }
   }
   // One candidate a row: the row's best off the diagonal gets match's score, the rest stay.
-  options.candidates = 1;
+  options.full_matches = 1;
   const screening::SimilarityMatrix one = screening::similarity_matrix(ligands_, {}, options);
   options.exact = true;
   const screening::SimilarityMatrix exact = screening::similarity_matrix(ligands_, {}, options);

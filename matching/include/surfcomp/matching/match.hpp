@@ -151,11 +151,13 @@ struct Alignment {
   std::vector<std::pair<int, int>> cp_pairs;  ///< (REF critical point, PROBE critical point)
   int parent = 0;             ///< rank of the cluster this one merged into; 0 for a root
   std::vector<int> children;  ///< ranks of the two clusters merged into this one
-  bool refined = false;       ///< transform refined on the whole surfaces (refine_top)
-  OverlayScore overlay;       ///< Tanimoto scores of the transform (whole surfaces, or
-                              ///< the pocket linings of a site match), for the first
-                              ///< refine_top of the consensus ranking and the axes
-                              ///< starts; 0 for the others
+  /// Transform refined on the whole surfaces (refine_top); with fine_top, the best refined in
+  /// double precision, the others in single precision only.
+  bool refined = false;
+  OverlayScore overlay;  ///< Tanimoto scores of the transform (whole surfaces, or
+                         ///< the pocket linings of a site match), for the first
+                         ///< refine_top of the consensus ranking and the axes
+                         ///< starts; 0 for the others
   /// The heavy-atom fit of the transform (AtomOverlap::fit, width MatchOptions::atom_polish
   /// sigma), [0, 1], where the atom polish took part (two molecules, whole surfaces): the
   /// scored alignments are ordered by overlay.score + atom_polish.weight atom_fit. 0 otherwise.

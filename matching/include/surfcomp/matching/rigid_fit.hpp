@@ -18,7 +18,7 @@ struct RigidTransform {
   Eigen::Matrix4d matrix() const;
   /// The transform applied to each column of `points` (3 by N, A).
   Eigen::Matrix3Xd apply(const Eigen::Ref<const Eigen::Matrix3Xd>& points) const;
-  /// The inverse transform: R^T, -R^T t.
+  /// The inverse transform: R^T, -R^T t (R taken for a rotation).
   RigidTransform inverse() const;
   /// The transform of a homogeneous matrix [R t; 0 0 0 1] (R is taken as it is).
   static RigidTransform from_matrix(const Eigen::Matrix4d& matrix);

@@ -25,14 +25,14 @@ struct MatrixOptions {
   /// How the molecules are read, surfaced, described and matched; default as `surfcomp match`.
   matching::MatchInputOptions inputs;
   /// Default 10^7. A matrix of more pairs than this is refused before any work. The matrix
-  /// takes 8 bytes a cell (both triangles), 136 with the transforms; each molecule's
-  /// description about 2 MB more (a drug-sized ligand). >= 1.
+  /// takes 9 bytes a cell (both triangles, and `full`), 137 with the transforms; each molecule's
+  /// description and packed sample about 2 MB more (a drug-sized ligand). >= 1.
   std::int64_t max_pairs = 10'000'000;
-  /// Default 2 (docs/decisions.md, "Matrix candidates"). The columns of each row, best refined
+  /// Default 2 (docs/decisions.md, "Matrix full matches"). The columns of each row, best refined
   /// overlay score first (the diagonal excepted), given the full match. 0: none.
-  std::size_t candidates = 2;
-  /// Default false. Every pair given the full match, the refined overlays skipped (20-50 ms a
-  /// pair of drug-sized ligands, against under 1 ms for a refined overlay).
+  std::size_t full_matches = 2;
+  /// Default false. Every pair given the full match, the refined overlays skipped (docs/
+  /// benchmarks.md, "All-against-all matrix", gives both costs).
   bool exact = false;
   /// Default false. Keep each pair's top transform (SimilarityMatrix::transforms).
   bool transforms = false;
@@ -41,7 +41,7 @@ struct MatrixOptions {
 };
 
 /// The user's options of a matrix: the surface, description and match options of a pair match
-/// without its sites, --candidates, --exact, --max-pairs and --threads.
+/// without its sites, --full-matches, --exact, --max-pairs and --threads.
 const options::Table<MatrixOptions>& matrix_option_table();
 
 /// One molecule of a set: a record of a molecule file.
@@ -55,14 +55,15 @@ struct SimilarityMatrix {
   /// The molecules compared: the rows, and the columns (the same set for all against all),
   /// in file order, without those left out.
   std::vector<MatrixMember> rows, columns;
-  /// True when rows and columns are one set: the pairs i < j are matched once (row i as REF)
-  /// and the matrix is symmetric, the diagonal the self-matches.
+  /// True when rows and columns are one set: the pairs i < j are compared once (row i as REF)
+  /// and the matrix is symmetric, the diagonal the self-overlays (the self-matches with
+  /// MatrixOptions::exact).
   bool symmetric = false;
   /// rows x columns. score(i, j): the overlay score of columns[j] aligned onto rows[i]: the full
   /// match's top alignment's where `full`, the refined overlay's elsewhere (0 when neither found
   /// an alignment; NaN when the full match failed, see `warnings`).
   Eigen::MatrixXd score;
-  /// rows x columns: true where score is the full match's (MatrixOptions::candidates, exact).
+  /// rows x columns: true where score is the full match's (MatrixOptions::full_matches, exact).
   Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> full;
   /// With MatrixOptions::transforms, row-major (i * columns + j): the 4x4 rigid transform that
   /// moves columns[j] onto rows[i] (identity without an alignment).
@@ -82,7 +83,7 @@ struct SimilarityMatrix {
 /// in order) read and described once as prepare_input describes a molecule, then compared all
 /// against all (`against` empty) or each of `set` (rows) against each of `against` (columns):
 /// every pair by the refined overlay of a screen's stage 2 (refined_score, every start), then
-/// each row's options.candidates best by the full match (match_surfaces, as for two prepared
+/// each row's options.full_matches best by the full match (match_surfaces, as for two prepared
 /// molecules), or with options.exact every pair by the full match. All against all, a pair is
 /// compared once (the lower index as the reference) and its mirrored cell gets the inverse
 /// transform. A record that cannot be read or described
