@@ -3,6 +3,7 @@
 #include "command.hpp"
 #include "console.hpp"
 #include "options.hpp"
+#include "screen_mpi.hpp"
 
 #include "surfcomp/core/io/atomic_file.hpp"
 #include "surfcomp/core/io/command_files.hpp"
@@ -11,6 +12,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <string>
 
 namespace surfcomp::tools {
 namespace {
@@ -18,14 +20,16 @@ namespace {
 constexpr const char* kUsage =
     "usage: surfcomp matrix SET... [--against SET...] -o similarity.csv [options]\n\n"
     "Reads and describes every molecule of the SET files once (each record of an SDF or MOL2\n"
-    "file; a PDB, mmCIF or PQR file is one molecule), then compares every pair coarse to fine:\n"
-    "each pair's overlay refined from the principal-axes superpositions (as a screen's stages 1\n"
-    "and 2), then each molecule's --full-matches best neighbours aligned as `surfcomp match`\n"
-    "aligns two molecules (--exact: every pair). Writes the overlay scores (0-1) as a matrix:\n"
-    "all against all, symmetric, its diagonal each molecule's self-overlay; or with --against,\n"
-    "SET's molecules (rows) against those of the --against files (columns). A record that\n"
-    "cannot be read or described is left out, with a note naming it; a pair whose full match\n"
-    "fails (a limit such as --max-graph-nodes) scores nan, with a warning naming it.";
+    "file; a PDB, mmCIF or PQR file is one molecule), then compares every pair coarse to fine,\n"
+    "as a screen ranks: each pair's overlay at the principal-axes superpositions, each\n"
+    "molecule's --refined-overlays best neighbours' overlays refined, then its --full-matches\n"
+    "best aligned as `surfcomp match` aligns two molecules (--exact: every pair). Writes the\n"
+    "overlay scores (0-1) as a matrix: all against all, symmetric, its diagonal each molecule's\n"
+    "self-overlay; or with --against, SET's molecules (rows) against those of the --against\n"
+    "files (columns). A record that cannot be read or described is left out, with a note\n"
+    "naming it; a pair whose full match fails (a limit such as --max-graph-nodes) scores nan,\n"
+    "with a warning naming it. Under mpirun, the pairs are split over the processes (each\n"
+    "describes every molecule) and rank 0 writes the same matrix.";
 
 }  // namespace
 
@@ -63,15 +67,26 @@ int matrix(const std::vector<std::string>& args) {
   }
 
   const ThreadLimit limit(options.inputs.threads);
+  const bool under_mpi = launched_by_mpi();  // before the work: it loads the MPI module
   const std::vector<std::filesystem::path> set(inputs.begin(), inputs.end());
   const std::vector<std::filesystem::path> others(against.begin(), against.end());
-  const screening::SimilarityMatrix matrix = screening::similarity_matrix(set, others, options);
+  screening::SimilarityMatrix matrix;
+  int ranks = 1;
+  if (under_mpi) {
+    DistributedMatrix distributed = matrix_distributed(set, others, options);
+    if (!distributed.root) return 0;
+    matrix = std::move(distributed.matrix);
+    ranks = distributed.ranks;
+  } else {
+    matrix = screening::similarity_matrix(set, others, options);
+  }
   for (const std::string& line : matrix.left_out) console::note("left out: " + line);
   for (const std::string& line : matrix.warnings)
     std::fprintf(stderr, "surfcomp matrix: warning: %s\n", line.c_str());
-  console::summary("%zu x %zu molecules (%zu left out): described in %.0f ms, matched in %.0f ms\n",
-                   matrix.rows.size(), matrix.columns.size(), matrix.left_out.size(),
-                   matrix.describe_ms, matrix.match_ms);
+  console::summary(
+      "%zu x %zu molecules (%zu left out): described in %.0f ms, matched in %.0f ms%s\n",
+      matrix.rows.size(), matrix.columns.size(), matrix.left_out.size(), matrix.describe_ms,
+      matrix.match_ms, ranks > 1 ? (" over " + std::to_string(ranks) + " processes").c_str() : "");
   io::write_file_atomically(output,
                             [&](std::ostream& out) { screening::write_matrix_csv(out, matrix); });
   return 0;

@@ -66,6 +66,26 @@ class MpiExchange final : public screening::Exchange {
   int rank_, ranks_;
 };
 
+/// `work` on this rank's exchange between MPI's start and end; an error on a rank printed, as
+/// `command`'s, and the job aborted.
+template <class Result, class Work>
+Result on_ranks(const char* command, const Work& work) {
+  int rank = 0, ranks = 1;
+  mpi().init(&rank, &ranks);
+  Result result;
+  result.root = rank == 0;
+  result.ranks = ranks;
+  try {
+    MpiExchange exchange(rank, ranks);
+    work(exchange, result);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "surfcomp %s: rank %d: error: %s\n", command, rank, e.what());
+    mpi().abort(1);
+  }
+  mpi().finalize();
+  return result;
+}
+
 }  // namespace
 
 bool launched_by_mpi() {
@@ -85,20 +105,19 @@ bool launched_by_mpi() {
 DistributedScreen screen_distributed(const std::vector<const screening::ScreenQuery*>& queries,
                                      const screening::Library& library,
                                      const screening::ScreenOptions& options) {
-  int rank = 0, ranks = 1;
-  mpi().init(&rank, &ranks);
-  DistributedScreen result;
-  result.root = rank == 0;
-  result.ranks = ranks;
-  try {
-    MpiExchange exchange(rank, ranks);
-    result.result = screening::screen_queries(queries, library, options, exchange);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "surfcomp screen: rank %d: error: %s\n", rank, e.what());
-    mpi().abort(1);
-  }
-  mpi().finalize();
-  return result;
+  return on_ranks<DistributedScreen>(
+      "screen", [&](screening::Exchange& exchange, DistributedScreen& out) {
+        out.result = screening::screen_queries(queries, library, options, exchange);
+      });
+}
+
+DistributedMatrix matrix_distributed(const std::vector<std::filesystem::path>& set,
+                                     const std::vector<std::filesystem::path>& against,
+                                     const screening::MatrixOptions& options) {
+  return on_ranks<DistributedMatrix>(
+      "matrix", [&](screening::Exchange& exchange, DistributedMatrix& out) {
+        out.matrix = screening::similarity_matrix(set, against, options, exchange);
+      });
 }
 
 }  // namespace surfcomp::tools

@@ -1,8 +1,12 @@
-// The screen split over the ranks of an MPI job (tools/screen_mpi.cpp, built when MPI is found):
-// the one place of the program that calls MPI, through the MPI module it loads (mpi_module.hpp).
+// The screen and the matrix split over the ranks of an MPI job (tools/screen_mpi.cpp, built when
+// MPI is found): the one place of the program that calls MPI, through the MPI module it loads
+// (mpi_module.hpp).
 #pragma once
 
+#include "surfcomp/screening/matrix.hpp"
 #include "surfcomp/screening/screen.hpp"
+
+#include <filesystem>
 
 #include <vector>
 
@@ -27,5 +31,19 @@ struct DistributedScreen {
 DistributedScreen screen_distributed(const std::vector<const screening::ScreenQuery*>& queries,
                                      const screening::Library& library,
                                      const screening::ScreenOptions& options);
+
+/// The result of a matrix split over the ranks.
+struct DistributedMatrix {
+  bool root = true;  ///< rank 0: the one that writes the outputs
+  int ranks = 1;
+  screening::SimilarityMatrix matrix;  ///< its cells on rank 0 only
+};
+
+/// screening::similarity_matrix over the ranks of MPI_COMM_WORLD (its Exchange overload: the
+/// same matrix as one process, on rank 0). Initialises and finalises MPI; an error on one rank
+/// aborts the job after printing it. Every rank must give the same sets and options.
+DistributedMatrix matrix_distributed(const std::vector<std::filesystem::path>& set,
+                                     const std::vector<std::filesystem::path>& against,
+                                     const screening::MatrixOptions& options);
 
 }  // namespace surfcomp::tools

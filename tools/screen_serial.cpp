@@ -13,4 +13,10 @@ DistributedScreen screen_distributed(const std::vector<const screening::ScreenQu
   throw InputError("this surfcomp was built without MPI");
 }
 
+DistributedMatrix matrix_distributed(const std::vector<std::filesystem::path>& /*set*/,
+                                     const std::vector<std::filesystem::path>& /*against*/,
+                                     const screening::MatrixOptions& /*options*/) {
+  throw InputError("this surfcomp was built without MPI");
+}
+
 }  // namespace surfcomp::tools

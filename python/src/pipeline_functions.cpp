@@ -378,7 +378,7 @@ py::dict matrix(const std::vector<std::string>& set, const std::vector<std::stri
   }
   return py::dict(
       py::arg("scores") = owned_array(std::move(computed.score)),
-      py::arg("full") = owned_array(std::move(computed.full)), py::arg("transforms") = moves,
+      py::arg("stage") = owned_array(std::move(computed.stage)), py::arg("transforms") = moves,
       py::arg("rows") = members(computed.rows), py::arg("columns") = members(computed.columns),
       py::arg("symmetric") = computed.symmetric, py::arg("left_out") = computed.left_out,
       py::arg("warnings") = computed.warnings, py::arg("describe_ms") = computed.describe_ms,

@@ -897,7 +897,7 @@ class SimilarityMatrix(NamedTuple):
     """The molecules of one or two sets compared pair by pair (:func:`matrix`)."""
 
     scores: Any
-    full: Any
+    stage: Any
     transforms: Any
     rows: List[MatrixMember]
     columns: List[MatrixMember]
@@ -911,11 +911,12 @@ class SimilarityMatrix(NamedTuple):
 _documented(
     SimilarityMatrix,
     scores="(rows, columns) float array: the overlay score (0-1) of columns[j] aligned onto "
-           "rows[i], the full match's top alignment's where ``full``, else the refined overlay's; "
-           "0 without an alignment, NaN for a pair whose full match failed",
-    full="(rows, columns) bool array: where ``scores`` is the full match's (each molecule's "
-         "``full_matches`` best neighbours by the refined overlay, or every pair with "
-         "``exact=True``)",
+           "rows[i], the best found at the stage ``stage`` gives; 0 without an alignment, NaN "
+           "for a pair whose full match failed",
+    stage="(rows, columns) uint8 array: the stage of each score: 1, the best principal-axes "
+          "superposition; 2, its refinement (each molecule's ``refined_overlays`` best "
+          "neighbours); 3, the full match's top alignment (each molecule's ``full_matches`` "
+          "best, or every pair with ``exact=True``); 0, none",
     transforms="with transforms=True, (rows, columns, 4, 4): the rigid transform that moves "
                "columns[j] onto rows[i]; else None",
     rows="the molecules of the set, in file order, without those left out",
@@ -935,9 +936,10 @@ def matrix(set, against=None, *, transforms: bool = False,
     """Describes every molecule of the ``set`` files (a path or a list of paths: each record of
     an SDF or MOL2 file; a PDB, mmCIF or PQR file is one molecule) once and compares every pair,
     as ``surfcomp matrix`` does: all against all, or the set's molecules (rows) against those of
-    the ``against`` files (columns). Every pair's overlay is refined from the principal-axes
-    superpositions (a screen's stages 1 and 2); each molecule's ``full_matches`` best neighbours
-    are then aligned as :func:`match` aligns two molecules (every pair with ``exact=True``). A
+    the ``against`` files (columns). Every pair is overlaid at the principal-axes superpositions
+    (a screen's stage 1); each molecule's ``refined_overlays`` best neighbours get the overlay
+    refined (stage 2), and its ``full_matches`` best are then aligned as :func:`match` aligns two
+    molecules (every pair with ``exact=True``). A
     record that cannot be read or described is left out and named in ``left_out``. With
     ``output``, the matrix is also written there as CSV."""
     def paths(files):

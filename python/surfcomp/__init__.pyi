@@ -298,7 +298,7 @@ class MatrixMember(NamedTuple):
 
 class SimilarityMatrix(NamedTuple):
     scores: Any
-    full: Any
+    stage: Any
     transforms: Any
     rows: List[MatrixMember]
     columns: List[MatrixMember]
@@ -706,6 +706,7 @@ def matrix(
     icp_top: int = 0,
     icp_max_distance: float = 1.5,
     principal_axes_starts: int = 24,
+    refined_overlays: int = 0,
     full_matches: int = 2,
     exact: bool = False,
     max_pairs: int = 10000000,

@@ -14,7 +14,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <new>
@@ -122,23 +124,23 @@ Described describe_records(const std::vector<io::MoleculeRecord>& records,
   return out;
 }
 
-/// The pairs (row, column) given the full match: every pair with `exact`; otherwise each row's
-/// `full_matches` best columns by `score` (a NaN last, ties to the lower column; all against all,
-/// not the diagonal, and a pair once, as (lower, higher)). In order.
-std::vector<std::pair<std::size_t, std::size_t>> full_match_pairs(const Eigen::MatrixXd& score,
-                                                                  bool symmetric,
-                                                                  const MatrixOptions& options) {
+/// The pairs (row, column) of each row's `count` best columns by `score` (a NaN last, ties to the
+/// lower column), or of every column with `every`; all against all, a pair once, as (lower,
+/// higher), and the diagonal only with `every` or `diagonal`. In order.
+std::vector<std::pair<std::size_t, std::size_t>> best_pairs(const Eigen::MatrixXd& score,
+                                                            bool symmetric, std::size_t count,
+                                                            bool every, bool diagonal = false) {
   const auto n = static_cast<std::size_t>(score.rows()), m = static_cast<std::size_t>(score.cols());
   std::set<std::pair<std::size_t, std::size_t>> pairs;
   for (std::size_t i = 0; i < n; ++i) {
     std::vector<std::size_t> columns;
-    for (std::size_t j = 0; j < m; ++j)
-      if (options.exact ? (!symmetric || j >= i) : (!symmetric || j != i)) columns.push_back(j);
-    if (!options.exact) {
+    for (std::size_t j = symmetric && every ? i : 0; j < m; ++j)
+      if (!symmetric || j != i || every) columns.push_back(j);
+    if (!every) {
       const auto value = [&](std::size_t j) {
         return score(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
       };
-      const std::size_t k = std::min(options.full_matches, columns.size());
+      const std::size_t k = std::min(count, columns.size());
       std::partial_sort(columns.begin(), columns.begin() + static_cast<std::ptrdiff_t>(k),
                         columns.end(), [&](std::size_t x, std::size_t y) {
                           if (std::isnan(value(x)) != std::isnan(value(y)))
@@ -147,11 +149,72 @@ std::vector<std::pair<std::size_t, std::size_t>> full_match_pairs(const Eigen::M
                           return x < y;
                         });
       columns.resize(k);
+      if (symmetric && diagonal) columns.push_back(i);
     }
     for (const std::size_t j : columns)
       pairs.emplace(symmetric ? std::min(i, j) : i, symmetric ? std::max(i, j) : j);
   }
   return {pairs.begin(), pairs.end()};
+}
+
+using Pair = std::pair<std::size_t, std::size_t>;
+
+/// A cell of the matrix as a stage computes it; stage 0: no alignment found.
+struct Cell {
+  double score = 0.0;
+  std::uint8_t stage = 0;
+  Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
+};
+
+/// A cell as the processes exchange it: its score, its stage and, with `transforms`, the
+/// transform's 16 numbers, row-major.
+void put_cell(const Cell& cell, bool transforms, double* out) {
+  out[0] = cell.score;
+  out[1] = cell.stage;
+  if (!transforms) return;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) out[2 + 4 * a + b] = cell.transform(a, b);
+}
+
+Cell get_cell(const double* in, bool transforms) {
+  Cell cell{in[0], static_cast<std::uint8_t>(in[1]), Eigen::Matrix4d::Identity()};
+  if (!transforms) return cell;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) cell.transform(a, b) = in[2 + 4 * a + b];
+  return cell;
+}
+
+/// The pairs of every row of an n x m matrix that is process's (row mod processes), each row's
+/// columns in order (all against all, from the diagonal on).
+std::vector<Pair> row_share(std::size_t n, std::size_t m, bool symmetric, int process,
+                            int processes) {
+  std::vector<Pair> pairs;
+  for (auto i = static_cast<std::size_t>(process); i < n; i += static_cast<std::size_t>(processes))
+    for (std::size_t j = symmetric ? i : 0; j < m; ++j) pairs.emplace_back(i, j);
+  return pairs;
+}
+
+/// The pairs of a list that are process's: the k-th to process k mod processes.
+std::vector<Pair> share(const std::vector<Pair>& pairs, int process, int processes) {
+  std::vector<Pair> mine;
+  for (auto k = static_cast<std::size_t>(process); k < pairs.size();
+       k += static_cast<std::size_t>(processes))
+    mine.push_back(pairs[k]);
+  return mine;
+}
+
+/// Process 0's pairs, on every process.
+std::vector<Pair> broadcast_pairs(Exchange& exchange, const std::vector<Pair>& pairs) {
+  std::vector<std::uint64_t> flat;
+  flat.reserve(2 * pairs.size());
+  for (const auto& [i, j] : pairs) {
+    flat.push_back(i);
+    flat.push_back(j);
+  }
+  flat = exchange.broadcast(std::move(flat));
+  std::vector<Pair> out(flat.size() / 2);
+  for (std::size_t k = 0; k < out.size(); ++k) out[k] = {flat[2 * k], flat[2 * k + 1]};
+  return out;
 }
 
 }  // namespace
@@ -172,9 +235,15 @@ const options::Table<MatrixOptions>& matrix_option_table() {
                     {"site-overlay-radius", "site-chem-weight", "site-lining-weight",
                      "site-principal-axes-starts"});
     t.push_back(options::field<M>(
+        {"refined-overlays", options::Kind::integer,
+         "each molecule's best neighbours, by the overlay at the principal-axes superpositions, "
+         "whose overlay is refined (0: every pair's)",
+         "", 0, 1e6},
+        [](auto& m) -> auto& { return m.refined_overlays; }));
+    t.push_back(options::field<M>(
         {"full-matches", options::Kind::integer,
-         "each molecule's best neighbours, by the refined overlay, given the full match (0: "
-         "none)",
+         "each molecule's best neighbours, by the overlay after refinement, given the full "
+         "match (0: none)",
          "", 0, 1e6},
         [](auto& m) -> auto& { return m.full_matches; }));
     t.push_back(options::field<M>(
@@ -195,6 +264,13 @@ const options::Table<MatrixOptions>& matrix_option_table() {
 SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set,
                                    const std::vector<std::filesystem::path>& against,
                                    const MatrixOptions& options) {
+  SingleProcess alone;
+  return similarity_matrix(set, against, options, alone);
+}
+
+SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set,
+                                   const std::vector<std::filesystem::path>& against,
+                                   const MatrixOptions& options, Exchange& exchange) {
   options::check_all(matrix_option_table(), options);
   matching::validate(options.inputs.match);
   SimilarityMatrix out;
@@ -243,81 +319,142 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
 
   clock.restart();
   const std::size_t n = rows.queries.size(), m = cols.queries.size();
-  out.score = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
-  out.full.setConstant(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m), false);
-  if (options.transforms) out.transforms.assign(n * m, Eigen::Matrix4d::Identity());
-  // A cell and, all against all, its mirror: the same score, the inverse transform.
-  const auto set_cell = [&](std::size_t i, std::size_t j, double score,
-                            const Eigen::Matrix4d& transform) {
+  const bool root = exchange.process() == 0;
+  if (root) {
+    out.score = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
+    out.stage.setZero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
+    if (options.transforms) out.transforms.assign(n * m, Eigen::Matrix4d::Identity());
+  }
+  // A cell and, all against all, its mirror: the same score and stage, the inverse transform.
+  const auto set_cell = [&](std::size_t i, std::size_t j, const Cell& cell) {
     const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
-    out.score(r, c) = score;
-    if (symmetric) out.score(c, r) = score;
+    out.score(r, c) = cell.score;
+    out.stage(r, c) = cell.stage;
+    if (symmetric) {
+      out.score(c, r) = cell.score;
+      out.stage(c, r) = cell.stage;
+    }
     if (!options.transforms) return;
-    out.transforms[i * m + j] = transform;
+    out.transforms[i * m + j] = cell.transform;
     if (symmetric && i != j) {
       out.transforms[j * m + i] =
-          matching::RigidTransform::from_matrix(transform).inverse().matrix();
+          matching::RigidTransform::from_matrix(cell.transform).inverse().matrix();
     }
   };
-  std::size_t done = 0, total = 0;
-  std::mutex tell;  // failed, done and the progress callback
-  const auto told = [&] {
-    if (!options.progress) return;
-    const std::lock_guard<std::mutex> lock(tell);
-    options.progress(++done, total);
+  // The pairs that failed (row, column, why), and how many pairs' clique searches were cut; few,
+  // so kept apart from the matrix's cells.
+  std::vector<std::tuple<std::size_t, std::size_t, std::string>> failed;
+  std::size_t cuts = 0;
+  // One stage over the processes: this process's pairs, `mine`, computed in parallel, then every
+  // process's cells gathered and set on process 0 (`theirs(r)`: process r's pairs, in order).
+  const auto run_stage = [&](std::uint8_t stage, const std::vector<Pair>& mine, const auto& compute,
+                             const auto& theirs) {
+    const std::size_t width = options.transforms ? 18 : 2;
+    std::vector<double> local(mine.size() * width);
+    std::vector<std::string> why(mine.size());
+    std::atomic<std::size_t> cut{0}, done{0};
+    std::mutex tell;
+    tbb::parallel_for(std::size_t{0}, mine.size(), [&](std::size_t k) {
+      Cell cell;
+      try {
+        cell = compute(mine[k].first, mine[k].second, cut);
+      } catch (const Error& error) {
+        cell = {std::numeric_limits<double>::quiet_NaN(), stage, Eigen::Matrix4d::Identity()};
+        why[k] = error.what();
+      }
+      put_cell(cell, options.transforms, local.data() + k * width);
+      if (!options.progress) return;
+      const std::lock_guard<std::mutex> lock(tell);
+      options.progress(++done, mine.size());
+    });
+    // After the cells: the cut count, the failures, then each failure's pair and text.
+    std::vector<double> notes{static_cast<double>(cut.load()), 0.0};
+    for (std::size_t k = 0; k < why.size(); ++k) {
+      if (why[k].empty()) continue;
+      notes[1] += 1.0;
+      notes.push_back(static_cast<double>(k));
+      notes.push_back(static_cast<double>(why[k].size()));
+      for (const char c : why[k]) notes.push_back(static_cast<unsigned char>(c));
+    }
+    const std::vector<double> cells = exchange.gather(local);
+    const std::vector<double> said = exchange.gather(notes);
+    if (!root) return;
+    std::size_t at = 0, note = 0;
+    for (int process = 0; process < exchange.processes(); ++process) {
+      const std::vector<Pair> pairs = theirs(process);
+      for (const auto& [i, j] : pairs) {
+        const Cell cell = get_cell(cells.data() + at, options.transforms);
+        if (cell.stage != 0) set_cell(i, j, cell);  // 0: no alignment, the cell stays
+        at += width;
+      }
+      cuts += static_cast<std::size_t>(said[note++]);
+      const auto failures = static_cast<std::size_t>(said[note++]);
+      for (std::size_t f = 0; f < failures; ++f) {
+        const auto k = static_cast<std::size_t>(said[note++]);
+        const auto length = static_cast<std::size_t>(said[note++]);
+        std::string text;
+        for (std::size_t c = 0; c < length; ++c)
+          text += static_cast<char>(static_cast<unsigned char>(said[note++]));
+        failed.emplace_back(pairs[k].first, pairs[k].second, std::move(text));
+      }
+    }
+  };
+  // A stage of pairs process 0 chose: the list told to every process, each taking its share.
+  const auto run_chosen = [&](std::uint8_t stage, const std::function<std::vector<Pair>()>& choose,
+                              const auto& compute) {
+    const std::vector<Pair> pairs =
+        broadcast_pairs(exchange, root ? choose() : std::vector<Pair>{});
+    run_stage(stage, share(pairs, exchange.process(), exchange.processes()), compute,
+              [&](int process) { return share(pairs, process, exchange.processes()); });
+    return pairs.size();
   };
 
+  const ScreenOptions screen = screen_options(options);
+  const auto sample = [&](std::size_t j) { return cols.queries[j].packed->sample().view(); };
+  const auto fast = [&](std::size_t i, std::size_t j, std::atomic<std::size_t>&) {
+    const HitScore hit = fast_score(rows.queries[i], sample(j), screen);
+    return Cell{hit.score, 1, hit.transform};
+  };
+  const auto refined = [&](std::size_t i, std::size_t j, std::atomic<std::size_t>&) {
+    const HitScore hit = refined_score(rows.queries[i], sample(j), screen);
+    return Cell{hit.score, 2, hit.transform};
+  };
   if (!options.exact) {
-    const ScreenOptions screen = screen_options(options);
-    total = symmetric ? n * (n + 1) / 2 : n * m;
-    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
-      tbb::parallel_for(symmetric ? i : std::size_t{0}, m, [&](std::size_t j) {
-        const HitScore hit =
-            refined_score(rows.queries[i], cols.queries[j].packed->sample().view(), screen);
-        set_cell(i, j, hit.score, hit.transform);
-        told();
-      });
-    });
+    // Every pair, a row at a time to each process: stage 1, or stage 2 when every pair gets it.
+    const auto rows_of = [&](int process) {
+      return row_share(n, m, symmetric, process, exchange.processes());
+    };
+    const std::vector<Pair> mine = rows_of(exchange.process());
+    if (options.refined_overlays == 0) {
+      run_stage(2, mine, refined, rows_of);
+    } else {
+      run_stage(1, mine, fast, rows_of);
+      run_chosen(
+          2,
+          [&] { return best_pairs(out.score, symmetric, options.refined_overlays, false, true); },
+          refined);
+    }
   }
-
-  const std::vector<std::pair<std::size_t, std::size_t>> pairs =
-      full_match_pairs(out.score, symmetric, options);
-  done = 0;
-  total = pairs.size();
-  // The pairs that failed (row, column, why), in the order they ended, and how many pairs'
-  // clique searches were cut; few, so kept apart from the matrix's cells.
-  std::vector<std::tuple<std::size_t, std::size_t, std::string>> failed;
-  std::atomic<std::size_t> cuts{0};
   // The matrix keeps the top score alone: no alignment's coverage is measured.
   matching::MatchOptions full_match = options.inputs.match;
   full_match.coverage_distance = 0.0;
-  tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
-    const auto [i, j] = pairs[k];
-    try {
-      const matching::MatchResult result = matching::match_surfaces(
-          rows.queries[i].descriptors, cols.queries[j].descriptors, full_match);
-      if (!result.cliques_complete) ++cuts;
-      // Without an alignment the refined overlay's stays (0 with exact).
-      if (!result.alignments.empty()) {
+  const std::size_t full_matches = run_chosen(
+      3, [&] { return best_pairs(out.score, symmetric, options.full_matches, options.exact); },
+      [&](std::size_t i, std::size_t j, std::atomic<std::size_t>& cut) {
+        const matching::MatchResult result = matching::match_surfaces(
+            rows.queries[i].descriptors, cols.queries[j].descriptors, full_match);
+        if (!result.cliques_complete) ++cut;
+        if (result.alignments.empty()) return Cell{};  // the former stage's cell stays
         const matching::Alignment& top = result.alignments.front();
-        set_cell(i, j, top.overlay.score, top.transform);
-        out.full(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = true;
-        if (symmetric) out.full(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i)) = true;
-      }
-    } catch (const Error& error) {
-      set_cell(i, j, std::numeric_limits<double>::quiet_NaN(), Eigen::Matrix4d::Identity());
-      const std::lock_guard<std::mutex> lock(tell);
-      failed.emplace_back(i, j, error.what());
-    }
-    told();
-  });
-  std::sort(failed.begin(), failed.end());  // in pair order, whatever the threads
+        return Cell{top.overlay.score, 3, top.transform};
+      });
+  std::sort(failed.begin(), failed.end());  // in pair order, whatever the processes and threads
   for (const auto& [i, j, why] : failed) {
     out.warnings.push_back(record_name(rows.members[i]) + " and " + record_name(cols.members[j]) +
                            ": not matched (its score is nan): " + why);
   }
   if (cuts > 0) {
-    out.warnings.push_back(std::to_string(cuts.load()) + " of " + std::to_string(pairs.size()) +
+    out.warnings.push_back(std::to_string(cuts) + " of " + std::to_string(full_matches) +
                            " full matches: the clique search stopped at its budget (" +
                            options::named("max_clique_work") + ", " +
                            options::named("max_cliques") + "): alignments may be missing");

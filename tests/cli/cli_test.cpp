@@ -605,5 +605,49 @@ TEST_F(Cli, MatrixWritesTheSetsScoresAndRefusesWhatCannotRun) {
   EXPECT_NE(no_output.err.find("--output"), std::string::npos) << no_output.err;
 }
 
+// The processes of an MPI job split the pairs of every stage; rank 0 writes the same matrix as
+// one process, a failed full match's warning included.
+TEST_F(Cli, MatrixIsTheSameUnderMpiWithOneTwoAndThreeProcesses) {
+#ifndef SURFCOMP_MPIEXEC
+  GTEST_SKIP() << "surfcomp was built without MPI";
+#else
+  std::string set;
+  for (const char* name : {"1THL", "1TMN", "1TLP", "3TMN", "4TMN"}) {
+    SURFCOMP_SHARED_OR_SKIP(ligand,
+                            "thermolysin/ligands-original/ligand" + std::string(name) + ".sdf");
+    set += " " + ligand.string();
+  }
+  // Stage 1 for every pair, two refined a row, one full match a row; and a limit that makes a
+  // full match fail.
+  const std::string options = " --refined-overlays 2 --full-matches 1 --threads 1";
+  const std::string failing = " --max-graph-nodes 30 --full-matches 2 --threads 1";
+  const fs::path serial = scratch("serial.csv"), serial_failing = scratch("serial_failing.csv");
+  ASSERT_EQ(run("matrix" + set + " -o " + serial.string() + options).status, 0);
+  const ProgramRun alone = run("matrix" + set + " -o " + serial_failing.string() + failing);
+  ASSERT_EQ(alone.status, 0) << alone.err;
+  ASSERT_NE(alone.err.find("not matched (its score is nan)"), std::string::npos) << alone.err;
+  for (const char* ranks : {"1", "2", "3"}) {
+    const std::string mpirun =
+        std::string(SURFCOMP_MPIEXEC) + " --allow-run-as-root --oversubscribe -np " + ranks + " ";
+    const fs::path csv = scratch("mpi" + std::string(ranks) + ".csv");
+    ProgramRun r =
+        test::run_program("matrix" + set + " -o " + csv.string() + options, {{}, mpirun});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(file_bytes(csv), file_bytes(serial)) << ranks << " processes";
+    r = test::run_program("matrix" + set + " -o " + csv.string() + failing, {{}, mpirun});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(file_bytes(csv), file_bytes(serial_failing)) << ranks << " processes";
+    const auto warnings = [](const std::string& err) {
+      std::string out;
+      for (std::size_t at = err.find("warning:"); at != std::string::npos;
+           at = err.find("warning:", at + 1))
+        out += err.substr(at, err.find('\n', at) - at) + "\n";
+      return out;
+    };
+    EXPECT_EQ(warnings(r.err), warnings(alone.err)) << ranks << " processes";
+  }
+#endif
+}
+
 }  // namespace
 }  // namespace surfcomp

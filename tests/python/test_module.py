@@ -568,7 +568,7 @@ def test_matrix_is_the_programs_and_matchs(program, shared, tmp_path):
     assert computed.transforms[0, 1] == pytest.approx(pair[0].transform, abs=1e-12)
     assert computed.scores[1, 0] == computed.scores[0, 1]
     assert np.diag(computed.scores) == pytest.approx([1.0, 1.0], abs=1e-5)
-    assert computed.full.tolist() == [[False, True], [True, False]]
+    assert computed.stage.tolist() == [[2, 3], [3, 2]]
     # The program writes the same CSV.
     cli = run([program, "matrix", *files, "-o", tmp_path / "cli.csv"])
     assert cli.returncode == 0, cli.stderr

@@ -1,6 +1,7 @@
 // The similarity matrix: exact, its entries are `surfcomp match`'s top overlay scores and
 // transforms, pair by pair; by default the refined overlays of a screen's stage 2, each row's
-// best then given match's; all against all it is symmetric, its diagonal the self-match (score 1
+// best then given match's; with refined_overlays, a screen's stage 1 and each row's best by it
+// refined; all against all it is symmetric, its diagonal the self-match (score 1
 // at the identity); the same with one thread and two; a record that cannot be read is left out and
 // named while the others are compared; an empty set, a set of one, too many pairs and a file
 // that is not a molecule file are refused before any work.
@@ -14,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -61,7 +63,7 @@ TEST_F(Matrix, ExactEntriesAreTheTopScoresAndTransformsOfMatch) {
   ASSERT_EQ(matrix.rows.size(), 3u);
   ASSERT_TRUE(matrix.symmetric);
   EXPECT_TRUE(matrix.left_out.empty());
-  EXPECT_TRUE(matrix.full.all());
+  EXPECT_TRUE((matrix.stage.array() == 3).all());
   for (std::size_t i = 0; i < 3; ++i) {
     for (std::size_t j = i; j < 3; ++j) {
       matching::MatchInput reference, probe;
@@ -129,7 +131,7 @@ TEST_F(Matrix, TheRefinedOverlayRanksAndEachRowsBestGetsTheFullMatch) {
   options.transforms = true;
   options.full_matches = 0;
   const screening::SimilarityMatrix refined = screening::similarity_matrix(ligands_, {}, options);
-  EXPECT_FALSE(refined.full.any());
+  EXPECT_TRUE((refined.stage.array() == 2).all());
   // Each entry is a screen's stage 2 of the column's molecule against the row's, described alone.
   std::vector<screening::ScreenQuery> queries;
   for (const fs::path& ligand : ligands_) {
@@ -160,22 +162,79 @@ TEST_F(Matrix, TheRefinedOverlayRanksAndEachRowsBestGetsTheFullMatch) {
   const screening::SimilarityMatrix one = screening::similarity_matrix(ligands_, {}, options);
   options.exact = true;
   const screening::SimilarityMatrix exact = screening::similarity_matrix(ligands_, {}, options);
-  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> best =
-      Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(3, 3, false);
+  Eigen::Matrix<std::uint8_t, Eigen::Dynamic, Eigen::Dynamic> best =
+      Eigen::Matrix<std::uint8_t, Eigen::Dynamic, Eigen::Dynamic>::Constant(3, 3, 2);
   for (Eigen::Index i = 0; i < 3; ++i) {
     Eigen::VectorXd row = refined.score.row(i);
     row(i) = -1.0;
     Eigen::Index j = 0;
     row.maxCoeff(&j);
-    best(i, j) = best(j, i) = true;
+    best(i, j) = best(j, i) = 3;
   }
-  EXPECT_EQ(one.full, best);
+  EXPECT_EQ(one.stage, best);
   for (Eigen::Index i = 0; i < 3; ++i) {
     for (Eigen::Index j = 0; j < 3; ++j) {
-      EXPECT_EQ(one.score(i, j), best(i, j) ? exact.score(i, j) : refined.score(i, j))
+      EXPECT_EQ(one.score(i, j), best(i, j) == 3 ? exact.score(i, j) : refined.score(i, j))
           << i << ", " << j;
     }
   }
+}
+
+TEST_F(Matrix, WithRefinedOverlaysEachRowsBestByStageOneIsRefined) {
+  // Four molecules (a record twice, from another file), so that a row has neighbours left out.
+  test::TempDir dir;
+  std::vector<fs::path> set = ligands_;
+  set.push_back(dir.write("again.sdf", text_of(ligands_[2])));
+  screening::MatrixOptions options;
+  options.transforms = true;
+  options.full_matches = 0;
+  const screening::SimilarityMatrix every = screening::similarity_matrix(set, {}, options);
+  options.refined_overlays = 1;
+  const screening::SimilarityMatrix one = screening::similarity_matrix(set, {}, options);
+  std::vector<screening::ScreenQuery> queries;
+  for (const fs::path& ligand : set) {
+    matching::MatchInput input;
+    input.path = ligand;
+    queries.push_back(
+        screening::make_screen_query(matching::prepare_input(input, {}).descriptors, {}));
+  }
+  screening::ScreenOptions every_start;
+  every_start.refine_starts = 0;
+  Eigen::MatrixXd fast(4, 4);
+  for (Eigen::Index i = 0; i < 4; ++i) {
+    for (Eigen::Index j = i; j < 4; ++j) {
+      fast(i, j) = fast(j, i) =
+          screening::fast_score(queries[static_cast<std::size_t>(i)],
+                                queries[static_cast<std::size_t>(j)].packed->sample().view(),
+                                every_start)
+              .score;
+    }
+  }
+  // Refined: the diagonal and each row's best by stage 1 (and its mirror); stage 1 elsewhere.
+  Eigen::Matrix<std::uint8_t, Eigen::Dynamic, Eigen::Dynamic> stage =
+      Eigen::Matrix<std::uint8_t, Eigen::Dynamic, Eigen::Dynamic>::Constant(4, 4, 1);
+  for (Eigen::Index i = 0; i < 4; ++i) {
+    Eigen::VectorXd row = fast.row(i);
+    row(i) = -1.0;
+    Eigen::Index j = 0;
+    row.maxCoeff(&j);
+    stage(i, j) = stage(j, i) = stage(i, i) = 2;
+  }
+  EXPECT_EQ(one.stage, stage);
+  EXPECT_GT((stage.array() == 1).count(), 0);  // some pairs are left at stage 1
+  for (Eigen::Index i = 0; i < 4; ++i) {
+    for (Eigen::Index j = 0; j < 4; ++j) {
+      // A refined cell is every pair's; a stage-1 cell is the fast score, no better.
+      if (stage(i, j) == 2) {
+        EXPECT_EQ(one.score(i, j), every.score(i, j)) << i << ", " << j;
+      } else {
+        EXPECT_NEAR(one.score(i, j), fast(i, j), 1e-12) << i << ", " << j;
+        EXPECT_LE(one.score(i, j), every.score(i, j) + 1e-12) << i << ", " << j;
+      }
+    }
+  }
+  // The copy's pair is its best, at the self-overlay's 1.
+  EXPECT_NEAR(one.score(2, 3), 1.0, 1e-5);
 }
 
 TEST_F(Matrix, AgainstASecondSetGivesItsRowsAndColumns) {

@@ -1,13 +1,16 @@
 // All against all: each molecule of a set read and described once, then every pair compared,
 // into a similarity matrix of overlay scores (docs/method.md §12.1), coarse to fine as a screen
-// ranks (screen.hpp): every pair's overlay refined from the principal-axes superpositions of the
-// two surfaces' samples (a screen's stages 1 and 2), then each molecule's best few given the full
-// match (`surfcomp match`, a screen's stage 3), whose top alignment's score replaces it; or every
-// pair given the full match. In parallel (TBB), the same whatever the thread count.
+// ranks (screen.hpp): every pair's overlay at the principal-axes superpositions of the two
+// surfaces' samples (a screen's stage 1), each molecule's best neighbours' overlays refined from
+// them (stage 2), then each molecule's best few given the full match (`surfcomp match`, a screen's
+// stage 3), whose top alignment's score replaces it; or every pair given the full match. Each
+// cell keeps the best overlay found for it, and says at which stage. In parallel (TBB), the same
+// whatever the thread count.
 #pragma once
 
 #include "surfcomp/core/option_table.hpp"
 #include "surfcomp/matching/match_inputs.hpp"
+#include "surfcomp/screening/exchange.hpp"
 
 #include <Eigen/Core>
 
@@ -25,11 +28,14 @@ struct MatrixOptions {
   /// How the molecules are read, surfaced, described and matched; default as `surfcomp match`.
   matching::MatchInputOptions inputs;
   /// Default 10^7. A matrix of more pairs than this is refused before any work. The matrix
-  /// takes 9 bytes a cell (both triangles, and `full`), 137 with the transforms; each molecule's
+  /// takes 9 bytes a cell (both triangles, and `stage`), 137 with the transforms; each molecule's
   /// description and packed sample about 2 MB more (a drug-sized ligand). >= 1.
   std::int64_t max_pairs = 10'000'000;
-  /// Default 2 (docs/decisions.md, "Matrix full matches"). The columns of each row, best refined
-  /// overlay score first (the diagonal excepted), given the full match. 0: none.
+  /// Default 0 (docs/decisions.md, "Matrix coarse to fine"). The columns of each row, best
+  /// stage-1 score first (the diagonal excepted), whose overlay is refined; 0: every pair's.
+  std::size_t refined_overlays = 0;
+  /// Default 2 (docs/decisions.md, "Matrix coarse to fine"). The columns of each row, best
+  /// score after stage 2 first (the diagonal excepted), given the full match. 0: none.
   std::size_t full_matches = 2;
   /// Default false. Every pair given the full match, the refined overlays skipped (docs/
   /// benchmarks.md, "All-against-all matrix", gives both costs).
@@ -59,12 +65,14 @@ struct SimilarityMatrix {
   /// and the matrix is symmetric, the diagonal the self-overlays (the self-matches with
   /// MatrixOptions::exact).
   bool symmetric = false;
-  /// rows x columns. score(i, j): the overlay score of columns[j] aligned onto rows[i]: the full
-  /// match's top alignment's where `full`, the refined overlay's elsewhere (0 when neither found
-  /// an alignment; NaN when the full match failed, see `warnings`).
+  /// rows x columns. score(i, j): the overlay score of columns[j] aligned onto rows[i], the best
+  /// found at the stage `stage` gives (0 when none found an alignment; NaN when the full match
+  /// failed, see `warnings`).
   Eigen::MatrixXd score;
-  /// rows x columns: true where score is the full match's (MatrixOptions::full_matches, exact).
-  Eigen::Matrix<bool, Eigen::Dynamic, Eigen::Dynamic> full;
+  /// rows x columns: the stage that gave score(i, j): 1, the best principal-axes superposition
+  /// (single precision); 2, its refinement (MatrixOptions::refined_overlays); 3, the full match's
+  /// top alignment (MatrixOptions::full_matches, exact); 0, none (exact, without an alignment).
+  Eigen::Matrix<std::uint8_t, Eigen::Dynamic, Eigen::Dynamic> stage;
   /// With MatrixOptions::transforms, row-major (i * columns + j): the 4x4 rigid transform that
   /// moves columns[j] onto rows[i] (identity without an alignment).
   std::vector<Eigen::Matrix4d> transforms;
@@ -82,9 +90,10 @@ struct SimilarityMatrix {
 /// Every record of the molecule files `set` (SDF, MOL2, PDB, mmCIF, PQR; each file's records
 /// in order) read and described once as prepare_input describes a molecule, then compared all
 /// against all (`against` empty) or each of `set` (rows) against each of `against` (columns):
-/// every pair by the refined overlay of a screen's stage 2 (refined_score, every start), then
-/// each row's options.full_matches best by the full match (match_surfaces, as for two prepared
-/// molecules), or with options.exact every pair by the full match. All against all, a pair is
+/// every pair by a screen's stage 1 (fast_score), each row's options.refined_overlays best by its
+/// stage 2 (refined_score, every start; all against all, the diagonal too), then each row's
+/// options.full_matches best by the full match (match_surfaces, as for two prepared molecules),
+/// or with options.exact every pair by the full match. All against all, a pair is
 /// compared once (the lower index as the reference) and its mirrored cell gets the inverse
 /// transform. A record that cannot be read or described
 /// is left out and named in SimilarityMatrix::left_out; a pair that cannot be matched is named
@@ -97,6 +106,15 @@ struct SimilarityMatrix {
 SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set,
                                    const std::vector<std::filesystem::path>& against = {},
                                    const MatrixOptions& options = {});
+
+/// The same over the processes of `exchange` (an MPI job), every one given the same arguments:
+/// each reads and describes every molecule, then computes its share of each stage's pairs (rows
+/// in turn for the first, every processes()-th pair of the others); process 0 gathers the cells
+/// and chooses the next stage's pairs. The matrix (score, stage, transforms, warnings) is
+/// process 0's alone, and the same as one process's; the others get the molecules and times.
+SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set,
+                                   const std::vector<std::filesystem::path>& against,
+                                   const MatrixOptions& options, Exchange& exchange);
 
 /// The matrix as CSV: a header "name" then the columns' names, one line per row (its name,
 /// then its scores to 4 decimals, "nan" for a pair not matched); names quoted when they hold a
