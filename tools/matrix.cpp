@@ -26,10 +26,13 @@ constexpr const char* kUsage =
     "best aligned as `surfcomp match` aligns two molecules (--exact: every pair). Writes the\n"
     "overlay scores (0-1) as a matrix: all against all, symmetric, its diagonal each molecule's\n"
     "self-overlay; or with --against, SET's molecules (rows) against those of the --against\n"
-    "files (columns). A record that cannot be read or described is left out, with a note\n"
-    "naming it; a pair whose full match fails (a limit such as --max-graph-nodes) scores nan,\n"
-    "with a warning naming it. Under mpirun, the pairs are split over the processes (each\n"
-    "describes every molecule) and rank 0 writes the same matrix.";
+    "files (columns). With --neighbours K, writes each molecule's K best neighbours instead, a\n"
+    "line each (row, name, rank, column, neighbour, score, stage): memory then grows with the\n"
+    "molecules, not the pairs, for sets whose matrix would not fit. A record that cannot be\n"
+    "read or described is left out, with a note naming it; a pair whose full match fails (a\n"
+    "limit such as --max-graph-nodes) scores nan, with a warning naming it. Under mpirun, the\n"
+    "pairs are split over the processes (each describes every molecule) and rank 0 writes the\n"
+    "same file.";
 
 }  // namespace
 
@@ -87,8 +90,13 @@ int matrix(const std::vector<std::string>& args) {
       "%zu x %zu molecules (%zu left out): described in %.0f ms, matched in %.0f ms%s\n",
       matrix.rows.size(), matrix.columns.size(), matrix.left_out.size(), matrix.describe_ms,
       matrix.match_ms, ranks > 1 ? (" over " + std::to_string(ranks) + " processes").c_str() : "");
-  io::write_file_atomically(output,
-                            [&](std::ostream& out) { screening::write_matrix_csv(out, matrix); });
+  io::write_file_atomically(output, [&](std::ostream& out) {
+    if (options.neighbours > 0) {
+      screening::write_neighbours_csv(out, matrix);
+    } else {
+      screening::write_matrix_csv(out, matrix);
+    }
+  });
   return 0;
 }
 

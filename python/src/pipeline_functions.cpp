@@ -18,7 +18,9 @@
 
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 
 namespace surfcomp::python {
 namespace {
@@ -349,8 +351,13 @@ py::dict matrix(const std::vector<std::string>& set, const std::vector<std::stri
     computed = screening::similarity_matrix({set.begin(), set.end()},
                                             {against.begin(), against.end()}, settings);
     if (!output_path.empty()) {
-      io::write_file_atomically(
-          output_path, [&](std::ostream& out) { screening::write_matrix_csv(out, computed); });
+      io::write_file_atomically(output_path, [&](std::ostream& out) {
+        if (settings.neighbours > 0) {
+          screening::write_neighbours_csv(out, computed);
+        } else {
+          screening::write_matrix_csv(out, computed);
+        }
+      });
     }
   }
   const auto members = [](const std::vector<screening::MatrixMember>& list) {
@@ -361,24 +368,57 @@ py::dict matrix(const std::vector<std::string>& set, const std::vector<std::stri
     }
     return out;
   };
-  py::object moves = py::none();
+  const auto rows = static_cast<py::ssize_t>(computed.rows.size());
+  const bool sparse = settings.neighbours > 0;
+  // The transforms: per cell, or per row and neighbour.
+  const auto columns =
+      static_cast<py::ssize_t>(sparse ? settings.neighbours : computed.columns.size());
+  py::object moves = py::none(), neighbours = py::none(), neighbour_scores = py::none(),
+             neighbour_stages = py::none();
   if (transforms) {
-    const auto rows = static_cast<py::ssize_t>(computed.rows.size());
-    const auto columns = static_cast<py::ssize_t>(computed.columns.size());
     py::array_t<double> all({rows, columns, py::ssize_t{4}, py::ssize_t{4}});
     auto view = all.mutable_unchecked<4>();
     for (py::ssize_t i = 0; i < rows; ++i) {
       for (py::ssize_t j = 0; j < columns; ++j) {
-        const Eigen::Matrix4d& t = computed.transforms[static_cast<std::size_t>(i * columns + j)];
+        const auto r = static_cast<std::size_t>(i), c = static_cast<std::size_t>(j);
+        Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
+        if (!sparse) {
+          t = computed.transforms[r * static_cast<std::size_t>(columns) + c];
+        } else if (c < computed.neighbours[r].size()) {
+          t = computed.neighbours[r][c].transform;
+        }
         for (int a = 0; a < 4; ++a)
           for (int b = 0; b < 4; ++b) view(i, j, a, b) = t(a, b);
       }
     }
     moves = std::move(all);
   }
+  if (sparse) {
+    Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> index =
+        Eigen::Matrix<std::int64_t, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>::Constant(
+            rows, columns, -1);
+    Eigen::MatrixXd score =
+        Eigen::MatrixXd::Constant(rows, columns, std::numeric_limits<double>::quiet_NaN());
+    Eigen::Matrix<std::uint8_t, Eigen::Dynamic, Eigen::Dynamic> stage =
+        Eigen::Matrix<std::uint8_t, Eigen::Dynamic, Eigen::Dynamic>::Zero(rows, columns);
+    for (std::size_t i = 0; i < computed.neighbours.size(); ++i) {
+      for (std::size_t k = 0; k < computed.neighbours[i].size(); ++k) {
+        const screening::Neighbour& next = computed.neighbours[i][k];
+        const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(k);
+        index(r, c) = static_cast<std::int64_t>(next.column);
+        score(r, c) = next.score;
+        stage(r, c) = next.stage;
+      }
+    }
+    neighbours = owned_array(std::move(index));
+    neighbour_scores = owned_array(std::move(score));
+    neighbour_stages = owned_array(std::move(stage));
+  }
   return py::dict(
-      py::arg("scores") = owned_array(std::move(computed.score)),
-      py::arg("stage") = owned_array(std::move(computed.stage)), py::arg("transforms") = moves,
+      py::arg("scores") = sparse ? py::object(py::none()) : owned_array(std::move(computed.score)),
+      py::arg("stage") = sparse ? py::object(py::none()) : owned_array(std::move(computed.stage)),
+      py::arg("neighbours") = neighbours, py::arg("neighbour_scores") = neighbour_scores,
+      py::arg("neighbour_stages") = neighbour_stages, py::arg("transforms") = moves,
       py::arg("rows") = members(computed.rows), py::arg("columns") = members(computed.columns),
       py::arg("symmetric") = computed.symmetric, py::arg("left_out") = computed.left_out,
       py::arg("warnings") = computed.warnings, py::arg("describe_ms") = computed.describe_ms,

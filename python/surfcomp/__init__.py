@@ -898,6 +898,9 @@ class SimilarityMatrix(NamedTuple):
 
     scores: Any
     stage: Any
+    neighbours: Any
+    neighbour_scores: Any
+    neighbour_stages: Any
     transforms: Any
     rows: List[MatrixMember]
     columns: List[MatrixMember]
@@ -912,13 +915,19 @@ _documented(
     SimilarityMatrix,
     scores="(rows, columns) float array: the overlay score (0-1) of columns[j] aligned onto "
            "rows[i], the best found at the stage ``stage`` gives; 0 without an alignment, NaN "
-           "for a pair whose full match failed",
+           "for a pair whose full match failed. None with ``neighbours``",
     stage="(rows, columns) uint8 array: the stage of each score: 1, the best principal-axes "
           "superposition; 2, its refinement (each molecule's ``refined_overlays`` best "
           "neighbours); 3, the full match's top alignment (each molecule's ``full_matches`` "
-          "best, or every pair with ``exact=True``); 0, none",
+          "best, or every pair with ``exact=True``); 0, none. None with ``neighbours``",
+    neighbours="with ``neighbours=K``, (rows, K) int array: each row's K best columns, best "
+               "first (not the row itself all against all), -1 past a row's last; else None",
+    neighbour_scores="with ``neighbours=K``, (rows, K): their scores, as ``scores`` would "
+                     "hold them (NaN past a row's last); else None",
+    neighbour_stages="with ``neighbours=K``, (rows, K): their stages, as ``stage``; else None",
     transforms="with transforms=True, (rows, columns, 4, 4): the rigid transform that moves "
-               "columns[j] onto rows[i]; else None",
+               "columns[j] onto rows[i] (with ``neighbours=K``, (rows, K, 4, 4), the k-th "
+               "neighbour onto rows[i]); else None",
     rows="the molecules of the set, in file order, without those left out",
     columns="the molecules of ``against`` (the set's own when all against all)",
     symmetric="all against all: each pair matched once, the diagonal the self-matches",
@@ -939,7 +948,8 @@ def matrix(set, against=None, *, transforms: bool = False,
     the ``against`` files (columns). Every pair is overlaid at the principal-axes superpositions
     (a screen's stage 1); each molecule's ``refined_overlays`` best neighbours get the overlay
     refined (stage 2), and its ``full_matches`` best are then aligned as :func:`match` aligns two
-    molecules (every pair with ``exact=True``). A
+    molecules (every pair with ``exact=True``). With ``neighbours=K`` only each molecule's K
+    best neighbours are kept, for a set whose matrix would not fit in memory. A
     record that cannot be read or described is left out and named in ``left_out``. With
     ``output``, the matrix is also written there as CSV."""
     def paths(files):

@@ -299,6 +299,9 @@ class MatrixMember(NamedTuple):
 class SimilarityMatrix(NamedTuple):
     scores: Any
     stage: Any
+    neighbours: Any
+    neighbour_scores: Any
+    neighbour_stages: Any
     transforms: Any
     rows: List[MatrixMember]
     columns: List[MatrixMember]
@@ -709,6 +712,7 @@ def matrix(
     refined_overlays: int = 0,
     full_matches: int = 2,
     exact: bool = False,
+    neighbours: int = 0,
     max_pairs: int = 10000000,
     threads: int = 0,
 ) -> SimilarityMatrix: ...

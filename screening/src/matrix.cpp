@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <new>
 #include <optional>
@@ -68,8 +69,12 @@ std::string record_name(const MatrixMember& member) {
 struct Described {
   std::vector<MatrixMember> members;
   /// Each molecule's descriptors (the full match) and, unless exact, its packed samples (the
-  /// refined overlay).
+  /// overlays); with neighbours, its descriptors dropped (see describe_records).
   std::vector<ScreenQuery> queries;
+  std::vector<io::MoleculeRecord> records;  ///< each molecule's record
+  /// With neighbours, each molecule's packed sample: its index (ScreenQuery::packed, a
+  /// megabyte) is built only while a stage compares the molecule as a row (RowIndexes).
+  std::vector<matching::PackedSample> samples;
 };
 
 /// The screen's options of the refined overlays: the match's overlay options, every start refined.
@@ -80,27 +85,42 @@ ScreenOptions screen_options(const MatrixOptions& options) {
   return screen;
 }
 
+/// A record read and described as prepare_input describes a molecule, quietly: neither the log
+/// nor the progress tells molecules apart, and several are described at once.
+harmonic::SurfaceDescriptors describe_record(const io::MoleculeRecord& record,
+                                             const MatrixOptions& options) {
+  matching::MatchInputOptions quiet = options.inputs;
+  quiet.log = nullptr;
+  quiet.descriptors.progress = nullptr;
+  matching::MatchInput input;
+  input.molecule = io::read_record_molecule(record, options.inputs.input.read);
+  return std::move(matching::prepare_input(input, quiet).descriptors);
+}
+
 /// Each record read and described once (in parallel), those that fail left out with a line.
+/// With neighbours, only the packed samples are kept (a molecule's descriptors are megabytes,
+/// its samples kilobytes): the full matches describe their two molecules again.
 Described describe_records(const std::vector<io::MoleculeRecord>& records,
                            const MatrixOptions& options, std::vector<std::string>& left_out) {
   std::vector<std::optional<ScreenQuery>> prepared(records.size());
+  std::vector<matching::PackedSample> samples(options.neighbours > 0 ? records.size() : 0);
   std::vector<std::string> why(records.size());
-  matching::MatchInputOptions quiet = options.inputs;
-  // Neither is told apart by molecule, and several molecules are described at once.
-  quiet.log = nullptr;
-  quiet.descriptors.progress = nullptr;
   const ScreenOptions screen = screen_options(options);
   tbb::parallel_for(std::size_t{0}, records.size(), [&](std::size_t k) {
     try {
-      matching::MatchInput input;
-      input.molecule = io::read_record_molecule(records[k], options.inputs.input.read);
-      harmonic::SurfaceDescriptors described =
-          std::move(matching::prepare_input(input, quiet).descriptors);
+      harmonic::SurfaceDescriptors described = describe_record(records[k], options);
       if (options.exact) {  // the full matches alone: no sample to pack
         prepared[k].emplace();
         prepared[k]->descriptors = std::move(described);
       } else {
         prepared[k] = make_screen_query(std::move(described), screen);
+        if (options.neighbours > 0) {  // the packed sample alone (Described::samples)
+          prepared[k]->descriptors = {};
+          prepared[k]->atom_sample = {};
+          prepared[k]->atom_packed.reset();
+          samples[k] = prepared[k]->packed->sample();
+          prepared[k]->packed.reset();
+        }
       }
     } catch (const OptionError&) {
       throw;  // an option that cannot run, not a record that cannot be read
@@ -120,9 +140,37 @@ Described describe_records(const std::vector<io::MoleculeRecord>& records,
     }
     out.members.push_back({record.name, record.source, record.record});
     out.queries.push_back(std::move(*prepared[k]));
+    out.records.push_back(record);
+    if (!samples.empty()) out.samples.push_back(std::move(samples[k]));
   }
   return out;
 }
+
+/// With neighbours, the indexes of the rows of some pairs, built for a stage and dropped after.
+class RowIndexes {
+ public:
+  RowIndexes(Described& rows, const std::vector<std::pair<std::size_t, std::size_t>>& pairs)
+      : rows_(rows) {
+    if (rows.samples.empty()) return;  // the whole matrix: every index kept
+    for (const auto& pair : pairs)
+      if (built_.empty() || built_.back() != pair.first) built_.push_back(pair.first);
+    std::sort(built_.begin(), built_.end());
+    built_.erase(std::unique(built_.begin(), built_.end()), built_.end());
+    tbb::parallel_for(std::size_t{0}, built_.size(), [&](std::size_t k) {
+      const std::size_t i = built_[k];
+      rows.queries[i].packed = std::make_shared<const matching::PackedQuery>(rows.samples[i]);
+    });
+  }
+  ~RowIndexes() {
+    for (const std::size_t i : built_) rows_.queries[i].packed.reset();
+  }
+  RowIndexes(const RowIndexes&) = delete;
+  RowIndexes& operator=(const RowIndexes&) = delete;
+
+ private:
+  Described& rows_;
+  std::vector<std::size_t> built_;
+};
 
 /// The pairs (row, column) of each row's `count` best columns by `score` (a NaN last, ties to the
 /// lower column), or of every column with `every`; all against all, a pair once, as (lower,
@@ -184,13 +232,96 @@ Cell get_cell(const double* in, bool transforms) {
   return cell;
 }
 
-/// The pairs of every row of an n x m matrix that is process's (row mod processes), each row's
-/// columns in order (all against all, from the diagonal on).
-std::vector<Pair> row_share(std::size_t n, std::size_t m, bool symmetric, int process,
-                            int processes) {
+/// Whether cell a (in column ja) ranks before cell b (in column jb) in a row: a NaN last, a higher
+/// score first, ties to the lower column.
+bool ranks_before(std::size_t ja, const Cell& a, std::size_t jb, const Cell& b) {
+  if (std::isnan(a.score) != std::isnan(b.score)) return !std::isnan(a.score);
+  if (a.score != b.score) return a.score > b.score;
+  return ja < jb;
+}
+
+/// The mirrored cell of a symmetric matrix: the same score and stage, the inverse transform.
+Cell mirrored(const Cell& cell) {
+  return {cell.score, cell.stage,
+          matching::RigidTransform::from_matrix(cell.transform).inverse().matrix()};
+}
+
+/// Each row's `capacity` best cells (ranks_before) of those offered to it, a cell offered again
+/// taking its new value, and per row a bound on the cells it does not hold: the best score of
+/// those it let go or did not take.
+class BestCells {
+ public:
+  BestCells(std::size_t rows, std::size_t capacity)
+      : rows_(rows), floor_(rows, -std::numeric_limits<double>::infinity()), capacity_(capacity) {}
+
+  void offer(std::size_t i, std::size_t j, const Cell& cell) {
+    std::vector<std::pair<std::size_t, Cell>>& row = rows_[i];
+    for (auto& [column, kept] : row) {
+      if (column != j) continue;
+      kept = cell;
+      return;
+    }
+    if (row.size() < capacity_) {
+      row.emplace_back(j, cell);
+      return;
+    }
+    auto worst = row.begin();
+    for (auto it = row.begin(); it != row.end(); ++it)
+      if (ranks_before(worst->first, worst->second, it->first, it->second)) worst = it;
+    if (ranks_before(j, cell, worst->first, worst->second)) {
+      let_go(i, worst->second.score);
+      *worst = {j, cell};
+    } else {
+      let_go(i, cell.score);
+    }
+  }
+
+  /// Row i's `count` best cells, best first.
+  std::vector<std::pair<std::size_t, Cell>> best(std::size_t i, std::size_t count) const {
+    std::vector<std::pair<std::size_t, Cell>> row = rows_[i];
+    std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) {
+      return ranks_before(a.first, a.second, b.first, b.second);
+    });
+    row.resize(std::min(count, row.size()));
+    return row;
+  }
+
+  /// Whether row i's `count` best of all its `columns` cells are among those it holds.
+  bool holds_best(std::size_t i, std::size_t count, std::size_t columns) const {
+    if (floor_[i] == -std::numeric_limits<double>::infinity()) return true;  // none let go
+    const std::size_t wanted = std::min(count, columns);
+    if (rows_[i].size() < wanted) return false;
+    const double last = best(i, wanted).back().second.score;
+    return !std::isnan(last) && last > floor_[i];
+  }
+
+ private:
+  void let_go(std::size_t i, double score) {
+    if (!std::isnan(score)) floor_[i] = std::max(floor_[i], score);
+  }
+
+  std::vector<std::vector<std::pair<std::size_t, Cell>>> rows_;
+  std::vector<double> floor_;
+  std::size_t capacity_;
+};
+
+/// A count of a stage's pairs done, told to MatrixOptions::progress.
+struct Told {
+  std::size_t done = 0, total = 0;
+  std::mutex lock;
+};
+
+/// The pairs of the rows [begin, end) of an n x m matrix that are process's (row - begin mod
+/// processes), each row's columns in order (all against all, from the diagonal on, or after it
+/// without `diagonal`).
+std::vector<Pair> row_share(std::size_t begin, std::size_t end, std::size_t m, bool symmetric,
+                            bool diagonal, int process, int processes) {
   std::vector<Pair> pairs;
-  for (auto i = static_cast<std::size_t>(process); i < n; i += static_cast<std::size_t>(processes))
-    for (std::size_t j = symmetric ? i : 0; j < m; ++j) pairs.emplace_back(i, j);
+  for (std::size_t i = begin + static_cast<std::size_t>(process); i < end;
+       i += static_cast<std::size_t>(processes)) {
+    for (std::size_t j = symmetric ? (diagonal ? i : i + 1) : 0; j < m; ++j)
+      pairs.emplace_back(i, j);
+  }
   return pairs;
 }
 
@@ -252,6 +383,12 @@ const options::Table<MatrixOptions>& matrix_option_table() {
          "(slow: tens of ms a pair of ligands)"},
         [](auto& m) -> auto& { return m.exact; }));
     t.push_back(options::field<M>(
+        {"neighbours", options::Kind::integer,
+         "keep each molecule's best neighbours only, not the whole matrix (memory grows with the "
+         "molecules, not with the pairs); 0: the whole matrix",
+         "", 0, 1e6},
+        [](auto& m) -> auto& { return m.neighbours; }));
+    t.push_back(options::field<M>(
         {"max-pairs", options::Kind::integer,
          "refuse a matrix of more pairs than this, before any work", "", 1, 1e12},
         [](auto& m) -> auto& { return m.max_pairs; }));
@@ -273,6 +410,10 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
                                    const MatrixOptions& options, Exchange& exchange) {
   options::check_all(matrix_option_table(), options);
   matching::validate(options.inputs.match);
+  if (options.exact && options.neighbours > 0) {
+    throw OptionError(options::named("exact") + " and " + options::named("neighbours") +
+                      " do not go together: every pair's full match is kept as a matrix");
+  }
   SimilarityMatrix out;
   const std::vector<io::MoleculeRecord> row_records = set_records(set, options, out.left_out);
   const std::vector<io::MoleculeRecord> column_records =
@@ -304,6 +445,7 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
   Described columns;
   if (!symmetric) columns = describe_records(column_records, options, column_failures);
   out.describe_ms = clock.elapsed_ms();
+
   const Described& cols = symmetric ? rows : columns;
   const auto too_few = [](const std::vector<std::filesystem::path>& files,
                           const std::vector<std::string>& failures) {
@@ -320,13 +462,30 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
   clock.restart();
   const std::size_t n = rows.queries.size(), m = cols.queries.size();
   const bool root = exchange.process() == 0;
-  if (root) {
+  // The whole matrix, or each row's best cells (MatrixOptions::neighbours), on process 0.
+  const bool dense = options.neighbours == 0;
+  std::optional<BestCells> best;
+  // With neighbours, the cells stages 2 and 3 gave (row <= column all against all), for a row
+  // whose best BestCells may not hold.
+  std::map<Pair, Cell> later;
+  bool chosen_stage = false;  // a stage of chosen pairs (kept in `later`), not every pair's first
+  if (root && dense) {
     out.score = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
     out.stage.setZero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
     if (options.transforms) out.transforms.assign(n * m, Eigen::Matrix4d::Identity());
+  } else if (root) {
+    // Room for the neighbours, the cells the next stages choose and as many again that a full
+    // match may move below them.
+    best.emplace(n, 2 * (options.neighbours + options.full_matches) + options.refined_overlays);
   }
   // A cell and, all against all, its mirror: the same score and stage, the inverse transform.
   const auto set_cell = [&](std::size_t i, std::size_t j, const Cell& cell) {
+    if (!dense) {
+      if (chosen_stage) later[{i, j}] = cell;
+      best->offer(i, j, cell);
+      if (symmetric && i != j) best->offer(j, i, mirrored(cell));
+      return;
+    }
     const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
     out.score(r, c) = cell.score;
     out.stage(r, c) = cell.stage;
@@ -336,24 +495,32 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
     }
     if (!options.transforms) return;
     out.transforms[i * m + j] = cell.transform;
-    if (symmetric && i != j) {
-      out.transforms[j * m + i] =
-          matching::RigidTransform::from_matrix(cell.transform).inverse().matrix();
+    if (symmetric && i != j) out.transforms[j * m + i] = mirrored(cell).transform;
+  };
+  // Each row's `count` best columns (every column with `every`; the diagonal with `diagonal`),
+  // as pairs (row <= column all against all), in order.
+  const auto choose = [&](std::size_t count, bool every, bool diagonal) {
+    if (dense) return best_pairs(out.score, symmetric, count, every, diagonal);
+    std::set<Pair> pairs;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (const auto& [j, cell] : best->best(i, count))
+        pairs.emplace(symmetric ? std::min(i, j) : i, symmetric ? std::max(i, j) : j);
     }
+    return std::vector<Pair>(pairs.begin(), pairs.end());
   };
   // The pairs that failed (row, column, why), and how many pairs' clique searches were cut; few,
   // so kept apart from the matrix's cells.
   std::vector<std::tuple<std::size_t, std::size_t, std::string>> failed;
   std::size_t cuts = 0;
-  // One stage over the processes: this process's pairs, `mine`, computed in parallel, then every
-  // process's cells gathered and set on process 0 (`theirs(r)`: process r's pairs, in order).
+  // One stage's pairs over the processes: this process's, `mine`, computed in parallel, then
+  // every process's cells gathered and set on process 0 (`theirs(r)`: process r's, in order).
   const auto run_stage = [&](std::uint8_t stage, const std::vector<Pair>& mine, const auto& compute,
-                             const auto& theirs) {
+                             const auto& theirs, Told& told) {
     const std::size_t width = options.transforms ? 18 : 2;
+    const RowIndexes indexes(rows, stage == 3 ? std::vector<Pair>{} : mine);
     std::vector<double> local(mine.size() * width);
     std::vector<std::string> why(mine.size());
-    std::atomic<std::size_t> cut{0}, done{0};
-    std::mutex tell;
+    std::atomic<std::size_t> cut{0};
     tbb::parallel_for(std::size_t{0}, mine.size(), [&](std::size_t k) {
       Cell cell;
       try {
@@ -364,8 +531,8 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
       }
       put_cell(cell, options.transforms, local.data() + k * width);
       if (!options.progress) return;
-      const std::lock_guard<std::mutex> lock(tell);
-      options.progress(++done, mine.size());
+      const std::lock_guard<std::mutex> lock(told.lock);
+      options.progress(++told.done, told.total);
     });
     // After the cells: the cut count, the failures, then each failure's pair and text.
     std::vector<double> notes{static_cast<double>(cut.load()), 0.0};
@@ -399,18 +566,36 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
       }
     }
   };
-  // A stage of pairs process 0 chose: the list told to every process, each taking its share.
-  const auto run_chosen = [&](std::uint8_t stage, const std::function<std::vector<Pair>()>& choose,
+  // The pairs of a stage go in blocks of rows: of about 2^20 cells (what a gather holds) and,
+  // with neighbours, of 32 rows (the indexes RowIndexes builds at once, about a megabyte each).
+  const std::size_t block =
+      std::max<std::size_t>(1, std::min<std::size_t>((std::size_t{1} << 20) / m, dense ? n : 32));
+  // A stage of pairs process 0 chose: the list told to every process, each taking its share of
+  // a block of rows at a time.
+  const auto run_chosen = [&](std::uint8_t stage, const std::function<std::vector<Pair>()>& chosen,
                               const auto& compute) {
     const std::vector<Pair> pairs =
-        broadcast_pairs(exchange, root ? choose() : std::vector<Pair>{});
-    run_stage(stage, share(pairs, exchange.process(), exchange.processes()), compute,
-              [&](int process) { return share(pairs, process, exchange.processes()); });
+        broadcast_pairs(exchange, root ? chosen() : std::vector<Pair>{});
+    chosen_stage = true;
+    Told told;
+    told.total = share(pairs, exchange.process(), exchange.processes()).size();
+    for (std::size_t begin = 0; begin < pairs.size();) {  // pairs are in row order
+      std::size_t end = begin;
+      while (end < pairs.size() && pairs[end].first < pairs[begin].first + block) ++end;
+      const std::vector<Pair> rows_block(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
+                                         pairs.begin() + static_cast<std::ptrdiff_t>(end));
+      run_stage(
+          stage, share(rows_block, exchange.process(), exchange.processes()), compute,
+          [&](int process) { return share(rows_block, process, exchange.processes()); }, told);
+      begin = end;
+    }
     return pairs.size();
   };
 
   const ScreenOptions screen = screen_options(options);
-  const auto sample = [&](std::size_t j) { return cols.queries[j].packed->sample().view(); };
+  const auto sample = [&](std::size_t j) {
+    return dense ? cols.queries[j].packed->sample().view() : cols.samples[j].view();
+  };
   const auto fast = [&](std::size_t i, std::size_t j, std::atomic<std::size_t>&) {
     const HitScore hit = fast_score(rows.queries[i], sample(j), screen);
     return Cell{hit.score, 1, hit.transform};
@@ -419,35 +604,85 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
     const HitScore hit = refined_score(rows.queries[i], sample(j), screen);
     return Cell{hit.score, 2, hit.transform};
   };
+  // Every pair's first cell: stage 1, or stage 2 when every pair gets it.
+  const bool refine_all = options.refined_overlays == 0;
+  const auto first = [&](std::size_t i, std::size_t j, std::atomic<std::size_t>& cut) {
+    return refine_all ? refined(i, j, cut) : fast(i, j, cut);
+  };
   if (!options.exact) {
-    // Every pair, a row at a time to each process: stage 1, or stage 2 when every pair gets it.
-    const auto rows_of = [&](int process) {
-      return row_share(n, m, symmetric, process, exchange.processes());
+    // Every pair, a block of rows at a time, a row at a time to each process; with neighbours,
+    // not the diagonal.
+    const auto rows_of = [&](std::size_t begin, int process) {
+      return row_share(begin, std::min(n, begin + block), m, symmetric, dense, process,
+                       exchange.processes());
     };
-    const std::vector<Pair> mine = rows_of(exchange.process());
-    if (options.refined_overlays == 0) {
-      run_stage(2, mine, refined, rows_of);
-    } else {
-      run_stage(1, mine, fast, rows_of);
+    Told told;
+    for (std::size_t begin = 0; begin < n; begin += block)
+      told.total += rows_of(begin, exchange.process()).size();
+    for (std::size_t begin = 0; begin < n; begin += block) {
+      run_stage(
+          refine_all ? 2 : 1, rows_of(begin, exchange.process()), first,
+          [&](int process) { return rows_of(begin, process); }, told);
+    }
+    if (!refine_all) {
       run_chosen(
-          2,
-          [&] { return best_pairs(out.score, symmetric, options.refined_overlays, false, true); },
-          refined);
+          2, [&] { return choose(options.refined_overlays, false, dense); }, refined);
     }
   }
   // The matrix keeps the top score alone: no alignment's coverage is measured.
   matching::MatchOptions full_match = options.inputs.match;
   full_match.coverage_distance = 0.0;
   const std::size_t full_matches = run_chosen(
-      3, [&] { return best_pairs(out.score, symmetric, options.full_matches, options.exact); },
+      3, [&] { return choose(options.full_matches, options.exact, false); },
       [&](std::size_t i, std::size_t j, std::atomic<std::size_t>& cut) {
-        const matching::MatchResult result = matching::match_surfaces(
-            rows.queries[i].descriptors, cols.queries[j].descriptors, full_match);
+        const matching::MatchResult result =
+            dense ? matching::match_surfaces(rows.queries[i].descriptors,
+                                             cols.queries[j].descriptors, full_match)
+                  : matching::match_surfaces(describe_record(rows.records[i], options),
+                                             describe_record(cols.records[j], options), full_match);
         if (!result.cliques_complete) ++cut;
         if (result.alignments.empty()) return Cell{};  // the former stage's cell stays
         const matching::Alignment& top = result.alignments.front();
         return Cell{top.overlay.score, 3, top.transform};
       });
+  if (root && !dense) {
+    // Each row's neighbours; a row whose best may have been let go (a full match lowered the
+    // cells held) is computed again from its first cells and the later stages' (rare).
+    const std::size_t others = symmetric ? m - 1 : m;
+    out.neighbours.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<std::pair<std::size_t, Cell>> row;
+      if (best->holds_best(i, options.neighbours, others)) {
+        row = best->best(i, options.neighbours);
+      } else {
+        row.resize(others);
+        tbb::parallel_for(std::size_t{0}, m, [&](std::size_t j) {
+          if (symmetric && j == i) return;
+          const Pair pair{symmetric ? std::min(i, j) : i, symmetric ? std::max(i, j) : j};
+          const auto known = later.find(pair);
+          Cell cell;
+          if (known != later.end()) {
+            cell = known->second;
+          } else {
+            try {
+              std::atomic<std::size_t> cut{0};
+              cell = first(pair.first, pair.second, cut);
+            } catch (const Error&) {  // named when it first failed
+              cell.score = std::numeric_limits<double>::quiet_NaN();
+            }
+          }
+          if (pair.first != i) cell = mirrored(cell);
+          row[symmetric && j > i ? j - 1 : j] = {j, cell};
+        });
+        std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) {
+          return ranks_before(a.first, a.second, b.first, b.second);
+        });
+        row.resize(std::min(options.neighbours, row.size()));
+      }
+      for (const auto& [j, cell] : row)
+        out.neighbours[i].push_back({j, cell.score, cell.stage, cell.transform});
+    }
+  }
   std::sort(failed.begin(), failed.end());  // in pair order, whatever the processes and threads
   for (const auto& [i, j, why] : failed) {
     out.warnings.push_back(record_name(rows.members[i]) + " and " + record_name(cols.members[j]) +
@@ -465,22 +700,42 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
   return out;
 }
 
-void write_matrix_csv(std::ostream& out, const SimilarityMatrix& matrix) {
-  const auto field = [](const std::string& text) {
-    if (text.find_first_of(",\"\n") == std::string::npos) return text;
-    std::string quoted = "\"";
-    for (const char c : text) {
-      if (c == '"') quoted += '"';
-      quoted += c;
+namespace {
+
+/// A CSV field: quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+}  // namespace
+
+void write_neighbours_csv(std::ostream& out, const SimilarityMatrix& matrix) {
+  out << "row,name,rank,column,neighbour,score,stage\n";
+  char number[32];
+  for (std::size_t i = 0; i < matrix.neighbours.size(); ++i) {
+    for (std::size_t k = 0; k < matrix.neighbours[i].size(); ++k) {
+      const Neighbour& next = matrix.neighbours[i][k];
+      std::snprintf(number, sizeof number, "%.4f", next.score);
+      out << i + 1 << ',' << csv_field(matrix.rows[i].name) << ',' << k + 1 << ','
+          << next.column + 1 << ',' << csv_field(matrix.columns[next.column].name) << ',' << number
+          << ',' << static_cast<int>(next.stage) << '\n';
     }
-    return quoted + "\"";
-  };
+  }
+}
+
+void write_matrix_csv(std::ostream& out, const SimilarityMatrix& matrix) {
   out << "name";
-  for (const MatrixMember& column : matrix.columns) out << ',' << field(column.name);
+  for (const MatrixMember& column : matrix.columns) out << ',' << csv_field(column.name);
   out << '\n';
   char number[32];
   for (std::size_t i = 0; i < matrix.rows.size(); ++i) {
-    out << field(matrix.rows[i].name);
+    out << csv_field(matrix.rows[i].name);
     for (std::size_t j = 0; j < matrix.columns.size(); ++j) {
       std::snprintf(number, sizeof number, ",%.4f",
                     matrix.score(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));

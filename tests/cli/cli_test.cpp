@@ -605,8 +605,8 @@ TEST_F(Cli, MatrixWritesTheSetsScoresAndRefusesWhatCannotRun) {
   EXPECT_NE(no_output.err.find("--output"), std::string::npos) << no_output.err;
 }
 
-// The processes of an MPI job split the pairs of every stage; rank 0 writes the same matrix as
-// one process, a failed full match's warning included.
+// The processes of an MPI job split the pairs of every stage; rank 0 writes the same matrix (or
+// neighbours) as one process, a failed full match's warning included.
 TEST_F(Cli, MatrixIsTheSameUnderMpiWithOneTwoAndThreeProcesses) {
 #ifndef SURFCOMP_MPIEXEC
   GTEST_SKIP() << "surfcomp was built without MPI";
@@ -622,7 +622,10 @@ TEST_F(Cli, MatrixIsTheSameUnderMpiWithOneTwoAndThreeProcesses) {
   const std::string options = " --refined-overlays 2 --full-matches 1 --threads 1";
   const std::string failing = " --max-graph-nodes 30 --full-matches 2 --threads 1";
   const fs::path serial = scratch("serial.csv"), serial_failing = scratch("serial_failing.csv");
+  const fs::path serial_best = scratch("serial_best.csv");
   ASSERT_EQ(run("matrix" + set + " -o " + serial.string() + options).status, 0);
+  ASSERT_EQ(
+      run("matrix" + set + " -o " + serial_best.string() + options + " --neighbours 2").status, 0);
   const ProgramRun alone = run("matrix" + set + " -o " + serial_failing.string() + failing);
   ASSERT_EQ(alone.status, 0) << alone.err;
   ASSERT_NE(alone.err.find("not matched (its score is nan)"), std::string::npos) << alone.err;
@@ -634,6 +637,10 @@ TEST_F(Cli, MatrixIsTheSameUnderMpiWithOneTwoAndThreeProcesses) {
         test::run_program("matrix" + set + " -o " + csv.string() + options, {{}, mpirun});
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(file_bytes(csv), file_bytes(serial)) << ranks << " processes";
+    r = test::run_program("matrix" + set + " -o " + csv.string() + options + " --neighbours 2",
+                          {{}, mpirun});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(file_bytes(csv), file_bytes(serial_best)) << ranks << " processes";
     r = test::run_program("matrix" + set + " -o " + csv.string() + failing, {{}, mpirun});
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(file_bytes(csv), file_bytes(serial_failing)) << ranks << " processes";

@@ -573,6 +573,13 @@ def test_matrix_is_the_programs_and_matchs(program, shared, tmp_path):
     cli = run([program, "matrix", *files, "-o", tmp_path / "cli.csv"])
     assert cli.returncode == 0, cli.stderr
     assert (tmp_path / "cli.csv").read_text() == (tmp_path / "m.csv").read_text()
+    # Each row's best neighbour: the other molecule, its cell of the matrix.
+    best = surfcomp.matrix(files, neighbours=1, transforms=True, threads=1)
+    assert best.scores is None and best.stage is None
+    assert best.neighbours.tolist() == [[1], [0]]
+    assert best.neighbour_scores[:, 0] == pytest.approx([computed.scores[0, 1]] * 2, abs=1e-12)
+    assert best.neighbour_stages.tolist() == [[3], [3]]
+    assert best.transforms[1, 0] == pytest.approx(computed.transforms[1, 0], abs=1e-12)
     against = surfcomp.matrix(files[0], against=files[1])
     assert against.scores.shape == (1, 1) and against.transforms is None
     assert against.scores[0, 0] == computed.scores[0, 1]

@@ -237,6 +237,65 @@ TEST_F(Matrix, WithRefinedOverlaysEachRowsBestByStageOneIsRefined) {
   EXPECT_NEAR(one.score(2, 3), 1.0, 1e-5);
 }
 
+// Each row's K best of the whole matrix, the same cells, all against all and against a second
+// set; with every stage at work (stage 1 for most pairs, two refined and one full match a row).
+TEST_F(Matrix, NeighboursAreEachRowsBestOfTheWholeMatrix) {
+  test::TempDir dir;
+  std::vector<fs::path> set = ligands_;
+  set.push_back(dir.write("again.sdf", text_of(ligands_[0])));
+  screening::MatrixOptions options;
+  options.transforms = true;
+  options.refined_overlays = 1;
+  options.full_matches = 1;
+  for (const bool symmetric : {true, false}) {
+    const std::vector<fs::path> against =
+        symmetric ? std::vector<fs::path>{} : std::vector<fs::path>{set[1], set[3]};
+    options.neighbours = 0;
+    const screening::SimilarityMatrix whole = screening::similarity_matrix(set, against, options);
+    options.neighbours = 2;
+    const screening::SimilarityMatrix best = screening::similarity_matrix(set, against, options);
+    EXPECT_EQ(best.score.size(), 0);
+    ASSERT_EQ(best.neighbours.size(), whole.rows.size());
+    for (std::size_t i = 0; i < whole.rows.size(); ++i) {
+      std::vector<std::size_t> order;
+      for (std::size_t j = 0; j < whole.columns.size(); ++j)
+        if (!symmetric || j != i) order.push_back(j);
+      const auto r = static_cast<Eigen::Index>(i);
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return whole.score(r, static_cast<Eigen::Index>(a)) >
+               whole.score(r, static_cast<Eigen::Index>(b));
+      });
+      ASSERT_EQ(best.neighbours[i].size(), 2u) << i;
+      for (std::size_t k = 0; k < 2; ++k) {
+        const screening::Neighbour& next = best.neighbours[i][k];
+        const auto c = static_cast<Eigen::Index>(order[k]);
+        EXPECT_EQ(next.column, order[k]) << symmetric << ": " << i << ", " << k;
+        EXPECT_EQ(next.score, whole.score(r, c)) << symmetric << ": " << i << ", " << k;
+        EXPECT_EQ(next.stage, whole.stage(r, c));
+        EXPECT_TRUE(
+            next.transform.isApprox(whole.transforms[i * whole.columns.size() + order[k]], 1e-12));
+      }
+    }
+    // The copy is the first row's best neighbour, at the self-overlay's 1.
+    if (symmetric) {
+      EXPECT_EQ(best.neighbours[0][0].column, 3u);
+      EXPECT_NEAR(best.neighbours[0][0].score, 1.0, 1e-5);
+    }
+  }
+  std::ostringstream csv;
+  options.neighbours = 1;
+  screening::write_neighbours_csv(csv, screening::similarity_matrix(set, {}, options));
+  std::istringstream lines(csv.str());
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "row,name,rank,column,neighbour,score,stage");
+  std::getline(lines, line);
+  EXPECT_EQ(line.substr(0, line.find(',')), "1");
+  EXPECT_NE(line.find(",1,4,"), std::string::npos) << line;  // rank 1: the copy, column 4
+  options.exact = true;
+  EXPECT_THROW(screening::similarity_matrix(set, {}, options), OptionError);
+}
+
 TEST_F(Matrix, AgainstASecondSetGivesItsRowsAndColumns) {
   test::TempDir dir;
   // One file of two records: both are read, in order.

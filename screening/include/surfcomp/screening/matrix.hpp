@@ -40,7 +40,13 @@ struct MatrixOptions {
   /// Default false. Every pair given the full match, the refined overlays skipped (docs/
   /// benchmarks.md, "All-against-all matrix", gives both costs).
   bool exact = false;
-  /// Default false. Keep each pair's top transform (SimilarityMatrix::transforms).
+  /// Default 0: the whole matrix (SimilarityMatrix::score). K > 0: each row's K best columns
+  /// alone (SimilarityMatrix::neighbours), the same as the whole matrix's; memory then grows with
+  /// the molecules, about (2 (K + full_matches) + refined_overlays) cells a row, not with the
+  /// pairs. Not with `exact`.
+  std::size_t neighbours = 0;
+  /// Default false. Keep each pair's top transform (SimilarityMatrix::transforms, and
+  /// Neighbour::transform).
   bool transforms = false;
   /// Default none. Told (pairs done, pairs) as the pairs are matched, for a progress line.
   std::function<void(std::size_t, std::size_t)> progress;
@@ -57,6 +63,15 @@ struct MatrixMember {
   std::size_t record = 1;        ///< its 1-based position in the file
 };
 
+/// A row's neighbour (MatrixOptions::neighbours): a column and its cell.
+struct Neighbour {
+  std::size_t column = 0;  ///< its index in SimilarityMatrix::columns
+  double score = 0.0;      ///< as SimilarityMatrix::score
+  std::uint8_t stage = 0;  ///< as SimilarityMatrix::stage
+  /// With MatrixOptions::transforms, as SimilarityMatrix::transforms (else the identity).
+  Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
+};
+
 struct SimilarityMatrix {
   /// The molecules compared: the rows, and the columns (the same set for all against all),
   /// in file order, without those left out.
@@ -67,12 +82,16 @@ struct SimilarityMatrix {
   bool symmetric = false;
   /// rows x columns. score(i, j): the overlay score of columns[j] aligned onto rows[i], the best
   /// found at the stage `stage` gives (0 when none found an alignment; NaN when the full match
-  /// failed, see `warnings`).
+  /// failed, see `warnings`). Empty with MatrixOptions::neighbours.
   Eigen::MatrixXd score;
   /// rows x columns: the stage that gave score(i, j): 1, the best principal-axes superposition
   /// (single precision); 2, its refinement (MatrixOptions::refined_overlays); 3, the full match's
   /// top alignment (MatrixOptions::full_matches, exact); 0, none (exact, without an alignment).
   Eigen::Matrix<std::uint8_t, Eigen::Dynamic, Eigen::Dynamic> stage;
+  /// With MatrixOptions::neighbours K, per row its K best columns, best first (ties to the lower
+  /// column, NaN last; all against all, not the diagonal): the row of `score` the whole matrix
+  /// would have, cut to its K best.
+  std::vector<std::vector<Neighbour>> neighbours;
   /// With MatrixOptions::transforms, row-major (i * columns + j): the 4x4 rigid transform that
   /// moves columns[j] onto rows[i] (identity without an alignment).
   std::vector<Eigen::Matrix4d> transforms;
@@ -115,6 +134,13 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
 SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set,
                                    const std::vector<std::filesystem::path>& against,
                                    const MatrixOptions& options, Exchange& exchange);
+
+/// The neighbours (MatrixOptions::neighbours) as CSV: a header
+/// "row,name,rank,column,neighbour,score,stage", then a line per row and neighbour, best first:
+/// the row's 1-based index and name, the neighbour's rank (1 the best), index and name, its
+/// score to 4 decimals ("nan" for a pair not matched) and stage; names quoted as
+/// write_matrix_csv quotes them.
+void write_neighbours_csv(std::ostream& out, const SimilarityMatrix& matrix);
 
 /// The matrix as CSV: a header "name" then the columns' names, one line per row (its name,
 /// then its scores to 4 decimals, "nan" for a pair not matched); names quoted when they hold a
