@@ -16,7 +16,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -348,6 +347,299 @@ std::vector<Pair> broadcast_pairs(Exchange& exchange, const std::vector<Pair>& p
   return out;
 }
 
+/// The pairs of a matrix compared stage by stage (the header's coarse to fine), each stage's
+/// pairs split over the processes of an exchange, into the whole matrix or each row's best cells
+/// (MatrixOptions::neighbours) on process 0.
+class Comparison {
+ public:
+  Comparison(Described& rows, const Described& columns, bool symmetric,
+             const MatrixOptions& options, Exchange& exchange, SimilarityMatrix& out)
+      : rows_(rows),
+        columns_(columns),
+        symmetric_(symmetric),
+        options_(options),
+        exchange_(exchange),
+        out_(out),
+        n_(rows.queries.size()),
+        m_(columns.queries.size()),
+        root_(exchange.process() == 0),
+        dense_(options.neighbours == 0),
+        // Blocks of rows of about 2^20 cells (what a gather holds) and, with neighbours, of 32
+        // rows (the indexes RowIndexes builds at once, about a megabyte each).
+        block_(std::max<std::size_t>(
+            1, std::min<std::size_t>((std::size_t{1} << 20) / m_, dense_ ? n_ : 32))),
+        screen_(screen_options(options)) {
+    // The matrix keeps the top score alone: no alignment's coverage is measured.
+    full_match_ = options.inputs.match;
+    full_match_.coverage_distance = 0.0;
+    if (!root_) return;
+    if (dense_) {
+      out.score =
+          Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(m_));
+      out.stage.setZero(static_cast<Eigen::Index>(n_), static_cast<Eigen::Index>(m_));
+      if (options.transforms) out.transforms.assign(n_ * m_, Eigen::Matrix4d::Identity());
+    } else {
+      // Room for the neighbours, the cells the next stages choose and as many again that a
+      // full match may move below them.
+      best_.emplace(n_, 2 * (options.neighbours + options.full_matches) + options.refined_overlays);
+    }
+  }
+
+  /// Every stage, then (process 0) the neighbours and the warnings.
+  void run() {
+    const bool refine_all = options_.refined_overlays == 0;
+    if (!options_.exact) {
+      // Every pair, a block of rows at a time, a row at a time to each process; with
+      // neighbours, not the diagonal.
+      const auto rows_of = [&](std::size_t begin, int process) {
+        return row_share(begin, std::min(n_, begin + block_), m_, symmetric_, dense_, process,
+                         exchange_.processes());
+      };
+      Told told;
+      for (std::size_t begin = 0; begin < n_; begin += block_)
+        told.total += rows_of(begin, exchange_.process()).size();
+      for (std::size_t begin = 0; begin < n_; begin += block_) {
+        run_stage(
+            refine_all ? 2 : 1, rows_of(begin, exchange_.process()),
+            [&](int process) { return rows_of(begin, process); }, told);
+      }
+      if (!refine_all)
+        run_chosen(2, [&] { return choose(options_.refined_overlays, false, dense_); });
+    }
+    const std::size_t full_matches =
+        run_chosen(3, [&] { return choose(options_.full_matches, options_.exact, false); });
+    if (!root_) return;
+    if (!dense_) neighbours();
+    std::sort(failed_.begin(), failed_.end());  // in pair order, whatever processes and threads
+    for (const auto& [i, j, why] : failed_) {
+      out_.warnings.push_back(record_name(rows_.members[i]) + " and " +
+                              record_name(columns_.members[j]) +
+                              ": not matched (its score is nan): " + why);
+    }
+    if (cuts_ > 0) {
+      out_.warnings.push_back(std::to_string(cuts_) + " of " + std::to_string(full_matches) +
+                              " full matches: the clique search stopped at its budget (" +
+                              options::named("max_clique_work") + ", " +
+                              options::named("max_cliques") + "): alignments may be missing");
+    }
+  }
+
+ private:
+  /// Pair (i, j)'s cell at `stage`: 1, the best principal-axes start; 2, refined; 3, the full
+  /// match (stage 0 without an alignment: the former stage's cell stays). Counts a clique search
+  /// cut in `cuts`.
+  Cell compute(std::uint8_t stage, std::size_t i, std::size_t j,
+               std::atomic<std::size_t>& cuts) const {
+    if (stage <= 2) {
+      const matching::PackedSampleView sample =
+          dense_ ? columns_.queries[j].packed->sample().view() : columns_.samples[j].view();
+      const HitScore hit = stage == 1 ? fast_score(rows_.queries[i], sample, screen_)
+                                      : refined_score(rows_.queries[i], sample, screen_);
+      return {hit.score, stage, hit.transform};
+    }
+    const matching::MatchResult result =
+        dense_
+            ? matching::match_surfaces(rows_.queries[i].descriptors,
+                                       columns_.queries[j].descriptors, full_match_)
+            : matching::match_surfaces(describe_record(rows_.records[i], options_),
+                                       describe_record(columns_.records[j], options_), full_match_);
+    if (!result.cliques_complete) ++cuts;
+    if (result.alignments.empty()) return {};
+    const matching::Alignment& top = result.alignments.front();
+    return {top.overlay.score, 3, top.transform};
+  }
+
+  /// Every pair's first cell: stage 1, or stage 2 when every pair gets it.
+  std::uint8_t first_stage() const { return options_.refined_overlays == 0 ? 2 : 1; }
+
+  /// A cell and, all against all, its mirror: the same score and stage, the inverse transform.
+  void set_cell(std::size_t i, std::size_t j, const Cell& cell) {
+    if (!dense_) {
+      if (chosen_stage_) later_[{i, j}] = cell;
+      best_->offer(i, j, cell);
+      if (symmetric_ && i != j) best_->offer(j, i, mirrored(cell));
+      return;
+    }
+    const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
+    out_.score(r, c) = cell.score;
+    out_.stage(r, c) = cell.stage;
+    if (symmetric_) {
+      out_.score(c, r) = cell.score;
+      out_.stage(c, r) = cell.stage;
+    }
+    if (!options_.transforms) return;
+    out_.transforms[i * m_ + j] = cell.transform;
+    if (symmetric_ && i != j) out_.transforms[j * m_ + i] = mirrored(cell).transform;
+  }
+
+  /// Each row's `count` best columns (every column with `every`; the diagonal with `diagonal`),
+  /// as pairs (row <= column all against all), in order. Process 0's.
+  std::vector<Pair> choose(std::size_t count, bool every, bool diagonal) const {
+    if (dense_) return best_pairs(out_.score, symmetric_, count, every, diagonal);
+    std::set<Pair> pairs;
+    for (std::size_t i = 0; i < n_; ++i) {
+      for (const auto& [j, cell] : best_->best(i, count))
+        pairs.emplace(symmetric_ ? std::min(i, j) : i, symmetric_ ? std::max(i, j) : j);
+    }
+    return {pairs.begin(), pairs.end()};
+  }
+
+  /// One stage's pairs over the processes: this process's, `mine`, computed in parallel, then
+  /// every process's cells gathered and set on process 0 (`theirs(r)`: process r's, in order).
+  template <class Theirs>
+  void run_stage(std::uint8_t stage, const std::vector<Pair>& mine, const Theirs& theirs,
+                 Told& told) {
+    const std::size_t width = options_.transforms ? 18 : 2;
+    const RowIndexes indexes(rows_, stage == 3 ? std::vector<Pair>{} : mine);
+    std::vector<double> local(mine.size() * width);
+    std::vector<std::string> why(mine.size());
+    std::atomic<std::size_t> cut{0};
+    tbb::parallel_for(std::size_t{0}, mine.size(), [&](std::size_t k) {
+      Cell cell;
+      try {
+        cell = compute(stage, mine[k].first, mine[k].second, cut);
+      } catch (const Error& error) {
+        cell = {std::numeric_limits<double>::quiet_NaN(), stage, Eigen::Matrix4d::Identity()};
+        why[k] = error.what();
+      }
+      put_cell(cell, options_.transforms, local.data() + k * width);
+      if (!options_.progress) return;
+      const std::lock_guard<std::mutex> lock(told.lock);
+      options_.progress(++told.done, told.total);
+    });
+    // After the cells: the cut count, the failures, then each failure's pair and text.
+    std::vector<double> notes{static_cast<double>(cut.load()), 0.0};
+    for (std::size_t k = 0; k < why.size(); ++k) {
+      if (why[k].empty()) continue;
+      notes[1] += 1.0;
+      notes.push_back(static_cast<double>(k));
+      notes.push_back(static_cast<double>(why[k].size()));
+      for (const char c : why[k]) notes.push_back(static_cast<unsigned char>(c));
+    }
+    const std::vector<double> cells = exchange_.gather(local);
+    const std::vector<double> said = exchange_.gather(notes);
+    if (!root_) return;
+    std::size_t at = 0, note = 0;
+    for (int process = 0; process < exchange_.processes(); ++process) {
+      const std::vector<Pair> pairs = theirs(process);
+      for (const auto& [i, j] : pairs) {
+        const Cell cell = get_cell(cells.data() + at, options_.transforms);
+        if (cell.stage != 0) set_cell(i, j, cell);  // 0: no alignment, the cell stays
+        at += width;
+      }
+      cuts_ += static_cast<std::size_t>(said[note++]);
+      const auto failures = static_cast<std::size_t>(said[note++]);
+      for (std::size_t f = 0; f < failures; ++f) {
+        const auto k = static_cast<std::size_t>(said[note++]);
+        const auto length = static_cast<std::size_t>(said[note++]);
+        std::string text;
+        for (std::size_t c = 0; c < length; ++c)
+          text += static_cast<char>(static_cast<unsigned char>(said[note++]));
+        failed_.emplace_back(pairs[k].first, pairs[k].second, std::move(text));
+      }
+    }
+  }
+
+  /// A stage of the pairs process 0 chooses: the list told to every process, each taking its
+  /// share of a block of rows at a time. Returns how many.
+  template <class Chosen>
+  std::size_t run_chosen(std::uint8_t stage, const Chosen& chosen) {
+    const std::vector<Pair> pairs =
+        broadcast_pairs(exchange_, root_ ? chosen() : std::vector<Pair>{});
+    chosen_stage_ = true;
+    const int processes = exchange_.processes();
+    Told told;
+    told.total = share(pairs, exchange_.process(), processes).size();
+    for (std::size_t begin = 0; begin < pairs.size();) {  // pairs are in row order
+      std::size_t end = begin;
+      while (end < pairs.size() && pairs[end].first < pairs[begin].first + block_) ++end;
+      const std::vector<Pair> rows_block(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
+                                         pairs.begin() + static_cast<std::ptrdiff_t>(end));
+      run_stage(
+          stage, share(rows_block, exchange_.process(), processes),
+          [&](int process) { return share(rows_block, process, processes); }, told);
+      begin = end;
+    }
+    return pairs.size();
+  }
+
+  /// Each row's neighbours. A row whose best may have been let go (full matches lowered the
+  /// cells held) is computed again from its first cells and the later stages' (rare).
+  void neighbours() {
+    const std::size_t others = symmetric_ ? m_ - 1 : m_;
+    out_.neighbours.resize(n_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      std::vector<std::pair<std::size_t, Cell>> row;
+      if (best_->holds_best(i, options_.neighbours, others)) {
+        row = best_->best(i, options_.neighbours);
+      } else {
+        row = whole_row(i);
+        row.resize(std::min(options_.neighbours, row.size()));
+      }
+      for (const auto& [j, cell] : row)
+        out_.neighbours[i].push_back({j, cell.score, cell.stage, cell.transform});
+    }
+  }
+
+  /// Row i's cells as the whole matrix holds them, best first (not the diagonal): a block of
+  /// columns at a time, each pair compared as its first stage compared it (all against all, the
+  /// lower index as the reference) unless a later stage's cell is kept.
+  std::vector<std::pair<std::size_t, Cell>> whole_row(std::size_t i) const {
+    std::vector<std::pair<std::size_t, Cell>> row;
+    for (std::size_t begin = 0; begin < m_; begin += block_) {
+      std::vector<Pair> pairs;
+      for (std::size_t j = begin; j < std::min(m_, begin + block_); ++j)
+        if (!symmetric_ || j != i)
+          pairs.emplace_back(symmetric_ ? std::min(i, j) : i, symmetric_ ? std::max(i, j) : j);
+      const RowIndexes indexes(rows_, pairs);
+      std::vector<Cell> cells(pairs.size());
+      tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t k) {
+        const auto known = later_.find(pairs[k]);
+        if (known != later_.end()) {
+          cells[k] = known->second;
+          return;
+        }
+        try {
+          std::atomic<std::size_t> cuts{0};
+          cells[k] = compute(first_stage(), pairs[k].first, pairs[k].second, cuts);
+        } catch (const Error&) {  // named when it first failed
+          cells[k].score = std::numeric_limits<double>::quiet_NaN();
+        }
+      });
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const bool mirror = pairs[k].first != i;
+        row.emplace_back(mirror ? pairs[k].first : pairs[k].second,
+                         mirror ? mirrored(cells[k]) : cells[k]);
+      }
+    }
+    std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) {
+      return ranks_before(a.first, a.second, b.first, b.second);
+    });
+    return row;
+  }
+
+  Described& rows_;
+  const Described& columns_;
+  bool symmetric_;
+  const MatrixOptions& options_;
+  Exchange& exchange_;
+  SimilarityMatrix& out_;
+  std::size_t n_, m_;
+  bool root_, dense_;
+  std::size_t block_;
+  ScreenOptions screen_;
+  matching::MatchOptions full_match_;
+  std::optional<BestCells> best_;
+  /// With neighbours, the cells of the chosen stages (2 and 3; row <= column all against all),
+  /// for whole_row.
+  std::map<Pair, Cell> later_;
+  bool chosen_stage_ = false;
+  /// The pairs that failed (row, column, why), and how many pairs' clique searches were cut;
+  /// few, so kept apart from the cells.
+  std::vector<std::tuple<std::size_t, std::size_t, std::string>> failed_;
+  std::size_t cuts_ = 0;
+};
+
 }  // namespace
 
 const options::Table<MatrixOptions>& matrix_option_table() {
@@ -460,240 +752,7 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
   out.left_out.insert(out.left_out.end(), column_failures.begin(), column_failures.end());
 
   clock.restart();
-  const std::size_t n = rows.queries.size(), m = cols.queries.size();
-  const bool root = exchange.process() == 0;
-  // The whole matrix, or each row's best cells (MatrixOptions::neighbours), on process 0.
-  const bool dense = options.neighbours == 0;
-  std::optional<BestCells> best;
-  // With neighbours, the cells stages 2 and 3 gave (row <= column all against all), for a row
-  // whose best BestCells may not hold.
-  std::map<Pair, Cell> later;
-  bool chosen_stage = false;  // a stage of chosen pairs (kept in `later`), not every pair's first
-  if (root && dense) {
-    out.score = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
-    out.stage.setZero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(m));
-    if (options.transforms) out.transforms.assign(n * m, Eigen::Matrix4d::Identity());
-  } else if (root) {
-    // Room for the neighbours, the cells the next stages choose and as many again that a full
-    // match may move below them.
-    best.emplace(n, 2 * (options.neighbours + options.full_matches) + options.refined_overlays);
-  }
-  // A cell and, all against all, its mirror: the same score and stage, the inverse transform.
-  const auto set_cell = [&](std::size_t i, std::size_t j, const Cell& cell) {
-    if (!dense) {
-      if (chosen_stage) later[{i, j}] = cell;
-      best->offer(i, j, cell);
-      if (symmetric && i != j) best->offer(j, i, mirrored(cell));
-      return;
-    }
-    const auto r = static_cast<Eigen::Index>(i), c = static_cast<Eigen::Index>(j);
-    out.score(r, c) = cell.score;
-    out.stage(r, c) = cell.stage;
-    if (symmetric) {
-      out.score(c, r) = cell.score;
-      out.stage(c, r) = cell.stage;
-    }
-    if (!options.transforms) return;
-    out.transforms[i * m + j] = cell.transform;
-    if (symmetric && i != j) out.transforms[j * m + i] = mirrored(cell).transform;
-  };
-  // Each row's `count` best columns (every column with `every`; the diagonal with `diagonal`),
-  // as pairs (row <= column all against all), in order.
-  const auto choose = [&](std::size_t count, bool every, bool diagonal) {
-    if (dense) return best_pairs(out.score, symmetric, count, every, diagonal);
-    std::set<Pair> pairs;
-    for (std::size_t i = 0; i < n; ++i) {
-      for (const auto& [j, cell] : best->best(i, count))
-        pairs.emplace(symmetric ? std::min(i, j) : i, symmetric ? std::max(i, j) : j);
-    }
-    return std::vector<Pair>(pairs.begin(), pairs.end());
-  };
-  // The pairs that failed (row, column, why), and how many pairs' clique searches were cut; few,
-  // so kept apart from the matrix's cells.
-  std::vector<std::tuple<std::size_t, std::size_t, std::string>> failed;
-  std::size_t cuts = 0;
-  // One stage's pairs over the processes: this process's, `mine`, computed in parallel, then
-  // every process's cells gathered and set on process 0 (`theirs(r)`: process r's, in order).
-  const auto run_stage = [&](std::uint8_t stage, const std::vector<Pair>& mine, const auto& compute,
-                             const auto& theirs, Told& told) {
-    const std::size_t width = options.transforms ? 18 : 2;
-    const RowIndexes indexes(rows, stage == 3 ? std::vector<Pair>{} : mine);
-    std::vector<double> local(mine.size() * width);
-    std::vector<std::string> why(mine.size());
-    std::atomic<std::size_t> cut{0};
-    tbb::parallel_for(std::size_t{0}, mine.size(), [&](std::size_t k) {
-      Cell cell;
-      try {
-        cell = compute(mine[k].first, mine[k].second, cut);
-      } catch (const Error& error) {
-        cell = {std::numeric_limits<double>::quiet_NaN(), stage, Eigen::Matrix4d::Identity()};
-        why[k] = error.what();
-      }
-      put_cell(cell, options.transforms, local.data() + k * width);
-      if (!options.progress) return;
-      const std::lock_guard<std::mutex> lock(told.lock);
-      options.progress(++told.done, told.total);
-    });
-    // After the cells: the cut count, the failures, then each failure's pair and text.
-    std::vector<double> notes{static_cast<double>(cut.load()), 0.0};
-    for (std::size_t k = 0; k < why.size(); ++k) {
-      if (why[k].empty()) continue;
-      notes[1] += 1.0;
-      notes.push_back(static_cast<double>(k));
-      notes.push_back(static_cast<double>(why[k].size()));
-      for (const char c : why[k]) notes.push_back(static_cast<unsigned char>(c));
-    }
-    const std::vector<double> cells = exchange.gather(local);
-    const std::vector<double> said = exchange.gather(notes);
-    if (!root) return;
-    std::size_t at = 0, note = 0;
-    for (int process = 0; process < exchange.processes(); ++process) {
-      const std::vector<Pair> pairs = theirs(process);
-      for (const auto& [i, j] : pairs) {
-        const Cell cell = get_cell(cells.data() + at, options.transforms);
-        if (cell.stage != 0) set_cell(i, j, cell);  // 0: no alignment, the cell stays
-        at += width;
-      }
-      cuts += static_cast<std::size_t>(said[note++]);
-      const auto failures = static_cast<std::size_t>(said[note++]);
-      for (std::size_t f = 0; f < failures; ++f) {
-        const auto k = static_cast<std::size_t>(said[note++]);
-        const auto length = static_cast<std::size_t>(said[note++]);
-        std::string text;
-        for (std::size_t c = 0; c < length; ++c)
-          text += static_cast<char>(static_cast<unsigned char>(said[note++]));
-        failed.emplace_back(pairs[k].first, pairs[k].second, std::move(text));
-      }
-    }
-  };
-  // The pairs of a stage go in blocks of rows: of about 2^20 cells (what a gather holds) and,
-  // with neighbours, of 32 rows (the indexes RowIndexes builds at once, about a megabyte each).
-  const std::size_t block =
-      std::max<std::size_t>(1, std::min<std::size_t>((std::size_t{1} << 20) / m, dense ? n : 32));
-  // A stage of pairs process 0 chose: the list told to every process, each taking its share of
-  // a block of rows at a time.
-  const auto run_chosen = [&](std::uint8_t stage, const std::function<std::vector<Pair>()>& chosen,
-                              const auto& compute) {
-    const std::vector<Pair> pairs =
-        broadcast_pairs(exchange, root ? chosen() : std::vector<Pair>{});
-    chosen_stage = true;
-    Told told;
-    told.total = share(pairs, exchange.process(), exchange.processes()).size();
-    for (std::size_t begin = 0; begin < pairs.size();) {  // pairs are in row order
-      std::size_t end = begin;
-      while (end < pairs.size() && pairs[end].first < pairs[begin].first + block) ++end;
-      const std::vector<Pair> rows_block(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
-                                         pairs.begin() + static_cast<std::ptrdiff_t>(end));
-      run_stage(
-          stage, share(rows_block, exchange.process(), exchange.processes()), compute,
-          [&](int process) { return share(rows_block, process, exchange.processes()); }, told);
-      begin = end;
-    }
-    return pairs.size();
-  };
-
-  const ScreenOptions screen = screen_options(options);
-  const auto sample = [&](std::size_t j) {
-    return dense ? cols.queries[j].packed->sample().view() : cols.samples[j].view();
-  };
-  const auto fast = [&](std::size_t i, std::size_t j, std::atomic<std::size_t>&) {
-    const HitScore hit = fast_score(rows.queries[i], sample(j), screen);
-    return Cell{hit.score, 1, hit.transform};
-  };
-  const auto refined = [&](std::size_t i, std::size_t j, std::atomic<std::size_t>&) {
-    const HitScore hit = refined_score(rows.queries[i], sample(j), screen);
-    return Cell{hit.score, 2, hit.transform};
-  };
-  // Every pair's first cell: stage 1, or stage 2 when every pair gets it.
-  const bool refine_all = options.refined_overlays == 0;
-  const auto first = [&](std::size_t i, std::size_t j, std::atomic<std::size_t>& cut) {
-    return refine_all ? refined(i, j, cut) : fast(i, j, cut);
-  };
-  if (!options.exact) {
-    // Every pair, a block of rows at a time, a row at a time to each process; with neighbours,
-    // not the diagonal.
-    const auto rows_of = [&](std::size_t begin, int process) {
-      return row_share(begin, std::min(n, begin + block), m, symmetric, dense, process,
-                       exchange.processes());
-    };
-    Told told;
-    for (std::size_t begin = 0; begin < n; begin += block)
-      told.total += rows_of(begin, exchange.process()).size();
-    for (std::size_t begin = 0; begin < n; begin += block) {
-      run_stage(
-          refine_all ? 2 : 1, rows_of(begin, exchange.process()), first,
-          [&](int process) { return rows_of(begin, process); }, told);
-    }
-    if (!refine_all) {
-      run_chosen(
-          2, [&] { return choose(options.refined_overlays, false, dense); }, refined);
-    }
-  }
-  // The matrix keeps the top score alone: no alignment's coverage is measured.
-  matching::MatchOptions full_match = options.inputs.match;
-  full_match.coverage_distance = 0.0;
-  const std::size_t full_matches = run_chosen(
-      3, [&] { return choose(options.full_matches, options.exact, false); },
-      [&](std::size_t i, std::size_t j, std::atomic<std::size_t>& cut) {
-        const matching::MatchResult result =
-            dense ? matching::match_surfaces(rows.queries[i].descriptors,
-                                             cols.queries[j].descriptors, full_match)
-                  : matching::match_surfaces(describe_record(rows.records[i], options),
-                                             describe_record(cols.records[j], options), full_match);
-        if (!result.cliques_complete) ++cut;
-        if (result.alignments.empty()) return Cell{};  // the former stage's cell stays
-        const matching::Alignment& top = result.alignments.front();
-        return Cell{top.overlay.score, 3, top.transform};
-      });
-  if (root && !dense) {
-    // Each row's neighbours; a row whose best may have been let go (a full match lowered the
-    // cells held) is computed again from its first cells and the later stages' (rare).
-    const std::size_t others = symmetric ? m - 1 : m;
-    out.neighbours.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::vector<std::pair<std::size_t, Cell>> row;
-      if (best->holds_best(i, options.neighbours, others)) {
-        row = best->best(i, options.neighbours);
-      } else {
-        row.resize(others);
-        tbb::parallel_for(std::size_t{0}, m, [&](std::size_t j) {
-          if (symmetric && j == i) return;
-          const Pair pair{symmetric ? std::min(i, j) : i, symmetric ? std::max(i, j) : j};
-          const auto known = later.find(pair);
-          Cell cell;
-          if (known != later.end()) {
-            cell = known->second;
-          } else {
-            try {
-              std::atomic<std::size_t> cut{0};
-              cell = first(pair.first, pair.second, cut);
-            } catch (const Error&) {  // named when it first failed
-              cell.score = std::numeric_limits<double>::quiet_NaN();
-            }
-          }
-          if (pair.first != i) cell = mirrored(cell);
-          row[symmetric && j > i ? j - 1 : j] = {j, cell};
-        });
-        std::sort(row.begin(), row.end(), [](const auto& a, const auto& b) {
-          return ranks_before(a.first, a.second, b.first, b.second);
-        });
-        row.resize(std::min(options.neighbours, row.size()));
-      }
-      for (const auto& [j, cell] : row)
-        out.neighbours[i].push_back({j, cell.score, cell.stage, cell.transform});
-    }
-  }
-  std::sort(failed.begin(), failed.end());  // in pair order, whatever the processes and threads
-  for (const auto& [i, j, why] : failed) {
-    out.warnings.push_back(record_name(rows.members[i]) + " and " + record_name(cols.members[j]) +
-                           ": not matched (its score is nan): " + why);
-  }
-  if (cuts > 0) {
-    out.warnings.push_back(std::to_string(cuts) + " of " + std::to_string(full_matches) +
-                           " full matches: the clique search stopped at its budget (" +
-                           options::named("max_clique_work") + ", " +
-                           options::named("max_cliques") + "): alignments may be missing");
-  }
+  Comparison(rows, cols, symmetric, options, exchange, out).run();
   out.match_ms = clock.elapsed_ms();
   out.rows = std::move(rows.members);
   out.columns = symmetric ? out.rows : std::move(columns.members);
