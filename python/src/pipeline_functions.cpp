@@ -371,8 +371,10 @@ py::dict matrix(const std::vector<std::string>& set, const std::vector<std::stri
   const auto rows = static_cast<py::ssize_t>(computed.rows.size());
   const bool sparse = settings.neighbours > 0;
   // The transforms: per cell, or per row and neighbour.
-  const auto columns =
-      static_cast<py::ssize_t>(sparse ? settings.neighbours : computed.columns.size());
+  // A row's neighbours: at most K, and no more than its other molecules.
+  const std::size_t others = computed.columns.size() - (computed.symmetric ? 1 : 0);
+  const auto columns = static_cast<py::ssize_t>(sparse ? std::min(settings.neighbours, others)
+                                                       : computed.columns.size());
   py::object moves = py::none(), neighbours = py::none(), neighbour_scores = py::none(),
              neighbour_stages = py::none();
   if (transforms) {

@@ -920,8 +920,9 @@ _documented(
           "superposition; 2, its refinement (each molecule's ``refined_overlays`` best "
           "neighbours); 3, the full match's top alignment (each molecule's ``full_matches`` "
           "best, or every pair with ``exact=True``); 0, none. None with ``neighbours``",
-    neighbours="with ``neighbours=K``, (rows, K) int array: each row's K best columns, best "
-               "first (not the row itself all against all), -1 past a row's last; else None",
+    neighbours="with ``neighbours=K``, (rows, K) int array (K at most the other molecules): "
+               "each row's K best columns, best first (not the row itself all against all), -1 "
+               "past a row's last; else None",
     neighbour_scores="with ``neighbours=K``, (rows, K): their scores, as ``scores`` would "
                      "hold them (NaN past a row's last); else None",
     neighbour_stages="with ``neighbours=K``, (rows, K): their stages, as ``stage``; else None",
@@ -949,7 +950,8 @@ def matrix(set, against=None, *, transforms: bool = False,
     (a screen's stage 1); each molecule's ``refined_overlays`` best neighbours get the overlay
     refined (stage 2), and its ``full_matches`` best are then aligned as :func:`match` aligns two
     molecules (every pair with ``exact=True``). With ``neighbours=K`` only each molecule's K
-    best neighbours are kept, for a set whose matrix would not fit in memory. A
+    best neighbours are kept, for a set whose matrix would not fit in memory (``output`` then
+    gets a line per neighbour, as ``surfcomp matrix --neighbours`` writes them). A
     record that cannot be read or described is left out and named in ``left_out``. With
     ``output``, the matrix is also written there as CSV."""
     def paths(files):

@@ -70,7 +70,7 @@ struct Described {
   /// Each molecule's descriptors (the full match) and, unless exact, its packed samples (the
   /// overlays); with neighbours, its descriptors dropped (see describe_records).
   std::vector<ScreenQuery> queries;
-  std::vector<io::MoleculeRecord> records;  ///< each molecule's record
+  std::vector<io::MoleculeRecord> records;  ///< with neighbours, each molecule's record
   /// With neighbours, each molecule's packed sample: its index (ScreenQuery::packed, a
   /// megabyte) is built only while a stage compares the molecule as a row (RowIndexes).
   std::vector<matching::PackedSample> samples;
@@ -99,8 +99,8 @@ harmonic::SurfaceDescriptors describe_record(const io::MoleculeRecord& record,
 /// Each record read and described once (in parallel), those that fail left out with a line.
 /// With neighbours, only the packed samples are kept (a molecule's descriptors are megabytes,
 /// its samples kilobytes): the full matches describe their two molecules again.
-Described describe_records(const std::vector<io::MoleculeRecord>& records,
-                           const MatrixOptions& options, std::vector<std::string>& left_out) {
+Described describe_records(std::vector<io::MoleculeRecord> records, const MatrixOptions& options,
+                           std::vector<std::string>& left_out) {
   std::vector<std::optional<ScreenQuery>> prepared(records.size());
   std::vector<matching::PackedSample> samples(options.neighbours > 0 ? records.size() : 0);
   std::vector<std::string> why(records.size());
@@ -115,6 +115,8 @@ Described describe_records(const std::vector<io::MoleculeRecord>& records,
         prepared[k] = make_screen_query(std::move(described), screen);
         if (options.neighbours > 0) {  // the packed sample alone (Described::samples)
           prepared[k]->descriptors = {};
+          prepared[k]->sample = {};
+          prepared[k]->atoms = {};
           prepared[k]->atom_sample = {};
           prepared[k]->atom_packed.reset();
           samples[k] = prepared[k]->packed->sample();
@@ -139,8 +141,9 @@ Described describe_records(const std::vector<io::MoleculeRecord>& records,
     }
     out.members.push_back({record.name, record.source, record.record});
     out.queries.push_back(std::move(*prepared[k]));
-    out.records.push_back(record);
-    if (!samples.empty()) out.samples.push_back(std::move(samples[k]));
+    if (samples.empty()) continue;
+    out.records.push_back(std::move(records[k]));
+    out.samples.push_back(std::move(samples[k]));
   }
   return out;
 }
@@ -333,6 +336,15 @@ std::vector<Pair> share(const std::vector<Pair>& pairs, int process, int process
   return mine;
 }
 
+/// The pairs of a list whose row is process's (row mod processes), in order.
+std::vector<Pair> row_owned(const std::vector<Pair>& pairs, int process, int processes) {
+  std::vector<Pair> mine;
+  for (const Pair& pair : pairs)
+    if (pair.first % static_cast<std::size_t>(processes) == static_cast<std::size_t>(process))
+      mine.push_back(pair);
+  return mine;
+}
+
 /// Process 0's pairs, on every process.
 std::vector<Pair> broadcast_pairs(Exchange& exchange, const std::vector<Pair>& pairs) {
   std::vector<std::uint64_t> flat;
@@ -365,9 +377,13 @@ class Comparison {
         root_(exchange.process() == 0),
         dense_(options.neighbours == 0),
         // Blocks of rows of about 2^20 cells (what a gather holds) and, with neighbours, of 32
-        // rows (the indexes RowIndexes builds at once, about a megabyte each).
+        // rows a process (the indexes RowIndexes builds at once, about a megabyte each); a row
+        // a process at least.
         block_(std::max<std::size_t>(
-            1, std::min<std::size_t>((std::size_t{1} << 20) / m_, dense_ ? n_ : 32))),
+            static_cast<std::size_t>(exchange.processes()),
+            std::min<std::size_t>(
+                (std::size_t{1} << 20) / m_,
+                dense_ ? n_ : 32 * static_cast<std::size_t>(exchange.processes())))),
         screen_(screen_options(options)) {
     // The matrix keeps the top score alone: no alignment's coverage is measured.
     full_match_ = options.inputs.match;
@@ -540,25 +556,34 @@ class Comparison {
     }
   }
 
-  /// A stage of the pairs process 0 chooses: the list told to every process, each taking its
-  /// share of a block of rows at a time. Returns how many.
+  /// A stage of the pairs process 0 chooses: the list told to every process. Stage 2 goes a
+  /// block of rows at a time, each row's pairs to one process (its index built once); stage 3,
+  /// which builds no index, in one go, the pairs dealt in turn (full matches vary in cost).
+  /// Returns how many.
   template <class Chosen>
   std::size_t run_chosen(std::uint8_t stage, const Chosen& chosen) {
     const std::vector<Pair> pairs =
         broadcast_pairs(exchange_, root_ ? chosen() : std::vector<Pair>{});
     chosen_stage_ = true;
     const int processes = exchange_.processes();
-    Told told;
-    told.total = share(pairs, exchange_.process(), processes).size();
+    const auto mine_of = [&](const std::vector<Pair>& some, int process) {
+      return stage == 3 ? share(some, process, processes) : row_owned(some, process, processes);
+    };
+    std::vector<std::vector<Pair>> blocks;
     for (std::size_t begin = 0; begin < pairs.size();) {  // pairs are in row order
-      std::size_t end = begin;
+      std::size_t end = stage == 3 ? pairs.size() : begin;
       while (end < pairs.size() && pairs[end].first < pairs[begin].first + block_) ++end;
-      const std::vector<Pair> rows_block(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
-                                         pairs.begin() + static_cast<std::ptrdiff_t>(end));
-      run_stage(
-          stage, share(rows_block, exchange_.process(), processes),
-          [&](int process) { return share(rows_block, process, processes); }, told);
+      blocks.emplace_back(pairs.begin() + static_cast<std::ptrdiff_t>(begin),
+                          pairs.begin() + static_cast<std::ptrdiff_t>(end));
       begin = end;
+    }
+    Told told;
+    for (const std::vector<Pair>& some : blocks)
+      told.total += mine_of(some, exchange_.process()).size();
+    for (const std::vector<Pair>& some : blocks) {
+      run_stage(
+          stage, mine_of(some, exchange_.process()),
+          [&](int process) { return mine_of(some, process); }, told);
     }
     return pairs.size();
   }
@@ -603,7 +628,8 @@ class Comparison {
           std::atomic<std::size_t> cuts{0};
           cells[k] = compute(first_stage(), pairs[k].first, pairs[k].second, cuts);
         } catch (const Error&) {  // named when it first failed
-          cells[k].score = std::numeric_limits<double>::quiet_NaN();
+          cells[k] = {std::numeric_limits<double>::quiet_NaN(), first_stage(),
+                      Eigen::Matrix4d::Identity()};
         }
       });
       for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -707,9 +733,8 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
                       " do not go together: every pair's full match is kept as a matrix");
   }
   SimilarityMatrix out;
-  const std::vector<io::MoleculeRecord> row_records = set_records(set, options, out.left_out);
-  const std::vector<io::MoleculeRecord> column_records =
-      set_records(against, options, out.left_out);
+  std::vector<io::MoleculeRecord> row_records = set_records(set, options, out.left_out);
+  std::vector<io::MoleculeRecord> column_records = set_records(against, options, out.left_out);
   const bool symmetric = against.empty();
   if (row_records.empty()) throw InputError(names_of(set) + ": no molecule");
   if (!symmetric && column_records.empty()) throw InputError(names_of(against) + ": no molecule");
@@ -733,9 +758,9 @@ SimilarityMatrix similarity_matrix(const std::vector<std::filesystem::path>& set
   out.symmetric = symmetric;
   Stopwatch clock;
   std::vector<std::string> row_failures, column_failures;
-  Described rows = describe_records(row_records, options, row_failures);
+  Described rows = describe_records(std::move(row_records), options, row_failures);
   Described columns;
-  if (!symmetric) columns = describe_records(column_records, options, column_failures);
+  if (!symmetric) columns = describe_records(std::move(column_records), options, column_failures);
   out.describe_ms = clock.elapsed_ms();
 
   const Described& cols = symmetric ? rows : columns;

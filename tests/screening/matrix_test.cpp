@@ -296,6 +296,44 @@ TEST_F(Matrix, NeighboursAreEachRowsBestOfTheWholeMatrix) {
   EXPECT_THROW(screening::similarity_matrix(set, {}, options), OptionError);
 }
 
+// Twelve molecules, with room in each row for fewer cells than its columns: cells are let go and
+// the bound on them decides each row, which still equals the whole matrix's.
+TEST_F(Matrix, NeighboursLetGoOfCellsAndStillAreTheWholeMatrixs) {
+  const auto series = test::shared_dataset("sutherland/therm_3dqsar.sdf");
+  if (!series) SURFCOMP_DATA_ABSENT(test::shared_absent_message("sutherland"));
+  std::string twelve;
+  {
+    std::istringstream all(text_of(*series));
+    int records = 0;
+    for (std::string line; records < 12 && std::getline(all, line);) {
+      twelve += line + "\n";
+      if (line == "$$$$") ++records;
+    }
+  }
+  test::TempDir dir;
+  const std::vector<fs::path> set{dir.write("twelve.sdf", twelve)};
+  for (const std::size_t refined : {std::size_t{0}, std::size_t{2}}) {
+    screening::MatrixOptions options;
+    options.refined_overlays = refined;
+    options.full_matches = 1;  // room for 2 (1 + 1) + refined cells of 11 a row
+    const screening::SimilarityMatrix whole = screening::similarity_matrix(set, {}, options);
+    ASSERT_EQ(whole.rows.size(), 12u);
+    options.neighbours = 1;
+    const screening::SimilarityMatrix best = screening::similarity_matrix(set, {}, options);
+    for (Eigen::Index i = 0; i < 12; ++i) {
+      Eigen::VectorXd row = whole.score.row(i);
+      row(i) = -1.0;
+      Eigen::Index j = 0;
+      row.maxCoeff(&j);
+      const auto at = static_cast<std::size_t>(i);
+      ASSERT_EQ(best.neighbours[at].size(), 1u);
+      EXPECT_EQ(best.neighbours[at][0].column, static_cast<std::size_t>(j)) << refined << ": " << i;
+      EXPECT_EQ(best.neighbours[at][0].score, whole.score(i, j)) << refined << ": " << i;
+      EXPECT_EQ(best.neighbours[at][0].stage, whole.stage(i, j));
+    }
+  }
+}
+
 TEST_F(Matrix, AgainstASecondSetGivesItsRowsAndColumns) {
   test::TempDir dir;
   // One file of two records: both are read, in order.

@@ -29,7 +29,8 @@ struct MatrixOptions {
   matching::MatchInputOptions inputs;
   /// Default 10^7. A matrix of more pairs than this is refused before any work. The matrix
   /// takes 9 bytes a cell (both triangles, and `stage`), 137 with the transforms; each molecule's
-  /// description and packed sample about 2 MB more (a drug-sized ligand). >= 1.
+  /// description and packed index about 5 MB more (a drug-sized ligand), about 30 KB with
+  /// `neighbours`. The limit applies with `neighbours` too: it bounds the work. >= 1.
   std::int64_t max_pairs = 10'000'000;
   /// Default 0 (docs/decisions.md, "Matrix coarse to fine"). The columns of each row, best
   /// stage-1 score first (the diagonal excepted), whose overlay is refined; 0: every pair's.
@@ -42,8 +43,11 @@ struct MatrixOptions {
   bool exact = false;
   /// Default 0: the whole matrix (SimilarityMatrix::score). K > 0: each row's K best columns
   /// alone (SimilarityMatrix::neighbours), the same as the whole matrix's; memory then grows with
-  /// the molecules, about (2 (K + full_matches) + refined_overlays) cells a row, not with the
-  /// pairs. Not with `exact`.
+  /// the molecules, not with the pairs: a molecule's packed sample (about 30 KB), the indexes of
+  /// 32 rows a process, and per row 2 (K + full_matches) + refined_overlays cells of about 150
+  /// bytes (with their transforms) and its refined and fully matched cells. A row whose best may
+  /// have been let go (full matches lowered the cells kept; rare) is computed again on process
+  /// 0, a row's stage-1 work. Not with `exact`.
   std::size_t neighbours = 0;
   /// Default false. Keep each pair's top transform (SimilarityMatrix::transforms, and
   /// Neighbour::transform).
