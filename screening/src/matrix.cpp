@@ -403,7 +403,6 @@ class Comparison {
 
   /// Every stage, then (process 0) the neighbours and the warnings.
   void run() {
-    const bool refine_all = options_.refined_overlays == 0;
     if (!options_.exact) {
       // Every pair, a block of rows at a time, a row at a time to each process; with
       // neighbours, not the diagonal.
@@ -416,10 +415,10 @@ class Comparison {
         told.total += rows_of(begin, exchange_.process()).size();
       for (std::size_t begin = 0; begin < n_; begin += block_) {
         run_stage(
-            refine_all ? 2 : 1, rows_of(begin, exchange_.process()),
+            first_stage(), rows_of(begin, exchange_.process()),
             [&](int process) { return rows_of(begin, process); }, told);
       }
-      if (!refine_all)
+      if (first_stage() == 1)
         run_chosen(2, [&] { return choose(options_.refined_overlays, false, dense_); });
     }
     const std::size_t full_matches =

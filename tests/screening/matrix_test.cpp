@@ -46,6 +46,18 @@ std::string text_of(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+/// Each file's molecule described alone, as a screen query (a screen's stages 1 and 2).
+std::vector<screening::ScreenQuery> screen_queries(const std::vector<fs::path>& files) {
+  std::vector<screening::ScreenQuery> queries;
+  for (const fs::path& file : files) {
+    matching::MatchInput input;
+    input.path = file;
+    queries.push_back(
+        screening::make_screen_query(matching::prepare_input(input, {}).descriptors, {}));
+  }
+  return queries;
+}
+
 class Matrix : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -133,13 +145,7 @@ TEST_F(Matrix, TheRefinedOverlayRanksAndEachRowsBestGetsTheFullMatch) {
   const screening::SimilarityMatrix refined = screening::similarity_matrix(ligands_, {}, options);
   EXPECT_TRUE((refined.stage.array() == 2).all());
   // Each entry is a screen's stage 2 of the column's molecule against the row's, described alone.
-  std::vector<screening::ScreenQuery> queries;
-  for (const fs::path& ligand : ligands_) {
-    matching::MatchInput input;
-    input.path = ligand;
-    queries.push_back(
-        screening::make_screen_query(matching::prepare_input(input, {}).descriptors, {}));
-  }
+  const std::vector<screening::ScreenQuery> queries = screen_queries(ligands_);
   screening::ScreenOptions every_start;
   every_start.refine_starts = 0;
   for (std::size_t i = 0; i < 3; ++i) {
@@ -191,13 +197,7 @@ TEST_F(Matrix, WithRefinedOverlaysEachRowsBestByStageOneIsRefined) {
   const screening::SimilarityMatrix every = screening::similarity_matrix(set, {}, options);
   options.refined_overlays = 1;
   const screening::SimilarityMatrix one = screening::similarity_matrix(set, {}, options);
-  std::vector<screening::ScreenQuery> queries;
-  for (const fs::path& ligand : set) {
-    matching::MatchInput input;
-    input.path = ligand;
-    queries.push_back(
-        screening::make_screen_query(matching::prepare_input(input, {}).descriptors, {}));
-  }
+  const std::vector<screening::ScreenQuery> queries = screen_queries(set);
   screening::ScreenOptions every_start;
   every_start.refine_starts = 0;
   Eigen::MatrixXd fast(4, 4);
