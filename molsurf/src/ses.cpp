@@ -6,6 +6,7 @@
 
 #include "ses_components.hpp"
 #include "ses_grid.hpp"
+#include "ses_region.hpp"
 #include "ses_vertices.hpp"
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/option_names.hpp"
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -205,10 +207,33 @@ mesh::Surface with_components(const mesh::Surface& surface, const detail::Triang
   return mesh::Surface::from_arrays(positions, faces, what);
 }
 
+void validate_region(const SesRegion& region, const std::string& what) {
+  if (region.centers.rows() == 0) throw InputError(what + ": the surface's region has no ball");
+  if (region.centers.rows() != region.radii.size()) {
+    throw InputError(what + ": the surface's region has " + std::to_string(region.centers.rows()) +
+                     " centres but " + std::to_string(region.radii.size()) +
+                     " radii; expected one radius per centre");
+  }
+  for (Eigen::Index i = 0; i < region.centers.rows(); ++i) {
+    if (!region.centers.row(i).allFinite() || !std::isfinite(region.radii(i)) ||
+        !(region.radii(i) > 0.0)) {
+      throw InputError(what + ": ball " + std::to_string(i + 1) +
+                       " of the surface's region has radius " + number(region.radii(i)) +
+                       " A; expected a finite centre and a finite radius > 0");
+    }
+  }
+}
+
+/// The SES (excluded) or SAS of the atoms, cut to `region` when it is given (SES only).
 mesh::Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                             const Eigen::Ref<const Eigen::VectorXd>& radii,
-                            const SesOptions& options, bool excluded, const std::string& what) {
+                            const SesOptions& options, bool excluded, const std::string& what,
+                            const SesRegion* region = nullptr) {
   validate(centers, radii, options, what);
+  if (region != nullptr) validate_region(*region, what);
+  const std::optional<detail::BallUnion> balls =
+      region != nullptr ? std::optional<detail::BallUnion>(*region) : std::nullopt;
+  const detail::BallUnion* clip = balls ? &*balls : nullptr;
   const double edge_length = mesh::edge_length_for_density(options.vertex_density);
   const double voxel = choose_voxel_size(radii, options, edge_length, what);
   // Both surfaces lie inside the spheres R_i (SAS on them), the band a little beyond.
@@ -231,7 +256,7 @@ mesh::Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   const detail::SasGeometry sas(distinct_centers, distinct_radii, options.probe_radius);
   detail::TriangleSoup soup = detail::grid_mesh(
       sas, excluded ? detail::SurfaceKind::excluded : detail::SurfaceKind::accessible,
-      distinct_centers, reach, voxel);
+      distinct_centers, reach, voxel, clip);
   stage_done(1);
   // A component holding an atom holds its whole van der Waals ball, and a cavity the probe's.
   const double fraction = options.min_component_volume_fraction;
@@ -266,7 +291,7 @@ mesh::Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   // Grid and remeshed vertices lie within a voxel of the surface; search a little wider.
   const double projection_reach = reach_voxels * voxel;
   if (excluded) {
-    detail::place_ses_vertices(surface, sas, projection_reach, options.compensate_chords);
+    detail::place_ses_vertices(surface, sas, projection_reach, options.compensate_chords, clip);
   } else {
     detail::place_sas_vertices(surface, sas, projection_reach, edge_length,
                                options.compensate_chords);
@@ -289,6 +314,12 @@ mesh::Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                         const Eigen::Ref<const Eigen::VectorXd>& radii, const SesOptions& options,
                         const std::string& source) {
   return build_surface(centers, radii, options, true, source);
+}
+
+mesh::Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+                        const Eigen::Ref<const Eigen::VectorXd>& radii, const SesRegion& region,
+                        const SesOptions& options, const std::string& source) {
+  return build_surface(centers, radii, options, true, source, &region);
 }
 
 mesh::Surface build_sas(const Eigen::Ref<const Eigen::MatrixX3d>& centers,

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -15,7 +16,7 @@ namespace surfcomp::molsurf::detail {
 namespace {
 
 /// Grid values are exact within this many voxels of the surface and clamped beyond.
-constexpr double band_voxels = 1.5;
+constexpr double band_voxels = 1.0;
 /// Root boxes of the adaptive sampling, voxels per side (a power of two).
 constexpr int root_box = 32;
 /// Boxes up to this size are sampled voxel by voxel.
@@ -52,6 +53,33 @@ struct SasField {
   double upper_bound(const Vec3& x, double clamp, bool& exact) const {
     exact = true;
     return sas.union_value(x, clamp);
+  }
+};
+
+/// A field cut to a union of balls: max(field, region), the CSG intersection, still 1-Lipschitz.
+/// Boxes outside the region are decided by the region's value alone.
+template <class Field>
+struct ClippedField {
+  Field field;
+  const BallUnion& region;
+  void gather(const Vec3& centre, double radius, double clamp,
+              SasGeometry::Candidates& candidates) const {
+    field.gather(centre, radius, clamp, candidates);
+  }
+  double value(const Vec3& x, double clamp, const SasGeometry::Candidates& candidates) const {
+    const double outside = region.value(x);
+    if (outside >= clamp) return outside;
+    return std::max(field.value(x, clamp, candidates), outside);
+  }
+  double upper_bound(const Vec3& x, double clamp, bool& exact) const {
+    const double outside = region.value(x);
+    if (outside >= clamp) {
+      exact = true;
+      return outside;
+    }
+    const double bound = field.upper_bound(x, clamp, exact);
+    if (outside >= bound) exact = true;
+    return std::max(bound, outside);
   }
 };
 
@@ -149,10 +177,14 @@ SparseGrid sample_band(const Field& field, const Eigen::Ref<const Eigen::MatrixX
 
 TriangleSoup grid_mesh(const SasGeometry& sas, SurfaceKind kind,
                        const Eigen::Ref<const Eigen::MatrixX3d>& centers, double reach,
-                       double voxel) {
-  const SparseGrid grid = kind == SurfaceKind::excluded
-                              ? sample_band(SesField{sas}, centers, reach, voxel)
-                              : sample_band(SasField{sas}, centers, reach, voxel);
+                       double voxel, const BallUnion* region) {
+  const auto sample = [&](const auto& field) {
+    if (region == nullptr) return sample_band(field, centers, reach, voxel);
+    using Field = std::decay_t<decltype(field)>;
+    return sample_band(ClippedField<Field>{field, *region}, centers, reach, voxel);
+  };
+  const SparseGrid grid =
+      kind == SurfaceKind::excluded ? sample(SesField{sas}) : sample(SasField{sas});
   return dual_marching_cubes(grid, voxel);
 }
 

@@ -5,6 +5,7 @@
 
 #include "dual_marching_cubes.hpp"
 #include "sas_geometry.hpp"
+#include "ses_region.hpp"
 
 #include <Eigen/Core>
 
@@ -18,9 +19,11 @@ enum class SurfaceKind { excluded, accessible };
 /// boxes within `reach` A of an atom of `centers` (#A by 3, A), refined adaptively, and its
 /// zero isosurface meshed by dual marching cubes (a closed, 2-manifold mesh; each quad split
 /// along its shorter diagonal). Vertices are sorted by coordinates and faces by indices, so the
-/// arrays do not depend on the thread count.
+/// arrays do not depend on the thread count. With a `region`, the field is cut to it
+/// (max(field, region value)) and only nodes inside it are sampled: the mesh is the surface's
+/// region intersected with the union of balls.
 TriangleSoup grid_mesh(const SasGeometry& sas, SurfaceKind kind,
                        const Eigen::Ref<const Eigen::MatrixX3d>& centers, double reach,
-                       double voxel);
+                       double voxel, const BallUnion* region = nullptr);
 
 }  // namespace surfcomp::molsurf::detail

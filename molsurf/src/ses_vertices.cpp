@@ -7,17 +7,19 @@
 namespace surfcomp::molsurf::detail {
 
 void place_ses_vertices(mesh::Surface& surface, const SasGeometry& sas, double reach,
-                        bool compensate) {
+                        bool compensate, const BallUnion* region) {
   mesh::TriMesh& mesh = mesh::tri_mesh(surface);
   const auto n = static_cast<Eigen::Index>(mesh.n_vertices());
   Eigen::MatrixX3d positions = surface.positions();
   Eigen::MatrixX3d normals(n, 3);
   Eigen::VectorXd curvature(n);
   tbb::parallel_for(Eigen::Index{0}, n, [&](Eigen::Index v) {
-    Vec3 x = positions.row(v).transpose();
+    const Vec3 start = positions.row(v).transpose();
+    Vec3 x = start;
     Vec3 normal = Vec3::Zero();
     double h = 0.0;
     sas.project_to_ses(x, reach, normal, h);
+    if (region != nullptr) place_in_region(start, sas, reach, *region, x, normal, h);
     positions.row(v) = x.transpose();
     normals.row(v) = normal.transpose();
     curvature(v) = h;
@@ -28,6 +30,30 @@ void place_ses_vertices(mesh::Surface& surface, const SasGeometry& sas, double r
   }
   // A vertex with no surface point within reach keeps its place and takes the mesh normal.
   finish_placement(surface, normals, curvature, compensate);
+}
+
+void place_in_region(const Vec3& start, const SasGeometry& sas, double reach,
+                     const BallUnion& region, Vec3& x, Vec3& normal, double& mean_curvature) {
+  // The surface is the boundary of (SES region) cut to the union: its nearest point to `start`
+  // is the SES point if that lies in the union, or the union's sphere point if that lies in
+  // the SES region, whichever is nearer; a vertex where neither holds (on the seam) stays.
+  const bool on_ses = normal.squaredNorm() > 0.0 && region.value(x) <= 0.0;
+  if (region.value(start) <= -reach) return;  // no sphere of the region within reach
+  Vec3 sphere_normal;
+  double sphere_curvature = 0.0;
+  const Vec3 y = region.boundary_point(start, sphere_normal, sphere_curvature);
+  SasGeometry::Candidates candidates;
+  sas.gather(y, 0.0, sas.probe() + reach, candidates);
+  const bool on_sphere = sas.ses_value(y, reach, candidates) <= 0.0;
+  if (on_sphere && (!on_ses || (y - start).norm() < (x - start).norm())) {
+    x = y;
+    normal = sphere_normal;
+    mean_curvature = sphere_curvature;
+  } else if (!on_ses) {
+    x = start;
+    normal = Vec3::Zero();
+    mean_curvature = 0.0;
+  }
 }
 
 void finish_placement(mesh::Surface& surface, Eigen::MatrixX3d& normals,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "sas_geometry.hpp"
+#include "ses_region.hpp"
 #include "surfcomp/mesh/surface.hpp"
 
 #include <Eigen/Core>
@@ -13,9 +14,19 @@ namespace surfcomp::molsurf::detail {
 /// exact outward normals; a vertex with no surface point within reach keeps its place and the
 /// mesh normal. With `compensate`, then moves each vertex along its normal by the mean gap
 /// between its flat triangles and the curved surface (compensate_chord_gaps), so that area and
-/// volume are unbiased instead of those of an inscribed polyhedron. Parallel, deterministic.
+/// volume are unbiased instead of those of an inscribed polyhedron. With a `region`, the
+/// surface is the SES region cut to it (place_in_region). Parallel, deterministic.
 void place_ses_vertices(mesh::Surface& surface, const SasGeometry& sas, double reach,
-                        bool compensate);
+                        bool compensate, const BallUnion* region = nullptr);
+
+/// The placement of one vertex of an SES cut to `region`: `start` is where the mesh put it, and
+/// (x, normal, mean_curvature) its projection onto the SES (normal zero when none was found
+/// within `reach`). Keeps the SES point when it lies in the region and no sphere point of the
+/// region inside the SES region is nearer; otherwise takes that sphere point, its outward
+/// normal and curvature 1 / radius; where neither exists (on the seam where they meet), the
+/// vertex stays at `start` with a zero normal (the mesh normal, finish_placement).
+void place_in_region(const Vec3& start, const SasGeometry& sas, double reach,
+                     const BallUnion& region, Vec3& x, Vec3& normal, double& mean_curvature);
 
 /// Projects every vertex onto its nearest point of the SAS and makes the mesh follow the
 /// creases, the concave circle arcs where two spheres meet, which chord triangles would

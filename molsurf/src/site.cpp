@@ -122,24 +122,43 @@ mesh::Surface build_site_surface(const BindingSite& site,
   const auto n = static_cast<Eigen::Index>(structure.atoms.size());
   molsurf::SesOptions ses = options.ses;
   ses.voxel_size = molsurf::ses_voxel_size(centers, radii, ses);
+  // The surface is meshed within `region` of the spheres; the SES there depends on the atoms
+  // within two probe radii and an atom radius of it, which are kept.
+  const double region = site.surface_margin - surface_region_within_margin;
+  const bool whole = site.surface_margin == 0.0 || !(region > 0.0);
+  const double reach =
+      whole ? site.surface_margin : region + 2.0 * ses.probe_radius + radii.maxCoeff();
   std::vector<Eigen::Index> near;
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Vector3d position = centers.row(i).transpose();
     const bool kept =
         site.surface_margin == 0.0 ||
         std::any_of(site.spheres.begin(), site.spheres.end(), [&](const SiteSphere& s) {
-          return (position - s.center).norm() <= s.radius + site.surface_margin;
+          return (position - s.center).norm() <= s.radius + reach;
         });
     if (kept) near.push_back(i);
   }
   if (near.empty()) {
     std::ostringstream message;
-    message << structure.source << ": no atom lies within " << site.surface_margin
+    message << structure.source << ": no atom lies within " << reach
             << " A (the site's surface margin) of the site's spheres";
     throw InputError(message.str());
   }
-  mesh::Surface surface = mesh::spatially_ordered(
-      molsurf::build_ses(centers(near, Eigen::all), radii(near), ses, structure.source));
+  mesh::Surface surface;
+  if (whole) {
+    surface = molsurf::build_ses(centers(near, Eigen::all), radii(near), ses, structure.source);
+  } else {
+    SesRegion balls;
+    balls.centers.resize(static_cast<Eigen::Index>(site.spheres.size()), 3);
+    balls.radii.resize(static_cast<Eigen::Index>(site.spheres.size()));
+    for (std::size_t k = 0; k < site.spheres.size(); ++k) {
+      balls.centers.row(static_cast<Eigen::Index>(k)) = site.spheres[k].center.transpose();
+      balls.radii(static_cast<Eigen::Index>(k)) = site.spheres[k].radius + region;
+    }
+    surface =
+        molsurf::build_ses(centers(near, Eigen::all), radii(near), balls, ses, structure.source);
+  }
+  surface = mesh::spatially_ordered(surface);
   surface.set_source(structure.source);
   mesh::require_closed_manifold(surface);
   molsurf::assign_surface_properties(surface, &structure, options);
@@ -234,8 +253,9 @@ const options::Table<BindingSiteOptions>& binding_site_option_table() {
           [](auto& b) -> auto& { return b.sphere_radius; }),
       options::field<B>(
           {"site-margin", Kind::real,
-           "a site's surface is built from the atoms within a site sphere's radius "
-           "plus this margin, at least the patch radius + 8 (0: from every atom); "
+           "a site's surface is the structure's SES meshed within a site sphere's "
+           "radius plus this margin less 3 A, the margin at least the patch radius + 8 "
+           "(0: the whole structure's); "
            "ESP and LP come from every atom",
            "A", 0.0, 1000.0},
           [](auto& b) -> auto& { return b.surface_margin; }),

@@ -418,6 +418,100 @@ TEST(Ses, InvalidInputsThrow) {
   }
 }
 
+/// The region of one ball.
+SesRegion ball(const Eigen::Vector3d& center, double radius) {
+  SesRegion region;
+  region.centers = center.transpose();
+  region.radii = Eigen::VectorXd::Constant(1, radius);
+  return region;
+}
+
+// One atom (its SES is its van der Waals sphere) cut to a ball that holds part of it: a lens,
+// closed by the ball's sphere, with the two caps' analytic area and volume; every vertex on one
+// sphere with its radial normal, or on the circle where they meet.
+TEST(SesRegion, OneAtomCutByABallIsALens) {
+  const double r = 4.0, rho = 3.5, d = 3.0;  // atom at the origin, the ball's centre at (d, 0, 0)
+  const Eigen::Vector3d ball_center(d, 0.0, 0.0);
+  const Atoms atom = make_atoms({Eigen::Vector3d::Zero()}, {r});
+  const mesh::Surface lens = build_ses(atom.centers, atom.radii, ball(ball_center, rho));
+  ASSERT_NO_THROW(mesh::require_closed_manifold(lens));
+  // The spheres meet in the plane x = a; the atom's cap beyond it, the ball's cap before it.
+  const double a = (d * d + r * r - rho * rho) / (2.0 * d);
+  const double atom_cap = r - a, ball_cap = rho - (d - a);
+  const double area = 2.0 * M_PI * (r * atom_cap + rho * ball_cap);
+  const auto cap_volume = [](double radius, double h) {
+    return M_PI * h * h * (3.0 * radius - h) / 3.0;
+  };
+  const double volume = cap_volume(r, atom_cap) + cap_volume(rho, ball_cap);
+  const mesh::SurfaceMeasures m = mesh::measure_surface(lens);
+  std::cout << "lens: " << lens.n_vertices() << " vertices, area " << m.area << " (exact " << area
+            << "), volume " << m.volume << " (exact " << volume << ")\n";
+  EXPECT_EQ(m.euler_characteristic, 2);
+  EXPECT_NEAR(m.area, area, 0.015 * area);
+  EXPECT_NEAR(m.volume, volume, 0.015 * volume);
+  const Eigen::MatrixX3d p = lens.positions();
+  const Eigen::MatrixX3d n = lens.normals();
+  int on_atom = 0, on_ball = 0;
+  for (Eigen::Index v = 0; v < p.rows(); ++v) {
+    const Eigen::Vector3d x = p.row(v).transpose();
+    const Eigen::Vector3d normal = n.row(v).transpose();
+    const double from_atom = x.norm() - r, from_ball = (x - ball_center).norm() - rho;
+    if (std::abs(x.x() - a) < 0.5) continue;  // near the seam: on both, or between
+    // Off the seam the chord compensation (H L^2 / 8 < 0.03 A) alone moves a vertex.
+    if (x.x() > a) {
+      ++on_atom;
+      EXPECT_LT(std::abs(from_atom), 0.03) << v;
+      EXPECT_GT(x.normalized().dot(normal), 1.0 - 1e-9) << v;
+    } else {
+      ++on_ball;
+      EXPECT_LT(std::abs(from_ball), 0.03) << v;
+      EXPECT_GT((x - ball_center).normalized().dot(normal), 1.0 - 1e-9) << v;
+    }
+  }
+  EXPECT_GT(on_atom, 50);
+  EXPECT_GT(on_ball, 50);
+  mesh::Surface serial;
+  {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    serial = build_ses(atom.centers, atom.radii, ball(ball_center, rho));
+  }
+  EXPECT_TRUE(lens.positions() == serial.positions());
+  EXPECT_TRUE(lens.faces() == serial.faces());
+}
+
+// A region that holds the whole molecule, with room for the grid, changes nothing.
+TEST(SesRegion, ARegionHoldingTheMoleculeChangesNothing) {
+  const Atoms atoms = cresol();
+  const mesh::Surface whole = build_ses(atoms.centers, atoms.radii);
+  SesRegion two;
+  two.centers = Eigen::MatrixX3d(2, 3);
+  two.centers << -4.0, 0.0, 0.0, 4.0, 0.0, 0.0;
+  two.radii = Eigen::Vector2d(9.0, 9.0);
+  const mesh::Surface inside = build_ses(atoms.centers, atoms.radii, two);
+  EXPECT_TRUE(whole.positions() == inside.positions());
+  EXPECT_TRUE(whole.faces() == inside.faces());
+  EXPECT_TRUE(whole.normals() == inside.normals());
+}
+
+TEST(SesRegion, BadRegionsAreRefused) {
+  const Atoms one = make_atoms({Eigen::Vector3d(0, 0, 0)}, {1.7});
+  SesRegion empty;
+  empty.centers = Eigen::MatrixX3d(0, 3);
+  SesRegion mismatch = ball(Eigen::Vector3d::Zero(), 3.0);
+  mismatch.radii = Eigen::Vector2d(3.0, 3.0);
+  SesRegion nan_centre = ball(Eigen::Vector3d(std::nan(""), 0.0, 0.0), 3.0);
+  SesRegion zero_radius = ball(Eigen::Vector3d::Zero(), 0.0);
+  for (const SesRegion* region : {&empty, &mismatch, &nan_centre, &zero_radius}) {
+    try {
+      (void)build_ses(one.centers, one.radii, *region, {}, "one.pdb");
+      ADD_FAILURE() << "expected InputError";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("one.pdb: ", 0), 0u) << e.what();
+      EXPECT_NE(std::string(e.what()).find("region"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Ses, ThermolysinLigand) {
   SURFCOMP_SHARED_OR_SKIP(path, "thermolysin/ligands-common-frame/1THL_ligand.pdb");
   const Atoms atoms = read_pdb_heavy_atoms(path);

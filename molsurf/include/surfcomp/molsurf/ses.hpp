@@ -113,6 +113,26 @@ mesh::Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                         const Eigen::Ref<const Eigen::VectorXd>& radii,
                         const SesOptions& options = {}, const std::string& source = "<ses>");
 
+/// A region of space as a union of balls, A: `centers` #B by 3, `radii` #B (finite, > 0).
+struct SesRegion {
+  Eigen::MatrixX3d centers;
+  Eigen::VectorXd radii;
+};
+
+/// build_ses confined to `region`: the boundary of the SES region cut to the union of the
+/// region's balls. Where a ball's sphere cuts the molecule, the surface is closed by that
+/// sphere, so the result is still a closed, 2-manifold, outward-oriented surface; its vertices
+/// on the SES are placed exactly as build_ses places them, those on the spheres exactly on the
+/// spheres (normals outward from the ball). The grid is sampled only inside the region, which
+/// is the point: a binding site's surface (build_site_surface) costs the site's region, not the
+/// whole structure's margin. The SES within the region is exact when `centers` holds every atom
+/// within 2 probe radii plus the largest atom radius of it. Throws as build_ses, and
+/// InputError for an empty region, a size mismatch or a ball that is not finite with a radius
+/// > 0.
+mesh::Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+                        const Eigen::Ref<const Eigen::VectorXd>& radii, const SesRegion& region,
+                        const SesOptions& options = {}, const std::string& source = "<ses>");
+
 /// The solvent-accessible surface (Lee & Richards 1971): the boundary of the union of spheres of
 /// radius r_i + probe_radius (the surface the probe centre traces), built like build_ses from
 /// the field min_i (|x - c_i| - R_i). Vertices are projected onto their nearest point of the

@@ -52,10 +52,17 @@ options::Option<Settings> sphere_option(options::Spec spec, Access access) {
 }
 
 /// A site's surface (build_site_surface) is the whole structure's wherever the site's patches
-/// reach, up to the remeshing's small non-locality, when its margin is at least the patch
-/// radius plus this, A: the SES of a point depends on atoms up to a probe diameter and an atom
-/// radius away, its curvature on 2 A around it (docs/decisions.md#site-surfaces).
+/// reach when its margin is at least the patch radius plus this, A: it is meshed to 5 A beyond
+/// the patches (surface_region_within_margin), which covers a vertex's curvature fit (about
+/// 2 A) and the reach of the remeshing (docs/decisions.md#site-surfaces).
 inline constexpr double surface_margin_beyond_patch = 8.0;
+
+/// A site's surface (build_site_surface) is meshed within the spheres' radius plus the margin
+/// less this, A, and closed there by those spheres: with the margin at least the patch radius
+/// plus surface_margin_beyond_patch, 5 A beyond the patches, the reach of a vertex's curvature
+/// fit and of the remeshing, within which the surface is the whole structure's
+/// (docs/decisions.md#site-surfaces).
+inline constexpr double surface_region_within_margin = 3.0;
 
 /// The surface margin a site described with patches of `patch_radius` (A) is built with:
 /// `margin` raised to at least patch_radius + surface_margin_beyond_patch, or 0 (every atom)
@@ -71,10 +78,10 @@ struct BindingSiteOptions {
   /// out chains far from the site. Finite, >= 0.
   double chain_contact_radius = 0.0;
   /// Default 16 A (patches of up to 8 A; see surface_margin_beyond_patch). build_site_surface
-  /// builds the SES of the structure's atoms within a sphere's radius plus this margin of its
-  /// centre, not of the whole structure. 0: every atom. Finite, >= 0. Where a site is
-  /// described (match_inputs, prepare_input, a pocket screen), it is raised to
-  /// site_surface_margin of the patch radius.
+  /// meshes the structure's SES within a sphere's radius plus this margin less
+  /// surface_region_within_margin of its centre, not the whole structure's. 0: every atom.
+  /// Finite, >= 0. Where a site is described (match_inputs, prepare_input, a pocket screen), it
+  /// is raised to site_surface_margin of the patch radius.
   double surface_margin = 16.0;
 };
 
@@ -108,11 +115,15 @@ BindingSite binding_site(const Molecule& structure, const LigandSelector& ligand
 BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> spheres,
                          const BindingSiteOptions& options = {});
 
-/// The site's surface: the SES (options.ses) of the structure's atoms within a sphere's radius
-/// plus site.surface_margin of its centre (every atom when the margin is 0), sampled on the grid
-/// of the whole structure (molsurf::ses_voxel_size), with ESP and LP from every atom of the
-/// structure and curvature (options.esp, lp, curvature); its source is the structure's. Throws
-/// InputError when no atom lies within the margin, and as build_molecular_surface.
+/// The site's surface: the structure's SES (options.ses) within a sphere's radius plus
+/// site.surface_margin - surface_region_within_margin of its centre, closed by those spheres
+/// where they cut the structure (build_ses with a SesRegion), built from the atoms that reach
+/// that region (within two probe radii and the largest atom radius of it); every atom's SES
+/// when the margin is 0 (or not above surface_region_within_margin: then the SES of the atoms
+/// within the margin). It is sampled on the grid of the whole structure
+/// (molsurf::ses_voxel_size), with ESP and LP from every atom of the structure and curvature
+/// (options.esp, lp, curvature); its source is the structure's. Throws InputError when no atom
+/// lies within reach of the spheres, and as build_molecular_surface.
 mesh::Surface build_site_surface(const BindingSite& site,
                                  const molsurf::MolecularSurfaceOptions& options = {});
 
