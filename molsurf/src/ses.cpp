@@ -265,6 +265,11 @@ mesh::Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   limits.cavity = fraction * 4.0 / 3.0 * M_PI * std::pow(options.probe_radius, 3);
   limits.keep_cavities = options.keep_cavities;
   soup = detail::kept_components(soup, limits);
+  if (soup.faces.rows() == 0 && region != nullptr) {
+    throw InputError(what + ": no part of the surface lies within the region it is cut to (" +
+                     std::to_string(region->centers.rows()) +
+                     " balls), or only pieces smaller than half the smallest atom");
+  }
   if (soup.faces.rows() == 0) {
     throw TopologyError(what + ": the isosurface is empty at voxel size " + std::to_string(voxel) +
                         " A");

@@ -15,8 +15,11 @@
 namespace surfcomp::molsurf::detail {
 namespace {
 
-/// Grid values are exact within this many voxels of the surface and clamped beyond.
-constexpr double band_voxels = 1.0;
+/// Grid values are exact within this many voxels of the surface and clamped beyond. Dual
+/// marching cubes reads values only on grid edges whose ends differ in sign, which the field's
+/// Lipschitz bound puts within a voxel of the surface; the extra hundredth keeps the float band
+/// above the voxel.
+constexpr double band_voxels = 1.01;
 /// Root boxes of the adaptive sampling, voxels per side (a power of two).
 constexpr int root_box = 32;
 /// Boxes up to this size are sampled voxel by voxel.
@@ -57,7 +60,9 @@ struct SasField {
 };
 
 /// A field cut to a union of balls: max(field, region), the CSG intersection, still 1-Lipschitz.
-/// Boxes outside the region are decided by the region's value alone.
+/// Where the region's value reaches `clamp`, value() and upper_bound() return it, exact in the
+/// sense the sampler needs (a value at least clamp, which only says "outside"): boxes outside
+/// the region are decided by the region's value alone.
 template <class Field>
 struct ClippedField {
   Field field;

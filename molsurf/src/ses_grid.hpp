@@ -15,7 +15,7 @@ namespace surfcomp::molsurf::detail {
 enum class SurfaceKind { excluded, accessible };
 
 /// The grid mesh of `sas`'s SES (excluded) or SAS (accessible): the field (exact within a band
-/// of 1.5 voxels of the surface, 1-Lipschitz) sampled on the nodes ijk * voxel of the root
+/// of a voxel of the surface, 1-Lipschitz) sampled on the nodes ijk * voxel of the root
 /// boxes within `reach` A of an atom of `centers` (#A by 3, A), refined adaptively, and its
 /// zero isosurface meshed by dual marching cubes (a closed, 2-manifold mesh; each quad split
 /// along its shorter diagonal). Vertices are sorted by coordinates and faces by indices, so the

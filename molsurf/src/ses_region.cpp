@@ -1,8 +1,16 @@
 #include "ses_region.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace surfcomp::molsurf::detail {
+namespace {
+
+/// A sphere point deeper than this fraction of the radius inside another ball is buried.
+constexpr double burial_tolerance = 1e-9;
+
+}  // namespace
 
 BallUnion::BallUnion(const SesRegion& region) {
   centers_.reserve(static_cast<std::size_t>(region.centers.rows()));
@@ -12,27 +20,32 @@ BallUnion::BallUnion(const SesRegion& region) {
   }
 }
 
-double BallUnion::value(const Eigen::Vector3d& x, std::size_t* which) const {
+double BallUnion::value(const Eigen::Vector3d& x) const {
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < centers_.size(); ++i) {
-    const double v = (x - centers_[i]).norm() - radii_[i];
-    if (v < best) {
-      best = v;
-      if (which != nullptr) *which = i;
-    }
-  }
+  for (std::size_t i = 0; i < centers_.size(); ++i)
+    best = std::min(best, (x - centers_[i]).norm() - radii_[i]);
   return best;
 }
 
-Eigen::Vector3d BallUnion::boundary_point(const Eigen::Vector3d& x, Eigen::Vector3d& normal,
-                                          double& mean_curvature) const {
-  std::size_t which = 0;
-  value(x, &which);
-  const Eigen::Vector3d offset = x - centers_[which];
-  const double length = offset.norm();
-  normal = length > 0.0 ? Eigen::Vector3d(offset / length) : Eigen::Vector3d::UnitZ();
-  mean_curvature = 1.0 / radii_[which];
-  return centers_[which] + radii_[which] * normal;
+bool BallUnion::boundary_point(const Eigen::Vector3d& x, Eigen::Vector3d& point,
+                               Eigen::Vector3d& normal, double& mean_curvature) const {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < centers_.size(); ++i) {
+    const Eigen::Vector3d offset = x - centers_[i];
+    const double length = offset.norm();
+    if (!(length > 0.0)) continue;  // the centre: every point of the sphere is as near
+    const double distance = std::abs(length - radii_[i]);
+    if (!(distance < nearest)) continue;
+    const Eigen::Vector3d radial = offset / length;
+    const Eigen::Vector3d on_sphere = centers_[i] + radii_[i] * radial;
+    // On the boundary unless another ball holds it (rounding: a hair inside counts as on).
+    if (value(on_sphere) < -burial_tolerance * radii_[i]) continue;
+    nearest = distance;
+    point = on_sphere;
+    normal = radial;
+    mean_curvature = 1.0 / radii_[i];
+  }
+  return nearest < std::numeric_limits<double>::infinity();
 }
 
 }  // namespace surfcomp::molsurf::detail

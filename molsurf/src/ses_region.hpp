@@ -18,16 +18,16 @@ class BallUnion {
  public:
   explicit BallUnion(const SesRegion& region);
 
-  double value(const Eigen::Vector3d& x) const { return value(x, nullptr); }
+  double value(const Eigen::Vector3d& x) const;
 
-  /// The point of the boundary of the ball whose value at x is least (the nearest boundary
-  /// point from outside), its outward unit normal and mean curvature (1 / radius).
-  Eigen::Vector3d boundary_point(const Eigen::Vector3d& x, Eigen::Vector3d& normal,
-                                 double& mean_curvature) const;
+  /// The nearest point to x on a sphere patch of the union's boundary: the radial points of x
+  /// on the balls' spheres that lie in no other ball, the nearest of them, with its outward
+  /// unit normal and mean curvature (1 / radius). False, and the arguments unchanged, when
+  /// every such point is buried (x nearest to a crease where spheres meet).
+  bool boundary_point(const Eigen::Vector3d& x, Eigen::Vector3d& point, Eigen::Vector3d& normal,
+                      double& mean_curvature) const;
 
  private:
-  double value(const Eigen::Vector3d& x, std::size_t* which) const;
-
   std::vector<Eigen::Vector3d> centers_;
   std::vector<double> radii_;
 };

@@ -39,12 +39,14 @@ void place_in_region(const Vec3& start, const SasGeometry& sas, double reach,
   // the SES region, whichever is nearer; a vertex where neither holds (on the seam) stays.
   const bool on_ses = normal.squaredNorm() > 0.0 && region.value(x) <= 0.0;
   if (region.value(start) <= -reach) return;  // no sphere of the region within reach
-  Vec3 sphere_normal;
+  Vec3 y, sphere_normal;
   double sphere_curvature = 0.0;
-  const Vec3 y = region.boundary_point(start, sphere_normal, sphere_curvature);
-  SasGeometry::Candidates candidates;
-  sas.gather(y, 0.0, sas.probe() + reach, candidates);
-  const bool on_sphere = sas.ses_value(y, reach, candidates) <= 0.0;
+  bool on_sphere = region.boundary_point(start, y, sphere_normal, sphere_curvature);
+  if (on_sphere) {
+    SasGeometry::Candidates candidates;
+    sas.gather(y, 0.0, sas.probe() + reach, candidates);
+    on_sphere = sas.ses_value(y, reach, candidates) <= 0.0;
+  }
   if (on_sphere && (!on_ses || (y - start).norm() < (x - start).norm())) {
     x = y;
     normal = sphere_normal;

@@ -114,6 +114,34 @@ double site_surface_margin(double margin, double patch_radius) {
   return margin == 0.0 ? 0.0 : std::max(margin, patch_radius + surface_margin_beyond_patch);
 }
 
+namespace {
+
+/// The region build_site_surface meshes, beyond the spheres' radii, A; 0 when it meshes the
+/// whole surface of the atoms within the margin (a margin of 0 or of at most
+/// surface_region_within_margin).
+double meshed_region(const BindingSite& site) {
+  const double region = site.surface_margin - surface_region_within_margin;
+  return region > 0.0 ? region : 0.0;
+}
+
+/// site_atom_reach for the structure's balls and the grid's voxel.
+double atom_reach(const BindingSite& site, const Eigen::VectorXd& radii, double probe,
+                  double voxel) {
+  const double region = meshed_region(site);
+  if (region == 0.0) return site.surface_margin;
+  // The SES within the region depends on the atoms within two probe radii and an atom radius
+  // of it; the grid reads the field a voxel or two beyond it.
+  return region + 2.0 * probe + radii.maxCoeff() + 2.0 * voxel;
+}
+
+}  // namespace
+
+double site_atom_reach(const BindingSite& site, const SesOptions& ses) {
+  validate_molecule(site.structure);
+  const auto [centers, radii] = molsurf::atom_balls(site.structure);
+  return atom_reach(site, radii, ses.probe_radius, molsurf::ses_voxel_size(centers, radii, ses));
+}
+
 mesh::Surface build_site_surface(const BindingSite& site,
                                  const molsurf::MolecularSurfaceOptions& options) {
   const Molecule& structure = site.structure;
@@ -122,12 +150,9 @@ mesh::Surface build_site_surface(const BindingSite& site,
   const auto n = static_cast<Eigen::Index>(structure.atoms.size());
   molsurf::SesOptions ses = options.ses;
   ses.voxel_size = molsurf::ses_voxel_size(centers, radii, ses);
-  // The surface is meshed within `region` of the spheres; the SES there depends on the atoms
-  // within two probe radii and an atom radius of it, which are kept.
-  const double region = site.surface_margin - surface_region_within_margin;
-  const bool whole = site.surface_margin == 0.0 || !(region > 0.0);
-  const double reach =
-      whole ? site.surface_margin : region + 2.0 * ses.probe_radius + radii.maxCoeff();
+  const double region = meshed_region(site);
+  const bool whole = region == 0.0;
+  const double reach = atom_reach(site, radii, ses.probe_radius, ses.voxel_size);
   std::vector<Eigen::Index> near;
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::Vector3d position = centers.row(i).transpose();
@@ -140,8 +165,14 @@ mesh::Surface build_site_surface(const BindingSite& site,
   }
   if (near.empty()) {
     std::ostringstream message;
-    message << structure.source << ": no atom lies within " << reach
-            << " A (the site's surface margin) of the site's spheres";
+    message << structure.source << ": no atom lies within " << reach << " A of the site's spheres";
+    if (whole) {
+      message << " (its surface margin)";
+    } else {
+      message << " (its surface margin " << site.surface_margin << " A less "
+              << surface_region_within_margin
+              << " A, plus the reach of the atoms that shape the surface there)";
+    }
     throw InputError(message.str());
   }
   mesh::Surface surface;

@@ -130,12 +130,12 @@ LibraryEntry site_entry(const Molecule& structure, const SiteRequest& request,
   entry.molecule.name = request.name;
   entry.molecule.format = io::RecordFormat::structure;
   std::ostringstream pdb;
-  io::write_pdb(
-      site.surface_margin == 0.0
-          ? site.structure
-          : molsurf::site_neighbourhood(site.structure, site.spheres,
-                                        site.surface_margin + molsurf::neighbourhood_beyond_margin),
-      pdb);
+  const double reach = std::max(site.surface_margin + molsurf::neighbourhood_beyond_margin,
+                                molsurf::site_atom_reach(site, options.surface.ses));
+  io::write_pdb(site.surface_margin == 0.0
+                    ? site.structure
+                    : molsurf::site_neighbourhood(site.structure, site.spheres, reach),
+                pdb);
   entry.molecule.text = pdb.str();
   entry.info.heavy_atoms = detail::heavy_atom_count(site.structure);
   site.structure = io::read_record_molecule(entry.molecule, site_entry_read_options(options.read));

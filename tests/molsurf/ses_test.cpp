@@ -479,6 +479,32 @@ TEST(SesRegion, OneAtomCutByABallIsALens) {
   EXPECT_TRUE(lens.faces() == serial.faces());
 }
 
+// One atom cut to two overlapping balls whose spheres meet inside it: every vertex lies on the
+// boundary of atom ∩ (ball A ∪ ball B), whose signed field is max(|x| - r, min over the balls),
+// none on a ball's sphere where the other ball buries it.
+TEST(SesRegion, TwoBallsMeetingInsideTheAtomCutItAlongTheirUnion) {
+  const double r = 6.0;
+  const Atoms atom = make_atoms({Eigen::Vector3d::Zero()}, {r});
+  SesRegion two;
+  two.centers = Eigen::MatrixX3d(2, 3);
+  two.centers << -3.5, 0.0, 5.0, 3.5, 0.0, 5.0;
+  two.radii = Eigen::Vector2d(4.0, 4.0);
+  const mesh::Surface cut = build_ses(atom.centers, atom.radii, two);
+  ASSERT_NO_THROW(mesh::require_closed_manifold(cut));
+  EXPECT_EQ(mesh::measure_surface(cut).euler_characteristic, 2);
+  const Eigen::MatrixX3d p = cut.positions();
+  double worst = 0.0;
+  for (Eigen::Index v = 0; v < p.rows(); ++v) {
+    const Eigen::Vector3d x = p.row(v).transpose();
+    const double balls = std::min((x - two.centers.row(0).transpose()).norm() - two.radii(0),
+                                  (x - two.centers.row(1).transpose()).norm() - two.radii(1));
+    worst = std::max(worst, std::abs(std::max(x.norm() - r, balls)));
+  }
+  std::cout << "two balls: " << cut.n_vertices() << " vertices, farthest from the boundary "
+            << worst << " A\n";
+  EXPECT_LT(worst, 0.03);  // the chord compensation, H L^2 / 8 < 0.015 A, and the seams
+}
+
 // A region that holds the whole molecule, with room for the grid, changes nothing.
 TEST(SesRegion, ARegionHoldingTheMoleculeChangesNothing) {
   const Atoms atoms = cresol();
@@ -501,7 +527,8 @@ TEST(SesRegion, BadRegionsAreRefused) {
   mismatch.radii = Eigen::Vector2d(3.0, 3.0);
   SesRegion nan_centre = ball(Eigen::Vector3d(std::nan(""), 0.0, 0.0), 3.0);
   SesRegion zero_radius = ball(Eigen::Vector3d::Zero(), 0.0);
-  for (const SesRegion* region : {&empty, &mismatch, &nan_centre, &zero_radius}) {
+  SesRegion far_away = ball(Eigen::Vector3d(100.0, 0.0, 0.0), 3.0);  // holds none of the surface
+  for (const SesRegion* region : {&empty, &mismatch, &nan_centre, &zero_radius, &far_away}) {
     try {
       (void)build_ses(one.centers, one.radii, *region, {}, "one.pdb");
       ADD_FAILURE() << "expected InputError";

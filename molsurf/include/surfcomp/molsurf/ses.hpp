@@ -126,9 +126,11 @@ struct SesRegion {
 /// spheres (normals outward from the ball). The grid is sampled only inside the region, which
 /// is the point: a binding site's surface (build_site_surface) costs the site's region, not the
 /// whole structure's margin. The SES within the region is exact when `centers` holds every atom
-/// within 2 probe radii plus the largest atom radius of it. Throws as build_ses, and
-/// InputError for an empty region, a size mismatch or a ball that is not finite with a radius
-/// > 0.
+/// within 2 probe radii plus the largest atom radius of it (and the mesh the whole surface's
+/// there, away from the cut, when it holds those within two voxels more). Pieces the cut leaves
+/// smaller than the component filter's limit (min_component_volume_fraction) are dropped.
+/// Throws as build_ses, and InputError for an empty region, a size mismatch, a ball that is
+/// not finite with a radius > 0, or a region that holds none of the surface.
 mesh::Surface build_ses(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                         const Eigen::Ref<const Eigen::VectorXd>& radii, const SesRegion& region,
                         const SesOptions& options = {}, const std::string& source = "<ses>");

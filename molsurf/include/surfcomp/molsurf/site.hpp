@@ -60,8 +60,9 @@ inline constexpr double surface_margin_beyond_patch = 8.0;
 /// A site's surface (build_site_surface) is meshed within the spheres' radius plus the margin
 /// less this, A, and closed there by those spheres: with the margin at least the patch radius
 /// plus surface_margin_beyond_patch, 5 A beyond the patches, the reach of a vertex's curvature
-/// fit and of the remeshing, within which the surface is the whole structure's
-/// (docs/decisions.md#site-surfaces).
+/// fit and of the remeshing, within which the surface is the whole structure's at the default
+/// vertex density (coarser meshes remesh farther: at 1 vertex per A^2 a few vertices at the
+/// patches' edge move by hundredths of an A; docs/decisions.md#site-surfaces).
 inline constexpr double surface_region_within_margin = 3.0;
 
 /// The surface margin a site described with patches of `patch_radius` (A) is built with:
@@ -127,10 +128,18 @@ BindingSite binding_site(const Molecule& structure, std::vector<SiteSphere> sphe
 mesh::Surface build_site_surface(const BindingSite& site,
                                  const molsurf::MolecularSurfaceOptions& options = {});
 
+/// How far beyond a sphere's radius (A) build_site_surface takes the structure's atoms, built
+/// with `ses`: the margin when it meshes every atom's surface; otherwise the meshed region
+/// (the margin less surface_region_within_margin) plus two probe radii, the largest atom radius
+/// and two voxels of the grid, the atoms that shape the sampled surface there. Throws as
+/// build_ses for the structure's atoms.
+double site_atom_reach(const BindingSite& site, const SesOptions& ses);
+
 /// Default 4 A beyond the surface margin: the reach of the atoms a site keeps
 /// (site_neighbourhood). LP sums the atoms within molsurf::default_fauchere_cutoff (12 A) of a
 /// vertex, so it is the whole structure's at every vertex within the margin - 8 A of a sphere:
-/// at least the patch radius (site_surface_margin).
+/// at least the patch radius (site_surface_margin). A pocket library keeps the larger of this
+/// and site_atom_reach, which it exceeds for a water probe and atoms up to 2.8 A.
 inline constexpr double neighbourhood_beyond_margin = 4.0;
 
 /// What a site's surface and scores need of `structure`, in its order: every atom within a
