@@ -5,6 +5,7 @@
 #include "surfcomp/molsurf/ses.hpp"
 
 #include "ses_components.hpp"
+#include "ses_distance_transform.hpp"
 #include "ses_grid.hpp"
 #include "ses_region.hpp"
 #include "ses_vertices.hpp"
@@ -15,11 +16,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace surfcomp::molsurf {
@@ -239,6 +242,18 @@ mesh::Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   // Both surfaces lie inside the spheres R_i (SAS on them), the band a little beyond.
   const double reach = radii.maxCoeff() + options.probe_radius + 2.0 * voxel;
   check_grid_size(centers, reach, voxel, options.max_grid_cells, what);
+  if (excluded && options.method == SesMethod::distance_transform) {
+    // The distance transform fills a dense box, 16 bytes a node, indexed by 32-bit integers.
+    const double nodes =
+        detail::distance_transform_nodes(centers, radii, options.probe_radius, voxel, clip);
+    const std::string description = "the distance transform's grid would span about " +
+                                    number(nodes) + " cells of " + number(voxel) + " A";
+    require_within(what, description, nodes, options.max_grid_cells, "max_grid_cells");
+    if (nodes > static_cast<double>(std::numeric_limits<std::int32_t>::max())) {
+      throw InputError(what + ": " + description + "; it indexes at most 2^31 - 1 (use " +
+                       options::named("ses_method") + " exact)");
+    }
+  }
   const auto stage_done = [&](std::int64_t stage) {
     if (options.progress) options.progress(stage, 4);
   };
@@ -253,10 +268,21 @@ mesh::Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
     distinct_centers.row(static_cast<Eigen::Index>(k)) = centers.row(kept[k]);
     distinct_radii(static_cast<Eigen::Index>(k)) = radii(kept[k]);
   }
-  const detail::SasGeometry sas(distinct_centers, distinct_radii, options.probe_radius);
-  detail::TriangleSoup soup = detail::grid_mesh(
-      sas, excluded ? detail::SurfaceKind::excluded : detail::SurfaceKind::accessible,
-      distinct_centers, reach, voxel, clip);
+  const bool transform = excluded && options.method == SesMethod::distance_transform;
+  std::optional<detail::SasGeometry> sas;
+  detail::TransformField transform_field;
+  detail::TriangleSoup soup;
+  if (transform) {
+    detail::TransformMesh meshed = detail::distance_transform_mesh(
+        distinct_centers, distinct_radii, options.probe_radius, voxel, clip);
+    soup = std::move(meshed.soup);
+    transform_field = std::move(meshed.field);
+  } else {
+    sas.emplace(distinct_centers, distinct_radii, options.probe_radius);
+    soup = detail::grid_mesh(
+        *sas, excluded ? detail::SurfaceKind::excluded : detail::SurfaceKind::accessible,
+        distinct_centers, reach, voxel, clip);
+  }
   stage_done(1);
   // A component holding an atom holds its whole van der Waals ball, and a cavity the probe's.
   const double fraction = options.min_component_volume_fraction;
@@ -295,10 +321,12 @@ mesh::Surface build_surface(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
   stage_done(3);
   // Grid and remeshed vertices lie within a voxel of the surface; search a little wider.
   const double projection_reach = reach_voxels * voxel;
-  if (excluded) {
-    detail::place_ses_vertices(surface, sas, projection_reach, options.compensate_chords, clip);
+  if (transform) {
+    detail::place_on_field(surface, transform_field);
+  } else if (excluded) {
+    detail::place_ses_vertices(surface, *sas, projection_reach, options.compensate_chords, clip);
   } else {
-    detail::place_sas_vertices(surface, sas, projection_reach, edge_length,
+    detail::place_sas_vertices(surface, *sas, projection_reach, edge_length,
                                options.compensate_chords);
   }
   mesh::require_closed_manifold(surface);

@@ -12,11 +12,14 @@ constexpr double burial_tolerance = 1e-9;
 
 }  // namespace
 
-BallUnion::BallUnion(const SesRegion& region) {
+BallUnion::BallUnion(const SesRegion& region)
+    : lower_(Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity())), upper_(-lower_) {
   centers_.reserve(static_cast<std::size_t>(region.centers.rows()));
   for (Eigen::Index i = 0; i < region.centers.rows(); ++i) {
     centers_.emplace_back(region.centers.row(i).transpose());
     radii_.push_back(region.radii(i));
+    lower_ = lower_.cwiseMin(centers_.back() - Eigen::Vector3d::Constant(radii_.back()));
+    upper_ = upper_.cwiseMax(centers_.back() + Eigen::Vector3d::Constant(radii_.back()));
   }
 }
 

@@ -20,6 +20,10 @@ class BallUnion {
 
   double value(const Eigen::Vector3d& x) const;
 
+  /// The corners of the union's bounding box.
+  Eigen::Vector3d lower() const { return lower_; }
+  Eigen::Vector3d upper() const { return upper_; }
+
   /// The nearest point to x on a sphere patch of the union's boundary: the radial points of x
   /// on the balls' spheres that lie in no other ball, the nearest of them, with its outward
   /// unit normal and mean curvature (1 / radius). False, and the arguments unchanged, when
@@ -30,6 +34,7 @@ class BallUnion {
  private:
   std::vector<Eigen::Vector3d> centers_;
   std::vector<double> radii_;
+  Eigen::Vector3d lower_, upper_;
 };
 
 }  // namespace surfcomp::molsurf::detail

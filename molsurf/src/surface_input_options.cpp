@@ -20,6 +20,12 @@ const options::Table<SurfaceInputOptions>& surface_input_option_table() {
           {"voxel", Kind::real, "level-set voxel size (0: chosen from the density)", "A", 0.0, 2.0},
           [](auto& s) -> auto& { return s.surface.ses.voxel_size; }),
       options::choice<S>(
+          {"ses-method", Kind::choice,
+           "molecule INPUT: exact (the exact SES, exact normals) or edt (a distance transform "
+           "on a dense grid, as EDTSurf: about half the time for a protein; crevices thinner "
+           "than a voxel bridged, vertices about 0.14 A off on average)"},
+          [](auto& s) -> auto& { return s.surface.ses.method; }, ses_method_names),
+      options::choice<S>(
           {"charges", Kind::choice,
            "partial charges: file (the file's own; else residue charges for a "
            "protein PDB, Gasteiger otherwise), gasteiger or mmff"},

@@ -27,28 +27,10 @@ namespace {
 
 using test::Atoms;
 using test::make_atoms;
+using test::read_pdb_heavy_atoms;
 using test::two_atom_ses;
 using test::TwoAtomSes;
 using test::union_area;
-
-/// Heavy atoms of a PDB file (ATOM/HETATM, no water, alternate location ' ' or 'A'), with
-/// Bondi radii from the element in columns 77-78.
-Atoms read_pdb_heavy_atoms(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::vector<Eigen::Vector3d> centers;
-  std::vector<double> radii;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.size() < 78 || (line.rfind("ATOM", 0) != 0 && line.rfind("HETATM", 0) != 0)) continue;
-    if (line.substr(17, 3) == "HOH" || (line[16] != ' ' && line[16] != 'A')) continue;
-    const std::string element = normalize_element(line.substr(76, 2));
-    if (element == "H") continue;
-    centers.emplace_back(std::stod(line.substr(30, 8)), std::stod(line.substr(38, 8)),
-                         std::stod(line.substr(46, 8)));
-    radii.push_back(bondi_radius(element).value());
-  }
-  return make_atoms(centers, radii);
-}
 
 /// para-cresol, heavy atoms only, placed by hand in the xy plane (ring C-C 1.39 A, C-O 1.36 A,
 /// C-CH3 1.51 A): a compact 8-atom fragment.

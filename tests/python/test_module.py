@@ -34,6 +34,15 @@ def ligands(cache, tmp_path_factory):
     return paths + [cache / "rdkit-data" / "4i23_1C9.pdb", cache / "rdkit-data" / "4i24_1C9.pdb"]
 
 
+def test_the_distance_transform_surface_lies_near_the_exact_one(ligands):
+    exact = surfcomp.build_surface(ligands[2]).measures()
+    fast = surfcomp.build_surface(ligands[2], ses_method="edt").measures()
+    assert fast.euler_characteristic == 2 and fast.boundary_edges == 0
+    # Measured on 4i23's ligand: area -1.5 %, volume +2.5 % (crevices thinner than a voxel).
+    assert abs(fast.area - exact.area) < 0.03 * exact.area
+    assert abs(fast.volume - exact.volume) < 0.04 * exact.volume
+
+
 def test_a_surface_holds_its_arrays_and_round_trips_through_ply(ligands, tmp_path):
     surface = surfcomp.build_surface(ligands[0], probe_radius=1.4)
     assert surface.vertices.shape == (surface.n_vertices, 3)

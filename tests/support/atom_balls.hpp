@@ -1,12 +1,17 @@
 // Test-only unions of balls: atoms as centres and radii, and the area of their union by
 // Shrake-Rupley, the reference the surface tests compare the SES and SAS areas with, and the
-// analytic SES area of two atoms.
+// analytic SES area of two atoms; the heavy atoms of a PDB file.
 #pragma once
+
+#include "surfcomp/core/elements.hpp"
 
 #include <Eigen/Core>
 
 #include <cmath>
 #include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <string>
 #include <vector>
 
 namespace surfcomp::test {
@@ -26,6 +31,25 @@ inline Atoms make_atoms(const std::vector<Eigen::Vector3d>& centers,
     atoms.radii(static_cast<Eigen::Index>(i)) = radii[i];
   }
   return atoms;
+}
+
+/// Heavy atoms of a PDB file (ATOM/HETATM, no water, alternate location ' ' or 'A'), with
+/// Bondi radii from the element in columns 77-78.
+inline Atoms read_pdb_heavy_atoms(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<Eigen::Vector3d> centers;
+  std::vector<double> radii;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.size() < 78 || (line.rfind("ATOM", 0) != 0 && line.rfind("HETATM", 0) != 0)) continue;
+    if (line.substr(17, 3) == "HOH" || (line[16] != ' ' && line[16] != 'A')) continue;
+    const std::string element = normalize_element(line.substr(76, 2));
+    if (element == "H") continue;
+    centers.emplace_back(std::stod(line.substr(30, 8)), std::stod(line.substr(38, 8)),
+                         std::stod(line.substr(46, 8)));
+    radii.push_back(bondi_radius(element).value());
+  }
+  return make_atoms(centers, radii);
 }
 
 /// Area of the union of the balls of radii R_i + `grow` by Shrake-Rupley with `points`
