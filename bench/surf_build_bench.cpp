@@ -1,7 +1,8 @@
 // surf-build against EDTSurf, measured in one run: the 1THL crystal ligand and 4we2 (1,949 atoms),
 // file to file (read the molecule, build the surface with its properties, write the PLY).
 // EDTSurf runs as a process on the same files, at scale factors giving a similar vertex count.
-// Prints Google Benchmark's table, then the ratios and the SES areas side by side.
+// Both SES methods (exact, --ses-method edt). Prints Google Benchmark's table, then the ratios and
+// the SES areas side by side.
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/mesh/io/ply.hpp"
 #include "surfcomp/molsurf/molecular_surface.hpp"
@@ -76,13 +77,15 @@ EdtsurfRun run_edtsurf(const Input& input, int scale) {
   return run;
 }
 
-void BM_SurfBuild(benchmark::State& state, const std::string& name) {
+void BM_SurfBuild(benchmark::State& state, const std::string& name, molsurf::SesMethod method) {
   const Input& input = inputs().at(name);
   std::size_t vertices = 0;
   double area = 0.0;
+  molsurf::MolecularSurfaceOptions options;
+  options.ses.method = method;
   for (auto _ : state) {
     const Molecule molecule = io::read_molecule(input.molecule);
-    const mesh::Surface surface = molsurf::build_molecular_surface(molecule);
+    const mesh::Surface surface = molsurf::build_molecular_surface(molecule, options);
     mesh::io::write_ply(surface, kWork / (name + ".ply"));
     vertices = surface.n_vertices();
     area = mesh::measure_surface(surface).area;
@@ -91,7 +94,7 @@ void BM_SurfBuild(benchmark::State& state, const std::string& name) {
   state.counters["area_A2"] = area;
 }
 
-void BM_SesOnly(benchmark::State& state, const std::string& name) {
+void BM_SesOnly(benchmark::State& state, const std::string& name, molsurf::SesMethod method) {
   const Input& input = inputs().at(name);
   const Molecule molecule = io::read_molecule(input.molecule);
   Eigen::MatrixX3d centers(static_cast<Eigen::Index>(molecule.atoms.size()), 3);
@@ -101,7 +104,9 @@ void BM_SesOnly(benchmark::State& state, const std::string& name) {
     radii(i) = molecule.atoms[static_cast<std::size_t>(i)].radius;
   }
   std::size_t vertices = 0;
-  for (auto _ : state) vertices = molsurf::build_ses(centers, radii).n_vertices();
+  molsurf::SesOptions options;
+  options.method = method;
+  for (auto _ : state) vertices = molsurf::build_ses(centers, radii, options).n_vertices();
   state.counters["vertices"] = static_cast<double>(vertices);
 }
 
@@ -148,12 +153,17 @@ int main(int argc, char** argv) {
     std::printf("skipping 4we2: %s is absent (run datasets/fetch.sh)\n", protein.c_str());
   }
   for (const auto& [name, input] : inputs()) {
-    benchmark::RegisterBenchmark(("surf_build/" + name).c_str(), BM_SurfBuild, name)
-        ->Unit(benchmark::kMillisecond)
-        ->MinTime(1.0);
-    benchmark::RegisterBenchmark(("ses_only/" + name).c_str(), BM_SesOnly, name)
-        ->Unit(benchmark::kMillisecond)
-        ->MinTime(1.0);
+    for (const auto method : {molsurf::SesMethod::exact, molsurf::SesMethod::distance_transform}) {
+      const std::string suffix = method == molsurf::SesMethod::exact ? "" : "_edt";
+      benchmark::RegisterBenchmark(("surf_build" + suffix + "/" + name).c_str(), BM_SurfBuild, name,
+                                   method)
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(1.0);
+      benchmark::RegisterBenchmark(("ses_only" + suffix + "/" + name).c_str(), BM_SesOnly, name,
+                                   method)
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(1.0);
+    }
     benchmark::RegisterBenchmark(("edtsurf/" + name).c_str(), BM_Edtsurf, name)
         ->Unit(benchmark::kMillisecond)
         ->MinTime(1.0);
@@ -164,16 +174,23 @@ int main(int argc, char** argv) {
 
   std::printf("\nratios (same run, mean wall time):\n");
   for (const auto& [name, input] : inputs()) {
-    const auto ours = reporter.times_ms.find("surf_build/" + name);
-    const auto ses = reporter.times_ms.find("ses_only/" + name);
-    const auto edt = reporter.times_ms.find("edtsurf/" + name);
-    if (ours == reporter.times_ms.end() || edt == reporter.times_ms.end()) continue;
-    std::printf(
-        "  %-12s surf-build %.1f ms (%.0f vertices), SES geometry only %.1f ms, EDTSurf -f %d "
-        "%.1f ms (%.0f vertices): surf-build / EDTSurf = %.2f, SES only / EDTSurf = %.2f\n",
-        name.c_str(), ours->second, reporter.vertices["surf_build/" + name], ses->second,
-        input.edtsurf_scale, edt->second, reporter.vertices["edtsurf/" + name],
-        ours->second / edt->second, ses->second / edt->second);
+    for (const std::string suffix : {"", "_edt"}) {
+      const auto ours = reporter.times_ms.find("surf_build" + suffix + "/" + name);
+      const auto ses = reporter.times_ms.find("ses_only" + suffix + "/" + name);
+      const auto edt = reporter.times_ms.find("edtsurf/" + name);
+      if (ours == reporter.times_ms.end() || ses == reporter.times_ms.end() ||
+          edt == reporter.times_ms.end()) {
+        continue;
+      }
+      std::printf(
+          "  %-12s %-14s surf-build %.1f ms (%.0f vertices), SES geometry only %.1f ms, EDTSurf "
+          "-f %d %.1f ms (%.0f vertices): surf-build / EDTSurf = %.2f, SES only / EDTSurf = "
+          "%.2f\n",
+          name.c_str(), suffix.empty() ? "exact SES" : "--ses-method edt", ours->second,
+          reporter.vertices["surf_build" + suffix + "/" + name], ses->second, input.edtsurf_scale,
+          edt->second, reporter.vertices["edtsurf/" + name], ours->second / edt->second,
+          ses->second / edt->second);
+    }
   }
   std::printf(
       "\nSES area beside EDTSurf's (no exact reference: EDTSurf's area grows with its scale):\n");
