@@ -13,7 +13,7 @@
 //
 // The match runs with each parameter set of variants(); the sites are built once.
 //
-//   ./build/r/bench/site_bench [entries.txt [PREFIX [VARIANTS [MARGIN]]]]
+//   ./build/r/bench/site_bench [entries.txt [PREFIX [VARIANTS [MARGIN [SES]]]]]
 // entries.txt defaults to ../shared/datasets/kahraman-dev/entries.txt (the homogeneous set,
 // ../shared/datasets/homogeneous/entries.txt, has the same layout and IsoMIF's per-site figures
 // beside it, printed with the per-site AUCs); PREFIX, when given and not "-", makes
@@ -21,7 +21,8 @@
 // surface vertices, ms, every score printed, r_chem, the top-1 transform as t00..t23), which
 // bench/site_choice.py reads; sites are built and pairs matched on every core; VARIANTS, a
 // comma-separated list (or "-" for all), runs those only; MARGIN (A) is the site surface's margin
-// (BindingSiteOptions::surface_margin; 0 = the surface of the whole structure).
+// (BindingSiteOptions::surface_margin; 0 = the surface of the whole structure); SES "edt" builds
+// the site surfaces by the distance transform (--ses-method edt), anything else the exact SES.
 #include "surfcomp/core/error.hpp"
 #include "surfcomp/core/io/read_molecule.hpp"
 #include "surfcomp/core/stopwatch.hpp"
@@ -105,7 +106,7 @@ struct Site {
 /// structures are not used: the surface's ESP and LP cost #vertices x #atoms, and chains that
 /// do not touch the ligand are far from its site. Throws InputError when that copy is absent.
 Site build_site(const Entry& entry, const fs::path& pdb, double margin,
-                const harmonic::DescriptorOptions& options) {
+                const harmonic::DescriptorOptions& options, molsurf::SesMethod method) {
   const Stopwatch start;
   Site site;
   site.entry = entry;
@@ -122,8 +123,11 @@ Site build_site(const Entry& entry, const fs::path& pdb, double margin,
   for (const auto& chain : chains) site.chains += chain;
   site.atoms = binding_site.structure.atoms.size();
   site.ligand_atoms = binding_site.ligand.atoms.size();
-  site.descriptors = matching::describe_site(molsurf::build_site_surface(binding_site),
-                                             binding_site.structure, binding_site.spheres, options);
+  molsurf::MolecularSurfaceOptions surface_options;
+  surface_options.ses.method = method;
+  site.descriptors =
+      matching::describe_site(molsurf::build_site_surface(binding_site, surface_options),
+                              binding_site.structure, binding_site.spheres, options);
   site.in_site = matching::critical_points_in_site(site.descriptors, binding_site.spheres);
   site.site_cps =
       static_cast<std::size_t>(std::count(site.in_site.begin(), site.in_site.end(), true));
@@ -407,10 +411,14 @@ int main(int argc, char** argv) {
     options.patch.radius = kPatchRadius;
     const double margin =
         argc > 4 ? std::stod(argv[4]) : molsurf::BindingSiteOptions{}.surface_margin;
+    const molsurf::SesMethod method = argc > 5 && std::string(argv[5]) == "edt"
+                                          ? molsurf::SesMethod::distance_transform
+                                          : molsurf::SesMethod::exact;
     std::printf(
         "site radius %.1f A, patch radius %.1f A, chains within %.1f A of the ligand, surface "
-        "margin %.1f A\n\n",
-        kSiteRadius, kPatchRadius, kContactRadius, margin);
+        "margin %.1f A, SES %s\n\n",
+        kSiteRadius, kPatchRadius, kContactRadius, margin,
+        method == molsurf::SesMethod::exact ? "exact" : "edt (distance transform)");
     std::printf("%-5s %-4s %6s %-2s %-6s %7s %6s %9s %6s %7s %9s\n", "pdb", "lig", "resnum", "ch",
                 "kept", "atoms", "ligat", "vertices", "cps", "imaged", "build_ms");
     // Sites are built, and pairs matched, in parallel (every core TBB is given); each time in the
@@ -421,8 +429,8 @@ int main(int argc, char** argv) {
       const Entry& e = entries[i];
       // A site whose surface a stage rejects is reported and left out of the pairs.
       try {
-        built[i] =
-            build_site(e, entries_path.parent_path() / "pdb" / (e.pdb + ".pdb"), margin, options);
+        built[i] = build_site(e, entries_path.parent_path() / "pdb" / (e.pdb + ".pdb"), margin,
+                              options, method);
       } catch (const Error& error) {
         build_error[i] = error.what();
       }
