@@ -1,5 +1,6 @@
 #include "ses_distance_transform.hpp"
 
+#include "ses_grid.hpp"
 #include "ses_vertices.hpp"
 #include "sparse_grid.hpp"
 #include "surface_mesh.hpp"
@@ -18,8 +19,6 @@
 namespace surfcomp::molsurf::detail {
 namespace {
 
-/// The mesher's grid holds values within this many voxels of the surface, as grid_mesh's.
-constexpr double band_voxels = 1.01;
 /// The field kept for placing vertices holds values within this many voxels: its interpolation
 /// at a vertex reads nodes up to two voxels from the vertex's cell.
 constexpr double field_voxels = 3.5;
@@ -32,34 +31,12 @@ constexpr double box_margin_voxels = stamp_voxels + 1.0;
 constexpr int projection_steps = 4;
 constexpr float unset = std::numeric_limits<float>::infinity();
 
-/// A dense box of grid nodes: node (i, j, k) of the box is grid node lo + (i, j, k), stored at
-/// (i * n.y + j) * n.z + k.
-struct Box {
-  Eigen::Vector3i lo = Eigen::Vector3i::Zero();
-  Eigen::Vector3i n = Eigen::Vector3i::Zero();
-  std::size_t size() const {
-    return static_cast<std::size_t>(n.x()) * static_cast<std::size_t>(n.y()) *
-           static_cast<std::size_t>(n.z());
-  }
-  std::size_t index(int i, int j, int k) const {
-    return (static_cast<std::size_t>(i) * static_cast<std::size_t>(n.y()) +
-            static_cast<std::size_t>(j)) *
-               static_cast<std::size_t>(n.z()) +
-           static_cast<std::size_t>(k);
-  }
-  Eigen::Vector3i node(std::size_t index) const {
-    const auto nz = static_cast<std::size_t>(n.z()), ny = static_cast<std::size_t>(n.y());
-    return {static_cast<int>(index / (ny * nz)), static_cast<int>((index / nz) % ny),
-            static_cast<int>(index % nz)};
-  }
-};
-
 /// The box of nodes within `margin` + R_i of some atom, cut to the region's bounding box grown by
 /// the probe and the margin (a node's field reads the outside of U up to a probe radius away).
 /// Empty when they do not meet.
-Box node_box(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
-             const Eigen::Ref<const Eigen::VectorXd>& radii, double probe, double margin,
-             double voxel, const BallUnion* region) {
+NodeBox node_box(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
+                 const Eigen::Ref<const Eigen::VectorXd>& radii, double probe, double margin,
+                 double voxel, const BallUnion* region) {
   const double reach = radii.maxCoeff() + probe + margin;
   Eigen::Array3d lo = centers.colwise().minCoeff().transpose().array() - reach;
   Eigen::Array3d hi = centers.colwise().maxCoeff().transpose().array() + reach;
@@ -68,7 +45,7 @@ Box node_box(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
     hi = hi.min(region->upper().array() + probe + margin);
     if ((hi < lo).any()) return {};  // before the casts: a far region's bounds may not fit an int
   }
-  Box box;
+  NodeBox box;
   box.lo = (lo / voxel).floor().cast<int>().matrix();
   const Eigen::Vector3i top = (hi / voxel).ceil().cast<int>().matrix();
   box.n = top - box.lo + Eigen::Vector3i::Ones();
@@ -111,11 +88,11 @@ void distance_line(const float* f, int n, float* d, int* arg, std::vector<int>& 
   }
 }
 
-/// The squared distance (in voxels^2) from every node to the nearest node with `outside` set,
-/// and that node's index in the box (-1 when there is none), by three passes of distance_line
-/// along k, j and i.
-void distance_transform(const Box& box, const std::vector<float>& s, std::vector<float>& squared,
-                        std::vector<std::int32_t>& nearest) {
+/// The squared distance (in voxels^2) from every node to the nearest node outside U (s >= 0), and
+/// that node's index in the box (-1 when there is none), by three passes of distance_line along
+/// k, j and i.
+void distance_transform(const NodeBox& box, const std::vector<float>& s,
+                        std::vector<float>& squared, std::vector<std::int32_t>& nearest) {
   const std::size_t size = box.size();
   squared.assign(size, unset);
   nearest.assign(size, -1);
@@ -139,7 +116,7 @@ void distance_transform(const Box& box, const std::vector<float>& s, std::vector
           c(w_axis) = w;
           const auto at = [&](int t) {
             c(axis) = t;
-            return box.index(c.x(), c.y(), c.z());
+            return box.index(c);
           };
           for (int t = 0; t < n; ++t) {
             const std::size_t p = at(t);
@@ -165,14 +142,14 @@ void distance_transform(const Box& box, const std::vector<float>& s, std::vector
 double distance_transform_nodes(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                                 const Eigen::Ref<const Eigen::VectorXd>& radii, double probe,
                                 double voxel, const BallUnion* region) {
-  const Box box = node_box(centers, radii, probe, box_margin_voxels * voxel, voxel, region);
+  const NodeBox box = node_box(centers, radii, probe, box_margin_voxels * voxel, voxel, region);
   return static_cast<double>(box.n.x()) * box.n.y() * box.n.z();
 }
 
 TransformMesh distance_transform_mesh(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                                       const Eigen::Ref<const Eigen::VectorXd>& radii, double probe,
                                       double voxel, const BallUnion* region) {
-  const Box box = node_box(centers, radii, probe, box_margin_voxels * voxel, voxel, region);
+  const NodeBox box = node_box(centers, radii, probe, box_margin_voxels * voxel, voxel, region);
   const auto band = static_cast<float>(band_voxels * voxel);
   SparseGrid grid(band);
   if (box.size() == 0) return {dual_marching_cubes(grid, voxel), {}};
@@ -258,8 +235,8 @@ TransformMesh distance_transform_mesh(const Eigen::Ref<const Eigen::MatrixX3d>& 
             for (int dj = -1; dj <= 1; ++dj) {
               for (int dk = -1; dk <= 1; ++dk) {
                 const Eigen::Vector3i q = q0 + Eigen::Vector3i(di, dj, dk);
-                if ((q.array() < 0).any() || (q.array() >= box.n.array()).any()) continue;
-                const float sq = s[box.index(q.x(), q.y(), q.z())];
+                if (!box.contains(q)) continue;
+                const float sq = s[box.index(q)];
                 if (!(sq >= 0.0F) || !std::isfinite(sq)) continue;
                 d = std::min(d, (position(q.x(), q.y(), q.z()) - x).norm() - sq);
               }
@@ -298,9 +275,8 @@ TransformMesh distance_transform_mesh(const Eigen::Ref<const Eigen::MatrixX3d>& 
           for (int b = 0; b < w; ++b) {
             for (int c = 0; c < w; ++c) {
               const Eigen::Vector3i g = origin + Eigen::Vector3i(a, b, c) - box.lo;
-              const bool in_box = (g.array() >= 0).all() && (g.array() < box.n.array()).all();
               const float value =
-                  in_box ? std::clamp(field[box.index(g.x(), g.y(), g.z())], -band, band) : band;
+                  box.contains(g) ? std::clamp(field[box.index(g)], -band, band) : band;
               all_band = all_band && value >= band;
               all_inside = all_inside && value <= -band;
             }
@@ -315,8 +291,8 @@ TransformMesh distance_transform_mesh(const Eigen::Ref<const Eigen::MatrixX3d>& 
           for (int b = 0; b < w; ++b) {
             for (int c = 0; c < w; ++c) {
               const Eigen::Vector3i g = origin + Eigen::Vector3i(a, b, c) - box.lo;
-              if ((g.array() < 0).any() || (g.array() >= box.n.array()).any()) continue;
-              const float value = std::clamp(field[box.index(g.x(), g.y(), g.z())], -band, band);
+              if (!box.contains(g)) continue;
+              const float value = std::clamp(field[box.index(g)], -band, band);
               if (value < band)
                 grid.set({g.x() + box.lo.x(), g.y() + box.lo.y(), g.z() + box.lo.z()}, value);
             }
@@ -326,30 +302,26 @@ TransformMesh distance_transform_mesh(const Eigen::Ref<const Eigen::MatrixX3d>& 
     }
   }
   TriangleSoup soup = dual_marching_cubes(grid, voxel);
-  return {std::move(soup), TransformField(box.lo, box.n, voxel, std::move(field))};
+  return {std::move(soup), TransformField(box, voxel, std::move(field))};
 }
 
 bool TransformField::sample(const Eigen::Vector3d& x, double& value,
                             Eigen::Vector3d& gradient) const {
-  const Eigen::Vector3d g = x / voxel_ - lo_.cast<double>();
+  const Eigen::Vector3d g = x / voxel_ - box_.lo.cast<double>();
   const Eigen::Vector3d cell = g.array().floor().matrix();
   // The cell and the nodes one beyond it, which the second differences read (false for NaN).
-  if (!((cell.array() >= 1.0) && (cell.array() < (n_.array() - 2).cast<double>())).all()) {
+  if (!((cell.array() >= 1.0) && (cell.array() < (box_.n.array() - 2).cast<double>())).all()) {
     return false;
   }
   const Eigen::Vector3i c = cell.cast<int>();
   const Eigen::Vector3d t = g - cell;
   const auto at = [&](int a, int b, int d) {
-    return static_cast<double>(
-        values_[(static_cast<std::size_t>(c.x() + a) * static_cast<std::size_t>(n_.y()) +
-                 static_cast<std::size_t>(c.y() + b)) *
-                    static_cast<std::size_t>(n_.z()) +
-                static_cast<std::size_t>(c.z() + d)]);
+    return static_cast<double>(values_[box_.index(c.x() + a, c.y() + b, c.z() + d)]);
   };
   // Trilinear interpolation of the values and, for the correction, of the second differences
   // along each axis: linear interpolation along an axis errs by t (1 - t) / 2 times the second
   // difference, so subtracting that makes the interpolation exact for quadratics.
-  double lin = 0.0, curl[3] = {0.0, 0.0, 0.0};
+  double lin = 0.0, second[3] = {0.0, 0.0, 0.0};
   Eigen::Vector3d grad = Eigen::Vector3d::Zero();
   for (int a = 0; a < 2; ++a) {
     for (int b = 0; b < 2; ++b) {
@@ -360,14 +332,14 @@ bool TransformField::sample(const Eigen::Vector3d& x, double& value,
         lin += w * f;
         grad += f * Eigen::Vector3d((a ? 1.0 : -1.0) * wy * wz, (b ? 1.0 : -1.0) * wx * wz,
                                     (d ? 1.0 : -1.0) * wx * wy);
-        curl[0] += w * (at(a + 1, b, d) - 2.0 * f + at(a - 1, b, d));
-        curl[1] += w * (at(a, b + 1, d) - 2.0 * f + at(a, b - 1, d));
-        curl[2] += w * (at(a, b, d + 1) - 2.0 * f + at(a, b, d - 1));
+        second[0] += w * (at(a + 1, b, d) - 2.0 * f + at(a - 1, b, d));
+        second[1] += w * (at(a, b + 1, d) - 2.0 * f + at(a, b - 1, d));
+        second[2] += w * (at(a, b, d + 1) - 2.0 * f + at(a, b, d - 1));
       }
     }
   }
-  value = lin - 0.5 * (t.x() * (1.0 - t.x()) * curl[0] + t.y() * (1.0 - t.y()) * curl[1] +
-                       t.z() * (1.0 - t.z()) * curl[2]);
+  value = lin - 0.5 * (t.x() * (1.0 - t.x()) * second[0] + t.y() * (1.0 - t.y()) * second[1] +
+                       t.z() * (1.0 - t.z()) * second[2]);
   gradient = grad / voxel_;
   return true;
 }

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -21,14 +22,42 @@ double distance_transform_nodes(const Eigen::Ref<const Eigen::MatrixX3d>& center
                                 const Eigen::Ref<const Eigen::VectorXd>& radii, double probe,
                                 double voxel, const BallUnion* region);
 
+/// A dense box of grid nodes: node (i, j, k) of the box is grid node lo + (i, j, k), stored at
+/// (i * n.y + j) * n.z + k.
+struct NodeBox {
+  Eigen::Vector3i lo = Eigen::Vector3i::Zero();
+  Eigen::Vector3i n = Eigen::Vector3i::Zero();
+  std::size_t size() const {
+    return static_cast<std::size_t>(n.x()) * static_cast<std::size_t>(n.y()) *
+           static_cast<std::size_t>(n.z());
+  }
+  std::size_t index(int i, int j, int k) const {
+    return (static_cast<std::size_t>(i) * static_cast<std::size_t>(n.y()) +
+            static_cast<std::size_t>(j)) *
+               static_cast<std::size_t>(n.z()) +
+           static_cast<std::size_t>(k);
+  }
+  std::size_t index(const Eigen::Vector3i& c) const { return index(c.x(), c.y(), c.z()); }
+  /// The box coordinates of the node stored at `index`.
+  Eigen::Vector3i node(std::size_t index) const {
+    const auto nz = static_cast<std::size_t>(n.z()), ny = static_cast<std::size_t>(n.y());
+    return {static_cast<int>(index / (ny * nz)), static_cast<int>((index / nz) % ny),
+            static_cast<int>(index % nz)};
+  }
+  /// Whether box coordinates `c` name a node of the box.
+  bool contains(const Eigen::Vector3i& c) const {
+    return (c.array() >= 0).all() && (c.array() < n.array()).all();
+  }
+};
+
 /// The field distance_transform_mesh meshed, on its dense box of nodes, clamped to 3.5 voxels
 /// from its zero level, and interpolated trilinearly between the nodes with a correction by the
 /// second differences along each axis (exact for quadratics).
 class TransformField {
  public:
   TransformField() = default;
-  TransformField(Eigen::Vector3i lo, Eigen::Vector3i n, double voxel, std::vector<float> values)
-      : lo_(std::move(lo)), n_(std::move(n)), voxel_(voxel), values_(std::move(values)) {}
+  TransformField(NodeBox box, double voxel, std::vector<float> values)
+      : box_(std::move(box)), voxel_(voxel), values_(std::move(values)) {}
 
   /// Moves `x` onto the interpolated zero level by Newton steps along the gradient (each at
   /// most half a voxel), and returns the gradient's direction there, the outward normal; x
@@ -39,10 +68,9 @@ class TransformField {
   /// The interpolated value at x and its gradient; false outside the box.
   bool sample(const Eigen::Vector3d& x, double& value, Eigen::Vector3d& gradient) const;
 
-  Eigen::Vector3i lo_ = Eigen::Vector3i::Zero();
-  Eigen::Vector3i n_ = Eigen::Vector3i::Zero();
+  NodeBox box_;
   double voxel_ = 1.0;
-  std::vector<float> values_;  ///< node (i, j, k) at (i * n.y + j) * n.z + k
+  std::vector<float> values_;  ///< at box_.index(i, j, k)
 };
 
 /// The grid mesh and the field it was meshed from.
@@ -63,7 +91,7 @@ struct TransformMesh {
 /// grid_mesh does. Meshed by dual marching cubes (the values clamped to the same band as
 /// grid_mesh's): a closed, 2-manifold mesh, with the field for placing the remeshed vertices
 /// (TransformField::project). The grid misses the crevices of U's outside thinner than a voxel
-/// and bridges them (4we2: vertices 0.14 A from the exact SES on average, up to 1.4 A).
+/// and bridges them (docs/decisions.md#distance-transform-ses).
 /// Parallel, deterministic.
 TransformMesh distance_transform_mesh(const Eigen::Ref<const Eigen::MatrixX3d>& centers,
                                       const Eigen::Ref<const Eigen::VectorXd>& radii, double probe,

@@ -15,11 +15,6 @@
 namespace surfcomp::molsurf::detail {
 namespace {
 
-/// Grid values are exact within this many voxels of the surface and clamped beyond. Dual
-/// marching cubes reads values only on grid edges whose ends differ in sign, which the field's
-/// Lipschitz bound puts within a voxel of the surface; the extra hundredth keeps the float band
-/// above the voxel.
-constexpr double band_voxels = 1.01;
 /// Root boxes of the adaptive sampling, voxels per side (a power of two).
 constexpr int root_box = 32;
 /// Boxes up to this size are sampled voxel by voxel.

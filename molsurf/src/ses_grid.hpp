@@ -11,6 +11,12 @@
 
 namespace surfcomp::molsurf::detail {
 
+/// Grid values are exact within this many voxels of the surface and clamped beyond. Dual
+/// marching cubes reads values only on grid edges whose ends differ in sign, which the field's
+/// Lipschitz bound puts within a voxel of the surface; the extra hundredth keeps the float band
+/// above the voxel.
+inline constexpr double band_voxels = 1.01;
+
 /// Which surface of a SasGeometry a field describes.
 enum class SurfaceKind { excluded, accessible };
 

@@ -5,6 +5,8 @@
 #include "test_data.hpp"
 
 #include "surfcomp/harmonic/io/hsi_file.hpp"
+#include "surfcomp/mesh/io/ply.hpp"
+#include "surfcomp/mesh/surface.hpp"
 
 #include <Eigen/Dense>
 
@@ -15,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <map>
 #include <sstream>
@@ -654,6 +657,35 @@ TEST_F(Cli, MatrixIsTheSameUnderMpiWithOneTwoAndThreeProcesses) {
     EXPECT_EQ(warnings(r.err), warnings(alone.err)) << ranks << " processes";
   }
 #endif
+}
+
+// --ses-method edt builds the distance-transform SES: a closed surface of the same topology,
+// its area and volume near the exact SES's; an unknown method is refused before any work.
+TEST_F(Cli, SurfBuildTakesTheDistanceTransformSes) {
+  SURFCOMP_SHARED_OR_SKIP(ligand, "thermolysin/ligands-common-frame/1THL_ligand.sdf");
+  const fs::path exact_ply = scratch("exact.ply"), edt_ply = scratch("edt.ply");
+  ASSERT_EQ(run("surf-build " + ligand.string() + " -o " + exact_ply.string()).status, 0);
+  const ProgramRun edt =
+      run("surf-build " + ligand.string() + " --ses-method edt -o " + edt_ply.string());
+  ASSERT_EQ(edt.status, 0) << edt.err;
+  const mesh::SurfaceMeasures exact = mesh::measure_surface(mesh::io::read_ply(exact_ply));
+  const mesh::SurfaceMeasures fast = mesh::measure_surface(mesh::io::read_ply(edt_ply));
+  std::cout << "1THL ligand: exact area " << exact.area << " volume " << exact.volume
+            << "; edt area " << fast.area << " volume " << fast.volume << "\n";
+  EXPECT_EQ(fast.boundary_edges, 0);
+  EXPECT_EQ(fast.euler_characteristic, exact.euler_characteristic);
+  // Measured: area -3.1 %, volume +4.3 %; the grid bridges crevices thinner than a voxel.
+  EXPECT_NEAR(fast.area, exact.area, 0.04 * exact.area);
+  EXPECT_NEAR(fast.volume, exact.volume, 0.055 * exact.volume);
+  EXPECT_NE(file_bytes(edt_ply), file_bytes(exact_ply));
+
+  const fs::path refused = scratch("refused.ply");
+  const ProgramRun bad =
+      run("surf-build " + ligand.string() + " --ses-method fast -o " + refused.string());
+  EXPECT_EQ(bad.status, 2) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_NE(bad.err.find("--ses-method"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(refused));
 }
 
 }  // namespace

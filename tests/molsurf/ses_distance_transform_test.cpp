@@ -30,6 +30,14 @@ SesOptions transform_options() {
   return options;
 }
 
+/// The region of one ball.
+SesRegion one_ball(const Eigen::Vector3d& center, double radius) {
+  SesRegion region;
+  region.centers = center.transpose();
+  region.radii = Eigen::VectorXd::Constant(1, radius);
+  return region;
+}
+
 /// |exact SES value| at each vertex: the distance to the exact surface, to first order.
 struct Deviation {
   double mean = 0.0;
@@ -122,10 +130,7 @@ TEST(SesDistanceTransform, DeterministicAndARegionHoldingTheMoleculeChangesNothi
   }
   EXPECT_TRUE(first.positions() == serial.positions());
   EXPECT_TRUE(first.faces() == serial.faces());
-  SesRegion big;
-  big.centers = Eigen::MatrixX3d(1, 3);
-  big.centers << 2.0, 0.5, 0.0;
-  big.radii = Eigen::VectorXd::Constant(1, 12.0);
+  const SesRegion big = one_ball(Eigen::Vector3d(2.0, 0.5, 0.0), 12.0);
   const mesh::Surface inside = build_ses(atoms.centers, atoms.radii, big, transform_options());
   EXPECT_TRUE(first.positions() == inside.positions());
   EXPECT_TRUE(first.faces() == inside.faces());
@@ -139,28 +144,19 @@ TEST(SesDistanceTransform, ARegionReadsTheProbesReachBeyondIt) {
   options.voxel_size = 0.25;
   const Atoms atoms =
       make_atoms({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(3.6, 0.4, 0)}, {1.7, 1.5});
-  SesRegion holding;
-  holding.centers = Eigen::MatrixX3d(1, 3);
-  holding.centers << 1.8, 0.2, 0.0;
-  holding.radii = Eigen::VectorXd::Constant(1, 4.5);
+  const SesRegion holding = one_ball(Eigen::Vector3d(1.8, 0.2, 0.0), 4.5);
   const mesh::Surface whole = build_ses(atoms.centers, atoms.radii, options);
   const mesh::Surface inside = build_ses(atoms.centers, atoms.radii, holding, options);
   EXPECT_TRUE(whole.positions() == inside.positions());
   EXPECT_TRUE(whole.faces() == inside.faces());
-  SesRegion far;
-  far.centers = Eigen::MatrixX3d(1, 3);
-  far.centers << 1e12, 0.0, 0.0;
-  far.radii = Eigen::VectorXd::Constant(1, 1.0);
+  const SesRegion far = one_ball(Eigen::Vector3d(1e12, 0.0, 0.0), 1.0);
   EXPECT_THROW(build_ses(atoms.centers, atoms.radii, far, options), InputError);
 }
 
 TEST(SesDistanceTransform, ARegionCutsTheSurface) {
   // One atom cut by a ball through its centre: the lens of the sphere and the ball.
   const Atoms atom = make_atoms({Eigen::Vector3d(0, 0, 0)}, {1.7});
-  SesRegion half;
-  half.centers = Eigen::MatrixX3d(1, 3);
-  half.centers << 3.0, 0.0, 0.0;
-  half.radii = Eigen::VectorXd::Constant(1, 3.0);
+  const SesRegion half = one_ball(Eigen::Vector3d(3.0, 0.0, 0.0), 3.0);
   const mesh::Surface lens = build_ses(atom.centers, atom.radii, half, transform_options());
   ASSERT_NO_THROW(mesh::require_closed_manifold(lens));
   const Eigen::MatrixX3d p = lens.positions();

@@ -25,9 +25,9 @@ inline constexpr double max_vertex_density = 20.0;
 /// description). `distance_transform`: a Euclidean distance transform on a dense grid around the
 /// atoms (EDTSurf's approach, refined near the surface; 16 bytes a node), the same mesher and
 /// remeshing, then every vertex moved onto the interpolated field with the field's gradient as
-/// its normal, and no chord compensation. About half the time for a protein; the grid bridges
-/// the crevices thinner than a voxel (4we2: vertices 0.14 A from the exact SES on average, up
-/// to 1.4 A; area -10 %, volume +5 %) (docs/decisions.md#distance-transform-ses).
+/// its normal, and no chord compensation. Faster for a protein, but the grid bridges the
+/// crevices thinner than a voxel, so area falls and volume grows
+/// (docs/decisions.md#distance-transform-ses has the measured figures).
 enum class SesMethod { exact, distance_transform };
 
 /// The names of the methods, indexed by SesMethod (as --ses-method spells them).
